@@ -1,0 +1,175 @@
+// `ipd register REAL.txt SYNTH.txt` and `ipd register --list FILE.tsv`: rock pairing of label files.
+#include <fmt/format.h>
+
+#include <atomic>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "ipd/atomic_file.h"
+#include "ipd/registration.h"
+
+namespace ipd::cli {
+
+namespace {
+
+struct Job {
+  std::string real, synth;
+  int line = 0;
+  nlohmann::json result;
+  std::vector<LabelError> errors;
+};
+
+nlohmann::json report_json(const Job& job, const RegistrationReport& r) {
+  nlohmann::json j;
+  j["real"] = job.real;
+  j["synth"] = job.synth;
+  j["method"] = to_string(r.method);
+  j["affine"] = {{r.affine(0, 0), r.affine(0, 1), r.affine(0, 2)}, {r.affine(1, 0), r.affine(1, 1), r.affine(1, 2)}};
+  j["pairs"] = nlohmann::json::array();
+  for (const auto& [a, b] : r.pairs) j["pairs"].push_back({a, b});
+  j["trials"] = r.trials;
+  j["hypotheses"] = r.hypotheses;
+  j["inliers"] = r.inliers;
+  j["score"] = r.score;
+  j["stop"] = ipd::to_string(r.stop);
+  if (!r.note.empty()) j["note"] = r.note;
+  j["elapsed_ms"] = r.elapsed_ms;
+  return j;
+}
+
+void run_job(Job* job, const RegistrationOptions& opt, int cls, bool skip_bad_lines) {
+  LabelFile a = read_labels(job->real, {LabelKind::kGroundTruth});
+  LabelFile b = read_labels(job->synth, {LabelKind::kGroundTruth});
+  for (const auto* f : {&a, &b}) {
+    if (!f->exists) job->errors.push_back({f->path, 0, "no such label file"});
+    job->errors.insert(job->errors.end(), f->errors.begin(), f->errors.end());
+  }
+  if (!job->errors.empty() && (!skip_bad_lines || !a.exists || !b.exists)) return;
+  keep_class(&a, cls);
+  keep_class(&b, cls);
+  job->result = report_json(*job, register_rocks(a.boxes, b.boxes, opt));
+}
+
+std::vector<Job> read_list(const std::string& path) {
+  const std::string text = read_file(path);
+  std::vector<Job> jobs;
+  std::istringstream in(text);
+  std::string line;
+  int n = 0;
+  std::vector<std::string> bad;
+  while (std::getline(in, line)) {
+    ++n;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#') continue;
+    const size_t tab = line.find('\t');
+    if (tab == std::string::npos || line.find('\t', tab + 1) != std::string::npos) {
+      bad.push_back(fmt::format("{}:{}: expected real_path<TAB>synth_path, found '{}'", path, n, line));
+      continue;
+    }
+    jobs.push_back({line.substr(0, tab), line.substr(tab + 1), n, {}, {}});
+  }
+  if (!bad.empty()) {
+    std::string all;
+    for (const auto& b : bad) all += (all.empty() ? "" : "\n") + b;
+    throw IoError(all);
+  }
+  return jobs;
+}
+
+}  // namespace
+
+Runner add_register_command(CLI::App& app) {
+  struct Args {
+    std::string real, synth, list, method = "consensus";
+    std::uint64_t seed = 0;
+    int cls = -1, trials = 0, threads = 0;
+    std::vector<int> image_size;
+    double budget_ms = 0;
+    bool json = false, skip_bad_lines = false;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("register", "Pair the rocks of two GT label files by point-set registration");
+  cmd->add_option("REAL", args->real, "Real image's label file (YOLO txt)");
+  cmd->add_option("SYNTH", args->synth, "Synthetic image's label file (YOLO txt)");
+  cmd->add_option("--list", args->list, "TSV file of real_path<TAB>synth_path lines; one JSON object per line out");
+  cmd->add_option("--method", args->method, "consensus (default), paper or cpd")
+      ->check(CLI::IsMember({"paper", "consensus", "cpd"}));
+  cmd->add_option("--seed", args->seed, "Random seed (results are deterministic for a seed)");
+  cmd->add_option("--class", args->cls, "Only boxes of this class (default: all)");
+  cmd->add_option("--trials", args->trials, "paper: K samples (default 1000); consensus: hypothesis cap");
+  cmd->add_option("--budget-ms", args->budget_ms, "Stop searching after this many milliseconds per pair");
+  cmd->add_option("--image-size", args->image_size, "W,H of the pictures, so angles are measured in pixels")
+      ->delimiter(',')
+      ->expected(2);
+  cmd->add_option("--threads", args->threads, "Worker threads for --list (default: all cores)");
+  cmd->add_flag("--json", args->json, "Print JSON (one object per line)");
+  cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
+  return [args, cmd]() -> int {
+    const bool list_mode = !args->list.empty();
+    if (list_mode == (!args->real.empty() || !args->synth.empty()) || (!list_mode && args->synth.empty()))
+      throw CLI::ValidationError("register", "give either REAL SYNTH or --list FILE.tsv");
+    RegistrationOptions opt;
+    parse_method(args->method, &opt.method);
+    opt.seed = args->seed;
+    if (args->trials > 0) opt.max_trials = args->trials;
+    opt.time_budget_ms = args->budget_ms;
+    if (args->image_size.size() == 2) {
+      if (args->image_size[0] <= 0 || args->image_size[1] <= 0)
+        throw CLI::ValidationError("--image-size", "width and height must be positive");
+      opt.aspect = static_cast<double>(args->image_size[0]) / args->image_size[1];
+    }
+    const std::string bad = opt.validate();
+    if (!bad.empty()) throw CLI::ValidationError("register", bad);
+    std::vector<Job> jobs;
+    if (list_mode) jobs = read_list(args->list);
+    else jobs.push_back({args->real, args->synth, 0, {}, {}});
+    std::atomic<size_t> next{0};
+    auto worker = [&] {
+      for (size_t k; (k = next.fetch_add(1)) < jobs.size();) run_job(&jobs[k], opt, args->cls, args->skip_bad_lines);
+    };
+    const int threads = std::max(1, std::min<int>(args->threads > 0 ? args->threads : std::thread::hardware_concurrency(),
+                                                  static_cast<int>(jobs.size())));
+    std::vector<std::thread> pool;
+    for (int k = 1; k < threads; ++k) pool.emplace_back(worker);
+    worker();
+    for (auto& t : pool) t.join();
+    int failed = 0;
+    for (const auto& job : jobs) {
+      const bool fatal = job.result.is_null();
+      if (report_label_errors(job.errors, !fatal && args->skip_bad_lines) || fatal) {
+        ++failed;
+        if (list_mode && args->json) {
+          nlohmann::json e = {{"real", job.real}, {"synth", job.synth}};
+          e["error"] = job.errors.empty() ? "failed" : job.errors.front().to_string();
+          std::cout << e.dump() << "\n";
+        }
+        continue;
+      }
+      if (args->json) {
+        std::cout << job.result.dump() << "\n";
+        continue;
+      }
+      const auto& r = job.result;
+      fmt::print("{} -> {}\n", job.real, job.synth);
+      fmt::print("  method {}: {} trials, {} hypotheses, {} inliers, score {:.5f}; stopped: {}\n",
+                 r["method"].get<std::string>(), r["trials"].get<int>(), r["hypotheses"].get<int>(),
+                 r["inliers"].get<int>(), r["score"].get<double>(), r["stop"].get<std::string>());
+      if (r.contains("note")) fmt::print("  note: {}\n", r["note"].get<std::string>());
+      const auto& a = r["affine"];
+      fmt::print("  affine (real -> synth, normalised): [{:.5f} {:.5f} {:.5f}; {:.5f} {:.5f} {:.5f}]\n",
+                 a[0][0].get<double>(), a[0][1].get<double>(), a[0][2].get<double>(), a[1][0].get<double>(),
+                 a[1][1].get<double>(), a[1][2].get<double>());
+      fmt::print("  {} pairs (1-based real:synth):", r["pairs"].size());
+      for (const auto& p : r["pairs"]) fmt::print(" {}:{}", p[0].get<int>() + 1, p[1].get<int>() + 1);
+      fmt::print("\n");
+    }
+    return failed ? kBadInput : kOk;
+  };
+}
+
+}  // namespace ipd::cli

@@ -1,0 +1,16 @@
+// The subcommands of `ipd`; each adds itself to the CLI11 app and runs when chosen.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace ipd::cli {
+
+// Each returns the function to run when its subcommand was chosen (returning the exit code).
+using Runner = std::function<int()>;
+Runner add_table_command(CLI::App& app);
+Runner add_register_command(CLI::App& app);
+Runner add_demo_command(CLI::App& app);
+Runner add_figure_command(CLI::App& app);
+
+}  // namespace ipd::cli

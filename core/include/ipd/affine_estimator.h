@@ -1,0 +1,41 @@
+// Estimating a 2-D affine map from point correspondences: exactly from three, by least squares from more.
+// Callers pass normalised coordinates (centred, unit spread) so the solves are well conditioned.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "ipd/geometry.h"
+
+namespace ipd {
+
+// Twice the triangle area over the squared longest side: 0 for collinear points, ~0.87 for equilateral.
+double triangle_conditioning(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
+
+// Triangles flatter than this are rejected: their affine would amplify noise without bound.
+constexpr double kMinTriangleConditioning = 1e-3;
+
+// The affine mapping src[k] onto dst[k] (k = 0..2); false when either triangle is near-collinear.
+bool affine_from_three(const Eigen::Vector2d src[3], const Eigen::Vector2d dst[3], Affine2* out);
+
+// Least-squares affine over n >= 3 correspondences; false when the points are degenerate.
+bool affine_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
+                          Affine2* out);
+
+// A 3 + 3 point sample whose correspondence is unknown: the estimator tries every ordering of dst.
+struct TriplePair {
+  Eigen::Vector2d src[3];
+  Eigen::Vector2d dst[3];
+};
+
+// The paper's estimator: up to six models, one per permutation of the destination triple.
+struct AffinePermutationEstimator {
+  void estimate(const TriplePair& s, std::vector<Affine2>* models) const;
+};
+
+// An estimator for samples whose order is already known (guided samplers): at most one model.
+struct AffineTripleEstimator {
+  void estimate(const TriplePair& s, std::vector<Affine2>* models) const;
+};
+
+}  // namespace ipd

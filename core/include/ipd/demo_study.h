@@ -1,0 +1,19 @@
+// The built-in demo study: a small generated study (three domains, six scenes each) with pictures, GT
+// labels and predictions of a classical detector tuned on each domain. Deterministic for a seed.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace ipd {
+
+struct DemoStudyOptions {
+  int scenes = 6;
+  int width = 960, height = 600;
+  std::uint64_t seed = 7;
+};
+
+// Writes the study into `dir` (created; existing demo files are replaced). Throws IoError on failure.
+void write_demo_study(const std::string& dir, const DemoStudyOptions& options = {});
+
+}  // namespace ipd

@@ -1,0 +1,94 @@
+// The paper's Algorithm 1: performance-values per rock, rock pairs per image pair, IPD per domain pair and
+// model, and the cross table (rows: models by training domain; columns: domain pairs).
+#pragma once
+
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ipd/label_io.h"
+#include "ipd/registration.h"
+#include "ipd/study.h"
+
+namespace ipd {
+
+// Every label file of a study, parsed once, with all problems found.
+struct StudyLabels {
+  Study study;
+  std::map<std::string, std::map<std::string, LabelFile>> gt;  // domain -> stem -> GT
+  // domain -> model -> stem -> predictions; a model absent here has no predictions for that domain
+  std::map<std::string, std::map<std::string, std::map<std::string, LabelFile>>> predictions;
+  std::vector<LabelError> errors;
+
+  const LabelFile& gt_of(const std::string& domain, const std::string& stem) const;
+  const LabelFile& predictions_of(const std::string& domain, const std::string& model, const std::string& stem) const;
+  bool has_predictions(const std::string& domain, const std::string& model) const;
+};
+
+// Reads every label and prediction file (class filter and confidence threshold from the study config).
+StudyLabels load_labels(const Study& study);
+
+// How the rocks of one image pair were paired.
+struct ScenePairing {
+  std::string stem;
+  RockPairs pairs;
+  bool fixed = false;  // from pairs/<A>__<B>/<stem>.json
+  std::vector<int> excluded_a, excluded_b;
+  int count_a = 0, count_b = 0;
+  RegistrationReport registration;  // meaningful when !fixed
+};
+
+ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
+                        const std::string& stem, const RegistrationOptions& options);
+
+// One image pair's contribution for one model.
+struct SceneIpd {
+  std::string stem;
+  std::vector<double> perf_a, perf_b;  // per pair, in pairing order
+  double sum_abs_diff = 0;
+  int pairs = 0, unpaired_a = 0, unpaired_b = 0;
+  double ipd() const;  // NaN when there are no pairs
+};
+
+SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, const std::vector<Box>& pred_a,
+                   const std::vector<Box>& gt_b, const std::vector<Box>& pred_b);
+
+struct TableCell {
+  std::string model, trained_on, a, b;
+  double ipd = 0;  // NaN when no pairs or no predictions
+  long pairs = 0, unpaired_a = 0, unpaired_b = 0;
+  int scenes = 0;
+  bool involves_training_domain = true;  // false: computed, but shown as "–" like the paper
+  bool missing_predictions = false;
+  std::vector<SceneIpd> per_scene;
+};
+
+struct CrossTable {
+  std::vector<ModelInfo> models;
+  std::vector<std::pair<std::string, std::string>> columns;  // domain pairs
+  std::vector<TableCell> cells;                              // row-major: models x columns
+  std::vector<std::string> warnings;                         // skipped scenes, missing predictions
+  int registrations = 0, fixed_scenes = 0;
+  double registration_ms = 0;
+
+  const TableCell* cell(const std::string& model, const std::string& a, const std::string& b) const;
+};
+
+struct TableOptions {
+  std::vector<std::string> models;   // empty: all
+  std::vector<std::string> domains;  // empty: all
+  RegistrationOptions registration;
+  int threads = 0;  // 0: hardware concurrency
+  std::function<void(int done, int total)> progress;
+};
+
+// The domain pairs (i < j in study order) of the chosen domains.
+std::vector<std::pair<std::string, std::string>> domain_pairs(const Study& study,
+                                                              const std::vector<std::string>& domains);
+
+// Throws StudyError for unknown model or domain names, or fewer than two domains.
+CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& options);
+
+}  // namespace ipd

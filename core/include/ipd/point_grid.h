@@ -1,0 +1,33 @@
+// Exact nearest-neighbour queries on a fixed 2-D point set: a uniform grid with ring search, brute force
+// for small sets. Registration scores every hypothesis with it, so it must be cheap.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+namespace ipd {
+
+class PointGrid {
+ public:
+  PointGrid() = default;
+  explicit PointGrid(std::vector<Eigen::Vector2d> points);
+
+  // Index of the nearest point and its squared distance; -1 when the set is empty.
+  int nearest(const Eigen::Vector2d& p, double* sq_dist) const;
+  // Indices of points within `radius` of p.
+  void within(const Eigen::Vector2d& p, double radius, std::vector<int>* out) const;
+
+  const std::vector<Eigen::Vector2d>& points() const { return points_; }
+  size_t size() const { return points_.size(); }
+
+ private:
+  static constexpr size_t kBruteForceBelow = 24;
+  std::vector<Eigen::Vector2d> points_;
+  double x0_ = 0, y0_ = 0, cell_ = 1;
+  int nx_ = 0, ny_ = 0;
+  std::vector<int> cell_start_;  // CSR layout: points of cell c are order_[cell_start_[c] .. cell_start_[c+1])
+  std::vector<int> order_;
+  int cell_of(double v, double origin, int n) const;
+};
+
+}  // namespace ipd

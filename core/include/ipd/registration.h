@@ -1,0 +1,62 @@
+// Rock pairing between two images of one scene: 2-D point-set registration of GT box centres, then an
+// assignment of rocks. Methods share one interface; `paper` is the paper's RANSAC exactly.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "ipd/geometry.h"
+#include "ipd/robust_loop.h"
+
+namespace ipd {
+
+enum class RegistrationMethod { kPaper, kConsensus, kCpd };
+
+const char* to_string(RegistrationMethod m);
+// Parses "paper", "consensus" or "cpd"; false for anything else.
+bool parse_method(const std::string& name, RegistrationMethod* out);
+std::vector<std::string> method_names();
+
+using RockPairs = std::vector<std::pair<int, int>>;  // (index in A, index in B)
+
+struct RegistrationOptions {
+  RegistrationMethod method = RegistrationMethod::kConsensus;
+  std::uint64_t seed = 0;
+  int max_trials = 1000;        // paper: K samples (each tried in all 6 orders); consensus: hypothesis cap
+  double time_budget_ms = 0;    // 0: none
+  double aspect = 1.0;          // image width / height: distances and angles are measured in pixels
+  // paper: rocks are paired as mutual nearest neighbours within this distance (fraction of image width)
+  double pair_gate = 0.05;
+  // consensus: plausible affines only
+  double min_scale = 0.5, max_scale = 2.0;  // singular values of the linear part
+  double max_rotation_deg = 60.0;
+  double inlier_gate = 0;       // 0: chosen from the rock density
+  double confidence = 0.9999;
+  double min_pair_iou = 0.05;   // consensus: aligned boxes overlapping less than this stay unpaired
+  int cpd_iterations = 100;     // cpd: EM iterations
+  double cpd_outlier_weight = 0.2;
+
+  // Empty when usable; otherwise what is wrong, in one sentence.
+  std::string validate() const;
+};
+
+struct RegistrationReport {
+  RegistrationMethod method = RegistrationMethod::kConsensus;
+  Affine2 affine = identity_affine();  // maps normalised A centres onto B's
+  RockPairs pairs;                     // sorted by A index
+  int trials = 0;                      // samples drawn (paper: K) or EM iterations (cpd)
+  int hypotheses = 0;                  // affines scored
+  int inliers = 0;                     // A centres within the gate of a B centre after alignment
+  double score = 0;                    // paper: mean nearest-neighbour distance; consensus: soft inlier count
+  StopReason stop = StopReason::kNotRun;
+  std::string note;                    // why a fallback was used, if one was
+  double elapsed_ms = 0;
+};
+
+// Registers A's GT boxes onto B's and pairs the rocks. Throws std::invalid_argument for bad options.
+RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<Box>& b,
+                                  const RegistrationOptions& options);
+
+}  // namespace ipd

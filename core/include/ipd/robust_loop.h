@@ -1,0 +1,114 @@
+// A generic robust hypothesise-and-verify loop, in the manner of COLMAP's optim/ransac.h, but for
+// correspondence-free registration: a Sampler proposes minimal samples, an Estimator turns a sample into
+// zero or more models, a Scorer rates a model (higher is better) and may refine a new best one.
+//
+//   Sampler:   bool next(Sample*)                      false when it has nothing more to propose
+//   Estimator: void estimate(const Sample&, std::vector<Model>*)
+//   Scorer:    double score(const Model&)
+//              void refine(Model*, double* score)      local optimisation of a new best (may do nothing)
+//              bool cannot_be_beaten(double score)     the best possible score is reached
+//              double success_probability(double score) chance one sample is all-correct given the best so
+//                                                      far (0 when unknown: no confidence-based stop)
+#pragma once
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace ipd {
+
+enum class StopReason { kNotRun, kTooFewPoints, kMaxTrials, kExhausted, kConfidence, kCannotBeBeaten, kTimeBudget };
+
+inline const char* to_string(StopReason r) {
+  switch (r) {
+    case StopReason::kNotRun: return "not run";
+    case StopReason::kTooFewPoints: return "too few points for a minimal sample";
+    case StopReason::kMaxTrials: return "reached the trial limit";
+    case StopReason::kExhausted: return "tried every hypothesis";
+    case StopReason::kConfidence: return "confident no better hypothesis remains";
+    case StopReason::kCannotBeBeaten: return "best score cannot be beaten";
+    case StopReason::kTimeBudget: return "time budget spent";
+  }
+  return "?";
+}
+
+struct RobustLoopOptions {
+  int max_trials = 1000;
+  int min_trials = 0;
+  double confidence = 0.0;      // 0 disables the confidence-based stop
+  double time_budget_ms = 0.0;  // 0: no limit
+};
+
+template <typename Model>
+struct RobustLoopResult {
+  bool found = false;
+  Model best{};
+  double best_score = -INFINITY;
+  int trials = 0;      // samples drawn
+  int hypotheses = 0;  // models scored
+  StopReason stop = StopReason::kNotRun;
+};
+
+template <typename Model, typename Sample, typename Sampler, typename Estimator, typename Scorer>
+RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, Scorer& scorer,
+                                        const RobustLoopOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  RobustLoopResult<Model> r;
+  std::vector<Model> models;
+  Sample sample;
+  long dynamic_max = options.max_trials;
+  while (true) {
+    if (r.trials >= options.max_trials) {
+      r.stop = StopReason::kMaxTrials;
+      break;
+    }
+    if (r.trials >= options.min_trials && r.trials >= dynamic_max) {
+      r.stop = StopReason::kConfidence;
+      break;
+    }
+    if (options.time_budget_ms > 0 && (r.trials & 15) == 0 && r.trials > 0) {
+      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+      if (ms > options.time_budget_ms) {
+        r.stop = StopReason::kTimeBudget;
+        break;
+      }
+    }
+    if (!sampler.next(&sample)) {
+      r.stop = StopReason::kExhausted;
+      break;
+    }
+    ++r.trials;
+    models.clear();
+    estimator.estimate(sample, &models);
+    bool improved = false;
+    for (auto& m : models) {
+      ++r.hypotheses;
+      const double s = scorer.score(m);
+      if (s > r.best_score) {
+        r.best = m;
+        r.best_score = s;
+        r.found = true;
+        improved = true;
+      }
+    }
+    if (!improved) continue;
+    scorer.refine(&r.best, &r.best_score);
+    if (scorer.cannot_be_beaten(r.best_score)) {
+      r.stop = StopReason::kCannotBeBeaten;
+      break;
+    }
+    if (options.confidence > 0) {
+      const double p = scorer.success_probability(r.best_score);
+      if (p >= 1.0) {
+        dynamic_max = r.trials;
+      } else if (p > 0) {
+        dynamic_max = static_cast<long>(std::ceil(std::log(1.0 - options.confidence) / std::log(1.0 - p)));
+      }
+    }
+  }
+  return r;
+}
+
+}  // namespace ipd

@@ -1,0 +1,70 @@
+#include "ipd/affine_estimator.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+namespace ipd {
+
+double triangle_conditioning(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
+  const Eigen::Vector2d u = b - a, v = c - a, w = c - b;
+  const double longest = std::max({u.squaredNorm(), v.squaredNorm(), w.squaredNorm()});
+  if (!(longest > 0) || !std::isfinite(longest)) return 0.0;
+  return std::abs(u.x() * v.y() - u.y() * v.x()) / longest;
+}
+
+bool affine_from_three(const Eigen::Vector2d src[3], const Eigen::Vector2d dst[3], Affine2* out) {
+  if (triangle_conditioning(src[0], src[1], src[2]) < kMinTriangleConditioning) return false;
+  if (triangle_conditioning(dst[0], dst[1], dst[2]) < kMinTriangleConditioning) return false;
+  Eigen::Matrix2d p, q;
+  p << src[1] - src[0], src[2] - src[0];
+  q << dst[1] - dst[0], dst[2] - dst[0];
+  const Eigen::Matrix2d lin = q * p.inverse();
+  out->leftCols<2>() = lin;
+  out->col(2) = dst[0] - lin * src[0];
+  return out->allFinite();
+}
+
+bool affine_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
+                          Affine2* out) {
+  const size_t n = src.size();
+  if (n < 3 || dst.size() != n) return false;
+  // Centre both sides: the translation separates out and the 2x2 normal equations stay well conditioned.
+  Eigen::Vector2d ms = Eigen::Vector2d::Zero(), md = Eigen::Vector2d::Zero();
+  for (size_t k = 0; k < n; ++k) {
+    ms += src[k];
+    md += dst[k];
+  }
+  ms /= static_cast<double>(n);
+  md /= static_cast<double>(n);
+  Eigen::Matrix2d sxx = Eigen::Matrix2d::Zero(), syx = Eigen::Matrix2d::Zero();
+  for (size_t k = 0; k < n; ++k) {
+    const Eigen::Vector2d s = src[k] - ms, d = dst[k] - md;
+    sxx += s * s.transpose();
+    syx += d * s.transpose();
+  }
+  const double tr = sxx.trace();
+  if (!(tr > 0)) return false;
+  // Reject spreads that are (nearly) one-dimensional: the affine is then undetermined across the line.
+  if (sxx.determinant() < 1e-8 * tr * tr) return false;
+  const Eigen::Matrix2d lin = syx * sxx.inverse();
+  out->leftCols<2>() = lin;
+  out->col(2) = md - lin * ms;
+  return out->allFinite();
+}
+
+void AffinePermutationEstimator::estimate(const TriplePair& s, std::vector<Affine2>* models) const {
+  int perm[3] = {0, 1, 2};
+  do {
+    const Eigen::Vector2d d[3] = {s.dst[perm[0]], s.dst[perm[1]], s.dst[perm[2]]};
+    Affine2 m;
+    if (affine_from_three(s.src, d, &m)) models->push_back(m);
+  } while (std::next_permutation(perm, perm + 3));
+}
+
+void AffineTripleEstimator::estimate(const TriplePair& s, std::vector<Affine2>* models) const {
+  Affine2 m;
+  if (affine_from_three(s.src, s.dst, &m)) models->push_back(m);
+}
+
+}  // namespace ipd

@@ -1,0 +1,84 @@
+// Coherent Point Drift, affine variant (Myronenko & Song 2010), as the pycpd package implements it: a
+// Gaussian mixture centred on the transformed A centres explains B's centres plus a uniform outlier term;
+// EM alternates soft correspondences and a closed-form affine. Rocks are then paired like the consensus
+// method (IoU of the aligned boxes, optimal assignment), so the two differ only in the alignment.
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "ipd/pairing.h"
+#include "ipd/point_grid.h"
+#include "registration_frame.h"
+
+namespace ipd::detail {
+
+MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
+                           const std::vector<Box>& boxes_b, const RegistrationOptions& o) {
+  MethodOutcome out;
+  out.affine_normalised = f.from_image(identity_affine());
+  const int m = static_cast<int>(f.a.size()), n = static_cast<int>(f.b.size());
+  if (m == 0 || n == 0) {
+    out.stop = StopReason::kTooFewPoints;
+    out.note = "a side has no rocks: nothing to register";
+    return out;
+  }
+  Eigen::MatrixXd x(n, 2), y(m, 2);
+  for (int k = 0; k < n; ++k) x.row(k) = f.b[k].transpose();
+  for (int k = 0; k < m; ++k) y.row(k) = f.a[k].transpose();
+  Eigen::Matrix2d lin = out.affine_normalised.leftCols<2>();
+  Eigen::RowVector2d t = out.affine_normalised.col(2).transpose();
+  double sigma2 = 0;
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < n; ++j) sigma2 += (x.row(j) - (y.row(i) * lin.transpose() + t)).squaredNorm();
+  sigma2 /= 2.0 * m * n;
+  const double w = o.cpd_outlier_weight;
+  Eigen::MatrixXd p(m, n);
+  const double tolerance = 1e-10;
+  int it = 0;
+  out.stop = StopReason::kMaxTrials;
+  for (; it < o.cpd_iterations; ++it) {
+    if (!(sigma2 > 1e-12)) {
+      out.stop = StopReason::kCannotBeBeaten;
+      break;
+    }
+    const Eigen::MatrixXd ty = (y * lin.transpose()).rowwise() + t;
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < n; ++j) p(i, j) = std::exp(-(x.row(j) - ty.row(i)).squaredNorm() / (2 * sigma2));
+    const double c = 2 * M_PI * sigma2 * w / (1 - w) * m / n;
+    Eigen::RowVectorXd den = p.colwise().sum().array() + c;
+    for (int j = 0; j < n; ++j) p.col(j) /= std::max(den(j), 1e-300);
+    const Eigen::VectorXd pt1 = p.colwise().sum().transpose(), p1 = p.rowwise().sum();
+    const double np = p1.sum();
+    if (!(np > 1e-12)) break;
+    const Eigen::RowVector2d mu_x = (pt1.transpose() * x) / np, mu_y = (p1.transpose() * y) / np;
+    const Eigen::MatrixXd xh = x.rowwise() - mu_x, yh = y.rowwise() - mu_y;
+    const Eigen::Matrix2d a = xh.transpose() * p.transpose() * yh;
+    const Eigen::Matrix2d yy = yh.transpose() * p1.asDiagonal() * yh;
+    if (std::abs(yy.determinant()) < 1e-18) break;
+    const Eigen::Matrix2d b = a * yy.inverse();
+    lin = b;
+    t = mu_x - mu_y * b.transpose();
+    const double old = sigma2;
+    const double xx = (xh.array().square().colwise() * pt1.array()).sum();
+    sigma2 = (xx - (a * b.transpose()).trace()) / (np * 2);
+    if (!(sigma2 > 0)) sigma2 = tolerance;
+    if (std::abs(old - sigma2) < tolerance) {
+      out.stop = StopReason::kConfidence;
+      ++it;
+      break;
+    }
+  }
+  out.trials = it;
+  out.hypotheses = it;
+  out.affine_normalised.leftCols<2>() = lin;
+  out.affine_normalised.col(2) = t.transpose();
+  if (!out.affine_normalised.allFinite()) {
+    out.affine_normalised = f.from_image(identity_affine());
+    out.note = "EM diverged: identity used";
+  }
+  out.score = std::sqrt(std::max(sigma2, 0.0)) * f.spread;  // final mixture width, fraction of image width
+  out.pairs = pair_by_aligned_iou(f.to_image(out.affine_normalised), boxes_a, boxes_b, o.min_pair_iou);
+  out.inliers = static_cast<int>(out.pairs.size());
+  return out;
+}
+
+}  // namespace ipd::detail

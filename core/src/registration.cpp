@@ -1,0 +1,136 @@
+#include "ipd/registration.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "registration_frame.h"
+
+namespace ipd {
+
+const char* to_string(RegistrationMethod m) {
+  switch (m) {
+    case RegistrationMethod::kPaper: return "paper";
+    case RegistrationMethod::kConsensus: return "consensus";
+    case RegistrationMethod::kCpd: return "cpd";
+  }
+  return "?";
+}
+
+bool parse_method(const std::string& name, RegistrationMethod* out) {
+  for (auto m : {RegistrationMethod::kPaper, RegistrationMethod::kConsensus, RegistrationMethod::kCpd}) {
+    if (name == to_string(m)) {
+      *out = m;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<std::string> method_names() { return {"consensus", "paper", "cpd"}; }
+
+std::string RegistrationOptions::validate() const {
+  if (max_trials < 1) return fmt::format("max_trials must be at least 1, got {}", max_trials);
+  if (!(time_budget_ms >= 0)) return fmt::format("time_budget_ms must be >= 0, got {}", time_budget_ms);
+  if (!(aspect > 0) || !std::isfinite(aspect)) return fmt::format("aspect must be a positive number, got {}", aspect);
+  if (!(pair_gate > 0)) return fmt::format("pair_gate must be > 0, got {}", pair_gate);
+  if (!(min_scale > 0) || !(max_scale >= min_scale))
+    return fmt::format("scale bounds must satisfy 0 < min_scale <= max_scale, got [{}, {}]", min_scale, max_scale);
+  if (!(max_rotation_deg > 0) || max_rotation_deg > 180)
+    return fmt::format("max_rotation_deg must be in (0, 180], got {}", max_rotation_deg);
+  if (!(inlier_gate >= 0)) return fmt::format("inlier_gate must be >= 0 (0: automatic), got {}", inlier_gate);
+  if (!(confidence >= 0 && confidence < 1)) return fmt::format("confidence must be in [0, 1), got {}", confidence);
+  if (!(min_pair_iou >= 0 && min_pair_iou < 1)) return fmt::format("min_pair_iou must be in [0, 1), got {}", min_pair_iou);
+  if (cpd_iterations < 1) return fmt::format("cpd_iterations must be at least 1, got {}", cpd_iterations);
+  if (!(cpd_outlier_weight >= 0 && cpd_outlier_weight < 1))
+    return fmt::format("cpd_outlier_weight must be in [0, 1), got {}", cpd_outlier_weight);
+  return {};
+}
+
+namespace detail {
+
+RegistrationFrame::RegistrationFrame(const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b, double asp)
+    : aspect(asp) {
+  auto iso = [&](const Box& bx) { return Eigen::Vector2d(bx.cx, bx.cy / aspect); };
+  auto centroid = [&](const std::vector<Box>& v) {
+    Eigen::Vector2d c(0, 0);
+    for (const auto& bx : v) c += iso(bx);
+    return v.empty() ? c : Eigen::Vector2d(c / static_cast<double>(v.size()));
+  };
+  centroid_a = centroid(boxes_a);
+  centroid_b = centroid(boxes_b);
+  double ss = 0;
+  size_t n = 0;
+  for (const auto& bx : boxes_a) ss += (iso(bx) - centroid_a).squaredNorm(), ++n;
+  for (const auto& bx : boxes_b) ss += (iso(bx) - centroid_b).squaredNorm(), ++n;
+  spread = n > 0 ? std::sqrt(ss / static_cast<double>(n)) : 1.0;
+  if (!(spread > 0) || !std::isfinite(spread)) spread = 1.0;
+  for (const auto& bx : boxes_a) {
+    a.push_back((iso(bx) - centroid_a) / spread);
+    size_a.emplace_back(bx.w / spread, bx.h / aspect / spread);
+  }
+  for (const auto& bx : boxes_b) {
+    b.push_back((iso(bx) - centroid_b) / spread);
+    size_b.emplace_back(bx.w / spread, bx.h / aspect / spread);
+  }
+}
+
+namespace {
+// image -> isotropic: S = diag(1, 1/aspect); set A -> normalised: (p - ca)/spread.
+Affine2 image_to_normalised(const Eigen::Vector2d& centroid, double aspect, double spread) {
+  Affine2 m;
+  m << 1.0 / spread, 0, -centroid.x() / spread, 0, 1.0 / (aspect * spread), -centroid.y() / spread;
+  return m;
+}
+}  // namespace
+
+Affine2 RegistrationFrame::to_image(const Affine2& m) const {
+  Affine2 to_a = image_to_normalised(centroid_a, aspect, spread), to_b = image_to_normalised(centroid_b, aspect, spread);
+  Affine2 from_b;
+  invert(to_b, &from_b);
+  return compose(from_b, compose(m, to_a));
+}
+
+Affine2 RegistrationFrame::from_image(const Affine2& m) const {
+  Affine2 to_a = image_to_normalised(centroid_a, aspect, spread), to_b = image_to_normalised(centroid_b, aspect, spread);
+  Affine2 from_a;
+  invert(to_a, &from_a);
+  return compose(to_b, compose(m, from_a));
+}
+
+}  // namespace detail
+
+RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<Box>& b,
+                                  const RegistrationOptions& options) {
+  const std::string problem = options.validate();
+  if (!problem.empty()) throw std::invalid_argument("registration options: " + problem);
+  const auto start = std::chrono::steady_clock::now();
+  const detail::RegistrationFrame frame(a, b, options.aspect);
+  detail::MethodOutcome out;
+  switch (options.method) {
+    case RegistrationMethod::kPaper: out = detail::register_paper(frame, options); break;
+    case RegistrationMethod::kConsensus: out = detail::register_consensus(frame, a, b, options); break;
+    case RegistrationMethod::kCpd: out = detail::register_cpd(frame, a, b, options); break;
+  }
+  RegistrationReport r;
+  r.method = options.method;
+  r.affine = frame.to_image(out.affine_normalised);
+  if (!r.affine.allFinite()) {
+    r.affine = identity_affine();
+    out.note += (out.note.empty() ? "" : "; ") + std::string("non-finite affine replaced by identity");
+  }
+  r.pairs = std::move(out.pairs);
+  std::sort(r.pairs.begin(), r.pairs.end());
+  r.trials = out.trials;
+  r.hypotheses = out.hypotheses;
+  r.inliers = out.inliers;
+  r.score = out.score;
+  r.stop = out.stop;
+  r.note = std::move(out.note);
+  r.elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace ipd

@@ -1,0 +1,167 @@
+#include "ipd/table_format.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+namespace ipd {
+
+bool parse_table_format(const std::string& name, TableFormat* out) {
+  static const std::pair<const char*, TableFormat> kNames[] = {{"text", TableFormat::kText},
+                                                               {"csv", TableFormat::kCsv},
+                                                               {"json", TableFormat::kJson},
+                                                               {"markdown", TableFormat::kMarkdown},
+                                                               {"latex", TableFormat::kLatex}};
+  for (const auto& [n, f] : kNames)
+    if (name == n) {
+      *out = f;
+      return true;
+    }
+  return false;
+}
+
+namespace {
+
+std::string column_title(const std::pair<std::string, std::string>& c) { return c.first + " - " + c.second; }
+std::string row_title(const ModelInfo& m) {
+  return m.trained_on.empty() ? m.name : fmt::format("{} ({})", m.name, m.trained_on);
+}
+
+// "–" for cells that don't involve the training domain (as the paper), "n/a" when nothing was measured.
+std::string cell_text(const TableCell& c, const char* dash) {
+  if (!c.involves_training_domain) return dash;
+  if (std::isnan(c.ipd)) return "n/a";
+  return fmt::format("{:.4f}", c.ipd);
+}
+
+// The best (lowest) shown value of a row, bolded in Markdown and LaTeX as the paper does.
+double row_best(const CrossTable& t, size_t row) {
+  double best = INFINITY;
+  for (size_t c = 0; c < t.columns.size(); ++c) {
+    const auto& cell = t.cells[row * t.columns.size() + c];
+    if (cell.involves_training_domain && !std::isnan(cell.ipd)) best = std::min(best, cell.ipd);
+  }
+  return best;
+}
+
+std::string latex_escape(const std::string& s) {
+  std::string o;
+  for (char ch : s) {
+    if (ch == '_' || ch == '&' || ch == '%' || ch == '#' || ch == '$') o += '\\';
+    o += ch;
+  }
+  return o;
+}
+
+std::string text_table(const CrossTable& t) {
+  std::vector<std::vector<std::string>> grid;
+  std::vector<std::string> head = {"train \\ eval (IPD, lower is better)"};
+  for (const auto& c : t.columns) head.push_back("|" + column_title(c) + "|");
+  grid.push_back(head);
+  for (size_t r = 0; r < t.models.size(); ++r) {
+    std::vector<std::string> row = {row_title(t.models[r])};
+    for (size_t c = 0; c < t.columns.size(); ++c) {
+      const auto& cell = t.cells[r * t.columns.size() + c];
+      row.push_back(cell_text(cell, "–") +
+                    (cell.involves_training_domain && !std::isnan(cell.ipd) ? fmt::format(" ({} pairs)", cell.pairs) : ""));
+    }
+    grid.push_back(row);
+  }
+  std::vector<size_t> width(head.size(), 0);
+  auto display_len = [](const std::string& s) {  // UTF-8 aware enough for "–"
+    size_t n = 0;
+    for (unsigned char ch : s) n += (ch & 0xC0) != 0x80;
+    return n;
+  };
+  for (const auto& row : grid)
+    for (size_t k = 0; k < row.size(); ++k) width[k] = std::max(width[k], display_len(row[k]));
+  std::string out;
+  for (const auto& row : grid) {
+    for (size_t k = 0; k < row.size(); ++k) {
+      out += row[k] + std::string(width[k] - display_len(row[k]) + (k + 1 < row.size() ? 2 : 0), ' ');
+    }
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string format_table(const CrossTable& t, TableFormat format) {
+  const size_t nc = t.columns.size();
+  switch (format) {
+    case TableFormat::kText:
+      return text_table(t);
+    case TableFormat::kCsv: {
+      std::string out = "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain\n";
+      for (const auto& c : t.cells)
+        out += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", c.model, c.trained_on, c.a, c.b,
+                           std::isnan(c.ipd) ? std::string() : fmt::format("{:.6f}", c.ipd), c.pairs, c.unpaired_a,
+                           c.unpaired_b, c.scenes, c.involves_training_domain ? "true" : "false");
+      return out;
+    }
+    case TableFormat::kJson: {
+      nlohmann::json j;
+      j["cells"] = nlohmann::json::array();
+      for (const auto& c : t.cells) {
+        nlohmann::json cell = {{"model", c.model},           {"trained_on", c.trained_on},
+                               {"a", c.a},                   {"b", c.b},
+                               {"pairs", c.pairs},           {"unpaired_a", c.unpaired_a},
+                               {"unpaired_b", c.unpaired_b}, {"scenes", c.scenes},
+                               {"involves_training_domain", c.involves_training_domain}};
+        cell["ipd"] = std::isnan(c.ipd) ? nlohmann::json(nullptr) : nlohmann::json(c.ipd);
+        if (c.missing_predictions) cell["missing_predictions"] = true;
+        j["cells"].push_back(cell);
+      }
+      j["warnings"] = t.warnings;
+      return j.dump(2) + "\n";
+    }
+    case TableFormat::kMarkdown: {
+      std::string out = "| Train \\ Eval |";
+      for (const auto& c : t.columns) out += " \\|" + column_title(c) + "\\| |";
+      out += "\n|---|";
+      for (size_t k = 0; k < nc; ++k) out += "---:|";
+      out += "\n";
+      for (size_t r = 0; r < t.models.size(); ++r) {
+        const double best = row_best(t, r);
+        out += "| " + row_title(t.models[r]) + " |";
+        for (size_t c = 0; c < nc; ++c) {
+          const auto& cell = t.cells[r * nc + c];
+          const std::string s = cell_text(cell, "–");
+          out += (cell.involves_training_domain && cell.ipd == best ? " **" + s + "** |" : " " + s + " |");
+        }
+        out += "\n";
+      }
+      out += "\nIPD: mean |performance-value difference| over matched rock pairs; lower is better.\n";
+      return out;
+    }
+    case TableFormat::kLatex: {
+      std::string out = "% IPD cross table, generated by `ipd table --format latex`\n";
+      out += "\\begin{tabular}{|c|" + std::string() ;
+      for (size_t k = 0; k < nc; ++k) out += "c|";
+      out += "}\n\\hline\n";
+      out += fmt::format(" & \\multicolumn{{{}}}{{c|}}{{$\\downarrow$ Instance Performance Difference (IPD)}} \\\\\n\\hline\n", nc);
+      out += "Train\\textbackslash Eval";
+      for (const auto& c : t.columns)
+        out += " & $\\|$" + latex_escape(c.first) + " - " + latex_escape(c.second) + "$\\|$";
+      out += " \\\\\n\\hline\n";
+      for (size_t r = 0; r < t.models.size(); ++r) {
+        const double best = row_best(t, r);
+        out += latex_escape(row_title(t.models[r]));
+        for (size_t c = 0; c < nc; ++c) {
+          const auto& cell = t.cells[r * nc + c];
+          const std::string s = cell_text(cell, "-");
+          out += " & " + (cell.involves_training_domain && cell.ipd == best ? "\\textbf{" + s + "}" : s);
+        }
+        out += " \\\\\n\\hline\n";
+      }
+      out += "\\end{tabular}\n";
+      return out;
+    }
+  }
+  return {};
+}
+
+}  // namespace ipd

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# IPD Studio: one command to set up, build and run.
+#   ./run.sh        install what is missing, build, run the main job on the built-in demo study
+#   ./run.sh test   install what is missing, build, run every test (ctest)
+set -euo pipefail
+cd "$(dirname "$0")"
+
+packages=(
+  cmake g++ make pkg-config
+  libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
+  libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libfmt-dev libgtest-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "Installing: ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build build -j"$jobs"
+
+if [ "${1:-}" = "test" ]; then
+  exec ctest --test-dir build --output-on-failure -j"$jobs"
+fi
+
+demo=build/demo-study
+[ -f "$demo/study.yaml" ] || ./build/app/ipd demo "$demo"
+if [ -x build/app/ipd-studio ] && [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
+  exec ./build/app/ipd-studio "$demo"
+fi
+echo
+echo "IPD cross table of the demo study (rows: detector and its training domain; lower is better):"
+./build/app/ipd table "$demo"
+echo
+echo "Picture of the scene that contributes most to IPD(real, principled):"
+./build/app/ipd figure pairs "$demo" --out build/demo-scene.png --width 2400

@@ -1,0 +1,159 @@
+// Study layout, configuration errors, the Table I layout and the CLI's contract.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "ipd/ipd.h"
+#include "ipd/table_format.h"
+#include "test_support.h"
+
+namespace ipd {
+namespace {
+
+// Three domains, one scene, one rock each, three models, each trained on one domain.
+void write_three_domain_study(const test::TempDir& d) {
+  test::write_text(d / "study.yaml",
+                   "domains: [real, principled, hapke]\n"
+                   "models:\n  det-real: {trained_on: real}\n  det-principled: {trained_on: principled}\n"
+                   "  det-hapke: {trained_on: hapke}\n");
+  for (const std::string dom : {"real", "principled", "hapke"}) {
+    test::write_text(d / (dom + "/labels/s.txt"), "0 0.5 0.5 0.2 0.2\n");
+    for (const std::string m : {"det-real", "det-principled", "det-hapke"})
+      test::write_text(d / (dom + "/predictions/" + m + "/s.txt"),
+                       dom == "real" ? "0 0.6 0.5 0.2 0.2 0.9\n" : "0 0.5 0.5 0.2 0.2 0.9\n");
+  }
+}
+
+TEST(TableLayout, ThreeDomainsLikeThePaper) {
+  test::TempDir d;
+  write_three_domain_study(d);
+  const CrossTable t = compute_cross_table(load_labels(open_study(d.path())), {});
+  ASSERT_EQ(t.models.size(), 3u);
+  EXPECT_EQ(t.models[0].name, "det-real");
+  EXPECT_EQ(t.models[1].name, "det-principled");
+  EXPECT_EQ(t.models[2].name, "det-hapke");
+  using P = std::pair<std::string, std::string>;
+  EXPECT_EQ(t.columns, (std::vector<P>{{"real", "principled"}, {"real", "hapke"}, {"principled", "hapke"}}));
+  const bool expected[3][3] = {{true, true, false}, {true, false, true}, {false, true, true}};
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(t.cells[r * 3 + c].involves_training_domain, expected[r][c]) << r << c;
+  // real's only rock scores 1/3, the synthetic ones 1: |1/3 - 1| = 2/3 against real, 0 between synthetics.
+  EXPECT_NEAR(t.cell("det-real", "real", "hapke")->ipd, 2.0 / 3, 1e-12);
+  EXPECT_NEAR(t.cell("det-hapke", "principled", "hapke")->ipd, 0.0, 1e-12);
+
+  const std::string text = format_table(t, TableFormat::kText);
+  EXPECT_NE(text.find("|real - principled|"), std::string::npos) << text;
+  EXPECT_NE(text.find("det-real (real)"), std::string::npos);
+  const std::string latex = format_table(t, TableFormat::kLatex);
+  EXPECT_NE(latex.find("det-real (real) & \\textbf{0.6667} & \\textbf{0.6667} & - \\\\"), std::string::npos) << latex;
+  EXPECT_NE(latex.find("det-hapke (hapke) & - & 0.6667 & \\textbf{0.0000} \\\\"), std::string::npos) << latex;
+  const auto j = nlohmann::json::parse(format_table(t, TableFormat::kJson));
+  ASSERT_EQ(j["cells"].size(), 9u);
+  EXPECT_EQ(j["cells"][2]["a"], "principled");
+  EXPECT_EQ(j["cells"][2]["involves_training_domain"], false);
+  EXPECT_EQ(j["cells"][0]["pairs"], 1);
+  const std::string csv = format_table(t, TableFormat::kCsv);
+  EXPECT_NE(csv.find("det-real,real,real,hapke,0.666667,1,0,0,1,true\n"), std::string::npos) << csv;
+}
+
+TEST(Study, ClearErrorsForUnusableStudies) {
+  test::TempDir d;
+  try {
+    open_study(d / "nope");
+    FAIL();
+  } catch (const StudyError& e) {
+    EXPECT_EQ(std::string(e.what()), d / "nope" + ": no such study directory");
+  }
+  try {
+    open_study(d.path());
+    FAIL();
+  } catch (const StudyError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              d.path() + ": no domains found (expected subdirectories like real/labels/ with YOLO label files)");
+  }
+  test::write_text(d / "real/labels/a.txt", "");
+  test::write_text(d / "study.yaml", "rock_class: 0\nconf_treshold: 0.3\n");
+  try {
+    open_study(d.path());
+    FAIL();
+  } catch (const StudyError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              d / "study.yaml" +
+                  ":2: unknown setting 'conf_treshold' (expected rock_class, conf_threshold, image_size, domains, "
+                  "models, registration)");
+  }
+  test::write_text(d / "study.yaml", "registration: {method: icp}\n");
+  EXPECT_THROW(open_study(d.path()), StudyError);
+  test::write_text(d / "study.yaml", "image_size: [10]\n");
+  EXPECT_THROW(open_study(d.path()), StudyError);
+}
+
+TEST(Study, ScenesMatchedByStemAndMissingModelsWarned) {
+  test::TempDir d;
+  write_three_domain_study(d);
+  std::filesystem::remove_all(d / "hapke/predictions/det-real");
+  const CrossTable t = compute_cross_table(load_labels(open_study(d.path())), {});
+  EXPECT_TRUE(t.cell("det-real", "real", "hapke")->missing_predictions);
+  EXPECT_TRUE(std::isnan(t.cell("det-real", "real", "hapke")->ipd));
+  ASSERT_EQ(t.warnings.size(), 1u);
+  EXPECT_EQ(t.warnings[0].rfind("model 'det-real' has no predictions for domain 'hapke'", 0), 0u) << t.warnings[0];
+}
+
+TEST(Cli, ExitCodesAndMessages) {
+  test::TempDir d;
+  write_three_domain_study(d);
+  auto r = test::run_ipd("table " + d.path() + " --format json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["cells"].size(), 9u);
+  r = test::run_ipd("table " + d.path() + " --format nope");
+  EXPECT_EQ(r.exit_code, 2);
+  r = test::run_ipd("");
+  EXPECT_EQ(r.exit_code, 2);
+  r = test::run_ipd("table " + d / "missing");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: " + d / "missing" + ": no such study directory\n");
+  r = test::run_ipd("table " + d.path() + " --model nobody");
+  EXPECT_EQ(r.exit_code, 1);
+  // Every malformed line, then exit 1; with --skip-bad-lines a warning and the table.
+  test::write_text(d / "real/labels/s.txt", "0 0.5 0.5 0.2\n0 0.5 x 0.2 0.2\n0 0.5 0.5 0.2 0.2\n");
+  r = test::run_ipd("table " + d.path() + " --out " + d / "table.txt");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(d / "real/labels/s.txt" + ":1: expected 5 columns (class cx cy w h), found 4"),
+            std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(d / "real/labels/s.txt" + ":2: expected a number for cy in column 3, found 'x'"),
+            std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(d / "table.txt"));  // no half-written output
+  r = test::run_ipd("table " + d.path() + " --skip-bad-lines --out " + d / "table.txt");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(d / "table.txt"));
+}
+
+TEST(Cli, RegisterPrintsOneJsonObjectPerLine) {
+  test::TempDir d;
+  test::write_text(d / "r.txt", "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.05 0.05\n0 0.4 0.8 0.05 0.05\n0 0.8 0.8 0.05 0.05\n");
+  test::write_text(d / "s.txt", "0 0.81 0.81 0.05 0.05\n0 0.21 0.21 0.05 0.05\n0 0.41 0.81 0.05 0.05\n");
+  test::write_text(d / "list.tsv", d / "r.txt" + "\t" + d / "s.txt" + "\n" + d / "s.txt" + "\t" + d / "r.txt" + "\n");
+  auto r = test::run_ipd("register --list " + d / "list.tsv" + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string first, second;
+  std::getline(lines, first);
+  std::getline(lines, second);
+  const auto j = nlohmann::json::parse(first);
+  EXPECT_EQ(j["real"], d / "r.txt");
+  EXPECT_EQ(j["pairs"], nlohmann::json::parse("[[0,1],[2,2],[3,0]]"));
+  EXPECT_EQ(j["affine"].size(), 2u);
+  EXPECT_EQ(j["affine"][0].size(), 3u);
+  EXPECT_NEAR(j["affine"][0][2].get<double>(), 0.01, 1e-6);
+  EXPECT_TRUE(j.contains("trials"));
+  EXPECT_TRUE(j.contains("score"));
+  EXPECT_EQ(nlohmann::json::parse(second)["real"], d / "s.txt");
+  r = test::run_ipd("register " + d / "r.txt");
+  EXPECT_EQ(r.exit_code, 2);
+  r = test::run_ipd("register " + d / "r.txt " + d / "none.txt");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, d / "none.txt" + ": no such label file\n");
+}
+
+}  // namespace
+}  // namespace ipd

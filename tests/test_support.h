@@ -1,0 +1,29 @@
+// Helpers for tests: temporary directories, writing files, running the CLI.
+#pragma once
+
+#include <string>
+
+namespace ipd::test {
+
+// A fresh directory under the system temp dir, removed when the object dies.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::string& path() const { return path_; }
+  std::string operator/(const std::string& rel) const { return path_ + "/" + rel; }
+
+ private:
+  std::string path_;
+};
+
+void write_text(const std::string& path, const std::string& text);
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+// Runs the built `ipd` with the given argument string (shell-quoted by the caller).
+CommandResult run_ipd(const std::string& args);
+
+}  // namespace ipd::test
