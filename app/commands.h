@@ -12,5 +12,6 @@ Runner add_table_command(CLI::App& app);
 Runner add_register_command(CLI::App& app);
 Runner add_demo_command(CLI::App& app);
 Runner add_figure_command(CLI::App& app);
+Runner add_bench_command(CLI::App& app);
 
 }  // namespace ipd::cli

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   add(ipd::cli::add_register_command);
   add(ipd::cli::add_demo_command);
   add(ipd::cli::add_figure_command);
+  add(ipd::cli::add_bench_command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

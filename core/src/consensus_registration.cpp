@@ -21,31 +21,31 @@ namespace ipd::detail {
 
 namespace {
 
-constexpr int kNeighboursA = 4;  // a rock's neighbours used to form triples on side A
-constexpr int kNeighboursB = 6;  // more on side B: some of A's neighbours may be hidden or displaced there
-constexpr double kStopFraction = 0.8;  // consensus over this share of the smaller set ends the search
+constexpr int kNeighboursA = 5;  // a rock's neighbours used to form triples on side A
+constexpr int kNeighboursB = 8;  // more on side B: some of A's neighbours may be hidden or displaced there
+constexpr double kBoundSlackScale = 1.25, kBoundSlackDeg = 15.0;
+// A consensus that chance would give less often than this, over every hypothesis allowed, ends the search.
+constexpr double kChanceLevel = 0.05;
+constexpr double kSizeSigma = 0.25, kSizeWeight = 1.0 / (2 * kSizeSigma * kSizeSigma);  // log size ratio
+constexpr double kRefineFraction = 0.5;
+// The best consensus found again from this many other anchor rocks ends the search: the true alignment
+// attracts hypotheses from every rock that kept its neighbours, wrong ones rarely from two.
+constexpr int kConfirmations = 2;
 
-// Singular values, rotation angle and orientation of a 2x2 linear map, in closed form.
-struct LinearShape {
-  double s_max = 0, s_min = 0, rotation = 0, det = 0;
-};
-LinearShape shape_of(const Eigen::Matrix2d& l) {
-  LinearShape s;
-  const double a = l(0, 0), b = l(0, 1), c = l(1, 0), d = l(1, 1);
-  const double e = 0.5 * (a + d), f = 0.5 * (a - d), g = 0.5 * (c + b), h = 0.5 * (c - b);
-  const double q = std::hypot(e, h), r = std::hypot(f, g);
-  s.s_max = q + r;
-  s.s_min = std::abs(q - r);
-  s.det = a * d - b * c;
-  s.rotation = std::atan2(h, e);  // rotation of the closest similarity
-  return s;
-}
-
+// What a camera misalignment can do to the linear part of the affine. Checked for every hypothesis, so in
+// closed form without trigonometry: with e = (a+d)/2, f = (a-d)/2, g = (c+b)/2, h = (c-b)/2, the singular
+// values are |(e,h)| +- |(f,g)| and the rotation of the closest similarity is the angle of (e, h).
 struct Bounds {
   double min_scale, max_scale, max_rotation, max_size_ratio;
+  double cos_rotation = std::cos(std::min(max_rotation, M_PI));
+  // Edge directions may turn by the rotation plus what shear and anisotropic scale add (~0.5 rad).
+  double cos_edge_turn = std::cos(std::min(max_rotation + 0.5, M_PI));
+
   bool plausible(const Eigen::Matrix2d& l) const {
-    const LinearShape s = shape_of(l);
-    return s.det > 0 && s.s_min >= min_scale && s.s_max <= max_scale && std::abs(s.rotation) <= max_rotation;
+    const double a = l(0, 0), b = l(0, 1), c = l(1, 0), d = l(1, 1);
+    const double e = 0.5 * (a + d), f = 0.5 * (a - d), g = 0.5 * (c + b), h = 0.5 * (c - b);
+    const double q = std::sqrt(e * e + h * h), r = std::sqrt(f * f + g * g);
+    return q > r && q - r >= min_scale && q + r <= max_scale && e >= q * cos_rotation;
   }
 };
 
@@ -86,23 +86,59 @@ double median_nn_distance(const std::vector<Eigen::Vector2d>& p) {
   return d[d.size() / 2];
 }
 
+// P(X >= k) for X ~ Binomial(n, p), summed in log space.
+double binomial_tail(int n, double p, int k) {
+  if (k <= 0) return 1.0;
+  if (k > n || p <= 0) return 0.0;
+  if (p >= 1) return 1.0;
+  double tail = 0;
+  for (int x = k; x <= n; ++x)
+    tail += std::exp(std::lgamma(n + 1.0) - std::lgamma(x + 1.0) - std::lgamma(n - x + 1.0) + x * std::log(p) +
+                     (n - x) * std::log1p(-p));
+  return std::min(1.0, tail);
+}
+
 class ConsensusScorer {
  public:
-  ConsensusScorer(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b, double gate,
-                  const Bounds& bounds)
-      : a_(a), grid_(b), gate2_(gate * gate), bounds_(bounds), best_(b.size(), 0.0), stamp_(b.size(), 0) {
-    target_ = std::max(3.0, kStopFraction * static_cast<double>(std::min(a.size(), b.size())));
+  // `anchor` points at the sampler's id of the rock pair the current hypothesis grew from.
+  ConsensusScorer(const RegistrationFrame& f, double gate, const Bounds& bounds, int hypothesis_budget,
+                  const long* anchor)
+      : a_(f.a), size_a_(f.size_a), grid_(f.b), gate2_(gate * gate), bounds_(bounds), anchor_(anchor),
+        best_(f.b.size(), 0.0), stamp_(f.b.size(), 0) {
+    const auto& b = f.b;
+    for (const auto& s : f.size_b) log_size_b_.push_back(0.5 * std::log(std::max(s.x() * s.y(), 1e-300)));
+    // Chance that a wrong affine drops one A rock within the gate of some B rock: B's gate discs over the
+    // area B spans (doubled, as rocks cluster). A consensus so large that even the best of every
+    // hypothesis we could try would not reach it by chance ends the search.
+    Eigen::Vector2d lo = b.empty() ? Eigen::Vector2d(0, 0) : b[0], hi = lo;
+    for (const auto& q : b) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+    const double area = std::max((hi - lo).prod(), static_cast<double>(b.size()) * gate2_);
+    chance_ = std::min(0.5, static_cast<double>(b.size()) * M_PI * gate2_ / area);
+    budget_ = std::max(1, hypothesis_budget);
+    max_count_ = static_cast<int>(std::min(a_.size(), b.size()));
   }
 
+  // Sum over A's rocks of (closeness to a B rock) x (agreement of the mapped box's size with that rock's),
+  // each B rock counted once. Sizes matter: two labellings of one rock agree in size (median |log ratio|
+  // 0.08 on POLAR-Sim) far better than two different rocks do (0.44), which settles layouts that points
+  // alone leave ambiguous.
   double score(const Affine2& m) {
+    current_ = m;
     if (!bounds_.plausible(m.leftCols<2>())) return -INFINITY;
     ++epoch_;
+    const double l00 = std::abs(m(0, 0)), l01 = std::abs(m(0, 1)), l10 = std::abs(m(1, 0)), l11 = std::abs(m(1, 1));
     double total = 0;
-    for (const auto& p : a_) {
+    for (size_t i = 0; i < a_.size(); ++i) {
       double d2 = 0;
-      const int j = grid_.nearest(apply(m, p), &d2);
+      const int j = grid_.nearest(apply(m, a_[i]), &d2);
       if (j < 0 || !(d2 < gate2_)) continue;
-      const double w = 1.0 - d2 / gate2_;
+      // Flat near zero, so labelling noise well inside the gate costs little; falls to 0 at the gate.
+      const double r2 = d2 / gate2_;
+      // The mapped box's bounding box has extents |L| (w, h).
+      const double w_a = size_a_[i].x(), h_a = size_a_[i].y();
+      const double mapped = (l00 * w_a + l01 * h_a) * (l10 * w_a + l11 * h_a);
+      const double ls = mapped > 0 ? log_size_b_[j] - 0.5 * std::log(mapped) : 0.0;
+      const double w = (1.0 - r2 * r2) * std::exp(-ls * ls * kSizeWeight);
       if (stamp_[j] != epoch_) {
         stamp_[j] = epoch_;
         best_[j] = w;
@@ -115,22 +151,55 @@ class ConsensusScorer {
     return total;
   }
 
-  // Least squares on the inliers with a widening-then-tightening gate, kept while the score improves.
+  // Least squares on the inliers, first with a wide gate (a triple's affine extrapolates poorly far from
+  // it) then the scoring gate, kept while the score improves (LO-RANSAC).
   void refine(Affine2* m, double* s) {
     std::vector<Eigen::Vector2d> src, dst;
-    for (int round = 0; round < 4; ++round) {
-      const double g2 = round == 0 ? 4.0 * gate2_ : gate2_;
-      inlier_pairs(*m, g2, &src, &dst);
+    static constexpr double kGateScale[] = {9.0, 4.0, 1.0, 1.0, 1.0};
+    for (double scale : kGateScale) {
+      inlier_pairs(*m, scale * gate2_, &src, &dst);
       Affine2 cand;
-      if (src.size() < 3 || !affine_least_squares(src, dst, &cand)) return;
+      if (src.size() < 3 || !affine_least_squares(src, dst, &cand)) continue;
       const double cs = score(cand);
-      if (!(cs > *s + 1e-9)) return;
-      *m = cand;
-      *s = cs;
+      if (cs > *s + 1e-9) {
+        *m = cand;
+        *s = cs;
+      }
+    }
+    if (has_best_ && agrees_with_best(*m)) {
+      confirm();
+    } else if (*s > best_refined_score_) {  // a new, different best: start counting confirmations again
+      best_anchors_.clear();
+      confirmations_ = 0;
+    }
+    if (*s > best_refined_score_) {  // remember the best model and its inlier count for the stop rule
+      best_refined_score_ = *s;
+      best_model_ = *m;
+      has_best_ = true;
+      best_count_ = count_inliers(*m);
+      if (std::find(best_anchors_.begin(), best_anchors_.end(), *anchor_) == best_anchors_.end())
+        best_anchors_.push_back(*anchor_);
     }
   }
 
-  bool cannot_be_beaten(double s) const { return s >= target_; }
+  // Worth a least-squares pass: close to the best so far (after its own refinement), or early on. A
+  // hypothesis that already agrees with the best one only confirms it (when it grew from another anchor).
+  bool worth_refining(double s, double best) {
+    if (s < 3.5) return false;  // nothing beyond its own three rocks (and a half) agrees
+    if (has_best_ && agrees_with_best(current_)) {
+      confirm();
+      return false;
+    }
+    return s >= kRefineFraction * best;
+  }
+
+  bool cannot_be_beaten(double) const {
+    if (best_count_ >= max_count_) return true;
+    if (confirmations_ >= kConfirmations && best_count_ >= 4) return true;
+    if (best_count_ < 6) return false;
+    const int n = static_cast<int>(a_.size()) - 3;  // the hypothesis' own three rocks agree by construction
+    return binomial_tail(n, chance_, best_count_ - 3) * budget_ < kChanceLevel;
+  }
   double success_probability(double) const { return 0.0; }
 
   // Mutually nearest (A, B) pairs within the gate after m.
@@ -138,16 +207,15 @@ class ConsensusScorer {
                     std::vector<Eigen::Vector2d>* dst) {
     src->clear();
     dst->clear();
-    ++epoch_;
-    std::vector<std::pair<int, double>> claim(grid_.size(), {-1, INFINITY});
+    claim_.assign(grid_.size(), {-1, INFINITY});
     for (size_t i = 0; i < a_.size(); ++i) {
       double d2 = 0;
       const int j = grid_.nearest(apply(m, a_[i]), &d2);
-      if (j >= 0 && d2 < g2 && d2 < claim[j].second) claim[j] = {static_cast<int>(i), d2};
+      if (j >= 0 && d2 < g2 && d2 < claim_[j].second) claim_[j] = {static_cast<int>(i), d2};
     }
-    for (size_t j = 0; j < claim.size(); ++j) {
-      if (claim[j].first < 0) continue;
-      src->push_back(a_[claim[j].first]);
+    for (size_t j = 0; j < claim_.size(); ++j) {
+      if (claim_[j].first < 0) continue;
+      src->push_back(a_[claim_[j].first]);
       dst->push_back(grid_.points()[j]);
     }
   }
@@ -160,12 +228,35 @@ class ConsensusScorer {
 
  private:
   const std::vector<Eigen::Vector2d>& a_;
+  const std::vector<Eigen::Vector2d>& size_a_;
+  std::vector<double> log_size_b_;
   PointGrid grid_;
   double gate2_;
   Bounds bounds_;
-  double target_ = 3;
+  // Two affines agree when they put most of A's rocks within a gate of each other.
+  bool agrees_with_best(const Affine2& m) const {
+    if (!m.allFinite()) return false;
+    int close = 0;
+    for (const auto& p : a_) close += (apply(m, p) - apply(best_model_, p)).squaredNorm() < gate2_;
+    return 2 * close > static_cast<int>(a_.size());
+  }
+  void confirm() {
+    if (std::find(best_anchors_.begin(), best_anchors_.end(), *anchor_) != best_anchors_.end()) return;
+    best_anchors_.push_back(*anchor_);
+    ++confirmations_;
+  }
+
+  const long* anchor_;
+  Affine2 current_ = identity_affine(), best_model_ = identity_affine();
+  bool has_best_ = false;
+  int confirmations_ = 0;
+  std::vector<long> best_anchors_;
+  double chance_ = 0.5;
+  int budget_ = 1, max_count_ = 0, best_count_ = 0;
+  double best_refined_score_ = -INFINITY;
   std::vector<double> best_;
   std::vector<unsigned> stamp_;
+  std::vector<std::pair<int, double>> claim_;
   unsigned epoch_ = 0;
 };
 
@@ -174,44 +265,55 @@ class ConsensusScorer {
 class GuidedSampler {
  public:
   GuidedSampler(const RegistrationFrame& f, const Bounds& bounds, double gate, std::uint64_t seed)
-      : f_(f), bounds_(bounds) {
+      : f_(f), bounds_(bounds), grid_b_(f.b), gate2_(gate * gate) {
     // 1. identity in image coordinates
     queue_.push_back(f.from_image(identity_affine()));
     // 2. the most voted translations (identity linear part), votes binned at the gate size
     vote_translations(gate);
     // 3. neighbourhood triples, rocks of A in a seeded order
-    nn_a_ = nearest_neighbours(f.a, kNeighboursA);
-    nn_b_ = nearest_neighbours(f.b, kNeighboursB);
+    // Small sets are cheap to search widely, and need it: fewer rocks keep fewer neighbours in common.
+    const bool small = f.a.size() <= 16 && f.b.size() <= 16;
+    nn_a_ = nearest_neighbours(f.a, small ? kNeighboursA + 2 : kNeighboursA);
+    nn_b_ = nearest_neighbours(f.b, small ? kNeighboursB + 3 : kNeighboursB);
     order_a_.resize(f.a.size());
     std::iota(order_a_.begin(), order_a_.end(), 0);
     Rng rng(seed);
     for (size_t k = order_a_.size(); k > 1; --k) std::swap(order_a_[k - 1], order_a_[rng.below(static_cast<int>(k))]);
-    for (int u = 0; u < kNeighboursA; ++u)
-      for (int v = u + 1; v < kNeighboursA; ++v) configs_.emplace_back(u, v);
-    std::stable_sort(configs_.begin(), configs_.end(),
-                     [](auto x, auto y) { return x.first + x.second < y.first + y.second; });
   }
 
   bool next(Affine2* out) {
     if (q_pos_ < queue_.size()) {
+      anchor = -1 - static_cast<long>(q_pos_);
       *out = queue_[q_pos_++];
       return true;
     }
-    return next_triple(out);
+    // First pass: triples that two more neighbours confirm, anchor by anchor. Second pass: those only one
+    // more neighbour confirms, kept aside during the first.
+    while (pending_.empty()) {
+      if (ia_ >= f_.a.size()) {
+        if (deferred_pos_ >= deferred_.size()) return false;
+        anchor = deferred_[deferred_pos_].first;
+        *out = deferred_[deferred_pos_++].second;
+        return true;
+      }
+      pending_anchor_ = order_a_[ia_];
+      expand(order_a_[ia_], static_cast<int>(jb_));
+      if (++jb_ >= f_.b.size()) jb_ = 0, ++ia_;
+    }
+    anchor = pending_anchor_;  // rock of A the hypothesis grew from; a wrong match rarely repeats
+    *out = pending_.back();
+    pending_.pop_back();
+    return true;
   }
+
+  long anchor = -1;
 
  private:
   void vote_translations(double gate) {
-    const Eigen::Matrix2d lin = f_.from_image(identity_affine()).leftCols<2>();
-    const Eigen::Vector2d t0 = f_.from_image(identity_affine()).col(2);
-    struct Bin {
-      long long key;
-      int count;
-      Eigen::Vector2d sum;
-    };
-    std::vector<Bin> bins;
-    std::vector<std::pair<long long, Eigen::Vector2d>> votes;
+    const Affine2 id = f_.from_image(identity_affine());
+    const Eigen::Matrix2d lin = id.leftCols<2>();
     if (f_.a.size() * f_.b.size() > 250000) return;  // huge sets: the triples alone are cheaper
+    std::vector<std::pair<long long, Eigen::Vector2d>> votes;
     for (const auto& p : f_.a)
       for (const auto& q : f_.b) {
         const Eigen::Vector2d t = q - lin * p;
@@ -220,66 +322,75 @@ class GuidedSampler {
         votes.emplace_back((kx << 32) ^ (ky & 0xffffffffLL), t);
       }
     std::sort(votes.begin(), votes.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    struct Bin {
+      int count;
+      Eigen::Vector2d sum;
+    };
+    std::vector<Bin> bins;
     for (size_t k = 0; k < votes.size();) {
       size_t e = k;
       Eigen::Vector2d sum(0, 0);
       while (e < votes.size() && votes[e].first == votes[k].first) sum += votes[e++].second;
-      bins.push_back({votes[k].first, static_cast<int>(e - k), sum});
+      bins.push_back({static_cast<int>(e - k), sum});
       k = e;
     }
-    std::partial_sort(bins.begin(), bins.begin() + std::min<size_t>(3, bins.size()), bins.end(),
+    const size_t top = std::min<size_t>(3, bins.size());
+    std::partial_sort(bins.begin(), bins.begin() + top, bins.end(),
                       [](const Bin& x, const Bin& y) { return x.count > y.count; });
-    for (size_t k = 0; k < std::min<size_t>(3, bins.size()); ++k) {
-      if (bins[k].count < 2) break;
-      Affine2 m;
-      m.leftCols<2>() = lin;
+    for (size_t k = 0; k < top && bins[k].count >= 2; ++k) {
+      Affine2 m = id;
       m.col(2) = bins[k].sum / bins[k].count;
-      if ((m.col(2) - t0).norm() > 1e-12) queue_.push_back(m);
+      queue_.push_back(m);
     }
   }
 
-  bool next_triple(Affine2* out) {
-    const int na = static_cast<int>(f_.a.size()), nb = static_cast<int>(f_.b.size());
-    for (; cfg_ < configs_.size(); ++cfg_, ia_ = 0) {
-      const auto [u, v] = configs_[cfg_];
-      for (; ia_ < na; ++ia_, jb_ = 0, xb_ = 0) {
-        const int i = order_a_[ia_];
-        const auto& ni = nn_a_[i];
-        if (static_cast<int>(ni.size()) <= v) continue;
-        const Eigen::Vector2d p0 = f_.a[i], p1 = f_.a[ni[u]], p2 = f_.a[ni[v]];
-        if (triangle_conditioning(p0, p1, p2) < kMinTriangleConditioning) continue;
-        for (; jb_ < nb; ++jb_, xb_ = 0) {
-          if (!sizes_compatible(i, jb_)) continue;
-          const auto& nj = nn_b_[jb_];
-          const int kb = static_cast<int>(nj.size());
-          for (; xb_ < kb * kb; ++xb_) {
-            const int x = xb_ / kb, y = xb_ % kb;
-            if (x == y) continue;
-            const Eigen::Vector2d src[3] = {p0, p1, p2};
-            const Eigen::Vector2d dst[3] = {f_.b[jb_], f_.b[nj[x]], f_.b[nj[y]]};
-            if (!edge_plausible(src[1] - src[0], dst[1] - dst[0])) continue;
-            if (!edge_plausible(src[2] - src[0], dst[2] - dst[0])) continue;
-            Affine2 m;
-            if (!affine_from_three(src, dst, &m) || !bounds_.plausible(m.leftCols<2>())) continue;
-            ++xb_;
-            *out = m;
-            return true;
-          }
-        }
+  // All plausible triples anchored at A rock i and B rock j: pairs of compatible neighbour edges, each
+  // kept only if another neighbour of i lands near a neighbour of j (local verification is far cheaper
+  // than scoring the whole set).
+  void expand(int i, int j) {
+    if (!sizes_compatible(i, j)) return;
+    const auto& ni = nn_a_[i];
+    const auto& nj = nn_b_[j];
+    edges_.clear();
+    for (size_t u = 0; u < ni.size(); ++u)
+      for (size_t x = 0; x < nj.size(); ++x)
+        if (edge_plausible(f_.a[ni[u]] - f_.a[i], f_.b[nj[x]] - f_.b[j])) edges_.emplace_back(u, x);
+    for (size_t e1 = 0; e1 < edges_.size(); ++e1)
+      for (size_t e2 = e1 + 1; e2 < edges_.size(); ++e2) {
+        const auto [u1, x1] = edges_[e1];
+        const auto [u2, x2] = edges_[e2];
+        if (u1 == u2 || x1 == x2) continue;
+        const Eigen::Vector2d src[3] = {f_.a[i], f_.a[ni[u1]], f_.a[ni[u2]]};
+        const Eigen::Vector2d dst[3] = {f_.b[j], f_.b[nj[x1]], f_.b[nj[x2]]};
+        Affine2 m;
+        if (!affine_from_three(src, dst, &m) || !bounds_.plausible(m.leftCols<2>())) continue;
+        const int support = ni.size() >= 4 ? local_support(m, i, u1, u2) : 2;
+        if (support >= 2) pending_.push_back(m);
+        else if (support == 1) deferred_.emplace_back(i, m);
       }
+    std::reverse(pending_.begin(), pending_.end());  // pop_back hands them out in generation order
+  }
+
+  // How many other neighbours of i land within the gate of a B rock (counted up to 2).
+  int local_support(const Affine2& m, int i, size_t u1, size_t u2) const {
+    const auto& ni = nn_a_[i];
+    int support = 0;
+    for (size_t u = 0; u < ni.size() && support < 2; ++u) {
+      if (u == u1 || u == u2) continue;
+      double d2 = 0;
+      if (grid_b_.nearest(apply(m, f_.a[ni[u]]), &d2) >= 0 && d2 < gate2_) ++support;
     }
-    return false;
+    return support;
   }
 
   // An edge of A can only map onto an edge of B whose length ratio lies within the scale bounds and whose
-  // direction turned by at most the rotation bound plus what shear can add.
+  // direction turned by at most the rotation bound plus what shear and anisotropic scale can add.
   bool edge_plausible(const Eigen::Vector2d& ea, const Eigen::Vector2d& eb) const {
     const double la = ea.norm(), lb = eb.norm();
     if (!(la > 0) || !(lb > 0)) return false;
     const double ratio = lb / la;
     if (ratio < bounds_.min_scale || ratio > bounds_.max_scale) return false;
-    const double cosang = ea.dot(eb) / (la * lb);
-    return cosang >= std::cos(std::min(M_PI, bounds_.max_rotation + 0.5));
+    return ea.dot(eb) >= bounds_.cos_edge_turn * la * lb;
   }
 
   bool sizes_compatible(int i, int j) const {
@@ -292,13 +403,17 @@ class GuidedSampler {
 
   const RegistrationFrame& f_;
   Bounds bounds_;
-  std::vector<Affine2> queue_;
+  PointGrid grid_b_;
+  double gate2_;
+  std::vector<Affine2> queue_, pending_;
+  std::vector<std::pair<long, Affine2>> deferred_;
+  size_t deferred_pos_ = 0;
   size_t q_pos_ = 0;
   std::vector<std::vector<int>> nn_a_, nn_b_;
   std::vector<int> order_a_;
-  std::vector<std::pair<int, int>> configs_;
-  size_t cfg_ = 0;
-  int ia_ = 0, jb_ = 0, xb_ = 0;
+  std::vector<std::pair<size_t, size_t>> edges_;
+  size_t ia_ = 0, jb_ = 0;
+  long pending_anchor_ = 0;
 };
 
 struct PassThroughEstimator {
@@ -310,7 +425,10 @@ struct PassThroughEstimator {
 MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
                                  const std::vector<Box>& boxes_b, const RegistrationOptions& o) {
   MethodOutcome out;
-  const Bounds bounds{o.min_scale, o.max_scale, o.max_rotation_deg * M_PI / 180.0, 2.5};
+  // A triple of nearby rocks carries their labelling noise into its affine (several degrees, tens of
+  // percent of scale), so hypotheses are held to the user's bounds with that much slack.
+  const Bounds bounds{o.min_scale / kBoundSlackScale, o.max_scale * kBoundSlackScale,
+                      (o.max_rotation_deg + kBoundSlackDeg) * M_PI / 180.0, 2.5};
   // The gate: a third of the typical spacing of B's rocks, within [0.5%, 5%] of the image width.
   double gate = o.inlier_gate / f.spread;
   if (!(gate > 0)) {
@@ -319,8 +437,8 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
   }
   out.affine_normalised = f.from_image(identity_affine());
   if (!f.a.empty() && !f.b.empty()) {
-    ConsensusScorer scorer(f.a, f.b, gate, bounds);
     GuidedSampler sampler(f, bounds, gate, o.seed);
+    ConsensusScorer scorer(f, gate, bounds, o.max_trials, &sampler.anchor);
     PassThroughEstimator estimator;
     RobustLoopOptions lo;
     lo.max_trials = o.max_trials;

@@ -48,6 +48,7 @@ struct MeanNearestScorer {
     const double mean = sum / static_cast<double>(a.size());
     return std::isfinite(mean) ? -mean : -INFINITY;
   }
+  bool worth_refining(double, double) const { return false; }  // the paper does no local optimisation
   void refine(Affine2*, double*) const {}
   bool cannot_be_beaten(double s) const { return s >= 0.0; }  // every centre lands exactly on one
   double success_probability(double) const { return 0.0; }    // the paper runs all K trials

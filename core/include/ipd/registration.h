@@ -24,17 +24,17 @@ using RockPairs = std::vector<std::pair<int, int>>;  // (index in A, index in B)
 struct RegistrationOptions {
   RegistrationMethod method = RegistrationMethod::kConsensus;
   std::uint64_t seed = 0;
-  int max_trials = 1000;        // paper: K samples (each tried in all 6 orders); consensus: hypothesis cap
+  int max_trials = 1000;        // paper: K samples (each tried in all 6 orders); consensus: hypotheses cap
   double time_budget_ms = 0;    // 0: none
   double aspect = 1.0;          // image width / height: distances and angles are measured in pixels
   // paper: rocks are paired as mutual nearest neighbours within this distance (fraction of image width)
   double pair_gate = 0.05;
   // consensus: plausible affines only
   double min_scale = 0.5, max_scale = 2.0;  // singular values of the linear part
-  double max_rotation_deg = 60.0;
+  double max_rotation_deg = 30.0;  // a camera misalignment, not an arbitrary rotation
   double inlier_gate = 0;       // 0: chosen from the rock density
   double confidence = 0.9999;
-  double min_pair_iou = 0.05;   // consensus: aligned boxes overlapping less than this stay unpaired
+  double min_pair_iou = 0.1;    // consensus, cpd: aligned boxes overlapping less than this stay unpaired
   int cpd_iterations = 100;     // cpd: EM iterations
   double cpd_outlier_weight = 0.2;
 

@@ -5,7 +5,8 @@
 //   Sampler:   bool next(Sample*)                      false when it has nothing more to propose
 //   Estimator: void estimate(const Sample&, std::vector<Model>*)
 //   Scorer:    double score(const Model&)
-//              void refine(Model*, double* score)      local optimisation of a new best (may do nothing)
+//              bool worth_refining(double score, double best)  whether to locally optimise this model
+//              void refine(Model*, double* score)      local optimisation (may do nothing)
 //              bool cannot_be_beaten(double score)     the best possible score is reached
 //              double success_probability(double score) chance one sample is all-correct given the best so
 //                                                      far (0 when unknown: no confidence-based stop)
@@ -85,7 +86,10 @@ RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, 
     bool improved = false;
     for (auto& m : models) {
       ++r.hypotheses;
-      const double s = scorer.score(m);
+      double s = scorer.score(m);
+      // Refine promising models, not only new bests: a minimal sample's model is noisy, and the right one
+      // often scores below a wrong one until it is refined (LO-RANSAC).
+      if (scorer.worth_refining(s, r.best_score)) scorer.refine(&m, &s);
       if (s > r.best_score) {
         r.best = m;
         r.best_score = s;
@@ -93,13 +97,12 @@ RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, 
         improved = true;
       }
     }
-    if (!improved) continue;
-    scorer.refine(&r.best, &r.best_score);
-    if (scorer.cannot_be_beaten(r.best_score)) {
+    // Checked after every sample: the best may also become unbeatable by being confirmed.
+    if (r.found && scorer.cannot_be_beaten(r.best_score)) {
       r.stop = StopReason::kCannotBeBeaten;
       break;
     }
-    if (options.confidence > 0) {
+    if (improved && options.confidence > 0) {
       const double p = scorer.success_probability(r.best_score);
       if (p >= 1.0) {
         dynamic_max = r.trials;

@@ -1,0 +1,204 @@
+// `ipd bench registration`: run time against error for every registration method, on cases built from
+// real POLAR-Sim label pairs with known misalignments (see core/include/ipd/registration_benchmark.h).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <thread>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "ipd/atomic_file.h"
+#include "ipd/registration_benchmark.h"
+
+namespace ipd::cli {
+
+namespace {
+
+struct Config {
+  RegistrationMethod method;
+  int budget;  // paper: K; consensus: hypothesis cap; cpd: EM iterations
+};
+
+struct Row {
+  std::string regime;
+  Config config;
+  int cases = 0;
+  double ms_per_pair = 0, f1 = 0, precision = 0, recall = 0, terr_median = 0, terr_p90 = 0;
+};
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size())));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+Row run_config(const std::vector<RegistrationCase>& cases, const std::string& regime, const Config& c,
+               double aspect) {
+  RegistrationOptions o;
+  o.method = c.method;
+  o.aspect = aspect;
+  if (c.method == RegistrationMethod::kCpd) o.cpd_iterations = c.budget;
+  else o.max_trials = c.budget;
+  Row row;
+  row.regime = regime;
+  row.config = c;
+  row.cases = static_cast<int>(cases.size());
+  std::vector<double> terr;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<RegistrationReport> reports;
+  reports.reserve(cases.size());
+  for (const auto& k : cases) reports.push_back(register_rocks(k.a, k.b, o));
+  row.ms_per_pair =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / cases.size();
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const PairScore s = score_pairs(reports[i].pairs, cases[i].truth);
+    row.f1 += s.f1;
+    row.precision += s.precision;
+    row.recall += s.recall;
+    terr.push_back(transform_error(reports[i].affine, cases[i].truth_affine, cases[i].a, aspect));
+  }
+  row.f1 /= cases.size();
+  row.precision /= cases.size();
+  row.recall /= cases.size();
+  row.terr_median = percentile(terr, 0.5);
+  row.terr_p90 = percentile(terr, 0.9);
+  return row;
+}
+
+void plot(const std::vector<Row>& rows, const std::string& path) {
+  const int W = 1400, H = 620, panel_w = 660, top = 60, plot_h = 480;
+  cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
+  const cv::Scalar colours[] = {{200, 80, 20}, {40, 40, 220}, {40, 160, 40}};
+  const double lo = -2.5, hi = 2.5;  // log10 ms
+  int panel = 0;
+  for (const std::string regime : {"small", "large"}) {
+    const int x0 = 70 + panel * (panel_w + 40), y0 = top;
+    cv::rectangle(img, {x0, y0, panel_w - 60, plot_h}, cv::Scalar(0, 0, 0), 1);
+    auto px = [&](double ms, double f1) {
+      const double lx = std::clamp(std::log10(std::max(ms, 1e-3)), lo, hi);
+      return cv::Point(x0 + static_cast<int>((lx - lo) / (hi - lo) * (panel_w - 60)), y0 + static_cast<int>((1 - f1) * plot_h));
+    };
+    for (int e = -2; e <= 2; ++e) {
+      const cv::Point p = px(std::pow(10, e), 0);
+      cv::line(img, {p.x, y0}, {p.x, y0 + plot_h}, cv::Scalar(220, 220, 220));
+      cv::putText(img, fmt::format("{}", std::pow(10.0, e)), {p.x - 12, y0 + plot_h + 20}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                  cv::Scalar(0, 0, 0));
+    }
+    for (int f = 0; f <= 10; f += 2) {
+      const cv::Point p = px(1, f / 10.0);
+      cv::line(img, {x0, p.y}, {x0 + panel_w - 60, p.y}, cv::Scalar(220, 220, 220));
+      cv::putText(img, fmt::format("{:.1f}", f / 10.0), {x0 - 35, p.y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0));
+    }
+    cv::putText(img, regime + " misalignment: pair F1 vs ms per image pair (log)", {x0, y0 - 15}, cv::FONT_HERSHEY_SIMPLEX,
+                0.6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    for (int m = 0; m < 3; ++m) {
+      std::vector<cv::Point> pts;
+      for (const auto& r : rows)
+        if (r.regime == regime && static_cast<int>(r.config.method) == m) pts.push_back(px(r.ms_per_pair, r.f1));
+      for (size_t k = 0; k < pts.size(); ++k) {
+        cv::circle(img, pts[k], 5, colours[m], cv::FILLED, cv::LINE_AA);
+        if (k) cv::line(img, pts[k - 1], pts[k], colours[m], 2, cv::LINE_AA);
+      }
+      cv::putText(img, to_string(static_cast<RegistrationMethod>(m)), {x0 + 10, y0 + plot_h - 15 - 22 * m},
+                  cv::FONT_HERSHEY_SIMPLEX, 0.6, colours[m], 2, cv::LINE_AA);
+    }
+    ++panel;
+  }
+  std::vector<uchar> png;
+  cv::imencode(".png", img, png);
+  write_file_atomically(path, std::string(png.begin(), png.end()));
+}
+
+}  // namespace
+
+Runner add_bench_command(CLI::App& app) {
+  struct Args {
+    std::string data = "../shared/data/polar-sim", csv, plot;
+    int cases = 300;
+    std::uint64_t seed = 1;
+    bool quick = false;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks");
+  bench->require_subcommand(1);
+  CLI::App* cmd = bench->add_subcommand("registration", "Registration run time against pair F1 and transform error");
+  cmd->add_option("--data", args->data, "POLAR-Sim label directory (containing labels/)");
+  cmd->add_option("--cases", args->cases, "Cases per misalignment range")->check(CLI::Range(1, 100000));
+  cmd->add_option("--seed", args->seed, "Seed for the cases");
+  cmd->add_option("--csv", args->csv, "Also write the table as CSV");
+  cmd->add_option("--plot", args->plot, "Draw F1 against run time to this PNG");
+  cmd->add_flag("--quick", args->quick, "One budget per method (for CI smoke runs)");
+  return [args]() -> int {
+    const std::string root = (std::filesystem::path(args->data) / "labels").string();
+    if (!std::filesystem::is_directory(root))
+      throw StudyError(root + ": no POLAR-Sim labels here (pass --data DIR; see ../shared/data/polar-sim)");
+    const auto pairs = polar_sim_label_pairs(root);
+    if (pairs.empty()) throw StudyError(root + ": no label pairs of one view at different sun azimuths");
+    const double W = 1936, H = 1216, aspect = W / H;
+    fmt::print("{} label pairs (same view, different sun) from {}; {} cases per range; 1 thread; seed {}\n",
+               pairs.size(), root, args->cases, args->seed);
+    std::vector<Config> configs;
+    if (args->quick) {
+      configs = {{RegistrationMethod::kPaper, 1000}, {RegistrationMethod::kConsensus, 2000}, {RegistrationMethod::kCpd, 100}};
+    } else {
+      for (int k : {10, 100, 1000}) configs.push_back({RegistrationMethod::kPaper, k});
+      for (int k : {25, 100, 400, 2000, 10000}) configs.push_back({RegistrationMethod::kConsensus, k});
+      for (int k : {10, 30, 100}) configs.push_back({RegistrationMethod::kCpd, k});
+    }
+    std::vector<Row> rows;
+    std::vector<RegistrationCase> all_cases;
+    double rocks = 0;
+    for (const auto& range : {small_misalignment(), large_misalignment()}) {
+      std::vector<RegistrationCase> cases;
+      for (int k = 0; k < args->cases; ++k)
+        cases.push_back(make_case(pairs[(k * 7919u) % pairs.size()], range, args->seed * 100003 + k, W, H));
+      for (const auto& c : cases) rocks += 0.5 * (c.a.size() + c.b.size());
+      for (const auto& c : configs) rows.push_back(run_config(cases, range.name, c, aspect));
+      all_cases.insert(all_cases.end(), cases.begin(), cases.end());
+    }
+    std::string csv = "range,method,budget,cases,ms_per_pair,f1,precision,recall,transform_err_median,transform_err_p90\n";
+    fmt::print("\nmean rocks per side: {:.1f}\n", rocks / all_cases.size());
+    fmt::print("{:<6} {:<10} {:>7} {:>10} {:>7} {:>7} {:>7} {:>12} {:>12}\n", "range", "method", "budget", "ms/pair",
+               "F1", "prec", "recall", "terr_med %", "terr_p90 %");
+    for (const auto& r : rows) {
+      fmt::print("{:<6} {:<10} {:>7} {:>10.4f} {:>7.4f} {:>7.4f} {:>7.4f} {:>12.4f} {:>12.4f}\n", r.regime,
+                 to_string(r.config.method), r.config.budget, r.ms_per_pair, r.f1, r.precision, r.recall,
+                 100 * r.terr_median, 100 * r.terr_p90);
+      csv += fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n", r.regime, to_string(r.config.method),
+                         r.config.budget, r.cases, r.ms_per_pair, r.f1, r.precision, r.recall, r.terr_median, r.terr_p90);
+    }
+    // Throughput of the default method over a whole "study" on every core, as `ipd table` runs it.
+    {
+      const int n = 1000;
+      RegistrationOptions o;
+      o.aspect = aspect;
+      std::atomic<int> next{0};
+      const auto start = std::chrono::steady_clock::now();
+      auto worker = [&] {
+        for (int k; (k = next.fetch_add(1)) < n;) {
+          const auto& c = all_cases[k % all_cases.size()];
+          register_rocks(c.a, c.b, o);
+        }
+      };
+      const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+      std::vector<std::thread> pool;
+      for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+      worker();
+      for (auto& t : pool) t.join();
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      fmt::print("\n{} image pairs (mixed ranges), default method, {} threads: {:.1f} ms in all\n", n, threads, ms);
+    }
+    if (!args->csv.empty()) write_file_atomically(args->csv, csv);
+    if (!args->plot.empty()) plot(rows, args->plot);
+    return kOk;
+  };
+}
+
+}  // namespace ipd::cli
