@@ -149,7 +149,7 @@ Runner add_bench_command(CLI::App& app) {
       configs = {{RegistrationMethod::kPaper, 1000}, {RegistrationMethod::kConsensus, 2000}, {RegistrationMethod::kCpd, 100}};
     } else {
       for (int k : {10, 100, 1000}) configs.push_back({RegistrationMethod::kPaper, k});
-      for (int k : {25, 100, 400, 2000, 10000}) configs.push_back({RegistrationMethod::kConsensus, k});
+      for (int k : {25, 100, 250, 1000, 4000}) configs.push_back({RegistrationMethod::kConsensus, k});
       for (int k : {10, 30, 100}) configs.push_back({RegistrationMethod::kCpd, k});
     }
     std::vector<Row> rows;

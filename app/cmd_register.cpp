@@ -89,7 +89,7 @@ Runner add_register_command(CLI::App& app) {
     std::uint64_t seed = 0;
     int cls = -1, trials = 0, threads = 0;
     std::vector<int> image_size;
-    double budget_ms = 0;
+    double budget_ms = 0, max_rotation = 0;
     bool json = false, skip_bad_lines = false;
   };
   auto args = std::make_shared<Args>();
@@ -106,6 +106,7 @@ Runner add_register_command(CLI::App& app) {
   cmd->add_option("--image-size", args->image_size, "W,H of the pictures, so angles are measured in pixels")
       ->delimiter(',')
       ->expected(2);
+  cmd->add_option("--max-rotation", args->max_rotation, "consensus: largest plausible rotation in degrees (default 30)");
   cmd->add_option("--threads", args->threads, "Worker threads for --list (default: all cores)");
   cmd->add_flag("--json", args->json, "Print JSON (one object per line)");
   cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
@@ -118,6 +119,7 @@ Runner add_register_command(CLI::App& app) {
     opt.seed = args->seed;
     if (args->trials > 0) opt.max_trials = args->trials;
     opt.time_budget_ms = args->budget_ms;
+    if (args->max_rotation > 0) opt.max_rotation_deg = args->max_rotation;
     if (args->image_size.size() == 2) {
       if (args->image_size[0] <= 0 || args->image_size[1] <= 0)
         throw CLI::ValidationError("--image-size", "width and height must be positive");

@@ -27,21 +27,29 @@ bool affine_from_three(const Eigen::Vector2d src[3], const Eigen::Vector2d dst[3
 
 bool affine_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
                           Affine2* out) {
+  return affine_weighted_least_squares(src, dst, std::vector<double>(src.size(), 1.0), out);
+}
+
+bool affine_weighted_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
+                                   const std::vector<double>& w, Affine2* out) {
   const size_t n = src.size();
-  if (n < 3 || dst.size() != n) return false;
+  if (n < 3 || dst.size() != n || w.size() != n) return false;
   // Centre both sides: the translation separates out and the 2x2 normal equations stay well conditioned.
   Eigen::Vector2d ms = Eigen::Vector2d::Zero(), md = Eigen::Vector2d::Zero();
+  double total = 0;
   for (size_t k = 0; k < n; ++k) {
-    ms += src[k];
-    md += dst[k];
+    ms += w[k] * src[k];
+    md += w[k] * dst[k];
+    total += w[k];
   }
-  ms /= static_cast<double>(n);
-  md /= static_cast<double>(n);
+  if (!(total > 0)) return false;
+  ms /= total;
+  md /= total;
   Eigen::Matrix2d sxx = Eigen::Matrix2d::Zero(), syx = Eigen::Matrix2d::Zero();
   for (size_t k = 0; k < n; ++k) {
     const Eigen::Vector2d s = src[k] - ms, d = dst[k] - md;
-    sxx += s * s.transpose();
-    syx += d * s.transpose();
+    sxx += w[k] * s * s.transpose();
+    syx += w[k] * d * s.transpose();
   }
   const double tr = sxx.trace();
   if (!(tr > 0)) return false;

@@ -58,7 +58,7 @@ struct MeanNearestScorer {
 
 MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o) {
   MethodOutcome out;
-  const double gate = o.pair_gate / f.spread;
+  const double gate = o.pair_gate;  // the normalised frame has unit spread
   auto count_inliers = [&](const Affine2& m) {
     std::vector<Eigen::Vector2d> moved;
     for (const auto& p : f.a) moved.push_back(apply(m, p));

@@ -22,6 +22,10 @@ bool affine_from_three(const Eigen::Vector2d src[3], const Eigen::Vector2d dst[3
 bool affine_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
                           Affine2* out);
 
+// Weighted least squares (weights >= 0, at least three positive); used for robust (IRLS) refinement.
+bool affine_weighted_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
+                                   const std::vector<double>& weights, Affine2* out);
+
 // A 3 + 3 point sample whose correspondence is unknown: the estimator tries every ordering of dst.
 struct TriplePair {
   Eigen::Vector2d src[3];

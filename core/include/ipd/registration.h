@@ -27,12 +27,13 @@ struct RegistrationOptions {
   int max_trials = 1000;        // paper: K samples (each tried in all 6 orders); consensus: hypotheses cap
   double time_budget_ms = 0;    // 0: none
   double aspect = 1.0;          // image width / height: distances and angles are measured in pixels
-  // paper: rocks are paired as mutual nearest neighbours within this distance (fraction of image width)
-  double pair_gate = 0.05;
+  // paper: rocks are paired as mutual nearest neighbours closer than this fraction of the centres' RMS
+  // spread (scale-free; 0.2 is about 5% of the image width for rocks spread over the picture)
+  double pair_gate = 0.2;
   // consensus: plausible affines only
   double min_scale = 0.5, max_scale = 2.0;  // singular values of the linear part
   double max_rotation_deg = 30.0;  // a camera misalignment, not an arbitrary rotation
-  double inlier_gate = 0;       // 0: chosen from the rock density
+  double inlier_gate = 0;       // consensus, fraction of image width; 0: from the rock spacing
   double confidence = 0.9999;
   double min_pair_iou = 0.1;    // consensus, cpd: aligned boxes overlapping less than this stay unpaired
   int cpd_iterations = 100;     // cpd: EM iterations
