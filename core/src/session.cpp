@@ -1,0 +1,338 @@
+#include "ipd/session.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "ipd/atomic_file.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+
+void run_save_job(const SaveJob& job) {
+  std::error_code ec;
+  for (const auto& p : job.also_remove) fs::remove(p, ec);
+  if (job.contents) {
+    write_file_atomically(job.path, *job.contents);
+  } else if (!fs::remove(job.path, ec) && ec) {
+    throw IoError(job.path + ": cannot remove: " + ec.message());
+  }
+}
+
+double CellTotals::ipd() const { return pairs > 0 ? sum_abs_diff / static_cast<double>(pairs) : std::nan(""); }
+
+Session Session::open(const std::string& root, const RegistrationOptions* registration) {
+  return Session(load_labels(open_study(root)), registration);
+}
+
+Session::Session(StudyLabels labels, const RegistrationOptions* registration) : labels_(std::move(labels)) {
+  const Study& st = labels_.study;
+  pairs_ = ipd::domain_pairs(st, {});
+  RegistrationOptions reg = registration ? *registration : st.config.registration;
+  if (reg.aspect == 1.0) reg.aspect = st.aspect();
+  for (const auto& [a, b] : pairs_) {
+    std::vector<SceneState> list;
+    for (const auto& stem : match_scenes(*st.domain(a), *st.domain(b)).common) {
+      SceneState s;
+      s.stem = stem;
+      const auto& ga = labels_.gt_of(a, stem).boxes;
+      const auto& gb = labels_.gt_of(b, stem).boxes;
+      s.automatic.stem = stem;
+      s.automatic.count_a = static_cast<int>(ga.size());
+      s.automatic.count_b = static_cast<int>(gb.size());
+      s.automatic.registration = register_rocks(ga, gb, reg);
+      s.automatic.pairs = s.automatic.registration.pairs;
+      s.current.pairs = s.automatic.pairs;
+      if (auto fixed = read_fixed_pairs(st, a, b, stem, s.automatic.count_a, s.automatic.count_b)) {
+        s.current = std::move(*fixed);
+        s.edited = s.fixed_on_disk = true;
+      }
+      list.push_back(std::move(s));
+    }
+    scenes_.push_back(std::move(list));
+  }
+  if (!st.models.empty()) model_ = st.models.front().name;
+  // Default view: the first model trained on the first domain, if any.
+  for (const auto& m : st.models)
+    if (!st.domains.empty() && m.trained_on == st.domains.front().name) {
+      model_ = m.name;
+      break;
+    }
+  const fs::path pairs_dir = fs::path(st.root) / "pairs";
+  std::error_code ec;
+  read_only_ = ::access(st.root.c_str(), W_OK) != 0 ||
+               (fs::exists(pairs_dir, ec) && ::access(pairs_dir.c_str(), W_OK) != 0);
+  recompute_performance();
+}
+
+void Session::select(int pair_index, const std::string& model) {
+  if (pair_index >= 0 && pair_index < static_cast<int>(pairs_.size())) pair_ = pair_index;
+  model_ = model;
+}
+
+bool Session::select_domains(const std::string& a, const std::string& b) {
+  for (size_t k = 0; k < pairs_.size(); ++k) {
+    if (pairs_[k].first == a && pairs_[k].second == b) {
+      pair_ = static_cast<int>(k);
+      swapped_ = false;
+      return true;
+    }
+    if (pairs_[k].first == b && pairs_[k].second == a) {
+      pair_ = static_cast<int>(k);
+      swapped_ = true;
+      return true;
+    }
+  }
+  return false;
+}
+
+const std::string& Session::left_domain() const { return swapped_ ? pairs_[pair_].second : pairs_[pair_].first; }
+const std::string& Session::right_domain() const { return swapped_ ? pairs_[pair_].first : pairs_[pair_].second; }
+
+Side Session::pair_side(Side v) const { return swapped_ ? (v == Side::kA ? Side::kB : Side::kA) : v; }
+
+int Session::scene_index(const std::string& stem) const {
+  const auto& list = scenes_[pair_];
+  for (size_t k = 0; k < list.size(); ++k)
+    if (list[k].stem == stem) return static_cast<int>(k);
+  return -1;
+}
+
+const std::vector<Box>& Session::gt(Side side, int scene) const {
+  const Side s = pair_side(side);
+  return labels_.gt_of(s == Side::kA ? pairs_[pair_].first : pairs_[pair_].second, scenes_[pair_][scene].stem).boxes;
+}
+
+const std::vector<Box>& Session::predictions(Side side, int scene) const {
+  static const std::vector<Box> none;
+  const Side s = pair_side(side);
+  const std::string& d = s == Side::kA ? pairs_[pair_].first : pairs_[pair_].second;
+  const auto di = shown_predictions_.find(d);
+  if (di == shown_predictions_.end()) return none;
+  const auto mi = di->second.find(model_);
+  if (mi == di->second.end()) return none;
+  const auto si = mi->second.find(scenes_[pair_][scene].stem);
+  return si == mi->second.end() ? none : si->second;
+}
+
+const PerformanceValues& Session::performance(Side side, int scene) const {
+  static const PerformanceValues none;
+  const Side s = pair_side(side);
+  const std::string& d = s == Side::kA ? pairs_[pair_].first : pairs_[pair_].second;
+  const auto di = perf_.find(d);
+  if (di == perf_.end()) return none;
+  const auto mi = di->second.find(model_);
+  if (mi == di->second.end()) return none;
+  const auto si = mi->second.find(scenes_[pair_][scene].stem);
+  return si == mi->second.end() ? none : si->second;
+}
+
+bool Session::excluded(Side side, int scene, int rock) const {
+  const auto& fp = scenes_[pair_][scene].current;
+  const auto& list = pair_side(side) == Side::kA ? fp.excluded_a : fp.excluded_b;
+  return std::find(list.begin(), list.end(), rock) != list.end();
+}
+
+RockPairs Session::view_pairs(int scene) const {
+  RockPairs out = scenes_[pair_][scene].current.pairs;
+  if (swapped_) {
+    for (auto& p : out) std::swap(p.first, p.second);
+    std::sort(out.begin(), out.end());
+  }
+  return out;
+}
+
+SceneSummary Session::summary(int scene) const {
+  SceneSummary s;
+  const auto it = contributions_.find({model_, pair_});
+  s.stem = scenes_[pair_][scene].stem;
+  s.edited = scenes_[pair_][scene].edited;
+  if (it == contributions_.end()) {
+    s.ipd = std::nan("");
+    return s;
+  }
+  const SceneIpd& c = it->second[scene];
+  s.ipd = c.ipd();
+  s.pairs = c.pairs;
+  s.unpaired_a = swapped_ ? c.unpaired_b : c.unpaired_a;
+  s.unpaired_b = swapped_ ? c.unpaired_a : c.unpaired_b;
+  return s;
+}
+
+CellTotals Session::totals_for(const std::string& model, int pair_index) const {
+  const auto it = totals_.find({model, pair_index});
+  if (it == totals_.end()) {
+    CellTotals none;
+    none.sum_abs_diff = std::nan("");
+    return none;
+  }
+  return it->second;
+}
+
+SceneIpd Session::contribution(const std::string& model, int pair, int scene) const {
+  const auto& [a, b] = pairs_[pair];
+  const SceneState& s = scenes_[pair][scene];
+  SceneIpd out;
+  out.stem = s.stem;
+  const auto& pa = perf_.at(a).at(model).at(s.stem).value;
+  const auto& pb = perf_.at(b).at(model).at(s.stem).value;
+  std::vector<char> used_a(pa.size(), 0), used_b(pb.size(), 0);
+  for (int i : s.current.excluded_a) used_a[i] = 1;
+  for (int j : s.current.excluded_b) used_b[j] = 1;
+  for (const auto& [i, j] : s.current.pairs) {
+    if (used_a[i] || used_b[j]) continue;
+    used_a[i] = used_b[j] = 1;
+    out.perf_a.push_back(pa[i]);
+    out.perf_b.push_back(pb[j]);
+    out.sum_abs_diff += std::abs(pa[i] - pb[j]);
+    ++out.pairs;
+  }
+  out.unpaired_a = static_cast<int>(std::count(used_a.begin(), used_a.end(), 0));
+  out.unpaired_b = static_cast<int>(std::count(used_b.begin(), used_b.end(), 0));
+  return out;
+}
+
+void Session::recompute_performance() {
+  perf_.clear();
+  shown_predictions_.clear();
+  for (const auto& d : labels_.study.domains) {
+    for (const auto& m : labels_.study.models) {
+      if (!labels_.has_predictions(d.name, m.name)) continue;
+      for (const auto& stem : d.stems) {
+        std::vector<Box> shown;
+        for (const auto& p : labels_.predictions_of(d.name, m.name, stem).boxes)
+          if (p.conf >= conf_threshold_) shown.push_back(p);
+        perf_[d.name][m.name][stem] = performance_values(labels_.gt_of(d.name, stem).boxes, shown);
+        shown_predictions_[d.name][m.name][stem] = std::move(shown);
+      }
+    }
+  }
+  rebuild_totals();
+}
+
+void Session::rebuild_totals() {
+  totals_.clear();
+  contributions_.clear();
+  for (const auto& m : labels_.study.models) {
+    for (size_t p = 0; p < pairs_.size(); ++p) {
+      if (!labels_.has_predictions(pairs_[p].first, m.name) || !labels_.has_predictions(pairs_[p].second, m.name))
+        continue;
+      auto& list = contributions_[{m.name, static_cast<int>(p)}];
+      CellTotals& t = totals_[{m.name, static_cast<int>(p)}];
+      for (size_t s = 0; s < scenes_[p].size(); ++s) {
+        list.push_back(contribution(m.name, static_cast<int>(p), static_cast<int>(s)));
+        t.sum_abs_diff += list.back().sum_abs_diff;
+        t.pairs += list.back().pairs;
+        t.unpaired_a += list.back().unpaired_a;
+        t.unpaired_b += list.back().unpaired_b;
+        ++t.scenes;
+      }
+    }
+  }
+}
+
+void Session::set_conf_threshold(double threshold) {
+  conf_threshold_ = std::clamp(threshold, 0.0, 1.0);
+  recompute_performance();
+}
+
+SaveJob Session::job_for(int pair, int scene, const std::string& root) const {
+  const auto& [a, b] = pairs_[pair];
+  const SceneState& s = scenes_[pair][scene];
+  SaveJob job;
+  job.path = (fs::path(root) / "pairs" / (a + "__" + b) / (s.stem + ".json")).string();
+  job.also_remove.push_back((fs::path(root) / "pairs" / (b + "__" + a) / (s.stem + ".json")).string());
+  if (s.edited) job.contents = fixed_pairs_json(s.current);
+  return job;
+}
+
+SaveJob Session::set_scene(int pair, int scene, const FixedPairs& fp, bool edited) {
+  SceneState& s = scenes_[pair][scene];
+  s.current = fp;
+  std::sort(s.current.pairs.begin(), s.current.pairs.end());
+  s.edited = edited;
+  // Only this scene's contribution changes: swap it in every model's totals.
+  for (auto& [key, list] : contributions_) {
+    if (key.second != pair) continue;
+    CellTotals& t = totals_[key];
+    const SceneIpd& old = list[scene];
+    t.sum_abs_diff -= old.sum_abs_diff;
+    t.pairs -= old.pairs;
+    t.unpaired_a -= old.unpaired_a;
+    t.unpaired_b -= old.unpaired_b;
+    list[scene] = contribution(key.first, pair, scene);
+    t.sum_abs_diff += list[scene].sum_abs_diff;
+    t.pairs += list[scene].pairs;
+    t.unpaired_a += list[scene].unpaired_a;
+    t.unpaired_b += list[scene].unpaired_b;
+  }
+  last_scene_ = scene;
+  return job_for(pair, scene, labels_.study.root);
+}
+
+SaveJob Session::apply(int scene, Edit e) {
+  const SceneState& s = scenes_[pair_][scene];
+  FixedPairs next = s.current;
+  bool edited = true;
+  // Sides of the view to sides of the domain pair.
+  int ia = e.a, ib = e.b;
+  if (swapped_ && e.kind == Edit::Kind::kPair) std::swap(ia, ib);
+  const Side side = pair_side(e.side);
+  auto erase_if = [](RockPairs& v, auto pred) { v.erase(std::remove_if(v.begin(), v.end(), pred), v.end()); };
+  auto drop = [](std::vector<int>& v, int x) { v.erase(std::remove(v.begin(), v.end(), x), v.end()); };
+  switch (e.kind) {
+    case Edit::Kind::kPair:
+      erase_if(next.pairs, [&](const auto& p) { return p.first == ia || p.second == ib; });
+      next.pairs.emplace_back(ia, ib);
+      drop(next.excluded_a, ia);
+      drop(next.excluded_b, ib);
+      break;
+    case Edit::Kind::kUnpair:
+      erase_if(next.pairs, [&](const auto& p) { return side == Side::kA ? p.first == e.a : p.second == e.a; });
+      break;
+    case Edit::Kind::kToggleExclude: {
+      auto& list = side == Side::kA ? next.excluded_a : next.excluded_b;
+      if (std::find(list.begin(), list.end(), e.a) != list.end()) drop(list, e.a);
+      else list.push_back(e.a);
+      std::sort(list.begin(), list.end());
+      break;
+    }
+    case Edit::Kind::kResetToAutomatic:
+      next = FixedPairs{};
+      next.pairs = s.automatic.pairs;
+      edited = false;
+      break;
+  }
+  std::sort(next.pairs.begin(), next.pairs.end());
+  history_.resize(undo_pos_);
+  history_.push_back({pair_, scene, s.current, next, s.edited, edited});
+  ++undo_pos_;
+  return set_scene(pair_, scene, next, edited);
+}
+
+std::optional<SaveJob> Session::undo() {
+  if (!can_undo()) return std::nullopt;
+  const HistoryEntry& h = history_[--undo_pos_];
+  pair_ = h.pair;
+  return set_scene(h.pair, h.scene, h.before, h.edited_before);
+}
+
+std::optional<SaveJob> Session::redo() {
+  if (!can_redo()) return std::nullopt;
+  const HistoryEntry& h = history_[undo_pos_++];
+  pair_ = h.pair;
+  return set_scene(h.pair, h.scene, h.after, h.edited_after);
+}
+
+std::vector<SaveJob> Session::save_all_to(const std::string& other_root) const {
+  std::vector<SaveJob> jobs;
+  for (size_t p = 0; p < scenes_.size(); ++p)
+    for (size_t s = 0; s < scenes_[p].size(); ++s)
+      if (scenes_[p][s].edited) jobs.push_back(job_for(static_cast<int>(p), static_cast<int>(s), other_root));
+  return jobs;
+}
+
+}  // namespace ipd
