@@ -49,15 +49,17 @@ const DomainLook kLooks[] = {
     {"hapke", 124, 7, 3, 0.62, 0.72, 0.0, false, false},
 };
 
-Scene make_scene(DemoRng& rng, int w, int h) {
+Scene make_scene(DemoRng& rng, int w, int h, int min_rocks, int max_rocks) {
   Scene s;
   s.sun_deg = rng.uniform(0, 360);
   s.texture_seed = rng.g();
-  const int n = 9 + rng.below(10);
+  const int n = min_rocks + rng.below(std::max(1, max_rocks - min_rocks + 1));
+  // Smaller rocks when there are many, so they still fit.
+  const double shrink = std::sqrt(18.0 / std::max(18, n));
   for (int k = 0; k < n; ++k) {
     Rock r;
     for (int attempt = 0; attempt < 50; ++attempt) {
-      const double size = std::min(w, h) * std::exp(rng.uniform(std::log(0.025), std::log(0.08)));
+      const double size = shrink * std::min(w, h) * std::exp(rng.uniform(std::log(0.025), std::log(0.08)));
       r = {rng.uniform(0.06, 0.94) * w, rng.uniform(0.08, 0.92) * h, size, size * rng.uniform(0.55, 0.9),
            rng.uniform(-30, 30), rng.uniform(1.1, 1.6)};
       bool clear = true;
@@ -193,7 +195,7 @@ void write_demo_study(const std::string& dir, const DemoStudyOptions& o) {
   const int w = o.width, h = o.height;
   DemoRng rng(o.seed);
   std::vector<Scene> scenes;
-  for (int k = 0; k < o.scenes; ++k) scenes.push_back(make_scene(rng, w, h));
+  for (int k = 0; k < o.scenes; ++k) scenes.push_back(make_scene(rng, w, h, o.min_rocks, o.max_rocks));
   const size_t n_looks = std::size(kLooks);
   std::vector<std::vector<cv::Mat>> pictures(n_looks);
   std::vector<std::vector<std::vector<Box>>> gts(n_looks);

@@ -300,6 +300,11 @@ SaveJob Session::apply(int scene, Edit e) {
       std::sort(list.begin(), list.end());
       break;
     }
+    case Edit::Kind::kReplacePairs:
+      next.pairs = e.pairs;
+      if (swapped_)
+        for (auto& p : next.pairs) std::swap(p.first, p.second);
+      break;
     case Edit::Kind::kResetToAutomatic:
       next = FixedPairs{};
       next.pairs = s.automatic.pairs;

@@ -9,6 +9,7 @@ namespace ipd {
 
 struct DemoStudyOptions {
   int scenes = 6;
+  int min_rocks = 9, max_rocks = 18;  // per scene
   int width = 960, height = 600;
   std::uint64_t seed = 7;
 };

@@ -18,9 +18,10 @@ namespace ipd {
 enum class Side { kA, kB };
 
 struct Edit {
-  enum class Kind { kPair, kUnpair, kToggleExclude, kResetToAutomatic } kind;
+  enum class Kind { kPair, kUnpair, kToggleExclude, kResetToAutomatic, kReplacePairs } kind;
   int a = -1, b = -1;   // kPair: both; kUnpair / kToggleExclude: the rock on `side`
   Side side = Side::kA;
+  RockPairs pairs;      // kReplacePairs: (left, right) pairs, e.g. from re-running registration
 };
 
 // A file to write (atomically) or remove, so that `ipd table` sees what the session shows.
