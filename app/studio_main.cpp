@@ -14,6 +14,9 @@
 #include <filesystem>
 #include <future>
 #include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -132,6 +135,11 @@ int main(int argc, char** argv) {
   std::map<std::string, Texture> textures;
   ui::UiState ui;
   std::vector<double> frame_ms;
+  struct ExportResult {
+    std::mutex mu;
+    std::string message;
+  };
+  const auto export_result = std::make_shared<ExportResult>();  // shared with detached export threads
   int counted = 0, settle = 0;
   float split = 0.62f;
 
@@ -266,6 +274,36 @@ int main(int argc, char** argv) {
       if (cmd.save_as && ui.save_as_dir[0]) {
         for (auto& job : s.save_all_to(ui.save_as_dir)) saver.submit(std::move(job));
         ui.status = std::string("edited pairs written under ") + ui.save_as_dir + "/pairs/";
+      }
+      if (cmd.export_figures && !s.scenes().empty()) {
+        // The same files `ipd figure` writes, by the same code (the CLI renders them off-screen); run in
+        // the background so the window stays responsive.
+        const fs::path ipd_exe = fs::path(argv[0]).parent_path() / "ipd";
+        const fs::path dir = s.read_only() ? fs::current_path() : fs::path(s.study().root) / "figures";
+        const std::string stem = s.scenes()[ui.scene].stem, a = s.left_domain(), b = s.right_domain();
+        const std::string base = (dir / (stem + "_" + a + "_" + b)).string();
+        auto quote = [](const std::string& x) {
+          std::string q = "'";
+          for (char c : x) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+          return q + "'";
+        };
+        const std::string common = " " + quote(s.study().root) + " --scene " + quote(stem) + " --a " + quote(a) +
+                                   " --b " + quote(b) + " --model " + quote(s.model());
+        const std::string command = quote(ipd_exe.string()) + " figure pairs" + common + " --out " +
+                                    quote(base + "_pairs.png") + " >/dev/null 2>&1 && " + quote(ipd_exe.string()) +
+                                    " figure registration" + common + " --out " + quote(base + "_registration.png") +
+                                    " >/dev/null 2>&1";
+        ui.status = "exporting " + base + "_pairs.png and _registration.png ...";
+        std::thread([command, base, exported = export_result] {
+          const int rc = std::system(command.c_str());
+          std::lock_guard<std::mutex> l(exported->mu);
+          exported->message = rc == 0 ? "exported " + base + "_pairs.png and _registration.png"
+                                     : "export failed (is the ipd tool next to ipd-studio?)";
+        }).detach();
+      }
+      {
+        std::lock_guard<std::mutex> l(export_result->mu);
+        if (!export_result->message.empty()) ui.status = std::exchange(export_result->message, {});
       }
       if (cmd.rerun_registration && !s.scenes().empty()) {
         RegistrationOptions o = s.study().config.registration;

@@ -41,8 +41,11 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
     dl->AddImage(in.texture, pl.origin, p1);
   } else {
     dl->AddRectFilled(pl.origin, p1, IM_COL32(70, 70, 76, 255));
-    if (!in.placeholder.empty())
-      text_with_backdrop(dl, {pl.origin.x + 8, pl.origin.y + 8}, IM_COL32(255, 200, 120, 255), in.placeholder.c_str(), ts);
+    if (!in.placeholder.empty()) {  // centred, clear of the caption in the corner
+      const float w = ImGui::GetFont()->CalcTextSizeA(ImGui::GetFontSize() * ts, FLT_MAX, 0, in.placeholder.c_str()).x;
+      text_with_backdrop(dl, {pl.origin.x + 0.5f * (pl.size.x - w), pl.origin.y + 0.5f * pl.size.y},
+                         IM_COL32(255, 200, 120, 255), in.placeholder.c_str(), ts);
+    }
   }
   const float thick = std::max(1.0f, 1.5f * ts);
   char buf[32];

@@ -159,6 +159,8 @@ void draw_side_by_side(const Session& s, UiState& ui, const Picture& left, const
   ImGui::SameLine();
   if (ImGui::Button("reset to automatic")) out.edits.push_back({Edit::Kind::kResetToAutomatic});
   ImGui::SameLine();
+  if (ImGui::Button("export figure")) out.export_figures = true;
+  ImGui::SameLine();
   ImGui::TextDisabled("click left then right to pair; wheel zoom, drag pan");
 
   const ImVec2 avail = ImGui::GetContentRegionAvail();

@@ -45,6 +45,7 @@ struct UiCommands {
   float conf_threshold = -1;
   bool rerun_registration = false;
   bool save_as = false;
+  bool export_figures = false;  // Fig. 1 and Fig. 2 of the current view, through `ipd figure`
 };
 
 // The scene order of the browser (sorted and filtered as the user asked).

@@ -1,0 +1,101 @@
+#include "offscreen_renderer.h"
+
+#include <GL/osmesa.h>
+#include <backends/imgui_impl_opengl2.h>
+
+#include <filesystem>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <vector>
+
+namespace ipd::figure {
+
+struct OffscreenRenderer::Impl {
+  OSMesaContext ctx = nullptr;
+  std::vector<unsigned char> buffer;
+  int width = 0, height = 0;
+  ImGuiContext* imgui = nullptr;
+  std::vector<GLuint> textures;
+};
+
+std::string figure_font_file() {
+  for (const std::string& p : {std::string(IPD_ASSETS_DIR "/fonts/DejaVuSans.ttf"),
+                               std::string("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")}) {
+    std::error_code ec;
+    if (std::filesystem::exists(p, ec)) return p;
+  }
+  return {};
+}
+
+OffscreenRenderer::OffscreenRenderer(int width, int height, float font_px, const std::string& font_file)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.width = width;
+  m.height = height;
+  m.ctx = OSMesaCreateContextExt(OSMESA_RGBA, 0, 0, 0, nullptr);
+  if (!m.ctx) throw std::runtime_error("OSMesa: cannot create an off-screen GL context");
+  m.buffer.resize(static_cast<size_t>(width) * height * 4);
+  if (!OSMesaMakeCurrent(m.ctx, m.buffer.data(), GL_UNSIGNED_BYTE, width, height)) {
+    OSMesaDestroyContext(m.ctx);
+    throw std::runtime_error("OSMesa: cannot make a " + std::to_string(width) + " x " + std::to_string(height) +
+                             " buffer current (too large?)");
+  }
+  OSMesaPixelStore(OSMESA_Y_UP, 0);  // row 0 at the top, as in the PNG
+  m.imgui = ImGui::CreateContext();
+  ImGuiIO& io = ImGui::GetIO();
+  io.IniFilename = nullptr;
+  io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
+  io.DeltaTime = 1.0f / 60.0f;
+  if (font_file.empty() || !io.Fonts->AddFontFromFileTTF(font_file.c_str(), font_px)) {
+    ImFontConfig cfg;
+    cfg.SizePixels = font_px;
+    io.Fonts->AddFontDefault(&cfg);
+  }
+  ImGui_ImplOpenGL2_Init();
+}
+
+OffscreenRenderer::~OffscreenRenderer() {
+  Impl& m = *impl_;
+  for (GLuint t : m.textures) glDeleteTextures(1, &t);
+  ImGui_ImplOpenGL2_Shutdown();
+  ImGui::DestroyContext(m.imgui);
+  OSMesaDestroyContext(m.ctx);
+}
+
+ImTextureID OffscreenRenderer::upload(const cv::Mat& bgr, int max_width) {
+  cv::Mat img = bgr;
+  if (img.cols > max_width) {
+    const double k = static_cast<double>(max_width) / img.cols;
+    cv::resize(img, img, cv::Size(), k, k, cv::INTER_AREA);
+  }
+  cv::Mat rgba;
+  cv::cvtColor(img, rgba, cv::COLOR_BGR2RGBA);
+  GLuint id = 0;
+  glGenTextures(1, &id);
+  glBindTexture(GL_TEXTURE_2D, id);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, rgba.cols, rgba.rows, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data);
+  impl_->textures.push_back(id);
+  return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(id));
+}
+
+cv::Mat OffscreenRenderer::render(const std::function<void(ImDrawList*, ImVec2)>& draw) {
+  Impl& m = *impl_;
+  ImGui_ImplOpenGL2_NewFrame();
+  ImGui::NewFrame();
+  draw(ImGui::GetBackgroundDrawList(), ImVec2(static_cast<float>(m.width), static_cast<float>(m.height)));
+  ImGui::Render();
+  glViewport(0, 0, m.width, m.height);
+  glClearColor(1, 1, 1, 1);
+  glClear(GL_COLOR_BUFFER_BIT);
+  ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
+  glFinish();
+  cv::Mat rgba(m.height, m.width, CV_8UC4, m.buffer.data());
+  cv::Mat bgr;
+  cv::cvtColor(rgba, bgr, cv::COLOR_RGBA2BGR);
+  return bgr;
+}
+
+}  // namespace ipd::figure
