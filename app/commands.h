@@ -13,5 +13,7 @@ Runner add_register_command(CLI::App& app);
 Runner add_demo_command(CLI::App& app);
 Runner add_figure_command(CLI::App& app);
 Runner add_bench_command(CLI::App& app);
+Runner add_detect_command(CLI::App& app);
+Runner add_import_command(CLI::App& app);
 
 }  // namespace ipd::cli

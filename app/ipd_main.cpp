@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
   add(ipd::cli::add_demo_command);
   add(ipd::cli::add_figure_command);
   add(ipd::cli::add_bench_command);
+  add(ipd::cli::add_detect_command);
+  add(ipd::cli::add_import_command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
