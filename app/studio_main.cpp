@@ -93,6 +93,10 @@ int main(int argc, char** argv) {
   cli.add_option("--screenshot", screenshot, "Render --frames frames, save the window as this PNG and exit");
   cli.add_option("--frames", frames, "Frames to render before the screenshot")->check(CLI::Range(1, 100000));
   cli.add_flag("--frame-stats", frame_stats, "Print frame_ms median=X p95=Y at exit");
+  int cycle_scenes = 0;
+  cli.add_option("--cycle-scenes", cycle_scenes,
+                 "With --screenshot: move to the next scene every N frames and print scene_change_ms (time until "
+                 "both pictures show)");
   cli.add_option("--size", width, "Window width")->check(CLI::Range(320, 10000));
   cli.add_option("--height", height, "Window height")->check(CLI::Range(240, 10000));
   CLI11_PARSE(cli, argc, argv);
@@ -141,6 +145,9 @@ int main(int argc, char** argv) {
   };
   const auto export_result = std::make_shared<ExportResult>();  // shared with detached export threads
   int counted = 0, settle = 0;
+  std::vector<double> change_ms;
+  std::optional<std::chrono::steady_clock::time_point> change_started;
+  bool change_shown = false;
   float split = 0.62f;
 
   while (!glfwWindowShouldClose(window)) {
@@ -201,12 +208,21 @@ int main(int argc, char** argv) {
       Session& s = *session;
       ui::handle_shortcuts(s, ui, cmd);
       ui::Picture left, right;
+      if (cycle_scenes > 0 && counted > 0 && counted % cycle_scenes == 0 && !change_started && s.scenes().size() > 1) {
+        const auto order = ui::browser_order(s, ui);
+        const auto at = std::find(order.begin(), order.end(), ui.scene);
+        cmd.goto_scene = order[((at - order.begin()) + 1) % order.size()];
+        ui.scene = cmd.goto_scene;
+        change_started = std::chrono::steady_clock::now();
+      }
       if (!s.scenes().empty()) {
         const std::string& stem = s.scenes()[ui.scene].stem;
         left = picture(s.left_domain(), stem, true);
         right = picture(s.right_domain(), stem, true);
         const auto order = ui::browser_order(s, ui);
         const auto at = std::find(order.begin(), order.end(), ui.scene);
+        // Both pictures are in: the change is complete once this frame is drawn (measured below).
+        change_shown = change_started && left.placeholder != "loading..." && right.placeholder != "loading...";
         for (int step : {1, -1}) {
           if (at == order.end()) break;
           const long k = (at - order.begin()) + step;
@@ -342,6 +358,11 @@ int main(int argc, char** argv) {
     glClear(GL_COLOR_BUFFER_BIT);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (!screenshot.empty()) glFinish();
+    if (change_shown) {
+      change_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - *change_started).count());
+      change_started.reset();
+      change_shown = false;
+    }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!screenshot.empty() && (session || !open_error.empty())) {
       // Count frames once the study is open and the current pictures are in (or after a grace period).
@@ -359,6 +380,11 @@ int main(int argc, char** argv) {
     std::sort(frame_ms.begin(), frame_ms.end());
     fmt::print("frame_ms median={:.2f} p95={:.2f}\n", frame_ms[frame_ms.size() / 2],
                frame_ms[std::min(frame_ms.size() - 1, frame_ms.size() * 95 / 100)]);
+  }
+  if (!change_ms.empty()) {
+    std::sort(change_ms.begin(), change_ms.end());
+    fmt::print("scene_change_ms median={:.2f} max={:.2f} over {} changes\n", change_ms[change_ms.size() / 2],
+               change_ms.back(), change_ms.size());
   }
   if (!screenshot.empty()) fmt::print("{}\n", screenshot);
   for (auto& [k, t] : textures)

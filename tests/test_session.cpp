@@ -46,7 +46,7 @@ TEST(Session, PairUnpairUndoRedoAndSaveAreSeenByTheEngine) {
   write_tiny_study(d);
   Session s = Session::open(d.path());
   // Unpair real rock 1: only (0,1) is left, |1 - 1/3| = 2/3.
-  SaveJob job = s.apply(0, {Edit::Kind::kUnpair, 1, -1, Side::kA});
+  SaveJob job = s.apply(0, Edit::unpair(Side::kA, 1));
   EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
   EXPECT_EQ(s.summary(0).unpaired_a, 1);
   EXPECT_TRUE(s.summary(0).edited);
@@ -56,7 +56,7 @@ TEST(Session, PairUnpairUndoRedoAndSaveAreSeenByTheEngine) {
   run_save_job(job);
   EXPECT_NEAR(table_ipd_from_disk(d.path()), 2.0 / 3, 1e-12);
   // Pair real 0 with synth 0: replaces real 0's old partner. perf 1 vs 0 -> IPD 1.
-  run_save_job(s.apply(0, {Edit::Kind::kPair, 0, 0, Side::kA}));
+  run_save_job(s.apply(0, Edit::pair(0, 0)));
   EXPECT_EQ(s.view_pairs(0), (RockPairs{{0, 0}}));
   EXPECT_NEAR(s.totals().ipd(), 1.0, 1e-12);
   EXPECT_NEAR(table_ipd_from_disk(d.path()), 1.0, 1e-12);
@@ -75,7 +75,7 @@ TEST(Session, PairUnpairUndoRedoAndSaveAreSeenByTheEngine) {
   EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
   EXPECT_NEAR(table_ipd_from_disk(d.path()), 2.0 / 3, 1e-12);
   // A new edit drops the redo branch.
-  s.apply(0, {Edit::Kind::kResetToAutomatic});
+  s.apply(0, Edit::reset());
   EXPECT_FALSE(s.can_redo());
   EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
 }
@@ -89,12 +89,12 @@ TEST(Session, ExcludeAndSwappedView) {
   EXPECT_EQ(s.left_domain(), "synth");
   EXPECT_EQ(s.view_pairs(0), (RockPairs{{0, 1}, {1, 0}}));  // (synth, real)
   // Exclude synth rock 0 (left): its pair (real 1, synth 0) leaves the IPD: only |1 - 1/3| remains.
-  const SaveJob job = s.apply(0, {Edit::Kind::kToggleExclude, 0, -1, Side::kA});
+  const SaveJob job = s.apply(0, Edit::toggle_exclude(Side::kA, 0));
   EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
   EXPECT_TRUE(s.excluded(Side::kA, 0, 0));
   EXPECT_EQ(*job.contents, "{\"excluded_b\":[0],\"pairs\":[[0,1],[1,0]]}\n");
   // Pair left (synth) 1 with right (real) 1: stored as real 1 <-> synth 1.
-  s.apply(0, {Edit::Kind::kPair, 1, 1, Side::kA});
+  s.apply(0, Edit::pair(1, 1));
   EXPECT_EQ(s.view_pairs(0), (RockPairs{{1, 1}}));
   ASSERT_TRUE(s.select_domains("real", "synth"));
   EXPECT_EQ(s.view_pairs(0), (RockPairs{{1, 1}}));
@@ -138,7 +138,7 @@ TEST(Session, IncrementalTotalsMatchAFullRecompute) {
     const int scene = static_cast<int>(g() % 3);
     const int kind = static_cast<int>(g() % 4);
     Edit e{static_cast<Edit::Kind>(kind), static_cast<int>(g() % 8), static_cast<int>(g() % 8),
-           g() % 2 ? Side::kA : Side::kB};
+           g() % 2 ? Side::kA : Side::kB, {}};
     run_save_job(s.apply(scene, e));
     if (step % 7 == 3) run_save_job(*s.undo());
   }
@@ -156,7 +156,7 @@ TEST(Session, ReadOnlyStudyIsDetectedAndSaveAsWritesElsewhere) {
   if (::geteuid() == 0) {
     // root ignores permissions; still check that save-as lands in the other study.
     Session s = Session::open(d.path());
-    s.apply(0, {Edit::Kind::kUnpair, 1, -1, Side::kA});
+    s.apply(0, Edit::unpair(Side::kA, 1));
     const auto jobs = s.save_all_to(other.path());
     ASSERT_EQ(jobs.size(), 1u);
     EXPECT_EQ(jobs[0].path, other / "pairs/real__synth/s1.json");

@@ -57,7 +57,7 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
       const bool best = in.gt && std::find(in.best_prediction.begin(), in.best_prediction.end(), int(k)) !=
                                      in.best_prediction.end();
       dl->AddRect(q0, q1, best ? kRed : IM_COL32(235, 40, 40, 140), 0, 0, best ? 2 * thick : thick);
-      if (layers.confidences) {
+      if (layers.confidences && q1.x - q0.x >= in.min_box_px_for_confidence) {
         std::snprintf(buf, sizeof buf, "%.2f", b.conf);
         text_with_backdrop(dl, {q0.x, q1.y + 1}, kRed, buf, 0.85f * ts);
       }

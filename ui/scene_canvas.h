@@ -40,6 +40,9 @@ struct SideInput {
   int highlight = -1, selected = -1;    // GT rocks to emphasise
   std::string caption;
   bool fill_background = true;  // the GUI paints its background once, with the GL clear
+  // Confidences of predicted boxes narrower than this on screen are left out (they would overlap and
+  // can't be read; zooming in brings them back). 0: always shown, as figures do.
+  float min_box_px_for_confidence = 0;
 };
 
 // The picture's rectangle inside `area` (fit, keep aspect, then zoom and pan).

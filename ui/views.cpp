@@ -151,13 +151,13 @@ void draw_side_by_side(const Session& s, UiState& ui, const Picture& left, const
   ImGui::Checkbox("sync zoom", &ui.sync_views);
   ImGui::SameLine();
   if (ImGui::Button("unpair (U)") && ui.selected_left >= 0)
-    out.edits.push_back({Edit::Kind::kUnpair, ui.selected_left, -1, Side::kA});
+    out.edits.push_back(Edit::unpair(Side::kA, ui.selected_left));
   ImGui::SameLine();
   if (ImGui::Button("exclude (X)") && (ui.selected_left >= 0 || ui.selected_right >= 0))
-    out.edits.push_back({Edit::Kind::kToggleExclude, ui.selected_left >= 0 ? ui.selected_left : ui.selected_right, -1,
-                         ui.selected_left >= 0 ? Side::kA : Side::kB});
+    out.edits.push_back(Edit::toggle_exclude(ui.selected_left >= 0 ? Side::kA : Side::kB,
+                                             ui.selected_left >= 0 ? ui.selected_left : ui.selected_right));
   ImGui::SameLine();
-  if (ImGui::Button("reset to automatic")) out.edits.push_back({Edit::Kind::kResetToAutomatic});
+  if (ImGui::Button("reset to automatic")) out.edits.push_back(Edit::reset());
   ImGui::SameLine();
   if (ImGui::Button("export figure")) out.export_figures = true;
   ImGui::SameLine();
@@ -176,6 +176,7 @@ void draw_side_by_side(const Session& s, UiState& ui, const Picture& left, const
     CanvasView& view = k == 0 ? ui.left_view : ui.right_view;
     SideInput in = side_input(s, ui, side, k == 0 ? left : right);
     in.fill_background = false;
+    in.min_box_px_for_confidence = 2.2f * ImGui::GetFontSize();
     const int hit = draw_side(dl, p0, size, view, in, ui.layers, mouse);
     int& hover = k == 0 ? ui.hover_left : ui.hover_right;
     hover = hovered_area ? hit : -1;
@@ -192,7 +193,7 @@ void draw_side_by_side(const Session& s, UiState& ui, const Picture& left, const
         int& sel = k == 0 ? ui.selected_left : ui.selected_right;
         sel = hit;
         if (ui.selected_left >= 0 && ui.selected_right >= 0) {
-          out.edits.push_back({Edit::Kind::kPair, ui.selected_left, ui.selected_right, Side::kA});
+          out.edits.push_back(Edit::pair(ui.selected_left, ui.selected_right));
           ui.selected_left = ui.selected_right = -1;
         }
       }
@@ -249,11 +250,10 @@ void draw_registration(const Session& s, UiState& ui, UiCommands& out) {
   if (ui.rerun) {
     ImGui::SameLine();
     if (ImGui::Button("apply these pairs")) {
-      Edit e{Edit::Kind::kReplacePairs};
-      e.pairs = ui.rerun->pairs;
+      RockPairs pairs = ui.rerun->pairs;  // registration's (A, B) order; the view may show (B, A)
       if (s.swapped())
-        for (auto& p : e.pairs) std::swap(p.first, p.second);
-      out.edits.push_back(e);
+        for (auto& p : pairs) std::swap(p.first, p.second);
+      out.edits.push_back(Edit::replace(std::move(pairs)));
       ui.rerun.reset();
     }
     ImGui::SameLine();
@@ -407,12 +407,12 @@ void handle_shortcuts(const Session& s, UiState& ui, UiCommands& out) {
     out.goto_scene = order[std::min<int>(at + 1, order.size() - 1)];
   if ((key_pressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow)) || key_pressed('K')) && !order.empty())
     out.goto_scene = order[std::max(at - 1, 0)];
-  if (key_pressed('U') && ui.selected_left >= 0) out.edits.push_back({Edit::Kind::kUnpair, ui.selected_left, -1, Side::kA});
+  if (key_pressed('U') && ui.selected_left >= 0) out.edits.push_back(Edit::unpair(Side::kA, ui.selected_left));
   if (key_pressed('U') && ui.selected_left < 0 && ui.selected_right >= 0)
-    out.edits.push_back({Edit::Kind::kUnpair, ui.selected_right, -1, Side::kB});
+    out.edits.push_back(Edit::unpair(Side::kB, ui.selected_right));
   if (key_pressed('X') && (ui.selected_left >= 0 || ui.selected_right >= 0))
-    out.edits.push_back({Edit::Kind::kToggleExclude, ui.selected_left >= 0 ? ui.selected_left : ui.selected_right, -1,
-                         ui.selected_left >= 0 ? Side::kA : Side::kB});
+    out.edits.push_back(Edit::toggle_exclude(ui.selected_left >= 0 ? Side::kA : Side::kB,
+                                             ui.selected_left >= 0 ? ui.selected_left : ui.selected_right));
   if (key_pressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) ui.selected_left = ui.selected_right = -1;
 }
 

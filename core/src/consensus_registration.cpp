@@ -201,7 +201,6 @@ class ConsensusScorer {
     if (confirmations_ >= kConfirmations && best_count_ >= 5) return true;
     return beyond_chance_;
   }
-  double success_probability(double) const { return 0.0; }
 
   // Mutually nearest (A, B) pairs within the gate after m.
   void inlier_pairs(const Affine2& m, double g2, std::vector<Eigen::Vector2d>* src,

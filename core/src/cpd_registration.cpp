@@ -62,7 +62,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
     sigma2 = (xx - (a * b.transpose()).trace()) / (np * 2);
     if (!(sigma2 > 0)) sigma2 = tolerance;
     if (std::abs(old - sigma2) < tolerance) {
-      out.stop = StopReason::kConfidence;
+      out.stop = StopReason::kConverged;
       ++it;
       break;
     }

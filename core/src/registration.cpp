@@ -41,7 +41,6 @@ std::string RegistrationOptions::validate() const {
   if (!(max_rotation_deg > 0) || max_rotation_deg > 180)
     return fmt::format("max_rotation_deg must be in (0, 180], got {}", max_rotation_deg);
   if (!(inlier_gate >= 0)) return fmt::format("inlier_gate must be >= 0 (0: automatic), got {}", inlier_gate);
-  if (!(confidence >= 0 && confidence < 1)) return fmt::format("confidence must be in [0, 1), got {}", confidence);
   if (!(min_pair_iou >= 0 && min_pair_iou < 1)) return fmt::format("min_pair_iou must be in [0, 1), got {}", min_pair_iou);
   if (cpd_iterations < 1) return fmt::format("cpd_iterations must be at least 1, got {}", cpd_iterations);
   if (!(cpd_outlier_weight >= 0 && cpd_outlier_weight < 1))

@@ -34,7 +34,6 @@ struct RegistrationOptions {
   double min_scale = 0.5, max_scale = 2.0;  // singular values of the linear part
   double max_rotation_deg = 30.0;  // a camera misalignment, not an arbitrary rotation
   double inlier_gate = 0;       // consensus, fraction of image width; 0: from the rock spacing
-  double confidence = 0.9999;
   double min_pair_iou = 0.1;    // consensus, cpd: aligned boxes overlapping less than this stay unpaired
   int cpd_iterations = 100;     // cpd: EM iterations
   double cpd_outlier_weight = 0.2;

@@ -7,9 +7,7 @@
 //   Scorer:    double score(const Model&)
 //              bool worth_refining(double score, double best)  whether to locally optimise this model
 //              void refine(Model*, double* score)      local optimisation (may do nothing)
-//              bool cannot_be_beaten(double score)     the best possible score is reached
-//              double success_probability(double score) chance one sample is all-correct given the best so
-//                                                      far (0 when unknown: no confidence-based stop)
+//              bool cannot_be_beaten(double score)     stop now: the best can't be (or won't be) improved
 #pragma once
 
 #include <chrono>
@@ -19,7 +17,7 @@
 
 namespace ipd {
 
-enum class StopReason { kNotRun, kTooFewPoints, kMaxTrials, kExhausted, kConfidence, kCannotBeBeaten, kTimeBudget };
+enum class StopReason { kNotRun, kTooFewPoints, kMaxTrials, kExhausted, kConverged, kCannotBeBeaten, kTimeBudget };
 
 inline const char* to_string(StopReason r) {
   switch (r) {
@@ -27,7 +25,7 @@ inline const char* to_string(StopReason r) {
     case StopReason::kTooFewPoints: return "too few points for a minimal sample";
     case StopReason::kMaxTrials: return "reached the trial limit";
     case StopReason::kExhausted: return "tried every hypothesis";
-    case StopReason::kConfidence: return "confident no better hypothesis remains";
+    case StopReason::kConverged: return "converged";
     case StopReason::kCannotBeBeaten: return "best score cannot be beaten";
     case StopReason::kTimeBudget: return "time budget spent";
   }
@@ -36,8 +34,6 @@ inline const char* to_string(StopReason r) {
 
 struct RobustLoopOptions {
   int max_trials = 1000;
-  int min_trials = 0;
-  double confidence = 0.0;      // 0 disables the confidence-based stop
   double time_budget_ms = 0.0;  // 0: no limit
 };
 
@@ -59,14 +55,9 @@ RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, 
   RobustLoopResult<Model> r;
   std::vector<Model> models;
   Sample sample;
-  long dynamic_max = options.max_trials;
   while (true) {
     if (r.trials >= options.max_trials) {
       r.stop = StopReason::kMaxTrials;
-      break;
-    }
-    if (r.trials >= options.min_trials && r.trials >= dynamic_max) {
-      r.stop = StopReason::kConfidence;
       break;
     }
     if (options.time_budget_ms > 0 && (r.trials & 15) == 0 && r.trials > 0) {
@@ -83,7 +74,6 @@ RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, 
     ++r.trials;
     models.clear();
     estimator.estimate(sample, &models);
-    bool improved = false;
     for (auto& m : models) {
       ++r.hypotheses;
       double s = scorer.score(m);
@@ -94,21 +84,12 @@ RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, 
         r.best = m;
         r.best_score = s;
         r.found = true;
-        improved = true;
       }
     }
     // Checked after every sample: the best may also become unbeatable by being confirmed.
     if (r.found && scorer.cannot_be_beaten(r.best_score)) {
       r.stop = StopReason::kCannotBeBeaten;
       break;
-    }
-    if (improved && options.confidence > 0) {
-      const double p = scorer.success_probability(r.best_score);
-      if (p >= 1.0) {
-        dynamic_max = r.trials;
-      } else if (p > 0) {
-        dynamic_max = static_cast<long>(std::ceil(std::log(1.0 - options.confidence) / std::log(1.0 - p)));
-      }
     }
   }
   return r;

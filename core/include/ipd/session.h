@@ -22,6 +22,12 @@ struct Edit {
   int a = -1, b = -1;   // kPair: both; kUnpair / kToggleExclude: the rock on `side`
   Side side = Side::kA;
   RockPairs pairs;      // kReplacePairs: (left, right) pairs, e.g. from re-running registration
+
+  static Edit pair(int left, int right) { return {Kind::kPair, left, right, Side::kA, {}}; }
+  static Edit unpair(Side side, int rock) { return {Kind::kUnpair, rock, -1, side, {}}; }
+  static Edit toggle_exclude(Side side, int rock) { return {Kind::kToggleExclude, rock, -1, side, {}}; }
+  static Edit reset() { return {Kind::kResetToAutomatic, -1, -1, Side::kA, {}}; }
+  static Edit replace(RockPairs pairs) { return {Kind::kReplacePairs, -1, -1, Side::kA, std::move(pairs)}; }
 };
 
 // A file to write (atomically) or remove, so that `ipd table` sees what the session shows.
