@@ -286,7 +286,8 @@ class ConsensusScorer {
 class GuidedSampler {
  public:
   GuidedSampler(const RegistrationFrame& f, const Bounds& bounds, double gate, std::uint64_t seed)
-      : f_(f), bounds_(bounds), gate2_(gate * gate) {
+      : f_(f), bounds_(bounds), gate2_(gate * gate), min_det_(bounds.min_scale * bounds.min_scale),
+        max_det_(bounds.max_scale * bounds.max_scale) {
     // 1. identity in image coordinates
     queue_.push_back(f.from_image(identity_affine()));
     // 2. the most voted translations (identity linear part), votes binned at the gate size
@@ -418,6 +419,13 @@ class GuidedSampler {
         if (u1 == u2 || x1 == x2) continue;
         const Eigen::Vector2d src[3] = {f_.a[i], f_.a[ni[u1]], f_.a[ni[u2]]};
         const Eigen::Vector2d dst[3] = {f_.b[j], f_.b[nj[x1]], f_.b[nj[x2]]};
+        // Before solving: the triangle's orientation must survive (no reflection) and its area ratio is the
+        // affine's determinant, bounded by the squared scale bounds. Two cross products reject most pairs.
+        const Eigen::Vector2d a1 = src[1] - src[0], a2 = src[2] - src[0], b1 = dst[1] - dst[0], b2 = dst[2] - dst[0];
+        const double area_a = a1.x() * a2.y() - a1.y() * a2.x(), area_b = b1.x() * b2.y() - b1.y() * b2.x();
+        if (!(area_a * area_b > 0)) continue;
+        const double det = area_b / area_a;
+        if (det < min_det_ || det > max_det_) continue;
         Affine2 m;
         if (!affine_from_three(src, dst, &m) || !bounds_.plausible(m.leftCols<2>())) continue;
         const int support = ni.size() >= 4 ? local_support(m, i, j, u1, u2) : 2;
@@ -461,6 +469,7 @@ class GuidedSampler {
   const RegistrationFrame& f_;
   Bounds bounds_;
   double gate2_;
+  double min_det_, max_det_;  // the determinant lies between the squared singular-value bounds
   std::vector<Affine2> queue_, pending_;
   std::vector<std::pair<long, Affine2>> deferred_;
   size_t deferred_pos_ = 0;
