@@ -232,9 +232,9 @@ int main(int argc, char** argv) {
         }
       }
       if (ImGui::BeginTable("layout", 3, ImGuiTableFlags_Resizable | ImGuiTableFlags_BordersInnerV)) {
-        ImGui::TableSetupColumn("browser", ImGuiTableColumnFlags_WidthFixed, 300);
+        ImGui::TableSetupColumn("browser", ImGuiTableColumnFlags_WidthFixed, 280);
         ImGui::TableSetupColumn("main", ImGuiTableColumnFlags_WidthStretch);
-        ImGui::TableSetupColumn("ipd", ImGuiTableColumnFlags_WidthFixed, 330);
+        ImGui::TableSetupColumn("ipd", ImGuiTableColumnFlags_WidthFixed, 440);
         ImGui::TableNextRow();
         const float h = ImGui::GetContentRegionAvail().y;
         ImGui::TableNextColumn();

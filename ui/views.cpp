@@ -75,10 +75,11 @@ void draw_study_browser(const Session& s, UiState& ui, UiCommands& out) {
   if (ImGui::BeginTable("scenes", 5, flags)) {
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn("scene", ImGuiTableColumnFlags_WidthStretch);
-    ImGui::TableSetupColumn("IPD", ImGuiTableColumnFlags_DefaultSort | ImGuiTableColumnFlags_PreferSortDescending);
-    ImGui::TableSetupColumn("pairs");
-    ImGui::TableSetupColumn("unp.");
-    ImGui::TableSetupColumn("ed.");
+    ImGui::TableSetupColumn("IPD", ImGuiTableColumnFlags_DefaultSort | ImGuiTableColumnFlags_PreferSortDescending |
+                                       ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("pairs", ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("unp.", ImGuiTableColumnFlags_WidthFixed);
+    ImGui::TableSetupColumn("ed.", ImGuiTableColumnFlags_WidthFixed);
     ImGui::TableHeadersRow();
     if (ImGuiTableSortSpecs* spec = ImGui::TableGetSortSpecs(); spec && spec->SpecsDirty && spec->SpecsCount > 0) {
       ui.sort_column = spec->Specs[0].ColumnIndex;
@@ -238,7 +239,6 @@ void draw_registration(const Session& s, UiState& ui, UiCommands& out) {
     ui.anim_t = std::min(1.0f, ui.anim_t + ImGui::GetIO().DeltaTime / 1.5f);
     if (ui.anim_t >= 1.0f) ui.playing = false;
   }
-  ImGui::SameLine();
   const char* methods[] = {"consensus", "paper", "cpd"};
   ImGui::SetNextItemWidth(100);
   ImGui::Combo("##method", &ui.rerun_method, methods, 3);
@@ -308,7 +308,9 @@ void draw_pair_table(const Session& s, UiState& ui, UiCommands& out) {
   for (const auto& [l, r] : s.view_pairs(ui.scene))
     rows.push_back({l, r, l < (int)pl.size() ? pl[l] : 0.0, r < (int)pr.size() ? pr[r] : 0.0});
   std::stable_sort(rows.begin(), rows.end(), [](const Row& x, const Row& y) { return std::abs(x.a - x.b) > std::abs(y.a - y.b); });
-  if (ImGui::BeginTable("pairs", 5, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV)) {
+  const float table_h = std::max(60.0f, ImGui::GetContentRegionAvail().y - 3.2f * ImGui::GetTextLineHeightWithSpacing());
+  if (ImGui::BeginTable("pairs", 5, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV,
+                        ImVec2(0, table_h))) {
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn(s.left_domain().c_str());
     ImGui::TableSetupColumn(s.right_domain().c_str());
@@ -341,6 +343,27 @@ void draw_pair_table(const Session& s, UiState& ui, UiCommands& out) {
     }
     ImGui::EndTable();
   }
+  // Rocks without a partner, with their own IoU: the ones an audit looks at next.
+  for (int k = 0; k < 2; ++k) {
+    const Side side = k == 0 ? Side::kA : Side::kB;
+    const auto& gt = s.gt(side, ui.scene);
+    const auto& pv = k == 0 ? pl : pr;
+    std::vector<char> paired(gt.size(), 0);
+    for (const auto& [l, r] : s.view_pairs(ui.scene)) {
+      const int idx = k == 0 ? l : r;
+      if (idx >= 0 && idx < static_cast<int>(paired.size())) paired[idx] = 1;
+    }
+    std::string list;
+    for (size_t i = 0; i < gt.size(); ++i) {
+      if (paired[i]) continue;
+      char item[48];
+      std::snprintf(item, sizeof item, "%s%zu (IoU %.2f%s)", list.empty() ? "" : ", ", i + 1, i < pv.size() ? pv[i] : 0.0,
+                    s.excluded(side, ui.scene, static_cast<int>(i)) ? ", excluded" : "");
+      list += item;
+    }
+    ImGui::TextWrapped("unpaired %s: %s", (k == 0 ? s.left_domain() : s.right_domain()).c_str(),
+                       list.empty() ? "none" : list.c_str());
+  }
   (void)out;
 }
 
@@ -357,7 +380,9 @@ void draw_ipd_panel(const Session& s, UiState& ui, UiCommands& out) {
   ImGui::Separator();
   ImGui::TextUnformatted("Cross table (lower is better)");
   const auto& pairs = s.domain_pairs();
-  if (ImGui::BeginTable("cross", static_cast<int>(pairs.size()) + 1, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit)) {
+  if (ImGui::BeginTable("cross", static_cast<int>(pairs.size()) + 1,
+                        ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
+                        ImVec2(0, ImGui::GetTextLineHeightWithSpacing() * (s.study().models.size() + 2.5f)))) {
     ImGui::TableSetupColumn("train \\ eval");
     for (const auto& [a, b] : pairs) ImGui::TableSetupColumn((a + " - " + b).c_str());
     ImGui::TableHeadersRow();
