@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -14,6 +13,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "ipd/atomic_file.h"
+#include "ipd/parallel.h"
 #include "ipd/registration_benchmark.h"
 #include "ipd/session.h"
 #include <random>
@@ -233,19 +233,12 @@ Runner add_bench_command(CLI::App& app) {
       const int n = 1000;
       RegistrationOptions o;
       o.aspect = aspect;
-      std::atomic<int> next{0};
       const auto start = std::chrono::steady_clock::now();
-      auto worker = [&] {
-        for (int k; (k = next.fetch_add(1)) < n;) {
-          const auto& c = all_cases[k % all_cases.size()];
-          register_rocks(c.a, c.b, o);
-        }
-      };
+      parallel_for(n, 0, [&](size_t k) {
+        const auto& c = all_cases[k % all_cases.size()];
+        register_rocks(c.a, c.b, o);
+      });
       const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-      std::vector<std::thread> pool;
-      for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-      worker();
-      for (auto& t : pool) t.join();
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       fmt::print("\n{} image pairs (mixed ranges), default method, {} threads: {:.1f} ms in all\n", n, threads, ms);
     }

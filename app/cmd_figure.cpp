@@ -117,11 +117,7 @@ int pairs_figure(const Args& args) {
     in.gt = &f.labels.gt_of(domain, f.stem).boxes;
     in.predictions = &f.labels.predictions_of(domain, f.model, f.stem).boxes;
     in.best_prediction = performance_values(*in.gt, *in.predictions).best_prediction;
-    in.number.assign(in.gt->size(), 0);
-    for (size_t k = 0; k < f.pairing.pairs.size(); ++k) {
-      const int idx = left ? f.pairing.pairs[k].first : f.pairing.pairs[k].second;
-      if (idx >= 0 && idx < static_cast<int>(in.number.size())) in.number[idx] = static_cast<int>(k) + 1;
-    }
+    in.number = ui::pair_numbers(f.pairing.pairs, in.gt->size(), left);
     in.caption = domain;
     return in;
   };

@@ -1,16 +1,15 @@
 // `ipd register REAL.txt SYNTH.txt` and `ipd register --list FILE.tsv`: rock pairing of label files.
 #include <fmt/format.h>
 
-#include <atomic>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <thread>
 
 #include "cli_common.h"
 #include "commands.h"
 #include "ipd/atomic_file.h"
+#include "ipd/parallel.h"
 #include "ipd/registration.h"
 
 namespace ipd::cli {
@@ -130,16 +129,7 @@ Runner add_register_command(CLI::App& app) {
     std::vector<Job> jobs;
     if (list_mode) jobs = read_list(args->list);
     else jobs.push_back({args->real, args->synth, 0, {}, {}});
-    std::atomic<size_t> next{0};
-    auto worker = [&] {
-      for (size_t k; (k = next.fetch_add(1)) < jobs.size();) run_job(&jobs[k], opt, args->cls, args->skip_bad_lines);
-    };
-    const int threads = std::max(1, std::min<int>(args->threads > 0 ? args->threads : std::thread::hardware_concurrency(),
-                                                  static_cast<int>(jobs.size())));
-    std::vector<std::thread> pool;
-    for (int k = 1; k < threads; ++k) pool.emplace_back(worker);
-    worker();
-    for (auto& t : pool) t.join();
+    parallel_for(jobs.size(), args->threads, [&](size_t k) { run_job(&jobs[k], opt, args->cls, args->skip_bad_lines); });
     int failed = 0;
     for (const auto& job : jobs) {
       const bool fatal = job.result.is_null();

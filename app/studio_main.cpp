@@ -146,8 +146,8 @@ int main(int argc, char** argv) {
   const auto export_result = std::make_shared<ExportResult>();  // shared with detached export threads
   int counted = 0, settle = 0;
   std::vector<double> change_ms;
-  std::optional<std::chrono::steady_clock::time_point> change_started;
-  bool change_shown = false;
+  std::chrono::steady_clock::time_point change_started{};
+  bool changing = false, change_shown = false;
   float split = 0.62f;
 
   while (!glfwWindowShouldClose(window)) {
@@ -208,12 +208,13 @@ int main(int argc, char** argv) {
       Session& s = *session;
       ui::handle_shortcuts(s, ui, cmd);
       ui::Picture left, right;
-      if (cycle_scenes > 0 && counted > 0 && counted % cycle_scenes == 0 && !change_started && s.scenes().size() > 1) {
+      if (cycle_scenes > 0 && counted > 0 && counted % cycle_scenes == 0 && !changing && s.scenes().size() > 1) {
         const auto order = ui::browser_order(s, ui);
         const auto at = std::find(order.begin(), order.end(), ui.scene);
         cmd.goto_scene = order[((at - order.begin()) + 1) % order.size()];
         ui.scene = cmd.goto_scene;
         change_started = std::chrono::steady_clock::now();
+        changing = true;
       }
       if (!s.scenes().empty()) {
         const std::string& stem = s.scenes()[ui.scene].stem;
@@ -222,7 +223,7 @@ int main(int argc, char** argv) {
         const auto order = ui::browser_order(s, ui);
         const auto at = std::find(order.begin(), order.end(), ui.scene);
         // Both pictures are in: the change is complete once this frame is drawn (measured below).
-        change_shown = change_started && left.placeholder != "loading..." && right.placeholder != "loading...";
+        change_shown = changing && left.placeholder != "loading..." && right.placeholder != "loading...";
         for (int step : {1, -1}) {
           if (at == order.end()) break;
           const long k = (at - order.begin()) + step;
@@ -359,9 +360,8 @@ int main(int argc, char** argv) {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (!screenshot.empty()) glFinish();
     if (change_shown) {
-      change_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - *change_started).count());
-      change_started.reset();
-      change_shown = false;
+      change_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - change_started).count());
+      changing = change_shown = false;
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!screenshot.empty() && (session || !open_error.empty())) {

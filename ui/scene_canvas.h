@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ipd/geometry.h"
+#include "ipd/registration.h"
 
 namespace ipd::ui {
 
@@ -44,6 +45,9 @@ struct SideInput {
   // can't be read; zooming in brings them back). 0: always shown, as figures do.
   float min_box_px_for_confidence = 0;
 };
+
+// Per GT rock of one side, the number its pair is shown with (1-based rank in `pairs`), 0 when unpaired.
+std::vector<int> pair_numbers(const RockPairs& pairs, size_t rocks, bool left_side);
 
 // The picture's rectangle inside `area` (fit, keep aspect, then zoom and pan).
 struct Placement {

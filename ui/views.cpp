@@ -115,13 +115,9 @@ SideInput side_input(const Session& s, const UiState& ui, Side side, const Pictu
   in.gt = &s.gt(side, sc);
   in.predictions = &s.predictions(side, sc);
   in.best_prediction = s.performance(side, sc).best_prediction;
-  in.number.assign(in.gt->size(), 0);
-  in.excluded.assign(in.gt->size(), 0);
   const RockPairs pairs = s.view_pairs(sc);
-  for (size_t k = 0; k < pairs.size(); ++k) {
-    const int idx = side == Side::kA ? pairs[k].first : pairs[k].second;
-    if (idx >= 0 && idx < static_cast<int>(in.number.size())) in.number[idx] = static_cast<int>(k) + 1;
-  }
+  in.number = pair_numbers(pairs, in.gt->size(), side == Side::kA);
+  in.excluded.assign(in.gt->size(), 0);
   for (size_t k = 0; k < in.gt->size(); ++k) in.excluded[k] = s.excluded(side, sc, static_cast<int>(k));
   in.caption = side == Side::kA ? s.left_domain() : s.right_domain();
   // Hovering a rock highlights its partner on the other side.

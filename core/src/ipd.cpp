@@ -1,5 +1,7 @@
 #include "ipd/ipd.h"
 
+#include "ipd/parallel.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -7,7 +9,6 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <set>
-#include <thread>
 
 namespace fs = std::filesystem;
 
@@ -170,27 +171,17 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
   RegistrationOptions reg = options.registration;
   if (reg.aspect == 1.0) reg.aspect = study.aspect();
   const auto start = std::chrono::steady_clock::now();
-  std::atomic<size_t> next{0};
   std::atomic<int> done{0};
-  auto worker = [&] {
-    for (size_t k; (k = next.fetch_add(1)) < jobs.size();) {
-      auto& j = jobs[k];
-      try {
-        j.result = pair_scene(labels, t.columns[j.column].first, t.columns[j.column].second, j.stem, reg);
-      } catch (const std::exception& e) {
-        j.error = e.what();
-      }
-      const int d = ++done;
-      if (options.progress) options.progress(d, static_cast<int>(jobs.size()));
+  parallel_for(jobs.size(), options.threads, [&](size_t k) {
+    auto& j = jobs[k];
+    try {
+      j.result = pair_scene(labels, t.columns[j.column].first, t.columns[j.column].second, j.stem, reg);
+    } catch (const std::exception& e) {
+      j.error = e.what();
     }
-  };
-  const int threads = std::max(1, std::min<int>(options.threads > 0 ? options.threads
-                                                                    : std::thread::hardware_concurrency(),
-                                                static_cast<int>(jobs.size())));
-  std::vector<std::thread> pool;
-  for (int k = 1; k < threads; ++k) pool.emplace_back(worker);
-  worker();
-  for (auto& th : pool) th.join();
+    const int d = ++done;
+    if (options.progress) options.progress(d, static_cast<int>(jobs.size()));
+  });
   t.registration_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   for (const auto& j : jobs) {
     if (!j.error.empty()) throw StudyError(j.error);

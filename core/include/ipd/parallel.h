@@ -1,0 +1,28 @@
+// Running independent jobs on every core: fn(0) ... fn(n - 1), each exactly once, in no particular order.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <thread>
+#include <vector>
+
+namespace ipd {
+
+// threads <= 0: all hardware threads. The calling thread works too.
+template <typename Fn>
+void parallel_for(size_t n, int threads, Fn&& fn) {
+  if (n == 0) return;
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const size_t workers = std::min(n, static_cast<size_t>(threads > 0 ? threads : static_cast<int>(hw)));
+  std::atomic<size_t> next{0};
+  auto work = [&] {
+    for (size_t k; (k = next.fetch_add(1)) < n;) fn(k);
+  };
+  std::vector<std::thread> pool;
+  for (size_t t = 1; t < workers; ++t) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+}
+
+}  // namespace ipd
