@@ -109,13 +109,20 @@ cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& ca
       r.rx *= 1.015;
       r.ry *= 1.015;
     }
-    // Shadow first, cast away from the sun.
-    cv::Mat shadow = cv::Mat::zeros(h, w, CV_8U);
-    cv::ellipse(shadow, cv::Point2d(r.x - 0.7 * r.rx * light.x, r.y - 0.7 * r.rx * light.y),
-                cv::Size2d(r.rx * 1.15, r.ry * 1.05), r.angle_deg, 0, 360, 255, cv::FILLED, cv::LINE_AA);
-    cv::Mat sh_f;
-    shadow.convertTo(sh_f, CV_32F, 1.0 / 255);
-    img = img.mul(1.0 - (1.0 - look.shadow_factor) * sh_f);
+    // Shadow first, cast away from the sun; drawn only in the patch it can cover.
+    const cv::Point2d sc(r.x - 0.7 * r.rx * light.x, r.y - 0.7 * r.rx * light.y);
+    const int reach = static_cast<int>(std::ceil(r.rx * 1.15)) + 3;
+    const cv::Rect patch = cv::Rect(static_cast<int>(sc.x) - reach, static_cast<int>(sc.y) - reach, 2 * reach + 1,
+                                    2 * reach + 1) & cv::Rect(0, 0, w, h);
+    if (patch.area() > 0) {
+      cv::Mat shadow = cv::Mat::zeros(patch.size(), CV_8U);
+      cv::ellipse(shadow, sc - cv::Point2d(patch.x, patch.y), cv::Size2d(r.rx * 1.15, r.ry * 1.05), r.angle_deg, 0,
+                  360, 255, cv::FILLED, cv::LINE_AA);
+      cv::Mat sh_f;
+      shadow.convertTo(sh_f, CV_32F, 1.0 / 255);
+      cv::Mat roi = img(patch);
+      roi = roi.mul(1.0 - (1.0 - look.shadow_factor) * sh_f);
+    }
     // The rock: a shaded half-ellipsoid.
     const double ca = std::cos(r.angle_deg * M_PI / 180), sa = std::sin(r.angle_deg * M_PI / 180);
     const int x0 = std::max(0, static_cast<int>(r.x - r.rx - 2)), x1 = std::min(w - 1, static_cast<int>(r.x + r.rx + 2));
