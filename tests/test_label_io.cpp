@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <random>
+
 #include "ipd/label_io.h"
 #include "test_support.h"
 
@@ -98,6 +101,61 @@ TEST(LabelIo, WriteThenReadRoundTrips) {
   EXPECT_EQ(f.boxes[0].cls, 2);
   EXPECT_DOUBLE_EQ(f.boxes[0].w, 0.25);
   EXPECT_DOUBLE_EQ(f.boxes[0].conf, 0.5);
+}
+
+}  // namespace
+}  // namespace ipd
+
+namespace ipd {
+namespace {
+
+// Random bytes and mutated label lines never crash the parser: every line is a box or an error.
+TEST(LabelIo, GarbageNeverCrashesAndEveryLineIsAccountedFor) {
+  std::mt19937 g(12);
+  const std::string alphabet = "0123456789.-+eE nNaAiIfF#\t\r\x01\xff,;x";
+  for (int round = 0; round < 3000; ++round) {
+    std::string text;
+    const int lines = static_cast<int>(g() % 6);
+    for (int l = 0; l < lines; ++l) {
+      if (g() % 2) {
+        text += "0 0.5 0.5 0.1 0.1";  // a valid line, then mutate a few characters
+        for (int m = static_cast<int>(g() % 4); m > 0; --m) text[text.size() - 1 - g() % 17] = alphabet[g() % alphabet.size()];
+      } else {
+        for (int c = static_cast<int>(g() % 40); c > 0; --c) text += alphabet[g() % alphabet.size()];
+      }
+      text += '\n';
+    }
+    for (const auto kind : {LabelKind::kGroundTruth, LabelKind::kPrediction}) {
+      const LabelFile f = parse_labels(text, "fuzz.txt", {kind});
+      for (const auto& b : f.boxes) {
+        ASSERT_TRUE(std::isfinite(b.cx) && std::isfinite(b.w) && b.w > 0 && b.h > 0) << text;
+        ASSERT_GE(b.cls, 0);
+      }
+      for (const auto& e : f.errors) ASSERT_EQ(e.to_string().rfind("fuzz.txt:", 0), 0u);
+    }
+  }
+}
+
+TEST(LabelIo, GarbageStudyFilesGiveExitOneNotACrash) {
+  test::TempDir d;
+  std::mt19937 g(5);
+  std::string junk;
+  for (int k = 0; k < 4000; ++k) junk += static_cast<char>(g() % 256);
+  test::write_text(d / "real/labels/a.txt", junk);
+  test::write_text(d / "synth/labels/a.txt", "0 0.5 0.5 0.1 0.1\n");
+  test::write_text(d / "real/predictions/m/a.txt", junk.substr(100));
+  test::write_text(d / "synth/predictions/m/a.txt", "");
+  auto r = test::run_ipd("table " + d.path());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  r = test::run_ipd("table " + d.path() + " --skip-bad-lines");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  test::write_text(d / "pairs/real__synth/a.json", junk);
+  r = test::run_ipd("table " + d.path() + " --skip-bad-lines");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(d / "pairs/real__synth/a.json" + ": invalid JSON"), std::string::npos) << r.err;
+  test::write_text(d / "study.yaml", junk.substr(0, 300));
+  r = test::run_ipd("table " + d.path());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
 }
 
 }  // namespace

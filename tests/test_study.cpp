@@ -86,6 +86,18 @@ TEST(Study, ClearErrorsForUnusableStudies) {
   EXPECT_THROW(open_study(d.path()), StudyError);
   test::write_text(d / "study.yaml", "image_size: [10]\n");
   EXPECT_THROW(open_study(d.path()), StudyError);
+  auto message = [&](const std::string& yaml) {
+    test::write_text(d / "study.yaml", yaml);
+    try {
+      open_study(d.path());
+    } catch (const StudyError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("[a, b]: 1\n"), d / "study.yaml" + ":1: expected a setting name, found a list");
+  EXPECT_EQ(message("models: {m: [1, 2]}\n"), d / "study.yaml" + ":1: models.m must be a mapping like {trained_on: real}");
+  EXPECT_EQ(message("rock_class: [0\n"), d / "study.yaml" + ":2: invalid YAML: end of sequence flow not found");
 }
 
 TEST(Study, ScenesMatchedByStemAndMissingModelsWarned) {

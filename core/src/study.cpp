@@ -34,7 +34,20 @@ T yaml_get(const YAML::Node& n, const std::string& file, const char* what) {
 
 }  // namespace
 
+namespace {
+StudyConfig parse_study_config_nodes(const std::string& text, const std::string& file);
+}
+
 StudyConfig parse_study_config(const std::string& text, const std::string& file) {
+  try {
+    return parse_study_config_nodes(text, file);
+  } catch (const YAML::Exception& e) {  // anything the checks below didn't anticipate still names the file
+    throw StudyError(fmt::format("{}:{}: {}", file, e.mark.line + 1, e.msg.empty() ? "invalid setting" : e.msg));
+  }
+}
+
+namespace {
+StudyConfig parse_study_config_nodes(const std::string& text, const std::string& file) {
   StudyConfig c;
   YAML::Node root;
   try {
@@ -45,6 +58,9 @@ StudyConfig parse_study_config(const std::string& text, const std::string& file)
   if (!root || root.IsNull()) return c;
   if (!root.IsMap()) throw StudyError(file + ": expected a mapping of settings at the top level");
   for (const auto& kv : root) {
+    if (!kv.first.IsScalar())
+      throw StudyError(fmt::format("{}:{}: expected a setting name, found a {}", file, kv.first.Mark().line + 1,
+                                   kv.first.IsSequence() ? "list" : "mapping"));
     const std::string key = kv.first.as<std::string>();
     const YAML::Node& v = kv.second;
     const int line = kv.first.Mark().line + 1;
@@ -68,6 +84,9 @@ StudyConfig parse_study_config(const std::string& text, const std::string& file)
       if (!v.IsMap()) throw StudyError(fmt::format("{}:{}: models must map a model name to its settings", file, line));
       for (const auto& m : v) {
         const std::string name = m.first.as<std::string>();
+        if (!m.second.IsMap() && !m.second.IsNull())
+          throw StudyError(fmt::format("{}:{}: models.{} must be a mapping like {{trained_on: real}}", file,
+                                       m.first.Mark().line + 1, name));
         const YAML::Node& t = m.second["trained_on"];
         c.trained_on[name] = t ? yaml_get<std::string>(t, file, "trained_on") : "";
       }
@@ -101,6 +120,7 @@ StudyConfig parse_study_config(const std::string& text, const std::string& file)
   }
   return c;
 }
+}  // namespace
 
 const Domain* Study::domain(const std::string& name) const {
   for (const auto& d : domains)
