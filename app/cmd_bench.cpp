@@ -9,14 +9,20 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <thread>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
 
 #include "cli_common.h"
 #include "commands.h"
 #include "ipd/atomic_file.h"
+#include "ipd/pairing.h"
 #include "ipd/parallel.h"
 #include "ipd/registration_benchmark.h"
 #include "ipd/session.h"
 #include <random>
+
+namespace fs = std::filesystem;
 
 namespace ipd::cli {
 
@@ -28,7 +34,7 @@ struct Config {
 };
 
 struct Row {
-  std::string regime;
+  std::string regime, method;  // method: a registration method's name, or "pycpd-numpy"
   Config config;
   int cases = 0;
   double ms_per_pair = 0, f1 = 0, precision = 0, recall = 0, terr_median = 0, terr_p90 = 0;
@@ -50,6 +56,7 @@ Row run_config(const std::vector<RegistrationCase>& cases, const std::string& re
   else o.max_trials = c.budget;
   Row row;
   row.regime = regime;
+  row.method = to_string(c.method);
   row.config = c;
   row.cases = static_cast<int>(cases.size());
   std::vector<double> terr;
@@ -69,6 +76,57 @@ Row run_config(const std::vector<RegistrationCase>& cases, const std::string& re
   row.f1 /= cases.size();
   row.precision /= cases.size();
   row.recall /= cases.size();
+  row.terr_median = percentile(terr, 0.5);
+  row.terr_p90 = percentile(terr, 0.9);
+  return row;
+}
+
+// The Python baseline: app/pycpd_reference.py (a numpy port of pycpd's affine CPD) on the same cases, its
+// affines paired and scored exactly like ours. Its time is what pycpd's register() takes, measured in Python.
+Row run_pycpd(const std::vector<RegistrationCase>& cases, const std::string& regime, const std::string& script,
+              double aspect) {
+  const fs::path dir = fs::temp_directory_path() / fmt::format("ipd-pycpd-{}", ::getpid());
+  fs::create_directories(dir);
+  nlohmann::json in = nlohmann::json::array();
+  for (const auto& c : cases) {
+    nlohmann::json a = nlohmann::json::array(), b = nlohmann::json::array();
+    for (const auto& x : c.a) a.push_back({x.cx, x.cy / aspect});
+    for (const auto& x : c.b) b.push_back({x.cx, x.cy / aspect});
+    in.push_back({{"a", a}, {"b", b}});
+  }
+  write_file_atomically((dir / "cases.json").string(), in.dump());
+  const std::string cmd = fmt::format("/usr/bin/python3 '{}' '{}' '{}'", script, (dir / "cases.json").string(),
+                                      (dir / "out.json").string());
+  if (std::system(cmd.c_str()) != 0) throw StudyError("the pycpd reference failed: " + cmd);
+  const auto out = nlohmann::json::parse(read_file((dir / "out.json").string()));
+  fs::remove_all(dir);
+  Row row;
+  row.regime = regime;
+  row.method = "pycpd-numpy";
+  row.config = {RegistrationMethod::kCpd, 100};
+  row.cases = static_cast<int>(cases.size());
+  std::vector<double> terr;
+  const Eigen::Matrix2d s = Eigen::Vector2d(1, 1 / aspect).asDiagonal(), si = Eigen::Vector2d(1, aspect).asDiagonal();
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const auto& o = out[i];
+    Affine2 iso;
+    iso << o["B"][0][0].get<double>(), o["B"][0][1].get<double>(), o["t"][0].get<double>(), o["B"][1][0].get<double>(),
+        o["B"][1][1].get<double>(), o["t"][1].get<double>();
+    Affine2 m;  // back to normalised image coordinates
+    m.leftCols<2>() = si * iso.leftCols<2>() * s;
+    m.col(2) = si * iso.col(2);
+    const PairScore ps = score_pairs(pair_by_aligned_iou(m, cases[i].a, cases[i].b, RegistrationOptions().min_pair_iou),
+                                     cases[i].truth);
+    row.f1 += ps.f1;
+    row.precision += ps.precision;
+    row.recall += ps.recall;
+    row.ms_per_pair += o["ms"].get<double>();
+    terr.push_back(transform_error(m, cases[i].truth_affine, cases[i].a, aspect));
+  }
+  row.f1 /= cases.size();
+  row.precision /= cases.size();
+  row.recall /= cases.size();
+  row.ms_per_pair /= cases.size();
   row.terr_median = percentile(terr, 0.5);
   row.terr_p90 = percentile(terr, 0.9);
   return row;
@@ -103,7 +161,8 @@ void plot(const std::vector<Row>& rows, const std::string& path) {
     for (int m = 0; m < 3; ++m) {
       std::vector<cv::Point> pts;
       for (const auto& r : rows)
-        if (r.regime == regime && static_cast<int>(r.config.method) == m) pts.push_back(px(r.ms_per_pair, r.f1));
+        if (r.regime == regime && r.method == to_string(static_cast<RegistrationMethod>(m)))
+          pts.push_back(px(r.ms_per_pair, r.f1));
       for (size_t k = 0; k < pts.size(); ++k) {
         cv::circle(img, pts[k], 5, colours[m], cv::FILLED, cv::LINE_AA);
         if (k) cv::line(img, pts[k - 1], pts[k], colours[m], 2, cv::LINE_AA);
@@ -173,7 +232,8 @@ Runner add_bench_command(CLI::App& app) {
     std::string data = "../shared/data/polar-sim", csv, plot;
     int cases = 300;
     std::uint64_t seed = 1;
-    bool quick = false;
+    bool quick = false, pycpd = false;
+    std::string pycpd_script = IPD_APP_DIR "/pycpd_reference.py";
   };
   auto args = std::make_shared<Args>();
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks");
@@ -188,6 +248,8 @@ Runner add_bench_command(CLI::App& app) {
   cmd->add_option("--csv", args->csv, "Also write the table as CSV");
   cmd->add_option("--plot", args->plot, "Draw F1 against run time to this PNG");
   cmd->add_flag("--quick", args->quick, "One budget per method (for CI smoke runs)");
+  cmd->add_flag("--pycpd", args->pycpd, "Also run the Python baseline (numpy port of pycpd; needs python3-numpy)");
+  cmd->add_option("--pycpd-script", args->pycpd_script, "Path of pycpd_reference.py");
   return [args, edits, which]() -> int {
     if (*which == "edits") return (*edits)();
     const std::string root = (std::filesystem::path(args->data) / "labels").string();
@@ -215,6 +277,7 @@ Runner add_bench_command(CLI::App& app) {
         cases.push_back(make_case(pairs[(k * 7919u) % pairs.size()], range, args->seed * 100003 + k, W, H));
       for (const auto& c : cases) rocks += 0.5 * (c.a.size() + c.b.size());
       for (const auto& c : configs) rows.push_back(run_config(cases, range.name, c, aspect));
+      if (args->pycpd) rows.push_back(run_pycpd(cases, range.name, args->pycpd_script, aspect));
       all_cases.insert(all_cases.end(), cases.begin(), cases.end());
     }
     std::string csv = "range,method,budget,cases,ms_per_pair,f1,precision,recall,transform_err_median,transform_err_p90\n";
@@ -223,9 +286,9 @@ Runner add_bench_command(CLI::App& app) {
                "F1", "prec", "recall", "terr_med %", "terr_p90 %");
     for (const auto& r : rows) {
       fmt::print("{:<6} {:<10} {:>7} {:>10.4f} {:>7.4f} {:>7.4f} {:>7.4f} {:>12.4f} {:>12.4f}\n", r.regime,
-                 to_string(r.config.method), r.config.budget, r.ms_per_pair, r.f1, r.precision, r.recall,
+                 r.method, r.config.budget, r.ms_per_pair, r.f1, r.precision, r.recall,
                  100 * r.terr_median, 100 * r.terr_p90);
-      csv += fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n", r.regime, to_string(r.config.method),
+      csv += fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n", r.regime, r.method,
                          r.config.budget, r.cases, r.ms_per_pair, r.f1, r.precision, r.recall, r.terr_median, r.terr_p90);
     }
     // Throughput of the default method over a whole "study" on every core, as `ipd table` runs it.
