@@ -135,7 +135,8 @@ Row run_pycpd(const std::vector<RegistrationCase>& cases, const std::string& reg
 void plot(const std::vector<Row>& rows, const std::string& path) {
   const int W = 1400, H = 620, panel_w = 660, top = 60, plot_h = 480;
   cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
-  const cv::Scalar colours[] = {{200, 80, 20}, {40, 40, 220}, {40, 160, 40}};
+  const cv::Scalar colours[] = {{200, 80, 20}, {40, 40, 220}, {40, 160, 40}, {120, 120, 120}};
+  const char* const names[] = {"paper", "consensus", "cpd", "pycpd-numpy"};
   const double lo = -2.5, hi = 2.5;  // log10 ms
   int panel = 0;
   for (const std::string regime : {"small", "large"}) {
@@ -158,16 +159,16 @@ void plot(const std::vector<Row>& rows, const std::string& path) {
     }
     cv::putText(img, regime + " misalignment: pair F1 vs ms per image pair (log)", {x0, y0 - 15}, cv::FONT_HERSHEY_SIMPLEX,
                 0.6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-    for (int m = 0; m < 3; ++m) {
+    for (int m = 0; m < 4; ++m) {
       std::vector<cv::Point> pts;
       for (const auto& r : rows)
-        if (r.regime == regime && r.method == to_string(static_cast<RegistrationMethod>(m)))
-          pts.push_back(px(r.ms_per_pair, r.f1));
+        if (r.regime == regime && r.method == names[m]) pts.push_back(px(r.ms_per_pair, r.f1));
+      if (pts.empty()) continue;
       for (size_t k = 0; k < pts.size(); ++k) {
         cv::circle(img, pts[k], 5, colours[m], cv::FILLED, cv::LINE_AA);
         if (k) cv::line(img, pts[k - 1], pts[k], colours[m], 2, cv::LINE_AA);
       }
-      cv::putText(img, to_string(static_cast<RegistrationMethod>(m)), {x0 + 10, y0 + plot_h - 15 - 22 * m},
+      cv::putText(img, names[m], {x0 + 10, y0 + plot_h - 15 - 22 * m},
                   cv::FONT_HERSHEY_SIMPLEX, 0.6, colours[m], 2, cv::LINE_AA);
     }
     ++panel;
