@@ -47,6 +47,25 @@ double percentile(std::vector<double> v, double q) {
   return v[k];
 }
 
+// Adds one case's pair F1 and transform error to a row; finish_row averages.
+void score_case(const RegistrationCase& c, const RockPairs& pairs, const Affine2& affine, double aspect, Row* row,
+                std::vector<double>* terr) {
+  const PairScore s = score_pairs(pairs, c.truth);
+  row->f1 += s.f1;
+  row->precision += s.precision;
+  row->recall += s.recall;
+  terr->push_back(transform_error(affine, c.truth_affine, c.a, aspect));
+}
+
+void finish_row(const std::vector<double>& terr, Row* row) {
+  const double n = static_cast<double>(std::max<size_t>(1, terr.size()));
+  row->f1 /= n;
+  row->precision /= n;
+  row->recall /= n;
+  row->terr_median = percentile(terr, 0.5);
+  row->terr_p90 = percentile(terr, 0.9);
+}
+
 Row run_config(const std::vector<RegistrationCase>& cases, const std::string& regime, const Config& c,
                double aspect) {
   RegistrationOptions o;
@@ -66,18 +85,8 @@ Row run_config(const std::vector<RegistrationCase>& cases, const std::string& re
   for (const auto& k : cases) reports.push_back(register_rocks(k.a, k.b, o));
   row.ms_per_pair =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / cases.size();
-  for (size_t i = 0; i < cases.size(); ++i) {
-    const PairScore s = score_pairs(reports[i].pairs, cases[i].truth);
-    row.f1 += s.f1;
-    row.precision += s.precision;
-    row.recall += s.recall;
-    terr.push_back(transform_error(reports[i].affine, cases[i].truth_affine, cases[i].a, aspect));
-  }
-  row.f1 /= cases.size();
-  row.precision /= cases.size();
-  row.recall /= cases.size();
-  row.terr_median = percentile(terr, 0.5);
-  row.terr_p90 = percentile(terr, 0.9);
+  for (size_t i = 0; i < cases.size(); ++i) score_case(cases[i], reports[i].pairs, reports[i].affine, aspect, &row, &terr);
+  finish_row(terr, &row);
   return row;
 }
 
@@ -115,20 +124,12 @@ Row run_pycpd(const std::vector<RegistrationCase>& cases, const std::string& reg
     Affine2 m;  // back to normalised image coordinates
     m.leftCols<2>() = si * iso.leftCols<2>() * s;
     m.col(2) = si * iso.col(2);
-    const PairScore ps = score_pairs(pair_by_aligned_iou(m, cases[i].a, cases[i].b, RegistrationOptions().min_pair_iou),
-                                     cases[i].truth);
-    row.f1 += ps.f1;
-    row.precision += ps.precision;
-    row.recall += ps.recall;
+    score_case(cases[i], pair_by_aligned_iou(m, cases[i].a, cases[i].b, RegistrationOptions().min_pair_iou), m,
+               aspect, &row, &terr);
     row.ms_per_pair += o["ms"].get<double>();
-    terr.push_back(transform_error(m, cases[i].truth_affine, cases[i].a, aspect));
   }
-  row.f1 /= cases.size();
-  row.precision /= cases.size();
-  row.recall /= cases.size();
   row.ms_per_pair /= cases.size();
-  row.terr_median = percentile(terr, 0.5);
-  row.terr_p90 = percentile(terr, 0.9);
+  finish_row(terr, &row);
   return row;
 }
 

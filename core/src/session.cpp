@@ -102,32 +102,35 @@ int Session::scene_index(const std::string& stem) const {
 }
 
 const std::vector<Box>& Session::gt(Side side, int scene) const {
-  const Side s = pair_side(side);
-  return labels_.gt_of(s == Side::kA ? pairs_[pair_].first : pairs_[pair_].second, scenes_[pair_][scene].stem).boxes;
+  return labels_.gt_of(domain_of(side), scenes_[pair_][scene].stem).boxes;
+}
+
+namespace {
+// map[domain][model][stem], or `fallback` when any level is missing.
+template <typename T>
+const T& lookup(const std::map<std::string, std::map<std::string, std::map<std::string, T>>>& map,
+                const std::string& domain, const std::string& model, const std::string& stem, const T& fallback) {
+  const auto di = map.find(domain);
+  if (di == map.end()) return fallback;
+  const auto mi = di->second.find(model);
+  if (mi == di->second.end()) return fallback;
+  const auto si = mi->second.find(stem);
+  return si == mi->second.end() ? fallback : si->second;
+}
+}  // namespace
+
+const std::string& Session::domain_of(Side side) const {
+  return pair_side(side) == Side::kA ? pairs_[pair_].first : pairs_[pair_].second;
 }
 
 const std::vector<Box>& Session::predictions(Side side, int scene) const {
   static const std::vector<Box> none;
-  const Side s = pair_side(side);
-  const std::string& d = s == Side::kA ? pairs_[pair_].first : pairs_[pair_].second;
-  const auto di = shown_predictions_.find(d);
-  if (di == shown_predictions_.end()) return none;
-  const auto mi = di->second.find(model_);
-  if (mi == di->second.end()) return none;
-  const auto si = mi->second.find(scenes_[pair_][scene].stem);
-  return si == mi->second.end() ? none : si->second;
+  return lookup(shown_predictions_, domain_of(side), model_, scenes_[pair_][scene].stem, none);
 }
 
 const PerformanceValues& Session::performance(Side side, int scene) const {
   static const PerformanceValues none;
-  const Side s = pair_side(side);
-  const std::string& d = s == Side::kA ? pairs_[pair_].first : pairs_[pair_].second;
-  const auto di = perf_.find(d);
-  if (di == perf_.end()) return none;
-  const auto mi = di->second.find(model_);
-  if (mi == di->second.end()) return none;
-  const auto si = mi->second.find(scenes_[pair_][scene].stem);
-  return si == mi->second.end() ? none : si->second;
+  return lookup(perf_, domain_of(side), model_, scenes_[pair_][scene].stem, none);
 }
 
 bool Session::excluded(Side side, int scene, int rock) const {

@@ -125,6 +125,7 @@ class Session {
   void rebuild_totals();
   SceneIpd contribution(const std::string& model, int pair, int scene) const;
   Side pair_side(Side view_side) const;  // view side -> side of the domain pair
+  const std::string& domain_of(Side view_side) const;
 
   StudyLabels labels_;
   std::vector<std::pair<std::string, std::string>> pairs_;
