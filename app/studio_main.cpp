@@ -206,10 +206,11 @@ int main(int argc, char** argv) {
       ImGui::Text(demo ? "Generating and opening the demo study at %s ..." : "Opening %s ...", study.c_str());
     } else {
       Session& s = *session;
+      ui.order = ui::browser_order(s, ui);  // once per frame: it summarises every scene
       ui::handle_shortcuts(s, ui, cmd);
       ui::Picture left, right;
       if (cycle_scenes > 0 && counted > 0 && counted % cycle_scenes == 0 && !changing && s.scenes().size() > 1) {
-        const auto order = ui::browser_order(s, ui);
+        const auto& order = ui.order;
         const auto at = std::find(order.begin(), order.end(), ui.scene);
         cmd.goto_scene = order[((at - order.begin()) + 1) % order.size()];
         ui.scene = cmd.goto_scene;
@@ -220,7 +221,7 @@ int main(int argc, char** argv) {
         const std::string& stem = s.scenes()[ui.scene].stem;
         left = picture(s.left_domain(), stem, true);
         right = picture(s.right_domain(), stem, true);
-        const auto order = ui::browser_order(s, ui);
+        const auto& order = ui.order;
         const auto at = std::find(order.begin(), order.end(), ui.scene);
         // Both pictures are in: the change is complete once this frame is drawn (measured below).
         change_shown = changing && left.placeholder != "loading..." && right.placeholder != "loading...";

@@ -86,7 +86,7 @@ void draw_study_browser(const Session& s, UiState& ui, UiCommands& out) {
       ui.sort_descending = spec->Specs[0].SortDirection == ImGuiSortDirection_Descending;
       spec->SpecsDirty = false;
     }
-    for (int k : browser_order(s, ui)) {
+    for (int k : ui.order) {
       const SceneSummary m = s.summary(k);
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
@@ -421,7 +421,7 @@ void handle_shortcuts(const Session& s, UiState& ui, UiCommands& out) {
   if (ctrl && key_pressed('Z')) out.undo = true;
   if (ctrl && key_pressed('Y')) out.redo = true;
   if (ctrl) return;
-  const std::vector<int> order = browser_order(s, ui);
+  const std::vector<int>& order = ui.order;
   const auto pos = std::find(order.begin(), order.end(), ui.scene);
   const int at = pos == order.end() ? -1 : static_cast<int>(pos - order.begin());
   if ((key_pressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow)) || key_pressed('J')) && !order.empty())

@@ -35,6 +35,7 @@ struct UiState {
   float conf_threshold = 0.0f;
   char save_as_dir[512] = "";
   std::string status;
+  std::vector<int> order;  // browser_order() of this frame, computed once by the app and shared by the views
 };
 
 struct UiCommands {

@@ -1,5 +1,6 @@
 #include "ipd/ipd.h"
 
+#include "ipd/nested_lookup.h"
 #include "ipd/parallel.h"
 
 #include <algorithm>
@@ -26,12 +27,7 @@ const LabelFile& StudyLabels::gt_of(const std::string& d, const std::string& ste
 }
 
 const LabelFile& StudyLabels::predictions_of(const std::string& d, const std::string& m, const std::string& s) const {
-  const auto di = predictions.find(d);
-  if (di == predictions.end()) return kEmpty;
-  const auto mi = di->second.find(m);
-  if (mi == di->second.end()) return kEmpty;
-  const auto si = mi->second.find(s);
-  return si == mi->second.end() ? kEmpty : si->second;
+  return lookup(predictions, d, m, s, kEmpty);
 }
 
 bool StudyLabels::has_predictions(const std::string& d, const std::string& m) const {

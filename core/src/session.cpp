@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "ipd/atomic_file.h"
+#include "ipd/parallel.h"
 
 namespace fs = std::filesystem;
 
@@ -34,24 +35,32 @@ Session::Session(StudyLabels labels, const RegistrationOptions* registration) : 
   RegistrationOptions reg = registration ? *registration : st.config.registration;
   if (reg.aspect == 1.0) reg.aspect = st.aspect();
   for (const auto& [a, b] : pairs_) {
-    std::vector<SceneState> list;
-    for (const auto& stem : match_scenes(*st.domain(a), *st.domain(b)).common) {
-      SceneState s;
-      s.stem = stem;
-      const auto& ga = labels_.gt_of(a, stem).boxes;
-      const auto& gb = labels_.gt_of(b, stem).boxes;
-      s.automatic.stem = stem;
+    const std::vector<std::string> stems = match_scenes(*st.domain(a), *st.domain(b)).common;
+    std::vector<SceneState> list(stems.size());
+    std::vector<std::string> errors(stems.size());
+    // Registration is the heavy part of opening a study: every core takes scenes.
+    parallel_for(stems.size(), 0, [&](size_t k) {
+      SceneState& s = list[k];
+      s.stem = stems[k];
+      const auto& ga = labels_.gt_of(a, s.stem).boxes;
+      const auto& gb = labels_.gt_of(b, s.stem).boxes;
+      s.automatic.stem = s.stem;
       s.automatic.count_a = static_cast<int>(ga.size());
       s.automatic.count_b = static_cast<int>(gb.size());
       s.automatic.registration = register_rocks(ga, gb, reg);
       s.automatic.pairs = s.automatic.registration.pairs;
       s.current.pairs = s.automatic.pairs;
-      if (auto fixed = read_fixed_pairs(st, a, b, stem, s.automatic.count_a, s.automatic.count_b)) {
-        s.current = std::move(*fixed);
-        s.edited = s.fixed_on_disk = true;
+      try {
+        if (auto fixed = read_fixed_pairs(st, a, b, s.stem, s.automatic.count_a, s.automatic.count_b)) {
+          s.current = std::move(*fixed);
+          s.edited = s.fixed_on_disk = true;
+        }
+      } catch (const std::exception& e) {
+        errors[k] = e.what();
       }
-      list.push_back(std::move(s));
-    }
+    });
+    for (const auto& e : errors)
+      if (!e.empty()) throw StudyError(e);
     scenes_.push_back(std::move(list));
   }
   if (!st.models.empty()) model_ = st.models.front().name;
@@ -104,20 +113,6 @@ int Session::scene_index(const std::string& stem) const {
 const std::vector<Box>& Session::gt(Side side, int scene) const {
   return labels_.gt_of(domain_of(side), scenes_[pair_][scene].stem).boxes;
 }
-
-namespace {
-// map[domain][model][stem], or `fallback` when any level is missing.
-template <typename T>
-const T& lookup(const std::map<std::string, std::map<std::string, std::map<std::string, T>>>& map,
-                const std::string& domain, const std::string& model, const std::string& stem, const T& fallback) {
-  const auto di = map.find(domain);
-  if (di == map.end()) return fallback;
-  const auto mi = di->second.find(model);
-  if (mi == di->second.end()) return fallback;
-  const auto si = mi->second.find(stem);
-  return si == mi->second.end() ? fallback : si->second;
-}
-}  // namespace
 
 const std::string& Session::domain_of(Side side) const {
   return pair_side(side) == Side::kA ? pairs_[pair_].first : pairs_[pair_].second;

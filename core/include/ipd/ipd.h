@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "ipd/label_io.h"
+#include "ipd/nested_lookup.h"
 #include "ipd/registration.h"
 #include "ipd/study.h"
 
@@ -19,7 +20,7 @@ struct StudyLabels {
   Study study;
   std::map<std::string, std::map<std::string, LabelFile>> gt;  // domain -> stem -> GT
   // domain -> model -> stem -> predictions; a model absent here has no predictions for that domain
-  std::map<std::string, std::map<std::string, std::map<std::string, LabelFile>>> predictions;
+  ByDomainModelStem<LabelFile> predictions;
   std::vector<LabelError> errors;
 
   const LabelFile& gt_of(const std::string& domain, const std::string& stem) const;

@@ -136,8 +136,8 @@ class Session {
   bool read_only_ = false;
   double conf_threshold_ = 0;
   // domain -> model -> stem -> performance values; and the filtered predictions they came from
-  std::map<std::string, std::map<std::string, std::map<std::string, PerformanceValues>>> perf_;
-  std::map<std::string, std::map<std::string, std::map<std::string, std::vector<Box>>>> shown_predictions_;
+  ByDomainModelStem<PerformanceValues> perf_;
+  ByDomainModelStem<std::vector<Box>> shown_predictions_;
   // (model, pair) -> totals, and each scene's contribution to them
   std::map<std::pair<std::string, int>, CellTotals> totals_;
   std::map<std::pair<std::string, int>, std::vector<SceneIpd>> contributions_;
