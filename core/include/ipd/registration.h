@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "ipd/geometry.h"
+#include "ipd/registration_trace.h"
 #include "ipd/robust_loop.h"
 
 namespace ipd {
@@ -37,6 +38,7 @@ struct RegistrationOptions {
   double min_pair_iou = 0.1;    // consensus, cpd: aligned boxes overlapping less than this stay unpaired
   int cpd_iterations = 100;     // cpd: EM iterations
   double cpd_outlier_weight = 0.2;
+  bool record_trace = false;    // fill RegistrationReport::trace (ipd-studio's replay); off in batch runs
 
   // Empty when usable; otherwise what is wrong, in one sentence.
   std::string validate() const;
@@ -53,6 +55,11 @@ struct RegistrationReport {
   StopReason stop = StopReason::kNotRun;
   std::string note;                    // why a fallback was used, if one was
   double elapsed_ms = 0;
+  // How sure the pairing is: 1 - (second-best distinct hypothesis' score / best score), in [0, 1]; 1 when
+  // no rival alignment came close. `ambiguous` is set when the overlap is too small to decide.
+  double confidence = 1.0;
+  bool ambiguous = false;
+  RegistrationTrace trace;             // empty unless options.record_trace
 };
 
 // Registers A's GT boxes onto B's and pairs the rocks. Throws std::invalid_argument for bad options.
