@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numeric>
 
 #include "ipd/affine_estimator.h"
@@ -369,13 +370,14 @@ class GuidedSampler {
     const Affine2 id = f_.from_image(identity_affine());
     const Eigen::Matrix2d lin = id.leftCols<2>();
     if (f_.a.size() * f_.b.size() > 250000) return;  // huge sets: the triples alone are cheaper
-    std::vector<std::pair<long long, Eigen::Vector2d>> votes;
+    std::vector<std::pair<std::uint64_t, Eigen::Vector2d>> votes;
     for (const auto& p : f_.a)
       for (const auto& q : f_.b) {
         const Eigen::Vector2d t = q - lin * p;
-        const long long kx = static_cast<long long>(std::floor(t.x() / gate));
-        const long long ky = static_cast<long long>(std::floor(t.y() / gate));
-        votes.emplace_back((kx << 32) ^ (ky & 0xffffffffLL), t);
+        // Bin indices may be negative: pack them as unsigned (shifting a negative value is undefined).
+        const auto kx = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(t.x() / gate)));
+        const auto ky = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(t.y() / gate)));
+        votes.emplace_back((kx << 32) ^ (ky & 0xffffffffull), t);
       }
     std::sort(votes.begin(), votes.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
     struct Bin {
