@@ -6,6 +6,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "ipd/atomic_file.h"
+#include "ipd/registration_cache.h"
 #include "ipd/table_format.h"
 
 namespace ipd::cli {
@@ -15,7 +16,7 @@ Runner add_table_command(CLI::App& app) {
     std::string study, format = "text", method, out;
     std::vector<std::string> models, domains;
     long long seed = -1;
-    bool skip_bad_lines = false;
+    bool skip_bad_lines = false, no_cache = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("table", "Compute the IPD cross table (rows: models, columns: domain pairs)");
@@ -28,6 +29,7 @@ Runner add_table_command(CLI::App& app) {
       ->check(CLI::IsMember({"paper", "consensus", "cpd"}));
   cmd->add_option("--seed", args->seed, "Registration seed (default from study.yaml, else 0)");
   cmd->add_option("--out", args->out, "Write the table to this file (atomically) instead of stdout");
+  cmd->add_flag("--no-cache", args->no_cache, "Register every scene again (ignore STUDY/.ipd-cache/)");
   cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
   return [args]() -> int {
     const Study study = open_study(args->study);
@@ -39,6 +41,7 @@ Runner add_table_command(CLI::App& app) {
     opt.registration = study.config.registration;
     if (!args->method.empty()) parse_method(args->method, &opt.registration.method);
     if (args->seed >= 0) opt.registration.seed = static_cast<std::uint64_t>(args->seed);
+    if (!args->no_cache) opt.cache_dir = registration_cache_dir(study.root);
     Progress progress("registering");
     opt.progress = [&](int d, int t) { progress.update(d, t); };
     const CrossTable table = compute_cross_table(labels, opt);

@@ -5,15 +5,6 @@
 
 namespace ipd::ui {
 
-std::vector<int> pair_numbers(const RockPairs& pairs, size_t rocks, bool left_side) {
-  std::vector<int> number(rocks, 0);
-  for (size_t k = 0; k < pairs.size(); ++k) {
-    const int idx = left_side ? pairs[k].first : pairs[k].second;
-    if (idx >= 0 && idx < static_cast<int>(rocks)) number[idx] = static_cast<int>(k) + 1;
-  }
-  return number;
-}
-
 Placement place(ImVec2 area_min, ImVec2 area_size, int image_w, int image_h, const CanvasView& view) {
   const float aspect = (image_w > 0 && image_h > 0) ? float(image_w) / float(image_h) : 1936.0f / 1216.0f;
   float w = area_size.x, h = w / aspect;

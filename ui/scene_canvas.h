@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "ipd/audit.h"
 #include "ipd/geometry.h"
 #include "ipd/registration.h"
 
@@ -46,8 +47,9 @@ struct SideInput {
   float min_box_px_for_confidence = 0;
 };
 
-// Per GT rock of one side, the number its pair is shown with (1-based rank in `pairs`), 0 when unpaired.
-std::vector<int> pair_numbers(const RockPairs& pairs, size_t rocks, bool left_side);
+// Per GT rock of one side, the number its pair is shown with (stable: the left rock's 1-based index), 0 when
+// unpaired. GL-free, in core: the GUI and figures share it.
+using ipd::pair_numbers;
 
 // The picture's rectangle inside `area` (fit, keep aspect, then zoom and pan).
 struct Placement {

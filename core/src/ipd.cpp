@@ -2,6 +2,7 @@
 
 #include "ipd/nested_lookup.h"
 #include "ipd/parallel.h"
+#include "ipd/registration_cache.h"
 
 #include <algorithm>
 #include <atomic>
@@ -61,7 +62,8 @@ StudyLabels load_labels(const Study& study) {
 }
 
 ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
-                        const std::string& stem, const RegistrationOptions& options) {
+                        const std::string& stem, const RegistrationOptions& options,
+                        const RegistrationCache* cache) {
   ScenePairing p;
   p.stem = stem;
   const auto& ga = labels.gt_of(a, stem).boxes;
@@ -75,7 +77,7 @@ ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const s
     p.excluded_b = std::move(fixed->excluded_b);
     return p;
   }
-  p.registration = register_rocks(ga, gb, options);
+  p.registration = register_rocks_cached(cache, ga, gb, options, &p.from_cache);
   p.pairs = p.registration.pairs;
   return p;
 }
@@ -168,10 +170,12 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
   if (reg.aspect == 1.0) reg.aspect = study.aspect();
   const auto start = std::chrono::steady_clock::now();
   std::atomic<int> done{0};
+  const RegistrationCache cache(options.cache_dir);
   parallel_for(jobs.size(), options.threads, [&](size_t k) {
     auto& j = jobs[k];
     try {
-      j.result = pair_scene(labels, t.columns[j.column].first, t.columns[j.column].second, j.stem, reg);
+      const auto& [a, b] = t.columns[j.column];
+      j.result = pair_scene(labels, a, b, j.stem, reg, &cache);
     } catch (const std::exception& e) {
       j.error = e.what();
     }
@@ -182,6 +186,7 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
   for (const auto& j : jobs) {
     if (!j.error.empty()) throw StudyError(j.error);
     (j.result.fixed ? t.fixed_scenes : t.registrations)++;
+    t.cached_registrations += j.result.from_cache;
   }
 
   std::set<std::string> warned;

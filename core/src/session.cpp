@@ -3,11 +3,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 
 #include "ipd/atomic_file.h"
 #include "ipd/parallel.h"
+#include "ipd/registration_cache.h"
 
 namespace fs = std::filesystem;
 
@@ -26,14 +28,33 @@ void run_save_job(const SaveJob& job) {
 double CellTotals::ipd() const { return pairs > 0 ? sum_abs_diff / static_cast<double>(pairs) : std::nan(""); }
 
 Session Session::open(const std::string& root, const RegistrationOptions* registration) {
-  return Session(load_labels(open_study(root)), registration);
+  SessionOptions o;
+  o.registration = registration;
+  return open(root, o);
 }
 
-Session::Session(StudyLabels labels, const RegistrationOptions* registration) : labels_(std::move(labels)) {
-  const Study& st = labels_.study;
+Session Session::open(const std::string& root, const SessionOptions& options) {
+  const Study study = open_study(root);
+  if (options.progress) options.progress("labels", 0, 1);
+  StudyLabels labels = load_labels(study);
+  if (options.progress) options.progress("labels", 1, 1);
+  return Session(std::move(labels), options);
+}
+
+Session::Session(StudyLabels labels, const RegistrationOptions* registration)
+    : Session(std::move(labels), SessionOptions{registration, {}, {}}) {}
+
+Session::Session(StudyLabels labels, const SessionOptions& options)
+    : labels_(std::make_shared<const StudyLabels>(std::move(labels))) {
+  const StudyLabels& labels_ref = *labels_;
+  const Study& st = labels_ref.study;
   pairs_ = ipd::domain_pairs(st, {});
-  RegistrationOptions reg = registration ? *registration : st.config.registration;
+  RegistrationOptions reg = options.registration ? *options.registration : st.config.registration;
   if (reg.aspect == 1.0) reg.aspect = st.aspect();
+  const RegistrationCache cache(options.cache_dir);
+  int total = 0;
+  for (const auto& [a, b] : pairs_) total += static_cast<int>(match_scenes(*st.domain(a), *st.domain(b)).common.size());
+  std::atomic<int> done{0}, cached{0};
   for (const auto& [a, b] : pairs_) {
     const std::vector<std::string> stems = match_scenes(*st.domain(a), *st.domain(b)).common;
     std::vector<SceneState> list(stems.size());
@@ -42,12 +63,15 @@ Session::Session(StudyLabels labels, const RegistrationOptions* registration) : 
     parallel_for(stems.size(), 0, [&](size_t k) {
       SceneState& s = list[k];
       s.stem = stems[k];
-      const auto& ga = labels_.gt_of(a, s.stem).boxes;
-      const auto& gb = labels_.gt_of(b, s.stem).boxes;
+      const auto& ga = labels_ref.gt_of(a, s.stem).boxes;
+      const auto& gb = labels_ref.gt_of(b, s.stem).boxes;
       s.automatic.stem = s.stem;
       s.automatic.count_a = static_cast<int>(ga.size());
       s.automatic.count_b = static_cast<int>(gb.size());
-      s.automatic.registration = register_rocks(ga, gb, reg);
+      bool hit = false;
+      s.automatic.registration = register_rocks_cached(&cache, ga, gb, reg, &hit);
+      s.automatic.from_cache = hit;
+      cached += hit;
       s.automatic.pairs = s.automatic.registration.pairs;
       s.current.pairs = s.automatic.pairs;
       try {
@@ -58,11 +82,16 @@ Session::Session(StudyLabels labels, const RegistrationOptions* registration) : 
       } catch (const std::exception& e) {
         errors[k] = e.what();
       }
+      const int d = ++done;
+      if (options.progress && (d % 64 == 0 || d == total)) options.progress("registration", d, total);
     });
     for (const auto& e : errors)
       if (!e.empty()) throw StudyError(e);
     scenes_.push_back(std::move(list));
+    audits_.emplace_back(scenes_.back().size());
+    for (size_t k = 0; k < scenes_.back().size(); ++k) reaudit(static_cast<int>(scenes_.size()) - 1, static_cast<int>(k));
   }
+  cached_ = cached;
   if (!st.models.empty()) model_ = st.models.front().name;
   // Default view: the first model trained on the first domain, if any.
   for (const auto& m : st.models)
@@ -71,6 +100,7 @@ Session::Session(StudyLabels labels, const RegistrationOptions* registration) : 
       break;
     }
   const fs::path pairs_dir = fs::path(st.root) / "pairs";
+  // (the study's root and pairs/ must be writable for edits to be saved)
   std::error_code ec;
   read_only_ = ::access(st.root.c_str(), W_OK) != 0 ||
                (fs::exists(pairs_dir, ec) && ::access(pairs_dir.c_str(), W_OK) != 0);
@@ -111,7 +141,7 @@ int Session::scene_index(const std::string& stem) const {
 }
 
 const std::vector<Box>& Session::gt(Side side, int scene) const {
-  return labels_.gt_of(domain_of(side), scenes_[pair_][scene].stem).boxes;
+  return labels_->gt_of(domain_of(side), scenes_[pair_][scene].stem).boxes;
 }
 
 const std::string& Session::domain_of(Side side) const {
@@ -120,12 +150,12 @@ const std::string& Session::domain_of(Side side) const {
 
 const std::vector<Box>& Session::predictions(Side side, int scene) const {
   static const std::vector<Box> none;
-  return lookup(shown_predictions_, domain_of(side), model_, scenes_[pair_][scene].stem, none);
+  return lookup(*shown_predictions_, domain_of(side), model_, scenes_[pair_][scene].stem, none);
 }
 
 const PerformanceValues& Session::performance(Side side, int scene) const {
   static const PerformanceValues none;
-  return lookup(perf_, domain_of(side), model_, scenes_[pair_][scene].stem, none);
+  return lookup(*perf_, domain_of(side), model_, scenes_[pair_][scene].stem, none);
 }
 
 bool Session::excluded(Side side, int scene, int rock) const {
@@ -143,11 +173,41 @@ RockPairs Session::view_pairs(int scene) const {
   return out;
 }
 
+void Session::reaudit(int pair, int scene) {
+  const auto& [a, b] = pairs_[pair];
+  const SceneState& s = scenes_[pair][scene];
+  const Study& st = labels_->study;
+  // Residuals in pixels; a study without image_size counts 1000 px across.
+  const int w = st.config.image_width > 0 ? st.config.image_width : 1000;
+  const int h = st.config.image_height > 0 ? st.config.image_height : static_cast<int>(std::lround(w / st.aspect()));
+  audits_[pair][scene] = audit_pairs(labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes, s.current.pairs,
+                                     s.automatic.registration.affine, w, h);
+}
+
+std::vector<char> Session::suspect_rocks(Side side, int scene) const {
+  const bool side_a = pair_side(side) == Side::kA;
+  std::vector<char> out(gt(side, scene).size(), 0);
+  for (const auto& p : audits_[pair_][scene].pairs) {
+    const int idx = side_a ? p.a : p.b;
+    if (p.suspect && idx >= 0 && idx < static_cast<int>(out.size())) out[idx] = 1;
+  }
+  return out;
+}
+
+std::vector<SceneSummary> Session::summaries() const {
+  std::vector<SceneSummary> out;
+  out.reserve(scenes_[pair_].size());
+  for (size_t k = 0; k < scenes_[pair_].size(); ++k) out.push_back(summary(static_cast<int>(k)));
+  return out;
+}
+
 SceneSummary Session::summary(int scene) const {
   SceneSummary s;
   const auto it = contributions_.find({model_, pair_});
   s.stem = scenes_[pair_][scene].stem;
   s.edited = scenes_[pair_][scene].edited;
+  s.suspects = audits_[pair_][scene].suspects;
+  s.ambiguous = scenes_[pair_][scene].automatic.registration.ambiguous;
   if (it == contributions_.end()) {
     s.ipd = std::nan("");
     return s;
@@ -175,8 +235,8 @@ SceneIpd Session::contribution(const std::string& model, int pair, int scene) co
   const SceneState& s = scenes_[pair][scene];
   SceneIpd out;
   out.stem = s.stem;
-  const auto& pa = perf_.at(a).at(model).at(s.stem).value;
-  const auto& pb = perf_.at(b).at(model).at(s.stem).value;
+  const auto& pa = perf_->at(a).at(model).at(s.stem).value;
+  const auto& pb = perf_->at(b).at(model).at(s.stem).value;
   std::vector<char> used_a(pa.size(), 0), used_b(pb.size(), 0);
   for (int i : s.current.excluded_a) used_a[i] = 1;
   for (int j : s.current.excluded_b) used_b[j] = 1;
@@ -194,29 +254,35 @@ SceneIpd Session::contribution(const std::string& model, int pair, int scene) co
 }
 
 void Session::recompute_performance() {
-  perf_.clear();
-  shown_predictions_.clear();
-  for (const auto& d : labels_.study.domains) {
-    for (const auto& m : labels_.study.models) {
-      if (!labels_.has_predictions(d.name, m.name)) continue;
-      for (const auto& stem : d.stems) {
-        std::vector<Box> shown;
-        for (const auto& p : labels_.predictions_of(d.name, m.name, stem).boxes)
+  auto perf = std::make_shared<ByDomainModelStem<PerformanceValues>>();
+  auto shown_predictions = std::make_shared<ByDomainModelStem<std::vector<Box>>>();
+  for (const auto& d : labels_->study.domains) {
+    for (const auto& m : labels_->study.models) {
+      if (!labels_->has_predictions(d.name, m.name)) continue;
+      // Fill the maps first (serially), then compute every scene on every core.
+      auto& perf_of = (*perf)[d.name][m.name];
+      auto& shown_of = (*shown_predictions)[d.name][m.name];
+      std::vector<std::pair<PerformanceValues*, std::vector<Box>*>> slots;
+      for (const auto& stem : d.stems) slots.emplace_back(&perf_of[stem], &shown_of[stem]);
+      parallel_for(d.stems.size(), 0, [&](size_t k) {
+        std::vector<Box>& shown = *slots[k].second;
+        for (const auto& p : labels_->predictions_of(d.name, m.name, d.stems[k]).boxes)
           if (p.conf >= conf_threshold_) shown.push_back(p);
-        perf_[d.name][m.name][stem] = performance_values(labels_.gt_of(d.name, stem).boxes, shown);
-        shown_predictions_[d.name][m.name][stem] = std::move(shown);
-      }
+        *slots[k].first = performance_values(labels_->gt_of(d.name, d.stems[k]).boxes, shown);
+      });
     }
   }
+  perf_ = std::move(perf);
+  shown_predictions_ = std::move(shown_predictions);
   rebuild_totals();
 }
 
 void Session::rebuild_totals() {
   totals_.clear();
   contributions_.clear();
-  for (const auto& m : labels_.study.models) {
+  for (const auto& m : labels_->study.models) {
     for (size_t p = 0; p < pairs_.size(); ++p) {
-      if (!labels_.has_predictions(pairs_[p].first, m.name) || !labels_.has_predictions(pairs_[p].second, m.name))
+      if (!labels_->has_predictions(pairs_[p].first, m.name) || !labels_->has_predictions(pairs_[p].second, m.name))
         continue;
       auto& list = contributions_[{m.name, static_cast<int>(p)}];
       CellTotals& t = totals_[{m.name, static_cast<int>(p)}];
@@ -267,8 +333,9 @@ SaveJob Session::set_scene(int pair, int scene, const FixedPairs& fp, bool edite
     t.unpaired_a += list[scene].unpaired_a;
     t.unpaired_b += list[scene].unpaired_b;
   }
+  reaudit(pair, scene);
   last_scene_ = scene;
-  return job_for(pair, scene, labels_.study.root);
+  return job_for(pair, scene, labels_->study.root);
 }
 
 SaveJob Session::apply(int scene, Edit e) {

@@ -39,10 +39,14 @@ struct ScenePairing {
   std::vector<int> excluded_a, excluded_b;
   int count_a = 0, count_b = 0;
   RegistrationReport registration;  // meaningful when !fixed
+  bool from_cache = false;          // registration read from the on-disk cache
 };
 
+class RegistrationCache;
+// `cache` (may be null): registration results on disk (registration_cache.h).
 ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
-                        const std::string& stem, const RegistrationOptions& options);
+                        const std::string& stem, const RegistrationOptions& options,
+                        const RegistrationCache* cache = nullptr);
 
 // One image pair's contribution for one model.
 struct SceneIpd {
@@ -72,6 +76,7 @@ struct CrossTable {
   std::vector<TableCell> cells;                              // row-major: models x columns
   std::vector<std::string> warnings;                         // skipped scenes, missing predictions
   int registrations = 0, fixed_scenes = 0;
+  int cached_registrations = 0;  // of `registrations`, read from the on-disk cache
   double registration_ms = 0;
 
   const TableCell* cell(const std::string& model, const std::string& a, const std::string& b) const;
@@ -83,6 +88,7 @@ struct TableOptions {
   RegistrationOptions registration;
   int threads = 0;  // 0: hardware concurrency
   std::function<void(int done, int total)> progress;
+  std::string cache_dir;  // registration cache (registration_cache_dir()); empty: register every scene
 };
 
 // The domain pairs (i < j in study order) of the chosen domains.

@@ -6,11 +6,14 @@
 // (the GUI hands them to its saver thread).
 #pragma once
 
+#include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "ipd/audit.h"
 #include "ipd/ipd.h"
 
 namespace ipd {
@@ -53,6 +56,15 @@ struct SceneSummary {
   double ipd = 0;  // NaN when no pairs
   int pairs = 0, unpaired_a = 0, unpaired_b = 0;
   bool edited = false;
+  int suspects = 0;        // suspect pairs (audit_pairs)
+  bool ambiguous = false;  // registration could not decide (RegistrationReport::ambiguous)
+};
+
+struct SessionOptions {
+  const RegistrationOptions* registration = nullptr;  // null: the study's own
+  std::string cache_dir;  // registration cache (registration_cache_dir()); empty: register every scene
+  // Called from worker threads while opening: stage ("labels", "registration"), done, total.
+  std::function<void(const char* stage, int done, int total)> progress;
 };
 
 struct CellTotals {
@@ -66,10 +78,14 @@ class Session {
  public:
   // Loads labels and pairs every image pair of every domain pair (the heavy part: run it off the UI thread).
   static Session open(const std::string& study_root, const RegistrationOptions* registration = nullptr);
+  static Session open(const std::string& study_root, const SessionOptions& options);
   explicit Session(StudyLabels labels, const RegistrationOptions* registration = nullptr);
+  Session(StudyLabels labels, const SessionOptions& options);
+  // Copies are cheap enough to publish a snapshot after every change: labels are shared, not copied.
 
-  const Study& study() const { return labels_.study; }
-  const StudyLabels& labels() const { return labels_; }
+  const Study& study() const { return labels_->study; }
+  const StudyLabels& labels() const { return *labels_; }
+  int cached_registrations() const { return cached_; }  // scenes whose registration came from the cache
   const std::vector<std::pair<std::string, std::string>>& domain_pairs() const { return pairs_; }
   bool read_only() const { return read_only_; }
 
@@ -87,6 +103,12 @@ class Session {
   const std::vector<SceneState>& scenes() const { return scenes_[pair_]; }
   int scene_index(const std::string& stem) const;
   SceneSummary summary(int scene) const;
+  std::vector<SceneSummary> summaries() const;  // every scene of the current domain pair
+  // The audit of a scene's current pairs against its registration affine, in the domain pair's (A, B)
+  // orientation (audit.pairs[k].a indexes A even when the view is swapped).
+  const SceneAudit& audit(int scene) const { return audits_[pair_][scene]; }
+  // Per rock of a view side: 1 when its pair is suspect.
+  std::vector<char> suspect_rocks(Side side, int scene) const;
   // The current pairs of a scene oriented as (left index, right index).
   RockPairs view_pairs(int scene) const;
   const std::vector<Box>& gt(Side side, int scene) const;
@@ -124,20 +146,24 @@ class Session {
   void recompute_performance();
   void rebuild_totals();
   SceneIpd contribution(const std::string& model, int pair, int scene) const;
+  void reaudit(int pair, int scene);
   Side pair_side(Side view_side) const;  // view side -> side of the domain pair
   const std::string& domain_of(Side view_side) const;
 
-  StudyLabels labels_;
+  std::shared_ptr<const StudyLabels> labels_;
   std::vector<std::pair<std::string, std::string>> pairs_;
   std::vector<std::vector<SceneState>> scenes_;  // per domain pair
+  std::vector<std::vector<SceneAudit>> audits_;  // per domain pair, per scene
+  int cached_ = 0;
   int pair_ = 0;
   bool swapped_ = false;
   std::string model_;
   bool read_only_ = false;
   double conf_threshold_ = 0;
   // domain -> model -> stem -> performance values; and the filtered predictions they came from
-  ByDomainModelStem<PerformanceValues> perf_;
-  ByDomainModelStem<std::vector<Box>> shown_predictions_;
+  // (shared between snapshots: replaced whole when the threshold changes, never modified)
+  std::shared_ptr<const ByDomainModelStem<PerformanceValues>> perf_;
+  std::shared_ptr<const ByDomainModelStem<std::vector<Box>>> shown_predictions_;
   // (model, pair) -> totals, and each scene's contribution to them
   std::map<std::pair<std::string, int>, CellTotals> totals_;
   std::map<std::pair<std::string, int>, std::vector<SceneIpd>> contributions_;

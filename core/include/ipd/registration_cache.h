@@ -1,0 +1,47 @@
+// An on-disk cache of registration results, so reopening a study (or re-running `ipd table`) does not
+// register every scene again. An entry is keyed by a hash of both scenes' GT boxes (the label files'
+// contents as parsed), the method and every option that can change the result; it lives in
+// STUDY/.ipd-cache/registration/, or in the user cache directory when the study is read-only. Entries are
+// written atomically and carry a checksum: a missing, truncated or corrupt entry is recomputed, never used.
+// Traces (RegistrationOptions::record_trace) are not cached: a replay registers the scene again.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "ipd/geometry.h"
+#include "ipd/registration.h"
+
+namespace ipd {
+
+// STUDY/.ipd-cache/registration when the study root is writable, else $XDG_CACHE_HOME (or ~/.cache)
+// /ipd-studio/registration. Keys are content hashes, so studies may share the user directory.
+std::string registration_cache_dir(const std::string& study_root);
+
+// 32 hex digits: two 64-bit FNV-1a hashes (different seeds) of the boxes and the options.
+std::string registration_cache_key(const std::vector<Box>& a, const std::vector<Box>& b,
+                                   const RegistrationOptions& options);
+
+class RegistrationCache {
+ public:
+  explicit RegistrationCache(std::string dir) : dir_(std::move(dir)) {}
+  const std::string& dir() const { return dir_; }
+
+  // The cached report for `key`, or nullopt when absent or unusable (bad checksum, other key, pair
+  // indices outside [0, count) or a rock paired twice).
+  std::optional<RegistrationReport> load(const std::string& key, int count_a, int count_b) const;
+  // Writes the entry atomically; false (and nothing written) when the directory can't be written.
+  bool store(const std::string& key, const RegistrationReport& report) const;
+  std::string entry_path(const std::string& key) const;
+
+ private:
+  std::string dir_;
+};
+
+// register_rocks through the cache (nullptr: no cache). `hit` tells whether the result came from disk.
+RegistrationReport register_rocks_cached(const RegistrationCache* cache, const std::vector<Box>& a,
+                                         const std::vector<Box>& b, const RegistrationOptions& options,
+                                         bool* hit = nullptr);
+
+}  // namespace ipd
