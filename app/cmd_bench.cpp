@@ -15,6 +15,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "data_files.h"
 #include "ipd/atomic_file.h"
 #include "ipd/pairing.h"
 #include "ipd/parallel.h"
@@ -235,7 +236,7 @@ Runner add_bench_command(CLI::App& app) {
     int cases = 300;
     std::uint64_t seed = 1;
     bool quick = false, pycpd = false;
-    std::string pycpd_script = IPD_APP_DIR "/pycpd_reference.py";
+    std::string pycpd_script = find_data_file("pycpd_reference.py", IPD_APP_DIR);
   };
   auto args = std::make_shared<Args>();
   CLI::App* bench = app.add_subcommand("bench", "Benchmarks");

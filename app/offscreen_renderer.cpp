@@ -1,5 +1,7 @@
 #include "offscreen_renderer.h"
 
+#include "data_files.h"
+
 #include <GL/osmesa.h>
 #include <backends/imgui_impl_opengl2.h>
 
@@ -19,7 +21,7 @@ struct OffscreenRenderer::Impl {
 };
 
 std::string figure_font_file() {
-  for (const std::string& p : {std::string(IPD_ASSETS_DIR "/fonts/DejaVuSans.ttf"),
+  for (const std::string& p : {find_data_file("fonts/DejaVuSans.ttf", IPD_ASSETS_DIR),
                                std::string("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")}) {
     std::error_code ec;
     if (std::filesystem::exists(p, ec)) return p;

@@ -20,6 +20,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "data_files.h"
 #include "ipd/atomic_file.h"
 #include "ipd/demo_study.h"
 #include "ipd/session.h"
@@ -74,7 +75,7 @@ void save_screenshot(int w, int h, const std::string& path) {
 void load_font(const std::string& exe_dir) {
   ImGuiIO& io = ImGui::GetIO();
   // A font from assets/ if one was put there, else Debian's DejaVu (fonts-dejavu-core), else ImGui's own.
-  for (const std::string& p : {exe_dir + "/../../assets/fonts/DejaVuSans.ttf", std::string(IPD_ASSETS_DIR "/fonts/DejaVuSans.ttf"),
+  for (const std::string& p : {find_data_file("fonts/DejaVuSans.ttf", IPD_ASSETS_DIR), exe_dir + "/../../assets/fonts/DejaVuSans.ttf",
                                std::string("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")}) {
     std::error_code ec;
     if (fs::exists(p, ec) && io.Fonts->AddFontFromFileTTF(p.c_str(), 15.0f)) return;
