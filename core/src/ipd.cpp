@@ -97,6 +97,7 @@ SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, co
     used_a[i] = used_b[j] = 1;
     s.perf_a.push_back(pa.value[i]);
     s.perf_b.push_back(pb.value[j]);
+    s.counted.emplace_back(i, j);
     s.sum_abs_diff += std::abs(pa.value[i] - pb.value[j]);
     ++s.pairs;
   }
@@ -188,6 +189,9 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
     (j.result.fixed ? t.fixed_scenes : t.registrations)++;
     t.cached_registrations += j.result.from_cache;
   }
+
+  t.pairings.resize(t.columns.size());
+  for (auto& j : jobs) t.pairings[j.column].push_back(j.result);
 
   std::set<std::string> warned;
   for (const auto& model : t.models) {

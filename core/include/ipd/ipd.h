@@ -2,6 +2,7 @@
 // model, and the cross table (rows: models by training domain; columns: domain pairs).
 #pragma once
 
+#include <cmath>
 #include <functional>
 #include <map>
 #include <optional>
@@ -52,6 +53,7 @@ ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const s
 struct SceneIpd {
   std::string stem;
   std::vector<double> perf_a, perf_b;  // per pair, in pairing order
+  RockPairs counted;                   // the (index in A, index in B) of each counted pair, same order
   double sum_abs_diff = 0;
   int pairs = 0, unpaired_a = 0, unpaired_b = 0;
   double ipd() const;  // NaN when there are no pairs
@@ -63,6 +65,8 @@ SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, co
 struct TableCell {
   std::string model, trained_on, a, b;
   double ipd = 0;  // NaN when no pairs or no predictions
+  // scene-bootstrap interval and standard error (ipd/study_statistics.h); NaN until computed
+  double ci_low = std::nan(""), ci_high = std::nan(""), se = std::nan("");
   long pairs = 0, unpaired_a = 0, unpaired_b = 0;
   int scenes = 0;
   bool involves_training_domain = true;  // false: computed, but shown as "–" like the paper
@@ -74,6 +78,7 @@ struct CrossTable {
   std::vector<ModelInfo> models;
   std::vector<std::pair<std::string, std::string>> columns;  // domain pairs
   std::vector<TableCell> cells;                              // row-major: models x columns
+  std::vector<std::vector<ScenePairing>> pairings;           // per column, in the cells' per_scene order
   std::vector<std::string> warnings;                         // skipped scenes, missing predictions
   int registrations = 0, fixed_scenes = 0;
   int cached_registrations = 0;  // of `registrations`, read from the on-disk cache

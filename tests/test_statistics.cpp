@@ -1,0 +1,232 @@
+// Bootstrap intervals, the paired comparison and breakdowns: values worked out by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "ipd/statistics.h"
+#include "ipd/study_statistics.h"
+#include "stats_study.h"
+#include "test_support.h"
+
+namespace ipd {
+namespace {
+
+// Three scenes (Σ|diff|, pairs): (1.0, 2), (0.6, 3), (0.3, 1); pooled 1.9 / 6.
+const std::vector<SceneSum> kThreeScenes = {{1.0, 2}, {0.6, 3}, {0.3, 1}};
+
+TEST(Statistics, BootstrapWithInjectedDrawsWorkedByHand) {
+  // Resamples {0,0,1} -> 2.6/7, {1,2,2} -> 1.2/5, {2,2,2} -> 0.9/3, {0,1,2} -> 1.9/6.
+  // Sorted 0.24, 0.3, 0.31667, 0.37143; a 50% interval is the 25th and 75th percentile with linear
+  // interpolation: 0.24 + 0.75 * 0.06 = 0.285 and 0.31667 + 0.25 * (0.37143 - 0.31667) = 0.330357.
+  FixedIndexSource draws({{0, 0, 1}, {1, 2, 2}, {2, 2, 2}, {0, 1, 2}});
+  BootstrapOptions o;
+  o.resamples = 4;
+  o.level = 0.5;
+  const Interval ci = bootstrap_pooled_mean(kThreeScenes, o, draws);
+  EXPECT_NEAR(ci.estimate, 1.9 / 6, 1e-15);
+  EXPECT_NEAR(ci.low, 0.285, 1e-12);
+  EXPECT_NEAR(ci.high, 0.33035714285714285, 1e-12);
+  EXPECT_NEAR(ci.se, 0.054106324316717, 1e-12);  // sample standard deviation of the four
+  EXPECT_EQ(ci.resamples, 4);
+}
+
+TEST(Statistics, ResamplesWithoutPairsAreLeftOut) {
+  const std::vector<SceneSum> scenes = {{0.5, 1}, {0, 0}};
+  FixedIndexSource draws({{1, 1}, {0, 1}, {0, 0}});
+  BootstrapOptions o;
+  o.resamples = 3;
+  const Interval ci = bootstrap_pooled_mean(scenes, o, draws);
+  EXPECT_EQ(ci.resamples, 2);
+  EXPECT_DOUBLE_EQ(ci.low, 0.5);
+  EXPECT_DOUBLE_EQ(ci.high, 0.5);
+  EXPECT_DOUBLE_EQ(ci.se, 0.0);
+}
+
+TEST(Statistics, SeededDrawsDependOnSeedAndKeyOnly) {
+  BootstrapOptions o;
+  const Interval a = bootstrap_pooled_mean(kThreeScenes, o, "m|real|synth");
+  const Interval b = bootstrap_pooled_mean(kThreeScenes, o, "m|real|synth");
+  EXPECT_EQ(a.low, b.low);
+  EXPECT_EQ(a.high, b.high);
+  EXPECT_EQ(a.se, b.se);
+  o.seed = 1;
+  const Interval c = bootstrap_pooled_mean(kThreeScenes, o, "m|real|synth");
+  EXPECT_NE(a.se, c.se);
+  // Every resample lies between {1,1,1} = 0.6/3 and {0,0,0} = 1.0/2.
+  EXPECT_GE(a.low, 0.2 - 1e-12);
+  EXPECT_LE(a.high, 0.5 + 1e-12);
+  EXPECT_LT(a.low, a.estimate);
+  EXPECT_GT(a.high, a.estimate);
+}
+
+TEST(Statistics, BadOptionsAreRefused) {
+  BootstrapOptions o;
+  o.level = 95;
+  EXPECT_EQ(o.validate(), "the interval level must be between 0 and 1 (e.g. 0.95), not 95");
+  EXPECT_THROW(bootstrap_pooled_mean(kThreeScenes, o, "k"), std::invalid_argument);
+  FixedIndexSource too_short({{0, 1}});
+  BootstrapOptions one;
+  one.resamples = 1;
+  EXPECT_THROW(bootstrap_pooled_mean(kThreeScenes, one, too_short), std::logic_error);
+}
+
+TEST(Statistics, PairedComparisonWorkedByHand) {
+  // Scene 0: a (0.2, 2), b (0.8, 2); scene 1: a (0.1, 1), b (0.1, 1). Δ = 0.3/3 - 0.9/3 = -0.2.
+  std::vector<PairedScene> scenes(2);
+  scenes[0].a = {0.2, 2};
+  scenes[0].b = {0.8, 2};
+  scenes[1].a = {0.1, 1};
+  scenes[1].b = {0.1, 1};
+  scenes[0].common_a = {0.2, 2};
+  scenes[0].common_b = {0.6, 2};
+  // Bootstrap {0,0}: 0.4/4 - 1.6/4 = -0.3; {1,1}: 0; {0,1}: -0.2.
+  FixedIndexSource boot({{0, 0}, {1, 1}, {0, 1}});
+  // Permutations (1 = swap): {0,0} -> -0.2; {1,0} -> 0.9/3 - 0.3/3 = 0.2; {0,1} -> -0.2; {1,1} -> 0.2;
+  // {0,0} again: all five reach |Δ| = 0.2, so p = (1 + 5) / (5 + 1) = 1.
+  FixedIndexSource perm({{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0, 0}});
+  CompareOptions o;
+  o.bootstrap.resamples = 3;
+  o.bootstrap.level = 0.5;
+  o.permutations = 5;
+  const Comparison c = compare_paired(scenes, o, boot, perm);
+  EXPECT_NEAR(c.ipd_a, 0.1, 1e-15);
+  EXPECT_NEAR(c.ipd_b, 0.3, 1e-15);
+  EXPECT_NEAR(c.delta.estimate, -0.2, 1e-15);
+  EXPECT_NEAR(c.delta.low, -0.25, 1e-12);  // sorted -0.3, -0.2, 0: 25th percentile -0.25, 75th -0.1
+  EXPECT_NEAR(c.delta.high, -0.1, 1e-12);
+  EXPECT_DOUBLE_EQ(c.p_value, 1.0);
+  EXPECT_NEAR(c.delta_common, (0.2 - 0.6) / 2, 1e-15);
+  EXPECT_EQ(c.pairs_a, 3);
+  EXPECT_EQ(c.pairs_b, 3);
+  EXPECT_EQ(c.scenes, 2);
+
+  // Now scene 1 also favours a strongly: b (0.9, 1). Δ = 0.3/3 - 1.7/3. Only no-swap and all-swap
+  // permutations reach |Δ|: two of the four below, p = (1 + 2) / 5.
+  scenes[1].b = {0.9, 1};
+  FixedIndexSource boot2({{0, 1}});
+  FixedIndexSource perm2({{0, 0}, {1, 0}, {0, 1}, {1, 1}});
+  o.bootstrap.resamples = 1;
+  o.permutations = 4;
+  const Comparison c2 = compare_paired(scenes, o, boot2, perm2);
+  EXPECT_NEAR(c2.delta.estimate, (0.3 - 1.7) / 3, 1e-15);
+  EXPECT_DOUBLE_EQ(c2.p_value, 3.0 / 5);
+}
+
+TEST(Statistics, QuantilesAndSpearmanWithTies) {
+  EXPECT_DOUBLE_EQ(quantile({4, 1, 3, 2}, 0.5), 2.5);
+  EXPECT_DOUBLE_EQ(quantile({4, 1, 3, 2}, 0.25), 1.75);
+  EXPECT_TRUE(std::isnan(quantile({}, 0.5)));
+  EXPECT_EQ(quantile_edges({1, 2, 3, 4, 5}, 4), (std::vector<double>{2, 3, 4}));
+  // x ranks 1, 2.5, 2.5, 4; y ranks 1, 2, 3, 4 -> r = 4.5 / sqrt(4.5 * 5) (scipy.stats.spearmanr: 0.9486833)
+  EXPECT_NEAR(spearman({1, 2, 2, 3}, {10, 20, 30, 40}), 0.9486832980505138, 1e-12);
+  EXPECT_NEAR(spearman({1, 2, 3}, {3, 2, 1}), -1.0, 1e-15);
+  EXPECT_TRUE(std::isnan(spearman({1, 1, 1}, {1, 2, 3})));
+}
+
+// ----- on a study -------------------------------------------------------------------------------------
+
+CrossTable table_with_intervals(const std::string& root, int threads, std::uint64_t seed) {
+  TableOptions t;
+  t.threads = threads;
+  CrossTable table = compute_cross_table(load_labels(open_study(root)), t);
+  BootstrapOptions b;
+  b.seed = seed;
+  add_confidence_intervals(&table, b, threads);
+  return table;
+}
+
+TEST(StudyStatistics, IntervalsAreTheSameForAnyThreadCountAndMoveWithTheSeed) {
+  test::TempDir d;
+  test::write_stats_study(d.path(), test::StatsStudyVariant::kDistinct);
+  const CrossTable one = table_with_intervals(d.path(), 1, 0), two = table_with_intervals(d.path(), 2, 0);
+  const CrossTable other_seed = table_with_intervals(d.path(), 2, 5);
+  ASSERT_EQ(one.cells.size(), two.cells.size());
+  int with_ci = 0;
+  for (size_t k = 0; k < one.cells.size(); ++k) {
+    const auto &x = one.cells[k], &y = two.cells[k], &z = other_seed.cells[k];
+    if (std::isnan(x.ci_low)) continue;
+    ++with_ci;
+    EXPECT_EQ(x.ci_low, y.ci_low);
+    EXPECT_EQ(x.ci_high, y.ci_high);
+    EXPECT_EQ(x.se, y.se);
+    EXPECT_LE(x.ci_low, x.ipd);
+    EXPECT_GE(x.ci_high, x.ipd);
+    if (x.ci_high > x.ci_low) {
+      EXPECT_TRUE(x.ci_low != z.ci_low || x.ci_high != z.ci_high) << cell_key(x);
+    }
+  }
+  EXPECT_GE(with_ci, 2);
+}
+
+TEST(StudyStatistics, CompareWhenBIsA) {
+  test::TempDir d;
+  test::write_stats_study(d.path(), test::StatsStudyVariant::kHapkeIsPrincipled);
+  const CrossTable t = table_with_intervals(d.path(), 2, 0);
+  const RendererComparison c = compare_renderers(t, "det", "real", "principled", "hapke", {});
+  EXPECT_EQ(c.result.scenes, 12);
+  EXPECT_GT(c.result.ipd_a, 0.01);
+  EXPECT_EQ(c.result.delta.estimate, 0.0);
+  EXPECT_EQ(c.result.delta.low, 0.0);
+  EXPECT_EQ(c.result.delta.high, 0.0);
+  EXPECT_EQ(c.result.p_value, 1.0);
+  EXPECT_EQ(c.result.delta_common, 0.0);
+  EXPECT_EQ(comparison_sentence(c).rfind("no significant difference between principled and hapke in closeness to "
+                                         "real for det: ΔIPD = 0.0000 [0.000, 0.000], p = 1, 12 scenes",
+                                         0),
+            0u)
+      << comparison_sentence(c);
+}
+
+TEST(StudyStatistics, CompareWhenAIsTheReference) {
+  test::TempDir d;
+  test::write_stats_study(d.path(), test::StatsStudyVariant::kPrincipledIsReal);
+  const CrossTable t = table_with_intervals(d.path(), 2, 0);
+  EXPECT_EQ(t.cell("det", "real", "principled")->ipd, 0.0);
+  const double ipd_hapke = t.cell("det", "real", "hapke")->ipd;
+  ASSERT_GT(ipd_hapke, 0.05);
+  const RendererComparison c = compare_renderers(t, "det", "real", "principled", "hapke", {});
+  EXPECT_NEAR(c.result.delta.estimate, -ipd_hapke, 1e-15);
+  EXPECT_LT(c.result.delta.high, 0);
+  // Only "no swap" and "swap all" reach |Δ| among 2^12 sign patterns: p is about 1/1000.
+  EXPECT_LT(c.result.p_value, 0.005);
+  EXPECT_GE(c.result.p_value, 1.0 / 2001);
+  EXPECT_EQ(comparison_sentence(c).rfind("principled is closer to real than hapke for det: ΔIPD = −", 0), 0u)
+      << comparison_sentence(c);
+  EXPECT_THROW(compare_renderers(t, "det", "real", "real", "hapke", {}), StudyError);
+  EXPECT_THROW(compare_renderers(t, "nope", "real", "principled", "hapke", {}), StudyError);
+}
+
+TEST(StudyStatistics, BreakdownBinsAddUpToTheCell) {
+  test::TempDir d;
+  test::write_stats_study(d.path(), test::StatsStudyVariant::kDistinct);
+  const StudyLabels labels = load_labels(open_study(d.path()));
+  const CrossTable t = compute_cross_table(labels, {});
+  const TableCell& cell = *t.cell("det", "real", "hapke");
+  for (auto by : {BreakdownBy::kSize, BreakdownBy::kRegion, BreakdownBy::kConfidence}) {
+    BreakdownOptions o;
+    o.by = by;
+    const CellBreakdown b = breakdown_cell(labels, cell, o);
+    long pairs = 0;
+    double sum = 0;
+    for (const auto& bin : b.bins) {
+      pairs += bin.pairs;
+      if (bin.pairs > 0) sum += bin.ipd.estimate * bin.pairs;
+    }
+    EXPECT_EQ(pairs, cell.pairs) << to_string(by);
+    EXPECT_NEAR(sum / pairs, cell.ipd, 1e-12) << to_string(by);
+    if (by == BreakdownBy::kSize) {
+      ASSERT_EQ(b.bins.size(), 4u);
+      // quantile bins: about a quarter of the pairs each
+      for (const auto& bin : b.bins) EXPECT_NEAR(bin.pairs, cell.pairs / 4.0, cell.pairs / 8.0) << bin.label;
+      // the study makes small rocks harder to find in hapke: the smallest bin has the largest IPD
+      EXPECT_GT(b.bins.front().ipd.estimate, b.bins.back().ipd.estimate);
+    }
+    if (by == BreakdownBy::kRegion) {
+      EXPECT_EQ(b.bins.size(), 9u);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ipd
