@@ -79,3 +79,38 @@ TEST(PairNumbers, AreTheLeftRockNumberAndSurviveUnpairing) {
 
 }  // namespace
 }  // namespace ipd
+
+#include "ipd/scene_filter.h"
+
+namespace ipd {
+namespace {
+
+SceneSummary scene(const std::string& stem, double ipd, int suspects, bool edited) {
+  SceneSummary s;
+  s.stem = stem;
+  s.ipd = ipd;
+  s.suspects = suspects;
+  s.edited = edited;
+  return s;
+}
+
+TEST(SceneFilter, ComparisonsFlagsAndText) {
+  const SceneSummary a = scene("scene_01", 0.2, 1, false), b = scene("scene_02", 0.05, 0, true),
+                     none = scene("scene_03", std::nan(""), 0, false);
+  EXPECT_TRUE(SceneFilter::parse("ipd>0.1").matches(a));
+  EXPECT_FALSE(SceneFilter::parse("ipd>0.1").matches(b));
+  EXPECT_FALSE(SceneFilter::parse("ipd>0.1").matches(none));
+  EXPECT_TRUE(SceneFilter::parse("ipd<=0.05").matches(b));
+  EXPECT_FALSE(SceneFilter::parse("ipd<0.05").matches(b));
+  EXPECT_TRUE(SceneFilter::parse("suspect").matches(a));
+  EXPECT_FALSE(SceneFilter::parse("suspect").matches(b));
+  EXPECT_TRUE(SceneFilter::parse("edited 02").matches(b));
+  EXPECT_FALSE(SceneFilter::parse("edited 01").matches(b));
+  EXPECT_TRUE(SceneFilter::parse("").matches(none));
+  const SceneFilter bad = SceneFilter::parse("ipd>abc suspect");
+  EXPECT_EQ(bad.error, "'ipd>abc': expected a number after >");
+  EXPECT_EQ(bad.terms.size(), 1u);
+}
+
+}  // namespace
+}  // namespace ipd

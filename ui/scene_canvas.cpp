@@ -72,10 +72,14 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
         hovered = int(k);
       const int number = k < in.number.size() ? in.number[k] : 0;
       const bool excluded = k < in.excluded.size() && in.excluded[k];
-      ImU32 colour = number > 0 ? kPink : kGreyUnpaired;
+      const bool suspect = k < in.suspect.size() && in.suspect[k];
+      const bool sampled = std::find(in.sample.begin(), in.sample.end(), int(k)) != in.sample.end();
+      ImU32 colour = number > 0 ? (suspect ? kSuspect : kPink) : kGreyUnpaired;
+      if (sampled) colour = kTriple;
       if (int(k) == in.highlight) colour = kHighlight;
       if (int(k) == in.selected) colour = kSelected;
-      dl->AddRect(q0, q1, colour, 0, 0, (int(k) == in.highlight || int(k) == in.selected) ? 2.5f * thick : thick);
+      const bool wide = int(k) == in.highlight || int(k) == in.selected || sampled || suspect;
+      dl->AddRect(q0, q1, colour, 0, 0, wide ? 2.5f * thick : thick);
       if (excluded) dl->AddLine(q0, q1, colour, thick);
       if (layers.indices) {
         // Partners share their pair's number; an unpaired rock shows its own 1-based index after an "x".

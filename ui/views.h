@@ -1,11 +1,14 @@
-// The panels of ipd-studio. They read the session and the UI's own view state, and return what the user
-// asked for as commands; the app applies them (edits to the session, saves to the saver thread).
+// The panels of ipd-studio. They read an immutable snapshot of the study (the worker's Session and the
+// per-scene summaries) and the UI's own view state, and return what the user asked for as commands; the
+// app applies them in one place (study changes go to the worker, view changes stay here).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "ipd/scene_filter.h"
 #include "ipd/session.h"
 #include "scene_canvas.h"
 
@@ -17,6 +20,25 @@ struct Picture {
   std::string placeholder;  // "loading…" or why it can't be shown
 };
 
+// What the views read this frame: never modified by them.
+struct StudyView {
+  const Session* session = nullptr;
+  const std::vector<SceneSummary>* summaries = nullptr;  // per scene, computed by the worker once per change
+  const RegistrationReport* rerun = nullptr;             // a re-run (with its trace) of the current scene
+  bool rerun_is_automatic = false;                       // the re-run repeats the study's own registration
+  // Status bar inputs.
+  int pending_saves = 0;
+  std::vector<std::string> failed_saves;
+  bool busy = false;  // the worker is computing
+};
+
+// The replay of a registration's search (the trace), as a position on its timeline.
+struct ReplayState {
+  bool playing = false;
+  float position = 0;   // 0 .. steps (hypotheses/iterations) + 1 (the final raw -> aligned motion)
+  float speed = 20;     // steps per second
+};
+
 // What the views remember between frames (never study data).
 struct UiState {
   int scene = 0;
@@ -25,17 +47,26 @@ struct UiState {
   SideLayers layers;
   int selected_left = -1, selected_right = -1;  // a click on one side waits for one on the other
   int hover_left = -1, hover_right = -1;
-  int sort_column = 1;                           // browser: 0 stem, 1 IPD, 2 pairs, 3 unpaired, 4 edited
+  int sort_column = 1;                           // browser: 0 stem, 1 IPD, 2 pairs, 3 unpaired, 4 suspect, 5 edited
   bool sort_descending = true;                   // worst first: the audit order
-  char filter[64] = "";
-  float anim_t = 1.0f;
-  bool playing = false;
+  char filter[128] = "";
+  ReplayState replay;
   int rerun_method = 0, rerun_seed = 0;
-  std::optional<RegistrationReport> rerun;       // shown instead of the automatic one until applied
+  bool rerun_discarded = false;
   float conf_threshold = 0.0f;
   char save_as_dir[512] = "";
   std::string status;
-  std::vector<int> order;  // browser_order() of this frame, computed once by the app and shared by the views
+  std::vector<int> order;  // browser_order(), recomputed by the app only when its inputs change
+  std::string filter_error;
+  // Chrome: menus and dialogs.
+  bool show_help = false, show_goto = false, show_open = false, show_quit = false;
+  char goto_text[128] = "";
+  std::string browse_dir;                 // the Open study… browser's directory
+  std::vector<std::string> browse_dirs;   // its subdirectories (listed by the app when browse_dir changes)
+  bool browse_is_study = false;           // browse_dir has a study.yaml or domain folders
+  std::vector<std::string> recent;        // recent studies, newest first
+  float pictures_height = -1;             // height of the pictures pane; -1: fit the pictures' aspect
+  bool quit_confirmed = false;
 };
 
 struct UiCommands {
@@ -47,20 +78,33 @@ struct UiCommands {
   bool rerun_registration = false;
   bool save_as = false;
   bool export_figures = false;  // Fig. 1 and Fig. 2 of the current view, through `ipd figure`
+  bool export_dialog = false;   // File > Export figure… (the figure dialog hook)
+  std::string open_study;       // File > Open study… / Recent
+  bool retry_saves = false;
+  bool quit = false;            // confirmed (or nothing unsaved)
+  bool next_suspect = false;    // `N`: the next suspect pair anywhere in the study
 };
 
-// The scene order of the browser (sorted and filtered as the user asked).
-std::vector<int> browser_order(const Session& s, const UiState& ui);
+// The scene order of the browser (sorted and filtered as the user asked); sets ui.filter_error.
+std::vector<int> browser_order(const std::vector<SceneSummary>& summaries, UiState& ui);
 
-void draw_study_browser(const Session& s, UiState& ui, UiCommands& out);
-void draw_side_by_side(const Session& s, UiState& ui, const Picture& left, const Picture& right, UiCommands& out);
-void draw_registration(const Session& s, UiState& ui, UiCommands& out);
-void draw_pair_table(const Session& s, UiState& ui, UiCommands& out);
-void draw_ipd_panel(const Session& s, UiState& ui, UiCommands& out);
+void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out);
+void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out);
+void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out);  // help, go to scene, open study, quit
+void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out);
+void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, const Picture& right, UiCommands& out);
+void draw_registration(const StudyView& v, UiState& ui, UiCommands& out);
+void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out);
+void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out);
 // Keyboard shortcuts that act on the whole window.
-void handle_shortcuts(const Session& s, UiState& ui, UiCommands& out);
+void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out);
+// Every shortcut, for the help window (and README).
+const std::vector<std::pair<const char*, const char*>>& shortcut_list();
 
 // Per-rock inputs of the canvas for one side of the current scene.
 SideInput side_input(const Session& s, const UiState& ui, Side side, const Picture& picture);
+
+// The trace step shown at a replay position (clamped), -1 when the trace is empty.
+int replay_step(const RegistrationReport& r, float position);
 
 }  // namespace ipd::ui

@@ -1,0 +1,76 @@
+// ipd-studio's application object: the worker (study data), the texture cache (pictures), the view state,
+// and the one function that applies what the views asked for. main() only runs the window loop around it.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "studio_replay.h"
+#include "studio_textures.h"
+#include "studio_worker.h"
+#include "views.h"
+
+namespace ipd::studio {
+
+struct StudioOptions {
+  std::string study;        // empty: the demo study
+  std::string exe_dir;      // where the `ipd` tool is (exports)
+  std::string screenshot;   // render `frames` frames, save the window, exit
+  int frames = 60;
+  bool frame_stats = false;
+  int cycle_scenes = 0;     // with --screenshot: next scene every N frames (after the last one is drawn)
+  int cycle_step = 1;       // scenes to move per cycle (1: prefetched neighbour; more: a far jump)
+  std::string replay;       // --replay FILE
+  std::size_t texture_budget_mb = 512;
+};
+
+class StudioApp {
+ public:
+  explicit StudioApp(StudioOptions options);  // throws std::runtime_error for a bad replay file
+  // Builds this frame's windows (between ImGui::NewFrame and ImGui::Render).
+  void frame();
+  // After the frame was rendered and finished: timing, replay progress; returns the screenshot path to save
+  // now (empty: none).
+  std::string after_render(double frame_ms);
+  bool done() const { return done_; }
+  void request_quit() { ui_.show_quit = true; }
+  int print_stats() const;  // prints frame_ms / scene_ms; returns the exit code
+
+ private:
+  void apply(const ui::UiCommands& cmd);  // the one place commands take effect
+  void adopt_snapshot();
+  void next_suspect();
+  void goto_scene(int scene);
+  bool replay_step();  // one action of --replay; false while waiting
+  ui::Picture picture(const std::string& domain, const std::string& stem, bool urgent, bool* full);
+  void list_browse_dir();
+
+  StudioOptions o_;
+  StudyWorker worker_;
+  PictureLoader loader_;
+  TextureCache textures_;
+  ui::UiState ui_;
+  std::shared_ptr<const Snapshot> snap_;
+  long order_version_ = -1;
+  std::string order_filter_;
+  int order_sort_ = -1;
+  bool order_desc_ = true;
+  long jump_serial_ = 0;
+  std::string traced_;  // "pair/stem" whose search was asked to be recorded
+  std::string listed_dir_;
+  bool done_ = false, open_failed_ = false;
+  // Timing
+  std::vector<double> frame_ms_, scene_ms_;
+  int counted_ = 0, settle_ = 0, since_change_ = 0;
+  bool changing_ = false, change_shown_ = false, pictures_full_ = false;
+  std::chrono::steady_clock::time_point change_started_;
+  // Replay
+  std::vector<ReplayAction> replay_;
+  size_t replay_next_ = 0;
+  int replay_wait_ = 0;
+  std::string screenshot_now_;
+};
+
+}  // namespace ipd::studio

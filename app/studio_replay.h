@@ -1,0 +1,21 @@
+// ipd-studio --replay FILE: scripted sessions, one action per line, one action per frame (the next one waits
+// until the worker has applied the previous). Rock numbers are 1-based, left side first.
+//   wait N | conf X | model NAME | domains A B | scene next|prev|STEM | pair I J | unpair I | exclude I
+//   undo | redo | rerun paper|consensus|cpd | export FILE | screenshot FILE      (# starts a comment)
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace ipd::studio {
+
+struct ReplayAction {
+  std::string verb;
+  std::vector<std::string> args;
+  int line = 0;
+};
+
+// Throws std::runtime_error "FILE:LINE: ..." for an unknown action or wrong arguments.
+std::vector<ReplayAction> parse_replay(const std::string& text, const std::string& file_name);
+
+}  // namespace ipd::studio

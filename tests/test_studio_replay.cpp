@@ -1,0 +1,69 @@
+// ipd-studio driven by --replay in a real window (Xvfb): the edits it makes reach the pairs files exactly
+// as the Session API makes them. Run by ctest (StudioReplayEdits, which sets IPD_STUDIO); skipped otherwise.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "ipd/atomic_file.h"
+#include "ipd/session.h"
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+namespace {
+
+int run(const std::string& cmd) {
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(StudioReplay, EditsReachThePairsFiles) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd(fmt::format("demo {} --labels-only --scenes 3 --rocks 12", d / "study")).exit_code, 0);
+  test::write_text(d / "actions.txt",
+                   "# audit fixes\n"
+                   "scene scene_00002\n"
+                   "unpair 1\n"
+                   "pair 2 3\n"
+                   "exclude 4\n"
+                   "undo\n"
+                   "redo\n"
+                   "scene scene_00003\n"
+                   "pair 1 1\n"
+                   "undo\n"
+                   "screenshot " + d / "shot.png\n");
+  // The same edits through the Session API, opened before the GUI writes anything.
+  Session s = Session::open(d / "study");
+  const std::string cmd = fmt::format(
+      "XDG_CACHE_HOME={} xvfb-run -a -s '-screen 0 1280x800x24' {} {} --replay {} >{} 2>&1", d / "cache", studio,
+      d / "study", d / "actions.txt", d / "log.txt");
+  ASSERT_EQ(run(cmd), 0) << read_file(d / "log.txt");
+  EXPECT_TRUE(fs::exists(d / "shot.png"));
+
+  const int two = s.scene_index("scene_00002");
+  s.apply(two, Edit::unpair(Side::kA, 0));
+  s.apply(two, Edit::pair(1, 2));
+  const SaveJob expected = s.apply(two, Edit::toggle_exclude(Side::kA, 3));
+  ASSERT_TRUE(expected.contents.has_value());
+  EXPECT_EQ(read_file(d / "study/pairs/real__principled/scene_00002.json"), *expected.contents);
+  EXPECT_FALSE(fs::exists(d / "study/pairs/real__principled/scene_00003.json"));  // paired, then undone
+}
+
+TEST(StudioReplay, BadActionsNameTheFileAndLine) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  test::write_text(d / "actions.txt", "wait 2\npair 1\n");
+  const std::string cmd = fmt::format("{} --replay {} >{} 2>&1", studio, d / "actions.txt", d / "log.txt");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" + ":2: 'pair' takes two rock numbers (left, right), got 1 argument(s)\n");
+}
+
+}  // namespace
+}  // namespace ipd

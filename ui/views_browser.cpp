@@ -1,0 +1,128 @@
+// The study browser: domains, model, threshold, filter and the scene list (clipped: only visible rows are
+// built, so 10,000 scenes cost what 30 do).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "views.h"
+
+namespace ipd::ui {
+
+namespace {
+
+std::string fmt_ipd(double v) {
+  if (std::isnan(v)) return "n/a";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4f", v);
+  return b;
+}
+
+}  // namespace
+
+std::vector<int> browser_order(const std::vector<SceneSummary>& sums, UiState& ui) {
+  const SceneFilter filter = SceneFilter::parse(ui.filter);
+  ui.filter_error = filter.error;
+  std::vector<int> order;
+  for (int k = 0; k < static_cast<int>(sums.size()); ++k)
+    if (filter.matches(sums[k])) order.push_back(k);
+  auto key = [&](int k) -> double {
+    const auto& m = sums[k];
+    switch (ui.sort_column) {
+      case 1: return std::isnan(m.ipd) ? -1.0 : m.ipd;
+      case 2: return m.pairs;
+      case 3: return m.unpaired_a + m.unpaired_b;
+      case 4: return m.suspects;
+      case 5: return m.edited;
+      default: return 0;
+    }
+  };
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
+    if (ui.sort_column == 0) return ui.sort_descending ? sums[x].stem > sums[y].stem : sums[x].stem < sums[y].stem;
+    return ui.sort_descending ? key(x) > key(y) : key(x) < key(y);
+  });
+  return order;
+}
+
+void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
+  const Session& s = *v.session;
+  const Study& st = s.study();
+  ImGui::TextWrapped("%s", st.root.c_str());
+  if (s.read_only()) ImGui::TextColored({1, 0.6f, 0.2f, 1}, "read-only: edits stay in memory (File > Save edits as)");
+  auto domain_combo = [&](const char* label, const std::string& current, std::string* choice) {
+    if (ImGui::BeginCombo(label, current.c_str())) {
+      for (const auto& d : st.domains)
+        if (ImGui::Selectable(d.name.c_str(), d.name == current)) *choice = d.name;
+      ImGui::EndCombo();
+    }
+  };
+  std::string left, right;
+  domain_combo("left", s.left_domain(), &left);
+  domain_combo("right", s.right_domain(), &right);
+  if (!left.empty() && left != s.right_domain()) out.left_domain = left, out.right_domain = s.right_domain();
+  if (!right.empty() && right != s.left_domain()) out.left_domain = s.left_domain(), out.right_domain = right;
+  if (st.models.empty()) {
+    ImGui::TextColored({1, 0.8f, 0.3f, 1}, "No predictions in this study.");
+    ImGui::TextWrapped("IPD needs a detector's boxes. Make them with\n  ipd detect %s --onnx best.onnx --model yolo\n"
+                       "(or --detector classical), or put YOLO txt files under <domain>/predictions/<model>/, "
+                       "then reopen the study (File > Recent).",
+                       st.root.c_str());
+  } else if (ImGui::BeginCombo("model", s.model().c_str())) {
+    for (const auto& m : st.models) {
+      const std::string label = m.trained_on.empty() ? m.name : m.name + " (" + m.trained_on + ")";
+      if (ImGui::Selectable(label.c_str(), m.name == s.model())) out.model = m.name;
+    }
+    ImGui::EndCombo();
+  }
+  if (ImGui::SliderFloat("conf >=", &ui.conf_threshold, 0.0f, 1.0f, "%.2f")) out.conf_threshold = ui.conf_threshold;
+  ImGui::SetNextItemWidth(-1);
+  ImGui::InputTextWithHint("##filter", "filter: text, ipd>0.1, suspect, edited", ui.filter, sizeof ui.filter);
+  if (!ui.filter_error.empty()) ImGui::TextColored({1, 0.5f, 0.3f, 1}, "%s", ui.filter_error.c_str());
+  ImGui::TextDisabled("%zu of %zu scenes", ui.order.size(), v.summaries->size());
+  const ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
+                                ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable;
+  if (ImGui::BeginTable("scenes", 6, flags)) {
+    ImGui::TableSetupScrollFreeze(0, 1);
+    ImGui::TableSetupColumn("scene", ImGuiTableColumnFlags_WidthStretch);
+    ImGui::TableSetupColumn("IPD", ImGuiTableColumnFlags_DefaultSort | ImGuiTableColumnFlags_PreferSortDescending |
+                                       ImGuiTableColumnFlags_WidthFixed, 52);
+    const ImGuiTableColumnFlags num = ImGuiTableColumnFlags_WidthFixed | ImGuiTableColumnFlags_PreferSortDescending;
+    ImGui::TableSetupColumn("pairs", num, 34);
+    ImGui::TableSetupColumn("unp.", num, 36);
+    ImGui::TableSetupColumn("susp.", num, 34);
+    ImGui::TableSetupColumn("ed.", num, 30);
+    ImGui::TableHeadersRow();
+    if (ImGuiTableSortSpecs* spec = ImGui::TableGetSortSpecs(); spec && spec->SpecsDirty && spec->SpecsCount > 0) {
+      ui.sort_column = spec->Specs[0].ColumnIndex;
+      ui.sort_descending = spec->Specs[0].SortDirection == ImGuiSortDirection_Descending;
+      spec->SpecsDirty = false;
+      ui.order.clear();  // the app recomputes it
+    }
+    ImGuiListClipper clipper;
+    clipper.Begin(static_cast<int>(ui.order.size()));
+    while (clipper.Step()) {
+      for (int row = clipper.DisplayStart; row < clipper.DisplayEnd; ++row) {
+        const int k = ui.order[row];
+        const SceneSummary& m = (*v.summaries)[k];
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::PushID(k);
+        if (ImGui::Selectable(m.stem.c_str(), k == ui.scene, ImGuiSelectableFlags_SpanAllColumns)) out.goto_scene = k;
+        ImGui::PopID();
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(fmt_ipd(m.ipd).c_str());
+        ImGui::TableNextColumn();
+        ImGui::Text("%d", m.pairs);
+        ImGui::TableNextColumn();
+        ImGui::Text("%d/%d", m.unpaired_a, m.unpaired_b);
+        ImGui::TableNextColumn();
+        if (m.suspects > 0) ImGui::TextColored({1, 0.55f, 0, 1}, "%d", m.suspects);
+        else if (m.ambiguous) ImGui::TextColored({1, 0.8f, 0.3f, 1}, "?");
+        ImGui::TableNextColumn();
+        if (m.edited) ImGui::TextColored({0.4f, 0.8f, 1, 1}, "hand");
+      }
+    }
+    ImGui::EndTable();
+  }
+}
+
+}  // namespace ipd::ui
