@@ -34,7 +34,7 @@ void save_screenshot(int w, int h, const std::string& path) {
 
 void load_font(const std::string& exe_dir) {
   // A font from assets/ if one was put there, else Debian's DejaVu (fonts-dejavu-core), else ImGui's own.
-  for (const std::string& p : {find_data_file("fonts/DejaVuSans.ttf", IPD_ASSETS_DIR), exe_dir + "/../../assets/fonts/DejaVuSans.ttf",
+  for (const std::string& p : {ipd::find_data_file("fonts/DejaVuSans.ttf", IPD_ASSETS_DIR), exe_dir + "/../../assets/fonts/DejaVuSans.ttf",
                                std::string("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")}) {
     std::error_code ec;
     if (fs::exists(p, ec) && ImGui::GetIO().Fonts->AddFontFromFileTTF(p.c_str(), 15.0f)) return;
