@@ -10,6 +10,7 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-dnn-dev python3-onnx
   libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libfmt-dev libgtest-dev
   libimgui-dev libglfw3-dev libgl-dev libosmesa6-dev libstb-dev fonts-dejavu-core xvfb xauth
+  libcairo2-dev poppler-utils
 )
 
 missing=()
@@ -42,4 +43,4 @@ echo "IPD cross table of the demo study (rows: detector and its training domain;
 ./build/app/ipd table "$demo"
 echo
 echo "Picture of the scene that contributes most to IPD(real, principled):"
-./build/app/ipd figure pairs "$demo" --out build/demo-scene.png --width 2400
+./build/app/ipd figure pairs "$demo" --out build/demo-scene.png --column double

@@ -5,7 +5,11 @@
 #include <GL/osmesa.h>
 #include <backends/imgui_impl_opengl2.h>
 
+#include "canvas_imgui.h"
+
+#include <cmath>
 #include <filesystem>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <vector>
@@ -18,6 +22,7 @@ struct OffscreenRenderer::Impl {
   int width = 0, height = 0;
   ImGuiContext* imgui = nullptr;
   std::vector<GLuint> textures;
+  ImFont* bold = nullptr;
 };
 
 std::string figure_font_file() {
@@ -29,7 +34,8 @@ std::string figure_font_file() {
   return {};
 }
 
-OffscreenRenderer::OffscreenRenderer(int width, int height, float font_px, const std::string& font_file)
+OffscreenRenderer::OffscreenRenderer(int width, int height, float font_px, const std::string& font_file,
+                                     const std::string& bold_file)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.width = width;
@@ -48,13 +54,18 @@ OffscreenRenderer::OffscreenRenderer(int width, int height, float font_px, const
   io.IniFilename = nullptr;
   io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
   io.DeltaTime = 1.0f / 60.0f;
-  if (font_file.empty() || !io.Fonts->AddFontFromFileTTF(font_file.c_str(), font_px)) {
+  // Latin-1 plus the dashes, minus and comparison signs figures print.
+  static const ImWchar ranges[] = {0x0020, 0x00FF, 0x2010, 0x2027, 0x2212, 0x2212, 0x2264, 0x2265, 0};
+  if (font_file.empty() || !io.Fonts->AddFontFromFileTTF(font_file.c_str(), font_px, nullptr, ranges)) {
     ImFontConfig cfg;
     cfg.SizePixels = font_px;
     io.Fonts->AddFontDefault(&cfg);
   }
+  if (!bold_file.empty()) m.bold = io.Fonts->AddFontFromFileTTF(bold_file.c_str(), font_px, nullptr, ranges);
   ImGui_ImplOpenGL2_Init();
 }
+
+ImFont* OffscreenRenderer::bold_font() const { return impl_->bold; }
 
 OffscreenRenderer::~OffscreenRenderer() {
   Impl& m = *impl_;
@@ -98,6 +109,24 @@ cv::Mat OffscreenRenderer::render(const std::function<void(ImDrawList*, ImVec2)>
   cv::Mat bgr;
   cv::cvtColor(rgba, bgr, cv::COLOR_RGBA2BGR);
   return bgr;
+}
+
+std::string render_png(const ui::DisplayList& fig, const ui::FontMetrics& metrics, double dpi) {
+  const float px_per_pt = static_cast<float>(dpi / 72.0);
+  const int w = static_cast<int>(std::lround(fig.width_pt * px_per_pt));
+  const int h = static_cast<int>(std::ceil(fig.height_pt * px_per_pt));
+  // ImGui's font atlas at the line height of the largest text figures use (--font-pt).
+  double largest = 6;
+  for (const auto& t : fig.texts()) largest = std::max(largest, t.box.height());
+  OffscreenRenderer r(w, h, static_cast<float>(largest) * px_per_pt, metrics.file(), metrics.bold_file());
+  const cv::Mat bgr = r.render([&](ImDrawList* dl, ImVec2) {
+    ui::ImGuiCanvas canvas(dl, {0, 0}, px_per_pt, [&](const cv::Mat& img) { return r.upload(img, w); }, &metrics,
+                           r.bold_font());
+    fig.replay(canvas);
+  });
+  std::vector<uchar> png;
+  if (!cv::imencode(".png", bgr, png)) throw std::runtime_error("PNG encoding failed");
+  return std::string(png.begin(), png.end());
 }
 
 }  // namespace ipd::figure

@@ -9,13 +9,17 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "canvas.h"
+
 namespace ipd::figure {
 
 class OffscreenRenderer {
  public:
   // A width x height RGBA buffer and an ImGui context whose font is `font_px` pixels tall. Throws
   // std::runtime_error when OSMesa can't give a context of that size.
-  OffscreenRenderer(int width, int height, float font_px, const std::string& font_file);
+  OffscreenRenderer(int width, int height, float font_px, const std::string& font_file,
+                    const std::string& bold_file = {});
+  ImFont* bold_font() const;  // null when no bold file was given
   ~OffscreenRenderer();
   OffscreenRenderer(const OffscreenRenderer&) = delete;
   OffscreenRenderer& operator=(const OffscreenRenderer&) = delete;
@@ -32,5 +36,8 @@ class OffscreenRenderer {
 
 // The font figures use: assets/fonts/ first, then Debian's DejaVu Sans; empty for ImGui's built-in one.
 std::string figure_font_file();
+
+// A figure as PNG bytes through OSMesa and ImGui's draw list (the raster path): width = width_pt / 72 * dpi.
+std::string render_png(const ui::DisplayList& figure, const ui::FontMetrics& metrics, double dpi);
 
 }  // namespace ipd::figure

@@ -1,5 +1,6 @@
-// Headless figures: golden images (with a tolerance), boxes where the labels put them, clear errors,
-// atomic output. Set IPD_UPDATE_GOLDEN=1 to rewrite tests/golden/*.png after an intended change.
+// Headless figures, raster path (`ipd figure ... --out X.png`: OSMesa + ImGui's draw list): golden images
+// (with a tolerance), boxes where the labels put them, clear errors, atomic output. Set IPD_UPDATE_GOLDEN=1
+// to rewrite tests/golden/*.png after an intended change (and look at them before committing).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -7,7 +8,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "figures.h"
+#include "figure_input.h"
+#include "figure_test_study.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
@@ -15,32 +17,19 @@ namespace fs = std::filesystem;
 namespace ipd {
 namespace {
 
-// Two domains, one scene with a small drawn picture each, one rock each, one prediction each.
-//   GT (both):        0 0.30 0.40 0.20 0.25      prediction real: 0 0.35 0.40 0.20 0.25 0.87
-//   second rock real: 0 0.75 0.70 0.10 0.12      prediction synth: 0 0.32 0.40 0.20 0.25 0.93
-void write_figure_study(const test::TempDir& d, bool pictures) {
-  test::write_text(d / "study.yaml", "domains: [real, synth]\nimage_size: [640, 400]\nmodels: {det: {trained_on: real}}\n");
-  test::write_text(d / "real/labels/s1.txt", "0 0.30 0.40 0.20 0.25\n0 0.75 0.70 0.10 0.12\n");
-  test::write_text(d / "synth/labels/s1.txt", "0 0.30 0.40 0.20 0.25\n");
-  test::write_text(d / "real/predictions/det/s1.txt", "0 0.35 0.40 0.20 0.25 0.87\n");
-  test::write_text(d / "synth/predictions/det/s1.txt", "0 0.32 0.40 0.20 0.25 0.93\n");
-  if (!pictures) return;
-  for (const std::string dom : {"real", "synth"}) {
-    cv::Mat img(400, 640, CV_8UC3, cv::Scalar(90, 95, 100));
-    cv::circle(img, {192, 160}, 50, cv::Scalar(170, 175, 180), cv::FILLED, cv::LINE_AA);
-    fs::create_directories(d / (dom + "/images"));
-    cv::imwrite(d / (dom + "/images/s1.png"), img);
-  }
+// Mean absolute difference per channel, and the share of pixels differing by more than 64 somewhere.
+bool updating_golden() {
+  const char* u = std::getenv("IPD_UPDATE_GOLDEN");
+  return u && std::string(u) == "1";
 }
 
-// Mean absolute difference per channel, and the share of pixels differing by more than 64 somewhere.
 void expect_like_golden(const std::string& produced, const std::string& name) {
   const std::string golden = std::string(IPD_GOLDEN_DIR) + "/" + name;
   const cv::Mat got = cv::imread(produced, cv::IMREAD_COLOR);
   ASSERT_FALSE(got.empty()) << produced;
-  if (const char* u = std::getenv("IPD_UPDATE_GOLDEN"); u && std::string(u) == "1") {
+  if (updating_golden()) {
     fs::copy_file(produced, golden, fs::copy_options::overwrite_existing);
-    GTEST_SKIP() << "golden image rewritten: " << golden;
+    return;
   }
   const cv::Mat want = cv::imread(golden, cv::IMREAD_COLOR);
   ASSERT_FALSE(want.empty()) << "no golden image " << golden << " (run with IPD_UPDATE_GOLDEN=1 to create it)";
@@ -56,14 +45,15 @@ void expect_like_golden(const std::string& produced, const std::string& name) {
 
 TEST(Figures, PairsRegistrationAndTableMatchTheirGoldenImages) {
   test::TempDir d;
-  write_figure_study(d, true);
+  test::write_figure_study(d, true);
   for (const std::string kind : {"pairs", "registration", "table"}) {
     const std::string out = d / (kind + ".png");
-    const auto r = test::run_ipd("figure " + kind + " " + d.path() + " --width 800 --out " + out);
+    const auto r = test::run_ipd("figure " + kind + " " + d.path() + " --column single --dpi 200 --out " + out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out, out + "\n");
     expect_like_golden(out, "figure_" + kind + ".png");
   }
+  if (updating_golden()) GTEST_SKIP() << "golden images rewritten in " << IPD_GOLDEN_DIR;
 }
 
 bool near(const cv::Vec3b& bgr, int r, int g, int b) {
@@ -72,53 +62,73 @@ bool near(const cv::Vec3b& bgr, int r, int g, int b) {
 
 TEST(Figures, BoxesStandWhereTheLabelsSay) {
   test::TempDir d;
-  write_figure_study(d, false);  // grey placeholders: only boxes carry colour
+  test::write_figure_study(d, false);  // grey placeholders: only boxes carry colour
   const std::string out = d / "pairs.png";
-  const int width = 1200;
-  const auto r = test::run_ipd("figure pairs " + d.path() + " --scene s1 --width 1200 --out " + out);
+  const double dpi = 288;  // 4 px per point
+  const auto r = test::run_ipd("figure pairs " + d.path() + " --scene s1 --layers gt,pred,pairs --dpi 288 --out " + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const cv::Mat img = cv::imread(out, cv::IMREAD_COLOR);
   ASSERT_FALSE(img.empty());
-  const float px = std::max(13.0f, width / 75.0f);
-  const ui::PairsLayout l = ui::pairs_layout({float(img.cols), float(img.rows)}, px);
-  // Whether a colour appears within 2 pixels of where the label puts an edge (lines sit on half pixels).
-  auto colour_near = [&](ImVec2 area_min, double x, double y, int r, int g, int b) {
-    const ui::Placement p = ui::place(area_min, l.side_size, 640, 400, ui::CanvasView{});
-    const ImVec2 q = p.to_screen(x, y);
+  EXPECT_EQ(img.cols, 1008);  // 3.5 in x 288 dpi
+  // The same layout, computed in points.
+  const StudyLabels labels = load_labels(open_study(d.path()));
+  const ui::SceneFigureInput in = ui::scene_input_from_study(labels, "real", "synth", "det", "s1", 0, {});
+  ui::FigureOptions o;
+  o.layers = ui::parse_layers("gt,pred,pairs");
+  const ui::FontMetrics metrics(ui::default_font_file());
+  ui::DisplayList fig(metrics);
+  const ui::PairsLayout l = ui::draw_pairs_figure(fig, in, o);
+  EXPECT_EQ(img.rows, static_cast<int>(std::ceil(fig.height_pt * dpi / 72)));
+  // Whether a colour appears within 2 pixels of where the label puts an edge.
+  auto colour_near = [&](const ui::PtRect& panel, double x, double y, int r, int g, int b) {
+    const double px = (panel.x0 + x * panel.width()) * dpi / 72, py = (panel.y0 + y * panel.height()) * dpi / 72;
     for (int dy = -2; dy <= 2; ++dy)
       for (int dx = -2; dx <= 2; ++dx)
-        if (near(img.at<cv::Vec3b>(static_cast<int>(std::lround(q.y)) + dy, static_cast<int>(std::lround(q.x)) + dx), r, g, b))
-          return true;
+        if (near(img.at<cv::Vec3b>(static_cast<int>(py) + dy, static_cast<int>(px) + dx), r, g, b)) return true;
     return false;
   };
   // Left GT box: left edge x = 0.20 (pink); its prediction's right edge x = 0.45 (red); inside, neither.
-  EXPECT_TRUE(colour_near(l.left_min, 0.20, 0.40, 255, 105, 200));
-  EXPECT_TRUE(colour_near(l.left_min, 0.45, 0.45, 235, 40, 40));
-  EXPECT_FALSE(colour_near(l.left_min, 0.33, 0.45, 255, 105, 200));
-  EXPECT_FALSE(colour_near(l.left_min, 0.33, 0.45, 235, 40, 40));
+  EXPECT_TRUE(colour_near(l.left, 0.20, 0.40, 255, 105, 200));
+  EXPECT_TRUE(colour_near(l.left, 0.45, 0.45, 235, 40, 40));
+  EXPECT_FALSE(colour_near(l.left, 0.33, 0.45, 255, 105, 200));
+  EXPECT_FALSE(colour_near(l.left, 0.33, 0.45, 235, 40, 40));
   // The unpaired second rock is grey (left edge x = 0.70), and there is no box there on the right.
-  EXPECT_TRUE(colour_near(l.left_min, 0.70, 0.70, 160, 160, 160));
-  EXPECT_FALSE(colour_near(l.right_min, 0.70, 0.70, 160, 160, 160));
+  EXPECT_TRUE(colour_near(l.left, 0.70, 0.70, 160, 160, 160));
+  EXPECT_FALSE(colour_near(l.right, 0.70, 0.70, 160, 160, 160));
   // Right: GT left edge x = 0.20 (pink), prediction right edge x = 0.42 (red).
-  EXPECT_TRUE(colour_near(l.right_min, 0.20, 0.40, 255, 105, 200));
-  EXPECT_TRUE(colour_near(l.right_min, 0.42, 0.45, 235, 40, 40));
+  EXPECT_TRUE(colour_near(l.right, 0.20, 0.40, 255, 105, 200));
+  EXPECT_TRUE(colour_near(l.right, 0.42, 0.45, 235, 40, 40));
 }
 
 TEST(Figures, ClearMessagesAndNoFileOnError) {
   test::TempDir d, empty;
-  write_figure_study(d, false);
+  test::write_figure_study(d, false);
   auto r = test::run_ipd("figure pairs " + d.path() + " --scene nope --out " + d / "x.png");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "error: " + d.path() + ": no scene 'nope' in both 'real' and 'synth'\n");
   EXPECT_FALSE(fs::exists(d / "x.png"));
   test::write_text(empty / "real/labels/a.txt", "");
   test::write_text(empty / "synth/labels/b.txt", "");
-  r = test::run_ipd("figure registration " + empty.path() + " --out " + empty / "x.png");
+  r = test::run_ipd("figure registration " + empty.path() + " --out " + empty / "x.pdf");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "error: " + empty.path() + ": no scene is present in both 'real' and 'synth'\n");
   r = test::run_ipd("figure table " + empty / "missing" + " --out " + empty / "x.png");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "error: " + empty / "missing" + ": no such study directory\n");
+  // Bad option values are usage errors (2) naming what is accepted.
+  r = test::run_ipd("figure pairs " + d.path() + " --layers gt,boxes --out " + d / "x.pdf");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "error: --layers: unknown layer 'boxes' (accepted: gt, pred, conf, indices, pairs, legend, "
+                   "comma-separated)\n");
+  r = test::run_ipd("figure pairs " + d.path() + " --crop 0.5,0,0.2,1 --out " + d / "x.pdf");
+  EXPECT_EQ(r.exit_code, 2);
+  r = test::run_ipd("figure pairs " + d.path() + " --font-pt 5 --out " + d / "x.pdf");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "error: --font-pt: 5 is outside 6..72 (nothing smaller than 6 pt on the page)\n");
+  r = test::run_ipd("figure pairs " + d.path() + " --font " + d / "nope.ttf" + " --out " + d / "x.pdf");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: " + d / "nope.ttf" + ": no such font file\n");
+  EXPECT_FALSE(fs::exists(d / "x.pdf"));
   // A successful run leaves the figure and nothing else (no temp files).
   r = test::run_ipd("figure table " + d.path() + " --out " + d / "figs/t.png");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -129,13 +139,13 @@ TEST(Figures, ClearMessagesAndNoFileOnError) {
 
 TEST(Figures, DefaultSceneIsTheLargestContribution) {
   test::TempDir d;
-  write_figure_study(d, false);
+  test::write_figure_study(d, false);
   // A second scene where both sides agree (contributes 0).
   test::write_text(d / "real/labels/s0.txt", "0 0.5 0.5 0.2 0.2\n");
   test::write_text(d / "synth/labels/s0.txt", "0 0.5 0.5 0.2 0.2\n");
   test::write_text(d / "real/predictions/det/s0.txt", "0 0.5 0.5 0.2 0.2 0.9\n");
   test::write_text(d / "synth/predictions/det/s0.txt", "0 0.5 0.5 0.2 0.2 0.9\n");
-  const auto r = test::run_ipd("figure pairs " + d.path() + " --width 400 --out " + d / "p.png");
+  const auto r = test::run_ipd("figure pairs " + d.path() + " --dpi 72 --out " + d / "p.png");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "scene s1: it contributes most to IPD(real, synth) for det\n");
 }

@@ -34,9 +34,11 @@ static std::string slurp(const std::string& p) {
   return ss.str();
 }
 
-CommandResult run_ipd(const std::string& args) {
+CommandResult run_ipd(const std::string& args) { return run_command(std::string(IPD_BINARY) + " " + args); }
+
+CommandResult run_command(const std::string& command) {
   TempDir io;
-  const std::string cmd = std::string(IPD_BINARY) + " " + args + " >" + io.path() + "/out 2>" + io.path() + "/err";
+  const std::string cmd = command + " >" + io.path() + "/out 2>" + io.path() + "/err";
   const int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

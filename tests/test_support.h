@@ -25,5 +25,7 @@ struct CommandResult {
 };
 // Runs the built `ipd` with the given argument string (shell-quoted by the caller).
 CommandResult run_ipd(const std::string& args);
+// Runs a shell command line (e.g. poppler's pdftotext), capturing its output.
+CommandResult run_command(const std::string& command);
 
 }  // namespace ipd::test

@@ -1,0 +1,50 @@
+// Collision-avoiding placement of text labels (rock numbers, confidences, legends) for figures: each label
+// tries positions around its target (above, below, inside corners, left, right), then a spot a little way
+// off with a short leader line, and is left out (counted) only when nothing fits. Pure and deterministic:
+// labels are placed greedily in the order given (put the important ones first).
+#pragma once
+
+#include <vector>
+
+namespace ipd {
+
+struct LabelRect {
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // y down
+  double width() const { return x1 - x0; }
+  double height() const { return y1 - y0; }
+};
+bool overlaps(const LabelRect& a, const LabelRect& b);  // interiors intersect
+
+struct LabelRequest {
+  LabelRect target;             // what the label names (a point is an empty rect)
+  double width = 0, height = 0;  // the text's box
+};
+
+enum class LabelPosition { kAbove, kBelow, kInsideTopLeft, kInsideTopRight, kInsideBottomLeft, kInsideBottomRight,
+                           kLeft, kRight, kLeader, kLeftOut };
+
+struct PlacedLabel {
+  LabelPosition position = LabelPosition::kLeftOut;
+  LabelRect box;              // where the text goes (meaningless when left out)
+  double leader_x0 = 0, leader_y0 = 0, leader_x1 = 0, leader_y1 = 0;  // kLeader: target edge -> label
+  bool shown() const { return position != LabelPosition::kLeftOut; }
+};
+
+struct LabelPlacementOptions {
+  LabelRect bounds;               // labels stay inside
+  std::vector<LabelRect> taken;   // already occupied (titles, captions, legends)
+  double gap = 1;                 // clearance between a label and its target and between labels
+  double max_leader = 3;          // the farthest a leader goes, in label heights
+  // Validates: bounds non-empty, gap >= 0, max_leader >= 0; throws std::invalid_argument otherwise.
+  void validate() const;
+};
+
+struct LabelPlacement {
+  std::vector<PlacedLabel> labels;  // one per request, same order
+  int left_out = 0;
+  int with_leader = 0;
+};
+
+LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const LabelPlacementOptions& options);
+
+}  // namespace ipd

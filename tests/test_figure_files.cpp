@@ -1,0 +1,175 @@
+// Figure files as a reader of the paper gets them, checked with poppler-utils (pdfinfo, pdftotext -bbox):
+// page width = column width, text as text, no two words overlapping; SVG is XML with a size; PNG width =
+// inches x dpi; unknown extensions refused; the GUI's export and the CLI give the same PDF for one view.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <regex>
+
+#include "figure_export.h"
+#include "figure_test_study.h"
+#include "ipd/demo_study.h"
+#include "ipd/session.h"
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+namespace {
+
+struct Word {
+  double x0, y0, x1, y1;
+  std::string text;
+};
+struct PdfText {
+  double width = 0, height = 0;
+  std::vector<Word> words;
+  std::string all() const {
+    std::string s;
+    for (const Word& w : words) s += w.text + " ";
+    return s;
+  }
+};
+
+PdfText pdf_text(const std::string& pdf) {
+  const auto r = test::run_command("pdftotext -bbox '" + pdf + "' -");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  PdfText t;
+  std::smatch m;
+  if (std::regex_search(r.out, m, std::regex(R"re(<page width="([\d.]+)" height="([\d.]+)">)re")))
+    t.width = std::stod(m[1]), t.height = std::stod(m[2]);
+  const std::regex word(R"re(<word xMin="([\d.]+)" yMin="([\d.]+)" xMax="([\d.]+)" yMax="([\d.]+)">([^<]*)</word>)re");
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), word); it != std::sregex_iterator(); ++it)
+    t.words.push_back({std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3]), std::stod((*it)[4]), (*it)[5]});
+  return t;
+}
+
+bool has_word(const PdfText& t, const std::string& w) {
+  for (const Word& x : t.words)
+    if (x.text == w) return true;
+  return false;
+}
+
+// Pairs of words whose boxes overlap by more than a hair (0.05 pt: poppler rounds).
+std::vector<std::string> overlapping(const PdfText& t) {
+  std::vector<std::string> out;
+  const double e = 0.05;
+  for (size_t i = 0; i < t.words.size(); ++i)
+    for (size_t j = 0; j < i; ++j) {
+      const Word &a = t.words[i], &b = t.words[j];
+      if (a.x0 + e < b.x1 && b.x0 + e < a.x1 && a.y0 + e < b.y1 && b.y0 + e < a.y1) out.push_back(a.text + " / " + b.text);
+    }
+  return out;
+}
+
+TEST(FigureFiles, PdfPageIsTheColumnWidthAndCarriesTheText) {
+  test::TempDir d;
+  test::write_figure_study(d, true);
+  for (const auto& [column, width_pt] : {std::pair<std::string, double>{"single", 252}, {"double", 515.52}}) {
+    const std::string out = d / ("pairs_" + column + ".pdf");
+    const auto r = test::run_ipd("figure pairs " + d.path() + " --scene s1 --column " + column + " --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto info = test::run_command("pdfinfo '" + out + "'");
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(info.out, m, std::regex(R"re(Page size:\s+([\d.]+) x ([\d.]+) pts)re"))) << info.out;
+    EXPECT_NEAR(std::stod(m[1]), width_pt, 1.0);
+    const PdfText t = pdf_text(out);
+    EXPECT_NEAR(t.width, width_pt, 1.0);
+    // Title with the scene's IPD: pair (rock 1 of both) perf |IoU(gt, pred) real - synth|.
+    //   real: GT [0.20,0.40]x[0.275,0.525], pred [0.25,0.45]: IoU = 0.15/0.25 = 0.6
+    //   synth: pred [0.22,0.42]: IoU = 0.18/0.22 = 0.818181...; |0.6 - 0.8182| = 0.2182
+    EXPECT_NE(t.all().find("s1: real vs synth, model det, scene IPD 0.2182 (1 pair)"), std::string::npos) << t.all();
+    EXPECT_TRUE(has_word(t, "1"));   // the pair's number
+    EXPECT_TRUE(has_word(t, "x2"));  // the unpaired rock, by its own index
+    EXPECT_EQ(has_word(t, "0.87"), column == "double");  // confidences: double column only by default
+    EXPECT_TRUE(overlapping(t).empty());
+  }
+}
+
+TEST(FigureFiles, NoWordsOverlapOnTheDemosBusiestScene) {
+  test::TempDir d;
+  DemoStudyOptions demo;
+  demo.scenes = 3;  // scene_02 (17 rocks a side) is the busiest of the demo study
+  write_demo_study(d.path(), demo);
+  for (const std::string kind : {"pairs", "registration"})
+    for (const std::string column : {"single", "double"}) {
+      const std::string out = d / (kind + column + ".pdf");
+      const auto r = test::run_ipd("figure " + kind + " " + d.path() + " --scene scene_02 --column " + column +
+                                   " --layers gt,pred,conf,indices,pairs,legend --out " + out);
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const PdfText t = pdf_text(out);
+      EXPECT_GT(t.words.size(), 20u) << kind << " " << column;
+      for (int n = 1; n <= 9; ++n) EXPECT_TRUE(has_word(t, std::to_string(n))) << kind << " " << column << " " << n;
+      const auto bad = overlapping(t);
+      EXPECT_TRUE(bad.empty()) << kind << " " << column << ": " << (bad.empty() ? "" : bad.front());
+      for (const Word& w : t.words) EXPECT_GE(w.y1 - w.y0, 6.0) << w.text;  // nothing under 6 pt
+    }
+}
+
+TEST(FigureFiles, SvgIsXmlWithASizeAndTextAsText) {
+  test::TempDir d;
+  test::write_figure_study(d, true);
+  const std::string out = d / "p.svg";
+  ASSERT_EQ(test::run_ipd("figure pairs " + d.path() + " --out " + out).exit_code, 0);
+  const auto r = test::run_command(
+      "python3 -c \"import sys, xml.etree.ElementTree as E; r = E.parse(sys.argv[1]).getroot(); "
+      "n = '{http://www.w3.org/2000/svg}'; print(r.get('width'), r.get('height'), "
+      "' '.join(t.text for t in r.iter(n + 'text')))\" '" + out + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, 9), "252.00pt ");
+  EXPECT_NE(r.out.find("scene IPD 0.2182"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" x2 "), std::string::npos) << r.out;
+}
+
+TEST(FigureFiles, PngWidthIsInchesTimesDpi) {
+  test::TempDir d;
+  test::write_figure_study(d, true);
+  ASSERT_EQ(test::run_ipd("figure pairs " + d.path() + " --out " + d / "a.png").exit_code, 0);
+  EXPECT_EQ(cv::imread(d / "a.png").cols, 1050);  // 3.5 in x 300 dpi
+  ASSERT_EQ(test::run_ipd("figure table " + d.path() + " --width-in 2 --dpi 100 --out " + d / "b.png").exit_code, 0);
+  EXPECT_EQ(cv::imread(d / "b.png").cols, 200);
+  ASSERT_EQ(test::run_ipd("figure registration " + d.path() + " --column double --dpi 150 --out " + d / "c.png").exit_code, 0);
+  EXPECT_EQ(cv::imread(d / "c.png").cols, 1074);  // 7.16 in x 150 dpi
+}
+
+TEST(FigureFiles, UnknownExtensionIsAUsageErrorAndWritesNothing) {
+  test::TempDir d;
+  test::write_figure_study(d, false);
+  const auto r = test::run_ipd("figure pairs " + d.path() + " --out " + d / "fig.jpg");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "error: " + d / "fig.jpg" +
+                       ": unknown figure format '.jpg'; the file name must end in .pdf, .svg or .png\n");
+  EXPECT_FALSE(fs::exists(d / "fig.jpg"));
+  EXPECT_EQ(test::run_ipd("figure table " + d.path() + " --out " + d / "fig").exit_code, 2);
+  EXPECT_FALSE(fs::exists(d / "fig"));
+}
+
+TEST(FigureFiles, GuiExportAndCliGiveTheSamePdfForTheSameView) {
+  test::TempDir d;
+  test::write_figure_study(d, true);
+  // The GUI's view: threshold 0.9 (drops real's 0.87 prediction), rock 2 of real paired by hand with rock 1
+  // of synth (the edit is saved where `ipd figure` reads it).
+  Session s = Session::open(d.path());
+  s.set_conf_threshold(0.9);
+  run_save_job(s.apply(0, Edit::pair(1, 0)));
+  ui::FigureOptions o;
+  ui::SceneFigureInput gui = ui::scene_input_from_session(s, 0);
+  ui::load_pictures(gui, s.study());
+  test::write_text(d / "gui.pdf", ui::scene_figure_file("pairs", gui, o, ui::FigureFormat::kPdf));
+  const auto r = test::run_ipd("figure pairs " + d.path() + " --scene s1 --conf 0.9 --out " + d / "cli.pdf");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const PdfText from_gui = pdf_text(d / "gui.pdf"), from_cli = pdf_text(d / "cli.pdf");
+  EXPECT_EQ(from_gui.all(), from_cli.all());
+  // real has no prediction left: its rock scores 0, synth's 0.8182: IPD 0.8182 over the one (edited) pair.
+  EXPECT_NE(from_gui.all().find("scene IPD 0.8182 (1 pair), conf \u2265 0.9, pairs fixed by hand"), std::string::npos)
+      << from_gui.all();
+  EXPECT_TRUE(has_word(from_gui, "x1"));  // real's rock 1 is unpaired now
+  // A different view (no threshold) is a different figure.
+  ASSERT_EQ(test::run_ipd("figure pairs " + d.path() + " --scene s1 --out " + d / "other.pdf").exit_code, 0);
+  EXPECT_NE(pdf_text(d / "other.pdf").all(), from_gui.all());
+}
+
+}  // namespace
+}  // namespace ipd

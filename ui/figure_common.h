@@ -1,0 +1,47 @@
+// Pieces every figure kind uses: colours, wrapped text, a legend row, labels placed without collisions.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "canvas.h"
+#include "ipd/label_placer.h"
+
+namespace ipd::ui::fig {
+
+constexpr Colour kInk = rgb(20, 20, 20), kGrey = rgb(110, 110, 110), kPinkC = rgb(255, 105, 200),
+                 kRedC = rgb(235, 40, 40), kUnpairedC = rgb(160, 160, 160), kBlueC = rgb(40, 110, 230),
+                 kGreenC = rgb(40, 160, 80), kBackdrop = rgb(0, 0, 0, 165);
+
+// Breaks `text` at spaces into lines no wider than `width` (a word longer than the width gets a line).
+std::vector<std::string> wrap(Canvas& c, const TextStyle& st, const std::string& text, double width);
+// Draws wrapped text from (x, y) down; returns the height used.
+double draw_wrapped(Canvas& c, Pt at, const TextStyle& st, const std::string& text, double width);
+
+enum class Swatch { kBox, kDot, kRing, kLine };
+struct LegendItem {
+  Swatch swatch;
+  Colour colour;
+  std::string text;
+};
+// Items flowing left to right, wrapping to new rows; returns the height used.
+double draw_legend(Canvas& c, Pt at, double width, const TextStyle& st, const std::vector<LegendItem>& items);
+
+// A label to place: the text, its style, what it names (in points) and whether it sits on a dark backdrop.
+struct Label {
+  std::string text;
+  TextStyle style;
+  PtRect target;
+};
+// Places labels inside `bounds` avoiding each other and `taken`; draws them (on a dark backdrop, leaders
+// in the label's colour) and returns how many were left out.
+int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bounds, const std::vector<PtRect>& taken,
+                bool backdrop);
+
+// "3 labels left out (no room at this size)"-style footnote; returns the height used (0 when none).
+double draw_footnote(Canvas& c, Pt at, double width, double font_pt, int left_out);
+
+// Text style helpers: never below kMinTextPt.
+TextStyle style(double size_pt, Colour colour, bool bold = false);
+
+}  // namespace ipd::ui::fig

@@ -1,0 +1,30 @@
+#include "figure_export.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+
+namespace ipd::ui {
+
+DisplayList scene_figure(const std::string& kind, const SceneFigureInput& in, const FigureOptions& options,
+                         const FontMetrics& metrics) {
+  DisplayList out(metrics);
+  draw_scene_figure(out, kind, in, options);
+  return out;
+}
+
+std::string scene_figure_file(const std::string& kind, const SceneFigureInput& in, const FigureOptions& options,
+                              FigureFormat format) {
+  const FontMetrics metrics(options.font_file.empty() ? default_font_file() : options.font_file);
+  const DisplayList fig = scene_figure(kind, in, options, metrics);
+  return render_figure_file(fig, metrics, format, options.dpi, fmt::format("{} {} vs {}", in.stem, in.a, in.b));
+}
+
+std::string bad_extension_message(const std::string& path) {
+  if (figure_format_of(path)) return {};
+  const std::string ext = std::filesystem::path(path).extension().string();
+  return fmt::format("{}: unknown figure format '{}'; the file name must end in .pdf, .svg or .png", path,
+                     ext.empty() ? "(no extension)" : ext);
+}
+
+}  // namespace ipd::ui

@@ -1,0 +1,45 @@
+// What every figure kind shares: physical size, font size, layers, crop; validated once.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace ipd::ui {
+
+constexpr double kSingleColumnIn = 3.5, kDoubleColumnIn = 7.16;  // IEEE column widths
+constexpr double kMinTextPt = 6;                                 // nothing smaller on the page
+
+struct FigureLayers {
+  bool gt = true, pred = true, conf = false, indices = true, pairs = true, legend = true;
+  bool operator==(const FigureLayers& o) const;
+};
+// "gt,pred,conf,indices,pairs,legend" (any subset, any order); throws std::invalid_argument naming the bad
+// layer and the accepted ones.
+FigureLayers parse_layers(const std::string& list);
+std::string to_string(const FigureLayers& layers);
+// All but conf for a single column (confidences don't fit), all for wider figures.
+FigureLayers default_layers(double width_in);
+
+// A region of the pictures in normalised coordinates (0..1, y down).
+struct Crop {
+  double x0 = 0, y0 = 0, x1 = 1, y1 = 1;
+  bool whole() const { return x0 == 0 && y0 == 0 && x1 == 1 && y1 == 1; }
+};
+// "X0,Y0,X1,Y1"; throws std::invalid_argument unless 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1.
+Crop parse_crop(const std::string& text);
+
+struct FigureOptions {
+  double width_in = kSingleColumnIn;
+  double font_pt = 8;
+  double dpi = 300;  // PNG only
+  FigureLayers layers = default_layers(kSingleColumnIn);
+  Crop crop;
+  std::string font_file;  // empty: default_font_file()
+  bool ci = false;        // table: confidence intervals
+  std::string by = "size";  // breakdown: size|region|confidence
+  double width_pt() const { return width_in * 72.0; }
+  // Throws std::invalid_argument with a sentence naming the bad value.
+  void validate() const;
+};
+
+}  // namespace ipd::ui

@@ -1,0 +1,108 @@
+#include "figure_table.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "figure_common.h"
+#include "ipd/ipd.h"
+#include <fmt/format.h>
+
+namespace ipd::ui {
+
+using namespace fig;
+
+namespace {
+double widest_word(Canvas& c, const TextStyle& st, const std::string& s) {
+  std::istringstream in(s);
+  double w = 0;
+  for (std::string word; in >> word;) w = std::max(w, c.measure(st, word).x);
+  return w;
+}
+}  // namespace
+
+void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptions& o) {
+  o.validate();
+  const double W = o.width_pt(), m = 1.0;
+  const size_t cols = t.header.size();
+  // The largest font (up to --font-pt) at which the columns fit the width.
+  double F = o.font_pt;
+  std::vector<double> w(cols);
+  for (;; F -= 0.25) {
+    F = std::max(F, kMinTextPt);
+    const TextStyle bold = style(F, kInk, true);
+    const double pad = 0.9 * F;
+    double total = 0;
+    for (size_t c = 0; c < cols; ++c) {
+      w[c] = widest_word(out, bold, t.header[c]);
+      for (size_t r = 0; r < t.rows.size(); ++r) w[c] = std::max(w[c], out.measure(bold, t.rows[r][c]).x);
+      // A header wider than its column may use the column's width up to its own width.
+      w[c] = std::max(w[c], std::min(out.measure(bold, t.header[c]).x, (W - 2 * m) / cols - pad)) + pad;
+      total += w[c];
+    }
+    if (total <= W - 2 * m || F <= kMinTextPt) break;
+  }
+  const TextStyle body = style(F, kInk), bold = style(F, kInk, true);
+  const double pad = 0.9 * F, line_h = out.measure(body, "Ag").y, lw = std::max(0.3, 0.06 * F);
+  double y = m + draw_wrapped(out, {m, m}, style(o.font_pt, kInk), t.title, W - 2 * m) + 0.4 * F;
+  std::vector<double> x(cols + 1, m);
+  for (size_t c = 0; c < cols; ++c) x[c + 1] = x[c] + w[c];
+  // Header: wrapped per column, on a light band.
+  size_t header_lines = 1;
+  std::vector<std::vector<std::string>> head(cols);
+  for (size_t c = 0; c < cols; ++c) {
+    head[c] = wrap(out, bold, t.header[c], w[c] - pad);
+    header_lines = std::max(header_lines, head[c].size());
+  }
+  const double top = y, head_h = header_lines * line_h + 0.5 * F, row_h = line_h + 0.5 * F;
+  out.fill_rect({x[0], y, x[cols], y + head_h}, rgb(235, 235, 240));
+  for (size_t c = 0; c < cols; ++c)
+    for (size_t l = 0; l < head[c].size(); ++l)
+      out.text({x[c] + pad / 2, y + 0.25 * F + l * line_h}, Anchor::kTopLeft, bold, head[c][l]);
+  y += head_h;
+  for (size_t r = 0; r < t.rows.size(); ++r) {
+    for (size_t c = 0; c < cols; ++c) {
+      const bool is_bold = r < t.bold.size() && c < t.bold[r].size() && t.bold[r][c];
+      out.text({x[c] + pad / 2, y + 0.25 * F}, Anchor::kTopLeft, is_bold ? bold : body, t.rows[r][c]);
+    }
+    y += row_h;
+  }
+  out.line({x[0], top}, {x[cols], top}, kInk, lw * 2);
+  out.line({x[0], top + head_h}, {x[cols], top + head_h}, kInk, lw);
+  out.line({x[0], y}, {x[cols], y}, kInk, lw * 2);
+  y += 0.4 * F;
+  if (!t.note.empty()) y += draw_wrapped(out, {m, y}, style(o.font_pt * 0.8, kGrey), t.note, W - 2 * m);
+  out.width_pt = W;
+  out.height_pt = std::ceil(y + m);
+}
+
+TableFigure table_figure_of(const CrossTable& t) {
+  TableFigure fig;
+  fig.title = "Instance Performance Difference (lower is better)";
+  fig.header.push_back("Train \\ Eval");
+  for (const auto& [a, b] : t.columns) fig.header.push_back("|" + a + "\u00a0\u2212 " + b + "|");  // "−" stays with the first name
+  const size_t nc = t.columns.size();
+  for (size_t r = 0; r < t.models.size(); ++r) {
+    const auto& m = t.models[r];
+    std::vector<std::string> row = {m.trained_on.empty() ? m.name : m.name + " (" + m.trained_on + ")"};
+    std::vector<char> bold(nc + 1, 0);
+    double best = INFINITY;
+    for (size_t c = 0; c < nc; ++c) {
+      const auto& cell = t.cells[r * nc + c];
+      if (cell.involves_training_domain && !std::isnan(cell.ipd)) best = std::min(best, cell.ipd);
+    }
+    for (size_t c = 0; c < nc; ++c) {
+      const auto& cell = t.cells[r * nc + c];
+      row.push_back(!cell.involves_training_domain ? "\u2013"
+                    : std::isnan(cell.ipd)         ? "n/a"
+                                                   : fmt::format("{:.4f}", cell.ipd));
+      bold[c + 1] = cell.involves_training_domain && cell.ipd == best;
+    }
+    fig.rows.push_back(row);
+    fig.bold.push_back(bold);
+  }
+  fig.note = "Rows: detector and its training domain. \u2013: pair not involving the training domain; bold: the row's best.";
+  return fig;
+}
+
+}  // namespace ipd::ui

@@ -1,0 +1,32 @@
+// Table I as a figure: the cross table with the row's best cell in bold, optional confidence intervals.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "canvas.h"
+#include "figure_options.h"
+
+namespace ipd::ui {
+
+struct TableFigure {
+  std::string title;
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::vector<char>> bold;  // per cell (rows x header), the row's best
+  std::string note;
+};
+
+// Columns fit the width: headers wrap at spaces, then the font shrinks (never below 6 pt).
+void draw_table_figure(DisplayList& out, const TableFigure& table, const FigureOptions& options);
+
+}  // namespace ipd::ui
+
+namespace ipd {
+struct CrossTable;
+}
+namespace ipd::ui {
+// Table I's cells as the paper shows them: "–" for pairs not involving the training domain, the row's
+// best in bold.
+TableFigure table_figure_of(const CrossTable& table);
+}  // namespace ipd::ui
