@@ -36,6 +36,10 @@ nlohmann::json report_json(const Job& job, const RegistrationReport& r) {
   j["inliers"] = r.inliers;
   j["score"] = r.score;
   j["stop"] = ipd::to_string(r.stop);
+  j["confidence"] = r.confidence;
+  j["ambiguous"] = r.ambiguous;
+  j["work"] = r.work;
+  j["work_budget"] = r.work_budget;
   if (!r.note.empty()) j["note"] = r.note;
   j["elapsed_ms"] = r.elapsed_ms;
   return j;
@@ -151,6 +155,9 @@ Runner add_register_command(CLI::App& app) {
       fmt::print("  method {}: {} trials, {} hypotheses, {} inliers, score {:.5f}; stopped: {}\n",
                  r["method"].get<std::string>(), r["trials"].get<int>(), r["hypotheses"].get<int>(),
                  r["inliers"].get<int>(), r["score"].get<double>(), r["stop"].get<std::string>());
+      fmt::print("  work: {:.3g} of {:.3g} point evaluations; confidence {:.3f}{}\n", r["work"].get<double>(),
+                 r["work_budget"].get<double>(), r["confidence"].get<double>(),
+                 r["ambiguous"].get<bool>() ? " (AMBIGUOUS: another alignment fits almost as well)" : "");
       if (r.contains("note")) fmt::print("  note: {}\n", r["note"].get<std::string>());
       const auto& a = r["affine"];
       fmt::print("  affine (real -> synth, normalised): [{:.5f} {:.5f} {:.5f}; {:.5f} {:.5f} {:.5f}]\n",

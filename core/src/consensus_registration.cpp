@@ -9,6 +9,7 @@
 // assignment on the IoU of the aligned boxes.
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
@@ -17,6 +18,7 @@
 #include "ipd/pairing.h"
 #include "ipd/point_grid.h"
 #include "registration_frame.h"
+#include "registration_recorder.h"
 
 namespace ipd::detail {
 
@@ -67,27 +69,6 @@ std::vector<std::vector<int>> nearest_neighbours(const std::vector<Eigen::Vector
   return nn;
 }
 
-double median_nn_distance(const std::vector<Eigen::Vector2d>& p) {
-  if (p.size() < 2) return 0;
-  const PointGrid g(p);
-  std::vector<double> d;
-  std::vector<int> near;
-  for (size_t i = 0; i < p.size(); ++i) {
-    // nearest other point: search the grid for the two closest and skip itself
-    double best = INFINITY;
-    for (double r = 1e-9; best == INFINITY && r < 1e6; r *= 4) {
-      g.within(p[i], r, &near);
-      for (int j : near)
-        if (j != static_cast<int>(i)) best = std::min(best, (p[j] - p[i]).norm());
-      if (best == INFINITY && near.size() > 64) break;  // many duplicates: zero spacing
-    }
-    if (best == INFINITY) best = 0;
-    d.push_back(best);
-  }
-  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-  return d[d.size() / 2];
-}
-
 // P(X >= k) for X ~ Binomial(n, p), summed in log space.
 double binomial_tail(int n, double p, int k) {
   if (k <= 0) return 1.0;
@@ -98,6 +79,44 @@ double binomial_tail(int n, double p, int k) {
     tail += std::exp(std::lgamma(n + 1.0) - std::lgamma(x + 1.0) - std::lgamma(n - x + 1.0) + x * std::log(p) +
                      (n - x) * std::log1p(-p));
   return std::min(1.0, tail);
+}
+
+// The translations most (A, B) rock pairs agree on once A's rocks are mapped by `lin`: votes binned at
+// `bin`, the mean of each of the `top` fullest bins (holding at least two votes), fullest first. A rocks
+// are subsampled to at most 64 so the cost stays linear in B.
+std::vector<Eigen::Vector2d> top_translations(const Eigen::Matrix2d& lin, const std::vector<Eigen::Vector2d>& a,
+                                              const std::vector<Eigen::Vector2d>& b, double bin, size_t top) {
+  std::vector<std::pair<std::uint64_t, Eigen::Vector2d>> votes;
+  const size_t stride = std::max<size_t>(1, a.size() / 64);
+  votes.reserve((a.size() / stride + 1) * b.size());
+  for (size_t i = 0; i < a.size(); i += stride) {
+    const Eigen::Vector2d p = lin * a[i];
+    for (const auto& q : b) {
+      const Eigen::Vector2d t = q - p;
+      // Bin indices may be negative: pack them as unsigned (shifting a negative value is undefined).
+      const auto kx = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(t.x() / bin)));
+      const auto ky = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(t.y() / bin)));
+      votes.emplace_back((kx << 32) ^ (ky & 0xffffffffull), t);
+    }
+  }
+  std::sort(votes.begin(), votes.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  struct Bin {
+    int count;
+    Eigen::Vector2d sum;
+  };
+  std::vector<Bin> bins;
+  for (size_t k = 0; k < votes.size();) {
+    size_t e = k;
+    Eigen::Vector2d sum(0, 0);
+    while (e < votes.size() && votes[e].first == votes[k].first) sum += votes[e++].second;
+    bins.push_back({static_cast<int>(e - k), sum});
+    k = e;
+  }
+  const size_t n = std::min(top, bins.size());
+  std::partial_sort(bins.begin(), bins.begin() + n, bins.end(), [](const Bin& x, const Bin& y) { return x.count > y.count; });
+  std::vector<Eigen::Vector2d> out;
+  for (size_t k = 0; k < n && bins[k].count >= 2; ++k) out.push_back(bins[k].sum / bins[k].count);
+  return out;
 }
 
 class ConsensusScorer {
@@ -286,9 +305,9 @@ class ConsensusScorer {
 // the triple ones share one loop, one budget and one stopping rule.
 class GuidedSampler {
  public:
-  GuidedSampler(const RegistrationFrame& f, const Bounds& bounds, double gate, std::uint64_t seed)
+  GuidedSampler(const RegistrationFrame& f, const Bounds& bounds, double gate, std::uint64_t seed, bool record)
       : f_(f), bounds_(bounds), gate2_(gate * gate), min_det_(bounds.min_scale * bounds.min_scale),
-        max_det_(bounds.max_scale * bounds.max_scale) {
+        max_det_(bounds.max_scale * bounds.max_scale), record_(record) {
     // 1. identity in image coordinates
     queue_.push_back(f.from_image(identity_affine()));
     // 2. the most voted translations (identity linear part), votes binned at the gate size
@@ -329,6 +348,7 @@ class GuidedSampler {
   }
 
   bool next(Affine2* out) {
+    has_sample = false;
     if (q_pos_ < queue_.size()) {
       anchor = -1 - static_cast<long>(q_pos_);
       *out = queue_[q_pos_++];
@@ -341,6 +361,7 @@ class GuidedSampler {
       if (pass_ >= 2) {
         if (deferred_pos_ >= deferred_.size()) return false;
         anchor = deferred_[deferred_pos_].first;
+        if (record_) sample = deferred_samples_[deferred_pos_], has_sample = true;
         *out = deferred_[deferred_pos_++].second;
         return true;
       }
@@ -360,44 +381,22 @@ class GuidedSampler {
     anchor = pending_anchor_;  // rock of A the hypothesis grew from; a wrong match rarely repeats
     *out = pending_.back();
     pending_.pop_back();
+    if (record_) sample = pending_samples_.back(), has_sample = true, pending_samples_.pop_back();
     return true;
   }
 
   long anchor = -1;
+  // The current hypothesis' rocks (record mode): A's three then B's three, in matching order.
+  std::array<int, 6> sample{};
+  bool has_sample = false;
 
  private:
   void vote_translations(double gate) {
     const Affine2 id = f_.from_image(identity_affine());
-    const Eigen::Matrix2d lin = id.leftCols<2>();
     if (f_.a.size() * f_.b.size() > 250000) return;  // huge sets: the triples alone are cheaper
-    std::vector<std::pair<std::uint64_t, Eigen::Vector2d>> votes;
-    for (const auto& p : f_.a)
-      for (const auto& q : f_.b) {
-        const Eigen::Vector2d t = q - lin * p;
-        // Bin indices may be negative: pack them as unsigned (shifting a negative value is undefined).
-        const auto kx = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(t.x() / gate)));
-        const auto ky = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(t.y() / gate)));
-        votes.emplace_back((kx << 32) ^ (ky & 0xffffffffull), t);
-      }
-    std::sort(votes.begin(), votes.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    struct Bin {
-      int count;
-      Eigen::Vector2d sum;
-    };
-    std::vector<Bin> bins;
-    for (size_t k = 0; k < votes.size();) {
-      size_t e = k;
-      Eigen::Vector2d sum(0, 0);
-      while (e < votes.size() && votes[e].first == votes[k].first) sum += votes[e++].second;
-      bins.push_back({static_cast<int>(e - k), sum});
-      k = e;
-    }
-    const size_t top = std::min<size_t>(3, bins.size());
-    std::partial_sort(bins.begin(), bins.begin() + top, bins.end(),
-                      [](const Bin& x, const Bin& y) { return x.count > y.count; });
-    for (size_t k = 0; k < top && bins[k].count >= 2; ++k) {
+    for (const auto& t : top_translations(id.leftCols<2>(), f_.a, f_.b, gate, 3)) {
       Affine2 m = id;
-      m.col(2) = bins[k].sum / bins[k].count;
+      m.col(2) = t;
       queue_.push_back(m);
     }
   }
@@ -433,8 +432,12 @@ class GuidedSampler {
         const int support = ni.size() >= 4 ? local_support(m, i, j, u1, u2) : 2;
         if (support >= 2) pending_.push_back(m);
         else if (support == 1) deferred_.emplace_back(i, m);
+        if (record_ && support >= 1)
+          (support >= 2 ? pending_samples_ : deferred_samples_)
+              .push_back({i, ni[u1], ni[u2], j, nj[x1], nj[x2]});
       }
     std::reverse(pending_.begin(), pending_.end());  // pop_back hands them out in generation order
+    std::reverse(pending_samples_.begin(), pending_samples_.end());
   }
 
   // How many other neighbours of i land within the gate of a neighbour of j (counted up to 2).
@@ -473,7 +476,9 @@ class GuidedSampler {
   double gate2_;
   double min_det_, max_det_;  // the determinant lies between the squared singular-value bounds
   std::vector<Affine2> queue_, pending_;
+  bool record_;
   std::vector<std::pair<long, Affine2>> deferred_;
+  std::vector<std::array<int, 6>> pending_samples_, deferred_samples_;  // record mode only
   size_t deferred_pos_ = 0;
   size_t q_pos_ = 0;
   std::vector<std::vector<int>> nn_a_, nn_b_;
@@ -505,23 +510,46 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
   if (!(gate > 0)) gate = std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2);
   out.affine_normalised = f.from_image(identity_affine());
   if (!f.a.empty() && !f.b.empty()) {
-    GuidedSampler sampler(f, bounds, gate, o.seed);
+    GuidedSampler sampler(f, bounds, gate, o.seed, o.record_trace);
     ConsensusScorer scorer(f, gate, bounds, o.max_trials, &sampler.anchor);
     PassThroughEstimator estimator;
     RobustLoopOptions lo;
     lo.max_trials = o.max_trials;
     lo.time_budget_ms = o.time_budget_ms;
-    const auto r = run_robust_loop<Affine2, Affine2>(sampler, estimator, scorer, lo);
+    lo.max_work = work_budget(o, f.a.size(), f.b.size());
+    lo.work_per_model = static_cast<double>(f.a.size());  // one nearest-neighbour query per A rock
+    auto sample_of = [&](const Affine2&, std::vector<int>* sa, std::vector<int>* sb) {
+      if (!sampler.has_sample) return;  // identity and voted translations are not built from rocks
+      sa->assign(sampler.sample.begin(), sampler.sample.begin() + 3);
+      sb->assign(sampler.sample.begin() + 3, sampler.sample.end());
+    };
+    SearchRecorder recorder(f, gate, o.record_trace, [](double s) { return s; }, sample_of);
+    const auto r = run_robust_loop<Affine2, Affine2>(sampler, estimator, scorer, lo, recorder);
     out.trials = r.trials;
     out.hypotheses = r.hypotheses;
+    out.work = r.work;
     out.stop = r.stop;
     if (r.found && std::isfinite(r.best_score)) {
       out.affine_normalised = r.best;
       out.score = r.best_score;
       scorer.polish(&out.affine_normalised);
+      recorder.add_step(TraceStepKind::kPolish, out.affine_normalised, out.score, out.score, false);
+      // The search stops as soon as its best can't be beaten, often before a rival is scored. Shifted
+      // placements are the rivals a small overlap allows (a patch of rocks that fits in several places), so
+      // the translations most rock pairs agree on under the best's linear part are scored too.
+      double rival = recorder.rival_score();
+      for (const auto& t : top_translations(r.best.leftCols<2>(), f.a, f.b, 2 * gate, 4)) {
+        Affine2 m = r.best;
+        m.col(2) = t;
+        if (!recorder.agree(m, r.best)) rival = std::max(rival, scorer.score(m));
+      }
+      out.confidence = confidence_from_scores(r.best_score, rival);
     } else {
       out.note = "no plausible affine found: identity used";
+      out.confidence = 0;
     }
+    out.ambiguous = out.confidence < kAmbiguousBelow;
+    out.trace = recorder.take_trace(describe_stop(r.stop, r.trials, r.hypotheses, r.work, lo.max_work));
     out.inliers = scorer.count_inliers(out.affine_normalised);
     if (f.a.size() < 3 || f.b.size() < 3) out.note = "fewer than 3 rocks on a side: translation at most";
   } else {

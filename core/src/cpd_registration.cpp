@@ -3,11 +3,14 @@
 // EM alternates soft correspondences and a closed-form affine. Rocks are then paired like the consensus
 // method (IoU of the aligned boxes, optimal assignment), so the two differ only in the alignment.
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 
 #include "ipd/pairing.h"
 #include "ipd/point_grid.h"
 #include "registration_frame.h"
+#include "registration_recorder.h"
 
 namespace ipd::detail {
 
@@ -35,7 +38,19 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   const double tolerance = 1e-10;
   int it = 0;
   out.stop = StopReason::kMaxTrials;
+  // Each EM step weighs every (A, B) pair: the work budget bounds the number of steps (at least one).
+  const double budget = work_budget(o, f.a.size(), f.b.size()), per_step = static_cast<double>(m) * n;
+  const int allowed = static_cast<int>(std::clamp(std::floor(budget / per_step), 1.0, 1e9));
+  // Trace: one step per EM iteration; inliers within the consensus gate (0.3 of B's rock spacing).
+  SearchRecorder recorder(f, std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2), o.record_trace,
+                          [](double s) { return s; }, nullptr);
+  double best_sigma = INFINITY;
   for (; it < o.cpd_iterations; ++it) {
+    if (it >= allowed) {
+      out.stop = StopReason::kWorkBudget;
+      break;
+    }
+    out.work += per_step;
     if (!(sigma2 > 1e-12)) {
       out.stop = StopReason::kCannotBeBeaten;
       break;
@@ -61,6 +76,15 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
     const double xx = (xh.array().square().colwise() * pt1.array()).sum();
     sigma2 = (xx - (a * b.transpose()).trace()) / (np * 2);
     if (!(sigma2 > 0)) sigma2 = tolerance;
+    if (recorder.recording()) {
+      Affine2 step;
+      step.leftCols<2>() = lin;
+      step.col(2) = t.transpose();
+      const double sigma = std::sqrt(sigma2) * f.spread;
+      const bool better = sigma < best_sigma;
+      best_sigma = std::min(best_sigma, sigma);
+      recorder.add_step(TraceStepKind::kIteration, step, sigma, best_sigma, better);
+    }
     if (std::abs(old - sigma2) < tolerance) {
       out.stop = StopReason::kConverged;
       ++it;
@@ -69,6 +93,8 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   }
   out.trials = it;
   out.hypotheses = it;
+  out.trace = recorder.take_trace(fmt::format("{} ({} EM iterations, {:.3g} of {:.3g} point evaluations)",
+                                              to_string(out.stop), it, out.work, budget));
   out.affine_normalised.leftCols<2>() = lin;
   out.affine_normalised.col(2) = t.transpose();
   if (!out.affine_normalised.allFinite()) {

@@ -7,6 +7,7 @@
 #include "ipd/pairing.h"
 #include "ipd/point_grid.h"
 #include "registration_frame.h"
+#include "registration_recorder.h"
 
 namespace ipd::detail {
 
@@ -16,6 +17,7 @@ struct RandomTripleSampler {
   const std::vector<Eigen::Vector2d>& a;
   const std::vector<Eigen::Vector2d>& b;
   Rng rng;
+  int ia[3] = {0, 0, 0}, ib[3] = {0, 0, 0};  // the current sample's rocks
 
   static void pick3(Rng& rng, int n, int out[3]) {
     out[0] = rng.below(n);
@@ -23,7 +25,6 @@ struct RandomTripleSampler {
     do out[2] = rng.below(n); while (out[2] == out[0] || out[2] == out[1]);
   }
   bool next(TriplePair* s) {
-    int ia[3], ib[3];
     pick3(rng, static_cast<int>(a.size()), ia);
     pick3(rng, static_cast<int>(b.size()), ib);
     for (int k = 0; k < 3; ++k) {
@@ -85,10 +86,31 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   RobustLoopOptions lo;
   lo.max_trials = o.max_trials;
   lo.time_budget_ms = o.time_budget_ms;
-  const auto r = run_robust_loop<Affine2, TriplePair>(sampler, estimator, scorer, lo);
+  lo.max_work = work_budget(o, f.a.size(), f.b.size());
+  lo.work_per_model = static_cast<double>(f.a.size());  // one nearest-neighbour query per A rock
+  // The trace's samples: A's triple in drawing order, B's in the order this model matched them.
+  auto sample_of = [&](const Affine2& m, std::vector<int>* sa, std::vector<int>* sb) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d p = apply(m, f.a[sampler.ia[k]]);
+      int best = 0;
+      for (int t = 1; t < 3; ++t)
+        if ((f.b[sampler.ib[t]] - p).squaredNorm() < (f.b[sampler.ib[best]] - p).squaredNorm()) best = t;
+      sa->push_back(sampler.ia[k]);
+      sb->push_back(sampler.ib[best]);
+    }
+  };
+  const double spread = f.spread;
+  SearchRecorder recorder(f, gate, o.record_trace, [spread](double s) { return -s * spread; }, sample_of);
+  const auto r = run_robust_loop<Affine2, TriplePair>(sampler, estimator, scorer, lo, recorder);
   out.trials = r.trials;
   out.hypotheses = r.hypotheses;
+  out.work = r.work;
   out.stop = r.stop;
+  // Scores are mean distances (lower is better): confidence = 1 - best / best distinct rival.
+  if (r.found && std::isfinite(recorder.rival_score()))
+    out.confidence = confidence_from_scores(-recorder.rival_score(), -r.best_score);
+  out.ambiguous = out.confidence < kAmbiguousBelow;
+  out.trace = recorder.take_trace(describe_stop(r.stop, r.trials, r.hypotheses, r.work, lo.max_work));
   if (!r.found) {
     out.affine_normalised = f.from_image(identity_affine());
     out.note = "every sampled triple was degenerate: identity used";

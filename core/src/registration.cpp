@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <stdexcept>
 
+#include "ipd/point_grid.h"
 #include "registration_frame.h"
 
 namespace ipd {
@@ -42,6 +43,8 @@ std::string RegistrationOptions::validate() const {
     return fmt::format("max_rotation_deg must be in (0, 180], got {}", max_rotation_deg);
   if (!(inlier_gate >= 0)) return fmt::format("inlier_gate must be >= 0 (0: automatic), got {}", inlier_gate);
   if (!(min_pair_iou >= 0 && min_pair_iou < 1)) return fmt::format("min_pair_iou must be in [0, 1), got {}", min_pair_iou);
+  if (!(work_budget >= 0) || !std::isfinite(work_budget))
+    return fmt::format("work_budget must be >= 0 (0: automatic), got {}", work_budget);
   if (cpd_iterations < 1) return fmt::format("cpd_iterations must be at least 1, got {}", cpd_iterations);
   if (!(cpd_outlier_weight >= 0 && cpd_outlier_weight < 1))
     return fmt::format("cpd_outlier_weight must be in [0, 1), got {}", cpd_outlier_weight);
@@ -73,6 +76,45 @@ RegistrationFrame::RegistrationFrame(const std::vector<Box>& boxes_a, const std:
   for (const auto& bx : boxes_b) {
     b.push_back((iso(bx) - centroid_b) / spread);
     size_b.emplace_back(bx.w / spread, bx.h / aspect / spread);
+  }
+}
+
+double work_budget(const RegistrationOptions& o, size_t na, size_t nb) {
+  if (o.work_budget > 0) return o.work_budget;
+  const double n = static_cast<double>(na + nb);
+  return 1e6 + 2000.0 * n * std::log2(n + 2);
+}
+
+double median_nn_distance(const std::vector<Eigen::Vector2d>& p) {
+  if (p.size() < 2) return 0;
+  const PointGrid g(p);
+  std::vector<double> d;
+  std::vector<int> near;
+  for (size_t i = 0; i < p.size(); ++i) {
+    // nearest other point: widen the search until it holds one besides the point itself
+    double best = INFINITY;
+    for (double r = 1e-9; best == INFINITY && r < 1e6; r *= 4) {
+      g.within(p[i], r, &near);
+      for (int j : near)
+        if (j != static_cast<int>(i)) best = std::min(best, (p[j] - p[i]).norm());
+      if (best == INFINITY && near.size() > 64) break;  // many duplicates: zero spacing
+    }
+    if (best == INFINITY) best = 0;
+    d.push_back(best);
+  }
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return d[d.size() / 2];
+}
+
+std::string describe_stop(StopReason stop, int trials, int hypotheses, double work, double budget) {
+  std::string s = to_string(stop);
+  switch (stop) {
+    case StopReason::kWorkBudget:
+      return fmt::format("{} ({:.3g} of {:.3g} point evaluations; {} samples, {} hypotheses)", s, work, budget, trials,
+                         hypotheses);
+    case StopReason::kNotRun:
+    case StopReason::kTooFewPoints: return s;
+    default: return fmt::format("{} ({} samples, {} hypotheses, {:.3g} point evaluations)", s, trials, hypotheses, work);
   }
 }
 
@@ -128,6 +170,12 @@ RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<B
   r.score = out.score;
   r.stop = out.stop;
   r.note = std::move(out.note);
+  r.confidence = out.confidence;
+  r.ambiguous = out.ambiguous;
+  r.work = out.work;
+  r.work_budget = detail::work_budget(options, a.size(), b.size());
+  r.trace = std::move(out.trace);
+  if (options.record_trace && r.trace.stop.empty()) r.trace.stop = to_string(r.stop);
   r.elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return r;
 }

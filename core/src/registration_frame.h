@@ -33,7 +33,21 @@ struct MethodOutcome {
   double score = 0;
   StopReason stop = StopReason::kNotRun;
   std::string note;
+  double confidence = 1.0;
+  bool ambiguous = false;
+  double work = 0;           // point evaluations spent (see RegistrationOptions::work_budget)
+  RegistrationTrace trace;   // filled when options.record_trace
 };
+
+// The work bound of a registration of na against nb rocks: options.work_budget, or when that is 0 one that
+// grows as n log n in the rock count (about a second of work at 5,000 a side).
+double work_budget(const RegistrationOptions& o, size_t na, size_t nb);
+
+// Median distance between a point and its nearest other point (0 for fewer than two points).
+double median_nn_distance(const std::vector<Eigen::Vector2d>& p);
+
+// The stop reason in words, with the numbers behind it.
+std::string describe_stop(StopReason stop, int trials, int hypotheses, double work, double budget);
 
 MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o);
 MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<Box>& boxes_a,

@@ -39,6 +39,9 @@ struct RegistrationOptions {
   int cpd_iterations = 100;     // cpd: EM iterations
   double cpd_outlier_weight = 0.2;
   bool record_trace = false;    // fill RegistrationReport::trace (ipd-studio's replay); off in batch runs
+  // Bound on the work per pair, in point evaluations (one mapped rock scored, or one A-B term of an EM
+  // step); 0: automatic, growing as n log n in the rock count, so 5,000 rocks a side stop within seconds.
+  double work_budget = 0;
 
   // Empty when usable; otherwise what is wrong, in one sentence.
   std::string validate() const;
@@ -55,6 +58,7 @@ struct RegistrationReport {
   StopReason stop = StopReason::kNotRun;
   std::string note;                    // why a fallback was used, if one was
   double elapsed_ms = 0;
+  double work = 0, work_budget = 0;    // point evaluations spent, and the bound they were held to
   // How sure the pairing is: 1 - (second-best distinct hypothesis' score / best score), in [0, 1]; 1 when
   // no rival alignment came close. `ambiguous` is set when the overlap is too small to decide.
   double confidence = 1.0;

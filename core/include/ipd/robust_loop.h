@@ -8,16 +8,22 @@
 //              bool worth_refining(double score, double best)  whether to locally optimise this model
 //              void refine(Model*, double* score)      local optimisation (may do nothing)
 //              bool cannot_be_beaten(double score)     stop now: the best can't be (or won't be) improved
+//   Observer (optional): void on_model(const Model& raw, double raw_score, const Model& final, double score,
+//                                      bool refined, double best_score, bool new_best)
+//              after each model is scored (and refined if worth it); NoObserver costs nothing.
 #pragma once
 
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace ipd {
 
-enum class StopReason { kNotRun, kTooFewPoints, kMaxTrials, kExhausted, kConverged, kCannotBeBeaten, kTimeBudget };
+enum class StopReason {
+  kNotRun, kTooFewPoints, kMaxTrials, kExhausted, kConverged, kCannotBeBeaten, kTimeBudget, kWorkBudget
+};
 
 inline const char* to_string(StopReason r) {
   switch (r) {
@@ -28,6 +34,7 @@ inline const char* to_string(StopReason r) {
     case StopReason::kConverged: return "converged";
     case StopReason::kCannotBeBeaten: return "best score cannot be beaten";
     case StopReason::kTimeBudget: return "time budget spent";
+    case StopReason::kWorkBudget: return "work budget spent";
   }
   return "?";
 }
@@ -35,6 +42,14 @@ inline const char* to_string(StopReason r) {
 struct RobustLoopOptions {
   int max_trials = 1000;
   double time_budget_ms = 0.0;  // 0: no limit
+  // Work bound: each scored model costs `work_per_model` units (e.g. the points it maps); the loop stops
+  // before the total would pass `max_work`. 0: no limit.
+  double max_work = 0.0, work_per_model = 1.0;
+};
+
+struct NoObserver {
+  template <typename Model>
+  void on_model(const Model&, double, const Model&, double, bool, double, bool) {}
 };
 
 template <typename Model>
@@ -44,12 +59,14 @@ struct RobustLoopResult {
   double best_score = -INFINITY;
   int trials = 0;      // samples drawn
   int hypotheses = 0;  // models scored
+  double work = 0;     // hypotheses x work_per_model
   StopReason stop = StopReason::kNotRun;
 };
 
-template <typename Model, typename Sample, typename Sampler, typename Estimator, typename Scorer>
+template <typename Model, typename Sample, typename Sampler, typename Estimator, typename Scorer,
+          typename Observer = NoObserver>
 RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, Scorer& scorer,
-                                        const RobustLoopOptions& options) {
+                                        const RobustLoopOptions& options, Observer&& observer = Observer()) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   RobustLoopResult<Model> r;
@@ -74,17 +91,39 @@ RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, 
     ++r.trials;
     models.clear();
     estimator.estimate(sample, &models);
+    bool out_of_work = false;
     for (auto& m : models) {
+      if (options.max_work > 0 && r.work + options.work_per_model > options.max_work) {
+        out_of_work = true;
+        break;
+      }
       ++r.hypotheses;
+      r.work += options.work_per_model;
       double s = scorer.score(m);
+      const double raw_score = s;
       // Refine promising models, not only new bests: a minimal sample's model is noisy, and the right one
       // often scores below a wrong one until it is refined (LO-RANSAC).
-      if (scorer.worth_refining(s, r.best_score)) scorer.refine(&m, &s);
+      bool refined = false;
+      if constexpr (std::is_same_v<std::decay_t<Observer>, NoObserver>) {
+        if (scorer.worth_refining(s, r.best_score)) scorer.refine(&m, &s);
+      } else {
+        const Model raw = m;
+        if (scorer.worth_refining(s, r.best_score)) {
+          scorer.refine(&m, &s);
+          refined = true;
+        }
+        const bool new_best = s > r.best_score;
+        observer.on_model(raw, raw_score, m, s, refined, new_best ? s : r.best_score, new_best);
+      }
       if (s > r.best_score) {
         r.best = m;
         r.best_score = s;
         r.found = true;
       }
+    }
+    if (out_of_work) {
+      r.stop = StopReason::kWorkBudget;
+      break;
     }
     // Checked after every sample: the best may also become unbeatable by being confirmed.
     if (r.found && scorer.cannot_be_beaten(r.best_score)) {
