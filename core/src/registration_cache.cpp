@@ -18,7 +18,7 @@ namespace ipd {
 
 namespace {
 
-constexpr int kFormat = 1;  // bump when the entry layout or any registration method changes its results
+constexpr int kFormat = 2;  // bump when the entry layout or any registration method changes its results
 
 struct Fnv {
   std::uint64_t h;
@@ -46,6 +46,7 @@ void feed(F&& f, const std::vector<Box>& a, const std::vector<Box>& b, const Reg
   f.value(o.min_pair_iou);
   f.value(o.cpd_iterations);
   f.value(o.cpd_outlier_weight);
+  f.value(o.work_budget);
   for (const auto* set : {&a, &b}) {
     f.value(set->size());
     for (const Box& x : *set) {
@@ -126,7 +127,7 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     r.inliers = j.at("inliers").get<int>();
     r.score = j.at("score").get<double>();
     const int stop = j.at("stop").get<int>();
-    if (stop < 0 || stop > static_cast<int>(StopReason::kTimeBudget)) return std::nullopt;
+    if (stop < 0 || stop > static_cast<int>(StopReason::kWorkBudget)) return std::nullopt;
     r.stop = static_cast<StopReason>(stop);
     r.note = j.at("note").get<std::string>();
     r.elapsed_ms = j.at("elapsed_ms").get<double>();
