@@ -1,27 +1,27 @@
-// `ipd figure pairs|registration|table STUDY --out FILE.pdf|svg|png`: paper figures at a physical size,
-// drawn once through the figure canvas (ui/canvas.h): cairo for PDF and SVG, OSMesa + ImGui for PNG.
+// `ipd figure pairs|registration STUDY --out FILE.pdf|svg|png`: the scene figures at a physical size, drawn
+// once through the figure canvas (ui/canvas.h): cairo for PDF and SVG, OSMesa + ImGui for PNG. The study-wide
+// kinds (table, compare, distribution, breakdown) are in cmd_figure_stats.cpp.
 #include <fmt/format.h>
 
 #include <cmath>
 #include <filesystem>
 
-#include "canvas_cairo.h"
 #include "cli_common.h"
 #include "commands.h"
 #include "figure_export.h"
 #include "ipd/atomic_file.h"
 #include "ipd/ipd.h"
-#include "offscreen_renderer.h"
+#include "figure_cli.h"
 
 namespace ipd::cli {
 
 namespace {
 
 struct Args {
-  std::string study, scene, a, b, model, out, column = "single", layers, crop, font;
-  double width_in = 0, font_pt = 8, dpi = 300, conf = 0;
-  std::string by = "size";
-  bool ci = false, skip_bad_lines = false;
+  std::string study, scene, a, b, model;
+  double conf = 0;
+  bool skip_bad_lines = false;
+  FigureOutputArgs output;
 };
 
 // The chosen domains, model and scene of a study.
@@ -71,29 +71,6 @@ Chosen resolve(const Args& args, bool needs_scene) {
   return f;
 }
 
-ui::FigureOptions options_of(const Args& args) {
-  ui::FigureOptions o;
-  o.width_in = args.width_in > 0 ? args.width_in : args.column == "double" ? ui::kDoubleColumnIn : ui::kSingleColumnIn;
-  o.font_pt = args.font_pt;
-  o.dpi = args.dpi;
-  o.layers = args.layers.empty() ? ui::default_layers(o.width_in) : ui::parse_layers(args.layers);
-  if (!args.crop.empty()) o.crop = ui::parse_crop(args.crop);
-  o.font_file = args.font.empty() ? ui::default_font_file() : args.font;
-  o.ci = args.ci;
-  o.by = args.by;
-  o.validate();
-  return o;
-}
-
-void write_figure(const ui::DisplayList& fig, const ui::FontMetrics& metrics, const ui::FigureOptions& o,
-                  const std::string& out, const std::string& title) {
-  const ui::FigureFormat format = *ui::figure_format_of(out);
-  const std::string bytes = format == ui::FigureFormat::kPng ? figure::render_png(fig, metrics, o.dpi)
-                                                             : ui::render_figure_file(fig, metrics, format, o.dpi, title);
-  write_file_atomically(out, bytes);
-  fmt::print("{}\n", out);
-}
-
 int scene_figure(const std::string& kind, const Args& args, const ui::FigureOptions& o) {
   const Chosen c = resolve(args, true);
   RegistrationOptions reg = c.labels.study.config.registration;
@@ -101,21 +78,7 @@ int scene_figure(const std::string& kind, const Args& args, const ui::FigureOpti
   ui::SceneFigureInput in = ui::scene_input_from_study(c.labels, c.a, c.b, c.model, c.stem, args.conf, reg);
   if (kind == "pairs") ui::load_pictures(in, c.labels.study);
   const ui::FontMetrics metrics(o.font_file);
-  write_figure(ui::scene_figure(kind, in, o, metrics), metrics, o, args.out, c.stem + " " + c.a + " vs " + c.b);
-  return kOk;
-}
-
-int table_figure(const Args& args, const ui::FigureOptions& o) {
-  const Chosen c = resolve(args, false);
-  TableOptions opt;
-  opt.registration = c.labels.study.config.registration;
-  opt.registration.aspect = c.labels.study.aspect();
-  const CrossTable t = compute_cross_table(c.labels, opt);
-  for (const auto& w : t.warnings) fmt::print(stderr, "warning: {}\n", w);
-  const ui::FontMetrics metrics(o.font_file);
-  ui::DisplayList fig(metrics);
-  ui::draw_table_figure(fig, ui::table_figure_of(t), o);
-  write_figure(fig, metrics, o, args.out, "IPD cross table");
+  write_figure(ui::scene_figure(kind, in, o, metrics), metrics, o, args.output.out, c.stem + " " + c.a + " vs " + c.b);
   return kOk;
 }
 
@@ -126,50 +89,29 @@ Runner add_figure_command(CLI::App& app) {
   auto which = std::make_shared<std::string>();
   CLI::App* fig = app.add_subcommand("figure", "Figures for papers: PDF, SVG or PNG at a column's width");
   fig->require_subcommand(1);
-  auto add = [&](const char* name, const char* what, bool scene_options) {
+  auto add = [&](const char* name, const char* what) {
     CLI::App* cmd = fig->add_subcommand(name, what);
     cmd->add_option("STUDY", args->study, "Study directory")->required();
-    if (scene_options) {
-      cmd->add_option("--scene", args->scene, "Scene stem (default: the one contributing most to the IPD)");
-      cmd->add_option("--layers", args->layers,
-                      "Comma-separated subset of gt,pred,conf,indices,pairs,legend (default: all but conf for a "
-                      "single column)");
-      cmd->add_option("--crop", args->crop, "X0,Y0,X1,Y1: a region of the pictures, normalised to 0..1");
-      cmd->add_option("--conf", args->conf, "Hide predictions below this confidence")->check(CLI::Range(0.0, 1.0));
-    }
+    cmd->add_option("--scene", args->scene, "Scene stem (default: the one contributing most to the IPD)");
     cmd->add_option("--a", args->a, "Left domain (default: the first, usually real)");
     cmd->add_option("--b", args->b, "Right domain (default: the second)");
     cmd->add_option("--model", args->model, "Model whose predictions count (default: one trained on --a)");
-    cmd->add_option("--out", args->out, "File to write (atomically): .pdf, .svg or .png")->required();
-    auto* column = cmd->add_option("--column", args->column, "single (3.5 in) or double (7.16 in)")
-                       ->check(CLI::IsMember({"single", "double"}));
-    cmd->add_option("--width-in", args->width_in, "Width in inches (instead of --column)")->excludes(column);
-    cmd->add_option("--font-pt", args->font_pt, "Font size in points (default 8; at least 6)");
-    cmd->add_option("--dpi", args->dpi, "PNG resolution (default 300: a single column is 1050 px wide)");
-    cmd->add_option("--font", args->font, "TrueType font file (default: DejaVu Sans)");
+    cmd->add_option("--layers", args->output.layers,
+                    "Comma-separated subset of gt,pred,conf,indices,pairs,legend (default: all but conf for a "
+                    "single column)");
+    cmd->add_option("--crop", args->output.crop, "X0,Y0,X1,Y1: a region of the pictures, normalised to 0..1");
+    cmd->add_option("--conf", args->conf, "Hide predictions below this confidence")->check(CLI::Range(0.0, 1.0));
     cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
+    add_figure_output_options(cmd, &args->output);
     cmd->callback([which, name] { *which = name; });
   };
-  add("pairs", "Fig. 1: both pictures side by side, GT (pink, pair numbers) and predictions (red, confidence)", true);
-  add("registration", "Fig. 2: GT centres before and after registration, lines between partners", true);
-  add("table", "The cross table (Table I) as a figure", false);
-  return [args, which]() -> int {
-    if (const std::string bad = ui::bad_extension_message(args->out); !bad.empty()) {
-      fmt::print(stderr, "error: {}\n", bad);
-      return kUsage;
-    }
+  add("pairs", "Fig. 1: both pictures side by side, GT (pink, pair numbers) and predictions (red, confidence)");
+  add("registration", "Fig. 2: GT centres before and after registration, lines between partners");
+  const Runner stats = add_figure_stats_commands(fig, which);
+  return [args, which, stats]() -> int {
+    if (*which != "pairs" && *which != "registration") return stats();
     ui::FigureOptions o;
-    try {
-      o = options_of(*args);
-    } catch (const std::invalid_argument& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
-      return kUsage;
-    }
-    if (std::error_code ec; !std::filesystem::is_regular_file(o.font_file, ec)) {
-      fmt::print(stderr, "error: {}: no such font file\n", o.font_file);
-      return kBadInput;
-    }
-    if (*which == "table") return table_figure(*args, o);
+    if (const int rc = figure_options(args->output, &o)) return rc;
     return scene_figure(*which, *args, o);
   };
 }

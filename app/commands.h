@@ -3,6 +3,8 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <memory>
+#include <string>
 
 namespace ipd::cli {
 
@@ -12,6 +14,8 @@ Runner add_table_command(CLI::App& app);
 Runner add_register_command(CLI::App& app);
 Runner add_demo_command(CLI::App& app);
 Runner add_figure_command(CLI::App& app);
+// `ipd figure table|compare|distribution|breakdown`, added under `figure`; runs the one `which` names.
+Runner add_figure_stats_commands(CLI::App* figure, std::shared_ptr<std::string> which);
 Runner add_bench_command(CLI::App& app);
 Runner add_detect_command(CLI::App& app);
 Runner add_import_command(CLI::App& app);

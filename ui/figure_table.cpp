@@ -13,38 +13,55 @@ namespace ipd::ui {
 using namespace fig;
 
 namespace {
+
 double widest_word(Canvas& c, const TextStyle& st, const std::string& s) {
   std::istringstream in(s);
   double w = 0;
   for (std::string word; in >> word;) w = std::max(w, c.measure(st, word).x);
   return w;
 }
+
+// Every text of a column: the header, then each row's cell and its second line.
+template <class F>
+void for_each_text(const TableFigure& t, size_t c, F&& f) {
+  f(t.header[c], true, false);
+  for (size_t r = 0; r < t.rows.size(); ++r) {
+    f(t.rows[r][c], false, false);
+    if (r < t.sub.size() && c < t.sub[r].size()) f(t.sub[r][c], false, true);
+  }
+}
+
 }  // namespace
 
 void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptions& o) {
   o.validate();
-  const double W = o.width_pt(), m = 1.0;
+  const double W = o.width_pt(), m = 1.0, avail = W - 2 * m;
   const size_t cols = t.header.size();
-  // The largest font (up to --font-pt) at which the columns fit the width.
+  // The largest font (up to --font-pt) at which every column fits with its cells wrapped at spaces; columns
+  // narrower than their longest cell share the shortfall in proportion.
   double F = o.font_pt;
   std::vector<double> w(cols);
   for (;; F -= 0.25) {
     F = std::max(F, kMinTextPt);
-    const TextStyle bold = style(F, kInk, true);
+    const TextStyle bold = style(F, kInk, true), sub = style(F * 0.8, kGrey);
     const double pad = 0.9 * F;
-    double total = 0;
-    for (size_t c = 0; c < cols; ++c) {
-      w[c] = widest_word(out, bold, t.header[c]);
-      for (size_t r = 0; r < t.rows.size(); ++r) w[c] = std::max(w[c], out.measure(bold, t.rows[r][c]).x);
-      // A header wider than its column may use the column's width up to its own width.
-      w[c] = std::max(w[c], std::min(out.measure(bold, t.header[c]).x, (W - 2 * m) / cols - pad)) + pad;
-      total += w[c];
-    }
-    if (total <= W - 2 * m || F <= kMinTextPt) break;
+    std::vector<double> lo(cols, 0), hi(cols, 0);
+    for (size_t c = 0; c < cols; ++c)
+      for_each_text(t, c, [&](const std::string& s, bool, bool is_sub) {
+        const TextStyle& st = is_sub ? sub : bold;
+        lo[c] = std::max(lo[c], widest_word(out, st, s) + pad);
+        hi[c] = std::max(hi[c], out.measure(st, s).x + pad);
+      });
+    double sum_lo = 0, sum_hi = 0;
+    for (size_t c = 0; c < cols; ++c) sum_lo += lo[c], sum_hi += hi[c];
+    const double k = sum_hi <= avail ? 1.0 : sum_hi > sum_lo ? std::max(0.0, (avail - sum_lo) / (sum_hi - sum_lo)) : 0.0;
+    for (size_t c = 0; c < cols; ++c) w[c] = lo[c] + k * (hi[c] - lo[c]);
+    if (sum_lo <= avail || F <= kMinTextPt) break;
   }
-  const TextStyle body = style(F, kInk), bold = style(F, kInk, true);
-  const double pad = 0.9 * F, line_h = out.measure(body, "Ag").y, lw = std::max(0.3, 0.06 * F);
-  double y = m + draw_wrapped(out, {m, m}, style(o.font_pt, kInk), t.title, W - 2 * m) + 0.4 * F;
+  const TextStyle body = style(F, kInk), bold = style(F, kInk, true), sub = style(F * 0.8, kGrey);
+  const double pad = 0.9 * F, line_h = out.measure(body, "Ag").y, sub_h = out.measure(sub, "Ag").y;
+  const double lw = std::max(0.3, 0.06 * F);
+  double y = m + draw_wrapped(out, {m, m}, style(o.font_pt, kInk), t.title, avail) + 0.4 * F;
   std::vector<double> x(cols + 1, m);
   for (size_t c = 0; c < cols; ++c) x[c + 1] = x[c] + w[c];
   // Header: wrapped per column, on a light band.
@@ -54,29 +71,40 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
     head[c] = wrap(out, bold, t.header[c], w[c] - pad);
     header_lines = std::max(header_lines, head[c].size());
   }
-  const double top = y, head_h = header_lines * line_h + 0.5 * F, row_h = line_h + 0.5 * F;
+  const double top = y, head_h = header_lines * line_h + 0.5 * F;
   out.fill_rect({x[0], y, x[cols], y + head_h}, rgb(235, 235, 240));
   for (size_t c = 0; c < cols; ++c)
     for (size_t l = 0; l < head[c].size(); ++l)
       out.text({x[c] + pad / 2, y + 0.25 * F + l * line_h}, Anchor::kTopLeft, bold, head[c][l]);
   y += head_h;
   for (size_t r = 0; r < t.rows.size(); ++r) {
+    double row_h = line_h;
     for (size_t c = 0; c < cols; ++c) {
       const bool is_bold = r < t.bold.size() && c < t.bold[r].size() && t.bold[r][c];
-      out.text({x[c] + pad / 2, y + 0.25 * F}, Anchor::kTopLeft, is_bold ? bold : body, t.rows[r][c]);
+      double cy = y + 0.25 * F;
+      for (const std::string& l : wrap(out, is_bold ? bold : body, t.rows[r][c], w[c] - pad)) {
+        out.text({x[c] + pad / 2, cy}, Anchor::kTopLeft, is_bold ? bold : body, l);
+        cy += line_h;
+      }
+      if (r < t.sub.size() && c < t.sub[r].size())
+        for (const std::string& l : wrap(out, sub, t.sub[r][c], w[c] - pad)) {
+          out.text({x[c] + pad / 2, cy}, Anchor::kTopLeft, sub, l);
+          cy += sub_h;
+        }
+      row_h = std::max(row_h, cy - y - 0.25 * F);
     }
-    y += row_h;
+    y += row_h + 0.5 * F;
   }
   out.line({x[0], top}, {x[cols], top}, kInk, lw * 2);
   out.line({x[0], top + head_h}, {x[cols], top + head_h}, kInk, lw);
   out.line({x[0], y}, {x[cols], y}, kInk, lw * 2);
   y += 0.4 * F;
-  if (!t.note.empty()) y += draw_wrapped(out, {m, y}, style(o.font_pt * 0.8, kGrey), t.note, W - 2 * m);
+  if (!t.note.empty()) y += draw_wrapped(out, {m, y}, style(o.font_pt * 0.8, kGrey), t.note, avail);
   out.width_pt = W;
   out.height_pt = std::ceil(y + m);
 }
 
-TableFigure table_figure_of(const CrossTable& t) {
+TableFigure table_figure_of(const CrossTable& t, bool ci) {
   TableFigure fig;
   fig.title = "Instance Performance Difference (lower is better)";
   fig.header.push_back("Train \\ Eval");
@@ -86,6 +114,7 @@ TableFigure table_figure_of(const CrossTable& t) {
     const auto& m = t.models[r];
     std::vector<std::string> row = {m.trained_on.empty() ? m.name : m.name + " (" + m.trained_on + ")"};
     std::vector<char> bold(nc + 1, 0);
+    std::vector<std::string> sub(nc + 1);
     double best = INFINITY;
     for (size_t c = 0; c < nc; ++c) {
       const auto& cell = t.cells[r * nc + c];
@@ -97,7 +126,10 @@ TableFigure table_figure_of(const CrossTable& t) {
                     : std::isnan(cell.ipd)         ? "n/a"
                                                    : fmt::format("{:.4f}", cell.ipd));
       bold[c + 1] = cell.involves_training_domain && cell.ipd == best;
+      if (ci && cell.involves_training_domain && std::isfinite(cell.ci_low) && std::isfinite(cell.ci_high))
+        sub[c + 1] = fmt::format("[{:.3f}, {:.3f}]", cell.ci_low, cell.ci_high);
     }
+    if (ci) fig.sub.push_back(sub);
     fig.rows.push_back(row);
     fig.bold.push_back(bold);
   }

@@ -14,6 +14,7 @@ struct TableFigure {
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;
   std::vector<std::vector<char>> bold;  // per cell (rows x header), the row's best
+  std::vector<std::vector<std::string>> sub;  // optional second line per cell (a confidence interval)
   std::string note;
 };
 
@@ -27,6 +28,6 @@ struct CrossTable;
 }
 namespace ipd::ui {
 // Table I's cells as the paper shows them: "–" for pairs not involving the training domain, the row's
-// best in bold.
-TableFigure table_figure_of(const CrossTable& table);
+// best in bold; `ci`: each cell's interval on a second line (when the table has them).
+TableFigure table_figure_of(const CrossTable& table, bool ci = false);
 }  // namespace ipd::ui

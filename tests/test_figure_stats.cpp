@@ -1,0 +1,80 @@
+// The study-wide figures (table --ci, compare, distribution, breakdown) on a study whose numbers are known
+// by hand, read back from the PDF as text.
+#include <gtest/gtest.h>
+
+#include <regex>
+
+#include "figure_charts.h"
+#include "test_support.h"
+
+namespace ipd {
+namespace {
+
+// Three domains with the same three rocks; det (trained on real) finds each rock exactly in real, shifted
+// by 0.05 (IoU 0.6) in s1 and by 0.10 (IoU 1/3) in s2, in both scenes. So IPD(real, s1) = 0.4,
+// IPD(real, s2) = 2/3 and ΔIPD = IPD(real, s1) - IPD(real, s2) = -0.2667 in every scene (interval a point).
+void write_three_domain_study(const test::TempDir& d) {
+  test::write_text(d / "study.yaml", "domains: [real, s1, s2]\nmodels: {det: {trained_on: real}}\n");
+  const char* gt = "0 0.20 0.30 0.2 0.2\n0 0.70 0.25 0.2 0.2\n0 0.45 0.75 0.2 0.2\n";
+  for (const std::string scene : {"a", "b"})
+    for (const auto& [dom, dx] : {std::pair<std::string, double>{"real", 0}, {"s1", 0.05}, {"s2", 0.10}}) {
+      test::write_text(d / (dom + "/labels/" + scene + ".txt"), gt);
+      char pred[256];
+      std::snprintf(pred, sizeof pred, "0 %.2f 0.30 0.2 0.2 0.9\n0 %.2f 0.25 0.2 0.2 0.8\n0 %.2f 0.75 0.2 0.2 0.7\n",
+                    0.20 + dx, 0.70 + dx, 0.45 + dx);
+      test::write_text(d / (dom + "/predictions/det/" + scene + ".txt"), pred);
+    }
+}
+
+std::string pdf_words(const std::string& pdf) {
+  const auto r = test::run_command("pdftotext -raw '" + pdf + "' -");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return std::regex_replace(r.out, std::regex("\\s+"), " ");
+}
+
+TEST(FigureStats, CompareShowsTheDeltaAndItsTest) {
+  test::TempDir d;
+  write_three_domain_study(d);
+  const auto r = test::run_ipd("figure compare " + d.path() + " --bootstrap 200 --permutations 200 --out " + d / "c.pdf");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = pdf_words(d / "c.pdf");
+  EXPECT_NE(text.find("IPD(real, s1) \u2212 IPD(real, s2)"), std::string::npos) << text;
+  EXPECT_NE(text.find("det (real) \u22120.267, p = "), std::string::npos) << text;
+}
+
+TEST(FigureStats, TableWithIntervalsDistributionAndBreakdown) {
+  test::TempDir d;
+  write_three_domain_study(d);
+  auto r = test::run_ipd("figure table " + d.path() + " --ci --bootstrap 100 --out " + d / "t.pdf");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string text = pdf_words(d / "t.pdf");
+  // Both scenes alike: the interval is the point.
+  EXPECT_NE(text.find("0.4000 [0.400, 0.400]"), std::string::npos) << text;
+  EXPECT_NE(text.find("0.6667 [0.667, 0.667]"), std::string::npos) << text;
+  r = test::run_ipd("figure distribution " + d.path() + " --out " + d / "d.pdf");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  text = pdf_words(d / "d.pdf");
+  EXPECT_NE(text.find("|real \u2212 s2|"), std::string::npos) << text;
+  EXPECT_NE(text.find("scene IPD"), std::string::npos) << text;
+  r = test::run_ipd("figure breakdown " + d.path() + " --by size --bins 1 --bootstrap 50 --b s2 --out " + d / "b.pdf");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  text = pdf_words(d / "b.pdf");
+  EXPECT_NE(text.find("6 pairs"), std::string::npos) << text;  // 3 rocks x 2 scenes in the one bin
+  r = test::run_ipd("figure breakdown " + d.path() + " --by colour --out " + d / "x.pdf");
+  EXPECT_EQ(r.exit_code, 2);
+}
+
+void expect_ticks(const std::vector<double>& got, const std::vector<double>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-12) << i;
+}
+
+TEST(FigureStats, NiceTicks) {
+  // 0.13 / 6 = 0.0217 -> step 0.025 (the next of 1, 2, 2.5, 5 x 10^k).
+  expect_ticks(ui::nice_ticks(0, 0.13, 6), {0, 0.025, 0.05, 0.075, 0.1, 0.125});
+  expect_ticks(ui::nice_ticks(-0.15, 0, 3), {-0.15, -0.1, -0.05, 0});
+  expect_ticks(ui::nice_ticks(3, 17, 2), {0, 10});
+}
+
+}  // namespace
+}  // namespace ipd
