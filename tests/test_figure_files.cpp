@@ -88,6 +88,23 @@ TEST(FigureFiles, PdfPageIsTheColumnWidthAndCarriesTheText) {
   }
 }
 
+TEST(FigureFiles, PicturesGoInAtTheirOwnResolutionCutToTheCrop) {
+  test::TempDir d;
+  test::write_figure_study(d, true);  // 640 x 400 pictures
+  const std::string out = d / "crop.pdf";
+  ASSERT_EQ(test::run_ipd("figure pairs " + d.path() + " --crop 0.25,0.25,0.75,0.75 --column double --out " + out).exit_code, 0);
+  const auto r = test::run_command("pdfimages -list '" + out + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Two images of 320 x 200 pixels: the crop's own pixels, neither resampled nor padded.
+  const std::regex image(R"re(\n\s+1\s+\d+\s+image\s+(\d+)\s+(\d+))re");
+  int images = 0;
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), image); it != std::sregex_iterator(); ++it, ++images) {
+    EXPECT_EQ((*it)[1], "320");
+    EXPECT_EQ((*it)[2], "200");
+  }
+  EXPECT_EQ(images, 2) << r.out;
+}
+
 TEST(FigureFiles, NoWordsOverlapOnTheDemosBusiestScene) {
   test::TempDir d;
   DemoStudyOptions demo;

@@ -31,7 +31,9 @@ namespace {
 
 class CairoCanvas : public Canvas {
  public:
-  CairoCanvas(cairo_t* cr, const FontMetrics& m) : cr_(cr), metrics_(m) {
+  // `raster`: an image surface (pictures are resampled, their edges padded); otherwise a PDF, where pictures
+  // go in with their own pixels.
+  CairoCanvas(cairo_t* cr, const FontMetrics& m, bool raster) : cr_(cr), metrics_(m), raster_(raster) {
     cairo_font_options_t* fo = cairo_font_options_create();
     cairo_font_options_set_hint_metrics(fo, CAIRO_HINT_METRICS_OFF);  // as measured
     cairo_font_options_set_hint_style(fo, CAIRO_HINT_STYLE_NONE);
@@ -99,7 +101,7 @@ class CairoCanvas : public Canvas {
     cairo_scale(cr_, where.width() / bgra.cols, where.height() / bgra.rows);
     cairo_set_source_surface(cr_, img, 0, 0);
     cairo_pattern_set_filter(cairo_get_source(cr_), CAIRO_FILTER_GOOD);
-    cairo_pattern_set_extend(cairo_get_source(cr_), CAIRO_EXTEND_PAD);
+    if (raster_) cairo_pattern_set_extend(cairo_get_source(cr_), CAIRO_EXTEND_PAD);
     cairo_paint(cr_);
     cairo_restore(cr_);
     cairo_surface_destroy(img);
@@ -121,6 +123,7 @@ class CairoCanvas : public Canvas {
   }
   cairo_t* cr_;
   const FontMetrics& metrics_;
+  bool raster_;
 };
 
 cairo_status_t append(void* closure, const unsigned char* data, unsigned int length) {
@@ -144,7 +147,7 @@ std::string render_figure_file(const DisplayList& fig, const FontMetrics& metric
     cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "ipd figure (IPD Studio)");
     if (!title.empty()) cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE, title.c_str());
     cairo_t* cr = cairo_create(surface);
-    CairoCanvas canvas(cr, metrics);
+    CairoCanvas canvas(cr, metrics, false);
     fig.replay(canvas);
     cairo_show_page(cr);
     const cairo_status_t st = cairo_status(cr);
@@ -162,7 +165,7 @@ std::string render_figure_file(const DisplayList& fig, const FontMetrics& metric
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
   cairo_scale(cr, scale, scale);
-  CairoCanvas canvas(cr, metrics);
+  CairoCanvas canvas(cr, metrics, true);
   fig.replay(canvas);
   const cairo_status_t st = cairo_status(cr);
   cairo_destroy(cr);

@@ -56,12 +56,14 @@ struct PanelMap {
   }
 };
 
-// The crop of a picture at its own resolution (never resampled here).
-Picture crop_picture(const cv::Mat& img, const Crop& c) {
-  const int x0 = std::clamp(int(std::floor(c.x0 * img.cols)), 0, img.cols - 1);
-  const int y0 = std::clamp(int(std::floor(c.y0 * img.rows)), 0, img.rows - 1);
-  const int x1 = std::clamp(int(std::ceil(c.x1 * img.cols)), x0 + 1, img.cols);
-  const int y1 = std::clamp(int(std::ceil(c.y1 * img.rows)), y0 + 1, img.rows);
+// The crop of a picture at its own resolution (never resampled here), on whole pixels, and the normalised
+// region those pixels cover (so boxes and pixels stay registered).
+Picture crop_picture(const cv::Mat& img, const Crop& c, Crop* covered) {
+  const int x0 = std::clamp(int(std::floor(c.x0 * img.cols + 1e-6)), 0, img.cols - 1);
+  const int y0 = std::clamp(int(std::floor(c.y0 * img.rows + 1e-6)), 0, img.rows - 1);
+  const int x1 = std::clamp(int(std::ceil(c.x1 * img.cols - 1e-6)), x0 + 1, img.cols);
+  const int y1 = std::clamp(int(std::ceil(c.y1 * img.rows - 1e-6)), y0 + 1, img.rows);
+  *covered = {double(x0) / img.cols, double(y0) / img.rows, double(x1) / img.cols, double(y1) / img.rows};
   return {c.whole() ? img : img(cv::Rect(x0, y0, x1 - x0, y1 - y0)).clone()};
 }
 
@@ -84,7 +86,12 @@ int draw_side(Canvas& c, const PanelMap& m, const cv::Mat& picture, const std::s
     c.text({(P.x0 + P.x1) / 2, (P.y0 + P.y1) / 2}, Anchor::kCentre, style(o.font_pt * 0.8, rgb(255, 200, 120)),
            problem.empty() ? "no picture" : problem);
   } else {
-    c.image(crop_picture(picture, m.crop), P);
+    Crop covered;
+    const Picture pixels = crop_picture(picture, m.crop, &covered);
+    const Pt p0 = m(covered.x0, covered.y0), p1 = m(covered.x1, covered.y1);
+    c.push_clip(P);
+    c.image(pixels, {p0.x, p0.y, p1.x, p1.y});
+    c.pop_clip();
   }
   const double lw = std::max(0.35, o.font_pt * 0.07);
   const std::vector<int> best = performance_values(gt, pred).best_prediction;
