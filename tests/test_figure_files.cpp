@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <regex>
 
+#include "export_dialog.h"
 #include "figure_export.h"
 #include "figure_test_study.h"
 #include "ipd/demo_study.h"
@@ -171,10 +172,10 @@ TEST(FigureFiles, GuiExportAndCliGiveTheSamePdfForTheSameView) {
   Session s = Session::open(d.path());
   s.set_conf_threshold(0.9);
   run_save_job(s.apply(0, Edit::pair(1, 0)));
-  ui::FigureOptions o;
-  ui::SceneFigureInput gui = ui::scene_input_from_session(s, 0);
-  ui::load_pictures(gui, s.study());
-  test::write_text(d / "gui.pdf", ui::scene_figure_file("pairs", gui, o, ui::FigureFormat::kPdf));
+  ui::ExportRequest request;  // what the dialog returns by default: pairs, single column
+  request.path = d / "gui.pdf";
+  request.scene = 0;
+  EXPECT_EQ(ui::export_scene_figure(s, request), "exported " + d / "gui.pdf");
   const auto r = test::run_ipd("figure pairs " + d.path() + " --scene s1 --conf 0.9 --out " + d / "cli.pdf");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const PdfText from_gui = pdf_text(d / "gui.pdf"), from_cli = pdf_text(d / "cli.pdf");
@@ -186,6 +187,36 @@ TEST(FigureFiles, GuiExportAndCliGiveTheSamePdfForTheSameView) {
   // A different view (no threshold) is a different figure.
   ASSERT_EQ(test::run_ipd("figure pairs " + d.path() + " --scene s1 --out " + d / "other.pdf").exit_code, 0);
   EXPECT_NE(pdf_text(d / "other.pdf").all(), from_gui.all());
+}
+
+TEST(FigureFiles, ExportFromTheGuiReportsProblemsInTheStatusLine) {
+  test::TempDir d;
+  test::write_figure_study(d, false);
+  const Session s = Session::open(d.path());
+  ui::ExportRequest request;
+  request.scene = 0;
+  request.path = d / "x.jpg";
+  EXPECT_EQ(ui::export_scene_figure(s, request),
+            d / "x.jpg" + ": unknown figure format '.jpg'; the file name must end in .pdf, .svg or .png");
+  request.path = d / "x.pdf";
+  request.scene = 5;
+  EXPECT_EQ(ui::export_scene_figure(s, request), "export failed: no scene selected");
+  EXPECT_FALSE(fs::exists(d / "x.pdf"));
+}
+
+TEST(FigureFiles, CropOfTheGuisZoom) {
+  const ui::Crop whole = ui::crop_of_view({1.0f, {0, 0}});
+  EXPECT_TRUE(whole.whole());
+  // Zoom 4 about the picture point (0.25, 0.75): a quarter of each side around it.
+  const ui::Crop c = ui::crop_of_view({4.0f, {-0.25f, 0.25f}});
+  EXPECT_NEAR(c.x0, 0.125, 1e-6);
+  EXPECT_NEAR(c.x1, 0.375, 1e-6);
+  EXPECT_NEAR(c.y0, 0.625, 1e-6);
+  EXPECT_NEAR(c.y1, 0.875, 1e-6);
+  // Panned past the edge: clamped to the picture.
+  const ui::Crop e = ui::crop_of_view({2.0f, {0.4f, 0}});
+  EXPECT_NEAR(e.x1, 1.0, 1e-6);
+  EXPECT_NEAR(e.x0, 0.65, 1e-6);
 }
 
 }  // namespace

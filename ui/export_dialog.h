@@ -1,0 +1,42 @@
+// ipd-studio's "Export figure…" dialog: kind, format, column, layers and crop (= the current zoom), filled
+// from the view; it only returns a request, which the app hands to a worker (figure_export.h renders it).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "figure_export.h"
+#include "scene_canvas.h"
+
+namespace ipd::ui {
+
+struct ExportDialogState {
+  bool open = false;     // the popup should be shown (set to open it)
+  int kind = 0;          // 0 pairs, 1 registration
+  int format = 0;        // 0 pdf, 1 svg, 2 png
+  int column = 0;        // 0 single, 1 double
+  bool layers[6] = {true, true, false, true, true, true};  // gt, pred, conf, indices, pairs, legend
+  bool crop_to_view = true;
+  float font_pt = 8;
+  char dir[512] = "";
+  char name[256] = "";
+};
+
+// What the view shows, to fill the dialog when it opens.
+struct ExportViewContext {
+  std::string default_dir, base_name;  // e.g. STUDY/figures, scene_02_real_principled
+  SideLayers layers;                   // the view's visible layers
+  CanvasView view;                     // zoom and pan of the left picture
+  int image_w = 0, image_h = 0;
+  int scene = -1;
+};
+
+// The visible region of a picture shown with `view` in a pane of the picture's aspect (normalised, clamped).
+Crop crop_of_view(const CanvasView& view);
+
+// Opens the dialog pre-filled from the view.
+void open_export_dialog(ExportDialogState& state, const ExportViewContext& context);
+// Draws it when open; returns the request when the user presses Export.
+std::optional<ExportRequest> draw_export_dialog(ExportDialogState& state, const ExportViewContext& context);
+
+}  // namespace ipd::ui
