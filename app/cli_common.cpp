@@ -10,9 +10,17 @@ namespace ipd::cli {
 
 bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines) {
   if (errors.empty()) return false;
-  for (const auto& e : errors) fmt::print(stderr, "{}{}\n", skip_bad_lines ? "warning: " : "", e.to_string());
-  const auto lines = std::count_if(errors.begin(), errors.end(), [](const LabelError& e) { return e.line > 0; });
-  if (lines == 0) return !skip_bad_lines;  // whole-file problems speak for themselves
+  // A file that can't be read (dangling link, no permission, a FIFO) is never skipped: its rocks would
+  // silently count as none.
+  const bool file_problems =
+      std::any_of(errors.begin(), errors.end(), [](const LabelError& e) { return e.malformed_lines() == 0; });
+  long lines = 0;
+  for (const auto& e : errors) {
+    lines += e.malformed_lines();
+    const bool warn = skip_bad_lines && e.malformed_lines() > 0;
+    fmt::print(stderr, "{}{}\n", warn ? "warning: " : "", e.to_string());
+  }
+  if (file_problems) return true;
   if (skip_bad_lines) {
     fmt::print(stderr, "warning: {} malformed line(s) skipped (--skip-bad-lines)\n", lines);
     return false;

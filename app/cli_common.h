@@ -10,8 +10,8 @@ namespace ipd::cli {
 
 constexpr int kOk = 0, kBadInput = 1, kUsage = 2;
 
-// Prints every label error (all of them, `FILE:LINE: ...`) and a summary; true when there were any and
-// they are fatal (not skipped).
+// Prints the label errors (`FILE:LINE: ...`, at most kMaxListedErrors per file and a count of the rest) and a
+// summary; true when they are fatal: malformed lines unless skipped, and always a file that can't be read.
 bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines);
 
 // A one-line progress indicator on stderr, only when stderr is a terminal.

@@ -1,6 +1,8 @@
 // `ipd register REAL.txt SYNTH.txt` and `ipd register --list FILE.tsv`: rock pairing of label files.
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -52,7 +54,9 @@ void run_job(Job* job, const RegistrationOptions& opt, int cls, bool skip_bad_li
     if (!f->exists) job->errors.push_back({f->path, 0, "no such label file"});
     job->errors.insert(job->errors.end(), f->errors.begin(), f->errors.end());
   }
-  if (!job->errors.empty() && (!skip_bad_lines || !a.exists || !b.exists)) return;
+  const bool file_problem = std::any_of(job->errors.begin(), job->errors.end(),
+                                        [](const LabelError& e) { return e.malformed_lines() == 0; });
+  if (!job->errors.empty() && (!skip_bad_lines || file_problem)) return;
   keep_class(&a, cls);
   keep_class(&b, cls);
   job->result = report_json(*job, register_rocks(a.boxes, b.boxes, opt));
@@ -63,7 +67,7 @@ std::vector<Job> read_list(const std::string& path) {
   std::vector<Job> jobs;
   std::istringstream in(text);
   std::string line;
-  int n = 0;
+  int n = 0, unlisted = 0;
   std::vector<std::string> bad;
   while (std::getline(in, line)) {
     ++n;
@@ -71,7 +75,11 @@ std::vector<Job> read_list(const std::string& path) {
     if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#') continue;
     const size_t tab = line.find('\t');
     if (tab == std::string::npos || line.find('\t', tab + 1) != std::string::npos) {
-      bad.push_back(fmt::format("{}:{}: expected real_path<TAB>synth_path, found '{}'", path, n, line));
+      if (bad.size() < kMaxListedErrors)
+        bad.push_back(fmt::format("{}:{}: expected real_path<TAB>synth_path, found '{}'", path, n,
+                                  line.size() > 40 ? line.substr(0, 37) + "..." : line));
+      else
+        ++unlisted;
       continue;
     }
     jobs.push_back({line.substr(0, tab), line.substr(tab + 1), n, {}, {}});
@@ -79,6 +87,7 @@ std::vector<Job> read_list(const std::string& path) {
   if (!bad.empty()) {
     std::string all;
     for (const auto& b : bad) all += (all.empty() ? "" : "\n") + b;
+    if (unlisted > 0) all += fmt::format("\n{}: {} more malformed line(s) not listed", path, unlisted);
     throw IoError(all);
   }
   return jobs;

@@ -34,6 +34,10 @@ static std::string slurp(const std::string& p) {
   return ss.str();
 }
 
+CommandResult run_ipd_with_timeout(const std::string& args, int seconds) {
+  return run_command("timeout " + std::to_string(seconds) + " " + std::string(IPD_BINARY) + " " + args);
+}
+
 CommandResult run_ipd(const std::string& args) { return run_command(std::string(IPD_BINARY) + " " + args); }
 
 CommandResult run_command(const std::string& command) {

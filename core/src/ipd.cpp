@@ -70,7 +70,7 @@ ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const s
   const auto& gb = labels.gt_of(b, stem).boxes;
   p.count_a = static_cast<int>(ga.size());
   p.count_b = static_cast<int>(gb.size());
-  if (auto fixed = read_fixed_pairs(labels.study, a, b, stem, p.count_a, p.count_b)) {
+  if (auto fixed = read_fixed_pairs(labels.study, a, b, stem, p.count_a, p.count_b, &p.warnings)) {
     p.fixed = true;
     p.pairs = std::move(fixed->pairs);
     p.excluded_a = std::move(fixed->excluded_a);
@@ -188,6 +188,7 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
     if (!j.error.empty()) throw StudyError(j.error);
     (j.result.fixed ? t.fixed_scenes : t.registrations)++;
     t.cached_registrations += j.result.from_cache;
+    t.warnings.insert(t.warnings.end(), j.result.warnings.begin(), j.result.warnings.end());
   }
 
   t.pairings.resize(t.columns.size());

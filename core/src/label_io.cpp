@@ -6,7 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
-#include <sstream>
+#include <string_view>
 
 #include "ipd/atomic_file.h"
 
@@ -16,6 +16,7 @@ namespace ipd {
 
 std::string LabelError::to_string() const {
   if (line > 0) return fmt::format("{}:{}: {}", file, line, message);
+  if (more > 0) return fmt::format("{}: {} more malformed line(s) not listed", file, more);
   return fmt::format("{}: {}", file, message);
 }
 
@@ -23,14 +24,25 @@ namespace {
 
 const char* const kColumnNames[] = {"class", "cx", "cy", "w", "h", "conf"};
 
-std::vector<std::string> split_fields(const std::string& line) {
-  std::vector<std::string> out;
-  std::istringstream ss(line);
-  std::string tok;
-  while (ss >> tok) out.push_back(tok);
-  return out;
+// Whitespace-separated fields of one line (up to a '#' comment), into `out` (reused: no allocation per line).
+void split_fields(std::string_view line, std::vector<std::string>* out) {
+  out->clear();
+  const size_t hash = line.find('#');
+  if (hash != std::string_view::npos) line = line.substr(0, hash);
+  size_t k = 0;
+  auto space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; };
+  while (k < line.size()) {
+    while (k < line.size() && space(line[k])) ++k;
+    const size_t start = k;
+    while (k < line.size() && !space(line[k])) ++k;
+    if (k > start) {
+      if (out->size() < 8) out->emplace_back(line.substr(start, k - start));
+      else out->push_back({});  // only the count matters beyond a box line's columns
+    }
+  }
 }
 
+// Untrusted text in a message: never more than 40 characters of it.
 std::string shorten(const std::string& s) { return s.size() > 40 ? s.substr(0, 37) + "..." : s; }
 
 // Parses a line's fields into a box or returns why not.
@@ -55,17 +67,18 @@ std::string parse_box(const std::vector<std::string>& f, const LabelParseOptions
       return fmt::format("expected a number for {} in column {}, found '{}'", kColumnNames[k], k + 1, shorten(f[k]));
     }
     if (!std::isfinite(x)) {
-      return fmt::format("expected a finite number for {} in column {}, found '{}'", kColumnNames[k], k + 1, f[k]);
+      return fmt::format("expected a finite number for {} in column {}, found '{}'", kColumnNames[k], k + 1,
+                         shorten(f[k]));
     }
     v[k] = x;
   }
   for (size_t k = 1; k < want; ++k) {
     if (v[k] < -opt.range_tolerance || v[k] > 1.0 + opt.range_tolerance) {
-      return fmt::format("expected {} in [0, 1] (normalised), found {}", kColumnNames[k], f[k]);
+      return fmt::format("expected {} in [0, 1] (normalised), found {}", kColumnNames[k], shorten(f[k]));
     }
   }
-  if (v[3] <= 0) return fmt::format("expected w > 0, found {}", f[3]);
-  if (v[4] <= 0) return fmt::format("expected h > 0, found {}", f[4]);
+  if (v[3] <= 0) return fmt::format("expected w > 0, found {}", shorten(f[3]));
+  if (v[4] <= 0) return fmt::format("expected h > 0, found {}", shorten(f[4]));
   box->cx = v[1];
   box->cy = v[2];
   box->w = v[3];
@@ -80,35 +93,38 @@ LabelFile parse_labels(const std::string& text, const std::string& file_name, co
   LabelFile out;
   out.path = file_name;
   out.exists = true;
-  std::istringstream in(text);
-  std::string line;
-  int line_no = 0;
-  while (std::getline(in, line)) {
+  std::string_view rest(text);
+  if (rest.substr(0, 3) == "\xEF\xBB\xBF") rest.remove_prefix(3);  // UTF-8 byte order mark (Windows editors)
+  std::vector<std::string> fields;
+  int line_no = 0, unlisted = 0;
+  while (!rest.empty()) {
+    const size_t eol = rest.find('\n');
+    const std::string_view line = rest.substr(0, eol);
+    rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
     ++line_no;
-    const size_t hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
-    const auto fields = split_fields(line);
+    split_fields(line, &fields);
     if (fields.empty()) continue;
     Box b;
     const std::string why = parse_box(fields, options, &b);
     if (!why.empty()) {
-      out.errors.push_back({file_name, line_no, why});
+      if (static_cast<int>(out.errors.size()) < kMaxListedErrors) out.errors.push_back({file_name, line_no, why});
+      else ++unlisted;
       continue;
     }
     out.boxes.push_back(b);
     out.line_of_box.push_back(line_no);
   }
+  if (unlisted > 0) out.errors.push_back({file_name, 0, "", unlisted});
   return out;
 }
 
 LabelFile read_labels(const std::string& path, const LabelParseOptions& options) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) {
-    LabelFile missing;
-    missing.path = path;
-    return missing;
-  }
   try {
+    if (file_kind(path) == FileKind::kMissing) {  // a dangling link or no access is an error, not "missing"
+      LabelFile missing;
+      missing.path = path;
+      return missing;
+    }
     return parse_labels(read_file(path), path, options);
   } catch (const IoError& e) {
     LabelFile bad;

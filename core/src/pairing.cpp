@@ -25,17 +25,21 @@ RockPairs mutual_nearest_pairs(const std::vector<Eigen::Vector2d>& a, const std:
 RockPairs max_weight_assignment(const std::vector<double>& weights, int rows, int cols, double min_weight) {
   RockPairs pairs;
   if (rows == 0 || cols == 0) return pairs;
-  // Square cost matrix (minimisation), dummy rows/columns cost 0; potentials method (e-maxx), 1-based.
-  const int n = std::max(rows, cols);
-  auto cost = [&](int i, int j) -> double {  // 1-based
-    if (i > rows || j > cols) return 0.0;
-    const double w = weights[static_cast<size_t>(i - 1) * cols + (j - 1)];
+  // Rectangular Hungarian (potentials method, e-maxx), 1-based, with n <= m: the shorter side is the rows, so
+  // 10,000 vs 17 rocks costs 17^2 * 10,000 steps instead of padding to a 10,000^2 square.
+  const bool transposed = rows > cols;
+  const int n = transposed ? cols : rows, m = transposed ? rows : cols;
+  auto weight = [&](int r, int c) -> double {  // 0-based, in the solver's orientation
+    return transposed ? weights[static_cast<size_t>(c) * cols + r] : weights[static_cast<size_t>(r) * cols + c];
+  };
+  auto cost = [&](int i, int j) -> double {  // 1-based; weights at or below min_weight are worth nothing
+    const double w = weight(i - 1, j - 1);
     return w > min_weight ? -w : 0.0;
   };
   const double inf = std::numeric_limits<double>::infinity();
-  std::vector<double> u(n + 1, 0), v(n + 1, 0), minv(n + 1);
-  std::vector<int> p(n + 1, 0), way(n + 1, 0);
-  std::vector<char> used(n + 1);
+  std::vector<double> u(n + 1, 0), v(m + 1, 0), minv(m + 1);
+  std::vector<int> p(m + 1, 0), way(m + 1, 0);
+  std::vector<char> used(m + 1);
   for (int i = 1; i <= n; ++i) {
     p[0] = i;
     int j0 = 0;
@@ -46,7 +50,7 @@ RockPairs max_weight_assignment(const std::vector<double>& weights, int rows, in
       const int i0 = p[j0];
       double delta = inf;
       int j1 = 0;
-      for (int j = 1; j <= n; ++j) {
+      for (int j = 1; j <= m; ++j) {
         if (used[j]) continue;
         const double cur = cost(i0, j) - u[i0] - v[j];
         if (cur < minv[j]) {
@@ -58,7 +62,7 @@ RockPairs max_weight_assignment(const std::vector<double>& weights, int rows, in
           j1 = j;
         }
       }
-      for (int j = 0; j <= n; ++j) {
+      for (int j = 0; j <= m; ++j) {
         if (used[j]) {
           u[p[j]] += delta;
           v[j] -= delta;
@@ -74,10 +78,11 @@ RockPairs max_weight_assignment(const std::vector<double>& weights, int rows, in
       j0 = j1;
     } while (j0);
   }
-  for (int j = 1; j <= cols; ++j) {
+  for (int j = 1; j <= m; ++j) {
     const int i = p[j];
-    if (i < 1 || i > rows) continue;
-    if (weights[static_cast<size_t>(i - 1) * cols + (j - 1)] > min_weight) pairs.emplace_back(i - 1, j - 1);
+    if (i < 1 || weight(i - 1, j - 1) <= min_weight) continue;
+    if (transposed) pairs.emplace_back(j - 1, i - 1);
+    else pairs.emplace_back(i - 1, j - 1);
   }
   std::sort(pairs.begin(), pairs.end());
   return pairs;

@@ -1,5 +1,6 @@
 #include "ipd/session.h"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,13 +16,35 @@ namespace fs = std::filesystem;
 
 namespace ipd {
 
-void run_save_job(const SaveJob& job) {
+namespace {
+void remove_durably(const std::string& path) {
   std::error_code ec;
-  for (const auto& p : job.also_remove) fs::remove(p, ec);
+  if (!fs::remove(path, ec) && ec) throw IoError(path + ": cannot remove: " + ec.message());
+  // Make the removal durable before the next step depends on it.
+  const std::string dir = fs::path(path).has_parent_path() ? fs::path(path).parent_path().string() : ".";
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd >= 0) {
+    ::fsync(fd);
+    ::close(fd);
+  }
+}
+}  // namespace
+
+void run_save_job(const SaveJob& job, const WriteStepHook& hook) {
+  // `path` is the name order read_fixed_pairs tries first: while it exists, the other one doesn't count.
   if (job.contents) {
-    write_file_atomically(job.path, *job.contents);
-  } else if (!fs::remove(job.path, ec) && ec) {
-    throw IoError(job.path + ": cannot remove: " + ec.message());
+    write_file_atomically(job.path, *job.contents, hook);
+    for (const auto& p : job.also_remove) {
+      remove_durably(p);
+      if (hook) hook("other removed");
+    }
+  } else {
+    for (const auto& p : job.also_remove) {
+      remove_durably(p);
+      if (hook) hook("other removed");
+    }
+    remove_durably(job.path);
+    if (hook) hook("removed");
   }
 }
 
@@ -35,6 +58,11 @@ Session Session::open(const std::string& root, const RegistrationOptions* regist
 
 Session Session::open(const std::string& root, const SessionOptions& options) {
   const Study study = open_study(root);
+  // Temp files of saves that died mid-way (their writer is gone) would otherwise pile up beside the pairs.
+  std::error_code ec;
+  for (fs::directory_iterator it(fs::path(study.root) / "pairs", ec); !ec && it != fs::directory_iterator();
+       it.increment(ec))
+    if (it->is_directory(ec)) remove_stale_temp_files(it->path().string());
   if (options.progress) options.progress("labels", 0, 1);
   StudyLabels labels = load_labels(study);
   if (options.progress) options.progress("labels", 1, 1);

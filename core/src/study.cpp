@@ -32,6 +32,20 @@ T yaml_get(const YAML::Node& n, const std::string& file, const char* what) {
   }
 }
 
+// yaml-cpp keeps the last of two equal keys: a setting written twice is a mistake to report, not to guess.
+void check_unique_keys(const YAML::Node& map, const std::string& file, const std::string& prefix) {
+  std::map<std::string, int> first_line;
+  for (const auto& kv : map) {
+    if (!kv.first.IsScalar()) continue;
+    const std::string key = kv.first.Scalar();
+    const int line = kv.first.Mark().line + 1;
+    const auto [it, fresh] = first_line.emplace(key, line);
+    if (!fresh)
+      throw StudyError(fmt::format("{}:{}: duplicate setting '{}{}' (first given on line {})", file, line, prefix,
+                                   key.size() > 40 ? key.substr(0, 37) + "..." : key, it->second));
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -49,14 +63,21 @@ StudyConfig parse_study_config(const std::string& text, const std::string& file)
 namespace {
 StudyConfig parse_study_config_nodes(const std::string& text, const std::string& file) {
   StudyConfig c;
-  YAML::Node root;
+  std::vector<YAML::Node> documents;
   try {
-    root = YAML::Load(text);
+    documents = YAML::LoadAll(text);
   } catch (const YAML::ParserException& e) {
     throw StudyError(fmt::format("{}:{}: invalid YAML: {}", file, e.mark.line + 1, e.msg));
   }
+  for (size_t k = 1; k < documents.size(); ++k)  // yaml-cpp's Load() would silently ignore these
+    if (documents[k] && !documents[k].IsNull())
+      throw StudyError(fmt::format("{}:{}: a second YAML document; expected one mapping of settings", file,
+                                   documents[k].Mark().line + 1));
+  if (documents.empty()) return c;
+  const YAML::Node& root = documents.front();
   if (!root || root.IsNull()) return c;
   if (!root.IsMap()) throw StudyError(file + ": expected a mapping of settings at the top level");
+  check_unique_keys(root, file, "");
   for (const auto& kv : root) {
     if (!kv.first.IsScalar())
       throw StudyError(fmt::format("{}:{}: expected a setting name, found a {}", file, kv.first.Mark().line + 1,
@@ -82,16 +103,19 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
       c.domain_order = yaml_get<std::vector<std::string>>(v, file, "domains");
     } else if (key == "models") {
       if (!v.IsMap()) throw StudyError(fmt::format("{}:{}: models must map a model name to its settings", file, line));
+      check_unique_keys(v, file, "models.");
       for (const auto& m : v) {
         const std::string name = m.first.as<std::string>();
         if (!m.second.IsMap() && !m.second.IsNull())
           throw StudyError(fmt::format("{}:{}: models.{} must be a mapping like {{trained_on: real}}", file,
                                        m.first.Mark().line + 1, name));
+        if (m.second.IsMap()) check_unique_keys(m.second, file, "models." + name + ".");
         const YAML::Node& t = m.second["trained_on"];
         c.trained_on[name] = t ? yaml_get<std::string>(t, file, "trained_on") : "";
       }
     } else if (key == "registration") {
       if (!v.IsMap()) throw StudyError(fmt::format("{}:{}: registration must be a mapping", file, line));
+      check_unique_keys(v, file, "registration.");
       for (const auto& r : v) {
         const std::string k = r.first.as<std::string>();
         if (k == "method") {
@@ -146,15 +170,37 @@ double Study::aspect() const {
   return 1.0;
 }
 
-Study open_study(const std::string& root_in) {
+namespace {
+
+// What is at `p`; a dangling link or a path that can't be examined is a StudyError naming it.
+FileKind kind_of(const fs::path& p) {
+  try {
+    return file_kind(p.string());
+  } catch (const IoError& e) {
+    throw StudyError(e.what());
+  }
+}
+
+// Every entry of a directory; one that can't be read is an error, never an empty directory.
+std::vector<fs::directory_entry> list_directory(const fs::path& dir) {
+  std::vector<fs::directory_entry> out;
   std::error_code ec;
+  for (fs::directory_iterator it(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) out.push_back(*it);
+  if (ec) throw StudyError(fmt::format("{}: cannot read the directory: {}", dir.string(), ec.message()));
+  return out;
+}
+
+}  // namespace
+
+Study open_study(const std::string& root_in) {
   const fs::path root(root_in);
-  if (!fs::exists(root, ec)) throw StudyError(root_in + ": no such study directory");
-  if (!fs::is_directory(root, ec)) throw StudyError(root_in + ": is not a directory, expected a study directory");
+  const FileKind root_kind = kind_of(root);
+  if (root_kind == FileKind::kMissing) throw StudyError(root_in + ": no such study directory");
+  if (root_kind != FileKind::kDirectory) throw StudyError(root_in + ": is not a directory, expected a study directory");
   Study s;
   s.root = root.string();
   const fs::path yaml = root / "study.yaml";
-  if (fs::exists(yaml, ec)) {
+  if (kind_of(yaml) != FileKind::kMissing) {
     try {
       s.config = parse_study_config(read_file(yaml.string()), yaml.string());
     } catch (const IoError& e) {
@@ -162,13 +208,11 @@ Study open_study(const std::string& root_in) {
     }
   }
   std::vector<std::string> names;
-  fs::directory_iterator it(root, ec);
-  if (ec) throw StudyError(fmt::format("{}: cannot read the study directory: {}", root_in, ec.message()));
-  for (const auto& e : it) {
-    if (!e.is_directory(ec)) continue;
+  for (const auto& e : list_directory(root)) {
     const std::string name = e.path().filename().string();
     if (name == "pairs" || name.empty() || name[0] == '.') continue;
-    if (fs::is_directory(e.path() / "labels", ec)) names.push_back(name);
+    if (kind_of(e.path()) != FileKind::kDirectory) continue;
+    if (kind_of(e.path() / "labels") == FileKind::kDirectory) names.push_back(name);
   }
   if (names.empty())
     throw StudyError(root_in + ": no domains found (expected subdirectories like real/labels/ with YOLO label files)");
@@ -191,19 +235,19 @@ Study open_study(const std::string& root_in) {
     d.name = name;
     d.dir = (root / name).string();
     std::set<std::string> stems;
-    for (const auto& f : fs::directory_iterator(root / name / "labels", ec))
+    for (const auto& f : list_directory(root / name / "labels"))
       if (f.path().extension() == ".txt" && f.path().filename() != "classes.txt") stems.insert(f.path().stem().string());
-    if (fs::is_directory(root / name / "images", ec)) {
-      for (const auto& f : fs::directory_iterator(root / name / "images", ec)) {
+    if (kind_of(root / name / "images") == FileKind::kDirectory) {
+      for (const auto& f : list_directory(root / name / "images")) {
         if (!kImageExtensions.count(lower(f.path().extension().string()))) continue;
         const std::string stem = f.path().stem().string();
         stems.insert(stem);
         d.images[stem] = f.path().string();
       }
     }
-    if (fs::is_directory(root / name / "predictions", ec)) {
-      for (const auto& m : fs::directory_iterator(root / name / "predictions", ec)) {
-        if (!m.is_directory(ec)) continue;
+    if (kind_of(root / name / "predictions") == FileKind::kDirectory) {
+      for (const auto& m : list_directory(root / name / "predictions")) {
+        if (kind_of(m.path()) != FileKind::kDirectory) continue;
         d.models.push_back(m.path().filename().string());
         all_models.insert(d.models.back());
       }
@@ -242,16 +286,73 @@ SceneMatch match_scenes(const Domain& a, const Domain& b) {
 
 namespace {
 
+constexpr int kMaxJsonDepth = 16;  // {"pairs": [[i, j]]} needs 3
+
+// The byte offset where `text` nests arrays/objects deeper than `limit`, or npos. Checked before parsing so that
+// nothing downstream (dump(), destructors) ever recurses through a hostile file.
+size_t too_deep_at(const std::string& text, int limit) {
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (size_t k = 0; k < text.size(); ++k) {
+    const char c = text[k];
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > limit) return k;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::string::npos;
+}
+
+// A JSON value for a message: short, whatever its size.
+std::string describe(const nlohmann::json& v) {
+  std::string s = v.dump();
+  return s.size() > 40 ? s.substr(0, 37) + "..." : s;
+}
+
+// A rock index within [0, limit), without narrowing (4294967296 is not 0).
+bool as_index(const nlohmann::json& v, int limit, int* out) {
+  long long x = -1;
+  if (v.is_number_unsigned()) {
+    const auto u = v.get<std::uint64_t>();
+    if (u >= static_cast<std::uint64_t>(limit)) return false;
+    x = static_cast<long long>(u);
+  } else if (v.is_number_integer()) {
+    x = v.get<std::int64_t>();
+  } else {
+    return false;
+  }
+  if (x < 0 || x >= limit) return false;
+  *out = static_cast<int>(x);
+  return true;
+}
+
 FixedPairs parse_fixed_pairs(const std::string& text, const std::string& file, bool swapped, int count_a,
                              int count_b) {
+  const size_t deep = too_deep_at(text, kMaxJsonDepth);
+  if (deep != std::string::npos)
+    throw StudyError(fmt::format("{}: JSON nested deeper than {} levels at byte {}: expected {{\"pairs\": [[i, j], ...]}}",
+                                 file, kMaxJsonDepth, deep + 1));
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw StudyError(fmt::format("{}: invalid JSON at byte {}: expected {{\"pairs\": [[i, j], ...]}}", file, e.byte));
+  } catch (const nlohmann::json::exception& e) {  // e.g. 1e309: a number out of range
+    throw StudyError(fmt::format("{}: invalid JSON: {}", file, e.what()));
   }
   if (!j.is_object() || !j.contains("pairs") || !j["pairs"].is_array())
     throw StudyError(file + ": expected an object with a \"pairs\" array, like {\"pairs\": [[0, 2], [1, 0]]}");
+  for (const auto& item : j.items())
+    if (item.key() != "pairs" && item.key() != "excluded_a" && item.key() != "excluded_b")
+      throw StudyError(fmt::format("{}: unknown key \"{}\" (expected pairs, excluded_a, excluded_b)", file,
+                                   item.key().size() > 40 ? item.key().substr(0, 37) + "..." : item.key()));
   FixedPairs fp;
   // The file's own order: first index belongs to the first domain of its directory name.
   const int n_first = swapped ? count_b : count_a, n_second = swapped ? count_a : count_b;
@@ -259,11 +360,11 @@ FixedPairs parse_fixed_pairs(const std::string& text, const std::string& file, b
   int k = 0;
   for (const auto& p : j["pairs"]) {
     if (!p.is_array() || p.size() != 2 || !p[0].is_number_integer() || !p[1].is_number_integer())
-      throw StudyError(fmt::format("{}: pair {} must be two integer rock indices, found {}", file, k + 1, p.dump()));
-    const int x = p[0].get<int>(), y = p[1].get<int>();
-    if (x < 0 || x >= n_first || y < 0 || y >= n_second)
+      throw StudyError(fmt::format("{}: pair {} must be two integer rock indices, found {}", file, k + 1, describe(p)));
+    int x = -1, y = -1;
+    if (!as_index(p[0], n_first, &x) || !as_index(p[1], n_second, &y))
       throw StudyError(fmt::format("{}: pair {} [{}, {}] is out of range: the images have {} and {} rocks", file,
-                                   k + 1, x, y, n_first, n_second));
+                                   k + 1, describe(p[0]), describe(p[1]), n_first, n_second));
     if (!used_first.insert(x).second || !used_second.insert(y).second)
       throw StudyError(fmt::format("{}: pair {} [{}, {}] uses a rock that is already paired", file, k + 1, x, y));
     fp.pairs.emplace_back(swapped ? y : x, swapped ? x : y);
@@ -273,9 +374,10 @@ FixedPairs parse_fixed_pairs(const std::string& text, const std::string& file, b
     if (!j.contains(key)) return;
     if (!j[key].is_array()) throw StudyError(fmt::format("{}: \"{}\" must be an array of rock indices", file, key));
     for (const auto& v : j[key]) {
-      if (!v.is_number_integer() || v.get<int>() < 0 || v.get<int>() >= limit)
-        throw StudyError(fmt::format("{}: \"{}\" holds {}, expected a rock index below {}", file, key, v.dump(), limit));
-      out->push_back(v.get<int>());
+      int x = -1;
+      if (!as_index(v, limit, &x))
+        throw StudyError(fmt::format("{}: \"{}\" holds {}, expected a rock index below {}", file, key, describe(v), limit));
+      out->push_back(x);
     }
   };
   read_excluded("excluded_a", n_first, swapped ? &fp.excluded_b : &fp.excluded_a);
@@ -287,18 +389,28 @@ FixedPairs parse_fixed_pairs(const std::string& text, const std::string& file, b
 }  // namespace
 
 std::optional<FixedPairs> read_fixed_pairs(const Study& study, const std::string& a, const std::string& b,
-                                           const std::string& stem, int count_a, int count_b) {
-  std::error_code ec;
+                                           const std::string& stem, int count_a, int count_b,
+                                           std::vector<std::string>* warnings) {
+  std::optional<FixedPairs> found;
+  fs::path found_path;
   for (const bool swapped : {false, true}) {
     const fs::path p = fs::path(swapped ? study.pairs_dir(b, a) : study.pairs_dir(a, b)) / (stem + ".json");
-    if (!fs::exists(p, ec)) continue;
     try {
-      return parse_fixed_pairs(read_file(p.string()), p.string(), swapped, count_a, count_b);
+      if (file_kind(p.string()) == FileKind::kMissing) continue;  // a dangling link or no access: IoError
+      if (found) {
+        // Both orders exist (e.g. a save interrupted before it removed the old name): the first one counts.
+        if (warnings)
+          warnings->push_back(fmt::format("{}: ignored: {} holds this scene's pairs too and is read first; remove one",
+                                          p.string(), found_path.string()));
+        break;
+      }
+      found = parse_fixed_pairs(read_file(p.string()), p.string(), swapped, count_a, count_b);
+      found_path = p;
     } catch (const IoError& e) {
       throw StudyError(e.what());
     }
   }
-  return std::nullopt;
+  return found;
 }
 
 std::string fixed_pairs_json(const FixedPairs& fp) {

@@ -41,6 +41,7 @@ struct ScenePairing {
   int count_a = 0, count_b = 0;
   RegistrationReport registration;  // meaningful when !fixed
   bool from_cache = false;          // registration read from the on-disk cache
+  std::vector<std::string> warnings;  // e.g. pairs files present in both name orders
 };
 
 class RegistrationCache;

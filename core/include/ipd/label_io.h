@@ -13,10 +13,15 @@ enum class LabelKind { kGroundTruth, kPrediction };
 // One problem in one line of one file, printed as `FILE:LINE: message`.
 struct LabelError {
   std::string file;
-  int line = 0;  // 1-based; 0 when the problem is the file itself
+  int line = 0;  // 1-based; 0 when the problem is the file itself (or this is a summary, below)
   std::string message;
+  // A summary: `more` further malformed lines of `file` that are counted but not listed (a file lists at
+  // most kMaxListedErrors, so 10^6 bad lines don't make 67 MB of messages).
+  int more = 0;
   std::string to_string() const;
+  int malformed_lines() const { return line > 0 ? 1 : more; }
 };
+constexpr int kMaxListedErrors = 50;
 
 struct LabelFile {
   std::string path;
@@ -31,7 +36,8 @@ struct LabelParseOptions {
   double range_tolerance = 1e-3;  // how far outside [0, 1] a normalised value may stray (rounding)
 };
 
-// Parses text that came from `file_name`; every malformed line becomes one LabelError, the others are kept.
+// Parses text that came from `file_name`; every malformed line becomes one LabelError (the first
+// kMaxListedErrors; then one summary with the count), the others are kept. A leading UTF-8 BOM is skipped.
 LabelFile parse_labels(const std::string& text, const std::string& file_name, const LabelParseOptions& options);
 
 // Reads and parses a file. A missing file is not an error (exists = false); an unreadable one is.

@@ -14,7 +14,8 @@ RockPairs mutual_nearest_pairs(const std::vector<Eigen::Vector2d>& a, const std:
                                double gate);
 
 // Optimal one-to-one assignment maximising total weight (weights[i * cols + j] >= 0); entries at or below
-// `min_weight` are never assigned. Hungarian algorithm, O(n^3).
+// `min_weight` are never assigned. Rectangular Hungarian algorithm,
+// O(min(rows, cols)^2 * max(rows, cols)).
 RockPairs max_weight_assignment(const std::vector<double>& weights, int rows, int cols, double min_weight);
 
 }  // namespace ipd

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "ipd/atomic_file.h"
 #include "ipd/audit.h"
 #include "ipd/ipd.h"
 
@@ -41,7 +42,11 @@ struct SaveJob {
 };
 
 // Carries out a save job: atomic write, or removal. Throws IoError naming the file.
-void run_save_job(const SaveJob& job);
+// Order: the file read first (`path`) is written (temp, fsync, rename, fsync of the directory) before the
+// other name order is removed; going back to automatic removes the other name order first. A crash or a
+// failure at any instant leaves the old pairs or the new ones, never neither. `hook` is called after each
+// step ("temp written", "renamed", "directory synced", "other removed", "removed"); tests throw from it.
+void run_save_job(const SaveJob& job, const WriteStepHook& hook = {});
 
 struct SceneState {
   std::string stem;

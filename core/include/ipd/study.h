@@ -13,15 +13,11 @@
 #include <string>
 #include <vector>
 
+#include "ipd/errors.h"
 #include "ipd/label_io.h"
 #include "ipd/registration.h"
 
 namespace ipd {
-
-// A study that can't be used, in one sentence naming what is wrong.
-struct StudyError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 struct ModelInfo {
   std::string name;
@@ -77,9 +73,11 @@ struct FixedPairs {
 };
 
 // Reads pairs/<A>__<B>/<stem>.json or pairs/<B>__<A>/<stem>.json (swapping indices); nullopt when neither
-// exists. Throws StudyError naming the file for bad JSON, indices out of range or a rock paired twice.
+// exists. Throws StudyError naming the file for bad JSON, unknown keys, indices out of range, a rock paired
+// twice, a dangling link or an unreadable file. When both exist, A__B counts and a warning names B__A.
 std::optional<FixedPairs> read_fixed_pairs(const Study& study, const std::string& a, const std::string& b,
-                                           const std::string& stem, int count_a, int count_b);
+                                           const std::string& stem, int count_a, int count_b,
+                                           std::vector<std::string>* warnings = nullptr);
 // Writes pairs/<A>__<B>/<stem>.json atomically.
 void write_fixed_pairs(const Study& study, const std::string& a, const std::string& b, const std::string& stem,
                        const FixedPairs& pairs);

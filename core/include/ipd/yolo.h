@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "ipd/errors.h"
 #include "ipd/geometry.h"
 
 namespace ipd {
@@ -37,10 +38,6 @@ enum class YoloHead { kV5, kV8 };
 // Decodes one raw output (already in [N, 5 + nc] or [N, 4 + nc] row form) into picture-normalised boxes.
 std::vector<Box> decode_yolo(const cv::Mat& rows, YoloHead head, const Letterbox& lb, int image_w, int image_h,
                              const YoloOptions& options);
-
-struct ModelError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 class YoloDetector {
  public:
