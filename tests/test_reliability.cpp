@@ -11,6 +11,8 @@
 #include <fstream>
 #include <iterator>
 #include <random>
+#include <set>
+#include <fmt/format.h>
 #include <stdexcept>
 
 #include "ipd/atomic_file.h"
@@ -300,6 +302,72 @@ TEST(Reliability, RectangularAssignmentMatchesBruteForce) {
       best = std::max(best, s);
     } while (std::next_permutation(idx.begin(), idx.end()));
     EXPECT_NEAR(got_sum, best, 1e-9) << rows << "x" << cols;
+  }
+}
+
+// --- "tests that can fail": the registration Rng must use its seed, and results must not depend on threads
+std::vector<Box> scattered_rocks(int n, unsigned seed, double jitter) {
+  std::mt19937 g(seed);
+  std::uniform_real_distribution<double> u(0.1, 0.9), e(-jitter, jitter);
+  std::vector<Box> out;
+  for (int k = 0; k < n; ++k) {
+    Box b;
+    b.cx = u(g) + e(g);
+    b.cy = u(g) + e(g);
+    b.w = b.h = 0.03;
+    out.push_back(b);
+  }
+  return out;
+}
+
+TEST(Determinism, TheSeedChangesASampledResult) {
+  // 14 rocks against 14 unrelated ones: no true alignment, so which of 3 random triples wins depends on
+  // the draws, i.e. on the seed.
+  const auto a = scattered_rocks(14, 1, 0), b = scattered_rocks(14, 2, 0);
+  RegistrationOptions o;
+  o.method = RegistrationMethod::kPaper;
+  o.max_trials = 3;
+  std::set<std::vector<double>> outcomes;
+  for (std::uint64_t seed = 0; seed < 6; ++seed) {
+    o.seed = seed;
+    const RegistrationReport r1 = register_rocks(a, b, o), r2 = register_rocks(a, b, o);
+    EXPECT_EQ(r1.affine, r2.affine) << "seed " << seed;  // the same seed, the same answer
+    outcomes.insert(std::vector<double>(r1.affine.data(), r1.affine.data() + 6));
+  }
+  EXPECT_GE(outcomes.size(), 4u) << "the seed barely changes the sampled result: is it used?";
+}
+
+TEST(Determinism, TheTableIsTheSameForAnyThreadCount) {
+  test::TempDir d;
+  for (int s = 0; s < 6; ++s) {
+    const auto real = scattered_rocks(12, 10 + s, 0), synth = scattered_rocks(12, 10 + s, 0.01);
+    std::string r, y, pr, py;
+    for (size_t k = 0; k < real.size(); ++k) {
+      r += fmt::format("0 {} {} 0.03 0.03\n", real[k].cx, real[k].cy);
+      y += fmt::format("0 {} {} 0.03 0.03\n", synth[k].cx + 0.02, synth[k].cy);
+      pr += fmt::format("0 {} {} 0.03 0.03 0.9\n", real[k].cx + 0.005 * (k % 3), real[k].cy);
+      py += fmt::format("0 {} {} 0.03 0.03 0.9\n", synth[k].cx + 0.02, synth[k].cy + 0.004 * (k % 4));
+    }
+    const std::string stem = "s" + std::to_string(s);
+    test::write_text(d / ("real/labels/" + stem + ".txt"), r);
+    test::write_text(d / ("synth/labels/" + stem + ".txt"), y);
+    test::write_text(d / ("real/predictions/det/" + stem + ".txt"), pr);
+    test::write_text(d / ("synth/predictions/det/" + stem + ".txt"), py);
+  }
+  const StudyLabels labels = load_labels(open_study(d.path()));
+  for (const auto method : {RegistrationMethod::kPaper, RegistrationMethod::kConsensus}) {
+    TableOptions o;
+    o.registration.method = method;
+    o.registration.seed = 5;
+    o.threads = 1;
+    const CrossTable one = compute_cross_table(labels, o);
+    o.threads = 3;
+    const CrossTable three = compute_cross_table(labels, o);
+    ASSERT_EQ(one.cells.size(), 1u);
+    EXPECT_EQ(one.cells[0].ipd, three.cells[0].ipd) << to_string(method);
+    EXPECT_EQ(one.cells[0].pairs, three.cells[0].pairs);
+    for (size_t k = 0; k < one.cells[0].per_scene.size(); ++k)
+      EXPECT_EQ(one.cells[0].per_scene[k].perf_a, three.cells[0].per_scene[k].perf_a) << k;
   }
 }
 

@@ -1,10 +1,14 @@
 // The GUI's state and edit logic, without a display: pairing, unpairing, excluding, undo/redo, saving
 // (read back by the engine) and live IPD.
 #include <gtest/gtest.h>
+#include <sched.h>
+#include <sys/mount.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <fmt/format.h>
 #include <random>
 
@@ -150,22 +154,48 @@ TEST(Session, IncrementalTotalsMatchAFullRecompute) {
   }
 }
 
+// Runs `check` in a child process where `dir` is a read-only bind mount (a private mount namespace: root
+// ignores permissions but not a read-only mount). Returns its exit code; -1 when no namespace can be made.
+int in_read_only_mount(const std::string& dir, const std::function<int()>& check) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    if (::unshare(CLONE_NEWNS) != 0 && ::unshare(CLONE_NEWUSER | CLONE_NEWNS) != 0) ::_exit(100);
+    if (::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0 ||
+        ::mount(dir.c_str(), dir.c_str(), nullptr, MS_BIND, nullptr) != 0 ||
+        ::mount(nullptr, dir.c_str(), nullptr, MS_REMOUNT | MS_BIND | MS_RDONLY, nullptr) != 0)
+      ::_exit(100);
+    ::_exit(check());
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) && WEXITSTATUS(status) != 100 ? WEXITSTATUS(status) : -1;
+}
+
 TEST(Session, ReadOnlyStudyIsDetectedAndSaveAsWritesElsewhere) {
   test::TempDir d, other;
   write_tiny_study(d);
-  if (::geteuid() == 0) {
-    // root ignores permissions; still check that save-as lands in the other study.
+  {
     Session s = Session::open(d.path());
+    EXPECT_FALSE(s.read_only());
     s.apply(0, Edit::unpair(Side::kA, 1));
     const auto jobs = s.save_all_to(other.path());
     ASSERT_EQ(jobs.size(), 1u);
     EXPECT_EQ(jobs[0].path, other / "pairs/real__synth/s1.json");
-    GTEST_SKIP() << "running as root: a read-only directory can't be simulated with permissions";
   }
+  const int code = in_read_only_mount(d.path(), [&] {
+    const Session s = Session::open(d.path());
+    return s.read_only() ? 0 : 1;
+  });
+  if (code >= 0) {
+    EXPECT_EQ(code, 0) << "a study on a read-only mount was not detected as read-only";
+    return;
+  }
+  // No mount namespace here (a restricted container): permissions, which bind everyone but root.
+  ASSERT_NE(::geteuid(), 0u) << "root without a mount namespace: read-only can't be simulated";
   std::filesystem::permissions(d.path(), std::filesystem::perms::owner_write, std::filesystem::perm_options::remove);
-  Session s = Session::open(d.path());
-  EXPECT_TRUE(s.read_only());
+  const bool read_only = Session::open(d.path()).read_only();
   std::filesystem::permissions(d.path(), std::filesystem::perms::owner_write, std::filesystem::perm_options::add);
+  EXPECT_TRUE(read_only);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "ipd/atomic_file.h"
+#include "ipd/json_input.h"
 #include "ipd/study.h"
 
 namespace fs = std::filesystem;
@@ -17,12 +18,9 @@ namespace ipd {
 
 namespace {
 
-json parse_json_file(const std::string& path) {
-  try {
-    return json::parse(read_file(path));
-  } catch (const json::parse_error& e) {
-    throw StudyError(fmt::format("{}: invalid JSON at byte {}", path, e.byte));
-  }
+// COCO nests at most 5 deep (segmentation polygons); 64 leaves room and stops a 66k-deep file.
+json parse_json_file(const std::string& path, const char* expected) {
+  return parse_json_input(read_file(path), path, expected, 64);
 }
 
 struct Image {
@@ -34,13 +32,13 @@ struct Image {
 // A COCO [x, y, w, h] box in pixels to a normalised YOLO box; empty string when fine, else what's wrong.
 std::string to_box(const json& bbox, const Image& img, Box* out) {
   if (!bbox.is_array() || bbox.size() != 4 || !std::all_of(bbox.begin(), bbox.end(), [](const json& v) { return v.is_number(); }))
-    return fmt::format("expected bbox [x, y, w, h] of numbers, found {}", bbox.dump());
+    return fmt::format("expected bbox [x, y, w, h] of numbers, found {}", describe_json(bbox));
   const double x = bbox[0], y = bbox[1], w = bbox[2], h = bbox[3];
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(w) || !std::isfinite(h) || w <= 0 || h <= 0)
-    return fmt::format("expected bbox with w > 0 and h > 0, found {}", bbox.dump());
+    return fmt::format("expected bbox with w > 0 and h > 0, found {}", describe_json(bbox));
   const double tol = 1.0;  // a pixel of rounding beyond the border is fine
   if (x < -tol || y < -tol || x + w > img.w + tol || y + h > img.h + tol)
-    return fmt::format("expected bbox inside the {}x{} image, found {}", img.w, img.h, bbox.dump());
+    return fmt::format("expected bbox inside the {}x{} image, found {}", img.w, img.h, describe_json(bbox));
   out->cx = std::clamp((x + w / 2) / img.w, 0.0, 1.0);
   out->cy = std::clamp((y + h / 2) / img.h, 0.0, 1.0);
   out->w = std::min(w / img.w, 1.0);
@@ -50,9 +48,24 @@ std::string to_box(const json& bbox, const Image& img, Box* out) {
 
 }  // namespace
 
+namespace {
+CocoImportReport import_coco_checked(const CocoImportOptions& o);
+}
+
 CocoImportReport import_coco(const CocoImportOptions& o) {
+  try {
+    return import_coco_checked(o);
+  } catch (const json::exception& e) {  // a case the checks below missed still names the file
+    std::string why = e.what();
+    if (why.size() > 120) why = why.substr(0, 117) + "...";
+    throw StudyError(fmt::format("{}: {}", o.annotations, why));
+  }
+}
+
+namespace {
+CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   CocoImportReport r;
-  const json gt = parse_json_file(o.annotations);
+  const json gt = parse_json_file(o.annotations, "a COCO object {\"images\": [...], \"annotations\": [...], ...}");
   for (const char* key : {"images", "annotations", "categories"})
     if (!gt.is_object() || !gt.contains(key) || !gt[key].is_array())
       throw StudyError(fmt::format("{}: expected a COCO object with an \"{}\" array", o.annotations, key));
@@ -60,7 +73,10 @@ CocoImportReport import_coco(const CocoImportOptions& o) {
   std::vector<std::pair<long, std::string>> cats;
   for (const auto& c : gt["categories"]) {
     if (!c.is_object() || !c.contains("id") || !c["id"].is_number_integer())
-      throw StudyError(fmt::format("{}: every category needs an integer \"id\", found {}", o.annotations, c.dump()));
+      throw StudyError(fmt::format("{}: every category needs an integer \"id\", found {}", o.annotations, describe_json(c)));
+    if (c.contains("name") && !c["name"].is_string())
+      throw StudyError(fmt::format("{}: category {}: \"name\" must be a string, found {}", o.annotations,
+                                   c["id"].get<long>(), describe_json(c["name"])));
     cats.emplace_back(c["id"].get<long>(), c.value("name", std::to_string(c["id"].get<long>())));
   }
   std::sort(cats.begin(), cats.end());
@@ -75,7 +91,7 @@ CocoImportReport import_coco(const CocoImportOptions& o) {
     if (!im.is_object() || !im.contains("id") || !im["id"].is_number_integer() || !im.contains("file_name") ||
         !im["file_name"].is_string() || !im.contains("width") || !im.contains("height") || !im["width"].is_number() ||
         !im["height"].is_number() || !(im["width"].get<double>() > 0) || !(im["height"].get<double>() > 0)) {
-      r.errors.push_back({o.annotations, 0, where + ": expected {id, file_name, width > 0, height > 0}, found " + im.dump().substr(0, 120)});
+      r.errors.push_back({o.annotations, 0, where + ": expected {id, file_name, width > 0, height > 0}, found " + describe_json(im)});
       continue;
     }
     Image img;
@@ -89,7 +105,7 @@ CocoImportReport import_coco(const CocoImportOptions& o) {
   auto add = [&](const json& a, const std::string& file, const std::string& where, bool prediction) {
     if (!a.is_object() || !a.contains("image_id") || !a["image_id"].is_number_integer() || !a.contains("category_id") ||
         !a["category_id"].is_number_integer()) {
-      r.errors.push_back({file, 0, where + ": expected image_id and category_id integers, found " + a.dump().substr(0, 120)});
+      r.errors.push_back({file, 0, where + ": expected image_id and category_id integers, found " + describe_json(a)});
       return;
     }
     const auto im = images.find(a["image_id"].get<long>());
@@ -111,7 +127,7 @@ CocoImportReport import_coco(const CocoImportOptions& o) {
     }
     if (prediction) {
       if (!a.contains("score") || !a["score"].is_number() || !(a["score"].get<double>() >= 0 && a["score"].get<double>() <= 1)) {
-        r.errors.push_back({file, 0, where + ": expected a score in [0, 1], found " + (a.contains("score") ? a["score"].dump() : "none")});
+        r.errors.push_back({file, 0, where + ": expected a score in [0, 1], found " + (a.contains("score") ? describe_json(a["score"]) : "none")});
         return;
       }
       b.conf = a["score"];
@@ -125,7 +141,7 @@ CocoImportReport import_coco(const CocoImportOptions& o) {
   k = 0;
   for (const auto& a : gt["annotations"]) add(a, o.annotations, fmt::format("annotations[{}]", k++), false);
   if (!o.results.empty()) {
-    const json res = parse_json_file(o.results);
+    const json res = parse_json_file(o.results, "a JSON list of detections [{image_id, category_id, bbox, score}]");
     if (!res.is_array()) throw StudyError(o.results + ": expected a JSON list of detections [{image_id, category_id, bbox, score}]");
     k = 0;
     for (const auto& a : res) add(a, o.results, fmt::format("[{}]", k++), true);
@@ -153,5 +169,7 @@ CocoImportReport import_coco(const CocoImportOptions& o) {
   r.written = true;
   return r;
 }
+
+}  // namespace
 
 }  // namespace ipd

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "ipd/atomic_file.h"
+#include "ipd/json_input.h"
 
 namespace fs = std::filesystem;
 
@@ -288,34 +289,6 @@ namespace {
 
 constexpr int kMaxJsonDepth = 16;  // {"pairs": [[i, j]]} needs 3
 
-// The byte offset where `text` nests arrays/objects deeper than `limit`, or npos. Checked before parsing so that
-// nothing downstream (dump(), destructors) ever recurses through a hostile file.
-size_t too_deep_at(const std::string& text, int limit) {
-  int depth = 0;
-  bool in_string = false, escaped = false;
-  for (size_t k = 0; k < text.size(); ++k) {
-    const char c = text[k];
-    if (in_string) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') in_string = false;
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
-      if (++depth > limit) return k;
-    } else if (c == ']' || c == '}') {
-      --depth;
-    }
-  }
-  return std::string::npos;
-}
-
-// A JSON value for a message: short, whatever its size.
-std::string describe(const nlohmann::json& v) {
-  std::string s = v.dump();
-  return s.size() > 40 ? s.substr(0, 37) + "..." : s;
-}
-
 // A rock index within [0, limit), without narrowing (4294967296 is not 0).
 bool as_index(const nlohmann::json& v, int limit, int* out) {
   long long x = -1;
@@ -335,18 +308,7 @@ bool as_index(const nlohmann::json& v, int limit, int* out) {
 
 FixedPairs parse_fixed_pairs(const std::string& text, const std::string& file, bool swapped, int count_a,
                              int count_b) {
-  const size_t deep = too_deep_at(text, kMaxJsonDepth);
-  if (deep != std::string::npos)
-    throw StudyError(fmt::format("{}: JSON nested deeper than {} levels at byte {}: expected {{\"pairs\": [[i, j], ...]}}",
-                                 file, kMaxJsonDepth, deep + 1));
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw StudyError(fmt::format("{}: invalid JSON at byte {}: expected {{\"pairs\": [[i, j], ...]}}", file, e.byte));
-  } catch (const nlohmann::json::exception& e) {  // e.g. 1e309: a number out of range
-    throw StudyError(fmt::format("{}: invalid JSON: {}", file, e.what()));
-  }
+  const nlohmann::json j = parse_json_input(text, file, "{\"pairs\": [[i, j], ...]}", kMaxJsonDepth);
   if (!j.is_object() || !j.contains("pairs") || !j["pairs"].is_array())
     throw StudyError(file + ": expected an object with a \"pairs\" array, like {\"pairs\": [[0, 2], [1, 0]]}");
   for (const auto& item : j.items())
@@ -360,11 +322,11 @@ FixedPairs parse_fixed_pairs(const std::string& text, const std::string& file, b
   int k = 0;
   for (const auto& p : j["pairs"]) {
     if (!p.is_array() || p.size() != 2 || !p[0].is_number_integer() || !p[1].is_number_integer())
-      throw StudyError(fmt::format("{}: pair {} must be two integer rock indices, found {}", file, k + 1, describe(p)));
+      throw StudyError(fmt::format("{}: pair {} must be two integer rock indices, found {}", file, k + 1, describe_json(p)));
     int x = -1, y = -1;
     if (!as_index(p[0], n_first, &x) || !as_index(p[1], n_second, &y))
       throw StudyError(fmt::format("{}: pair {} [{}, {}] is out of range: the images have {} and {} rocks", file,
-                                   k + 1, describe(p[0]), describe(p[1]), n_first, n_second));
+                                   k + 1, describe_json(p[0]), describe_json(p[1]), n_first, n_second));
     if (!used_first.insert(x).second || !used_second.insert(y).second)
       throw StudyError(fmt::format("{}: pair {} [{}, {}] uses a rock that is already paired", file, k + 1, x, y));
     fp.pairs.emplace_back(swapped ? y : x, swapped ? x : y);
@@ -376,7 +338,7 @@ FixedPairs parse_fixed_pairs(const std::string& text, const std::string& file, b
     for (const auto& v : j[key]) {
       int x = -1;
       if (!as_index(v, limit, &x))
-        throw StudyError(fmt::format("{}: \"{}\" holds {}, expected a rock index below {}", file, key, describe(v), limit));
+        throw StudyError(fmt::format("{}: \"{}\" holds {}, expected a rock index below {}", file, key, describe_json(v), limit));
       out->push_back(x);
     }
   };

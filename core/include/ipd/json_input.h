@@ -1,0 +1,20 @@
+// Parsing JSON from files we don't control (pairs files, COCO annotations): nesting depth capped before
+// parsing (nothing downstream may recurse through a hostile file), every error naming the file, and values
+// quoted in messages at most 40 characters long.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace ipd {
+
+// Parses `text` read from `file`; throws StudyError "FILE: invalid JSON at byte N: expected <expected>",
+// "FILE: JSON nested deeper than <max_depth> levels at byte N: ..." or "FILE: invalid JSON: <why>" (numbers
+// out of range such as 1e309).
+nlohmann::json parse_json_input(const std::string& text, const std::string& file, const std::string& expected,
+                                int max_depth);
+
+// A value for an error message: its JSON text, shortened to 40 characters.
+std::string describe_json(const nlohmann::json& value);
+
+}  // namespace ipd
