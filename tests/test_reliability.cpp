@@ -14,6 +14,8 @@
 #include <set>
 #include <fmt/format.h>
 #include <stdexcept>
+#include <thread>
+#include <chrono>
 
 #include "ipd/atomic_file.h"
 #include "ipd/ipd.h"
@@ -263,6 +265,7 @@ TEST(Reliability, ParallelForRethrowsTheFirstExceptionOnTheCaller) {
       parallel_for(1000, threads, [&](size_t k) {
         ++ran;
         if (k == 7) throw std::runtime_error("job 7 failed");
+        std::this_thread::sleep_for(std::chrono::microseconds(500));  // 1000 jobs: >= 125 ms unless stopped
       });
       ADD_FAILURE() << "no exception";
     } catch (const std::runtime_error& e) {
