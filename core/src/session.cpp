@@ -83,7 +83,8 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
   int total = 0;
   for (const auto& [a, b] : pairs_) total += static_cast<int>(match_scenes(*st.domain(a), *st.domain(b)).common.size());
   std::atomic<int> done{0}, cached{0};
-  for (const auto& [a, b] : pairs_) {
+  for (const auto& domain_pair : pairs_) {
+    const std::string &a = domain_pair.first, &b = domain_pair.second;  // C++17 lambdas can't capture bindings
     const std::vector<std::string> stems = match_scenes(*st.domain(a), *st.domain(b)).common;
     std::vector<SceneState> list(stems.size());
     std::vector<std::string> errors(stems.size());
