@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
       waitpid(child, &status, 0);
       const bool passes = WIFEXITED(status) && WEXITSTATUS(status) == 0;
       std::printf("%s: known failure %s\n", f.c_str(),
-                  passes ? "NOW PASSES: take it off IPD_FUZZ_KNOWN_FAILURES" : "still fails (not counted)");
+                  passes ? "NOW PASSES: take it off tests/fuzz/known_failures.txt" : "still fails (not counted)");
       still_failing += !passes;
       continue;
     }
