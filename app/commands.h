@@ -19,5 +19,9 @@ Runner add_figure_stats_commands(CLI::App* figure, std::shared_ptr<std::string> 
 Runner add_bench_command(CLI::App& app);
 Runner add_detect_command(CLI::App& app);
 Runner add_import_command(CLI::App& app);
+Runner add_compare_command(CLI::App& app);
+Runner add_breakdown_command(CLI::App& app);
+Runner add_export_command(CLI::App& app);
+Runner add_metrics_command(CLI::App& app);
 
 }  // namespace ipd::cli

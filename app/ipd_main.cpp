@@ -24,6 +24,10 @@ int main(int argc, char** argv) {
   add(ipd::cli::add_bench_command);
   add(ipd::cli::add_detect_command);
   add(ipd::cli::add_import_command);
+  add(ipd::cli::add_compare_command);
+  add(ipd::cli::add_breakdown_command);
+  add(ipd::cli::add_export_command);
+  add(ipd::cli::add_metrics_command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
