@@ -244,6 +244,8 @@ Runner add_bench_command(CLI::App& app) {
   auto edits = std::make_shared<Runner>(add_bench_edits(bench));
   auto which = std::make_shared<std::string>("registration");
   bench->get_subcommands({}).front()->callback([which] { *which = "edits"; });
+  auto bootstrap = std::make_shared<Runner>(add_bench_bootstrap(bench));
+  bench->get_subcommands({}).back()->callback([which] { *which = "bootstrap"; });
   CLI::App* cmd = bench->add_subcommand("registration", "Registration run time against pair F1 and transform error");
   cmd->add_option("--data", args->data, "POLAR-Sim label directory (containing labels/)");
   cmd->add_option("--cases", args->cases, "Cases per misalignment range")->check(CLI::Range(1, 100000));
@@ -253,8 +255,9 @@ Runner add_bench_command(CLI::App& app) {
   cmd->add_flag("--quick", args->quick, "One budget per method (for CI smoke runs)");
   cmd->add_flag("--pycpd", args->pycpd, "Also run the Python baseline (numpy port of pycpd; needs python3-numpy)");
   cmd->add_option("--pycpd-script", args->pycpd_script, "Path of pycpd_reference.py");
-  return [args, edits, which]() -> int {
+  return [args, edits, bootstrap, which]() -> int {
     if (*which == "edits") return (*edits)();
+    if (*which == "bootstrap") return (*bootstrap)();
     const std::string root = (std::filesystem::path(args->data) / "labels").string();
     if (!std::filesystem::is_directory(root))
       throw StudyError(root + ": no POLAR-Sim labels here (pass --data DIR; see ../shared/data/polar-sim)");

@@ -23,5 +23,7 @@ Runner add_compare_command(CLI::App& app);
 Runner add_breakdown_command(CLI::App& app);
 Runner add_export_command(CLI::App& app);
 Runner add_metrics_command(CLI::App& app);
+// `ipd bench bootstrap` (app/bench_bootstrap.cpp), added under `ipd bench`.
+Runner add_bench_bootstrap(CLI::App* bench);
 
 }  // namespace ipd::cli
