@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -132,6 +133,18 @@ TEST(LabelIo, GarbageNeverCrashesAndEveryLineIsAccountedFor) {
         ASSERT_GE(b.cls, 0);
       }
       for (const auto& e : f.errors) ASSERT_EQ(e.to_string().rfind("fuzz.txt:", 0), 0u);
+      // Every box line (anything but blanks before a '#') is a box or an error: none is dropped.
+      size_t box_lines = 0, start = 0;
+      while (start < text.size()) {
+        size_t eol = text.find('\n', start);
+        if (eol == std::string::npos) eol = text.size();
+        const std::string line = text.substr(start, std::min(eol, text.find('#', start)) - start);
+        if (line.find_first_not_of(" \t\r\v\f") != std::string::npos) ++box_lines;
+        start = eol + 1;
+      }
+      size_t accounted = f.boxes.size();
+      for (const auto& e : f.errors) accounted += static_cast<size_t>(e.malformed_lines());
+      ASSERT_EQ(accounted, box_lines) << text;
     }
   }
 }
