@@ -158,7 +158,7 @@ void DisplayList::text(Pt at, Anchor anchor, const TextStyle& style, const std::
   it.s = s;
   items_.push_back(std::move(it));
 }
-void DisplayList::image(const Picture& picture, const PtRect& where) {
+void DisplayList::image(const FigurePicture& picture, const PtRect& where) {
   Item it = make_item<Item>(Op::kImage, {}, where);
   it.picture = picture;
   items_.push_back(std::move(it));

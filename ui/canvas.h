@@ -41,7 +41,7 @@ struct TextStyle {
 PtRect text_box(Pt at, Anchor anchor, double width, double height);
 
 // A picture (BGR, 8 bit) and where its pixels go; `pixels` is already cut to what is shown.
-struct Picture {
+struct FigurePicture {
   cv::Mat pixels;
 };
 
@@ -55,7 +55,7 @@ class Canvas {
   virtual void circle(Pt centre, double radius_pt, Colour stroke, double width_pt) = 0;
   virtual void fill_circle(Pt centre, double radius_pt, Colour fill) = 0;
   virtual void text(Pt at, Anchor anchor, const TextStyle& style, const std::string& s) = 0;
-  virtual void image(const Picture& picture, const PtRect& where) = 0;
+  virtual void image(const FigurePicture& picture, const PtRect& where) = 0;
   virtual void push_clip(const PtRect& r) = 0;
   virtual void pop_clip() = 0;
   // Advance width and line height (ascent + descent) of `s` in points.
@@ -98,7 +98,7 @@ class DisplayList : public Canvas {
   void circle(Pt centre, double radius_pt, Colour stroke, double width_pt) override;
   void fill_circle(Pt centre, double radius_pt, Colour fill) override;
   void text(Pt at, Anchor anchor, const TextStyle& style, const std::string& s) override;
-  void image(const Picture& picture, const PtRect& where) override;
+  void image(const FigurePicture& picture, const PtRect& where) override;
   void push_clip(const PtRect& r) override;
   void pop_clip() override;
   Pt measure(const TextStyle& style, const std::string& s) override { return metrics_.measure(style, s); }
@@ -127,7 +127,7 @@ class DisplayList : public Canvas {
     Anchor anchor = Anchor::kTopLeft;
     TextStyle style;
     std::string s;
-    Picture picture;
+    FigurePicture picture;
   };
   const FontMetrics& metrics_;
   std::vector<Item> items_;

@@ -83,7 +83,7 @@ class CairoCanvas : public Canvas {
     cairo_show_text(cr_, s.c_str());
     cairo_new_path(cr_);
   }
-  void image(const Picture& p, const PtRect& where) override {
+  void image(const FigurePicture& p, const PtRect& where) override {
     if (p.pixels.empty()) return;
     cv::Mat bgra;
     cv::cvtColor(p.pixels, bgra, p.pixels.channels() == 1 ? cv::COLOR_GRAY2BGRA : cv::COLOR_BGR2BGRA);

@@ -56,7 +56,7 @@ void ImGuiCanvas::text(Pt at, Anchor anchor, const TextStyle& st, const std::str
   if (st.bold && !bold_) dl_->AddText(font, size, {p.x + std::max(1.0f, size * 0.05f), p.y}, col(st.colour), s.c_str());
 }
 
-void ImGuiCanvas::image(const Picture& pic, const PtRect& where) {
+void ImGuiCanvas::image(const FigurePicture& pic, const PtRect& where) {
   if (pic.pixels.empty() || !upload_) return;
   auto it = textures_.find(pic.pixels.data);
   if (it == textures_.end()) it = textures_.emplace(pic.pixels.data, upload_(pic.pixels)).first;

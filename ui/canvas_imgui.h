@@ -25,7 +25,7 @@ class ImGuiCanvas : public Canvas {
   void circle(Pt centre, double radius_pt, Colour stroke, double width_pt) override;
   void fill_circle(Pt centre, double radius_pt, Colour fill) override;
   void text(Pt at, Anchor anchor, const TextStyle& style, const std::string& s) override;
-  void image(const Picture& picture, const PtRect& where) override;
+  void image(const FigurePicture& picture, const PtRect& where) override;
   void push_clip(const PtRect& r) override;
   void pop_clip() override;
   Pt measure(const TextStyle& style, const std::string& s) override;

@@ -92,7 +92,7 @@ class SvgCanvas : public Canvas {
                          box.y0 + metrics_.ascent(st), st.size_pt, st.bold ? " font-weight=\"bold\"" : "",
                          colour(st.colour), opacity("fill-opacity", st.colour), xml_escape(s));
   }
-  void image(const Picture& p, const PtRect& where) override {
+  void image(const FigurePicture& p, const PtRect& where) override {
     if (p.pixels.empty()) return;
     std::vector<uchar> png;
     cv::imencode(".png", p.pixels, png);

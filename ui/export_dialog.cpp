@@ -19,6 +19,19 @@ Crop crop_of_view(const CanvasView& view) {
   return c;
 }
 
+ExportViewContext export_view_context(const Session& s, const UiState& ui) {
+  ExportViewContext c;
+  c.default_dir = s.read_only() ? std::filesystem::current_path().string()
+                                : (std::filesystem::path(s.study().root) / "figures").string();
+  if (ui.scene >= 0 && ui.scene < int(s.scenes().size())) {
+    c.scene = ui.scene;
+    c.base_name = s.scenes()[ui.scene].stem + "_" + s.left_domain() + "_" + s.right_domain();
+  }
+  c.layers = ui.layers;
+  c.view = ui.left_view;
+  return c;
+}
+
 void open_export_dialog(ExportDialogState& st, const ExportViewContext& ctx) {
   st.open = true;
   st.layers[0] = ctx.layers.gt;
@@ -58,7 +71,9 @@ std::optional<ExportRequest> draw_export_dialog(ExportDialogState& st, const Exp
   }
   ImGui::InputText("folder", st.dir, sizeof st.dir);
   ImGui::InputText("file name", st.name, sizeof st.name);
-  const std::string path = (std::filesystem::path(st.dir) / (std::string(st.name) + exts[st.format])).string();
+  const std::string path =
+      (std::filesystem::path(st.dir) / (std::string(st.name) + (st.kind == 0 ? "_pairs" : "_registration") + exts[st.format]))
+          .string();
   ImGui::TextDisabled("writes %s", path.c_str());
   ImGui::TextDisabled("same figure as: ipd figure %s ... --conf <slider> (edits included)", st.kind == 0 ? "pairs" : "registration");
   if (ImGui::Button("Export") && st.name[0]) {

@@ -7,6 +7,7 @@
 
 #include "figure_export.h"
 #include "scene_canvas.h"
+#include "views.h"
 
 namespace ipd::ui {
 
@@ -30,6 +31,10 @@ struct ExportViewContext {
   int image_w = 0, image_h = 0;
   int scene = -1;
 };
+
+// The context of the session's current view (scene, layers, zoom; files go to STUDY/figures, or the
+// working directory for a read-only study).
+ExportViewContext export_view_context(const Session& session, const UiState& ui);
 
 // The visible region of a picture shown with `view` in a pane of the picture's aspect (normalised, clamped).
 Crop crop_of_view(const CanvasView& view);

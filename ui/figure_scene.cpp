@@ -58,7 +58,7 @@ struct PanelMap {
 
 // The crop of a picture at its own resolution (never resampled here), on whole pixels, and the normalised
 // region those pixels cover (so boxes and pixels stay registered).
-Picture crop_picture(const cv::Mat& img, const Crop& c, Crop* covered) {
+FigurePicture crop_picture(const cv::Mat& img, const Crop& c, Crop* covered) {
   const int x0 = std::clamp(int(std::floor(c.x0 * img.cols + 1e-6)), 0, img.cols - 1);
   const int y0 = std::clamp(int(std::floor(c.y0 * img.rows + 1e-6)), 0, img.rows - 1);
   const int x1 = std::clamp(int(std::ceil(c.x1 * img.cols - 1e-6)), x0 + 1, img.cols);
@@ -87,7 +87,7 @@ int draw_side(Canvas& c, const PanelMap& m, const cv::Mat& picture, const std::s
            problem.empty() ? "no picture" : problem);
   } else {
     Crop covered;
-    const Picture pixels = crop_picture(picture, m.crop, &covered);
+    const FigurePicture pixels = crop_picture(picture, m.crop, &covered);
     const Pt p0 = m(covered.x0, covered.y0), p1 = m(covered.x1, covered.y1);
     c.push_clip(P);
     c.image(pixels, {p0.x, p0.y, p1.x, p1.y});
