@@ -89,6 +89,23 @@ TEST(FigureFiles, PdfPageIsTheColumnWidthAndCarriesTheText) {
   }
 }
 
+// Every font of the PDF embedded (as a subset), and --font picks another one.
+TEST(FigureFiles, FontsAreEmbeddedAndChosenWithFont) {
+  test::TempDir d;
+  test::write_figure_study(d, false);
+  ASSERT_EQ(test::run_ipd("figure table " + d.path() + " --out " + d / "sans.pdf").exit_code, 0);
+  const std::string serif = "/usr/share/fonts/truetype/dejavu/DejaVuSerif.ttf";
+  ASSERT_EQ(test::run_ipd("figure table " + d.path() + " --font " + serif + " --out " + d / "serif.pdf").exit_code, 0);
+  for (const auto& [file, family] : {std::pair<std::string, std::string>{"sans.pdf", "DejaVuSans"}, {"serif.pdf", "DejaVuSerif"}}) {
+    const auto r = test::run_command("pdffonts '" + d / file + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // Regular and bold (the row's best), each "+FAMILY... TrueType WinAnsi yes yes yes".
+    const std::regex embedded("\\+" + family + "(-Bold)?\\s+TrueType\\s+\\S+\\s+yes\\s+yes");
+    const auto n = std::distance(std::sregex_iterator(r.out.begin(), r.out.end(), embedded), std::sregex_iterator());
+    EXPECT_EQ(n, 2) << r.out;
+  }
+}
+
 TEST(FigureFiles, PicturesGoInAtTheirOwnResolutionCutToTheCrop) {
   test::TempDir d;
   test::write_figure_study(d, true);  // 640 x 400 pictures
