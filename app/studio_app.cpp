@@ -1,5 +1,11 @@
 #include "studio_app.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <thread>
+
 #include <fmt/format.h>
 #include <imgui.h>
 
@@ -22,12 +28,6 @@ fs::path cache_home() {
   const char* xdg = std::getenv("XDG_CACHE_HOME");
   const char* home = std::getenv("HOME");
   return (xdg && *xdg ? fs::path(xdg) : fs::path(home ? home : "/tmp") / ".cache") / "ipd-studio";
-}
-
-std::string quote(const std::string& x) {
-  std::string q = "'";
-  for (char c : x) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
 }
 
 std::vector<std::string> read_recent() {
@@ -252,6 +252,8 @@ void StudioApp::frame() {
   ui::draw_status_bar(v, ui_, cmd);
   if (ui_.show_open) list_browse_dir();
   ui::draw_dialogs(v, ui_, cmd);
+  if (s)
+    if (auto request = ui::draw_export_dialog(export_dialog_, ui::export_view_context(*s, ui_))) export_figure(*request);
   ImGui::End();
   apply(cmd);
   textures_.end_frame();
@@ -315,22 +317,24 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
     worker_.submit(std::move(c));
     ui_.rerun_discarded = false;
   }
-  if ((cmd.export_figures || cmd.export_dialog) && !s.scenes().empty()) {
-    // The files `ipd figure` writes, by the same code; on the worker, so the window stays responsive.
-    const fs::path ipd_exe = fs::path(o_.exe_dir) / "ipd";
-    const fs::path dir = s.read_only() ? fs::current_path() : fs::path(s.study().root) / "figures";
-    const std::string stem = s.scenes()[ui_.scene].stem;
-    const std::string base = (dir / (stem + "_" + s.left_domain() + "_" + s.right_domain())).string();
-    const std::string common = " " + quote(s.study().root) + " --scene " + quote(stem) + " --a " +
-                               quote(s.left_domain()) + " --b " + quote(s.right_domain()) + " --model " + quote(s.model());
-    WorkerCommand c{K::kExport};
-    c.command = quote(ipd_exe.string()) + " figure pairs" + common + " --out " + quote(base + "_pairs.png") +
-                " >/dev/null 2>&1 && " + quote(ipd_exe.string()) + " figure registration" + common + " --out " +
-                quote(base + "_registration.png") + " >/dev/null 2>&1";
-    c.a = "exported " + base + "_pairs.png and _registration.png";
-    ui_.status = "exporting " + base + "_pairs.png and _registration.png ...";
-    worker_.submit(std::move(c));
-  }
+  if ((cmd.export_figures || cmd.export_dialog) && !s.scenes().empty())
+    ui::open_export_dialog(export_dialog_, ui::export_view_context(s, ui_));
+}
+
+void StudioApp::export_figure(const ui::ExportRequest& request) {
+  WorkerCommand c{WorkerCommand::Kind::kExport};
+  c.job = [session = snap_->session, request] {
+    // Rendering takes a second of CPU: a low-priority thread, so the window's frames keep theirs.
+    std::string message;
+    std::thread low([&] {
+      setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 15);
+      message = ui::export_scene_figure(*session, request);
+    });
+    low.join();
+    return message;
+  };
+  ui_.status = "exporting " + request.path + " ...";
+  worker_.submit(std::move(c));
 }
 
 void StudioApp::next_suspect() {
@@ -414,13 +418,17 @@ bool StudioApp::replay_step() {
     ui_.rerun_method = a.args[0] == "consensus" ? 0 : a.args[0] == "paper" ? 1 : 2;
     cmd.rerun_registration = true;
   } else if (a.verb == "export" && !s.scenes().empty()) {
-    const std::string stem = s.scenes()[ui_.scene].stem;
-    WorkerCommand c{WorkerCommand::Kind::kExport};
-    c.command = quote((fs::path(o_.exe_dir) / "ipd").string()) + " figure pairs " + quote(s.study().root) + " --scene " +
-                quote(stem) + " --a " + quote(s.left_domain()) + " --b " + quote(s.right_domain()) + " --model " +
-                quote(s.model()) + " --out " + quote(a.args[0]) + " >/dev/null 2>&1";
-    c.a = "exported " + a.args[0];
-    worker_.submit(std::move(c));
+    // The dialog's request with its defaults (pairs, single column, the view's layers and zoom).
+    ui::ExportDialogState d;
+    const ui::ExportViewContext ctx = ui::export_view_context(s, ui_);
+    ui::open_export_dialog(d, ctx);
+    ui::ExportRequest r;
+    r.path = a.args[0];
+    r.scene = ui_.scene;
+    r.options.layers = {d.layers[0], d.layers[1], d.layers[2], d.layers[3], d.layers[4], d.layers[5]};
+    r.options.crop = ui::crop_of_view(ctx.view);
+    r.options.font_file = ui::default_font_file();
+    export_figure(r);
   }
   apply(cmd);
   return true;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "export_dialog.h"
 #include "studio_replay.h"
 #include "studio_textures.h"
 #include "studio_worker.h"
@@ -46,12 +47,14 @@ class StudioApp {
   bool replay_step();  // one action of --replay; false while waiting
   ui::Picture picture(const std::string& domain, const std::string& stem, bool urgent, bool* full);
   void list_browse_dir();
+  void export_figure(const ui::ExportRequest& request);  // on the worker, from the current snapshot
 
   StudioOptions o_;
   StudyWorker worker_;
   PictureLoader loader_;
   TextureCache textures_;
   ui::UiState ui_;
+  ui::ExportDialogState export_dialog_;
   std::shared_ptr<const Snapshot> snap_;
   long order_version_ = -1;
   std::string order_filter_;

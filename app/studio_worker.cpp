@@ -202,9 +202,9 @@ void StudyWorker::execute(WorkerCommand& c) {
       return;
     }
     case K::kExport: {
-      const int rc = std::system(c.command.c_str());
+      std::string message = c.job ? c.job() : std::string("export failed: nothing to export");
       std::lock_guard<std::mutex> l(mu_);
-      messages_.push_back(rc == 0 ? c.a : "export failed (is the ipd tool next to ipd-studio?)");
+      messages_.push_back(std::move(message));
       return;
     }
     case K::kOpen: break;

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -49,7 +50,9 @@ struct WorkerCommand {
   double value = 0;     // kConf
   RegistrationOptions registration;  // kRerun
   bool automatic = false;            // kRerun: the study's own registration, recorded for the replay
-  std::string command;  // kExport: shell command; a: message when it succeeds
+  // kExport: renders and writes a figure in-process (ui::export_scene_figure on an immutable snapshot's
+  // session) and returns the status line.
+  std::function<std::string()> job;
 };
 
 class StudyWorker {
