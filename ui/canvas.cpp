@@ -37,7 +37,7 @@ std::string default_font_file() {
 namespace {
 
 // One FreeType library for the process (FreeType faces must not outlive it); creating faces is serialised.
-std::mutex ft_mutex;
+std::recursive_mutex ft_mutex;  // recursive: cairo may drop a face (and lock) while a face is being made
 FT_Library ft_library() {
   static FT_Library lib = [] {
     FT_Library l = nullptr;
@@ -50,14 +50,14 @@ FT_Library ft_library() {
 const cairo_user_data_key_t kFaceKey{};
 
 cairo_font_face_t* load_face(const std::string& file, bool synthesize_bold) {
-  std::lock_guard<std::mutex> lock(ft_mutex);
+  std::lock_guard<std::recursive_mutex> lock(ft_mutex);
   FT_Face face = nullptr;
   if (FT_New_Face(ft_library(), file.c_str(), 0, &face))
     throw std::runtime_error(file + ": cannot read this font file (expected a TrueType or OpenType font)");
   cairo_font_face_t* cf = cairo_ft_font_face_create_for_ft_face(face, 0);
   // The FreeType face lives as long as cairo keeps the font face.
   cairo_font_face_set_user_data(cf, &kFaceKey, face, [](void* f) {
-    std::lock_guard<std::mutex> l(ft_mutex);
+    std::lock_guard<std::recursive_mutex> l(ft_mutex);
     FT_Done_Face(static_cast<FT_Face>(f));
   });
   if (synthesize_bold) cairo_ft_font_face_set_synthesize(cf, CAIRO_FT_SYNTHESIZE_BOLD);
