@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "ipd/statistics.h"
+#include "ipd/session_statistics.h"
 #include "ipd/study_statistics.h"
 #include "stats_study.h"
 #include "test_support.h"
@@ -241,6 +242,46 @@ TEST(StudyStatistics, BreakdownBinsAddUpToTheCell) {
       EXPECT_EQ(b.bins.size(), 9u);
     }
   }
+}
+
+}  // namespace
+}  // namespace ipd
+
+namespace ipd {
+namespace {
+
+TEST(StudyStatistics, SessionStatisticsMatchTheTableAndFollowEdits) {
+  test::TempDir d;
+  test::write_stats_study(d.path(), test::StatsStudyVariant::kDistinct);
+  Session s = Session::open(d.path());
+  ASSERT_TRUE(s.select_domains("real", "hapke"));
+  SessionStatisticsRequest r;
+  r.model = "det";
+  r.pair = s.pair_index();
+  r.ref = "real";
+  r.a = "principled";
+  r.b = "hapke";
+  const SessionStatistics st = compute_session_statistics(s, r);
+  const CrossTable t = table_with_intervals(d.path(), 1, 0);
+  for (const auto& c : t.cells) {
+    const TableCell* live = st.table.cell(c.model, c.a, c.b);
+    ASSERT_NE(live, nullptr);
+    EXPECT_NEAR(live->ipd, c.ipd, 1e-12) << cell_key(c);
+    EXPECT_NEAR(live->ci_low, c.ci_low, 1e-12) << cell_key(c);
+    EXPECT_NEAR(live->ci_high, c.ci_high, 1e-12) << cell_key(c);
+  }
+  ASSERT_EQ(st.scene_ipd.size(), 12u);
+  EXPECT_EQ(st.scene_ipd[0].first, "s00");
+  EXPECT_NEAR(st.scene_ipd[0].second, t.cell("det", "real", "hapke")->per_scene[0].ipd(), 1e-12);
+  ASSERT_TRUE(st.size.has_value());
+  EXPECT_EQ(st.size->bins.size(), 4u);
+  ASSERT_TRUE(st.comparison.has_value());
+  EXPECT_LT(st.comparison->result.delta.estimate, 0);  // principled is closer to real than hapke
+  // An edit (unpair everything in scene 0) changes scene 0's IPD and the cell's interval.
+  for (int k = 0; k < 10; ++k) s.apply(0, Edit::unpair(Side::kA, k));
+  const SessionStatistics after = compute_session_statistics(s, r);
+  EXPECT_EQ(after.scene_ipd.size(), 11u);
+  EXPECT_NE(after.table.cell("det", "real", "hapke")->ci_low, st.table.cell("det", "real", "hapke")->ci_low);
 }
 
 }  // namespace

@@ -259,6 +259,12 @@ CellTotals Session::totals_for(const std::string& model, int pair_index) const {
   return it->second;
 }
 
+const std::vector<SceneIpd>& Session::contributions_for(const std::string& model, int pair_index) const {
+  static const std::vector<SceneIpd> kNone;
+  const auto it = contributions_.find({model, pair_index});
+  return it == contributions_.end() ? kNone : it->second;
+}
+
 SceneIpd Session::contribution(const std::string& model, int pair, int scene) const {
   const auto& [a, b] = pairs_[pair];
   const SceneState& s = scenes_[pair][scene];
@@ -274,6 +280,7 @@ SceneIpd Session::contribution(const std::string& model, int pair, int scene) co
     used_a[i] = used_b[j] = 1;
     out.perf_a.push_back(pa[i]);
     out.perf_b.push_back(pb[j]);
+    out.counted.emplace_back(i, j);
     out.sum_abs_diff += std::abs(pa[i] - pb[j]);
     ++out.pairs;
   }

@@ -124,6 +124,9 @@ class Session {
   // IPD of the current domain pair for the current model, and any cell of the cross table.
   CellTotals totals() const { return totals_for(model_, pair_); }
   CellTotals totals_for(const std::string& model, int pair_index) const;
+  // Each scene's contribution to a cell (scene order of the domain pair; `counted` in (A, B) indices);
+  // empty when the model lacks predictions for a domain. For the statistics (session_statistics.h).
+  const std::vector<SceneIpd>& contributions_for(const std::string& model, int pair_index) const;
 
   // Edits of one scene; sides refer to the view (left = A unless swapped). Returns the save job.
   SaveJob apply(int scene, Edit edit);

@@ -1,0 +1,69 @@
+#include "ipd/session_statistics.h"
+
+namespace ipd {
+
+bool SessionStatisticsRequest::operator==(const SessionStatisticsRequest& o) const {
+  return model == o.model && pair == o.pair && ref == o.ref && a == o.a && b == o.b &&
+         bootstrap.resamples == o.bootstrap.resamples && bootstrap.level == o.bootstrap.level &&
+         bootstrap.seed == o.bootstrap.seed && permutations == o.permutations;
+}
+
+CrossTable session_table(const Session& s) {
+  CrossTable t;
+  t.models = s.study().models;
+  t.columns = s.domain_pairs();
+  for (const auto& m : t.models) {
+    for (size_t p = 0; p < t.columns.size(); ++p) {
+      const auto& [a, b] = t.columns[p];
+      TableCell c;
+      c.model = m.name;
+      c.trained_on = m.trained_on;
+      c.a = a;
+      c.b = b;
+      c.involves_training_domain = m.trained_on.empty() || m.trained_on == a || m.trained_on == b;
+      c.missing_predictions = !s.labels().has_predictions(a, m.name) || !s.labels().has_predictions(b, m.name);
+      if (!c.missing_predictions) c.per_scene = s.contributions_for(m.name, static_cast<int>(p));
+      double sum = 0;
+      for (const auto& sc : c.per_scene) {
+        sum += sc.sum_abs_diff;
+        c.pairs += sc.pairs;
+        c.unpaired_a += sc.unpaired_a;
+        c.unpaired_b += sc.unpaired_b;
+      }
+      c.scenes = static_cast<int>(c.per_scene.size());
+      c.ipd = c.pairs > 0 ? sum / static_cast<double>(c.pairs) : std::nan("");
+      t.cells.push_back(std::move(c));
+    }
+  }
+  return t;
+}
+
+SessionStatistics compute_session_statistics(const Session& s, const SessionStatisticsRequest& r) {
+  SessionStatistics out;
+  out.request = r;
+  out.table = session_table(s);
+  add_confidence_intervals(&out.table, r.bootstrap, r.threads);
+  if (r.pair >= 0 && r.pair < static_cast<int>(out.table.columns.size())) {
+    const auto& [a, b] = out.table.columns[r.pair];
+    if (const TableCell* cell = out.table.cell(r.model, a, b); cell && !cell->missing_predictions) {
+      for (const auto& sc : cell->per_scene)
+        if (sc.pairs > 0) out.scene_ipd.emplace_back(sc.stem, sc.ipd());
+      BreakdownOptions bo;
+      bo.bootstrap = r.bootstrap;
+      out.size = breakdown_cell(s.labels(), *cell, bo);
+    }
+  }
+  if (!r.ref.empty()) {
+    try {
+      CompareOptions co;
+      co.bootstrap = r.bootstrap;
+      co.permutations = r.permutations;
+      out.comparison = compare_renderers(out.table, r.model, r.ref, r.a, r.b, co);
+    } catch (const std::exception& e) {
+      out.comparison_error = e.what();
+    }
+  }
+  return out;
+}
+
+}  // namespace ipd

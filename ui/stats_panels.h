@@ -1,0 +1,36 @@
+// ipd-studio's statistics panels: the interval of each cross-table cell (tooltip), a renderer comparison
+// (ref / a / b -> ΔIPD, interval, p and the sentence), the histogram of per-scene IPD of the current cell
+// (a click on a bar filters the scene list to those scenes) and the size breakdown as small bars. They draw
+// a SessionStatistics computed off the UI thread; they never compute.
+#pragma once
+
+#include <string>
+
+#include "ipd/session_statistics.h"
+#include "views.h"
+
+namespace ipd::ui {
+
+struct StatsPanelState {
+  int ref = 0, a = 1, b = 2;  // domain indices of the comparison
+  int bins = 8;               // histogram bars
+};
+
+// What to compute for the current view (the app hands it to its statistics job).
+SessionStatisticsRequest stats_request(const Session& s, const StatsPanelState& st);
+
+// A tooltip with the cell's interval when the last item is hovered (nothing while unknown).
+void cell_interval_tooltip(const SessionStatistics* stats, const std::string& model, int pair);
+
+// `stats` may be null (first computation running) or older than the view (`computing` is then true).
+void draw_stats_panels(const StudyView& v, const SessionStatistics* stats, bool computing, StatsPanelState& st,
+                       UiState& ui, UiCommands& out);
+
+// Histogram bins of values: `bins` bars of a round width from 0 (or the minimum) up to the maximum.
+struct HistogramBins {
+  double start = 0, width = 0;
+  std::vector<int> counts;
+};
+HistogramBins histogram_bins(const std::vector<double>& values, int bins);
+
+}  // namespace ipd::ui
