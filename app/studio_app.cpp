@@ -142,6 +142,8 @@ void StudioApp::frame() {
   if (s) {
     v.session = s;
     v.summaries = &snap_->summaries;
+    stats_.update(snap_, ui::stats_request(*s, stats_ui_));
+    v.stats = stats_.result();
     if (snap_->rerun && !s->scenes().empty() && snap_->rerun_pair == s->pair_index() &&
         snap_->rerun_stem == s->scenes()[ui_.scene].stem) {
       v.rerun = snap_->rerun.get();
@@ -244,6 +246,7 @@ void StudioApp::frame() {
       ImGui::TableNextColumn();
       ImGui::BeginChild("ipd", {0, h - 8});
       ui::draw_ipd_panel(v, ui_, cmd);
+      ui::draw_stats_panels(v, v.stats, stats_.computing(), stats_ui_, ui_, cmd);
       ImGui::EndChild();
       ImGui::EndTable();
     }

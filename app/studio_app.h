@@ -8,7 +8,9 @@
 #include <vector>
 
 #include "export_dialog.h"
+#include "stats_panels.h"
 #include "studio_replay.h"
+#include "studio_stats.h"
 #include "studio_textures.h"
 #include "studio_worker.h"
 #include "views.h"
@@ -55,6 +57,8 @@ class StudioApp {
   TextureCache textures_;
   ui::UiState ui_;
   ui::ExportDialogState export_dialog_;
+  ui::StatsPanelState stats_ui_;
+  StatsJob stats_;  // intervals, histogram, breakdown, comparison: off the UI thread
   std::shared_ptr<const Snapshot> snap_;
   long order_version_ = -1;
   std::string order_filter_;

@@ -101,8 +101,12 @@ void draw_compare(const StudyView& v, const SessionStatistics* stats, StatsPanel
   const Comparison& r = c.result;
   ImGui::Text("IPD(%s,%s) %.4f  IPD(%s,%s) %.4f", c.ref.c_str(), c.a.c_str(), r.ipd_a, c.ref.c_str(), c.b.c_str(), r.ipd_b);
   ImGui::Text("delta %s   p = %.2g", interval(r.delta.estimate, r.delta.low, r.delta.high).c_str(), r.p_value);
+  // The GUI font has no Δ or typographic minus: spell them in ASCII.
+  std::string sentence = comparison_sentence(c);
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"ΔIPD", "delta IPD"}, {"−", "-"}})
+    for (size_t at; (at = sentence.find(from)) != std::string::npos;) sentence.replace(at, from.size(), to);
   ImGui::PushTextWrapPos(0);
-  ImGui::TextUnformatted(comparison_sentence(c).c_str());
+  ImGui::TextUnformatted(sentence.c_str());
   ImGui::PopTextWrapPos();
 }
 

@@ -10,6 +10,7 @@
 
 #include "ipd/scene_filter.h"
 #include "ipd/session.h"
+#include "ipd/session_statistics.h"
 #include "scene_canvas.h"
 
 namespace ipd::ui {
@@ -30,6 +31,7 @@ struct StudyView {
   int pending_saves = 0;
   std::vector<std::string> failed_saves;
   bool busy = false;  // the worker is computing
+  const SessionStatistics* stats = nullptr;  // intervals etc. (stats_panels.h), computed off the UI thread
 };
 
 // The replay of a registration's search (the trace), as a position on its timeline.

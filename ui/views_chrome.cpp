@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "stats_panels.h"
 #include "views.h"
 
 namespace ipd::ui {
@@ -228,6 +229,7 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
         if (!involves) ImGui::TextDisabled("-");
         else if (current) ImGui::TextColored({1, 0.85f, 0.3f, 1}, "%s", fmt_ipd(val).c_str());
         else ImGui::TextUnformatted(fmt_ipd(val).c_str());
+        if (involves) cell_interval_tooltip(v.stats, m.name, static_cast<int>(p));
       }
     }
     ImGui::EndTable();
