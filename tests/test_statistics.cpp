@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "ipd/statistics.h"
 #include "ipd/session_statistics.h"
@@ -282,6 +283,47 @@ TEST(StudyStatistics, SessionStatisticsMatchTheTableAndFollowEdits) {
   const SessionStatistics after = compute_session_statistics(s, r);
   EXPECT_EQ(after.scene_ipd.size(), 11u);
   EXPECT_NE(after.table.cell("det", "real", "hapke")->ci_low, st.table.cell("det", "real", "hapke")->ci_low);
+}
+
+}  // namespace
+}  // namespace ipd
+
+namespace ipd {
+namespace {
+
+TEST(StatsCli, SameOutputForAnyThreadCountAndTheDocumentedJson) {
+  test::TempDir d;
+  test::write_stats_study(d.path(), test::StatsStudyVariant::kDistinct);
+  const std::string table = "table " + d.path() + " --format json";
+  const auto one = test::run_ipd(table + " --threads 1"), two = test::run_ipd(table + " --threads 2");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  EXPECT_EQ(one.out, two.out);
+  const auto other_seed = test::run_ipd(table + " --threads 2 --seed 1");
+  EXPECT_NE(one.out, other_seed.out);
+  const auto j = nlohmann::json::parse(one.out);
+  EXPECT_TRUE(j["cells"][0]["ci_low"].is_number());
+  EXPECT_EQ(j["cells"][0]["scene_ipd"]["scenes"], 12);
+  EXPECT_EQ(j["cells"][0]["scene_ipd"]["worst"].size(), 5u);
+
+  const auto cmp = test::run_ipd("compare " + d.path() + " --model det --ref real --a principled --b hapke  --json");
+  ASSERT_EQ(cmp.exit_code, 0) << cmp.err;
+  const auto c = nlohmann::json::parse(cmp.out);
+  for (const char* key : {"model", "ref", "a", "b", "ipd_a", "ipd_b", "delta", "ci_low", "ci_high", "p_value", "scenes",
+                          "pairs_a", "pairs_b", "delta_common"})
+    EXPECT_TRUE(c.contains(key)) << key;
+  EXPECT_NEAR(c["delta"].get<double>(), c["ipd_a"].get<double>() - c["ipd_b"].get<double>(), 1e-12);
+  EXPECT_EQ(c["scenes"], 12);
+
+  const auto bad = test::run_ipd("compare " + d.path() + " --ref real --a real --b hapke");
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_EQ(bad.err, "error: compare needs three different domains, got --ref real --a real --b hapke\n");
+  const auto latex = test::run_ipd("table " + d.path() + " --format latex --ci --booktabs");
+  EXPECT_NE(latex.out.find("$|$real $-$ principled$|$"), std::string::npos) << latex.out;
+  EXPECT_NE(latex.out.find("\\toprule"), std::string::npos);
+  EXPECT_NE(latex.out.find("\\bottomrule"), std::string::npos);
+  EXPECT_EQ(latex.out.find("\\hline"), std::string::npos);
+  EXPECT_EQ(latex.out.find("\\|"), std::string::npos);  // no double bars
+  EXPECT_NE(latex.out.find("} ["), std::string::npos);  // \textbf{x} [lo, hi]
 }
 
 }  // namespace
