@@ -165,9 +165,10 @@ void StudioApp::frame() {
     ImGui::Dummy({0, h * 0.35f});
     ImGui::Text("Opening %s", o_.study.c_str());
     const float f = p.total > 0 ? float(p.done) / p.total : 0.0f;
-    const std::string label = p.total > 0 ? fmt::format("{} / {} scene pairs", p.done, p.total) : p.stage;
+    const std::string label = p.total > 0 ? fmt::format("{} / {} {}", p.done, p.total, p.stage) : p.stage;
     ImGui::ProgressBar(f, {std::min(600.0f, ImGui::GetContentRegionAvail().x), 0}, label.c_str());
-    ImGui::Text("%s, %.1f s%s", p.stage.c_str(), p.elapsed_s,
+    ImGui::Text("%s, %.1f s%s", p.stage == "registration" ? "registering rocks (cached results are read back)" : "reading",
+                p.elapsed_s,
                 p.eta_s >= 0 ? fmt::format(", about {:.0f} s left", std::ceil(p.eta_s)).c_str() : "");
     ImGui::Dummy({0, std::max(0.0f, h * 0.65f - 3 * ImGui::GetTextLineHeightWithSpacing())});
   } else {
@@ -439,6 +440,8 @@ bool StudioApp::replay_step() {
 
 std::string StudioApp::after_render(double ms) {
   const bool ready = snap_ != nullptr || open_failed_;
+  if (snap_ && content_ms_ < 0)
+    content_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started_).count();
   if (changing_ && pictures_full_) {
     scene_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - change_started_).count());
     changing_ = false;
@@ -467,6 +470,11 @@ int StudioApp::print_stats() const {
     fmt::print("{} median={:.2f} p95={:.2f} max={:.2f} n={}\n", name, v[v.size() / 2],
                v[std::min(v.size() - 1, v.size() * 95 / 100)], v.back(), v.size());
   };
+  if (o_.frame_stats && content_ms_ >= 0) {
+    const OpenProgress p = worker_.progress();
+    fmt::print("open_ms={:.0f} (study on screen; {} of {} registrations from the cache)\n", content_ms_, p.cached,
+               snap_ ? snap_->summaries.size() * snap_->session->domain_pairs().size() : 0);
+  }
   if (o_.frame_stats) stats("frame_ms", frame_ms_);
   stats("scene_ms", scene_ms_);
   if (!o_.screenshot.empty()) fmt::print("{}\n", o_.screenshot);

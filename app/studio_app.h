@@ -73,6 +73,8 @@ class StudioApp {
   int counted_ = 0, settle_ = 0, since_change_ = 0;
   bool changing_ = false, change_shown_ = false, pictures_full_ = false;
   std::chrono::steady_clock::time_point change_started_;
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+  double content_ms_ = -1;  // start to the first frame showing the study
   // Replay
   std::vector<ReplayAction> replay_;
   size_t replay_next_ = 0;

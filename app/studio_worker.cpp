@@ -68,7 +68,16 @@ void StudyWorker::run() {
     WorkerCommand c;
     {
       std::unique_lock<std::mutex> l(mu_);
-      cv_.wait(l, [&] { return stop_ || !queue_.empty(); });
+      while (!stop_ && queue_.empty()) {
+        cv_.wait_for(l, std::chrono::milliseconds(250));
+        std::vector<std::shared_ptr<const Snapshot>> unused;
+        for (auto it = retired_.begin(); it != retired_.end();)
+          if (it->use_count() == 1) unused.push_back(std::move(*it)), it = retired_.erase(it);
+          else ++it;
+        l.unlock();
+        unused.clear();  // destroyed outside the lock
+        l.lock();
+      }
       if (stop_) return;
       c = std::move(queue_.front());
       queue_.pop_front();
@@ -103,6 +112,7 @@ void StudyWorker::publish(bool session_changed, int jump_to_scene) {
   snap->rerun_pair = rerun_pair_;
   snap->rerun_is_automatic = rerun_automatic_;
   std::lock_guard<std::mutex> l(mu_);
+  if (snapshot_) retired_.push_back(std::move(snapshot_));
   snapshot_ = std::move(snap);
 }
 
@@ -113,7 +123,7 @@ void StudyWorker::execute(WorkerCommand& c) {
       std::lock_guard<std::mutex> l(mu_);
       progress_ = OpenProgress{};
       progress_.opening = true;
-      progress_.stage = "labels";
+      progress_.stage = "label files";
       open_error_.clear();
     }
     const auto start = std::chrono::steady_clock::now();

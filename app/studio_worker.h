@@ -77,6 +77,9 @@ class StudyWorker {
   std::deque<WorkerCommand> queue_;
   bool stop_ = false, busy_ = false;
   std::shared_ptr<const Snapshot> snapshot_;
+  // Snapshots the view may still hold: freed here, on the worker, once the view lets go (freeing a
+  // 10,000-scene session takes longer than a frame).
+  std::vector<std::shared_ptr<const Snapshot>> retired_;
   OpenProgress progress_;
   std::string open_error_;
   std::vector<std::string> messages_;

@@ -36,28 +36,37 @@ bool StudyLabels::has_predictions(const std::string& d, const std::string& m) co
   return di != predictions.end() && di->second.count(m) > 0;
 }
 
-StudyLabels load_labels(const Study& study) {
+StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress) {
   StudyLabels out;
   out.study = study;
   const int cls = study.config.rock_class;
+  // Every file is read and parsed on every core into its own slot (the maps are filled first, serially);
+  // errors are then gathered in file order, so the result does not depend on the thread count.
+  struct Job {
+    LabelFile* slot;
+    std::string path;
+    bool prediction;
+  };
+  std::vector<Job> jobs;
   for (const auto& d : study.domains) {
-    for (const auto& stem : d.stems) {
-      LabelFile f = read_labels(study.label_path(d.name, stem), {LabelKind::kGroundTruth});
-      out.errors.insert(out.errors.end(), f.errors.begin(), f.errors.end());
-      keep_class(&f, cls);
-      out.gt[d.name][stem] = std::move(f);
-    }
+    for (const auto& stem : d.stems) jobs.push_back({&out.gt[d.name][stem], study.label_path(d.name, stem), false});
     for (const auto& m : d.models) {
       auto& files = out.predictions[d.name][m];
-      for (const auto& stem : d.stems) {
-        LabelFile f = read_labels(study.prediction_path(d.name, m, stem), {LabelKind::kPrediction});
-        out.errors.insert(out.errors.end(), f.errors.begin(), f.errors.end());
-        keep_class(&f, cls);
-        keep_confident(&f, study.config.conf_threshold);
-        files[stem] = std::move(f);
-      }
+      for (const auto& stem : d.stems) jobs.push_back({&files[stem], study.prediction_path(d.name, m, stem), true});
     }
   }
+  std::atomic<int> done{0};
+  const int total = static_cast<int>(jobs.size());
+  parallel_for(jobs.size(), 0, [&](size_t k) {
+    const Job& j = jobs[k];
+    LabelFile f = read_labels(j.path, {j.prediction ? LabelKind::kPrediction : LabelKind::kGroundTruth});
+    keep_class(&f, cls);
+    if (j.prediction) keep_confident(&f, study.config.conf_threshold);
+    *j.slot = std::move(f);
+    const int d = ++done;
+    if (progress && (d % 256 == 0 || d == total)) progress(d, total);
+  });
+  for (const Job& j : jobs) out.errors.insert(out.errors.end(), j.slot->errors.begin(), j.slot->errors.end());
   return out;
 }
 

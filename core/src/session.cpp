@@ -63,9 +63,9 @@ Session Session::open(const std::string& root, const SessionOptions& options) {
   for (fs::directory_iterator it(fs::path(study.root) / "pairs", ec); !ec && it != fs::directory_iterator();
        it.increment(ec))
     if (it->is_directory(ec)) remove_stale_temp_files(it->path().string());
-  if (options.progress) options.progress("labels", 0, 1);
-  StudyLabels labels = load_labels(study);
-  if (options.progress) options.progress("labels", 1, 1);
+  StudyLabels labels = load_labels(study, [&](int done, int total) {
+    if (options.progress) options.progress("label files", done, total);
+  });
   return Session(std::move(labels), options);
 }
 

@@ -30,7 +30,8 @@ struct StudyLabels {
 };
 
 // Reads every label and prediction file (class filter and confidence threshold from the study config).
-StudyLabels load_labels(const Study& study);
+// `progress` (optional) is called from worker threads with files read so far.
+StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress = {});
 
 // How the rocks of one image pair were paired.
 struct ScenePairing {
