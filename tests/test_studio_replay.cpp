@@ -36,6 +36,7 @@ TEST(StudioReplay, EditsReachThePairsFiles) {
                    "scene scene_00003\n"
                    "pair 1 1\n"
                    "undo\n"
+                   "export " + d / "fig.pdf\n"
                    "screenshot " + d / "shot.png\n");
   // The same edits through the Session API, opened before the GUI writes anything.
   Session s = Session::open(d / "study");
@@ -44,6 +45,8 @@ TEST(StudioReplay, EditsReachThePairsFiles) {
       d / "study", d / "actions.txt", d / "log.txt");
   ASSERT_EQ(run(cmd), 0) << read_file(d / "log.txt");
   EXPECT_TRUE(fs::exists(d / "shot.png"));
+  ASSERT_TRUE(fs::exists(d / "fig.pdf")) << read_file(d / "log.txt");  // exported in-process, on the worker
+  EXPECT_EQ(read_file(d / "fig.pdf").substr(0, 5), "%PDF-");
 
   const int two = s.scene_index("scene_00002");
   s.apply(two, Edit::unpair(Side::kA, 0));
