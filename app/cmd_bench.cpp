@@ -35,10 +35,11 @@ struct Config {
 };
 
 struct Row {
-  std::string regime, method;  // method: a registration method's name, or "pycpd-numpy"
+  std::string regime, method;  // method: a registration method's name, "pycpd-numpy", "floor" or "ceiling"
   Config config;
   int cases = 0;
-  double ms_per_pair = 0, f1 = 0, precision = 0, recall = 0, terr_median = 0, terr_p90 = 0;
+  double ms_per_pair = 0, ms_median = 0, f1 = 0, precision = 0, recall = 0, terr_median = 0, terr_p90 = 0;
+  double ambiguous = -1, f1_ambiguous = 0;  // fraction of cases flagged, and their mean F1 (-1: not reported)
 };
 
 double percentile(std::vector<double> v, double q) {
@@ -79,16 +80,48 @@ Row run_config(const std::vector<RegistrationCase>& cases, const std::string& re
   row.method = to_string(c.method);
   row.config = c;
   row.cases = static_cast<int>(cases.size());
-  std::vector<double> terr;
-  const auto start = std::chrono::steady_clock::now();
+  std::vector<double> terr, ms;
   std::vector<RegistrationReport> reports;
   reports.reserve(cases.size());
-  for (const auto& k : cases) reports.push_back(register_rocks(k.a, k.b, o));
-  row.ms_per_pair =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / cases.size();
-  for (size_t i = 0; i < cases.size(); ++i) score_case(cases[i], reports[i].pairs, reports[i].affine, aspect, &row, &terr);
+  for (const auto& k : cases) {
+    const auto start = std::chrono::steady_clock::now();
+    reports.push_back(register_rocks(k.a, k.b, o));
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  }
+  for (double x : ms) row.ms_per_pair += x / static_cast<double>(cases.size());
+  row.ms_median = percentile(ms, 0.5);
+  int flagged = 0;
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const double before = row.f1;
+    score_case(cases[i], reports[i].pairs, reports[i].affine, aspect, &row, &terr);
+    if (reports[i].ambiguous) ++flagged, row.f1_ambiguous += row.f1 - before;
+  }
+  row.ambiguous = static_cast<double>(flagged) / static_cast<double>(cases.size());
+  row.f1_ambiguous = flagged ? row.f1_ambiguous / flagged : 0;
   finish_row(terr, &row);
   return row;
+}
+
+// What no method can beat on these cases: the transform error of least squares on the true pairs (the
+// floor) and the pair F1 of the true affine with our pairing (the ceiling).
+std::vector<Row> bounds_rows(const std::vector<RegistrationCase>& cases, const std::string& regime, double aspect) {
+  Row floor, ceiling;
+  floor.regime = ceiling.regime = regime;
+  floor.method = "floor";
+  ceiling.method = "ceiling";
+  floor.config = ceiling.config = {RegistrationMethod::kConsensus, 0};
+  floor.cases = ceiling.cases = static_cast<int>(cases.size());
+  std::vector<double> terr_floor, terr_ceiling;
+  Row unused;
+  for (const auto& c : cases) {
+    Affine2 ls;
+    if (!least_squares_on_truth(c, &ls)) ls = identity_affine();
+    score_case(c, pair_by_aligned_iou(ls, c.a, c.b, RegistrationOptions().min_pair_iou), ls, aspect, &floor, &terr_floor);
+    score_case(c, pairs_under_true_affine(c), c.truth_affine, aspect, &ceiling, &terr_ceiling);
+  }
+  finish_row(terr_floor, &floor);
+  finish_row(terr_ceiling, &ceiling);
+  return {floor, ceiling};
 }
 
 // The Python baseline: app/pycpd_reference.py (a numpy port of pycpd's affine CPD) on the same cases, its
@@ -134,14 +167,53 @@ Row run_pycpd(const std::vector<RegistrationCase>& cases, const std::string& reg
   return row;
 }
 
+// Time of the default method against the rock count (synthetic layouts, small misalignment): the issue asks
+// for no worse than n log n up to 500 a side.
+void scaling(double aspect, std::uint64_t seed) {
+  fmt::print("default method against the rock count (synthetic layouts, small misalignment, 20 cases each):\n");
+  fmt::print("{:>6} {:>10} {:>8} {:>22}\n", "rocks", "ms median", "F1", "ms / (n log2 n), n=25: 1");
+  double unit = 0;
+  for (int n : {25, 50, 100, 200, 500}) {
+    std::vector<double> ms;
+    double f1 = 0;
+    const int count = 20;
+    for (int k = 0; k < count; ++k) {
+      const auto c = make_case(synthetic_label_pair(n, seed * 1000 + k), small_misalignment(), seed * 7 + k);
+      RegistrationOptions o;
+      o.aspect = aspect;
+      const auto start = std::chrono::steady_clock::now();
+      const auto r = register_rocks(c.a, c.b, o);
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+      f1 += score_pairs(r.pairs, c.truth).f1 / count;
+    }
+    const double med = percentile(ms, 0.5), per = med / (n * std::log2(static_cast<double>(n)));
+    if (unit == 0) unit = per;
+    fmt::print("{:>6} {:>10.3f} {:>8.4f} {:>22.2f}\n", n, med, f1, per / unit);
+  }
+}
+
+// Every method on 5,000 rocks a side with its default settings: the work budget must end each within
+// seconds, saying why it stopped.
+void work_bound(std::uint64_t seed) {
+  const auto c = make_case(synthetic_label_pair(5000, seed), small_misalignment(), seed);
+  fmt::print("\n{} vs {} rocks, default settings:\n", c.a.size(), c.b.size());
+  for (auto m : {RegistrationMethod::kConsensus, RegistrationMethod::kPaper, RegistrationMethod::kCpd}) {
+    RegistrationOptions o;
+    o.method = m;
+    const auto r = register_rocks(c.a, c.b, o);
+    fmt::print("  {:<10} {:>9.1f} ms  F1 {:.3f}  work {:.3g} of {:.3g}; stopped: {}\n", to_string(m), r.elapsed_ms,
+               score_pairs(r.pairs, c.truth).f1, r.work, r.work_budget, to_string(r.stop));
+  }
+}
+
 void plot(const std::vector<Row>& rows, const std::string& path) {
-  const int W = 1400, H = 620, panel_w = 660, top = 60, plot_h = 480;
+  const int panel_w = 560, W = 70 + 3 * (panel_w + 40), H = 620, top = 60, plot_h = 480;
   cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
   const cv::Scalar colours[] = {{200, 80, 20}, {40, 40, 220}, {40, 160, 40}, {120, 120, 120}};
   const char* const names[] = {"paper", "consensus", "cpd", "pycpd-numpy"};
   const double lo = -2.5, hi = 2.5;  // log10 ms
   int panel = 0;
-  for (const std::string regime : {"small", "large"}) {
+  for (const std::string regime : {"small", "large", "unequal"}) {
     const int x0 = 70 + panel * (panel_w + 40), y0 = top;
     cv::rectangle(img, {x0, y0, panel_w - 60, plot_h}, cv::Scalar(0, 0, 0), 1);
     auto px = [&](double ms, double f1) {
@@ -159,7 +231,7 @@ void plot(const std::vector<Row>& rows, const std::string& path) {
       cv::line(img, {x0, p.y}, {x0 + panel_w - 60, p.y}, cv::Scalar(220, 220, 220));
       cv::putText(img, fmt::format("{:.1f}", f / 10.0), {x0 - 35, p.y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0));
     }
-    cv::putText(img, regime + " misalignment: pair F1 vs ms per image pair (log)", {x0, y0 - 15}, cv::FONT_HERSHEY_SIMPLEX,
+    cv::putText(img, regime + ": pair F1 vs ms per image pair (log)", {x0, y0 - 15}, cv::FONT_HERSHEY_SIMPLEX,
                 0.6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
     for (int m = 0; m < 4; ++m) {
       std::vector<cv::Point> pts;
@@ -268,7 +340,7 @@ Runner add_bench_command(CLI::App& app) {
                pairs.size(), root, args->cases, args->seed);
     std::vector<Config> configs;
     if (args->quick) {
-      configs = {{RegistrationMethod::kPaper, 1000}, {RegistrationMethod::kConsensus, 2000}, {RegistrationMethod::kCpd, 100}};
+      configs = {{RegistrationMethod::kPaper, 1000}, {RegistrationMethod::kConsensus, 1000}, {RegistrationMethod::kCpd, 100}};
     } else {
       for (int k : {10, 100, 1000}) configs.push_back({RegistrationMethod::kPaper, k});
       for (int k : {25, 100, 250, 1000, 4000}) configs.push_back({RegistrationMethod::kConsensus, k});
@@ -276,26 +348,59 @@ Runner add_bench_command(CLI::App& app) {
     }
     std::vector<Row> rows;
     std::vector<RegistrationCase> all_cases;
-    double rocks = 0;
-    for (const auto& range : {small_misalignment(), large_misalignment()}) {
+    std::string csv =
+        "range,method,budget,cases,ms_per_pair,ms_median,f1,precision,recall,transform_err_median,transform_err_p90,"
+        "ambiguous_fraction\n";
+    fmt::print("{:<8} {:<11} {:>7} {:>9} {:>8} {:>7} {:>7} {:>7} {:>10} {:>10} {:>6} {:>6}\n", "tier", "method",
+               "budget", "ms/pair", "ms med", "F1", "prec", "recall", "terr med%", "terr p90%", "amb%", "ambF1");
+    for (const auto& range : benchmark_tiers()) {
+      // Cases with at least three true pairs (fewer leave nothing to register), drawn from successive seeds.
       std::vector<RegistrationCase> cases;
-      for (int k = 0; k < args->cases; ++k)
-        cases.push_back(make_case(pairs[(k * 7919u) % pairs.size()], range, args->seed * 100003 + k, W, H));
-      for (const auto& c : cases) rocks += 0.5 * (c.a.size() + c.b.size());
-      for (const auto& c : configs) rows.push_back(run_config(cases, range.name, c, aspect));
-      if (args->pycpd) rows.push_back(run_pycpd(cases, range.name, args->pycpd_script, aspect));
+      double rocks_a = 0, rocks_b = 0, true_pairs = 0;
+      for (int k = 0; static_cast<int>(cases.size()) < args->cases && k < 20 * args->cases; ++k) {
+        auto c = make_case(pairs[(k * 7919u) % pairs.size()], range, args->seed * 100003 + k, W, H);
+        if (c.truth.size() < 3) continue;
+        rocks_a += c.a.size(), rocks_b += c.b.size(), true_pairs += c.truth.size();
+        cases.push_back(std::move(c));
+      }
+      const double n = static_cast<double>(cases.size());
+      fmt::print("{}: {} cases, rocks per side {:.1f} / {:.1f}, true pairs {:.1f}\n", range.name, cases.size(),
+                 rocks_a / n, rocks_b / n, true_pairs / n);
+      std::vector<Row> tier = bounds_rows(cases, range.name, aspect);
+      for (const auto& c : configs) tier.push_back(run_config(cases, range.name, c, aspect));
+      if (args->pycpd) tier.push_back(run_pycpd(cases, range.name, args->pycpd_script, aspect));
+      for (const auto& r : tier) {
+        const std::string budget = r.config.budget > 0 ? std::to_string(r.config.budget) : "-";
+        const std::string amb = r.ambiguous >= 0 ? fmt::format("{:.1f}", 100 * r.ambiguous) : "-";
+        const std::string amb_f1 = r.ambiguous > 0 ? fmt::format("{:.2f}", r.f1_ambiguous) : "-";
+        fmt::print("{:<8} {:<11} {:>7} {:>9.4f} {:>8.4f} {:>7.4f} {:>7.4f} {:>7.4f} {:>10.4f} {:>10.4f} {:>6} {:>6}\n",
+                   r.regime, r.method, budget, r.ms_per_pair, r.ms_median, r.f1, r.precision, r.recall,
+                   100 * r.terr_median, 100 * r.terr_p90, amb, amb_f1);
+        csv += fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f}\n", r.regime, r.method,
+                           r.config.budget, r.cases, r.ms_per_pair, r.ms_median, r.f1, r.precision, r.recall,
+                           r.terr_median, r.terr_p90, r.ambiguous);
+      }
+      // The goals of issue 13 for the default method, checked in the same run.
+      const Row* floor = &tier[0];
+      const Row* deflt = nullptr;
+      const Row* py = nullptr;
+      for (const auto& r : tier) {
+        if (r.method == "consensus" && r.config.budget == RegistrationOptions().max_trials) deflt = &r;
+        if (r.method == "pycpd-numpy") py = &r;
+      }
+      if (deflt) {
+        fmt::print("  default: F1 {:.4f}, transform error {:.2f}x the floor, median {:.3f} ms/pair", deflt->f1,
+                   floor->terr_median > 0 ? deflt->terr_median / floor->terr_median : 0.0, deflt->ms_median);
+        if (py) fmt::print(", {:.0f}x faster than the pycpd port (mean ms)", py->ms_per_pair / deflt->ms_per_pair);
+        fmt::print("\n");
+      }
+      rows.insert(rows.end(), tier.begin(), tier.end());
       all_cases.insert(all_cases.end(), cases.begin(), cases.end());
+      fmt::print("\n");
     }
-    std::string csv = "range,method,budget,cases,ms_per_pair,f1,precision,recall,transform_err_median,transform_err_p90\n";
-    fmt::print("\nmean rocks per side: {:.1f}\n", rocks / all_cases.size());
-    fmt::print("{:<6} {:<10} {:>7} {:>10} {:>7} {:>7} {:>7} {:>12} {:>12}\n", "range", "method", "budget", "ms/pair",
-               "F1", "prec", "recall", "terr_med %", "terr_p90 %");
-    for (const auto& r : rows) {
-      fmt::print("{:<6} {:<10} {:>7} {:>10.4f} {:>7.4f} {:>7.4f} {:>7.4f} {:>12.4f} {:>12.4f}\n", r.regime,
-                 r.method, r.config.budget, r.ms_per_pair, r.f1, r.precision, r.recall,
-                 100 * r.terr_median, 100 * r.terr_p90);
-      csv += fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f}\n", r.regime, r.method,
-                         r.config.budget, r.cases, r.ms_per_pair, r.f1, r.precision, r.recall, r.terr_median, r.terr_p90);
+    if (!args->quick) {
+      scaling(aspect, args->seed);
+      work_bound(args->seed);
     }
     // Throughput of the default method over a whole "study" on every core, as `ipd table` runs it.
     {

@@ -109,8 +109,8 @@ Runner add_register_command(CLI::App& app) {
   cmd->add_option("REAL", args->real, "Real image's label file (YOLO txt)");
   cmd->add_option("SYNTH", args->synth, "Synthetic image's label file (YOLO txt)");
   cmd->add_option("--list", args->list, "TSV file of real_path<TAB>synth_path lines; one JSON object per line out");
-  cmd->add_option("--method", args->method, "consensus (default), paper or cpd")
-      ->check(CLI::IsMember({"paper", "consensus", "cpd"}));
+  cmd->add_option("--method", args->method, "Registration method:\n" + methods_help())
+      ->check(CLI::IsMember(method_names()));
   cmd->add_option("--seed", args->seed, "Random seed (results are deterministic for a seed)");
   cmd->add_option("--class", args->cls, "Only boxes of this class (default: all)");
   cmd->add_option("--trials", args->trials, "paper: K samples (default 1000); consensus: hypothesis cap");

@@ -20,8 +20,9 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
   cmd->add_option("STUDY", o->study, "Study directory")->required();
   cmd->add_option("--model", o->models, "Only these models (repeat or comma-separate)")->delimiter(',');
   cmd->add_option("--domains", o->domains, "Only these domains, e.g. real,principled")->delimiter(',');
-  cmd->add_option("--method", o->method, "Registration method (default from study.yaml, else consensus)")
-      ->check(CLI::IsMember({"paper", "consensus", "cpd"}));
+  cmd->add_option("--method", o->method,
+                  "Registration method (default from study.yaml, else " + method_names().front() + "):\n" + methods_help())
+      ->check(CLI::IsMember(method_names()));
   cmd->add_option("--seed", o->seed, "Registration and bootstrap seed (default from study.yaml, else 0)");
   cmd->add_option("--conf", o->conf,
                   "Drop predictions below this confidence (the GUI slider; default: study.yaml's conf_threshold)")

@@ -130,7 +130,7 @@ TEST(RegistrationTrace, CpdRecordsOneStepPerIteration) {
   for (const auto& st : r.trace.steps) EXPECT_EQ(st.kind, TraceStepKind::kIteration);
   EXPECT_TRUE(r.trace.steps.back().b_from_a.isApprox(r.affine, 1e-12));
   EXPECT_DOUBLE_EQ(r.trace.steps.back().score, r.score);
-  EXPECT_EQ(r.trace.stop, "reached the trial limit (7 EM iterations, 1.57e+03 of 1.3e+06 point evaluations)");
+  EXPECT_EQ(r.trace.stop, "reached the trial limit (7 EM iterations, 1.57e+03 of 1.04e+06 point evaluations)");
 }
 
 TEST(RegistrationTrace, StopsRecordingAtTheCap) {
@@ -172,6 +172,38 @@ TEST(RegistrationConfidence, ADistinctiveLayoutIsNotAmbiguous) {
   EXPECT_FALSE(r.ambiguous);
   EXPECT_GT(r.confidence, 0.5);
   EXPECT_TRUE(r.affine.isApprox(s.b_from_a, 1e-6)) << r.affine;
+}
+
+TEST(RegistrationMethods, OneTableForNamesParsingAndMessages) {
+  const auto& table = registration_methods();
+  ASSERT_EQ(table.size(), 3u);
+  EXPECT_EQ(table.front().method, RegistrationOptions().method);  // the default comes first
+  EXPECT_EQ(method_names(), (std::vector<std::string>{"consensus", "paper", "cpd"}));
+  EXPECT_EQ(method_choices(), "consensus, paper or cpd");
+  for (const auto& info : table) {
+    RegistrationMethod m = RegistrationMethod::kCpd;
+    ASSERT_TRUE(parse_method(info.name, &m));
+    EXPECT_EQ(m, info.method);
+    EXPECT_STREQ(to_string(m), info.name);
+    EXPECT_NE(methods_help().find(std::string(info.name) + (m == table.front().method ? " (default): " : ": ") +
+                                  info.description),
+              std::string::npos);
+  }
+  RegistrationMethod m = RegistrationMethod::kCpd;
+  EXPECT_FALSE(parse_method("Consensus", &m));
+  EXPECT_FALSE(parse_method("", &m));
+  EXPECT_EQ(m, RegistrationMethod::kCpd);  // untouched on failure
+}
+
+TEST(RobustLoop, ComputeNumTrialsAsColmap) {
+  // log(1 - 0.99) / log(1 - 0.5^3) = 34.49 -> 35
+  EXPECT_EQ(compute_num_trials(5, 10, 3, 0.99, 1000), 35);
+  EXPECT_EQ(compute_num_trials(10, 10, 3, 0.99, 1000), 1);    // every point an inlier
+  EXPECT_EQ(compute_num_trials(0, 10, 3, 0.99, 1000), 1000);  // none: the cap
+  EXPECT_EQ(compute_num_trials(1, 100, 3, 0.99, 1000), 1000); // 4.6 million: the cap
+  EXPECT_EQ(compute_num_trials(5, 10, 3, 1.0, 1000), 1000);
+  // log(0.05) / log(1 - 0.8^2) = 2.93 -> 3
+  EXPECT_EQ(compute_num_trials(8, 10, 2, 0.95, 1000), 3);
 }
 
 }  // namespace

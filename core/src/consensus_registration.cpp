@@ -145,6 +145,7 @@ class ConsensusScorer {
   // alone leave ambiguous.
   double score(const Affine2& m) {
     current_ = m;
+    ++scored_;
     if (!bounds_.plausible(m.leftCols<2>())) return -INFINITY;
     ++epoch_;
     const double l00 = std::abs(m(0, 0)), l01 = std::abs(m(0, 1)), l10 = std::abs(m(1, 0)), l11 = std::abs(m(1, 1));
@@ -218,7 +219,12 @@ class ConsensusScorer {
 
   bool cannot_be_beaten(double) const {
     if (best_count_ >= max_count_) return true;
-    if (confirmations_ >= kConfirmations && best_count_ >= 5) return true;
+    // Found again from other anchors, and enough hypotheses drawn that a triple of true pairs would likely
+    // have come up if the best holds only part of them (COLMAP's rule, with the inlier ratio over the
+    // smaller side): a small consensus must search longer before it is believed.
+    if (confirmations_ >= kConfirmations && best_count_ >= 5 &&
+        scored_ >= compute_num_trials(best_count_, max_count_, 3, 0.99, budget_))
+      return true;
     return beyond_chance_;
   }
 
@@ -293,7 +299,7 @@ class ConsensusScorer {
   int confirmations_ = 0;
   std::vector<long> best_anchors_;
   double chance_ = 0.5;
-  int budget_ = 1, max_count_ = 0, best_count_ = 0;
+  int budget_ = 1, max_count_ = 0, best_count_ = 0, scored_ = 0;
   double best_refined_score_ = -INFINITY;
   std::vector<double> best_;
   std::vector<unsigned> stamp_;
@@ -314,9 +320,10 @@ class GuidedSampler {
     vote_translations(gate);
     // 3. neighbourhood triples, rocks of A in a seeded order
     // Small sets are cheap to search widely, and need it: fewer rocks keep fewer neighbours in common.
-    const bool small = f.a.size() <= 16 && f.b.size() <= 16;
-    nn_a_ = nearest_neighbours(f.a, small ? kNeighboursA + 2 : kNeighboursA);
-    nn_b_ = nearest_neighbours(f.b, small ? kNeighboursB + 3 : kNeighboursB);
+    small_ = f.a.size() <= 16 && f.b.size() <= 16;
+    nn_a_ = nearest_neighbours(f.a, small_ ? kNeighboursA + 2 : kNeighboursA);
+    // A side that few rocks are left on (the rest out of view): every one of them may be a neighbour.
+    nn_b_ = nearest_neighbours(f.b, f.b.size() <= 12 ? static_cast<int>(f.b.size()) : small_ ? kNeighboursB + 3 : kNeighboursB);
     order_a_.resize(f.a.size());
     std::iota(order_a_.begin(), order_a_.end(), 0);
     Rng rng(seed);
@@ -359,6 +366,12 @@ class GuidedSampler {
     // neighbour confirms are kept aside until both passes are done.
     while (pending_.empty()) {
       if (pass_ >= 2) {
+        if (deferred_pos_ >= deferred_.size() && !unsupported_.empty()) {
+          // Last, for small sets: triples nothing else confirms (an overlap of three or four rocks).
+          deferred_.insert(deferred_.end(), unsupported_.begin(), unsupported_.end());
+          deferred_samples_.insert(deferred_samples_.end(), unsupported_samples_.begin(), unsupported_samples_.end());
+          unsupported_.clear();
+        }
         if (deferred_pos_ >= deferred_.size()) return false;
         anchor = deferred_[deferred_pos_].first;
         if (record_) sample = deferred_samples_[deferred_pos_], has_sample = true;
@@ -432,8 +445,9 @@ class GuidedSampler {
         const int support = ni.size() >= 4 ? local_support(m, i, j, u1, u2) : 2;
         if (support >= 2) pending_.push_back(m);
         else if (support == 1) deferred_.emplace_back(i, m);
-        if (record_ && support >= 1)
-          (support >= 2 ? pending_samples_ : deferred_samples_)
+        else if (small_) unsupported_.emplace_back(i, m);
+        if (record_ && (support >= 1 || small_))
+          (support >= 2 ? pending_samples_ : support == 1 ? deferred_samples_ : unsupported_samples_)
               .push_back({i, ni[u1], ni[u2], j, nj[x1], nj[x2]});
       }
     std::reverse(pending_.begin(), pending_.end());  // pop_back hands them out in generation order
@@ -477,8 +491,9 @@ class GuidedSampler {
   double min_det_, max_det_;  // the determinant lies between the squared singular-value bounds
   std::vector<Affine2> queue_, pending_;
   bool record_;
-  std::vector<std::pair<long, Affine2>> deferred_;
-  std::vector<std::array<int, 6>> pending_samples_, deferred_samples_;  // record mode only
+  bool small_ = false;
+  std::vector<std::pair<long, Affine2>> deferred_, unsupported_;
+  std::vector<std::array<int, 6>> pending_samples_, deferred_samples_, unsupported_samples_;  // record mode only
   size_t deferred_pos_ = 0;
   size_t q_pos_ = 0;
   std::vector<std::vector<int>> nn_a_, nn_b_;

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fmt/format.h>
 #include <map>
 #include <numeric>
 #include <regex>
 
+#include "ipd/affine_estimator.h"
 #include "ipd/label_io.h"
 #include "ipd/pairing.h"
 #include "registration_frame.h"
@@ -53,6 +55,46 @@ std::vector<LabelPair> polar_sim_label_pairs(const std::string& root, int min_tr
 
 MisalignmentRange small_misalignment() { return {"small", 5, 0.9, 1.1, 0.05, 0.05, 0.10, 0.002}; }
 MisalignmentRange large_misalignment() { return {"large", 25, 0.7, 1.4, 0.15, 0.25, 0.25, 0.004}; }
+MisalignmentRange unequal_counts() {
+  MisalignmentRange r = small_misalignment();
+  r.name = "unequal";
+  r.drop_smallest_min = 0.3;
+  r.drop_smallest_max = 0.5;
+  return r;
+}
+std::vector<MisalignmentRange> benchmark_tiers() { return {small_misalignment(), large_misalignment(), unequal_counts()}; }
+
+bool least_squares_on_truth(const RegistrationCase& c, Affine2* out) {
+  std::vector<Eigen::Vector2d> src, dst;
+  for (const auto& [i, j] : c.truth) {
+    src.push_back(c.a[i].centre());
+    dst.push_back(c.b[j].centre());
+  }
+  return src.size() >= 3 && affine_least_squares(src, dst, out);
+}
+
+RockPairs pairs_under_true_affine(const RegistrationCase& c) {
+  return pair_by_aligned_iou(c.truth_affine, c.a, c.b, RegistrationOptions().min_pair_iou);
+}
+
+LabelPair synthetic_label_pair(int n, std::uint64_t seed) {
+  detail::Rng rng(seed * 104729 + 3);
+  auto u = [&](double lo, double hi) { return lo + (hi - lo) * rng.uniform(); };
+  LabelPair p;
+  p.file_a = fmt::format("synthetic-{}-a", n);
+  p.file_b = fmt::format("synthetic-{}-b", n);
+  const double size = 0.25 / std::sqrt(static_cast<double>(n));
+  for (int k = 0; k < n; ++k) {
+    Box a;
+    a.cx = u(0.03, 0.97), a.cy = u(0.03, 0.97), a.w = size * u(0.4, 1.6), a.h = size * u(0.4, 1.6);
+    Box b = a;  // labelled again: the centre moves by a tenth of the size, the extent by up to 10%
+    b.cx += u(-0.1, 0.1) * a.w, b.cy += u(-0.1, 0.1) * a.h, b.w *= u(0.9, 1.1), b.h *= u(0.9, 1.1);
+    p.a.push_back(a);
+    p.b.push_back(b);
+    p.truth.emplace_back(k, k);
+  }
+  return p;
+}
 
 RegistrationCase make_case(const LabelPair& pair, const MisalignmentRange& r, std::uint64_t seed, double W,
                            double H) {
@@ -88,7 +130,18 @@ RegistrationCase make_case(const LabelPair& pair, const MisalignmentRange& r, st
     for (size_t i = 0; i < hide && i < count; ++i) keep[order[i]] = 0;
     return keep;
   };
-  const auto keep_a = keep_mask(pair.a.size()), keep_b = keep_mask(pair.b.size());
+  auto keep_a = keep_mask(pair.a.size());
+  const auto keep_b = keep_mask(pair.b.size());
+  if (r.drop_smallest_max > 0) {  // A misses its smallest rocks
+    std::vector<int> by_area;
+    for (size_t i = 0; i < pair.a.size(); ++i)
+      if (keep_a[i]) by_area.push_back(static_cast<int>(i));
+    std::stable_sort(by_area.begin(), by_area.end(),
+                     [&](int x, int y) { return pair.a[x].w * pair.a[x].h < pair.a[y].w * pair.a[y].h; });
+    const double fraction = u(r.drop_smallest_min, r.drop_smallest_max);
+    const size_t drop = static_cast<size_t>(std::lround(fraction * static_cast<double>(by_area.size())));
+    for (size_t k = 0; k < drop && k < by_area.size(); ++k) keep_a[by_area[k]] = 0;
+  }
   std::vector<int> new_a(pair.a.size(), -1), new_b(pair.b.size(), -1);
   for (size_t i = 0; i < pair.a.size(); ++i)
     if (keep_a[i]) {
@@ -103,6 +156,12 @@ RegistrationCase make_case(const LabelPair& pair, const MisalignmentRange& r, st
     Box moved = transform_box(out.truth_affine, pair.b[j]);
     moved.cx += gauss() * r.noise;
     moved.cy += gauss() * r.noise * W / H;
+    if (r.clip_to_image) {  // what a label of the moved picture holds: the visible part, if at least half
+      const double x0 = std::max(0.0, moved.cx - moved.w / 2), x1 = std::min(1.0, moved.cx + moved.w / 2);
+      const double y0 = std::max(0.0, moved.cy - moved.h / 2), y1 = std::min(1.0, moved.cy + moved.h / 2);
+      if (!(x1 > x0 && y1 > y0) || (x1 - x0) * (y1 - y0) < 0.5 * moved.w * moved.h) continue;
+      moved.cx = 0.5 * (x0 + x1), moved.cy = 0.5 * (y0 + y1), moved.w = x1 - x0, moved.h = y1 - y0;
+    }
     new_b[j] = static_cast<int>(out.b.size());
     out.b.push_back(moved);
   }

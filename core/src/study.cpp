@@ -122,8 +122,8 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
         if (k == "method") {
           const std::string name = yaml_get<std::string>(r.second, file, "registration.method");
           if (!parse_method(name, &c.registration.method))
-            throw StudyError(fmt::format("{}:{}: unknown registration method '{}' (expected paper, consensus or cpd)",
-                                         file, r.first.Mark().line + 1, name));
+            throw StudyError(fmt::format("{}:{}: unknown registration method '{}' (expected {})", file,
+                                         r.first.Mark().line + 1, name, method_choices()));
         } else if (k == "seed") {
           c.registration.seed = yaml_get<std::uint64_t>(r.second, file, "registration.seed");
         } else if (k == "trials") {

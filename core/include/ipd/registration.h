@@ -15,10 +15,23 @@ namespace ipd {
 
 enum class RegistrationMethod { kPaper, kConsensus, kCpd };
 
+// The one table of registration methods, read by the CLI (--method help and validation), study.yaml and
+// ipd-studio's method combo. The default comes first.
+struct RegistrationMethodInfo {
+  RegistrationMethod method;
+  const char* name;         // as typed: --method NAME, registration: {method: NAME}
+  const char* description;  // one line
+  const char* defaults;     // what it runs with unless told otherwise
+};
+const std::vector<RegistrationMethodInfo>& registration_methods();
+const RegistrationMethodInfo& method_info(RegistrationMethod m);
+
 const char* to_string(RegistrationMethod m);
-// Parses "paper", "consensus" or "cpd"; false for anything else.
+// Parses a name of the table; false for anything else.
 bool parse_method(const std::string& name, RegistrationMethod* out);
-std::vector<std::string> method_names();
+std::vector<std::string> method_names();  // in table order
+std::string method_choices();             // "consensus, paper or cpd", for messages
+std::string methods_help();               // one line per method: name, description, defaults
 
 using RockPairs = std::vector<std::pair<int, int>>;  // (index in A, index in B)
 

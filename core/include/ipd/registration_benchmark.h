@@ -28,9 +28,18 @@ std::vector<LabelPair> polar_sim_label_pairs(const std::string& labels_root, int
 struct MisalignmentRange {
   std::string name;
   double max_rotation_deg, min_scale, max_scale, max_shear, max_shift, hidden, noise;  // shift/noise: of width
+  // Rocks leave the picture: the moved side's boxes are clipped to [0, 1] and rocks less than half visible
+  // are dropped, as a real label file would have them.
+  bool clip_to_image = true;
+  // Unequal counts: side A (the "real" labels) loses its smallest rocks, a fraction drawn in [min, max].
+  double drop_smallest_min = 0, drop_smallest_max = 0;
 };
 MisalignmentRange small_misalignment();
 MisalignmentRange large_misalignment();
+// Small misalignment, but A misses its smallest 30-50% of rocks (hand-labelled real GT vs synthetic GT).
+MisalignmentRange unequal_counts();
+// small, large, unequal.
+std::vector<MisalignmentRange> benchmark_tiers();
 
 struct RegistrationCase {
   std::vector<Box> a, b;
@@ -42,6 +51,16 @@ struct RegistrationCase {
 // Deterministic for (pair, range, seed). Pixel geometry of 1936 x 1216 (POLAR) for angles and shifts.
 RegistrationCase make_case(const LabelPair& pair, const MisalignmentRange& range, std::uint64_t seed,
                            double image_w = 1936, double image_h = 1216);
+
+// The floor of transform error: the least-squares affine on the true pairs' centres (image coordinates);
+// false when there are fewer than three true pairs or they are degenerate.
+bool least_squares_on_truth(const RegistrationCase& c, Affine2* out);
+// The ceiling of pairing: the true affine, then the methods' own pairing (IoU assignment).
+RockPairs pairs_under_true_affine(const RegistrationCase& c);
+
+// A synthetic label pair of n rocks spread over the picture (sizes shrinking as 1/sqrt(n)), side B a
+// re-labelling (centre and size noise); for timing registration against the rock count.
+LabelPair synthetic_label_pair(int n, std::uint64_t seed);
 
 struct PairScore {
   double precision = 0, recall = 0, f1 = 0;

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <type_traits>
@@ -37,6 +38,20 @@ inline const char* to_string(StopReason r) {
     case StopReason::kWorkBudget: return "work budget spent";
   }
   return "?";
+}
+
+// COLMAP's ComputeNumTrials: how many samples of `sample_size` must be drawn so that, with probability
+// `confidence`, at least one holds only inliers when `num_inliers` of `num_points` are. 1 when every point
+// is an inlier; `cap` when none is (or confidence is 1).
+inline int compute_num_trials(int num_inliers, int num_points, int sample_size, double confidence, int cap) {
+  if (num_points <= 0 || num_inliers <= 0) return cap;
+  const double ratio = std::min(1.0, static_cast<double>(num_inliers) / num_points);
+  const double nom = 1.0 - confidence;
+  if (nom <= 0) return cap;
+  const double denom = 1.0 - std::pow(ratio, sample_size);
+  if (denom <= 0) return 1;
+  const double n = std::ceil(std::log(nom) / std::log(denom));
+  return n >= cap ? cap : std::max(1, static_cast<int>(n));
 }
 
 struct RobustLoopOptions {
