@@ -130,6 +130,25 @@ TEST(Statistics, PairedComparisonWorkedByHand) {
   EXPECT_DOUBLE_EQ(c2.p_value, 3.0 / 5);
 }
 
+TEST(Statistics, FewScenesGetTheExactPermutationP) {
+  // Three identical scenes, a at 0.1 and b at 0.5: swapping k of them gives Δ* = 0.4 (2k - 3) / 3, so only
+  // k = 0 and k = 3 reach |Δ| = 0.4: exactly 2 of the 8 patterns, p = 0.25 whatever the seed.
+  const std::vector<PairedScene> scenes(3, PairedScene{{0.1, 1}, {0.5, 1}, {0.1, 1}, {0.5, 1}});
+  CompareOptions o;
+  o.bootstrap.resamples = 10;
+  for (std::uint64_t seed : {0u, 7u}) {
+    o.bootstrap.seed = seed;
+    const Comparison c = compare_paired(scenes, o, "det|real|a|b");
+    EXPECT_TRUE(c.exact_p);
+    EXPECT_EQ(c.permutations, 8);
+    EXPECT_DOUBLE_EQ(c.p_value, 0.25);
+  }
+  o.permutations = 7;  // fewer than 2^3: sampled, (1 + #) / (N + 1)
+  const Comparison sampled = compare_paired(scenes, o, "det|real|a|b");
+  EXPECT_FALSE(sampled.exact_p);
+  EXPECT_EQ(sampled.permutations, 7);
+}
+
 TEST(Statistics, QuantilesAndSpearmanWithTies) {
   EXPECT_DOUBLE_EQ(quantile({4, 1, 3, 2}, 0.5), 2.5);
   EXPECT_DOUBLE_EQ(quantile({4, 1, 3, 2}, 0.25), 1.75);

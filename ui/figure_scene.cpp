@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "figure_common.h"
+#include "ipd/audit.h"
 #include "ipd/ipd.h"
 
 namespace ipd::ui {
@@ -156,12 +157,9 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
   y += out.measure(caption, "Ag").y + 0.15 * F;
   const PanelMap left{{kMargin, y, kMargin + pw, y + ph}, o.crop};
   const PanelMap right{{kMargin + pw + gap, y, kMargin + 2 * pw + gap, y + ph}, o.crop};
-  std::vector<int> num_a(in.gt_a.size(), 0), num_b(in.gt_b.size(), 0);
-  for (size_t k = 0; k < in.pairs.size(); ++k) {
-    const auto [i, j] = in.pairs[k];
-    if (i >= 0 && i < int(num_a.size())) num_a[i] = int(k) + 1;
-    if (j >= 0 && j < int(num_b.size())) num_b[j] = int(k) + 1;
-  }
+  // The GUI's numbers (a pair is named by its left rock), so a figure and the screen agree.
+  const std::vector<int> num_a = pair_numbers(in.pairs, in.gt_a.size(), true);
+  const std::vector<int> num_b = pair_numbers(in.pairs, in.gt_b.size(), false);
   int left_out = draw_side(out, left, in.picture_a, in.problem_a, in.gt_a, in.pred_a, num_a, in.excluded_a, o);
   left_out += draw_side(out, right, in.picture_b, in.problem_b, in.gt_b, in.pred_b, num_b, in.excluded_b, o);
   y += ph + 0.35 * F;

@@ -257,9 +257,38 @@ Comparison compare_paired(const std::vector<PairedScene>& scenes, const CompareO
   return c;
 }
 
+namespace {
+// Every sign pattern once, in binary order: draw k sets scene i's swap bit to bit i of k.
+class EverySignPattern : public IndexSource {
+ public:
+  void draw(std::uint32_t, std::vector<std::uint32_t>* out) override {
+    for (size_t i = 0; i < out->size(); ++i) (*out)[i] = static_cast<std::uint32_t>((next_ >> i) & 1u);
+    ++next_;
+  }
+
+ private:
+  std::uint64_t next_ = 0;
+};
+}  // namespace
+
 Comparison compare_paired(const std::vector<PairedScene>& scenes, const CompareOptions& options,
                           std::string_view key) {
   SeededIndexSource resample(options.bootstrap.seed, std::string(key) + "/bootstrap");
+  const size_t n = scenes.size();
+  if (options.permutations > 0 && n < 31 && (std::uint64_t{1} << n) <= static_cast<std::uint64_t>(options.permutations)) {
+    // Few scenes: enumerate all 2^n swaps instead of sampling them, so p is exact and no seed changes it.
+    CompareOptions all = options;
+    all.permutations = static_cast<int>(std::uint64_t{1} << n);
+    EverySignPattern patterns;
+    Comparison c = compare_paired(scenes, all, resample, patterns);
+    if (!std::isnan(c.p_value)) {
+      // The observed pattern is among those enumerated: p = #{|Δ*| >= |Δ|} / 2^n, not (1 + #) / (N + 1).
+      const long extreme = std::lround(c.p_value * (all.permutations + 1.0)) - 1;
+      c.p_value = static_cast<double>(extreme) / all.permutations;
+      c.exact_p = true;
+    }
+    return c;
+  }
   SeededIndexSource permute(options.bootstrap.seed, std::string(key) + "/permutation");
   return compare_paired(scenes, options, resample, permute);
 }

@@ -122,7 +122,7 @@ std::string comparison_sentence(const RendererComparison& c, double alpha) {
                        c.b, c.ref, c.model, r.scenes);
   std::string numbers = "ΔIPD = " + num(r.delta.estimate, 4);
   if (r.delta.has_interval()) numbers += fmt::format(" [{}, {}]", num(r.delta.low, 3), num(r.delta.high, 3));
-  if (!std::isnan(r.p_value)) numbers += fmt::format(", p = {:.2g}", r.p_value);
+  if (!std::isnan(r.p_value)) numbers += fmt::format(", p = {:.2g}{}", r.p_value, r.exact_p ? " (exact)" : "");
   numbers += fmt::format(", {} scenes", r.scenes);
   const bool interval_excludes_zero = !r.delta.has_interval() || r.delta.low > 0 || r.delta.high < 0;
   const bool significant = !std::isnan(r.p_value) && r.p_value < alpha && interval_excludes_zero;

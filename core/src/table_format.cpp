@@ -150,7 +150,7 @@ std::string latex_table(const CrossTable& t, const TableFormatOptions& o) {
     out += latex_escape(row_title(t.models[r]));
     for (size_t c = 0; c < nc; ++c) {
       const auto& cell = t.cells[r * nc + c];
-      const std::string s = cell_text(cell, "-");
+      const std::string s = cell_text(cell, "--");  // an en dash in LaTeX, as the text table's "–"
       out += " & " + (cell.involves_training_domain && cell.ipd == best ? "\\textbf{" + s + "}" : s);
       if (o.latex_ci) out += ci_text(cell);
     }

@@ -112,13 +112,15 @@ struct Comparison {
   double delta_common = std::numeric_limits<double>::quiet_NaN();  // Δ over ref rocks paired in both
   long pairs_a = 0, pairs_b = 0, pairs_common = 0;
   int scenes = 0, permutations = 0;
+  bool exact_p = false;  // every one of the 2^scenes swap patterns was counted (p = share reaching |Δ|)
 };
 
 // Δ with a paired bootstrap (the same resampled scenes for both IPDs) and a permutation test that swaps
 // each scene's (a, b) contributions with probability ½: p = (1 + #{|Δ*| >= |Δ|}) / (N + 1).
 Comparison compare_paired(const std::vector<PairedScene>& scenes, const CompareOptions& options,
                           IndexSource& resample_draws, IndexSource& permutation_draws);
-// Same, with seeded sources derived from (options.bootstrap.seed, key).
+// Same, with seeded sources derived from (options.bootstrap.seed, key). When 2^scenes <= permutations the
+// permutation test enumerates every swap pattern instead (exact_p; p = #{|Δ*| >= |Δ|} / 2^scenes).
 Comparison compare_paired(const std::vector<PairedScene>& scenes, const CompareOptions& options,
                           std::string_view key);
 
