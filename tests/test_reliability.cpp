@@ -111,18 +111,19 @@ TEST(Reliability, DanglingStudyYamlPairsFileOrLoopingDirectoriesAreErrors) {
 }
 
 TEST(Reliability, UnreadableLabelsDirectoryIsAnError) {
-  if (::geteuid() == 0) {
-    // Permissions don't bind root: the same check in a private mount namespace is in ReadOnlyStudy below; here
-    // a directory that vanishes while listed can't be staged, so check the non-root path only.
-    GTEST_SKIP() << "permissions don't apply to root";
-  }
   test::TempDir d;
   write_tiny_study(d);
-  fs::permissions(d / "real/labels", fs::perms::owner_read, fs::perm_options::remove);
-  const auto r = run_ipd_limited("table " + d.path());
-  fs::permissions(d / "real/labels", fs::perms::owner_read, fs::perm_options::add);
-  EXPECT_EQ(r.exit_code, 1);
-  EXPECT_TRUE(contains(r.err, d / "real/labels" + ": cannot read the directory")) << r.err;
+  // Root ignores permissions: run ipd as nobody then (setpriv, util-linux), with the study readable by all.
+  std::string as_user;
+  if (::geteuid() == 0) {
+    fs::permissions(d.path(), fs::perms::others_read | fs::perms::others_exec, fs::perm_options::add);
+    as_user = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
+  }
+  fs::permissions(d / "real/labels", fs::perms::owner_read | fs::perms::others_read, fs::perm_options::remove);
+  const auto r = test::run_command(as_user + IPD_BINARY + " table " + d.path());
+  fs::permissions(d / "real/labels", fs::perms::owner_read | fs::perms::others_read, fs::perm_options::add);
+  EXPECT_EQ(r.exit_code, 1) << r.out;
+  EXPECT_EQ(r.err, "error: " + d / "real/labels" + ": cannot read the directory: Permission denied\n");
 }
 
 // --- defect 3: a FIFO blocked forever, /dev/zero ended in bad_alloc with no file name

@@ -115,6 +115,10 @@ LabelFile parse_labels(const std::string& text, const std::string& file_name, co
     out.line_of_box.push_back(line_no);
   }
   if (unlisted > 0) out.errors.push_back({file_name, 0, "", unlisted});
+  if (out.boxes.size() > kMaxBoxesPerFile)
+    out.errors.push_back({file_name, 0,
+                          fmt::format("{} boxes, more than the {} per image this tool handles (README: large inputs)",
+                                      out.boxes.size(), kMaxBoxesPerFile)});
   return out;
 }
 

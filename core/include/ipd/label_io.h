@@ -22,6 +22,9 @@ struct LabelError {
   int malformed_lines() const { return line > 0 ? 1 : more; }
 };
 constexpr int kMaxListedErrors = 50;
+// More boxes than this in one file is refused (an error naming the file): pairing and IoU tables grow with
+// the product of two images' rock counts, so 10^6-line files would run for minutes.
+constexpr size_t kMaxBoxesPerFile = 20000;
 
 struct LabelFile {
   std::string path;
