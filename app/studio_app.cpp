@@ -151,7 +151,7 @@ void StudioApp::frame() {
     }
   }
   ui::draw_menu_bar(v, ui_, cmd);
-  const float status_h = ImGui::GetFrameHeightWithSpacing() + ImGui::GetStyle().ItemSpacing.y + 2;
+  const float status_h = 2 * ImGui::GetFrameHeightWithSpacing();  // separator + status line, never clipped
   const float h = ImGui::GetContentRegionAvail().y - status_h;
   const std::string error = worker_.open_error();
   if (!error.empty()) {
@@ -252,6 +252,8 @@ void StudioApp::frame() {
       ImGui::EndTable();
     }
   }
+  // The status bar sits on the window's last line, whatever the panels above took.
+  ImGui::SetCursorPosY(ImGui::GetWindowHeight() - ImGui::GetFrameHeightWithSpacing());
   ImGui::Separator();
   ui::draw_status_bar(v, ui_, cmd);
   if (ui_.show_open) list_browse_dir();
