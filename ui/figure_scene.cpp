@@ -213,12 +213,13 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
     out.pop_clip();
     if (o.layers.gt && o.layers.indices) {
       std::vector<Label> labels;
-      for (size_t n = 0; n < in.pairs.size(); ++n) {
-        const int i = in.pairs[n].first;
+      for (const auto& pair : in.pairs) {
+        const int i = pair.first;
         if (i < 0 || i >= int(pa.size())) continue;
         const Pt q = pa[i];
         if (q.x < m.panel.x0 || q.x > m.panel.x1 || q.y < m.panel.y0 || q.y > m.panel.y1) continue;
-        labels.push_back({std::to_string(n + 1), style(F, kInk), {q.x - ring, q.y - ring, q.x + ring, q.y + ring}});
+        // A pair is named by its left rock, as in the GUI and the pairs figure (pair_numbers).
+        labels.push_back({std::to_string(i + 1), style(F, kInk), {q.x - ring, q.y - ring, q.x + ring, q.y + ring}});
       }
       left_out += draw_labels(out, labels, m.panel, {}, false);
     }
@@ -231,7 +232,7 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
       items.push_back({Swatch::kRing, kPinkC, "GT centres of " + in.b});
     }
     if (o.layers.pairs) items.push_back({Swatch::kLine, kGreenC, "rock pairs"});
-    if (o.layers.indices && o.layers.gt) items.push_back({Swatch::kDot, kInk, "n: pair number"});
+    if (o.layers.indices && o.layers.gt) items.push_back({Swatch::kDot, kInk, "numbers: pairs, by " + in.a + " rock"});
     y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items) + 0.2 * F;
   }
   y += draw_footnote(out, {kMargin, y}, W - 2 * kMargin, F, left_out);
