@@ -293,6 +293,7 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
     worker_.submit(std::move(c));
   }
   if (cmd.conf_threshold >= 0) {
+    ui_.conf_threshold = cmd.conf_threshold;  // the slider shows a threshold set by a replay too
     WorkerCommand c{K::kConf};
     c.value = cmd.conf_threshold;
     worker_.submit(std::move(c));

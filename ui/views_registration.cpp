@@ -133,8 +133,11 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
       dl->AddCircle(pb[j], 10, kTriple, 12, 2.5f);
     }
   }
+  // The legend stays inside the plot (two lines), never under the score curve beside it.
+  dl->PushClipRect(p0, {p0.x + size.x, p0.y + size.y}, true);
   dl->AddText({p0.x + 14, p0.y + size.y - 20}, IM_COL32(200, 200, 200, 255),
-              "blue: A moved by the affine   green: inliers   rings: B   bright lines: the sample   orange: suspect");
+              "blue: A moved   green: inliers   rings: B   bright: the sample   orange: suspect");
+  dl->PopClipRect();
   if (steps > 0) {
     // Best-so-far score over the steps, with the current one marked.
     std::vector<float> best(steps);

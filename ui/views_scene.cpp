@@ -192,22 +192,28 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
     int l, r;
     double a, b;
     const PairAudit* audit;
+    bool excluded;  // out of the IPD: listed last, its |diff| not shown as counted
   };
   const SceneAudit& audit = s.audit(ui.scene);
   std::vector<Row> rows;
   for (const auto& [l, r] : s.view_pairs(ui.scene)) {
-    Row row{l, r, l < (int)pl.size() ? pl[l] : 0.0, r < (int)pr.size() ? pr[r] : 0.0, nullptr};
+    Row row{l, r, l < (int)pl.size() ? pl[l] : 0.0, r < (int)pr.size() ? pr[r] : 0.0, nullptr,
+            s.excluded(Side::kA, ui.scene, l) || s.excluded(Side::kB, ui.scene, r)};
     for (const auto& p : audit.pairs)
       if ((s.swapped() ? p.b : p.a) == l && (s.swapped() ? p.a : p.b) == r) row.audit = &p;
     rows.push_back(row);
   }
   // Suspect pairs first, then by |difference|: what an audit looks at.
+  // Excluded pairs last: they don't count.
   std::stable_sort(rows.begin(), rows.end(), [](const Row& x, const Row& y) {
+    if (x.excluded != y.excluded) return y.excluded;
     const bool sx = x.audit && x.audit->suspect, sy = y.audit && y.audit->suspect;
     if (sx != sy) return sx;
     return std::abs(x.a - x.b) > std::abs(y.a - y.b);
   });
-  ImGui::Text("%zu pairs, %d suspect; typical residual %.1f px", rows.size(), audit.suspects, audit.typical_residual_px);
+  const long excluded_rows = std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.excluded; });
+  ImGui::Text("%ld pairs counted (%ld excluded), %d suspect; typical residual %.1f px", long(rows.size()) - excluded_rows,
+              excluded_rows, audit.suspects, audit.typical_residual_px);
   const float table_h = std::max(60.0f, ImGui::GetContentRegionAvail().y - 2.4f * ImGui::GetTextLineHeightWithSpacing());
   if (ImGui::BeginTable("pairs", 7, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV,
                         ImVec2(0, table_h))) {
@@ -224,9 +230,9 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
       const bool suspect = row.audit && row.audit->suspect;
-      const bool excl = s.excluded(Side::kA, ui.scene, row.l) || s.excluded(Side::kB, ui.scene, row.r);
+      const bool excl = row.excluded;
       char label[48];
-      std::snprintf(label, sizeof label, "%d%s##%d", row.l + 1, excl ? " (excl.)" : "", row.l);
+      std::snprintf(label, sizeof label, "%d%s##%d", row.l + 1, excl ? " x" : "", row.l);
       if (suspect) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.55f, 0, 1));
       if (ImGui::Selectable(label, ui.selected_left == row.l, ImGuiSelectableFlags_SpanAllColumns)) {
         // Centre both pictures on the pair.
@@ -248,7 +254,10 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
       ImGui::TableNextColumn();
       ImGui::Text("%.3f", row.b);
       ImGui::TableNextColumn();
-      ImGui::Text("%.3f", std::abs(row.a - row.b));
+      if (row.excluded)
+        ImGui::TextDisabled("excl.");
+      else
+        ImGui::Text("%.3f", std::abs(row.a - row.b));
       ImGui::TableNextColumn();
       if (row.audit) ImGui::Text("%.1f", row.audit->residual_px);
       ImGui::TableNextColumn();
