@@ -93,11 +93,60 @@ RockPairs max_weight_assignment(const std::vector<double>& weights, int rows, in
 namespace ipd {
 RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, const std::vector<Box>& b,
                               double min_iou) {
-  std::vector<double> w(a.size() * b.size());
-  for (size_t i = 0; i < a.size(); ++i) {
-    const Box moved = transform_box(a_to_b, a[i]);
-    for (size_t j = 0; j < b.size(); ++j) w[i * b.size() + j] = iou(moved, b[j]);
+  // Boxes overlap only their neighbours, so the overlap graph falls apart into small connected components,
+  // and the optimal assignment is the union of each component's optimum (no allowed pair crosses two). Solving
+  // per component keeps thousands of rocks a side near-linear instead of one cubic assignment.
+  const int n = static_cast<int>(a.size()), m = static_cast<int>(b.size());
+  std::vector<Box> moved(a.size());
+  for (int i = 0; i < n; ++i) moved[i] = transform_box(a_to_b, a[i]);
+  // B sorted by left edge, so each moved A box only looks at B boxes that can overlap it in x.
+  std::vector<int> b_by_x0(m);
+  for (int j = 0; j < m; ++j) b_by_x0[j] = j;
+  std::sort(b_by_x0.begin(), b_by_x0.end(), [&](int x, int y) { return b[x].x0() < b[y].x0(); });
+  double widest_b = 0;
+  for (const Box& bx : b) widest_b = std::max(widest_b, bx.w);
+  struct Edge {
+    int i, j;
+    double w;
+  };
+  std::vector<Edge> edges;
+  for (int i = 0; i < n; ++i) {
+    const double lo = moved[i].x0() - widest_b, hi = moved[i].x1();
+    auto it = std::lower_bound(b_by_x0.begin(), b_by_x0.end(), lo, [&](int j, double v) { return b[j].x0() < v; });
+    for (; it != b_by_x0.end() && b[*it].x0() <= hi; ++it) {
+      const double w = iou(moved[i], b[*it]);
+      if (w > min_iou) edges.push_back({i, *it, w});
+    }
   }
-  return max_weight_assignment(w, static_cast<int>(a.size()), static_cast<int>(b.size()), min_iou);
+  // Union-find over A (0..n-1) and B (n..n+m-1).
+  std::vector<int> parent(n + m);
+  for (int k = 0; k < n + m; ++k) parent[k] = k;
+  auto find = [&](int k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+  };
+  for (const Edge& e : edges) parent[find(e.i)] = find(n + e.j);
+  std::vector<std::vector<int>> component_edges(n + m);
+  for (size_t k = 0; k < edges.size(); ++k) component_edges[find(edges[k].i)].push_back(static_cast<int>(k));
+  RockPairs pairs;
+  std::vector<int> local_a(n, -1), local_b(m, -1);
+  for (const auto& ce : component_edges) {
+    if (ce.empty()) continue;
+    std::vector<int> rows, cols;  // global indices, in increasing order as the whole problem would see them
+    for (int k : ce) {
+      if (local_a[edges[k].i] < 0) local_a[edges[k].i] = 0, rows.push_back(edges[k].i);
+      if (local_b[edges[k].j] < 0) local_b[edges[k].j] = 0, cols.push_back(edges[k].j);
+    }
+    std::sort(rows.begin(), rows.end());
+    std::sort(cols.begin(), cols.end());
+    for (size_t r = 0; r < rows.size(); ++r) local_a[rows[r]] = static_cast<int>(r);
+    for (size_t c = 0; c < cols.size(); ++c) local_b[cols[c]] = static_cast<int>(c);
+    std::vector<double> w(rows.size() * cols.size(), 0.0);
+    for (int k : ce) w[local_a[edges[k].i] * cols.size() + local_b[edges[k].j]] = edges[k].w;
+    for (const auto& [r, c] : max_weight_assignment(w, static_cast<int>(rows.size()), static_cast<int>(cols.size()), min_iou))
+      pairs.emplace_back(rows[r], cols[c]);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
 }
 }  // namespace ipd
