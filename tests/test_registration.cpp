@@ -94,6 +94,41 @@ TEST(PointGrid, NearestMatchesBruteForce) {
   }
 }
 
+TEST(PointGrid, FarQueriesStayExact) {
+  // Hypotheses can move rocks far outside B's picture; the search must stay exact there (and stop early).
+  std::mt19937 g(5);
+  std::vector<Eigen::Vector2d> pts;
+  for (int k = 0; k < 2000; ++k) pts.emplace_back(g() / 4294967296.0, 0.5 * g() / 4294967296.0);
+  const PointGrid grid(pts);
+  for (int q = 0; q < 200; ++q) {
+    const Eigen::Vector2d p(g() / 4294967296.0 * 200 - 100, g() / 4294967296.0 * 200 - 100);
+    double d = 0;
+    grid.nearest(p, &d);
+    double best = INFINITY;
+    for (const auto& x : pts) best = std::min(best, (x - p).squaredNorm());
+    EXPECT_DOUBLE_EQ(d, best);
+  }
+}
+
+TEST(Assignment, PerComponentPairingEqualsTheWholeAssignment) {
+  // pair_by_aligned_iou solves each group of overlapping boxes apart; the total IoU must equal the optimum.
+  std::mt19937 g(11);
+  auto u = [&] { return g() / 4294967296.0; };
+  std::vector<Box> a, b;
+  for (int k = 0; k < 60; ++k) a.push_back({0, u(), u(), 0.03 + 0.1 * u(), 0.03 + 0.1 * u()});
+  for (int k = 0; k < 50; ++k) b.push_back({0, u(), u(), 0.03 + 0.1 * u(), 0.03 + 0.1 * u()});
+  std::vector<double> w(a.size() * b.size());
+  for (size_t i = 0; i < a.size(); ++i)
+    for (size_t j = 0; j < b.size(); ++j) w[i * b.size() + j] = iou(a[i], b[j]);
+  double whole = 0, parts = 0;
+  for (const auto& [i, j] : max_weight_assignment(w, 60, 50, 0.1)) whole += w[i * b.size() + j];
+  const RockPairs got = pair_by_aligned_iou(identity_affine(), a, b, 0.1);
+  for (const auto& [i, j] : got) parts += w[i * b.size() + j];
+  EXPECT_GT(got.size(), 5u);
+  EXPECT_NEAR(parts, whole, 1e-12);
+  EXPECT_TRUE(std::is_sorted(got.begin(), got.end()));
+}
+
 TEST(Assignment, HungarianBeatsGreedy) {
   // Greedy would take (0,0)=0.9 and then (1,1)=0.1; optimal is (0,1)+(1,0) = 0.8+0.8.
   const std::vector<double> w = {0.9, 0.8, 0.8, 0.1};

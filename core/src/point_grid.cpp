@@ -56,31 +56,42 @@ int PointGrid::nearest(const Eigen::Vector2d& p, double* sq_dist) const {
     return best;
   }
   const int cx = cell_of(p.x(), x0_, nx_), cy = cell_of(p.y(), y0_, ny_);
+  auto scan = [&](int c) {
+    for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+      const double d = (points_[order_[k]] - p).squaredNorm();
+      if (d < best_d) {
+        best_d = d;
+        best = order_[k];
+      }
+    }
+  };
+  // How far p lies outside the grid along each axis: a query far outside (a wild hypothesis moves rocks
+  // anywhere) must still stop after a ring or two instead of scanning the whole grid.
+  const double gx1 = x0_ + nx_ * cell_, gy1 = y0_ + ny_ * cell_;
+  const double out_x = std::max({0.0, x0_ - p.x(), p.x() - gx1}), out_y = std::max({0.0, y0_ - p.y(), p.y() - gy1});
   for (int r = 0;; ++r) {
     const int lx = cx - r, hx = cx + r, ly = cy - r, hy = cy + r;
     for (int y = std::max(ly, 0); y <= std::min(hy, ny_ - 1); ++y) {
-      const bool edge_row = (y == ly || y == hy);
-      for (int x = std::max(lx, 0); x <= std::min(hx, nx_ - 1); ++x) {
-        if (!edge_row && x != lx && x != hx) continue;  // interior cells were searched in earlier rings
-        const int c = y * nx_ + x;
-        for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-          const double d = (points_[order_[k]] - p).squaredNorm();
-          if (d < best_d) {
-            best_d = d;
-            best = order_[k];
-          }
-        }
+      if (y == ly || y == hy) {
+        for (int x = std::max(lx, 0); x <= std::min(hx, nx_ - 1); ++x) scan(y * nx_ + x);
+      } else {  // interior cells were searched in earlier rings
+        if (lx >= 0) scan(y * nx_ + lx);
+        if (hx <= nx_ - 1 && hx != lx) scan(y * nx_ + hx);
       }
     }
     // Lower bound on the distance to any cell outside this ring, over the sides that still have cells.
     double bound = std::numeric_limits<double>::infinity();
     bool more = false;
-    if (lx > 0) { bound = std::min(bound, p.x() - (x0_ + lx * cell_)); more = true; }
-    if (hx < nx_ - 1) { bound = std::min(bound, x0_ + (hx + 1) * cell_ - p.x()); more = true; }
-    if (ly > 0) { bound = std::min(bound, p.y() - (y0_ + ly * cell_)); more = true; }
-    if (hy < ny_ - 1) { bound = std::min(bound, y0_ + (hy + 1) * cell_ - p.y()); more = true; }
+    auto side = [&](double dx, double dy) {
+      bound = std::min(bound, std::hypot(std::max(0.0, dx), std::max(0.0, dy)));
+      more = true;
+    };
+    if (lx > 0) side(p.x() - (x0_ + lx * cell_), out_y);
+    if (hx < nx_ - 1) side(x0_ + (hx + 1) * cell_ - p.x(), out_y);
+    if (ly > 0) side(out_x, p.y() - (y0_ + ly * cell_));
+    if (hy < ny_ - 1) side(out_x, y0_ + (hy + 1) * cell_ - p.y());
     if (!more) break;
-    if (best >= 0 && bound > 0 && bound * bound >= best_d) break;
+    if (best >= 0 && bound * bound >= best_d) break;
     if (!std::isfinite(p.x()) || !std::isfinite(p.y())) break;
   }
   if (sq_dist) *sq_dist = best_d;
