@@ -1,6 +1,7 @@
 // Around the panels: menu bar, status bar, shortcuts and their help, Go to scene, Open study (a directory
 // browser drawn in ImGui), the quit warning, and the IPD panel.
 #include <algorithm>
+#include <string>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -86,6 +87,15 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
   if (ImGui::BeginMenu("Help")) {
     if (ImGui::MenuItem("Shortcuts", "F1")) ui.show_help = true;
     ImGui::EndMenu();
+  }
+  if (!v.failed_saves.empty()) {
+    // A banner on the always-visible menu bar: hand edits that are not on disk must not go unnoticed.
+    ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.75f, 0.1f, 0.1f, 1));
+    ImGui::PushStyleColor(ImGuiCol_ButtonHovered, ImVec4(0.9f, 0.2f, 0.2f, 1));
+    const std::string banner = std::to_string(v.failed_saves.size()) +
+                               " hand edit(s) NOT SAVED: " + v.failed_saves.front() + "  [Retry]";
+    if (ImGui::Button(banner.c_str())) out.retry_saves = true;
+    ImGui::PopStyleColor(2);
   }
   ImGui::EndMenuBar();
 }
