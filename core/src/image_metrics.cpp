@@ -111,7 +111,9 @@ Affine2 scene_b_from_a(const ScenePairing& p, const std::vector<Box>& ga, const 
 
 std::vector<ScenePixelMetrics> pixel_metrics(const StudyLabels& labels, const CrossTable& table, size_t column,
                                              int threads, std::vector<std::string>* problems) {
-  const auto& [a, b] = table.columns.at(column);
+  // Named copies, not structured bindings: C++17 lambdas can't capture those (clang rejects it).
+  const std::string& a = table.columns.at(column).first;
+  const std::string& b = table.columns.at(column).second;
   const Domain* da = labels.study.domain(a);
   const Domain* db = labels.study.domain(b);
   const auto& pairings = table.pairings.at(column);
