@@ -64,16 +64,37 @@ StudyConfig parse_study_config(const std::string& text, const std::string& file)
 namespace {
 StudyConfig parse_study_config_nodes(const std::string& text, const std::string& file) {
   StudyConfig c;
+  // Documents are split here, not by YAML::LoadAll: yaml-cpp 0.7's LoadAll loops without end, eating memory,
+  // on some malformed multi-document inputs (a 123-byte study.yaml found by fuzz_study_yaml took > 16 GB).
+  // A `---` after the first document's content starts a second one; Load() alone would silently ignore it.
+  size_t first_end = text.size();
+  {
+    bool content = false;
+    int line_no = 0;
+    for (size_t pos = 0; pos < text.size();) {
+      const size_t eol = std::min(text.find('\n', pos), text.size());
+      std::string line = text.substr(pos, eol - pos);
+      ++line_no;
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      const size_t first = line.find_first_not_of(" \t");
+      const bool blank = first == std::string::npos || line[first] == '#';
+      const bool marker = line.rfind("---", 0) == 0 && (line.size() == 3 || line[3] == ' ' || line[3] == '\t');
+      const bool end_marker = line.rfind("...", 0) == 0 && (line.size() == 3 || line[3] == ' ' || line[3] == '\t');
+      if (first_end == text.size()) {
+        if ((marker && content) || end_marker) first_end = pos;
+        else if (!blank && !marker && line[0] != '%') content = true;
+      } else if (!blank && !marker && !end_marker) {
+        throw StudyError(fmt::format("{}:{}: a second YAML document; expected one mapping of settings", file, line_no));
+      }
+      pos = eol + 1;
+    }
+  }
   std::vector<YAML::Node> documents;
   try {
-    documents = YAML::LoadAll(text);
+    documents.push_back(YAML::Load(text.substr(0, first_end)));
   } catch (const YAML::ParserException& e) {
     throw StudyError(fmt::format("{}:{}: invalid YAML: {}", file, e.mark.line + 1, e.msg));
   }
-  for (size_t k = 1; k < documents.size(); ++k)  // yaml-cpp's Load() would silently ignore these
-    if (documents[k] && !documents[k].IsNull())
-      throw StudyError(fmt::format("{}:{}: a second YAML document; expected one mapping of settings", file,
-                                   documents[k].Mark().line + 1));
   if (documents.empty()) return c;
   const YAML::Node& root = documents.front();
   if (!root || root.IsNull()) return c;
