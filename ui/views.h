@@ -15,6 +15,9 @@
 
 namespace ipd::ui {
 
+// An IPD as the views print it: 4 decimals, "n/a" for NaN.
+std::string fmt_ipd(double v);
+
 struct Picture {
   ImTextureID texture = nullptr;
   int width = 0, height = 0;

@@ -12,14 +12,15 @@
 
 namespace ipd::ui {
 
-namespace {
-
 std::string fmt_ipd(double v) {
   if (std::isnan(v)) return "n/a";
   char b[32];
   std::snprintf(b, sizeof b, "%.4f", v);
   return b;
 }
+
+namespace {
+
 
 bool pressed(int key) { return ImGui::IsKeyPressed(key, true); }
 
