@@ -259,7 +259,7 @@ void StudioApp::frame() {
   if (ui_.show_open) list_browse_dir();
   ui::draw_dialogs(v, ui_, cmd);
   if (s)
-    if (auto request = ui::draw_export_dialog(export_dialog_, ui::export_view_context(*s, ui_))) export_figure(*request);
+    if (auto request = ui::draw_export_dialog(export_dialog_, ui::export_view_context(*s, ui_, stats_ui_))) export_figure(*request);
   ImGui::End();
   apply(cmd);
   textures_.end_frame();
@@ -325,7 +325,7 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
     ui_.rerun_discarded = false;
   }
   if ((cmd.export_figures || cmd.export_dialog) && !s.scenes().empty())
-    ui::open_export_dialog(export_dialog_, ui::export_view_context(s, ui_));
+    ui::open_export_dialog(export_dialog_, ui::export_view_context(s, ui_, stats_ui_));
 }
 
 void StudioApp::export_figure(const ui::ExportRequest& request) {
@@ -335,7 +335,7 @@ void StudioApp::export_figure(const ui::ExportRequest& request) {
     std::string message;
     std::thread low([&] {
       setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 15);
-      message = ui::export_scene_figure(*session, request);
+      message = ui::export_figure(*session, request);
     });
     low.join();
     return message;
@@ -425,17 +425,12 @@ bool StudioApp::replay_step() {
     ui_.rerun_method = a.args[0] == "consensus" ? 0 : a.args[0] == "paper" ? 1 : 2;
     cmd.rerun_registration = true;
   } else if (a.verb == "export" && !s.scenes().empty()) {
-    // The dialog's request with its defaults (pairs, single column, the view's layers and zoom).
+    // The dialog's request with its defaults (single column, the view's layers and zoom) for the kind.
     ui::ExportDialogState d;
-    const ui::ExportViewContext ctx = ui::export_view_context(s, ui_);
+    const ui::ExportViewContext ctx = ui::export_view_context(s, ui_, stats_ui_);
     ui::open_export_dialog(d, ctx);
-    ui::ExportRequest r;
-    r.path = a.args[0];
-    r.scene = ui_.scene;
-    r.options.layers = {d.layers[0], d.layers[1], d.layers[2], d.layers[3], d.layers[4], d.layers[5]};
-    r.options.crop = ui::crop_of_view(ctx.view);
-    r.options.font_file = ui::default_font_file();
-    export_figure(r);
+    if (a.args.size() == 2) ui::set_export_kind(d, a.args[0]);  // checked by parse_replay
+    export_figure(ui::export_request(d, ctx, a.args.back()));
   }
   apply(cmd);
   return true;

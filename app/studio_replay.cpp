@@ -1,5 +1,6 @@
 #include "studio_replay.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <map>
 #include <sstream>
@@ -15,7 +16,7 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
       {"scene", {1, "next, prev or a scene name"}}, {"pair", {2, "two rock numbers (left, right)"}},
       {"unpair", {1, "a left rock number"}}, {"exclude", {1, "a left rock number"}},
       {"undo", {0, "nothing"}},             {"redo", {0, "nothing"}},
-      {"rerun", {1, "paper, consensus or cpd"}}, {"export", {1, "an output file"}},
+      {"rerun", {1, "paper, consensus or cpd"}}, {"export", {1, "[a figure kind] and an output file"}},
       {"screenshot", {1, "a PNG file"}},
   };
   std::vector<ReplayAction> out;
@@ -36,7 +37,8 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
     if (it == verbs.end())
       fail("unknown action '" + a.verb + "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, undo, "
            "redo, rerun, export or screenshot)");
-    if (static_cast<int>(a.args.size()) != it->second.first)
+    const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
+    if (static_cast<int>(a.args.size()) != it->second.first && !export_with_kind)
       fail("'" + a.verb + "' takes " + it->second.second + ", got " + std::to_string(a.args.size()) + " argument(s)");
     auto positive = [&](const std::string& w) {
       char* end = nullptr;
@@ -52,6 +54,12 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
     }
     if (a.verb == "rerun" && a.args[0] != "paper" && a.args[0] != "consensus" && a.args[0] != "cpd")
       fail("'rerun': expected paper, consensus or cpd, got '" + a.args[0] + "'");
+    static const std::vector<std::string> kinds = {"pairs", "registration", "table", "compare", "distribution",
+                                                   "breakdown", "breakdown-size", "breakdown-region",
+                                                   "breakdown-confidence"};
+    if (export_with_kind && std::find(kinds.begin(), kinds.end(), a.args[0]) == kinds.end())
+      fail("'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
+           "breakdown-size, breakdown-region or breakdown-confidence), got '" + a.args[0] + "'");
     out.push_back(std::move(a));
   }
   return out;

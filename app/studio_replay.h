@@ -1,7 +1,9 @@
 // ipd-studio --replay FILE: scripted sessions, one action per line, one action per frame (the next one waits
 // until the worker has applied the previous). Rock numbers are 1-based, left side first.
 //   wait N | conf X | model NAME | domains A B | scene next|prev|STEM | pair I J | unpair I | exclude I
-//   undo | redo | rerun paper|consensus|cpd | export FILE | screenshot FILE      (# starts a comment)
+//   undo | redo | rerun paper|consensus|cpd | export [KIND] FILE | screenshot FILE   (# starts a comment)
+// KIND: pairs (the default), registration, table, compare, distribution, breakdown[-size|-region|-confidence]
+// (the Export figure dialog's defaults for that kind and the current view).
 #pragma once
 
 #include <string>

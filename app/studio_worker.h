@@ -50,7 +50,7 @@ struct WorkerCommand {
   double value = 0;     // kConf
   RegistrationOptions registration;  // kRerun
   bool automatic = false;            // kRerun: the study's own registration, recorded for the replay
-  // kExport: renders and writes a figure in-process (ui::export_scene_figure on an immutable snapshot's
+  // kExport: renders and writes a figure in-process (ui::export_figure on an immutable snapshot's
   // session) and returns the status line.
   std::function<std::string()> job;
 };

@@ -13,6 +13,7 @@
 #include "figure_test_study.h"
 #include "ipd/demo_study.h"
 #include "ipd/session.h"
+#include "pdf_text.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
@@ -20,50 +21,11 @@ namespace fs = std::filesystem;
 namespace ipd {
 namespace {
 
-struct Word {
-  double x0, y0, x1, y1;
-  std::string text;
-};
-struct PdfText {
-  double width = 0, height = 0;
-  std::vector<Word> words;
-  std::string all() const {
-    std::string s;
-    for (const Word& w : words) s += w.text + " ";
-    return s;
-  }
-};
-
-PdfText pdf_text(const std::string& pdf) {
-  const auto r = test::run_command("pdftotext -bbox '" + pdf + "' -");
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  PdfText t;
-  std::smatch m;
-  if (std::regex_search(r.out, m, std::regex(R"re(<page width="([\d.]+)" height="([\d.]+)">)re")))
-    t.width = std::stod(m[1]), t.height = std::stod(m[2]);
-  const std::regex word(R"re(<word xMin="([\d.]+)" yMin="([\d.]+)" xMax="([\d.]+)" yMax="([\d.]+)">([^<]*)</word>)re");
-  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), word); it != std::sregex_iterator(); ++it)
-    t.words.push_back({std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3]), std::stod((*it)[4]), (*it)[5]});
-  return t;
-}
-
-bool has_word(const PdfText& t, const std::string& w) {
-  for (const Word& x : t.words)
-    if (x.text == w) return true;
-  return false;
-}
-
-// Pairs of words whose boxes overlap by more than a hair (0.05 pt: poppler rounds).
-std::vector<std::string> overlapping(const PdfText& t) {
-  std::vector<std::string> out;
-  const double e = 0.05;
-  for (size_t i = 0; i < t.words.size(); ++i)
-    for (size_t j = 0; j < i; ++j) {
-      const Word &a = t.words[i], &b = t.words[j];
-      if (a.x0 + e < b.x1 && b.x0 + e < a.x1 && a.y0 + e < b.y1 && b.y0 + e < a.y1) out.push_back(a.text + " / " + b.text);
-    }
-  return out;
-}
+using test::has_word;
+using test::overlapping;
+using test::pdf_text;
+using test::PdfText;
+using test::Word;
 
 TEST(FigureFiles, PdfPageIsTheColumnWidthAndCarriesTheText) {
   test::TempDir d;
@@ -192,7 +154,7 @@ TEST(FigureFiles, GuiExportAndCliGiveTheSamePdfForTheSameView) {
   ui::ExportRequest request;  // what the dialog returns by default: pairs, single column
   request.path = d / "gui.pdf";
   request.scene = 0;
-  EXPECT_EQ(ui::export_scene_figure(s, request), "exported " + d / "gui.pdf");
+  EXPECT_EQ(ui::export_figure(s, request), "exported " + d / "gui.pdf");
   const auto r = test::run_ipd("figure pairs " + d.path() + " --scene s1 --conf 0.9 --out " + d / "cli.pdf");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const PdfText from_gui = pdf_text(d / "gui.pdf"), from_cli = pdf_text(d / "cli.pdf");
@@ -213,11 +175,11 @@ TEST(FigureFiles, ExportFromTheGuiReportsProblemsInTheStatusLine) {
   ui::ExportRequest request;
   request.scene = 0;
   request.path = d / "x.jpg";
-  EXPECT_EQ(ui::export_scene_figure(s, request),
+  EXPECT_EQ(ui::export_figure(s, request),
             d / "x.jpg" + ": unknown figure format '.jpg'; the file name must end in .pdf, .svg or .png");
   request.path = d / "x.pdf";
   request.scene = 5;
-  EXPECT_EQ(ui::export_scene_figure(s, request), "export failed: no scene selected");
+  EXPECT_EQ(ui::export_figure(s, request), "export failed: no scene selected");
   EXPECT_FALSE(fs::exists(d / "x.pdf"));
 }
 

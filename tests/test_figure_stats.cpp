@@ -5,6 +5,7 @@
 #include <regex>
 
 #include "figure_charts.h"
+#include "pdf_text.h"
 #include "test_support.h"
 
 namespace ipd {
@@ -26,11 +27,7 @@ void write_three_domain_study(const test::TempDir& d) {
     }
 }
 
-std::string pdf_words(const std::string& pdf) {
-  const auto r = test::run_command("pdftotext -raw '" + pdf + "' -");
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  return std::regex_replace(r.out, std::regex("\\s+"), " ");
-}
+using test::pdf_words;
 
 TEST(FigureStats, CompareShowsTheDeltaAndItsTest) {
   test::TempDir d;

@@ -8,6 +8,7 @@
 
 #include "ipd/atomic_file.h"
 #include "ipd/session.h"
+#include "pdf_text.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
@@ -37,6 +38,8 @@ TEST(StudioReplay, EditsReachThePairsFiles) {
                    "pair 1 1\n"
                    "undo\n"
                    "export " + d / "fig.pdf\n"
+                   "export table " + d / "table.pdf\n"
+                   "export breakdown-confidence " + d / "breakdown.svg\n"
                    "screenshot " + d / "shot.png\n");
   // The same edits through the Session API, opened before the GUI writes anything.
   Session s = Session::open(d / "study");
@@ -47,6 +50,8 @@ TEST(StudioReplay, EditsReachThePairsFiles) {
   EXPECT_TRUE(fs::exists(d / "shot.png"));
   ASSERT_TRUE(fs::exists(d / "fig.pdf")) << read_file(d / "log.txt");  // exported in-process, on the worker
   EXPECT_EQ(read_file(d / "fig.pdf").substr(0, 5), "%PDF-");
+  EXPECT_NE(test::pdf_words(d / "table.pdf").find("Instance Performance Difference"), std::string::npos);
+  EXPECT_NE(read_file(d / "breakdown.svg").find(">IPD(real, principled) of "), std::string::npos);
 
   const int two = s.scene_index("scene_00002");
   s.apply(two, Edit::unpair(Side::kA, 0));
@@ -66,6 +71,12 @@ TEST(StudioReplay, BadActionsNameTheFileAndLine) {
   EXPECT_EQ(run(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" + ":2: 'pair' takes two rock numbers (left, right), got 1 argument(s)\n");
+  test::write_text(d / "actions.txt", "export histogram x.pdf\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" +
+                ":1: 'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
+                "breakdown-size, breakdown-region or breakdown-confidence), got 'histogram'\n");
 }
 
 }  // namespace
