@@ -330,7 +330,8 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
 
 void StudioApp::export_figure(const ui::ExportRequest& request) {
   WorkerCommand c{WorkerCommand::Kind::kExport};
-  c.job = [session = snap_->session, request] {
+  ++*exports_running_;
+  c.job = [session = snap_->session, request, running = exports_running_] {
     // Rendering takes a second of CPU: a low-priority thread, so the window's frames keep theirs.
     std::string message;
     std::thread low([&] {
@@ -338,6 +339,7 @@ void StudioApp::export_figure(const ui::ExportRequest& request) {
       message = ui::export_figure(*session, request);
     });
     low.join();
+    --*running;
     return message;
   };
   ui_.status = "exporting " + request.path + " ...";
@@ -445,6 +447,7 @@ std::string StudioApp::after_render(double ms) {
     changing_ = false;
     since_change_ = 0;
   }
+  if (*exports_running_ > 0) export_frame_ms_.push_back(ms);
   if (ready && (!o_.screenshot.empty() || !replay_.empty())) {
     // Count frames once the study is open and the current pictures are in (or after a grace period).
     if (loader_.idle() || ++settle_ > 600) {
@@ -475,6 +478,7 @@ int StudioApp::print_stats() const {
   }
   if (o_.frame_stats) stats("frame_ms", frame_ms_);
   stats("scene_ms", scene_ms_);
+  if (o_.frame_stats) stats("export_frame_ms", export_frame_ms_);
   if (!o_.screenshot.empty()) fmt::print("{}\n", o_.screenshot);
   return open_failed_ ? 1 : 0;
 }

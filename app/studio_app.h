@@ -2,6 +2,7 @@
 // and the one function that applies what the views asked for. main() only runs the window loop around it.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -70,6 +71,8 @@ class StudioApp {
   bool done_ = false, open_failed_ = false;
   // Timing
   std::vector<double> frame_ms_, scene_ms_;
+  std::vector<double> export_frame_ms_;  // frames drawn while a figure export ran on the worker
+  std::shared_ptr<std::atomic<int>> exports_running_ = std::make_shared<std::atomic<int>>(0);
   int counted_ = 0, settle_ = 0, since_change_ = 0;
   bool changing_ = false, change_shown_ = false, pictures_full_ = false;
   std::chrono::steady_clock::time_point change_started_;
