@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "canvas_cairo.h"
 #include "figure_input.h"
 #include "figure_test_study.h"
 #include "test_support.h"
@@ -98,6 +99,31 @@ TEST(Figures, BoxesStandWhereTheLabelsSay) {
   // Right: GT left edge x = 0.20 (pink), prediction right edge x = 0.42 (red).
   EXPECT_TRUE(colour_near(l.right, 0.20, 0.40, 255, 105, 200));
   EXPECT_TRUE(colour_near(l.right, 0.42, 0.45, 235, 40, 40));
+}
+
+// Fig. 2 with a misalignment smaller than a GT ring (about 2 pt on the page): the green pair line must still
+// show between the dot and the ring (drawn over the rings with a white halo, under small dots).
+TEST(Figures, ShortPairLinesStayVisibleInTheRegistrationFigure) {
+  ui::SceneFigureInput in;
+  in.stem = "s", in.a = "real", in.b = "synth", in.method = "consensus";
+  in.image_w = 1000, in.image_h = 1000;
+  in.gt_a = {Box{0, 0.5, 0.5, 0.05, 0.05}};
+  in.gt_b = {Box{0, 0.5125, 0.5, 0.05, 0.05}};  // 0.0125 of a ~118 pt panel: 1.5 pt to the right
+  in.pairs = {{0, 0}};
+  ui::FigureOptions o;
+  o.layers = ui::parse_layers("gt,pairs");
+  const ui::FontMetrics metrics(ui::default_font_file());
+  ui::DisplayList fig(metrics);
+  ui::draw_registration_figure(fig, in, o);
+  const std::string png = ui::render_figure_file(fig, metrics, ui::FigureFormat::kPng, 288);  // 4 px per pt
+  const cv::Mat img = cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_COLOR);
+  ASSERT_FALSE(img.empty());
+  int green = 0;
+  for (int y = 0; y < img.rows; ++y)
+    for (int x = 0; x < img.cols; ++x) green += near(img.at<cv::Vec3b>(y, x), 40, 160, 80);
+  // Two panels (identity affine: the same picture twice), each with ~0.6 pt x 0.9 pt of stroke between dot
+  // and ring: 12 px at 4 px/pt. Lines drawn under the rings and the old 1.3 pt dots left 4 px.
+  EXPECT_GT(green, 8);
 }
 
 TEST(Figures, ClearMessagesAndNoFileOnError) {

@@ -11,7 +11,7 @@ namespace ipd::ui::fig {
 
 constexpr Colour kInk = rgb(20, 20, 20), kGrey = rgb(110, 110, 110), kPinkC = rgb(255, 105, 200),
                  kRedC = rgb(235, 40, 40), kUnpairedC = rgb(160, 160, 160), kBlueC = rgb(40, 110, 230),
-                 kGreenC = rgb(40, 160, 80), kBackdrop = rgb(0, 0, 0, 165);
+                 kGreenC = rgb(40, 160, 80), kBackdrop = rgb(0, 0, 0, 165), kWhite = rgb(255, 255, 255);
 
 // Breaks `text` at spaces into lines no wider than `width` (a word longer than the width gets a line).
 std::vector<std::string> wrap(Canvas& c, const TextStyle& st, const std::string& text, double width);

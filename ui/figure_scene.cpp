@@ -190,7 +190,7 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
   out.text({kMargin, y}, Anchor::kTopLeft, caption, "before registration");
   out.text({kMargin + pw + gap, y}, Anchor::kTopLeft, caption, "after registration");
   y += out.measure(caption, "Ag").y + 0.15 * F;
-  const double dot = std::max(0.8, 0.16 * F), ring = dot * 1.9, lw = std::max(0.35, 0.07 * F);
+  const double dot = std::max(0.6, 0.11 * F), ring = dot * 2.8, lw = std::max(0.35, 0.07 * F);
   int left_out = 0;
   for (int k = 0; k < 2; ++k) {
     const PanelMap m{{kMargin + k * (pw + gap), y, kMargin + k * (pw + gap) + pw, y + ph}, o.crop};
@@ -203,13 +203,18 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
     }
     for (const Box& b : in.gt_b) pb.push_back(m(b.cx, b.cy));
     out.push_clip(m.panel);
-    if (o.layers.pairs)
-      for (const auto& [i, j] : in.pairs)
-        if (i >= 0 && j >= 0 && i < int(pa.size()) && j < int(pb.size())) out.line(pa[i], pb[j], kGreenC, lw);
-    if (o.layers.gt) {
+    // Rings first, pair lines over them with a white halo, the (small) dots last: a line shorter than a
+    // ring's radius (a small misalignment) still shows as a green stroke between the dot and the ring.
+    if (o.layers.gt)
       for (const Pt& q : pb) out.circle(q, ring, kPinkC, lw * 1.4);
-      for (const Pt& q : pa) out.fill_circle(q, dot, kBlueC);
+    if (o.layers.pairs) {
+      for (int pass = 0; pass < 2; ++pass)
+        for (const auto& [i, j] : in.pairs)
+          if (i >= 0 && j >= 0 && i < int(pa.size()) && j < int(pb.size()))
+            out.line(pa[i], pb[j], pass == 0 ? kWhite : kGreenC, pass == 0 ? lw * 3.2 : lw * 1.6);
     }
+    if (o.layers.gt)
+      for (const Pt& q : pa) out.fill_circle(q, dot, kBlueC);
     out.pop_clip();
     if (o.layers.gt && o.layers.indices) {
       std::vector<Label> labels;
