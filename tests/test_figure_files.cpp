@@ -105,6 +105,37 @@ TEST(FigureFiles, NoWordsOverlapOnTheDemosBusiestScene) {
     }
 }
 
+// Table I with intervals in one IEEE column (3 models x 3 domain pairs, as the demo): each interval
+// "[lo, hi]" stays on one line under its value, at 6 pt or more, and no words overlap.
+TEST(FigureFiles, TableIntervalsFitOnOneLineInASingleColumn) {
+  test::TempDir d;
+  DemoStudyOptions demo;
+  demo.scenes = 3;
+  demo.labels_only = true;
+  write_demo_study(d.path(), demo);
+  for (const std::string column : {"single", "double"}) {
+    const std::string out = d / ("table_" + column + ".pdf");
+    const auto r = test::run_ipd("figure table " + d.path() + " --ci 0.95 --column " + column + " --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const PdfText t = pdf_text(out);
+    int intervals = 0;
+    for (size_t k = 0; k < t.words.size(); ++k) {
+      if (t.words[k].text.front() != '[') continue;
+      ++intervals;
+      ASSERT_LT(k + 1, t.words.size());
+      const Word &lo = t.words[k], &hi = t.words[k + 1];  // "[0.021," and "0.037]"
+      EXPECT_EQ(hi.text.back(), ']') << column << ": " << lo.text << " " << hi.text;
+      EXPECT_NEAR(hi.y0, lo.y0, 0.5) << column << ": " << lo.text << " " << hi.text << " wraps";
+      EXPECT_GT(hi.x0, lo.x1) << column << ": " << lo.text << " " << hi.text;
+      EXPECT_GE(lo.y1 - lo.y0, 6.0) << lo.text;
+    }
+    EXPECT_EQ(intervals, 6) << column << ": " << t.all();  // the cells that involve their row's training domain
+    const auto bad = overlapping(t);
+    EXPECT_TRUE(bad.empty()) << column << ": " << (bad.empty() ? "" : bad.front());
+    EXPECT_NE(t.all().find("Brackets: 95% scene-bootstrap interval."), std::string::npos) << t.all();
+  }
+}
+
 TEST(FigureFiles, SvgIsXmlWithASizeAndTextAsText) {
   test::TempDir d;
   test::write_figure_study(d, true);

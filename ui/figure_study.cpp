@@ -30,7 +30,7 @@ std::string draw_study_figure(DisplayList& fig, const CrossTable& t, const Study
   const Study& st = labels.study;
   if (st.domains.empty()) throw StudyError(st.root + ": the study has no domains");
   if (r.kind == "table") {
-    draw_table_figure(fig, table_figure_of(t, o.ci), o);
+    draw_table_figure(fig, table_figure_of(t, o.ci, r.bootstrap.level), o);
     return "IPD cross table";
   }
   if (r.kind == "compare") {

@@ -31,6 +31,9 @@ void for_each_text(const TableFigure& t, size_t c, F&& f) {
   }
 }
 
+// The intervals' smaller font: 80% of the cells', never under 6 pt.
+double interval_pt(double cell_pt) { return std::max(kMinTextPt, 0.8 * cell_pt); }
+
 }  // namespace
 
 void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptions& o) {
@@ -43,13 +46,14 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
   std::vector<double> w(cols);
   for (;; F -= 0.25) {
     F = std::max(F, kMinTextPt);
-    const TextStyle bold = style(F, kInk, true), sub = style(F * 0.8, kGrey);
+    const TextStyle bold = style(F, kInk, true), sub = style(interval_pt(F), kGrey);
     const double pad = 0.9 * F;
     std::vector<double> lo(cols, 0), hi(cols, 0);
     for (size_t c = 0; c < cols; ++c)
       for_each_text(t, c, [&](const std::string& s, bool, bool is_sub) {
         const TextStyle& st = is_sub ? sub : bold;
-        lo[c] = std::max(lo[c], widest_word(out, st, s) + pad);
+        // An interval is one unit: it never wraps (its column is at least as wide as it).
+        lo[c] = std::max(lo[c], (is_sub ? out.measure(st, s).x : widest_word(out, st, s)) + pad);
         hi[c] = std::max(hi[c], out.measure(st, s).x + pad);
       });
     double sum_lo = 0, sum_hi = 0;
@@ -58,7 +62,7 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
     for (size_t c = 0; c < cols; ++c) w[c] = lo[c] + k * (hi[c] - lo[c]);
     if (sum_lo <= avail || F <= kMinTextPt) break;
   }
-  const TextStyle body = style(F, kInk), bold = style(F, kInk, true), sub = style(F * 0.8, kGrey);
+  const TextStyle body = style(F, kInk), bold = style(F, kInk, true), sub = style(interval_pt(F), kGrey);
   const double pad = 0.9 * F, line_h = out.measure(body, "Ag").y, sub_h = out.measure(sub, "Ag").y;
   const double lw = std::max(0.3, 0.06 * F);
   double y = m + draw_wrapped(out, {m, m}, style(o.font_pt, kInk), t.title, avail) + 0.4 * F;
@@ -87,8 +91,8 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
         cy += line_h;
       }
       if (r < t.sub.size() && c < t.sub[r].size())
-        for (const std::string& l : wrap(out, sub, t.sub[r][c], w[c] - pad)) {
-          out.text({x[c] + pad / 2, cy}, Anchor::kTopLeft, sub, l);
+        if (!t.sub[r][c].empty()) {
+          out.text({x[c] + pad / 2, cy}, Anchor::kTopLeft, sub, t.sub[r][c]);
           cy += sub_h;
         }
       row_h = std::max(row_h, cy - y - 0.25 * F);
@@ -104,7 +108,7 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
   out.height_pt = std::ceil(y + m);
 }
 
-TableFigure table_figure_of(const CrossTable& t, bool ci) {
+TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
   TableFigure fig;
   fig.title = "Instance Performance Difference (lower is better)";
   fig.header.push_back("Train \\ Eval");
@@ -127,13 +131,14 @@ TableFigure table_figure_of(const CrossTable& t, bool ci) {
                                                    : fmt::format("{:.4f}", cell.ipd));
       bold[c + 1] = cell.involves_training_domain && cell.ipd == best;
       if (ci && cell.involves_training_domain && std::isfinite(cell.ci_low) && std::isfinite(cell.ci_high))
-        sub[c + 1] = fmt::format("[{:.3f}, {:.3f}]", cell.ci_low, cell.ci_high);
+        sub[c + 1] = fmt::format("[{:.3f},\u2009{:.3f}]", cell.ci_low, cell.ci_high);  // thin space: one word
     }
     if (ci) fig.sub.push_back(sub);
     fig.rows.push_back(row);
     fig.bold.push_back(bold);
   }
   fig.note = "Rows: detector and its training domain. \u2013: pair not involving the training domain; bold: the row's best.";
+  if (ci) fig.note += fmt::format(" Brackets: {:g}% scene-bootstrap interval.", 100 * level);
   return fig;
 }
 

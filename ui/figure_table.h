@@ -28,6 +28,6 @@ struct CrossTable;
 }
 namespace ipd::ui {
 // Table I's cells as the paper shows them: "–" for pairs not involving the training domain, the row's
-// best in bold; `ci`: each cell's interval on a second line (when the table has them).
-TableFigure table_figure_of(const CrossTable& table, bool ci = false);
+// best in bold; `ci`: each cell's `level` interval on a second line, never wrapped (when the table has them).
+TableFigure table_figure_of(const CrossTable& table, bool ci = false, double level = 0.95);
 }  // namespace ipd::ui
