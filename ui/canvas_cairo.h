@@ -1,6 +1,6 @@
 // The cairo backend of the figure canvas: vector PDF (text as text, the font embedded as a subset), SVG
-// (<text> elements with the font embedded as @font-face) and PNG through cairo's image surface (no GL
-// context needed, e.g. on the GUI's export worker).
+// (canvas_svg.h: <text> elements, the used glyphs embedded as @font-face) and PNG through cairo's image
+// surface (no GL context needed, e.g. on the GUI's export worker).
 #pragma once
 
 #include <optional>

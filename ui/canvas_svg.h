@@ -1,5 +1,5 @@
 // SVG output of a figure: real <text> elements (searchable, editable) with the font embedded as a
-// base64 @font-face, pictures as embedded PNG at their native resolution.
+// base64 @font-face cut to the glyphs used, pictures as embedded JPEG (quality 90) at their native resolution.
 #pragma once
 
 #include <string>
