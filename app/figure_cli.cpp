@@ -20,11 +20,22 @@ void add_figure_output_options(CLI::App* cmd, FigureOutputArgs* a) {
   cmd->add_option("--font-pt", a->font_pt, "Font size in points (default 8; at least 6)");
   cmd->add_option("--dpi", a->dpi, "PNG resolution (default 300: a single column is 1050 px wide)");
   cmd->add_option("--font", a->font, "TrueType font file (default: DejaVu Sans)");
+  cmd->add_flag("--mkdir", a->mkdir, "Create --out's folder if it does not exist (otherwise that is an error)");
 }
 
 int figure_options(const FigureOutputArgs& a, ui::FigureOptions* out) {
   if (const std::string bad = ui::bad_extension_message(a.out); !bad.empty()) {
     fmt::print(stderr, "error: {}\n", bad);
+    return kUsage;
+  }
+  // A typo in a folder name should not silently create a new folder.
+  const std::filesystem::path folder = std::filesystem::path(a.out).parent_path();
+  if (std::error_code ec; !folder.empty() && !a.mkdir && !std::filesystem::is_directory(folder, ec)) {
+    if (std::filesystem::exists(folder, ec))
+      fmt::print(stderr, "error: --out {}: '{}' is not a folder\n", a.out, folder.string());
+    else
+      fmt::print(stderr, "error: --out {}: the folder '{}' does not exist (create it, or pass --mkdir)\n", a.out,
+                 folder.string());
     return kUsage;
   }
   ui::FigureOptions o;

@@ -13,11 +13,13 @@ namespace ipd::cli {
 struct FigureOutputArgs {
   std::string out, column = "single", font, layers, crop;
   double width_in = 0, font_pt = 8, dpi = 300;
+  bool mkdir = false;  // --mkdir: create --out's folder when it is missing
 };
 void add_figure_output_options(CLI::App* cmd, FigureOutputArgs* args);
 
-// Checks --out's extension and the option values: prints "error: ..." and returns the exit code (2 usage,
-// 1 missing font) when something is wrong, 0 and fills `out` when all is well.
+// Checks --out's extension and folder (it must exist unless --mkdir) and the option values: prints
+// "error: ..." and returns the exit code (2 usage, 1 missing font) when something is wrong, 0 and fills
+// `out` when all is well (nothing is written either way).
 int figure_options(const FigureOutputArgs& args, ui::FigureOptions* out);
 
 // Writes the figure atomically to args.out and prints the path.

@@ -155,8 +155,17 @@ TEST(Figures, ClearMessagesAndNoFileOnError) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "error: " + d / "nope.ttf" + ": no such font file\n");
   EXPECT_FALSE(fs::exists(d / "x.pdf"));
-  // A successful run leaves the figure and nothing else (no temp files).
+  // --out into a folder that does not exist: a usage error naming it, nothing created; --mkdir creates it.
   r = test::run_ipd("figure table " + d.path() + " --out " + d / "figs/t.png");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "error: --out " + d / "figs/t.png" + ": the folder '" + d / "figs" +
+                       "' does not exist (create it, or pass --mkdir)\n");
+  EXPECT_FALSE(fs::exists(d / "figs"));
+  r = test::run_ipd("figure pairs " + d.path() + " --out " + d / "study.yaml/x.pdf");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err, "error: --out " + d / "study.yaml/x.pdf" + ": '" + d / "study.yaml" + "' is not a folder\n");
+  // A successful run leaves the figure and nothing else (no temp files).
+  r = test::run_ipd("figure table " + d.path() + " --mkdir --out " + d / "figs/t.png");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   int files = 0;
   for (const auto& e : fs::directory_iterator(d / "figs")) files += e.is_regular_file();
