@@ -438,7 +438,7 @@ bool StudioApp::replay_step() {
   return true;
 }
 
-std::string StudioApp::after_render(double ms) {
+std::string StudioApp::after_render(double ms, double ui_cpu_ms) {
   const bool ready = snap_ != nullptr || open_failed_;
   if (snap_ && content_ms_ < 0)
     content_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started_).count();
@@ -447,7 +447,7 @@ std::string StudioApp::after_render(double ms) {
     changing_ = false;
     since_change_ = 0;
   }
-  if (*exports_running_ > 0) export_frame_ms_.push_back(ms);
+  if (*exports_running_ > 0) export_frame_ms_.push_back(ms), export_ui_cpu_ms_.push_back(ui_cpu_ms);
   if (ready && (!o_.screenshot.empty() || !replay_.empty())) {
     // Count frames once the study is open and the current pictures are in (or after a grace period).
     if (loader_.idle() || ++settle_ > 600) {
@@ -468,8 +468,9 @@ int StudioApp::print_stats() const {
   auto stats = [](const char* name, std::vector<double> v) {
     if (v.empty()) return;
     std::sort(v.begin(), v.end());
-    fmt::print("{} median={:.2f} p95={:.2f} max={:.2f} n={}\n", name, v[v.size() / 2],
-               v[std::min(v.size() - 1, v.size() * 95 / 100)], v.back(), v.size());
+    const long over = std::count_if(v.begin(), v.end(), [](double ms) { return ms > 50; });
+    fmt::print("{} median={:.2f} p95={:.2f} max={:.2f} n={} over_50ms={}\n", name, v[v.size() / 2],
+               v[std::min(v.size() - 1, v.size() * 95 / 100)], v.back(), v.size(), over);
   };
   if (o_.frame_stats && content_ms_ >= 0) {
     const OpenProgress p = worker_.progress();
@@ -478,7 +479,7 @@ int StudioApp::print_stats() const {
   }
   if (o_.frame_stats) stats("frame_ms", frame_ms_);
   stats("scene_ms", scene_ms_);
-  if (o_.frame_stats) stats("export_frame_ms", export_frame_ms_);
+  if (o_.frame_stats) stats("export_frame_ms", export_frame_ms_), stats("export_ui_cpu_ms", export_ui_cpu_ms_);
   if (!o_.screenshot.empty()) fmt::print("{}\n", o_.screenshot);
   return open_failed_ ? 1 : 0;
 }

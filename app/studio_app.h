@@ -35,9 +35,9 @@ class StudioApp {
   explicit StudioApp(StudioOptions options);  // throws std::runtime_error for a bad replay file
   // Builds this frame's windows (between ImGui::NewFrame and ImGui::Render).
   void frame();
-  // After the frame was rendered and finished: timing, replay progress; returns the screenshot path to save
-  // now (empty: none).
-  std::string after_render(double frame_ms);
+  // After the frame was rendered and finished: timing (wall clock, and the UI thread's own CPU time),
+  // replay progress; returns the screenshot path to save now (empty: none).
+  std::string after_render(double frame_ms, double ui_cpu_ms);
   bool done() const { return done_; }
   void request_quit() { ui_.show_quit = true; }
   int print_stats() const;  // prints frame_ms / scene_ms; returns the exit code
@@ -71,7 +71,9 @@ class StudioApp {
   bool done_ = false, open_failed_ = false;
   // Timing
   std::vector<double> frame_ms_, scene_ms_;
-  std::vector<double> export_frame_ms_;  // frames drawn while a figure export ran on the worker
+  // Frames drawn while a figure export ran on the worker: wall clock, and the UI thread's CPU time (what
+  // the frame itself did, apart from the rasteriser's threads and the machine's other load).
+  std::vector<double> export_frame_ms_, export_ui_cpu_ms_;
   std::shared_ptr<std::atomic<int>> exports_running_ = std::make_shared<std::atomic<int>>(0);
   int counted_ = 0, settle_ = 0, since_change_ = 0;
   bool changing_ = false, change_shown_ = false, pictures_full_ = false;

@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -20,6 +21,13 @@
 namespace fs = std::filesystem;
 
 namespace {
+
+// CPU time of the calling thread: a frame's own work, apart from waiting for the rasteriser or the machine.
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
+}
 
 void save_screenshot(int w, int h, const std::string& path) {
   cv::Mat rgba(h, w, CV_8UC4), bgr;
@@ -96,6 +104,7 @@ int main(int argc, char** argv) {
   ImGui_ImplOpenGL3_Init("#version 130");
   while (!app->done()) {
     const auto t0 = std::chrono::steady_clock::now();
+    const double cpu0 = thread_cpu_ms();
     glfwPollEvents();
     if (glfwWindowShouldClose(window)) {  // the quit warning decides
       glfwSetWindowShouldClose(window, GLFW_FALSE);
@@ -117,7 +126,8 @@ int main(int argc, char** argv) {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     if (headless_run) glFinish();
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if (const std::string shot = app->after_render(ms); !shot.empty()) save_screenshot(fw, fh, shot);
+    if (const std::string shot = app->after_render(ms, thread_cpu_ms() - cpu0); !shot.empty())
+      save_screenshot(fw, fh, shot);
     glfwSwapBuffers(window);
   }
   const int rc = app->print_stats();
