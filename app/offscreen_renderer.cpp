@@ -23,6 +23,7 @@ struct OffscreenRenderer::Impl {
   ImGuiContext* imgui = nullptr;
   std::vector<GLuint> textures;
   ImFont* bold = nullptr;
+  ImVector<ImWchar> ranges;  // the atlas's glyphs: must live until the atlas is built
 };
 
 std::string figure_font_file() {
@@ -35,7 +36,7 @@ std::string figure_font_file() {
 }
 
 OffscreenRenderer::OffscreenRenderer(int width, int height, float font_px, const std::string& font_file,
-                                     const std::string& bold_file)
+                                     const std::string& bold_file, const std::string& glyph_text)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.width = width;
@@ -54,8 +55,13 @@ OffscreenRenderer::OffscreenRenderer(int width, int height, float font_px, const
   io.IniFilename = nullptr;
   io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
   io.DeltaTime = 1.0f / 60.0f;
-  // Latin-1 plus the dashes, minus and comparison signs figures print.
-  static const ImWchar ranges[] = {0x0020, 0x00FF, 0x2010, 0x2027, 0x2212, 0x2212, 0x2264, 0x2265, 0};
+  // Latin-1, the dashes, minus and comparison signs figures print, and whatever else the figure's text uses.
+  static const ImWchar common[] = {0x0020, 0x00FF, 0x2009, 0x2027, 0x2212, 0x2212, 0x2264, 0x2265, 0};
+  ImFontGlyphRangesBuilder glyphs;
+  glyphs.AddRanges(common);
+  glyphs.AddText(glyph_text.c_str(), glyph_text.c_str() + glyph_text.size());
+  glyphs.BuildRanges(&m.ranges);
+  const ImWchar* ranges = m.ranges.Data;
   if (font_file.empty() || !io.Fonts->AddFontFromFileTTF(font_file.c_str(), font_px, nullptr, ranges)) {
     ImFontConfig cfg;
     cfg.SizePixels = font_px;
@@ -117,8 +123,9 @@ std::string render_png(const ui::DisplayList& fig, const ui::FontMetrics& metric
   const int h = static_cast<int>(std::ceil(fig.height_pt * px_per_pt));
   // ImGui's font atlas at the line height of the largest text figures use (--font-pt).
   double largest = 6;
-  for (const auto& t : fig.texts()) largest = std::max(largest, t.box.height());
-  OffscreenRenderer r(w, h, static_cast<float>(largest) * px_per_pt, metrics.file(), metrics.bold_file());
+  std::string all_text;
+  for (const auto& t : fig.texts()) largest = std::max(largest, t.box.height()), all_text += t.text;
+  OffscreenRenderer r(w, h, static_cast<float>(largest) * px_per_pt, metrics.file(), metrics.bold_file(), all_text);
   const cv::Mat bgr = r.render([&](ImDrawList* dl, ImVec2) {
     ui::ImGuiCanvas canvas(dl, {0, 0}, px_per_pt, [&](const cv::Mat& img) { return r.upload(img, w); }, &metrics,
                            r.bold_font());

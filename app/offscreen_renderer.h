@@ -15,10 +15,11 @@ namespace ipd::figure {
 
 class OffscreenRenderer {
  public:
-  // A width x height RGBA buffer and an ImGui context whose font is `font_px` pixels tall. Throws
-  // std::runtime_error when OSMesa can't give a context of that size.
+  // A width x height RGBA buffer and an ImGui context whose font is `font_px` pixels tall, with Latin-1 and
+  // every character of `glyph_text` (e.g. all the figure's text: Δ, −, thin spaces, accented domain names).
+  // Throws std::runtime_error when OSMesa can't give a context of that size.
   OffscreenRenderer(int width, int height, float font_px, const std::string& font_file,
-                    const std::string& bold_file = {});
+                    const std::string& bold_file = {}, const std::string& glyph_text = {});
   ImFont* bold_font() const;  // null when no bold file was given
   ~OffscreenRenderer();
   OffscreenRenderer(const OffscreenRenderer&) = delete;

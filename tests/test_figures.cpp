@@ -11,6 +11,7 @@
 #include "canvas_cairo.h"
 #include "figure_input.h"
 #include "figure_test_study.h"
+#include "ipd/demo_study.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
@@ -124,6 +125,26 @@ TEST(Figures, ShortPairLinesStayVisibleInTheRegistrationFigure) {
   // Two panels (identity affine: the same picture twice), each with ~0.6 pt x 0.9 pt of stroke between dot
   // and ring: 12 px at 4 px/pt. Lines drawn under the rings and the old 1.3 pt dots left 4 px.
   EXPECT_GT(green, 8);
+}
+
+// The raster path's font atlas holds every character the figure prints: the compare figure's title starts
+// with "Δ" (U+0394), which ImGui's Latin-1 atlas drew as "?". Its first glyph must look like poppler's
+// rendering of the same figure's PDF (dark-pixel masks overlap by 0.64 for Δ; "?" gave 0.19).
+TEST(Figures, RasterFiguresDrawEveryCharacterOfTheirText) {
+  test::TempDir d;
+  DemoStudyOptions demo;
+  demo.scenes = 3;
+  demo.labels_only = true;
+  write_demo_study(d.path(), demo);
+  ASSERT_EQ(test::run_ipd("figure compare " + d.path() + " --dpi 288 --out " + d / "c.png").exit_code, 0);
+  ASSERT_EQ(test::run_ipd("figure compare " + d.path() + " --out " + d / "c.pdf").exit_code, 0);
+  ASSERT_EQ(test::run_command("pdftoppm -r 288 -png -singlefile '" + d / "c.pdf" + "' '" + d / "p" + "'").exit_code, 0);
+  const cv::Rect first_glyph(0, 0, 30, 40);  // 7.5 x 10 pt at 4 px/pt: the title's first letter
+  const cv::Mat a = cv::imread(d / "c.png", cv::IMREAD_GRAYSCALE)(first_glyph) < 128;
+  const cv::Mat b = cv::imread(d / "p.png", cv::IMREAD_GRAYSCALE)(first_glyph) < 128;
+  const double both = cv::countNonZero(a & b), either = cv::countNonZero(a | b);
+  ASSERT_GT(either, 100);
+  EXPECT_GT(both / either, 0.5);
 }
 
 TEST(Figures, ClearMessagesAndNoFileOnError) {

@@ -186,7 +186,10 @@ void draw_distribution_chart(DisplayList& out, const DistributionChart& ch, cons
       names.push_back({stem, name, {ax.at(v) - dot * 2, cy - dot * 2, ax.at(v) + dot * 2, cy + dot * 2}});
     }
     const PtRect band{ax.x0, top + row_h * i, W - kMargin, top + row_h * (i + 1)};
-    left_out += draw_labels(out, names, band, {{ax.at(r.q1), cy - bh / 2, ax.at(r.q3), cy + bh / 2}}, false);
+    // The box and every named circle are obstacles: a name never covers its own circle or a neighbour's.
+    std::vector<PtRect> taken = {{ax.at(r.q1), cy - bh / 2, ax.at(r.q3), cy + bh / 2}};
+    for (const Label& l : names) taken.push_back(l.target);
+    left_out += draw_labels(out, names, band, taken, false);
   }
   y = bottom + axis_h + 0.4 * F;
   if (!ch.footnote.empty()) y += draw_wrapped(out, {kMargin, y}, style(F * 0.8, kGrey), ch.footnote, W - 2 * kMargin);

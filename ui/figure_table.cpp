@@ -62,6 +62,13 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
     for (size_t c = 0; c < cols; ++c) w[c] = lo[c] + k * (hi[c] - lo[c]);
     if (sum_lo <= avail || F <= kMinTextPt) break;
   }
+  // A table narrower than the page spreads its spare width over the value columns, so the rules span the
+  // figure's width as a paper's full-width table does.
+  if (double used = 0; cols > 1) {
+    for (double v : w) used += v;
+    if (used < avail)
+      for (size_t c = 1; c < cols; ++c) w[c] += (avail - used) / static_cast<double>(cols - 1);
+  }
   const TextStyle body = style(F, kInk), bold = style(F, kInk, true), sub = style(interval_pt(F), kGrey);
   const double pad = 0.9 * F, line_h = out.measure(body, "Ag").y, sub_h = out.measure(sub, "Ag").y;
   const double lw = std::max(0.3, 0.06 * F);
