@@ -102,6 +102,33 @@ Row run_config(const std::vector<RegistrationCase>& cases, const std::string& re
   return row;
 }
 
+// The default method's cases below F1 1, one line each: what the case holds and what went wrong.
+void list_failures(const std::vector<RegistrationCase>& cases, const std::string& regime, double aspect) {
+  RegistrationOptions o;
+  o.aspect = aspect;
+  int failed = 0, flagged_failed = 0, flagged_ok = 0;
+  for (size_t i = 0; i < cases.size(); ++i) {
+    const auto& c = cases[i];
+    const auto r = register_rocks(c.a, c.b, o);
+    const double f1 = score_pairs(r.pairs, c.truth).f1, ceiling = score_pairs(pairs_under_true_affine(c), c.truth).f1;
+    if (f1 >= ceiling) {
+      flagged_ok += r.ambiguous;
+      continue;
+    }
+    ++failed;
+    flagged_failed += r.ambiguous;
+    const Eigen::Matrix2d l = c.truth_affine.leftCols<2>();
+    const double deg = std::atan2(l(1, 0) * aspect - l(0, 1) / aspect, l(0, 0) + l(1, 1)) * 180 / M_PI;
+    fmt::print("  {} case {:>3}: {:>2} / {:>2} rocks, {:>2} true pairs, rotation {:>5.1f} deg; F1 {:.3f} (ceiling {:.3f}), "
+               "terr {:.2f}%, confidence {:.2f}{}, {} hypotheses, stopped: {}  [{}]\n",
+               regime, i, c.a.size(), c.b.size(), c.truth.size(), deg, f1, ceiling,
+               100 * transform_error(r.affine, c.truth_affine, c.a, aspect), r.confidence, r.ambiguous ? " AMBIGUOUS" : "",
+               r.hypotheses, to_string(r.stop), c.source);
+  }
+  fmt::print("  {}: {} of {} cases below the ceiling ({} flagged ambiguous); {} correct cases flagged\n", regime, failed,
+             cases.size(), flagged_failed, flagged_ok);
+}
+
 // What no method can beat on these cases: the transform error of least squares on the true pairs (the
 // floor) and the pair F1 of the true affine with our pairing (the ceiling).
 std::vector<Row> bounds_rows(const std::vector<RegistrationCase>& cases, const std::string& regime, double aspect) {
@@ -307,7 +334,8 @@ Runner add_bench_command(CLI::App& app) {
     std::string data = "../shared/data/polar-sim", csv, plot;
     int cases = 300;
     std::uint64_t seed = 1;
-    bool quick = false, pycpd = false;
+    bool quick = false, pycpd = false, failures = false;
+    std::vector<std::string> tiers, methods;
     std::string pycpd_script = find_data_file("pycpd_reference.py", IPD_APP_DIR);
   };
   auto args = std::make_shared<Args>();
@@ -325,6 +353,13 @@ Runner add_bench_command(CLI::App& app) {
   cmd->add_option("--csv", args->csv, "Also write the table as CSV");
   cmd->add_option("--plot", args->plot, "Draw F1 against run time to this PNG");
   cmd->add_flag("--quick", args->quick, "One budget per method (for CI smoke runs)");
+  cmd->add_option("--tiers", args->tiers, "Only these tiers (small, large, unequal)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"small", "large", "unequal"}));
+  cmd->add_option("--methods", args->methods, "Only these methods (consensus, paper, cpd)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(method_names()));
+  cmd->add_flag("--failures", args->failures, "List the default method's cases below F1 1 (for analysis)");
   cmd->add_flag("--pycpd", args->pycpd, "Also run the Python baseline (numpy port of pycpd; needs python3-numpy)");
   cmd->add_option("--pycpd-script", args->pycpd_script, "Path of pycpd_reference.py");
   return [args, edits, bootstrap, which]() -> int {
@@ -346,6 +381,16 @@ Runner add_bench_command(CLI::App& app) {
       for (int k : {25, 100, 250, 1000, 4000}) configs.push_back({RegistrationMethod::kConsensus, k});
       for (int k : {10, 30, 100}) configs.push_back({RegistrationMethod::kCpd, k});
     }
+    auto listed = [](const std::vector<std::string>& only, const std::string& name) {
+      return only.empty() || std::find(only.begin(), only.end(), name) != only.end();
+    };
+    configs.erase(std::remove_if(configs.begin(), configs.end(),
+                                 [&](const Config& c) { return !listed(args->methods, to_string(c.method)); }),
+                  configs.end());
+    auto tiers = benchmark_tiers();
+    tiers.erase(std::remove_if(tiers.begin(), tiers.end(),
+                               [&](const MisalignmentRange& r) { return !listed(args->tiers, r.name); }),
+                tiers.end());
     std::vector<Row> rows;
     std::vector<RegistrationCase> all_cases;
     std::string csv =
@@ -353,7 +398,7 @@ Runner add_bench_command(CLI::App& app) {
         "ambiguous_fraction\n";
     fmt::print("{:<8} {:<11} {:>7} {:>9} {:>8} {:>7} {:>7} {:>7} {:>10} {:>10} {:>6} {:>6}\n", "tier", "method",
                "budget", "ms/pair", "ms med", "F1", "prec", "recall", "terr med%", "terr p90%", "amb%", "ambF1");
-    for (const auto& range : benchmark_tiers()) {
+    for (const auto& range : tiers) {
       // Cases with at least three true pairs (fewer leave nothing to register), drawn from successive seeds.
       std::vector<RegistrationCase> cases;
       double rocks_a = 0, rocks_b = 0, true_pairs = 0;
@@ -368,6 +413,7 @@ Runner add_bench_command(CLI::App& app) {
                  rocks_a / n, rocks_b / n, true_pairs / n);
       std::vector<Row> tier = bounds_rows(cases, range.name, aspect);
       for (const auto& c : configs) tier.push_back(run_config(cases, range.name, c, aspect));
+      if (args->failures) list_failures(cases, range.name, aspect);
       if (args->pycpd) tier.push_back(run_pycpd(cases, range.name, args->pycpd_script, aspect));
       for (const auto& r : tier) {
         const std::string budget = r.config.budget > 0 ? std::to_string(r.config.budget) : "-";

@@ -101,7 +101,7 @@ Runner add_register_command(CLI::App& app) {
     std::uint64_t seed = 0;
     int cls = -1, trials = 0, threads = 0;
     std::vector<int> image_size;
-    double budget_ms = 0, max_rotation = 0;
+    double budget_ms = 0, max_rotation = 0, max_anisotropy = 0;
     bool json = false, skip_bad_lines = false;
   };
   auto args = std::make_shared<Args>();
@@ -119,6 +119,8 @@ Runner add_register_command(CLI::App& app) {
       ->delimiter(',')
       ->expected(2);
   cmd->add_option("--max-rotation", args->max_rotation, "consensus: largest plausible rotation in degrees (default 30)");
+  cmd->add_option("--max-anisotropy", args->max_anisotropy,
+                  "consensus: largest ratio of the affine's two scales (default 2)");
   cmd->add_option("--threads", args->threads, "Worker threads for --list (default: all cores)");
   cmd->add_flag("--json", args->json, "Print JSON (one object per line)");
   cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
@@ -132,6 +134,7 @@ Runner add_register_command(CLI::App& app) {
     if (args->trials > 0) opt.max_trials = args->trials;
     opt.time_budget_ms = args->budget_ms;
     if (args->max_rotation > 0) opt.max_rotation_deg = args->max_rotation;
+    if (args->max_anisotropy > 0) opt.max_anisotropy = args->max_anisotropy;
     if (args->image_size.size() == 2) {
       if (args->image_size[0] <= 0 || args->image_size[1] <= 0)
         throw CLI::ValidationError("--image-size", "width and height must be positive");

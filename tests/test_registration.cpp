@@ -199,6 +199,9 @@ TEST(RegistrationOptions, ValidateNamesTheProblem) {
   o = {};
   o.min_scale = 2, o.max_scale = 1;
   EXPECT_EQ(o.validate(), "scale bounds must satisfy 0 < min_scale <= max_scale, got [2, 1]");
+  o = {};
+  o.max_anisotropy = 0.5;
+  EXPECT_EQ(o.validate(), "max_anisotropy must be a number >= 1, got 0.5");
   EXPECT_THROW(register_rocks({}, {}, o), std::invalid_argument);
 }
 

@@ -15,7 +15,7 @@ const std::vector<RegistrationMethodInfo>& registration_methods() {
   static const std::vector<RegistrationMethodInfo> table = {
       {RegistrationMethod::kConsensus, "consensus",
        "guided hypotheses (identity, voted shifts, neighbour triples), soft consensus with box sizes, LO refinement",
-       "hypothesis cap 1000, rotation <= 30 deg, scale 0.5-2, pairs by aligned-box IoU >= 0.1"},
+       "hypothesis cap 1000, rotation <= 30 deg, scale 0.5-2, anisotropy <= 2, pairs by aligned-box IoU >= 0.1"},
       {RegistrationMethod::kPaper, "paper",
        "the paper's RANSAC: random triples, all 6 orders, best mean nearest-neighbour distance of K",
        "K = 1000 samples, mutual nearest neighbours within 0.2 of the centres' spread"},
@@ -73,6 +73,8 @@ std::string RegistrationOptions::validate() const {
     return fmt::format("scale bounds must satisfy 0 < min_scale <= max_scale, got [{}, {}]", min_scale, max_scale);
   if (!(max_rotation_deg > 0) || max_rotation_deg > 180)
     return fmt::format("max_rotation_deg must be in (0, 180], got {}", max_rotation_deg);
+  if (!(max_anisotropy >= 1) || !std::isfinite(max_anisotropy))
+    return fmt::format("max_anisotropy must be a number >= 1, got {}", max_anisotropy);
   if (!(inlier_gate >= 0)) return fmt::format("inlier_gate must be >= 0 (0: automatic), got {}", inlier_gate);
   if (!(min_pair_iou >= 0 && min_pair_iou < 1)) return fmt::format("min_pair_iou must be in [0, 1), got {}", min_pair_iou);
   if (!(work_budget >= 0) || !std::isfinite(work_budget))

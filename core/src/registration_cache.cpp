@@ -18,7 +18,7 @@ namespace ipd {
 
 namespace {
 
-constexpr int kFormat = 2;  // bump when the entry layout or any registration method changes its results
+constexpr int kFormat = 3;  // bump when the entry layout or any registration method changes its results
 
 struct Fnv {
   std::uint64_t h;
@@ -42,6 +42,7 @@ void feed(F&& f, const std::vector<Box>& a, const std::vector<Box>& b, const Reg
   f.value(o.min_scale);
   f.value(o.max_scale);
   f.value(o.max_rotation_deg);
+  f.value(o.max_anisotropy);
   f.value(o.inlier_gate);
   f.value(o.min_pair_iou);
   f.value(o.cpd_iterations);

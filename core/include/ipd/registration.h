@@ -47,6 +47,10 @@ struct RegistrationOptions {
   // consensus: plausible affines only
   double min_scale = 0.5, max_scale = 2.0;  // singular values of the linear part
   double max_rotation_deg = 30.0;  // a camera misalignment, not an arbitrary rotation
+  // consensus: largest ratio of the linear part's singular values (one axis stretched this much more than the
+  // other). Wrong alignments of a small overlap are often strongly stretched (2.3-5x on the large tier's
+  // failures), a camera misalignment is not.
+  double max_anisotropy = 2.0;
   double inlier_gate = 0;       // consensus, fraction of image width; 0: from the rock spacing
   double min_pair_iou = 0.1;    // consensus, cpd: aligned boxes overlapping less than this stay unpaired
   int cpd_iterations = 100;     // cpd: EM iterations
