@@ -1,0 +1,180 @@
+// Issue 13: registration when the two pictures barely overlap, and what the seed and the thread count may
+// (and may not) change.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "ipd/parallel.h"
+#include "ipd/registration.h"
+
+namespace ipd {
+namespace {
+
+// 15 rocks a side, `shared` of them the same rocks: B's picture sees A's top-right corner turned by 25
+// degrees (scale 1.1 x 0.95, shear 0.05, centres re-labelled with 0.1% noise) in its bottom-left corner; A's
+// other rocks fall outside B's picture, and B's other rocks lie outside what A's picture shows. Rock sizes
+// 1-10% of the width, log-uniform.
+struct SmallOverlap {
+  std::vector<Box> a, b;
+  Affine2 b_from_a;
+  RockPairs truth;
+};
+
+bool inside_picture(const Eigen::Vector2d& p) { return p.x() > 0 && p.y() > 0 && p.x() < 1 && p.y() < 1; }
+
+SmallOverlap small_overlap(unsigned seed, int shared = 3) {
+  std::mt19937 g(seed);
+  auto u = [&](double lo, double hi) { return lo + (hi - lo) * (g() / 4294967296.0); };
+  auto separated = [&](const std::vector<Eigen::Vector2d>& taken, double lo, double hi) {
+    while (true) {
+      const Eigen::Vector2d p(u(lo, hi), u(lo, hi));
+      if (std::all_of(taken.begin(), taken.end(), [&](const Eigen::Vector2d& q) { return (p - q).norm() > 0.12; }))
+        return p;
+    }
+  };
+  auto size = [&] { return 0.01 * std::pow(10.0, u(0, 1)); };  // 1-10% of the width, log-uniform
+  SmallOverlap s;
+  // A: three rocks in its top-right corner, twelve elsewhere.
+  std::vector<Eigen::Vector2d> where;
+  while (static_cast<int>(where.size()) < shared) where.push_back(separated(where, 0.62, 0.97));
+  while (where.size() < 15) where.push_back(separated(where, 0.03, 0.55));
+  const double r = 25 * M_PI / 180;
+  Eigen::Matrix2d rot, shear, scale;
+  rot << std::cos(r), -std::sin(r), std::sin(r), std::cos(r);
+  shear << 1, 0.05, 0, 1;
+  scale << 1.1, 0, 0, 0.95;
+  const Eigen::Matrix2d lin = rot * shear * scale;
+  Eigen::Vector2d corner(0, 0);
+  for (int i = 0; i < shared; ++i) corner += where[i] / shared;
+  s.b_from_a.leftCols<2>() = lin;
+  s.b_from_a.col(2) = Eigen::Vector2d(0.22, 0.22) - lin * corner;  // the corner lands near B's (0.22, 0.22)
+  for (const auto& p : where) {
+    Box x;
+    x.cx = p.x(), x.cy = p.y(), x.w = size(), x.h = x.w * u(0.7, 1.4);
+    s.a.push_back(x);
+  }
+  // B: the three shared rocks (moved, re-labelled), then twelve new ones away from every mapped A rock.
+  std::vector<Eigen::Vector2d> taken;
+  for (const auto& x : s.a) taken.push_back(apply(s.b_from_a, x.centre()));
+  for (int i = 0; i < shared; ++i) {
+    Box y = transform_box(s.b_from_a, s.a[i]);
+    y.cx += u(-0.001, 0.001), y.cy += u(-0.001, 0.001);
+    s.truth.emplace_back(i, static_cast<int>(s.b.size()));
+    s.b.push_back(y);
+  }
+  Affine2 a_from_b;
+  invert(s.b_from_a, &a_from_b);
+  while (s.b.size() < 15) {
+    const Eigen::Vector2d p = separated(taken, 0.03, 0.97);
+    if (inside_picture(apply(a_from_b, p))) continue;  // A would have seen it
+    taken.push_back(p);
+    Box y;
+    y.cx = p.x(), y.cy = p.y(), y.w = size(), y.h = y.w * u(0.7, 1.4);
+    s.b.push_back(y);
+  }
+  return s;
+}
+
+// Exact pairs and the affine from `shared` true pairs among 15 rocks a side, for seeds 1-10.
+void expect_recovered(int shared) {
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    const SmallOverlap s = small_overlap(seed, shared);
+    // The scene is what it says: exactly the shared rocks of A land inside B's picture.
+    int landing = 0;
+    for (const auto& x : s.a) landing += inside_picture(apply(s.b_from_a, x.centre()));
+    ASSERT_EQ(landing, shared) << "seed " << seed;
+
+    const RegistrationReport r = register_rocks(s.a, s.b, {});
+    EXPECT_EQ(r.pairs, s.truth) << "seed " << seed;
+    // The shared rocks determine the affine; 0.1% label noise moves their images by about as much.
+    for (int i = 0; i < shared; ++i)
+      EXPECT_LT((apply(r.affine, s.a[i].centre()) - apply(s.b_from_a, s.a[i].centre())).norm(), 0.003)
+          << "seed " << seed << " rock " << i;
+    const Eigen::Matrix2d found = r.affine.leftCols<2>(), truth = s.b_from_a.leftCols<2>();
+    EXPECT_LT((found - truth).cwiseAbs().maxCoeff(), 0.05) << "seed " << seed << "\n" << r.affine;
+  }
+}
+
+TEST(SmallOverlap, FourTruePairsAmongFifteenRocksAt25Degrees) { expect_recovered(4); }
+
+// The issue's case. NOT MET: with three shared rocks a wrong alignment of four or five rocks of similar size
+// outscores the true one (1 of these 10 seeds is recovered); what the consensus reports instead is below.
+TEST(SmallOverlap, DISABLED_ThreeTruePairsAmongFifteenRocksAt25Degrees) { expect_recovered(3); }
+
+// What it does with three: recovered, or (mostly) flagged ambiguous. Counted, so a change either way shows.
+TEST(SmallOverlap, ThreeTruePairsAreRecoveredOrMostlyFlagged) {
+  int recovered = 0, flagged_wrong = 0, confident_wrong = 0;
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    const SmallOverlap s = small_overlap(seed, 3);
+    const RegistrationReport r = register_rocks(s.a, s.b, {});
+    if (r.pairs == s.truth) ++recovered;
+    else if (r.ambiguous) ++flagged_wrong;
+    else ++confident_wrong;
+  }
+  EXPECT_EQ(recovered, 1);
+  EXPECT_EQ(flagged_wrong, 7);
+  EXPECT_EQ(confident_wrong, 2);
+}
+
+// A different seed visits the hypotheses in another order (its trace differs) and still finds the answer;
+// the same seed repeats the run exactly.
+TEST(SmallOverlap, AnotherSeedTriesOtherHypothesesAndStillFindsTheAnswer) {
+  const SmallOverlap s = small_overlap(1, 4);
+  auto run = [&](std::uint64_t seed) {
+    RegistrationOptions o;
+    o.seed = seed;
+    o.record_trace = true;
+    return register_rocks(s.a, s.b, o);
+  };
+  auto samples = [](const RegistrationReport& r) {
+    std::vector<std::vector<int>> out;
+    for (const auto& step : r.trace.steps)
+      if (step.kind == TraceStepKind::kHypothesis && !step.a_sample.empty()) {
+        out.push_back(step.a_sample);
+        out.back().insert(out.back().end(), step.b_sample.begin(), step.b_sample.end());
+      }
+    return out;
+  };
+  const auto r0 = run(0), r0again = run(0), r7 = run(7);
+  ASSERT_FALSE(samples(r0).empty());
+  EXPECT_EQ(samples(r0), samples(r0again));
+  EXPECT_EQ(r0.affine, r0again.affine);
+  EXPECT_NE(samples(r0), samples(r7)) << "seed 7 visited the same hypotheses in the same order as seed 0";
+  EXPECT_EQ(r0.pairs, s.truth);
+  EXPECT_EQ(r7.pairs, s.truth);
+}
+
+// A batch registered on 1, 2 or 4 threads gives bit-identical reports for a seed (each registration owns its
+// generator; nothing is shared between them).
+TEST(SmallOverlap, SameReportsWhateverTheThreadCount) {
+  std::vector<SmallOverlap> scenes;
+  for (unsigned seed = 1; seed <= 12; ++seed) scenes.push_back(small_overlap(seed, 3 + seed % 3));
+  auto batch = [&](int threads) {
+    std::vector<RegistrationReport> out(scenes.size());
+    parallel_for(scenes.size(), threads, [&](size_t k) {
+      RegistrationOptions o;
+      o.seed = 3;
+      o.record_trace = true;
+      out[k] = register_rocks(scenes[k].a, scenes[k].b, o);
+    });
+    return out;
+  };
+  const auto one = batch(1);
+  for (int threads : {2, 4}) {
+    const auto many = batch(threads);
+    for (size_t k = 0; k < scenes.size(); ++k) {
+      EXPECT_EQ(one[k].affine, many[k].affine) << threads << " threads, scene " << k;
+      EXPECT_EQ(one[k].pairs, many[k].pairs);
+      EXPECT_EQ(one[k].hypotheses, many[k].hypotheses);
+      EXPECT_EQ(one[k].confidence, many[k].confidence);
+      ASSERT_EQ(one[k].trace.steps.size(), many[k].trace.steps.size());
+      for (size_t t = 0; t < one[k].trace.steps.size(); ++t)
+        EXPECT_EQ(one[k].trace.steps[t].b_from_a, many[k].trace.steps[t].b_from_a);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ipd
