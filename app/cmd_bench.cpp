@@ -198,10 +198,11 @@ Row run_pycpd(const std::vector<RegistrationCase>& cases, const std::string& reg
 // for no worse than n log n up to 500 a side.
 void scaling(double aspect, std::uint64_t seed) {
   fmt::print("default method against the rock count (synthetic layouts, small misalignment, 20 cases each):\n");
-  fmt::print("{:>6} {:>10} {:>8} {:>22}\n", "rocks", "ms median", "F1", "ms / (n log2 n), n=25: 1");
+  fmt::print("{:>6} {:>10} {:>8} {:>22} {:>12} {:>12}\n", "rocks", "ms median", "F1", "ms / (n log2 n), n=25: 1",
+             "hypotheses", "work");
   double unit = 0;
   for (int n : {25, 50, 100, 200, 500}) {
-    std::vector<double> ms;
+    std::vector<double> ms, hypotheses, work;
     double f1 = 0;
     const int count = 20;
     for (int k = 0; k < count; ++k) {
@@ -212,10 +213,13 @@ void scaling(double aspect, std::uint64_t seed) {
       const auto r = register_rocks(c.a, c.b, o);
       ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
       f1 += score_pairs(r.pairs, c.truth).f1 / count;
+      hypotheses.push_back(r.hypotheses);
+      work.push_back(r.work);
     }
     const double med = percentile(ms, 0.5), per = med / (n * std::log2(static_cast<double>(n)));
     if (unit == 0) unit = per;
-    fmt::print("{:>6} {:>10.3f} {:>8.4f} {:>22.2f}\n", n, med, f1, per / unit);
+    fmt::print("{:>6} {:>10.3f} {:>8.4f} {:>22.2f} {:>12.0f} {:>12.3g}\n", n, med, f1, per / unit,
+               percentile(hypotheses, 0.5), percentile(work, 0.5));
   }
 }
 
@@ -334,7 +338,7 @@ Runner add_bench_command(CLI::App& app) {
     std::string data = "../shared/data/polar-sim", csv, plot;
     int cases = 300;
     std::uint64_t seed = 1;
-    bool quick = false, pycpd = false, failures = false;
+    bool quick = false, pycpd = false, failures = false, scaling_only = false;
     std::vector<std::string> tiers, methods;
     std::string pycpd_script = find_data_file("pycpd_reference.py", IPD_APP_DIR);
   };
@@ -359,12 +363,17 @@ Runner add_bench_command(CLI::App& app) {
   cmd->add_option("--methods", args->methods, "Only these methods (consensus, paper, cpd)")
       ->delimiter(',')
       ->check(CLI::IsMember(method_names()));
+  cmd->add_flag("--scaling-only", args->scaling_only, "Only the time against the rock count");
   cmd->add_flag("--failures", args->failures, "List the default method's cases below F1 1 (for analysis)");
   cmd->add_flag("--pycpd", args->pycpd, "Also run the Python baseline (numpy port of pycpd; needs python3-numpy)");
   cmd->add_option("--pycpd-script", args->pycpd_script, "Path of pycpd_reference.py");
   return [args, edits, bootstrap, which]() -> int {
     if (*which == "edits") return (*edits)();
     if (*which == "bootstrap") return (*bootstrap)();
+    if (args->scaling_only) {
+      scaling(1936.0 / 1216.0, args->seed);
+      return kOk;
+    }
     const std::string root = (std::filesystem::path(args->data) / "labels").string();
     if (!std::filesystem::is_directory(root))
       throw StudyError(root + ": no POLAR-Sim labels here (pass --data DIR; see ../shared/data/polar-sim)");

@@ -9,6 +9,7 @@
 #include "ipd/pairing.h"
 #include "ipd/point_grid.h"
 #include "ipd/registration.h"
+#include "consensus_search.h"  // core/src: internal
 
 namespace ipd {
 namespace {
@@ -92,6 +93,32 @@ TEST(PointGrid, NearestMatchesBruteForce) {
     EXPECT_DOUBLE_EQ(d, best);
     EXPECT_DOUBLE_EQ((pts[got] - p).squaredNorm(), best);
   }
+}
+
+// The grid's k nearest neighbours equal a brute-force sort by (distance, index), duplicates left out, on a
+// random layout, a line (zero area) and a clump of coincident points.
+TEST(ConsensusSearch, NearestNeighboursMatchBruteForce) {
+  std::mt19937 g(9);
+  std::uniform_real_distribution<double> u(-3, 3);
+  std::vector<Eigen::Vector2d> random_layout, line, clump;
+  for (int i = 0; i < 300; ++i) random_layout.emplace_back(u(g), u(g));
+  for (int i = 0; i < 40; ++i) line.emplace_back(0.1 * i, 0.2 * i);
+  for (int i = 0; i < 30; ++i) clump.emplace_back(i < 20 ? Eigen::Vector2d(1, 1) : Eigen::Vector2d(1 + 0.01 * i, 1));
+  for (const auto* p : {&random_layout, &line, &clump})
+    for (int k : {1, 5, 8, 50}) {
+      const auto nn = detail::nearest_neighbours(*p, k);
+      ASSERT_EQ(nn.size(), p->size());
+      for (size_t i = 0; i < p->size(); ++i) {
+        std::vector<std::pair<double, int>> d;
+        for (size_t j = 0; j < p->size(); ++j)
+          if (j != i) d.emplace_back(((*p)[j] - (*p)[i]).squaredNorm(), static_cast<int>(j));
+        std::sort(d.begin(), d.end());
+        std::vector<int> want;
+        for (int t = 0; t < std::min<int>(k, static_cast<int>(d.size())); ++t)
+          if (d[t].first > 0) want.push_back(d[t].second);
+        EXPECT_EQ(nn[i], want) << "point " << i << " k " << k << " of " << p->size();
+      }
+    }
 }
 
 TEST(PointGrid, FarQueriesStayExact) {
