@@ -18,7 +18,7 @@ double binomial_tail(int n, double p, int k);
 
 // The translations most (A, B) rock pairs agree on once A's rocks are mapped by `lin`: votes binned at
 // `bin`, the mean of each of the `top` fullest bins (holding at least two votes), fullest first. A rocks
-// are subsampled to at most 64 so the cost stays linear in B.
+// are subsampled to about 16 so the cost stays linear in B.
 std::vector<Eigen::Vector2d> top_translations(const Eigen::Matrix2d& lin, const std::vector<Eigen::Vector2d>& a,
                                               const std::vector<Eigen::Vector2d>& b, double bin, size_t top);
 
