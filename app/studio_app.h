@@ -79,7 +79,8 @@ class StudioApp {
   bool changing_ = false, change_shown_ = false, pictures_full_ = false;
   std::chrono::steady_clock::time_point change_started_;
   std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
-  double content_ms_ = -1;  // start to the first frame showing the study
+  double content_ms_ = -1;  // start to the first frame showing the study (a first look at big studies)
+  double loaded_ms_ = -1;   // start to the first frame with the whole study in
   // Replay
   std::vector<ReplayAction> replay_;
   size_t replay_next_ = 0;

@@ -6,10 +6,30 @@
 
 #include "ipd/demo_study.h"
 #include "ipd/registration_cache.h"
+#include "ipd/study_cache.h"
 
 namespace fs = std::filesystem;
 
 namespace ipd::studio {
+
+namespace {
+// A first look opens this many scenes; studies no bigger open in one go.
+constexpr size_t kFirstLookScenes = 40;
+
+bool study_fits_first_look(const std::string& root) {
+  // Counting label files of the first domain is enough to tell a small study from a big one.
+  std::error_code ec;
+  for (fs::directory_iterator d(root, ec); !ec && d != fs::directory_iterator(); d.increment(ec)) {
+    const fs::path labels = d->path() / "labels";
+    if (d->path().filename().string().rfind('.', 0) == 0 || !fs::is_directory(labels, ec)) continue;
+    size_t n = 0;
+    for (fs::directory_iterator f(labels, ec); !ec && f != fs::directory_iterator(); f.increment(ec))
+      if (++n > kFirstLookScenes) return false;
+    return true;
+  }
+  return true;
+}
+}  // namespace
 
 StudyWorker::StudyWorker() : thread_([this] { run(); }) {}
 
@@ -144,6 +164,20 @@ void StudyWorker::execute(WorkerCommand& c) {
       if (done > 0 && done < total) progress_.eta_s = s / done * (total - done);
     };
     try {
+      // Content first: the first scenes on their own (a few hundred files) while the whole study loads.
+      if (!study_fits_first_look(c.a)) {
+        SessionOptions first = o;
+        first.first_scenes = kFirstLookScenes;
+        first.progress = {};
+        session_ = std::make_unique<Session>(Session::open(c.a, first));
+        rerun_.reset();
+        rerun_stem_.clear();
+        published_.reset();
+        publish(true);
+        std::lock_guard<std::mutex> l(mu_);
+        progress_.first_look = true;
+      }
+      o.study_cache_path = parsed_study_cache_path(c.a);
       auto session = std::make_unique<Session>(Session::open(c.a, o));
       session_ = std::move(session);
     } catch (...) {
@@ -157,7 +191,9 @@ void StudyWorker::execute(WorkerCommand& c) {
     publish(true);
     std::lock_guard<std::mutex> l(mu_);
     progress_.opening = false;
+    progress_.first_look = false;
     progress_.cached = session_->cached_registrations();
+    progress_.study_cache = session_->study_cache_stats();
     return;
   }
   if (!session_) return;

@@ -40,6 +40,9 @@ struct OpenProgress {
   int done = 0, total = 0;
   double elapsed_s = 0, eta_s = -1;  // time left, -1 when unknown
   int cached = 0;       // registrations read from the cache
+  // The snapshot published so far shows the study's first scenes (a first look) while the rest loads.
+  bool first_look = false;
+  StudyCacheStats study_cache;  // of the last open
 };
 
 struct WorkerCommand {

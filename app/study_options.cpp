@@ -4,6 +4,7 @@
 
 #include "cli_common.h"
 #include "ipd/registration_cache.h"
+#include "ipd/study_cache.h"
 #include "ipd/study_statistics.h"
 
 namespace ipd::cli {
@@ -55,8 +56,12 @@ Study open_study_with_conf(const StudyOptions& o) {
 
 std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals) {
   const Study study = open_study_with_conf(o);
-  LoadedStudy out{load_labels(study), {}, study.config.conf_threshold, {}};
+  // The GUI's parsed-study cache (study_cache.h): unchanged label files and registrations are read back.
+  StudyCache parsed(o.no_cache ? std::string() : parsed_study_cache_path(study.root), study.root);
+  LoadedStudy out{parsed.load_labels(study), {}, study.config.conf_threshold, {}};
   if (report_label_errors(out.labels.errors, o.skip_bad_lines)) return std::nullopt;
+  RegistrationCache registration(o.no_cache ? std::string() : registration_cache_dir(study.root));
+  registration.preload(parsed.take_registrations());
   TableOptions opt;
   opt.models = o.models;
   opt.domains = o.domains;
@@ -64,10 +69,12 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   opt.registration = study.config.registration;
   if (!o.method.empty()) parse_method(o.method, &opt.registration.method);
   if (o.seed >= 0) opt.registration.seed = static_cast<std::uint64_t>(o.seed);
-  if (!o.no_cache) opt.cache_dir = registration_cache_dir(study.root);
+  opt.cache_dir = registration.dir();
+  opt.registration_cache = &registration;
   Progress progress("registering");
   opt.progress = [&](int d, int t) { progress.update(d, t); };
   out.table = compute_cross_table(out.labels, opt);
+  parsed.save(out.labels, registration);
   for (const auto& w : out.table.warnings) fmt::print(stderr, "warning: {}\n", w);
   out.bootstrap = o.bootstrap_options();
   if (o.seed < 0) out.bootstrap.seed = opt.registration.seed;

@@ -34,6 +34,7 @@ struct StudyView {
   int pending_saves = 0;
   std::vector<std::string> failed_saves;
   bool busy = false;  // the worker is computing
+  std::string loading;  // a first look is shown while the study loads: how far it got
   const SessionStatistics* stats = nullptr;  // intervals etc. (stats_panels.h), computed off the UI thread
 };
 

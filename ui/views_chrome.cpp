@@ -108,7 +108,10 @@ void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out) {
                 s.left_domain().c_str(), s.right_domain().c_str(), s.model().empty() ? "no predictions" : s.model().c_str());
     ImGui::SameLine();
   }
-  if (v.busy) {
+  if (!v.loading.empty()) {
+    ImGui::TextColored({0.6f, 0.8f, 1, 1}, "|  %s", v.loading.c_str());
+    ImGui::SameLine();
+  } else if (v.busy) {
     ImGui::TextColored({0.6f, 0.8f, 1, 1}, "|  computing...");
     ImGui::SameLine();
   }

@@ -36,7 +36,8 @@ bool StudyLabels::has_predictions(const std::string& d, const std::string& m) co
   return di != predictions.end() && di->second.count(m) > 0;
 }
 
-StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress) {
+StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress,
+                        const LabelReuse& reuse) {
   StudyLabels out;
   out.study = study;
   const int cls = study.config.rock_class;
@@ -45,24 +46,30 @@ StudyLabels load_labels(const Study& study, const std::function<void(int done, i
   struct Job {
     LabelFile* slot;
     std::string path;
-    bool prediction;
+    const std::string *domain, *model, *stem;
   };
+  static const std::string kGroundTruth;  // the model of a GT file
   std::vector<Job> jobs;
   for (const auto& d : study.domains) {
-    for (const auto& stem : d.stems) jobs.push_back({&out.gt[d.name][stem], study.label_path(d.name, stem), false});
+    for (const auto& stem : d.stems)
+      jobs.push_back({&out.gt[d.name][stem], study.label_path(d.name, stem), &d.name, &kGroundTruth, &stem});
     for (const auto& m : d.models) {
       auto& files = out.predictions[d.name][m];
-      for (const auto& stem : d.stems) jobs.push_back({&files[stem], study.prediction_path(d.name, m, stem), true});
+      for (const auto& stem : d.stems)
+        jobs.push_back({&files[stem], study.prediction_path(d.name, m, stem), &d.name, &m, &stem});
     }
   }
   std::atomic<int> done{0};
   const int total = static_cast<int>(jobs.size());
   parallel_for(jobs.size(), 0, [&](size_t k) {
     const Job& j = jobs[k];
-    LabelFile f = read_labels(j.path, {j.prediction ? LabelKind::kPrediction : LabelKind::kGroundTruth});
-    keep_class(&f, cls);
-    if (j.prediction) keep_confident(&f, study.config.conf_threshold);
-    *j.slot = std::move(f);
+    const bool prediction = !j.model->empty();
+    if (!reuse || !reuse(*j.domain, *j.model, *j.stem, j.path, j.slot)) {
+      LabelFile f = read_labels(j.path, {prediction ? LabelKind::kPrediction : LabelKind::kGroundTruth});
+      keep_class(&f, cls);
+      if (prediction) keep_confident(&f, study.config.conf_threshold);
+      *j.slot = std::move(f);
+    }
     const int d = ++done;
     if (progress && (d % 256 == 0 || d == total)) progress(d, total);
   });
@@ -180,7 +187,8 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
   if (reg.aspect == 1.0) reg.aspect = study.aspect();
   const auto start = std::chrono::steady_clock::now();
   std::atomic<int> done{0};
-  const RegistrationCache cache(options.cache_dir);
+  const RegistrationCache own_cache(options.registration_cache ? std::string() : options.cache_dir);
+  const RegistrationCache& cache = options.registration_cache ? *options.registration_cache : own_cache;
   parallel_for(jobs.size(), options.threads, [&](size_t k) {
     auto& j = jobs[k];
     try {

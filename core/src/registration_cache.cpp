@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -70,16 +71,39 @@ std::string checksum(const std::string& text) {
 
 }  // namespace
 
-std::string registration_cache_dir(const std::string& study_root) {
+std::string study_cache_dir(const std::string& study_root) {
   std::error_code ec;
   const fs::path own = fs::path(study_root) / ".ipd-cache";
   const bool exists = fs::exists(own, ec);
-  if (exists ? ::access(own.c_str(), W_OK) == 0 : ::access(study_root.c_str(), W_OK) == 0)
-    return (own / "registration").string();
+  if (exists ? ::access(own.c_str(), W_OK) == 0 : ::access(study_root.c_str(), W_OK) == 0) return own.string();
   const char* xdg = std::getenv("XDG_CACHE_HOME");
   const char* home = std::getenv("HOME");
   const fs::path base = xdg && *xdg ? fs::path(xdg) : fs::path(home ? home : "/tmp") / ".cache";
-  return (base / "ipd-studio" / "registration").string();
+  return (base / "ipd-studio").string();
+}
+
+std::string registration_cache_dir(const std::string& study_root) {
+  return (fs::path(study_cache_dir(study_root)) / "registration").string();
+}
+
+void RegistrationCache::preload(RegistrationEntries entries) { memory_->preloaded = std::move(entries); }
+
+RegistrationEntries RegistrationCache::served() const {
+  std::lock_guard<std::mutex> l(memory_->mu);
+  return memory_->served;
+}
+
+bool RegistrationCache::served_only_preloaded() const {
+  std::lock_guard<std::mutex> l(memory_->mu);
+  if (memory_->served.size() != memory_->preloaded.size()) return false;
+  for (const auto& entry : memory_->served)
+    if (!memory_->preloaded.count(entry.first)) return false;
+  return true;
+}
+
+void RegistrationCache::remember(const std::string& key, const RegistrationReport& report) const {
+  std::lock_guard<std::mutex> l(memory_->mu);
+  memory_->served.emplace(key, report);
 }
 
 std::string registration_cache_key(const std::vector<Box>& a, const std::vector<Box>& b,
@@ -95,6 +119,20 @@ std::string RegistrationCache::entry_path(const std::string& key) const {
 }
 
 std::optional<RegistrationReport> RegistrationCache::load(const std::string& key, int count_a, int count_b) const {
+  if (const auto it = memory_->preloaded.find(key); it != memory_->preloaded.end()) {
+    const RegistrationReport& r = it->second;
+    std::vector<char> used_a(std::max(count_a, 0), 0), used_b(std::max(count_b, 0), 0);
+    bool fits = true;
+    for (const auto& [i, j] : r.pairs) {
+      fits = fits && i >= 0 && i < count_a && j >= 0 && j < count_b && !used_a[i] && !used_b[j];
+      if (!fits) break;
+      used_a[i] = used_b[j] = 1;
+    }
+    if (fits) {
+      remember(key, r);
+      return r;
+    }
+  }
   if (dir_.empty()) return std::nullopt;
   const std::string path = entry_path(key);
   std::error_code ec;
@@ -134,6 +172,7 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     r.elapsed_ms = j.at("elapsed_ms").get<double>();
     r.confidence = j.at("confidence").get<double>();
     r.ambiguous = j.at("ambiguous").get<bool>();
+    remember(key, r);
     return r;
   } catch (const std::exception&) {
     return std::nullopt;  // unreadable or not what we wrote: recompute
@@ -142,6 +181,7 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
 
 bool RegistrationCache::store(const std::string& key, const RegistrationReport& r) const {
   if (dir_.empty()) return false;
+  remember(key, r);
   json j;
   j["format"] = kFormat;
   j["key"] = key;

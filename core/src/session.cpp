@@ -7,6 +7,9 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <optional>
+#include <set>
+#include <unordered_set>
 
 #include "ipd/atomic_file.h"
 #include "ipd/parallel.h"
@@ -56,21 +59,64 @@ Session Session::open(const std::string& root, const RegistrationOptions* regist
   return open(root, o);
 }
 
+namespace {
+// Keeps the scenes whose stem is among the first `n` of the study (all domains together), so that every
+// domain pair's common scenes are a prefix of the whole study's.
+void keep_first_scenes(Study* study, size_t n) {
+  std::set<std::string> all;
+  for (const auto& d : study->domains) all.insert(d.stems.begin(), d.stems.end());
+  if (all.size() <= n) return;
+  const std::string last = *std::next(all.begin(), static_cast<long>(n) - 1);
+  for (auto& d : study->domains)
+    d.stems.erase(std::upper_bound(d.stems.begin(), d.stems.end(), last), d.stems.end());
+}
+}  // namespace
+
 Session Session::open(const std::string& root, const SessionOptions& options) {
-  const Study study = open_study(root);
+  Study study = open_study(root);
+  if (options.first_scenes > 0) keep_first_scenes(&study, options.first_scenes);
   // Temp files of saves that died mid-way (their writer is gone) would otherwise pile up beside the pairs.
   std::error_code ec;
   for (fs::directory_iterator it(fs::path(study.root) / "pairs", ec); !ec && it != fs::directory_iterator();
        it.increment(ec))
     if (it->is_directory(ec)) remove_stale_temp_files(it->path().string());
-  StudyLabels labels = load_labels(study, [&](int done, int total) {
+  if (options.progress && !options.study_cache_path.empty()) options.progress("reading the study cache", 0, 0);
+  StudyCache parsed(options.study_cache_path, study.root);
+  StudyLabels labels = parsed.load_labels(study, [&](int done, int total) {
     if (options.progress) options.progress("label files", done, total);
   });
-  return Session(std::move(labels), options);
+  RegistrationCache registration(options.cache_dir);
+  registration.preload(parsed.take_registrations());
+  SessionOptions with_cache = options;
+  with_cache.registration_cache = &registration;
+  Session session(std::move(labels), with_cache);
+  parsed.save(session.labels(), registration);
+  session.study_cache_stats_ = parsed.stats();
+  return session;
 }
 
+namespace {
+// Stems with a pairs file in pairs/<a>__<b>/ or pairs/<b>__<a>/, from two directory listings instead of two
+// lookups per scene; nullopt when a directory can't be listed (then every scene is looked up).
+std::optional<std::unordered_set<std::string>> stems_with_pairs_files(const Study& st, const std::string& a,
+                                                                      const std::string& b) {
+  std::unordered_set<std::string> out;
+  for (const std::string& dir : {st.pairs_dir(a, b), st.pairs_dir(b, a)}) {
+    std::error_code ec;
+    if (!fs::exists(dir, ec)) {
+      if (ec) return std::nullopt;
+      continue;
+    }
+    for (fs::directory_iterator it(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+      if (it->path().extension() == ".json") out.insert(it->path().stem().string());
+    if (ec) return std::nullopt;
+  }
+  return out;
+}
+}  // namespace
+
 Session::Session(StudyLabels labels, const RegistrationOptions* registration)
-    : Session(std::move(labels), SessionOptions{registration, {}, {}}) {}
+    : Session(std::move(labels), SessionOptions{registration, {}, {}, 0, nullptr, {}}) {}
 
 Session::Session(StudyLabels labels, const SessionOptions& options)
     : labels_(std::make_shared<const StudyLabels>(std::move(labels))) {
@@ -79,7 +125,8 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
   pairs_ = ipd::domain_pairs(st, {});
   RegistrationOptions reg = options.registration ? *options.registration : st.config.registration;
   if (reg.aspect == 1.0) reg.aspect = st.aspect();
-  const RegistrationCache cache(options.cache_dir);
+  const RegistrationCache own_cache(options.registration_cache ? std::string() : options.cache_dir);
+  const RegistrationCache& cache = options.registration_cache ? *options.registration_cache : own_cache;
   int total = 0;
   for (const auto& [a, b] : pairs_) total += static_cast<int>(match_scenes(*st.domain(a), *st.domain(b)).common.size());
   std::atomic<int> done{0}, cached{0};
@@ -88,6 +135,7 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
     const std::vector<std::string> stems = match_scenes(*st.domain(a), *st.domain(b)).common;
     std::vector<SceneState> list(stems.size());
     std::vector<std::string> errors(stems.size());
+    const auto with_pairs_files = stems_with_pairs_files(st, a, b);
     // Registration is the heavy part of opening a study: every core takes scenes.
     parallel_for(stems.size(), 0, [&](size_t k) {
       SceneState& s = list[k];
@@ -104,7 +152,9 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
       s.automatic.pairs = s.automatic.registration.pairs;
       s.current.pairs = s.automatic.pairs;
       try {
-        if (auto fixed = read_fixed_pairs(st, a, b, s.stem, s.automatic.count_a, s.automatic.count_b)) {
+        const bool may_have_file = !with_pairs_files || with_pairs_files->count(s.stem);
+        if (auto fixed = may_have_file ? read_fixed_pairs(st, a, b, s.stem, s.automatic.count_a, s.automatic.count_b)
+                                       : std::nullopt) {
           s.current = std::move(*fixed);
           s.edited = s.fixed_on_disk = true;
         }

@@ -29,9 +29,15 @@ struct StudyLabels {
   bool has_predictions(const std::string& domain, const std::string& model) const;
 };
 
+// Lets load_labels take a file parsed earlier (study_cache.h): called from worker threads before each file
+// is read (model empty for GT); true when it filled `out` exactly as reading the file would have.
+using LabelReuse = std::function<bool(const std::string& domain, const std::string& model, const std::string& stem,
+                                      const std::string& path, LabelFile* out)>;
+
 // Reads every label and prediction file (class filter and confidence threshold from the study config).
 // `progress` (optional) is called from worker threads with files read so far.
-StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress = {});
+StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress = {},
+                        const LabelReuse& reuse = {});
 
 // How the rocks of one image pair were paired.
 struct ScenePairing {
@@ -96,6 +102,7 @@ struct TableOptions {
   int threads = 0;  // 0: hardware concurrency
   std::function<void(int done, int total)> progress;
   std::string cache_dir;  // registration cache (registration_cache_dir()); empty: register every scene
+  const RegistrationCache* registration_cache = nullptr;  // used instead of one in cache_dir when set
 };
 
 // The domain pairs (i < j in study order) of the chosen domains.

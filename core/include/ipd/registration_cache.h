@@ -6,14 +6,21 @@
 // Traces (RegistrationOptions::record_trace) are not cached: a replay registers the scene again.
 #pragma once
 
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "ipd/geometry.h"
 #include "ipd/registration.h"
 
 namespace ipd {
+
+// STUDY/.ipd-cache when the study root is writable, else $XDG_CACHE_HOME (or ~/.cache)/ipd-studio: where
+// every cache of a study lives (registration entries, the parsed-study file of study_cache.h).
+std::string study_cache_dir(const std::string& study_root);
 
 // STUDY/.ipd-cache/registration when the study root is writable, else $XDG_CACHE_HOME (or ~/.cache)
 // /ipd-studio/registration. Keys are content hashes, so studies may share the user directory.
@@ -23,10 +30,20 @@ std::string registration_cache_dir(const std::string& study_root);
 std::string registration_cache_key(const std::vector<Box>& a, const std::vector<Box>& b,
                                    const RegistrationOptions& options);
 
+using RegistrationEntries = std::unordered_map<std::string, RegistrationReport>;  // key -> report
+
 class RegistrationCache {
  public:
   explicit RegistrationCache(std::string dir) : dir_(std::move(dir)) {}
   const std::string& dir() const { return dir_; }
+
+  // Entries read in one go (the parsed-study file, study_cache.h): load() tries them before the entry
+  // files, with the same checks. Every entry load() or store() hands out is remembered (served()), so the
+  // caller can write the set this run used back in one file.
+  void preload(RegistrationEntries entries);
+  RegistrationEntries served() const;
+  // True when this run used exactly the preloaded entries (the one-file copy needs no rewrite).
+  bool served_only_preloaded() const;
 
   // The cached report for `key`, or nullopt when absent or unusable (bad checksum, other key, pair
   // indices outside [0, count) or a rock paired twice).
@@ -36,7 +53,14 @@ class RegistrationCache {
   std::string entry_path(const std::string& key) const;
 
  private:
+  struct Memory {
+    RegistrationEntries preloaded;
+    mutable std::mutex mu;
+    RegistrationEntries served;  // guarded by mu
+  };
+  void remember(const std::string& key, const RegistrationReport& report) const;
   std::string dir_;
+  std::shared_ptr<Memory> memory_ = std::make_shared<Memory>();
 };
 
 // register_rocks through the cache (nullptr: no cache). `hit` tells whether the result came from disk.

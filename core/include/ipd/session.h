@@ -16,6 +16,7 @@
 #include "ipd/atomic_file.h"
 #include "ipd/audit.h"
 #include "ipd/ipd.h"
+#include "ipd/study_cache.h"
 
 namespace ipd {
 
@@ -68,6 +69,13 @@ struct SceneSummary {
 struct SessionOptions {
   const RegistrationOptions* registration = nullptr;  // null: the study's own
   std::string cache_dir;  // registration cache (registration_cache_dir()); empty: register every scene
+  // Session::open: the parsed-study cache (parsed_study_cache_path(), study_cache.h); empty: none.
+  std::string study_cache_path;
+  // Session::open: > 0 opens only the first N scenes (by stem, the same cut in every domain): a first look
+  // at a big study while the whole of it loads. Scene k of a domain pair is scene k of the whole study.
+  size_t first_scenes = 0;
+  // Used instead of a cache in `cache_dir` when set (Session::open passes one preloaded from the file).
+  const RegistrationCache* registration_cache = nullptr;
   // Called from worker threads while opening: stage ("labels", "registration"), done, total.
   std::function<void(const char* stage, int done, int total)> progress;
 };
@@ -91,6 +99,7 @@ class Session {
   const Study& study() const { return labels_->study; }
   const StudyLabels& labels() const { return *labels_; }
   int cached_registrations() const { return cached_; }  // scenes whose registration came from the cache
+  const StudyCacheStats& study_cache_stats() const { return study_cache_stats_; }  // Session::open only
   const std::vector<std::pair<std::string, std::string>>& domain_pairs() const { return pairs_; }
   bool read_only() const { return read_only_; }
 
@@ -163,6 +172,7 @@ class Session {
   std::vector<std::vector<SceneState>> scenes_;  // per domain pair
   std::vector<std::vector<SceneAudit>> audits_;  // per domain pair, per scene
   int cached_ = 0;
+  StudyCacheStats study_cache_stats_;
   int pair_ = 0;
   bool swapped_ = false;
   std::string model_;
