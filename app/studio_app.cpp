@@ -319,9 +319,8 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
     WorkerCommand c{K::kRerun};
     c.scene = ui_.scene;
     c.registration = s.study().config.registration;
-    c.registration.method = ui_.rerun_method == 0   ? RegistrationMethod::kConsensus
-                            : ui_.rerun_method == 1 ? RegistrationMethod::kPaper
-                                                    : RegistrationMethod::kCpd;
+    const auto& methods = registration_methods();
+    c.registration.method = methods[std::clamp<size_t>(ui_.rerun_method, 0, methods.size() - 1)].method;
     c.registration.seed = static_cast<std::uint64_t>(std::max(0, ui_.rerun_seed));
     worker_.submit(std::move(c));
     ui_.rerun_discarded = false;
@@ -426,7 +425,9 @@ bool StudioApp::replay_step() {
   } else if (a.verb == "exclude") {
     if (const int l = rock(a.args[0], Side::kA); l >= 0) cmd.edits.push_back(Edit::toggle_exclude(Side::kA, l));
   } else if (a.verb == "rerun") {
-    ui_.rerun_method = a.args[0] == "consensus" ? 0 : a.args[0] == "paper" ? 1 : 2;
+    const auto& methods = registration_methods();
+    for (size_t k = 0; k < methods.size(); ++k)
+      if (a.args[0] == methods[k].name) ui_.rerun_method = static_cast<int>(k);
     cmd.rerun_registration = true;
   } else if (a.verb == "export" && !s.scenes().empty()) {
     // The dialog's request with its defaults (single column, the view's layers and zoom) for the kind.

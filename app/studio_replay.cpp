@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ipd/registration.h"
+
 namespace ipd::studio {
 
 std::vector<ReplayAction> parse_replay(const std::string& text, const std::string& file) {
@@ -16,7 +18,7 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
       {"scene", {1, "next, prev or a scene name"}}, {"pair", {2, "two rock numbers (left, right)"}},
       {"unpair", {1, "a left rock number"}}, {"exclude", {1, "a left rock number"}},
       {"undo", {0, "nothing"}},             {"redo", {0, "nothing"}},
-      {"rerun", {1, "paper, consensus or cpd"}}, {"export", {1, "[a figure kind] and an output file"}},
+      {"rerun", {1, "a registration method"}}, {"export", {1, "[a figure kind] and an output file"}},
       {"screenshot", {1, "a PNG file"}},
   };
   std::vector<ReplayAction> out;
@@ -52,8 +54,9 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
       const double v = std::strtod(a.args[0].c_str(), &end);
       if (*end || !(v >= 0 && v <= 1)) fail("'conf': expected a threshold in [0, 1], got '" + a.args[0] + "'");
     }
-    if (a.verb == "rerun" && a.args[0] != "paper" && a.args[0] != "consensus" && a.args[0] != "cpd")
-      fail("'rerun': expected paper, consensus or cpd, got '" + a.args[0] + "'");
+    RegistrationMethod method;
+    if (a.verb == "rerun" && !parse_method(a.args[0], &method))
+      fail("'rerun': expected " + method_choices() + ", got '" + a.args[0] + "'");
     static const std::vector<std::string> kinds = {"pairs", "registration", "table", "compare", "distribution",
                                                    "breakdown", "breakdown-size", "breakdown-region",
                                                    "breakdown-confidence"};

@@ -77,6 +77,11 @@ TEST(StudioReplay, BadActionsNameTheFileAndLine) {
             "error: " + d / "actions.txt" +
                 ":1: 'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
                 "breakdown-size, breakdown-region or breakdown-confidence), got 'histogram'\n");
+  // The methods come from the one table (registration_methods()), the default first.
+  test::write_text(d / "actions.txt", "rerun cpd\nrerun ransac\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" + ":2: 'rerun': expected consensus, paper or cpd, got 'ransac'\n");
 }
 
 }  // namespace

@@ -57,7 +57,7 @@ struct UiState {
   bool sort_descending = true;                   // worst first: the audit order
   char filter[128] = "";
   ReplayState replay;
-  int rerun_method = 0, rerun_seed = 0;
+  int rerun_method = 0, rerun_seed = 0;  // rerun_method: index into registration_methods()
   bool rerun_discarded = false;
   float conf_threshold = 0.0f;
   char save_as_dir[512] = "";

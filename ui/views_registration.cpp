@@ -52,9 +52,17 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
     rp.position += rp.position < steps ? dt * rp.speed : dt / 1.5f;
     if (rp.position >= end) rp.position = end, rp.playing = false;
   }
-  const char* methods[] = {"consensus", "paper", "cpd"};
+  const auto& methods = registration_methods();
   ImGui::SetNextItemWidth(100);
-  ImGui::Combo("##method", &ui.rerun_method, methods, 3);
+  ImGui::Combo(
+      "##method", &ui.rerun_method,
+      [](void* table, int k, const char** name) {
+        *name = (*static_cast<const std::vector<RegistrationMethodInfo>*>(table))[k].name;
+        return true;
+      },
+      const_cast<std::vector<RegistrationMethodInfo>*>(&methods), static_cast<int>(methods.size()));
+  if (ImGui::IsItemHovered() && ui.rerun_method >= 0 && ui.rerun_method < static_cast<int>(methods.size()))
+    ImGui::SetTooltip("%s", methods[ui.rerun_method].description);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
   ImGui::InputInt("seed", &ui.rerun_seed, 0);
