@@ -442,24 +442,22 @@ bool StudioApp::replay_step() {
 }
 
 std::string StudioApp::after_render(double ms, double ui_cpu_ms) {
-  const auto since_start = [&] {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started_).count();
-  };
-  if (snap_ && content_ms_ < 0) content_ms_ = since_start();
+  if (snap_) stats_out_.content_shown();
   const bool loaded = snap_ != nullptr && !worker_.progress().opening;
-  if (loaded && loaded_ms_ < 0) loaded_ms_ = since_start();
+  if (loaded) stats_out_.study_loaded();
   // Frames count once the whole study is in (a first look is drawn while the worker still loads).
   const bool ready = loaded || open_failed_;
   if (changing_ && pictures_full_) {
-    scene_ms_.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - change_started_).count());
+    stats_out_.add_scene_change(
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - change_started_).count());
     changing_ = false;
     since_change_ = 0;
   }
-  if (*exports_running_ > 0) export_frame_ms_.push_back(ms), export_ui_cpu_ms_.push_back(ui_cpu_ms);
+  if (*exports_running_ > 0) stats_out_.add_export_frame(ms, ui_cpu_ms);
   if (ready && (!o_.screenshot.empty() || !replay_.empty())) {
     // Count frames once the study is open and the current pictures are in (or after a grace period).
     if (loader_.idle() || ++settle_ > 600) {
-      if (counted_ > 2) frame_ms_.push_back(ms);  // the first frames upload textures
+      if (counted_ > 2) stats_out_.add_frame(ms);  // the first frames upload textures
       ++counted_;
     }
     const bool replay_done = replay_.empty() || replay_next_ > replay_.size();
@@ -473,23 +471,12 @@ std::string StudioApp::after_render(double ms, double ui_cpu_ms) {
 }
 
 int StudioApp::print_stats() const {
-  auto stats = [](const char* name, std::vector<double> v) {
-    if (v.empty()) return;
-    std::sort(v.begin(), v.end());
-    const long over = std::count_if(v.begin(), v.end(), [](double ms) { return ms > 50; });
-    fmt::print("{} median={:.2f} p95={:.2f} max={:.2f} n={} over_50ms={}\n", name, v[v.size() / 2],
-               v[std::min(v.size() - 1, v.size() * 95 / 100)], v.back(), v.size(), over);
-  };
-  if (o_.frame_stats && content_ms_ >= 0) {
-    const OpenProgress p = worker_.progress();
-    fmt::print("open_ms={:.0f} (first content on screen) loaded_ms={:.0f} (whole study; {} of {} registrations from "
-               "the cache; parsed-study cache {}: {} label files reused, {} parsed)\n",
-               content_ms_, loaded_ms_, p.cached, snap_ ? snap_->summaries.size() * snap_->session->domain_pairs().size() : 0,
-               p.study_cache.state, p.study_cache.files_reused, p.study_cache.files_parsed);
-  }
-  if (o_.frame_stats) stats("frame_ms", frame_ms_);
-  stats("scene_ms", scene_ms_);
-  if (o_.frame_stats) stats("export_frame_ms", export_frame_ms_), stats("export_ui_cpu_ms", export_ui_cpu_ms_);
+  const OpenProgress p = worker_.progress();
+  stats_out_.print(o_.frame_stats,
+                   fmt::format("{} of {} registrations from the cache; parsed-study cache {}: {} label files reused, "
+                               "{} parsed",
+                               p.cached, snap_ ? snap_->summaries.size() * snap_->session->domain_pairs().size() : 0,
+                               p.study_cache.state, p.study_cache.files_reused, p.study_cache.files_parsed));
   if (!o_.screenshot.empty()) fmt::print("{}\n", o_.screenshot);
   return open_failed_ ? 1 : 0;
 }

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "export_dialog.h"
+#include "frame_stats.h"
 #include "stats_panels.h"
+#include "studio_options.h"
 #include "studio_replay.h"
 #include "studio_stats.h"
 #include "studio_textures.h"
@@ -18,17 +20,6 @@
 
 namespace ipd::studio {
 
-struct StudioOptions {
-  std::string study;        // empty: the demo study
-  std::string exe_dir;      // where the `ipd` tool is (exports)
-  std::string screenshot;   // render `frames` frames, save the window, exit
-  int frames = 60;
-  bool frame_stats = false;
-  int cycle_scenes = 0;     // with --screenshot: next scene every N frames (after the last one is drawn)
-  int cycle_step = 1;       // scenes to move per cycle (1: prefetched neighbour; more: a far jump)
-  std::string replay;       // --replay FILE
-  std::size_t texture_budget_mb = 512;
-};
 
 class StudioApp {
  public:
@@ -70,17 +61,12 @@ class StudioApp {
   std::string listed_dir_;
   bool done_ = false, open_failed_ = false;
   // Timing
-  std::vector<double> frame_ms_, scene_ms_;
-  // Frames drawn while a figure export ran on the worker: wall clock, and the UI thread's CPU time (what
-  // the frame itself did, apart from the rasteriser's threads and the machine's other load).
-  std::vector<double> export_frame_ms_, export_ui_cpu_ms_;
+  FrameStats stats_out_;
+  // Exports running on the worker: frames drawn meanwhile are timed apart.
   std::shared_ptr<std::atomic<int>> exports_running_ = std::make_shared<std::atomic<int>>(0);
   int counted_ = 0, settle_ = 0, since_change_ = 0;
   bool changing_ = false, change_shown_ = false, pictures_full_ = false;
   std::chrono::steady_clock::time_point change_started_;
-  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
-  double content_ms_ = -1;  // start to the first frame showing the study (a first look at big studies)
-  double loaded_ms_ = -1;   // start to the first frame with the whole study in
   // Replay
   std::vector<ReplayAction> replay_;
   size_t replay_next_ = 0;

@@ -46,7 +46,9 @@ struct OpenProgress {
 };
 
 struct WorkerCommand {
-  enum class Kind { kOpen, kEdit, kUndo, kRedo, kDomains, kModel, kConf, kRerun, kSaveAllTo, kExport } kind;
+  enum class Kind { kOpen, kEdit, kUndo, kRedo, kDomains, kModel, kConf, kRerun, kSaveAllTo, kExport };
+  explicit WorkerCommand(Kind k = Kind::kEdit) : kind(k) {}
+  Kind kind;
   int scene = -1;
   Edit edit = Edit::reset();
   std::string a, b;     // kOpen: study dir, "demo" when it is the demo; kDomains: left, right; kModel: a

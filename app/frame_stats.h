@@ -1,0 +1,38 @@
+// What `ipd-studio --frame-stats` measures and prints: time to the first content and to the whole study,
+// frame times, scene changes (request to both full pictures drawn) and frames while a figure exports.
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace ipd::studio {
+
+class FrameStats {
+ public:
+  void add_frame(double ms) { frame_ms_.push_back(ms); }
+  void add_scene_change(double ms) { scene_ms_.push_back(ms); }
+  void add_export_frame(double ms, double ui_cpu_ms) {
+    export_frame_ms_.push_back(ms);
+    export_ui_cpu_ms_.push_back(ui_cpu_ms);
+  }
+  // The first call of each records the time since the program started.
+  void content_shown() { mark(&content_ms_); }
+  void study_loaded() { mark(&loaded_ms_); }
+  bool content_was_shown() const { return content_ms_ >= 0; }
+
+  // `NAME median=X p95=Y max=Z n=N over_50ms=K` (empty without values).
+  static std::string summary(const char* name, std::vector<double> values);
+  // open_ms/loaded_ms (with `open_note` after them), then frame_ms and the export lines when `frames`;
+  // scene_ms whenever scenes were changed.
+  void print(bool frames, const std::string& open_note) const;
+
+ private:
+  void mark(double* slot);
+  std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
+  std::vector<double> frame_ms_, scene_ms_, export_frame_ms_, export_ui_cpu_ms_;
+  double content_ms_ = -1;  // start to the first frame showing the study (a first look at big studies)
+  double loaded_ms_ = -1;   // start to the first frame with the whole study in
+};
+
+}  // namespace ipd::studio

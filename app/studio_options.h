@@ -1,0 +1,30 @@
+// ipd-studio's command line: what to open, and the benchmark/automation switches (--screenshot, --frames,
+// --frame-stats, --cycle-scenes, --cycle-step, --replay).
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace ipd::studio {
+
+struct StudioOptions {
+  std::string study;        // empty: the demo study
+  std::string exe_dir;      // where the `ipd` tool is (exports)
+  std::string screenshot;   // render `frames` frames, save the window, exit
+  int frames = 60;
+  bool frame_stats = false;
+  int cycle_scenes = 0;     // with --screenshot: next scene every N frames (after the last one is drawn)
+  int cycle_step = 1;       // scenes to move per cycle (1: prefetched neighbour; more: a far jump)
+  std::string replay;       // --replay FILE
+  std::size_t texture_budget_mb = 512;
+  int width = 1600, height = 900;  // the window
+
+  // A run that ends by itself (screenshot or replay): no vsync, every frame finished before it is timed.
+  bool headless() const { return !screenshot.empty() || !replay.empty(); }
+};
+
+// Parses the command line into `o`. Returns -1 to go on, else the exit code (0 after --help, 2 for bad
+// arguments, with CLI11's message printed).
+int parse_studio_options(int argc, char** argv, StudioOptions* o);
+
+}  // namespace ipd::studio
