@@ -95,6 +95,45 @@ TEST(PointGrid, NearestMatchesBruteForce) {
   }
 }
 
+// With a bound, the query answers the nearest point strictly closer than it, or -1 (distance left at the
+// bound) when none is; inside the bound it agrees with brute force. Small sets (brute force) and the grid both.
+TEST(PointGrid, BoundedNearestIsTheNearestWithinTheBoundOrNone) {
+  std::mt19937 g(4);
+  for (int n : {10, 500}) {
+    std::vector<Eigen::Vector2d> pts;
+    for (int k = 0; k < n; ++k) pts.emplace_back(g() / 4294967296.0, g() / 4294967296.0);
+    const PointGrid grid(pts);
+    int found = 0, none = 0;
+    for (int q = 0; q < 400; ++q) {
+      const Eigen::Vector2d p(g() / 4294967296.0 * 2 - 0.5, g() / 4294967296.0 * 2 - 0.5);  // also outside
+      const double below = n < 24 ? 0.04 : 0.001;  // about half the queries in the picture find a point
+      double d = -1;
+      const int got = grid.nearest(p, &d, below);
+      double best = INFINITY;
+      int want = -1;
+      for (size_t k = 0; k < pts.size(); ++k)
+        if ((pts[k] - p).squaredNorm() < best) best = (pts[k] - p).squaredNorm(), want = static_cast<int>(k);
+      if (best < below) {
+        ++found;
+        EXPECT_EQ(got, want);
+        EXPECT_DOUBLE_EQ(d, best);
+      } else {
+        ++none;
+        EXPECT_EQ(got, -1) << "a point at distance^2 " << best << " is not below " << below;
+        EXPECT_EQ(d, below);
+      }
+    }
+    EXPECT_GT(found, 10) << n;  // both branches exercised
+    EXPECT_GT(none, 10) << n;
+  }
+  // An exact tie with the bound does not count (strictly closer).
+  const PointGrid one({Eigen::Vector2d(0.5, 0)});
+  double d = 0;
+  EXPECT_EQ(one.nearest(Eigen::Vector2d(0, 0), &d, 0.25), -1);
+  EXPECT_EQ(one.nearest(Eigen::Vector2d(0, 0), &d, 0.2500001), 0);
+  EXPECT_DOUBLE_EQ(d, 0.25);
+}
+
 // The grid's k nearest neighbours equal a brute-force sort by (distance, index), duplicates left out, on a
 // random layout, a line (zero area) and a clump of coincident points.
 TEST(ConsensusSearch, NearestNeighboursMatchBruteForce) {

@@ -109,7 +109,7 @@ class ConsensusScorer {
     double total = 0;
     for (size_t i = 0; i < a_.size(); i += stride) {
       double d2 = 0;
-      const int j = grid_.nearest(apply(m, a_[i]), &d2);
+      const int j = grid_.nearest(apply(m, a_[i]), &d2, gate2_);
       if (j < 0 || !(d2 < gate2_)) continue;
       // Flat near zero, so labelling noise well inside the gate costs little; falls to 0 at the gate.
       const double r2 = d2 / gate2_;
@@ -201,7 +201,7 @@ class ConsensusScorer {
     claim_.assign(grid_.size(), {-1, INFINITY});
     for (size_t i = 0; i < a_.size(); ++i) {
       double d2 = 0;
-      const int j = grid_.nearest(apply(m, a_[i]), &d2);
+      const int j = grid_.nearest(apply(m, a_[i]), &d2, g2);
       if (j >= 0 && d2 < g2 && d2 < claim_[j].second) claim_[j] = {static_cast<int>(i), d2};
     }
     for (size_t j = 0; j < claim_.size(); ++j) {

@@ -41,9 +41,9 @@ int PointGrid::cell_of(double v, double origin, int n) const {
   return static_cast<int>(c);
 }
 
-int PointGrid::nearest(const Eigen::Vector2d& p, double* sq_dist) const {
+int PointGrid::nearest(const Eigen::Vector2d& p, double* sq_dist, double below) const {
   int best = -1;
-  double best_d = std::numeric_limits<double>::infinity();
+  double best_d = below;  // only strictly closer points are taken
   if (cell_start_.empty()) {
     for (size_t i = 0; i < points_.size(); ++i) {
       const double d = (points_[i] - p).squaredNorm();
@@ -80,10 +80,11 @@ int PointGrid::nearest(const Eigen::Vector2d& p, double* sq_dist) const {
       }
     }
     // Lower bound on the distance to any cell outside this ring, over the sides that still have cells.
-    double bound = std::numeric_limits<double>::infinity();
+    double bound2 = std::numeric_limits<double>::infinity();  // squared
     bool more = false;
     auto side = [&](double dx, double dy) {
-      bound = std::min(bound, std::hypot(std::max(0.0, dx), std::max(0.0, dy)));
+      dx = std::max(0.0, dx), dy = std::max(0.0, dy);
+      bound2 = std::min(bound2, dx * dx + dy * dy);
       more = true;
     };
     if (lx > 0) side(p.x() - (x0_ + lx * cell_), out_y);
@@ -91,7 +92,7 @@ int PointGrid::nearest(const Eigen::Vector2d& p, double* sq_dist) const {
     if (ly > 0) side(out_x, p.y() - (y0_ + ly * cell_));
     if (hy < ny_ - 1) side(out_x, y0_ + (hy + 1) * cell_ - p.y());
     if (!more) break;
-    if (best >= 0 && bound * bound >= best_d) break;
+    if (bound2 >= best_d) break;  // never while best_d is infinite: bound2 is finite when more is set
     if (!std::isfinite(p.x()) || !std::isfinite(p.y())) break;
   }
   if (sq_dist) *sq_dist = best_d;

@@ -44,7 +44,7 @@ std::vector<int> SearchRecorder::inliers(const Affine2& m) const {
   std::vector<int> out;
   for (size_t i = 0; i < f_.a.size(); ++i) {
     double d2 = INFINITY;
-    if (grid_b_.nearest(apply(m, f_.a[i]), &d2) >= 0 && d2 < gate2_) out.push_back(static_cast<int>(i));
+    if (grid_b_.nearest(apply(m, f_.a[i]), &d2, gate2_) >= 0 && d2 < gate2_) out.push_back(static_cast<int>(i));
   }
   return out;
 }

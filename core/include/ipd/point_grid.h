@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <vector>
 
 namespace ipd {
@@ -12,8 +13,11 @@ class PointGrid {
   PointGrid() = default;
   explicit PointGrid(std::vector<Eigen::Vector2d> points);
 
-  // Index of the nearest point and its squared distance; -1 when the set is empty.
-  int nearest(const Eigen::Vector2d& p, double* sq_dist) const;
+  // Index of the nearest point and its squared distance; -1 when the set is empty. With `below`: only points
+  // closer than sqrt(below) count (-1 and *sq_dist = below when none is), and the search stops at that
+  // radius: a registration gate needs no partner further out, and a wrong hypothesis maps many rocks into
+  // empty space where the unbounded search would widen ring after ring.
+  int nearest(const Eigen::Vector2d& p, double* sq_dist, double below = INFINITY) const;
   // Indices of points within `radius` of p.
   void within(const Eigen::Vector2d& p, double radius, std::vector<int>* out) const;
 
