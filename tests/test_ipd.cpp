@@ -81,6 +81,30 @@ TEST(Ipd, ExcludedRocksLeaveTheIpd) {
   EXPECT_EQ(t.cells[0].pairs, 1);
 }
 
+// The scene counts the GUI's header shows (Session::summary) and `ipd table` sums: hand-computed.
+TEST(Ipd, SceneContributionCountsAnExcludedPairAsNeitherCountedNorUnpaired) {
+  const std::vector<double> pa = {0.9, 0.5, 0.2}, pb = {0.8, 0.1, 0.4, 0.3};
+  const RockPairs pairs = {{0, 0}, {1, 1}, {2, 2}};
+  // B rock 2 (index 1) excluded: pair (1, 1) leaves the IPD; A rock 1 keeps its partner, so it is not unpaired.
+  SceneIpd s = scene_contribution("s", pairs, {}, {1}, pa, pb);
+  EXPECT_EQ(s.pairs, 2);
+  EXPECT_NEAR(s.sum_abs_diff, 0.1 + 0.2, 1e-12);
+  EXPECT_NEAR(s.ipd(), 0.15, 1e-12);
+  EXPECT_EQ(s.unpaired_a, 0);
+  EXPECT_EQ(s.unpaired_b, 1);  // B rock 4 only
+  EXPECT_EQ(s.counted, (RockPairs{{0, 0}, {2, 2}}));
+  // The same from the A side, plus an excluded rock that has no pair: not unpaired either.
+  s = scene_contribution("s", pairs, {1}, {3}, pa, pb);
+  EXPECT_EQ(s.pairs, 2);
+  EXPECT_EQ(s.unpaired_a, 0);
+  EXPECT_EQ(s.unpaired_b, 0);
+  // No exclusions: B rock 4 is the one unpaired rock; a rock listed in two pairs counts once.
+  s = scene_contribution("s", {{0, 0}, {0, 3}, {1, 1}}, {}, {}, pa, pb);
+  EXPECT_EQ(s.pairs, 2);
+  EXPECT_EQ(s.unpaired_a, 1);
+  EXPECT_EQ(s.unpaired_b, 2);
+}
+
 TEST(Ipd, BadFixedPairsNameTheFile) {
   test::TempDir d;
   write_tiny_study(d);

@@ -97,6 +97,10 @@ TEST(Session, ExcludeAndSwappedView) {
   EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
   EXPECT_TRUE(s.excluded(Side::kA, 0, 0));
   EXPECT_EQ(*job.contents, "{\"excluded_b\":[0],\"pairs\":[[0,1],[1,0]]}\n");
+  // The header: one pair counted; the excluded rock's partner (real 1, on the right) is not unpaired.
+  EXPECT_EQ(s.summary(0).pairs, 1);
+  EXPECT_EQ(s.summary(0).unpaired_a, 0);
+  EXPECT_EQ(s.summary(0).unpaired_b, 0);
   // Pair left (synth) 1 with right (real) 1: stored as real 1 <-> synth 1.
   s.apply(0, Edit::pair(1, 1));
   EXPECT_EQ(s.view_pairs(0), (RockPairs{{1, 1}}));

@@ -1,6 +1,7 @@
 // The scene in view: both pictures with their boxes (suspect pairs in orange, joined across the panes), the
 // replayed hypothesis' sample, zoom at the cursor, and the pair table of the audit.
 #include <algorithm>
+#include <fmt/format.h>
 #include <cmath>
 #include <cstdio>
 
@@ -275,17 +276,20 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
       const int idx = k == 0 ? l : r;
       if (idx >= 0 && idx < static_cast<int>(paired.size())) paired[idx] = 1;
     }
-    const int n = static_cast<int>(std::count(paired.begin(), paired.end(), 0));
-    char header[96];
-    std::snprintf(header, sizeof header, "unpaired %s: %d###unp%d", (k == 0 ? s.left_domain() : s.right_domain()).c_str(),
-                  n, k);
-    if (n > 0 && ImGui::CollapsingHeader(header)) {
+    // As the scene header counts (scene_contribution): an excluded rock is out of the IPD, not unpaired.
+    int n = 0, excluded = 0;
+    for (size_t i = 0; i < gt.size(); ++i)
+      if (!paired[i]) ++(s.excluded(side, ui.scene, static_cast<int>(i)) ? excluded : n);
+    char header[128];
+    std::snprintf(header, sizeof header, "unpaired %s: %d%s###unp%d", (k == 0 ? s.left_domain() : s.right_domain()).c_str(),
+                  n, excluded > 0 ? fmt::format(" (+{} excluded)", excluded).c_str() : "", k);
+    if (n + excluded > 0 && ImGui::CollapsingHeader(header)) {
       for (size_t i = 0; i < gt.size(); ++i) {
         if (paired[i]) continue;
         ImGui::BulletText("rock %zu: IoU %.2f%s", i + 1, i < pv.size() ? pv[i] : 0.0,
                           s.excluded(side, ui.scene, static_cast<int>(i)) ? "  (excluded)" : "");
       }
-    } else if (n == 0) {
+    } else if (n + excluded == 0) {
       ImGui::TextDisabled("unpaired %s: none", (k == 0 ? s.left_domain() : s.right_domain()).c_str());
     }
   }

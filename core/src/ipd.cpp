@@ -100,26 +100,33 @@ ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const s
 
 double SceneIpd::ipd() const { return pairs > 0 ? sum_abs_diff / pairs : std::nan(""); }
 
-SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, const std::vector<Box>& pred_a,
-                   const std::vector<Box>& gt_b, const std::vector<Box>& pred_b) {
+SceneIpd scene_contribution(const std::string& stem, const RockPairs& pairs, const std::vector<int>& excluded_a,
+                            const std::vector<int>& excluded_b, const std::vector<double>& pa,
+                            const std::vector<double>& pb) {
   SceneIpd s;
-  s.stem = pairing.stem;
-  const PerformanceValues pa = performance_values(gt_a, pred_a), pb = performance_values(gt_b, pred_b);
-  std::vector<char> used_a(gt_a.size(), 0), used_b(gt_b.size(), 0);
-  for (int i : pairing.excluded_a) used_a[i] = 1;
-  for (int j : pairing.excluded_b) used_b[j] = 1;
-  for (const auto& [i, j] : pairing.pairs) {
-    if (used_a[i] || used_b[j]) continue;  // an excluded rock takes its pair out of the IPD
+  s.stem = stem;
+  std::vector<char> used_a(pa.size(), 0), used_b(pb.size(), 0), out_a(pa.size(), 0), out_b(pb.size(), 0);
+  for (int i : excluded_a) out_a[i] = 1;
+  for (int j : excluded_b) out_b[j] = 1;
+  for (const auto& [i, j] : pairs) {
+    if (used_a[i] || used_b[j]) continue;
     used_a[i] = used_b[j] = 1;
-    s.perf_a.push_back(pa.value[i]);
-    s.perf_b.push_back(pb.value[j]);
+    if (out_a[i] || out_b[j]) continue;  // an excluded rock takes its pair out of the IPD
+    s.perf_a.push_back(pa[i]);
+    s.perf_b.push_back(pb[j]);
     s.counted.emplace_back(i, j);
-    s.sum_abs_diff += std::abs(pa.value[i] - pb.value[j]);
+    s.sum_abs_diff += std::abs(pa[i] - pb[j]);
     ++s.pairs;
   }
-  s.unpaired_a = static_cast<int>(std::count(used_a.begin(), used_a.end(), 0));
-  s.unpaired_b = static_cast<int>(std::count(used_b.begin(), used_b.end(), 0));
+  for (size_t i = 0; i < pa.size(); ++i) s.unpaired_a += !used_a[i] && !out_a[i];
+  for (size_t j = 0; j < pb.size(); ++j) s.unpaired_b += !used_b[j] && !out_b[j];
   return s;
+}
+
+SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, const std::vector<Box>& pred_a,
+                   const std::vector<Box>& gt_b, const std::vector<Box>& pred_b) {
+  return scene_contribution(pairing.stem, pairing.pairs, pairing.excluded_a, pairing.excluded_b,
+                            performance_values(gt_a, pred_a).value, performance_values(gt_b, pred_b).value);
 }
 
 const TableCell* CrossTable::cell(const std::string& model, const std::string& a, const std::string& b) const {

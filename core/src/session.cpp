@@ -318,25 +318,8 @@ const std::vector<SceneIpd>& Session::contributions_for(const std::string& model
 SceneIpd Session::contribution(const std::string& model, int pair, int scene) const {
   const auto& [a, b] = pairs_[pair];
   const SceneState& s = scenes_[pair][scene];
-  SceneIpd out;
-  out.stem = s.stem;
-  const auto& pa = perf_->at(a).at(model).at(s.stem).value;
-  const auto& pb = perf_->at(b).at(model).at(s.stem).value;
-  std::vector<char> used_a(pa.size(), 0), used_b(pb.size(), 0);
-  for (int i : s.current.excluded_a) used_a[i] = 1;
-  for (int j : s.current.excluded_b) used_b[j] = 1;
-  for (const auto& [i, j] : s.current.pairs) {
-    if (used_a[i] || used_b[j]) continue;
-    used_a[i] = used_b[j] = 1;
-    out.perf_a.push_back(pa[i]);
-    out.perf_b.push_back(pb[j]);
-    out.counted.emplace_back(i, j);
-    out.sum_abs_diff += std::abs(pa[i] - pb[j]);
-    ++out.pairs;
-  }
-  out.unpaired_a = static_cast<int>(std::count(used_a.begin(), used_a.end(), 0));
-  out.unpaired_b = static_cast<int>(std::count(used_b.begin(), used_b.end(), 0));
-  return out;
+  return scene_contribution(s.stem, s.current.pairs, s.current.excluded_a, s.current.excluded_b,
+                            perf_->at(a).at(model).at(s.stem).value, perf_->at(b).at(model).at(s.stem).value);
 }
 
 void Session::recompute_performance() {

@@ -67,6 +67,14 @@ struct SceneIpd {
   double ipd() const;  // NaN when there are no pairs
 };
 
+// The one rule for a scene's counts (the engine's table and the GUI's header both use it): a pair counts
+// unless one of its rocks is excluded; a rock in two pairs counts once; `unpaired` counts rocks in no pair
+// that are not excluded (an excluded rock, or the partner of one, is out of the IPD, not unpaired).
+// `perf_a`/`perf_b`: each rock's performance value. Pair indices must be in range.
+SceneIpd scene_contribution(const std::string& stem, const RockPairs& pairs, const std::vector<int>& excluded_a,
+                            const std::vector<int>& excluded_b, const std::vector<double>& perf_a,
+                            const std::vector<double>& perf_b);
+
 SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, const std::vector<Box>& pred_a,
                    const std::vector<Box>& gt_b, const std::vector<Box>& pred_b);
 
