@@ -216,7 +216,7 @@ void StudioApp::frame() {
       }
     }
     if (ImGui::BeginTable("layout", 3, ImGuiTableFlags_Resizable | ImGuiTableFlags_BordersInnerV, {0, h})) {
-      ImGui::TableSetupColumn("browser", ImGuiTableColumnFlags_WidthFixed, 340);
+      ImGui::TableSetupColumn("browser", ImGuiTableColumnFlags_WidthFixed, ui::browser_width(v, 300, 460));
       ImGui::TableSetupColumn("main", ImGuiTableColumnFlags_WidthStretch);
       ImGui::TableSetupColumn("ipd", ImGuiTableColumnFlags_WidthFixed, 400);
       ImGui::TableNextRow();
@@ -239,7 +239,11 @@ void StudioApp::frame() {
       if (ImGui::IsItemActive()) ui_.pictures_height = pic_h + ImGui::GetIO().MouseDelta.y;
       if (ImGui::IsItemHovered() || ImGui::IsItemActive()) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeNS);
       const float rest = ImGui::GetContentRegionAvail().y - 8;
-      ImGui::BeginChild("registration", {ImGui::GetContentRegionAvail().x * 0.58f, rest}, true);
+      // The pair table's columns are sized from their text; the registration plot takes the rest.
+      const float table_w = 7 * 2 * ImGui::GetStyle().CellPadding.x + ImGui::CalcTextSize("99 x 99 0.000 0.000 excl. 999.9 0.00").x +
+                            3 * ImGui::GetStyle().WindowPadding.x + ImGui::GetStyle().ScrollbarSize + 110;
+      const float avail_w = ImGui::GetContentRegionAvail().x;
+      ImGui::BeginChild("registration", {std::max(avail_w * 0.45f, avail_w - table_w), rest}, true);
       ui::draw_registration(v, ui_, cmd);
       ImGui::EndChild();
       ImGui::SameLine();

@@ -18,6 +18,19 @@ namespace ipd::ui {
 // An IPD as the views print it: 4 decimals, "n/a" for NaN.
 std::string fmt_ipd(double v);
 
+// A table column sized from text, not pixels: wide enough for its header (with the sort arrow) and for
+// `widest`, the longest value it shows. `tooltip` explains a short header when it is hovered.
+struct TextColumn {
+  const char* header;
+  const char* widest;
+  const char* tooltip = nullptr;
+  ImGuiTableColumnFlags flags = 0;
+};
+float text_column_width(const TextColumn& c);
+// TableSetupColumn for each (fixed width from text, or stretched when `widest` is null), then the header
+// row, with the tooltips.
+void setup_text_columns(const std::vector<TextColumn>& columns);
+
 struct Picture {
   ImTextureID texture = nullptr;
   int width = 0, height = 0;
@@ -94,6 +107,8 @@ struct UiCommands {
 // The scene order of the browser (sorted and filtered as the user asked); sets ui.filter_error.
 std::vector<int> browser_order(const std::vector<SceneSummary>& summaries, UiState& ui);
 
+// The study browser's width: the longest scene name and the numeric columns, within [min_w, max_w].
+float browser_width(const StudyView& v, float min_w, float max_w);
 void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out);  // help, go to scene, open study, quit

@@ -37,6 +37,35 @@ std::vector<int> browser_order(const std::vector<SceneSummary>& sums, UiState& u
   return order;
 }
 
+namespace {
+const std::vector<TextColumn>& browser_columns() {
+  const ImGuiTableColumnFlags num = ImGuiTableColumnFlags_WidthFixed | ImGuiTableColumnFlags_PreferSortDescending;
+  static const std::vector<TextColumn> columns = {
+      {"scene", nullptr, nullptr, ImGuiTableColumnFlags_WidthStretch},
+      {"IPD", "0.0000", "the scene's IPD for the model (sorted worst first)",
+       num | ImGuiTableColumnFlags_DefaultSort},
+      {"pairs", "999", "rock pairs counted in the IPD", num},
+      {"unp.", "99/99", "unpaired rocks, left/right (excluded rocks are not counted)", num},
+      {"susp.", "99", "suspect pairs (? : registration could not decide)", num},
+      {"ed.", "hand", "pairs fixed by hand", num},
+  };
+  return columns;
+}
+}  // namespace
+
+float browser_width(const StudyView& v, float min_w, float max_w) {
+  size_t longest = 0;
+  const std::string* name = nullptr;
+  if (v.summaries)
+    for (const auto& m : *v.summaries)
+      if (m.stem.size() > longest) longest = m.stem.size(), name = &m.stem;
+  const ImGuiStyle& st = ImGui::GetStyle();
+  float w = (name ? ImGui::CalcTextSize(name->c_str()).x : 80.0f) + 2 * st.CellPadding.x;
+  for (const auto& c : browser_columns())
+    if (c.widest) w += text_column_width(c) + 2 * st.CellPadding.x;
+  return std::clamp(w + st.ScrollbarSize + 2 * st.WindowPadding.x + 8, min_w, max_w);
+}
+
 void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   const Session& s = *v.session;
   const Study& st = s.study();
@@ -76,15 +105,7 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
                                 ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable;
   if (ImGui::BeginTable("scenes", 6, flags)) {
     ImGui::TableSetupScrollFreeze(0, 1);
-    ImGui::TableSetupColumn("scene", ImGuiTableColumnFlags_WidthStretch);
-    ImGui::TableSetupColumn("IPD", ImGuiTableColumnFlags_DefaultSort | ImGuiTableColumnFlags_PreferSortDescending |
-                                       ImGuiTableColumnFlags_WidthFixed, 52);
-    const ImGuiTableColumnFlags num = ImGuiTableColumnFlags_WidthFixed | ImGuiTableColumnFlags_PreferSortDescending;
-    ImGui::TableSetupColumn("pairs", num, 34);
-    ImGui::TableSetupColumn("unp.", num, 36);
-    ImGui::TableSetupColumn("susp.", num, 34);
-    ImGui::TableSetupColumn("ed.", num, 30);
-    ImGui::TableHeadersRow();
+    setup_text_columns(browser_columns());
     if (ImGuiTableSortSpecs* spec = ImGui::TableGetSortSpecs(); spec && spec->SpecsDirty && spec->SpecsCount > 0) {
       ui.sort_column = spec->Specs[0].ColumnIndex;
       ui.sort_descending = spec->Specs[0].SortDirection == ImGuiSortDirection_Descending;
@@ -101,6 +122,9 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
         ImGui::TableNextColumn();
         ImGui::PushID(k);
         if (ImGui::Selectable(m.stem.c_str(), k == ui.scene, ImGuiSelectableFlags_SpanAllColumns)) out.goto_scene = k;
+        // A name wider than its column: the whole of it on hover.
+        if (ImGui::IsItemHovered() && ImGui::CalcTextSize(m.stem.c_str()).x > ImGui::GetColumnWidth())
+          ImGui::SetTooltip("%s", m.stem.c_str());
         ImGui::PopID();
         ImGui::TableNextColumn();
         ImGui::TextUnformatted(fmt_ipd(m.ipd).c_str());

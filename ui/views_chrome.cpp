@@ -12,6 +12,24 @@
 
 namespace ipd::ui {
 
+float text_column_width(const TextColumn& c) {
+  // The sort arrow takes about a line's height beside a sortable header.
+  const float header = ImGui::CalcTextSize(c.header).x + ImGui::GetTextLineHeight();
+  return std::max(header, c.widest ? ImGui::CalcTextSize(c.widest).x : 0.0f);
+}
+
+void setup_text_columns(const std::vector<TextColumn>& columns) {
+  for (const auto& c : columns)
+    ImGui::TableSetupColumn(c.header, c.flags | (c.widest ? ImGuiTableColumnFlags_WidthFixed : 0),
+                            c.widest ? text_column_width(c) : 0.0f);
+  ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+  for (int k = 0; k < static_cast<int>(columns.size()); ++k) {
+    if (!ImGui::TableSetColumnIndex(k)) continue;
+    ImGui::TableHeader(ImGui::TableGetColumnName(k));
+    if (columns[k].tooltip && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", columns[k].tooltip);
+  }
+}
+
 std::string fmt_ipd(double v) {
   if (std::isnan(v)) return "n/a";
   char b[32];

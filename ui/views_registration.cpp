@@ -30,7 +30,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const RegistrationReport& r = have_rerun ? *v.rerun : sc.automatic.registration;
   const auto& [da, db] = s.domain_pairs()[s.pair_index()];
   const int steps = static_cast<int>(r.trace.steps.size());
-  ImGui::Text("%s -> %s: %s, %d trials, %d hypotheses, %d inliers, score %.4f, confidence %.2f", da.c_str(), db.c_str(),
+  ImGui::TextWrapped("%s -> %s: %s, %d trials, %d hypotheses, %d inliers, score %.4f, confidence %.2f", da.c_str(), db.c_str(),
               to_string(r.method), r.trials, r.hypotheses, r.inliers, r.score, r.confidence);
   if (r.ambiguous) ImGui::TextColored({1, 0.8f, 0.3f, 1}, "ambiguous: the overlap is too small to decide; check the pairs");
   ImGui::TextDisabled("stopped: %s%s%s", to_string(r.stop), r.note.empty() ? "" : "; ", r.note.c_str());
@@ -100,7 +100,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const auto& ga = s.labels().gt_of(da, sc.stem).boxes;
   const auto& gb = s.labels().gt_of(db, sc.stem).boxes;
-  const Placement pl = place({p0.x + 10, p0.y + 10}, {size.x - 20, size.y - 34}, s.study().config.image_width,
+  const Placement pl = place({p0.x + 10, p0.y + 10}, {size.x - 20, size.y - 20 - 3 * ImGui::GetTextLineHeight()}, s.study().config.image_width,
                              s.study().config.image_height, CanvasView{});
   dl->AddRect(pl.origin, {pl.origin.x + pl.size.x, pl.origin.y + pl.size.y}, IM_COL32(90, 90, 100, 255));
   const Affine2 m = step ? step->b_from_a
@@ -143,8 +143,10 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   }
   // The legend stays inside the plot (two lines), never under the score curve beside it.
   dl->PushClipRect(p0, {p0.x + size.x, p0.y + size.y}, true);
-  dl->AddText({p0.x + 14, p0.y + size.y - 20}, IM_COL32(200, 200, 200, 255),
-              "blue: A moved   green: inliers   rings: B   bright: the sample   orange: suspect");
+  const float line = ImGui::GetTextLineHeight();
+  const char* legend[] = {"blue: A moved   green: inliers", "rings: B   bright: the sample", "orange: suspect"};
+  for (int k = 0; k < 3; ++k)
+    dl->AddText({p0.x + 14, p0.y + size.y - (3 - k) * line - 4}, IM_COL32(200, 200, 200, 255), legend[k]);
   dl->PopClipRect();
   if (steps > 0) {
     // Best-so-far score over the steps, with the current one marked.
@@ -154,13 +156,16 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
     ImGui::BeginGroup();
     ImGui::TextUnformatted("best score so far");
     const ImVec2 c0 = ImGui::GetCursorScreenPos();
-    const ImVec2 csz{curve_w - 8, std::max(30.0f, avail.y - 2 * ImGui::GetTextLineHeightWithSpacing())};
+    // Room under the curve for its two-line caption.
+    const ImVec2 csz{curve_w - 8, std::max(30.0f, avail.y - 4 * ImGui::GetTextLineHeightWithSpacing())};
     ImGui::PlotLines("##best", best.data(), steps, 0, nullptr, FLT_MAX, FLT_MAX, csz);
     const float x = c0.x + csz.x * std::clamp(rp.position / steps, 0.0f, 1.0f);
     dl->AddLine({x, c0.y}, {x, c0.y + csz.y}, kHighlight, 1.5f);
     int news = 0;
     for (const auto& st : r.trace.steps) news += st.new_best;
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + csz.x);
     ImGui::TextDisabled("%d improvements; %s", news, r.trace.stop.c_str());
+    ImGui::PopTextWrapPos();
     ImGui::EndGroup();
   }
 }

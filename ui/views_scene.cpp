@@ -213,20 +213,24 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
     return std::abs(x.a - x.b) > std::abs(y.a - y.b);
   });
   const long excluded_rows = std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.excluded; });
-  ImGui::Text("%ld pairs counted (%ld excluded), %d suspect; typical residual %.1f px", long(rows.size()) - excluded_rows,
-              excluded_rows, audit.suspects, audit.typical_residual_px);
+  ImGui::TextWrapped("%ld pairs counted (%ld excluded), %d suspect; typical residual %.1f px",
+                     long(rows.size()) - excluded_rows, excluded_rows, audit.suspects, audit.typical_residual_px);
   const float table_h = std::max(60.0f, ImGui::GetContentRegionAvail().y - 2.4f * ImGui::GetTextLineHeightWithSpacing());
-  if (ImGui::BeginTable("pairs", 7, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_BordersInnerV,
+  // ScrollX: a pane narrower than the columns scrolls instead of cutting the last ones off.
+  if (ImGui::BeginTable("pairs", 7, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX |
+                                        ImGuiTableFlags_BordersInnerV,
                         ImVec2(0, table_h))) {
     ImGui::TableSetupScrollFreeze(0, 1);
-    ImGui::TableSetupColumn("pair");
-    ImGui::TableSetupColumn(s.right_domain().c_str());
-    ImGui::TableSetupColumn("IoU L");
-    ImGui::TableSetupColumn("IoU R");
-    ImGui::TableSetupColumn("|diff|");
-    ImGui::TableSetupColumn("resid. px");
-    ImGui::TableSetupColumn("size");
-    ImGui::TableHeadersRow();
+    const std::string partner = "its partner in " + s.right_domain();
+    const std::string iou_l = "IoU of the left rock (" + s.left_domain() + ") with its best prediction";
+    const std::string iou_r = "IoU of the right rock (" + s.right_domain() + ") with its best prediction";
+    setup_text_columns({{"pair", "99 x", "the pair, named by its left rock (x: excluded)"},
+                        {"R#", "99", partner.c_str()},
+                        {"IoU L", "0.000", iou_l.c_str()},
+                        {"IoU R", "0.000", iou_r.c_str()},
+                        {"|diff|", "excl.", "|IoU L - IoU R|: the pair's share of the IPD"},
+                        {"res px", "999.9", "residual after the registration affine, pixels"},
+                        {"size", "0.00", "box-size ratio, aligned left / right (suspect outside 0.5-2)"}});
     for (const auto& row : rows) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
