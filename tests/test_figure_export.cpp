@@ -53,7 +53,9 @@ TEST(FigureExport, GuiAndCliGiveTheSameStudyFigures) {
     const std::string gui = test::pdf_words(request.path), cli = test::pdf_words(cli_pdf);
     EXPECT_GT(gui.size(), 100u) << gui;
     EXPECT_EQ(gui, cli);
-    if (c.kind == "breakdown") EXPECT_NE(gui.find("IPD(real, hapke) of det (real) by"), std::string::npos) << gui;
+    if (c.kind == "breakdown") {
+      EXPECT_NE(gui.find("IPD(real, hapke) of det (real) by"), std::string::npos) << gui;
+    }
   }
   // The threshold is part of the view: without it the table and the confidence bins are other figures.
   ASSERT_EQ(test::run_ipd("figure table --ci 0.95 " + d.path() + " --out " + d / "all.pdf").exit_code, 0);
