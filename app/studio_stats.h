@@ -5,6 +5,7 @@
 
 #include <future>
 #include <memory>
+#include <vector>
 
 #include "ipd/session_statistics.h"
 #include "studio_worker.h"
@@ -24,6 +25,9 @@ class StatsJob {
   std::shared_ptr<const SessionStatistics> result_;
   std::shared_ptr<const Session> running_session_, done_session_;  // kept alive: identity, never ABA
   SessionStatisticsRequest running_request_, done_request_;
+  // Sessions and results let go of: freed by the next job, off the UI thread (freeing a 10,000-scene session
+  // took a 690 ms frame).
+  std::vector<std::shared_ptr<const void>> to_release_;
 };
 
 }  // namespace ipd::studio

@@ -1,5 +1,9 @@
 #include "studio_worker.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -83,7 +87,10 @@ bool StudyWorker::idle() const {
   return queue_.empty() && !busy_;
 }
 
+void yield_to_the_view() { setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 4); }
+
 void StudyWorker::run() {
+  yield_to_the_view();
   while (true) {
     WorkerCommand c;
     {

@@ -60,6 +60,10 @@ struct WorkerCommand {
   std::function<std::string()> job;
 };
 
+// Lowers the calling thread's CPU priority a little (threads it starts inherit it): heavy jobs yield to the
+// window's frames, and to the rasteriser's threads, on a machine with few cores.
+void yield_to_the_view();
+
 class StudyWorker {
  public:
   StudyWorker();
