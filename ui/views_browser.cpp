@@ -100,7 +100,8 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   ImGui::SetNextItemWidth(-1);
   ImGui::InputTextWithHint("##filter", "filter: text, ipd>0.1, suspect, edited", ui.filter, sizeof ui.filter);
   if (!ui.filter_error.empty()) ImGui::TextColored({1, 0.5f, 0.3f, 1}, "%s", ui.filter_error.c_str());
-  ImGui::TextDisabled("%zu of %zu scenes", ui.order.size(), v.summaries->size());
+  ImGui::TextDisabled("%zu of %zu scenes%s", ui.order.size(), v.summaries->size(),
+                      v.loading.empty() ? "" : " so far (the rest is loading)");
   const ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
                                 ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable;
   if (ImGui::BeginTable("scenes", 6, flags)) {

@@ -93,7 +93,9 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
   ImGui::SameLine();
   if (ImGui::Button("reset to automatic")) out.edits.push_back(Edit::reset());
   ImGui::SameLine();
-  ImGui::TextDisabled("F1: help");
+  // Only when it fits: the Help menu says the same.
+  if (ImGui::GetContentRegionAvail().x >= ImGui::CalcTextSize("F1: help").x) ImGui::TextDisabled("F1: help");
+  else ImGui::NewLine();
 
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const float gap = 6;
