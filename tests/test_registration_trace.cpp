@@ -101,13 +101,17 @@ TEST(RegistrationTrace, ConsensusRecordsHypothesesRefinementsAndPolish) {
   for (size_t k = 0; k + 1 < st.size(); ++k) {
     hypotheses += st[k].kind == TraceStepKind::kHypothesis;
     refinements += st[k].kind == TraceStepKind::kRefinement;
-    if (st[k].kind == TraceStepKind::kRefinement) EXPECT_EQ(st[k - 1].kind, TraceStepKind::kHypothesis);
+    if (st[k].kind == TraceStepKind::kRefinement) {
+      EXPECT_EQ(st[k - 1].kind, TraceStepKind::kHypothesis);
+    }
     if (!st[k].a_sample.empty()) {  // a triple: rock i and two neighbours, each matched to a B rock
       ASSERT_EQ(st[k].a_sample.size(), 3u);
       ASSERT_EQ(st[k].b_sample.size(), 3u);
       for (int j = 0; j < 3; ++j) {
         const Eigen::Vector2d d = apply(st[k].b_from_a, s.a[st[k].a_sample[j]].centre()) - s.b[st[k].b_sample[j]].centre();
-        if (st[k].kind == TraceStepKind::kHypothesis) ASSERT_LT(d.norm(), 1e-9);
+        if (st[k].kind == TraceStepKind::kHypothesis) {
+          ASSERT_LT(d.norm(), 1e-9);
+        }
       }
     }
     EXPECT_EQ(st[k].new_best, st[k].score > best) << k;
