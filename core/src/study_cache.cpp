@@ -39,7 +39,7 @@ std::uint64_t checksum(const char* p, size_t n) {
     h ^= h >> 29;
   }
   std::uint64_t tail = 0;
-  std::memcpy(&tail, p + k, n - k);
+  if (n > k) std::memcpy(&tail, p + k, n - k);  // p may be null when n == 0
   h = (h ^ tail) * 0x9e3779b97f4a7c15ull;
   return h ^ (h >> 32);
 }
@@ -64,7 +64,7 @@ class Writer {
   void vec(const std::vector<T>& v) {
     static_assert(std::is_trivially_copyable_v<T>);
     pod<std::uint64_t>(v.size());
-    out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+    if (!v.empty()) out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
 };
 
@@ -92,7 +92,7 @@ class Reader {
     const auto n = pod<std::uint64_t>();
     if (n > static_cast<std::uint64_t>(end_ - p_) / sizeof(T)) throw std::runtime_error("truncated");
     std::vector<T> v(n);
-    std::memcpy(v.data(), p_, n * sizeof(T));
+    if (n) std::memcpy(v.data(), p_, n * sizeof(T));  // an empty vector's data() may be null: UB for memcpy
     p_ += n * sizeof(T);
     return v;
   }
