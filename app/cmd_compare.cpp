@@ -1,5 +1,6 @@
 // `ipd compare STUDY --ref real --a principled --b hapke`: which renderer is closer to the reference, with a
 // paired scene-bootstrap interval on ΔIPD and a permutation test.
+#include <algorithm>
 #include <fmt/format.h>
 
 #include <iostream>
@@ -92,9 +93,12 @@ Runner add_compare_command(CLI::App& app) {
           std::cout << fmt::format("  over the {} ref rocks paired in both: ΔIPD = {:.4f}\n", r.result.pairs_common,
                                    r.result.delta_common);
       }
+      const bool all_exact = std::all_of(results.begin(), results.end(), [](const auto& r) { return r.result.exact_p; });
+      const std::string test = all_exact ? std::string("exact: every swap pattern of the scenes")
+                                         : fmt::format("{} permutations, exact where 2^scenes <= that", co.permutations);
       std::cout << fmt::format("({:g}% paired scene-bootstrap interval, {} resamples; sign-flip permutation test, "
-                               "{} permutations; seed {})\n",
-                               100 * co.bootstrap.level, co.bootstrap.resamples, co.permutations, co.bootstrap.seed);
+                               "{}; seed {})\n",
+                               100 * co.bootstrap.level, co.bootstrap.resamples, test, co.bootstrap.seed);
     }
     return kOk;
   };

@@ -37,6 +37,12 @@ TEST(FigureStats, CompareShowsTheDeltaAndItsTest) {
   const std::string text = pdf_words(d / "c.pdf");
   EXPECT_NE(text.find("IPD(real, s1) \u2212 IPD(real, s2)"), std::string::npos) << text;
   EXPECT_NE(text.find("det (real) \u22120.267, p = "), std::string::npos) << text;
+  // 2 scenes: all 2^2 swap patterns fit in 200, so the p-value is exact and the footnote must say so.
+  EXPECT_NE(text.find("test, exact (every swap pattern) over the 2 scenes"), std::string::npos) << text;
+  const auto few = test::run_ipd("figure compare " + d.path() + " --bootstrap 200 --permutations 3 --out " + d / "c3.pdf");
+  ASSERT_EQ(few.exit_code, 0) << few.err;
+  EXPECT_NE(pdf_words(d / "c3.pdf").find("test (3 permutations) over the 2 scenes"), std::string::npos)
+      << pdf_words(d / "c3.pdf");
 }
 
 TEST(FigureStats, TableWithIntervalsDistributionAndBreakdown) {

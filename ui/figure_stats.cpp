@@ -31,6 +31,7 @@ DotWhiskerChart compare_chart(const CrossTable& table, const std::vector<std::st
   ch.axis_label = fmt::format("\u0394IPD ({} vs {})", a, b);
   ch.zero_line = true;
   std::vector<std::string> skipped;
+  int exact_rows = 0, random_rows = 0, min_scenes = 0, max_scenes = 0;
   for (const ModelInfo& m : table.models) {
     if (!models.empty() && std::find(models.begin(), models.end(), m.name) == models.end()) continue;
     try {
@@ -38,12 +39,27 @@ DotWhiskerChart compare_chart(const CrossTable& table, const std::vector<std::st
       ch.rows.push_back({model_label(m.name, m.trained_on), c.result.delta.estimate, c.result.delta.low,
                          c.result.delta.high,
                          fmt::format("{}, {}", signed_text(c.result.delta.estimate), p_text(c.result.p_value))});
+      (c.result.exact_p ? exact_rows : random_rows) += 1;
+      min_scenes = min_scenes == 0 ? c.result.scenes : std::min(min_scenes, c.result.scenes);
+      max_scenes = std::max(max_scenes, c.result.scenes);
     } catch (const std::exception&) {
       skipped.push_back(m.name);
     }
   }
-  ch.footnote = fmt::format("Sign-flip permutation test ({} permutations) over scenes present in all three domains.",
-                            options.permutations);
+  // Say what the p-values are: with few scenes every swap pattern is counted (exact, and p cannot go below
+  // 2 / 2^scenes); otherwise `permutations` random ones.
+  const std::string n = min_scenes == max_scenes ? fmt::format("{}", max_scenes)
+                                                 : fmt::format("{}\u2013{}", min_scenes, max_scenes);
+  if (random_rows == 0 && exact_rows > 0)
+    ch.footnote = fmt::format("Sign-flip permutation test, exact (every swap pattern) over the {} scenes present in "
+                              "all three domains.", n);
+  else if (exact_rows == 0)
+    ch.footnote = fmt::format("Sign-flip permutation test ({} permutations) over the {} scenes present in all three "
+                              "domains.", options.permutations, n);
+  else
+    ch.footnote = fmt::format("Sign-flip permutation test over the {} scenes present in all three domains: exact "
+                              "where 2^scenes \u2264 {}, else {} random permutations.", n, options.permutations,
+                              options.permutations);
   if (!skipped.empty()) {
     std::string names;
     for (const auto& s : skipped) names += (names.empty() ? "" : ", ") + s;
