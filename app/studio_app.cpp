@@ -482,6 +482,8 @@ int StudioApp::print_stats() const {
                                p.cached, snap_ ? snap_->summaries.size() * snap_->session->domain_pairs().size() : 0,
                                p.study_cache.state, p.study_cache.files_reused, p.study_cache.files_parsed));
   if (!o_.screenshot.empty()) fmt::print("{}\n", o_.screenshot);
+  // Scripted runs (--screenshot, --replay) exit 1 on a study that can't be opened: say why on stderr too.
+  if (open_failed_) fmt::print(stderr, "error: could not open the study: {}\n", worker_.open_error());
   return open_failed_ ? 1 : 0;
 }
 

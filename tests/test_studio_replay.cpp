@@ -84,5 +84,19 @@ TEST(StudioReplay, BadActionsNameTheFileAndLine) {
             "error: " + d / "actions.txt" + ":2: 'rerun': expected consensus, paper or cpd, got 'ransac'\n");
 }
 
+TEST(StudioReplay, AStudyThatCannotBeOpenedSaysWhyOnStderr) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  const std::string cmd = fmt::format(
+      "XDG_CACHE_HOME={} xvfb-run -a -s '-screen 0 1280x800x24' {} {} --screenshot {} --frames 3 >/dev/null 2>{}",
+      d / "cache", studio, d / "missing", d / "shot.png", d / "err.txt");
+  EXPECT_EQ(run(cmd), 1);
+  // Contains, not equals: Xvfb and the GL driver may add their own lines to stderr.
+  const std::string err = read_file(d / "err.txt");
+  EXPECT_NE(err.find("error: could not open the study: " + d / "missing" + ": no such study directory\n"),
+            std::string::npos) << err;
+}
+
 }  // namespace
 }  // namespace ipd
