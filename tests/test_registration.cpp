@@ -70,6 +70,29 @@ TEST(AffineEstimator, ExactFromThreeAndConditioning) {
   EXPECT_FALSE(affine_from_three(flat, dst, &got));
 }
 
+TEST(AffineEstimator, TrimmedLeastSquaresIsNotBentByOneWrongPair) {
+  // 15 exact pairs under a known affine and one wrong hand pair half a picture away: plain least squares is
+  // pulled off by the wrong pair, the trimmed fit recovers the affine exactly.
+  const Affine2 m = known_affine();
+  std::vector<Eigen::Vector2d> src, dst;
+  for (int k = 0; k < 15; ++k) {
+    src.push_back({0.05 + 0.06 * k, 0.1 + 0.8 * ((k * 7) % 15) / 15.0});
+    dst.push_back(apply(m, src.back()));
+  }
+  src.push_back({0.3, 0.3});
+  dst.push_back(apply(m, Eigen::Vector2d{0.8, 0.7}));
+  Affine2 plain, trimmed;
+  ASSERT_TRUE(affine_least_squares(src, dst, &plain));
+  EXPECT_GT((plain - m).cwiseAbs().maxCoeff(), 1e-2);
+  ASSERT_TRUE(affine_least_squares_trimmed(src, dst, &trimmed));
+  EXPECT_LT((trimmed - m).cwiseAbs().maxCoeff(), 1e-9) << trimmed;
+  // Without a wrong pair it is the plain fit; with fewer than three pairs it refuses, as least squares does.
+  src.pop_back(), dst.pop_back();
+  ASSERT_TRUE(affine_least_squares_trimmed(src, dst, &trimmed));
+  EXPECT_LT((trimmed - m).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_FALSE(affine_least_squares_trimmed({src[0], src[1]}, {dst[0], dst[1]}, &trimmed));
+}
+
 TEST(AffineEstimator, PermutationEstimatorTriesAllSixOrders) {
   TriplePair s;
   s.src[0] = {0, 0}, s.src[1] = {1, 0}, s.src[2] = {0, 1};

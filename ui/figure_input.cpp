@@ -16,12 +16,13 @@ int domain_rank(const Study& st, const std::string& d) {
   return -1;
 }
 
-// The affine a -> b that explains the pairs when they aren't registration's own.
+// The affine a -> b that explains the pairs when they aren't registration's own (trimmed: one wrong hand
+// pair shows as one long line, not as every pair bent).
 Affine2 affine_of_pairs(const SceneFigureInput& in) {
   std::vector<Eigen::Vector2d> src, dst;
   for (const auto& [i, j] : in.pairs) src.push_back(in.gt_a[i].centre()), dst.push_back(in.gt_b[j].centre());
   Affine2 m;
-  return affine_least_squares(src, dst, &m) ? m : identity_affine();
+  return affine_least_squares_trimmed(src, dst, &m) ? m : identity_affine();
 }
 
 std::vector<Box> above(const std::vector<Box>& boxes, double threshold) {

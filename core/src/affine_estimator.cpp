@@ -30,6 +30,32 @@ bool affine_least_squares(const std::vector<Eigen::Vector2d>& src, const std::ve
   return affine_weighted_least_squares(src, dst, std::vector<double>(src.size(), 1.0), out);
 }
 
+bool affine_least_squares_trimmed(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
+                                  Affine2* out) {
+  Affine2 m;
+  if (!affine_least_squares(src, dst, &m)) return false;
+  const size_t n = src.size();
+  std::vector<double> keep(n, 1.0), residual(n);
+  for (int round = 0; round < 8; ++round) {
+    std::vector<double> kept;
+    for (size_t k = 0; k < n; ++k) {
+      residual[k] = (apply(m, src[k]) - dst[k]).norm();
+      if (keep[k] > 0) kept.push_back(residual[k]);
+    }
+    std::nth_element(kept.begin(), kept.begin() + kept.size() / 2, kept.end());
+    const double limit = 3 * kept[kept.size() / 2] + 1e-9;  // the floor: exact fits have residuals ~1e-16
+    std::vector<double> next(n);
+    for (size_t k = 0; k < n; ++k) next[k] = residual[k] <= limit ? 1.0 : 0.0;
+    if (next == keep || std::count(next.begin(), next.end(), 1.0) < 3) break;
+    Affine2 refit;
+    if (!affine_weighted_least_squares(src, dst, next, &refit)) break;
+    keep = next;
+    m = refit;
+  }
+  *out = m;
+  return true;
+}
+
 bool affine_weighted_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
                                    const std::vector<double>& w, Affine2* out) {
   const size_t n = src.size();

@@ -105,7 +105,7 @@ Affine2 scene_b_from_a(const ScenePairing& p, const std::vector<Box>& ga, const 
     dst.push_back(gb[j].centre());
   }
   Affine2 m = identity_affine();
-  if (src.size() >= 3 && !affine_least_squares(src, dst, &m)) m = identity_affine();
+  if (src.size() >= 3 && !affine_least_squares_trimmed(src, dst, &m)) m = identity_affine();
   return m;
 }
 

@@ -22,6 +22,12 @@ bool affine_from_three(const Eigen::Vector2d src[3], const Eigen::Vector2d dst[3
 bool affine_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
                           Affine2* out);
 
+// Least squares that a few wrong correspondences can't drag: fit, drop pairs whose residual exceeds three
+// times the median of the kept ones, refit, until nothing changes. For hand-made pairs, where one wrong pair
+// would otherwise bend the whole alignment. False when the points are degenerate.
+bool affine_least_squares_trimmed(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
+                                  Affine2* out);
+
 // Weighted least squares (weights >= 0, at least three positive); used for robust (IRLS) refinement.
 bool affine_weighted_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
                                    const std::vector<double>& weights, Affine2* out);
