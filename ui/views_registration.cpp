@@ -92,10 +92,12 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
     ImGui::TextDisabled("final affine: raw -> aligned%s", r.trace.truncated ? " (trace truncated)" : "");
 
   // Canvas: B's centres (pink rings) fixed, A's moved by the current affine, in B's frame; the score curve
-  // on the right.
+  // as a strip under it, full width (a column beside it left both too narrow and cut its caption).
   const ImVec2 p0 = ImGui::GetCursorScreenPos(), avail = ImGui::GetContentRegionAvail();
-  const float curve_w = steps > 0 ? std::min(260.0f, avail.x * 0.35f) : 0.0f;
-  const ImVec2 size{avail.x - curve_w, std::max(40.0f, avail.y)};
+  const float text_h = ImGui::GetTextLineHeightWithSpacing();
+  const float curve_h = steps > 0 ? std::clamp(avail.y * 0.25f, 36.0f, 110.0f) : 0.0f;
+  const float below = steps > 0 ? curve_h + 2 * text_h + ImGui::GetStyle().ItemSpacing.y : 0.0f;
+  const ImVec2 size{avail.x, std::max(40.0f, avail.y - below)};
   ImGui::InvisibleButton("##reg", size);
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const auto& ga = s.labels().gt_of(da, sc.stem).boxes;
@@ -152,21 +154,18 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
     // Best-so-far score over the steps, with the current one marked.
     std::vector<float> best(steps);
     for (int q = 0; q < steps; ++q) best[q] = static_cast<float>(r.trace.steps[q].best_score);
-    ImGui::SameLine();
-    ImGui::BeginGroup();
-    ImGui::TextUnformatted("best score so far");
+    int news = 0;
+    for (const auto& st : r.trace.steps) news += st.new_best;
+    // One line of caption (two when the stop reason is long), then the strip.
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + avail.x);
+    ImGui::TextDisabled("best score so far: %d improvement%s over %d steps; %s", news, news == 1 ? "" : "s", steps,
+                        r.trace.stop.c_str());
+    ImGui::PopTextWrapPos();
     const ImVec2 c0 = ImGui::GetCursorScreenPos();
-    // Room under the curve for its two-line caption.
-    const ImVec2 csz{curve_w - 8, std::max(30.0f, avail.y - 4 * ImGui::GetTextLineHeightWithSpacing())};
+    const ImVec2 csz{avail.x - 4, std::max(30.0f, std::min(curve_h, ImGui::GetContentRegionAvail().y - 2))};
     ImGui::PlotLines("##best", best.data(), steps, 0, nullptr, FLT_MAX, FLT_MAX, csz);
     const float x = c0.x + csz.x * std::clamp(rp.position / steps, 0.0f, 1.0f);
     dl->AddLine({x, c0.y}, {x, c0.y + csz.y}, kHighlight, 1.5f);
-    int news = 0;
-    for (const auto& st : r.trace.steps) news += st.new_best;
-    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + csz.x);
-    ImGui::TextDisabled("%d improvements; %s", news, r.trace.stop.c_str());
-    ImGui::PopTextWrapPos();
-    ImGui::EndGroup();
   }
 }
 
