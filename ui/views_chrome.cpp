@@ -245,14 +245,29 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
   const auto& pairs = s.domain_pairs();
   if (ImGui::BeginTable("cross", static_cast<int>(pairs.size()) + 1,
                         ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
-                        ImVec2(0, ImGui::GetTextLineHeightWithSpacing() * (s.study().models.size() + 2.5f)))) {
+                        ImVec2(0, ImGui::GetTextLineHeightWithSpacing() * (s.study().models.size() + 3.5f)))) {
+    // Headers on two rows ("real" over "- principled"): a column is as wide as its longer domain name, not both
+    // names, so three domain pairs fit the side panel at 1600 px.
     ImGui::TableSetupColumn("train \\ eval");
-    for (const auto& [a, b] : pairs) ImGui::TableSetupColumn((a + " - " + b).c_str());
-    ImGui::TableHeadersRow();
+    for (size_t p = 0; p < pairs.size(); ++p) ImGui::TableSetupColumn(nullptr);
+    for (int row = 0; row < 2; ++row) {
+      ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+      ImGui::TableSetColumnIndex(0);
+      ImGui::PushID(row);
+      ImGui::TableHeader(row == 0 ? "train \\ eval" : "");
+      for (size_t p = 0; p < pairs.size(); ++p) {
+        ImGui::TableSetColumnIndex(static_cast<int>(p) + 1);
+        ImGui::TableHeader(row == 0 ? pairs[p].first.c_str() : ("- " + pairs[p].second).c_str());
+      }
+      ImGui::PopID();
+    }
     for (const auto& m : s.study().models) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      ImGui::TextUnformatted(m.trained_on.empty() ? m.name.c_str() : (m.name + " (" + m.trained_on + ")").c_str());
+      // "det-real (real)" says the training domain twice; the name alone when it already holds it.
+      const bool named = m.trained_on.empty() || m.name.find(m.trained_on) != std::string::npos;
+      ImGui::TextUnformatted(named ? m.name.c_str() : (m.name + " (" + m.trained_on + ")").c_str());
+      if (!m.trained_on.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("trained on %s", m.trained_on.c_str());
       for (size_t p = 0; p < pairs.size(); ++p) {
         ImGui::TableNextColumn();
         const bool involves = m.trained_on.empty() || m.trained_on == pairs[p].first || m.trained_on == pairs[p].second;
