@@ -6,6 +6,7 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
 
+#include <cfloat>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -81,6 +82,9 @@ bool StudioWindow::begin_frame() {
   if (close) glfwSetWindowShouldClose(window_, GLFW_FALSE);  // the quit warning decides
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
+  // A scripted run has no user: Xvfb's pointer rests mid-screen and would hover (highlight) whatever is
+  // there in every screenshot, which reads as a selection.
+  if (headless_) ImGui::GetIO().MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
   ImGui::NewFrame();
   return close;
 }

@@ -47,6 +47,7 @@ TEST(FigureFiles, PdfPageIsTheColumnWidthAndCarriesTheText) {
     EXPECT_NE(t.all().find("s1: real vs synth, model det, scene IPD 0.2182 (1 pair)"), std::string::npos) << t.all();
     EXPECT_TRUE(has_word(t, "1"));   // the pair's number
     EXPECT_TRUE(has_word(t, "x2"));  // the unpaired rock, by its own index
+    EXPECT_NE(t.all().find("unpaired GT (x index)"), std::string::npos) << t.all();  // and its legend entry
     EXPECT_EQ(has_word(t, "0.87"), column == "double");  // confidences: double column only by default
     EXPECT_TRUE(overlapping(t).empty());
   }
@@ -103,6 +104,10 @@ TEST(FigureFiles, NoWordsOverlapOnTheDemosBusiestScene) {
       const auto bad = overlapping(t);
       EXPECT_TRUE(bad.empty()) << kind << " " << column << ": " << (bad.empty() ? "" : bad.front());
       for (const Word& w : t.words) EXPECT_GE(w.y1 - w.y0, 6.0) << w.text;  // nothing under 6 pt
+      // Every rock of scene_02 is paired: no legend entry for unpaired rocks the page doesn't show.
+      if (kind == "pairs") {
+        EXPECT_EQ(t.all().find("unpaired"), std::string::npos) << column << ": " << t.all();
+      }
     }
 }
 

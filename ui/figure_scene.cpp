@@ -166,7 +166,10 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
   if (o.layers.legend) {
     std::vector<LegendItem> items;
     if (o.layers.gt) items.push_back({Swatch::kBox, kPinkC, o.layers.indices && o.layers.pairs ? "GT rock (pair number)" : "GT rock"});
-    if (o.layers.gt && o.layers.pairs) items.push_back({Swatch::kBox, kUnpairedC, "unpaired GT (x index)"});
+    // Only when the figure shows one: a legend entry for nothing on the page reads as a rendering error.
+    const auto unpaired = [](const std::vector<int>& nums) { return std::count(nums.begin(), nums.end(), 0) > 0; };
+    if (o.layers.gt && o.layers.pairs && (unpaired(num_a) || unpaired(num_b)))
+      items.push_back({Swatch::kBox, kUnpairedC, "unpaired GT (x index)"});
     if (o.layers.pred) items.push_back({Swatch::kBox, kRedC, o.layers.conf ? "prediction (confidence)" : "prediction"});
     y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items) + 0.2 * F;
   }
