@@ -192,7 +192,7 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
   const TextStyle caption = style(F, kInk, true);
   out.text({kMargin, y}, Anchor::kTopLeft, caption, "before registration");
   out.text({kMargin + pw + gap, y}, Anchor::kTopLeft, caption,
-           in.pairs_fixed ? "aligned by the pairs (trimmed fit)" : "after registration");
+           in.pairs_fixed ? "aligned by the pairs" : "after registration");
   y += out.measure(caption, "Ag").y + 0.15 * F;
   const double dot = std::max(0.6, 0.11 * F), ring = dot * 2.8, lw = std::max(0.35, 0.07 * F);
   int left_out = 0;
