@@ -108,7 +108,17 @@ TEST(FigureFiles, NoWordsOverlapOnTheDemosBusiestScene) {
       if (kind == "pairs") {
         EXPECT_EQ(t.all().find("unpaired"), std::string::npos) << column << ": " << t.all();
       }
+      for (const Word& w : t.words) EXPECT_LE(w.x1, t.width + 0.5) << kind << " " << column << ": " << w.text;
     }
+  // Pairs fixed by hand (one of them wrong): the panel says how it was aligned, and the caption stays on the
+  // page in a single column.
+  test::write_text(d / "pairs/real__principled/scene_02.json", R"({"pairs": [[0, 1], [1, 0], [2, 2], [3, 3]]})");
+  const std::string out = d / "fixed.pdf";
+  const auto r = test::run_ipd("figure registration " + d.path() + " --scene scene_02 --column single --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const PdfText t = pdf_text(out);
+  EXPECT_NE(t.all().find("aligned by the pairs"), std::string::npos) << t.all();
+  for (const Word& w : t.words) EXPECT_LE(w.x1, t.width + 0.5) << w.text;
 }
 
 // Table I with intervals in one IEEE column (3 models x 3 domain pairs, as the demo): each interval
