@@ -257,6 +257,9 @@ TEST(StudyStatistics, BreakdownBinsAddUpToTheCell) {
       for (const auto& bin : b.bins) EXPECT_NEAR(bin.pairs, cell.pairs / 4.0, cell.pairs / 8.0) << bin.label;
       // the study makes small rocks harder to find in hapke: the smallest bin has the largest IPD
       EXPECT_GT(b.bins.front().ipd.estimate, b.bins.back().ipd.estimate);
+      // Labels name the range with an en dash, in px², from the lowest to the highest size present.
+      EXPECT_EQ(b.bins.front().label, fmt::format("{:.0f}\u2013{:.0f} px²", b.bins.front().low, b.bins.front().high));
+      EXPECT_NE(b.bins.back().label.find("\u2013"), std::string::npos) << b.bins.back().label;
     }
     if (by == BreakdownBy::kRegion) {
       EXPECT_EQ(b.bins.size(), 9u);

@@ -223,8 +223,9 @@ CellBreakdown breakdown_cell(const StudyLabels& labels, const TableCell& cell, c
       BreakdownBin b;
       b.low = k == 0 ? lo : edges[k - 1];
       b.high = k == nbins - 1 ? hi : edges[k];
-      b.label = options.by == BreakdownBy::kSize ? fmt::format("{:.0f}-{:.0f} px²", b.low, b.high)
-                                                  : fmt::format("{:.2f}-{:.2f}", b.low, b.high);
+      // A range takes an en dash (print typography; a hyphen reads as a minus next to numbers).
+      b.label = options.by == BreakdownBy::kSize ? fmt::format("{:.0f}\u2013{:.0f} px²", b.low, b.high)
+                                                  : fmt::format("{:.2f}\u2013{:.2f}", b.low, b.high);
       out.bins.push_back(b);
     }
     if (options.by == BreakdownBy::kConfidence) out.bins.push_back({"no detection", kNaN, kNaN, {}, 0, 0});
