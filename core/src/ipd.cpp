@@ -129,6 +129,29 @@ SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, co
                             performance_values(gt_a, pred_a).value, performance_values(gt_b, pred_b).value);
 }
 
+TableCell make_table_cell(const ModelInfo& model, const std::string& a, const std::string& b) {
+  TableCell cell;
+  cell.model = model.name;
+  cell.trained_on = model.trained_on;
+  cell.a = a;
+  cell.b = b;
+  cell.involves_training_domain = model.trained_on.empty() || model.trained_on == a || model.trained_on == b;
+  return cell;
+}
+
+void total_table_cell(TableCell& cell) {
+  double sum = 0;
+  cell.pairs = cell.unpaired_a = cell.unpaired_b = 0;
+  for (const SceneIpd& s : cell.per_scene) {
+    sum += s.sum_abs_diff;
+    cell.pairs += s.pairs;
+    cell.unpaired_a += s.unpaired_a;
+    cell.unpaired_b += s.unpaired_b;
+  }
+  cell.scenes = static_cast<int>(cell.per_scene.size());
+  cell.ipd = cell.pairs > 0 ? sum / static_cast<double>(cell.pairs) : std::nan("");
+}
+
 const TableCell* CrossTable::cell(const std::string& model, const std::string& a, const std::string& b) const {
   for (const auto& c : cells)
     if (c.model == model && ((c.a == a && c.b == b) || (c.a == b && c.b == a))) return &c;
@@ -222,12 +245,7 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
   for (const auto& model : t.models) {
     for (size_t c = 0; c < t.columns.size(); ++c) {
       const auto& [a, b] = t.columns[c];
-      TableCell cell;
-      cell.model = model.name;
-      cell.trained_on = model.trained_on;
-      cell.a = a;
-      cell.b = b;
-      cell.involves_training_domain = model.trained_on.empty() || model.trained_on == a || model.trained_on == b;
+      TableCell cell = make_table_cell(model, a, b);
       for (const auto& d : {a, b}) {
         if (labels.has_predictions(d, model.name)) continue;
         cell.missing_predictions = true;
@@ -236,24 +254,14 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
                                            model.name, d,
                                            (fs::path(study.root) / d / "predictions" / model.name).string()));
       }
-      if (!cell.missing_predictions) {
-        double sum = 0;
-        for (const auto& j : jobs) {
-          if (j.column != c) continue;
-          SceneIpd s = scene_ipd(j.result, labels.gt_of(a, j.stem).boxes,
-                                 labels.predictions_of(a, model.name, j.stem).boxes, labels.gt_of(b, j.stem).boxes,
-                                 labels.predictions_of(b, model.name, j.stem).boxes);
-          sum += s.sum_abs_diff;
-          cell.pairs += s.pairs;
-          cell.unpaired_a += s.unpaired_a;
-          cell.unpaired_b += s.unpaired_b;
-          ++cell.scenes;
-          cell.per_scene.push_back(std::move(s));
-        }
-        cell.ipd = cell.pairs > 0 ? sum / static_cast<double>(cell.pairs) : std::nan("");
-      } else {
-        cell.ipd = std::nan("");
-      }
+      if (!cell.missing_predictions)
+        for (const auto& j : jobs)
+          if (j.column == c)
+            cell.per_scene.push_back(scene_ipd(j.result, labels.gt_of(a, j.stem).boxes,
+                                               labels.predictions_of(a, model.name, j.stem).boxes,
+                                               labels.gt_of(b, j.stem).boxes,
+                                               labels.predictions_of(b, model.name, j.stem).boxes));
+      total_table_cell(cell);
       t.cells.push_back(std::move(cell));
     }
   }

@@ -15,23 +15,10 @@ CrossTable session_table(const Session& s) {
   for (const auto& m : t.models) {
     for (size_t p = 0; p < t.columns.size(); ++p) {
       const auto& [a, b] = t.columns[p];
-      TableCell c;
-      c.model = m.name;
-      c.trained_on = m.trained_on;
-      c.a = a;
-      c.b = b;
-      c.involves_training_domain = m.trained_on.empty() || m.trained_on == a || m.trained_on == b;
+      TableCell c = make_table_cell(m, a, b);
       c.missing_predictions = !s.labels().has_predictions(a, m.name) || !s.labels().has_predictions(b, m.name);
       if (!c.missing_predictions) c.per_scene = s.contributions_for(m.name, static_cast<int>(p));
-      double sum = 0;
-      for (const auto& sc : c.per_scene) {
-        sum += sc.sum_abs_diff;
-        c.pairs += sc.pairs;
-        c.unpaired_a += sc.unpaired_a;
-        c.unpaired_b += sc.unpaired_b;
-      }
-      c.scenes = static_cast<int>(c.per_scene.size());
-      c.ipd = c.pairs > 0 ? sum / static_cast<double>(c.pairs) : std::nan("");
+      total_table_cell(c);
       t.cells.push_back(std::move(c));
     }
   }

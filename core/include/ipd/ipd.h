@@ -90,6 +90,11 @@ struct TableCell {
   std::vector<SceneIpd> per_scene;
 };
 
+// A cell for `model` on domains (a, b), numbers still empty; total_table_cell fills them from per_scene.
+TableCell make_table_cell(const ModelInfo& model, const std::string& a, const std::string& b);
+// Pairs, unpaired counts, scenes and the pooled IPD (Σ|diff| / pairs; NaN without pairs) from per_scene.
+void total_table_cell(TableCell& cell);
+
 struct CrossTable {
   std::vector<ModelInfo> models;
   std::vector<std::pair<std::string, std::string>> columns;  // domain pairs
