@@ -122,6 +122,14 @@ void StudyWorker::run() {
   }
 }
 
+// A session was just opened: the last re-run belongs to the old one, and the view gets a whole new snapshot.
+void StudyWorker::publish_new_session() {
+  rerun_.reset();
+  rerun_stem_.clear();
+  published_.reset();
+  publish(true);
+}
+
 void StudyWorker::publish(bool session_changed, int jump_to_scene) {
   auto snap = std::make_shared<Snapshot>();
   if (session_changed || !published_) {
@@ -177,10 +185,7 @@ void StudyWorker::execute(WorkerCommand& c) {
         first.first_scenes = kFirstLookScenes;
         first.progress = {};
         session_ = std::make_unique<Session>(Session::open(c.a, first));
-        rerun_.reset();
-        rerun_stem_.clear();
-        published_.reset();
-        publish(true);
+        publish_new_session();
         std::lock_guard<std::mutex> l(mu_);
         progress_.first_look = true;
       }
@@ -192,10 +197,7 @@ void StudyWorker::execute(WorkerCommand& c) {
       progress_.opening = false;
       throw;
     }
-    rerun_.reset();
-    rerun_stem_.clear();
-    published_.reset();
-    publish(true);
+    publish_new_session();
     std::lock_guard<std::mutex> l(mu_);
     progress_.opening = false;
     progress_.first_look = false;

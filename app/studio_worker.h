@@ -80,6 +80,7 @@ class StudyWorker {
   void run();
   void execute(WorkerCommand& c);
   void publish(bool session_changed, int jump_to_scene = -1);
+  void publish_new_session();
 
   mutable std::mutex mu_;
   std::condition_variable cv_;

@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "ipd/demo_study.h"
 #include "test_support.h"
 
 namespace ipd::test {
@@ -24,6 +25,15 @@ inline void write_figure_study(const TempDir& d, bool pictures) {
     std::filesystem::create_directories(d / (dom + "/images"));
     cv::imwrite(d / (dom + "/images/s1.png"), img);
   }
+}
+
+// The demo study's first three scenes, labels only (no pictures): Table I and the statistics figures of the
+// demo, quick to write.
+inline void write_small_demo_study(const TempDir& d) {
+  DemoStudyOptions demo;
+  demo.scenes = 3;
+  demo.labels_only = true;
+  write_demo_study(d.path(), demo);
 }
 
 }  // namespace ipd::test

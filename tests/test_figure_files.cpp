@@ -125,10 +125,7 @@ TEST(FigureFiles, NoWordsOverlapOnTheDemosBusiestScene) {
 // "[lo, hi]" stays on one line under its value, at 6 pt or more, and no words overlap.
 TEST(FigureFiles, TableIntervalsFitOnOneLineInASingleColumn) {
   test::TempDir d;
-  DemoStudyOptions demo;
-  demo.scenes = 3;
-  demo.labels_only = true;
-  write_demo_study(d.path(), demo);
+  test::write_small_demo_study(d);
   for (const std::string column : {"single", "double"}) {
     const std::string out = d / ("table_" + column + ".pdf");
     const auto r = test::run_ipd("figure table " + d.path() + " --ci 0.95 --column " + column + " --out " + out);

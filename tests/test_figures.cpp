@@ -132,10 +132,7 @@ TEST(Figures, ShortPairLinesStayVisibleInTheRegistrationFigure) {
 // rendering of the same figure's PDF (dark-pixel masks overlap by 0.64 for Δ; "?" gave 0.19).
 TEST(Figures, RasterFiguresDrawEveryCharacterOfTheirText) {
   test::TempDir d;
-  DemoStudyOptions demo;
-  demo.scenes = 3;
-  demo.labels_only = true;
-  write_demo_study(d.path(), demo);
+  test::write_small_demo_study(d);
   ASSERT_EQ(test::run_ipd("figure compare " + d.path() + " --dpi 288 --out " + d / "c.png").exit_code, 0);
   ASSERT_EQ(test::run_ipd("figure compare " + d.path() + " --out " + d / "c.pdf").exit_code, 0);
   ASSERT_EQ(test::run_command("pdftoppm -r 288 -png -singlefile '" + d / "c.pdf" + "' '" + d / "p" + "'").exit_code, 0);
