@@ -162,7 +162,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
                         r.trace.stop.c_str());
     ImGui::PopTextWrapPos();
     const ImVec2 c0 = ImGui::GetCursorScreenPos();
-    const ImVec2 csz{avail.x - 4, std::max(30.0f, std::min(curve_h, ImGui::GetContentRegionAvail().y - 2))};
+    const ImVec2 csz{avail.x - 4, std::max(30.0f, std::min(curve_h, ImGui::GetContentRegionAvail().y - 8))};  // a margin like the other sides
     ImGui::PlotLines("##best", best.data(), steps, 0, nullptr, FLT_MAX, FLT_MAX, csz);
     const float x = c0.x + csz.x * std::clamp(rp.position / steps, 0.0f, 1.0f);
     dl->AddLine({x, c0.y}, {x, c0.y + csz.y}, kHighlight, 1.5f);
