@@ -149,6 +149,35 @@ TEST(FigureFiles, TableIntervalsFitOnOneLineInASingleColumn) {
   }
 }
 
+// Every kind, single and double column: no word within 4 pt (kFigureMargin) of the page's edges, and the
+// title starts right at that margin on every kind (the same margin everywhere, not one per kind). The
+// demo has a picture-less scene here, so the pairs panels and the registration plots are drawn boxes.
+TEST(FigureFiles, EveryKindKeepsTheSameMarginFreeOfText) {
+  test::TempDir d;
+  test::write_small_demo_study(d);
+  const double margin = 4.0, hair = 0.05;  // poppler rounds word boxes
+  for (const std::string kind : {"pairs", "registration", "table", "compare", "distribution", "breakdown"})
+    for (const std::string column : {"single", "double"}) {
+      const std::string out = d / (kind + "_" + column + ".pdf");
+      const std::string layers = kind == "pairs" ? " --layers gt,pred,conf,indices,pairs,legend" : "";
+      const auto r = test::run_ipd("figure " + kind + " " + d.path() + " --column " + column + layers + " --out " + out);
+      ASSERT_EQ(r.exit_code, 0) << kind << " " << column << ": " << r.err;
+      const PdfText t = pdf_text(out);
+      ASSERT_FALSE(t.words.empty()) << kind << " " << column;
+      double left = t.width, top = t.height;
+      for (const Word& w : t.words) {
+        EXPECT_GE(w.x0, margin - hair) << kind << " " << column << ": '" << w.text << "' in the left margin";
+        EXPECT_LE(w.x1, t.width - margin + hair) << kind << " " << column << ": '" << w.text << "' in the right margin";
+        EXPECT_GE(w.y0, margin - hair) << kind << " " << column << ": '" << w.text << "' in the top margin";
+        EXPECT_LE(w.y1, t.height - margin + hair) << kind << " " << column << ": '" << w.text << "' in the bottom margin";
+        left = std::min(left, w.x0);
+        top = std::min(top, w.y0);
+      }
+      EXPECT_NEAR(left, margin, 0.1) << kind << " " << column;  // the title's first word
+      EXPECT_NEAR(top, margin, 0.1) << kind << " " << column;
+    }
+}
+
 TEST(FigureFiles, SvgIsXmlWithASizeAndTextAsText) {
   test::TempDir d;
   test::write_figure_study(d, true);

@@ -136,7 +136,8 @@ TEST(Figures, RasterFiguresDrawEveryCharacterOfTheirText) {
   ASSERT_EQ(test::run_ipd("figure compare " + d.path() + " --dpi 288 --out " + d / "c.png").exit_code, 0);
   ASSERT_EQ(test::run_ipd("figure compare " + d.path() + " --out " + d / "c.pdf").exit_code, 0);
   ASSERT_EQ(test::run_command("pdftoppm -r 288 -png -singlefile '" + d / "c.pdf" + "' '" + d / "p" + "'").exit_code, 0);
-  const cv::Rect first_glyph(0, 0, 30, 40);  // 7.5 x 10 pt at 4 px/pt: the title's first letter
+  // 8 x 11 pt at 4 px/pt from (3, 3) pt: the title's first letter, inside the 4 pt margin.
+  const cv::Rect first_glyph(12, 12, 32, 44);
   const cv::Mat a = cv::imread(d / "c.png", cv::IMREAD_GRAYSCALE)(first_glyph) < 128;
   const cv::Mat b = cv::imread(d / "p.png", cv::IMREAD_GRAYSCALE)(first_glyph) < 128;
   const double both = cv::countNonZero(a & b), either = cv::countNonZero(a | b);

@@ -26,22 +26,21 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
   return t;
 }
 
-namespace {
-
-constexpr double kMargin = 1.0;
-
-struct Axis {
-  double x0, x1, lo, hi;
-  double at(double v) const { return x0 + (v - lo) / (hi - lo) * (x1 - x0); }
-};
-
-// As many decimals as the step needs (0.025 -> 3, 0.5 -> 1, 20 -> 0).
 std::string tick_text(double v, double step) {
   int decimals = 0;
   while (decimals < 6 && std::abs(step * std::pow(10.0, decimals) - std::round(step * std::pow(10.0, decimals))) > 1e-6)
     ++decimals;
   return fmt::format("{:.{}f}", v, decimals);
 }
+
+namespace {
+
+constexpr double kMargin = kFigureMargin;
+
+struct Axis {
+  double x0, x1, lo, hi;
+  double at(double v) const { return x0 + (v - lo) / (hi - lo) * (x1 - x0); }
+};
 
 // Picks the axis range and ticks whose labels fit the plot width; draws axis, ticks and label; returns
 // the height used below `y`.
@@ -59,6 +58,10 @@ double draw_axis(Canvas& c, Axis& ax, double lo, double hi, double y_top, double
   ax.lo = std::min(lo, ticks.front());
   ax.hi = std::max(hi, ticks.back());
   const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1, lw = std::max(0.35, o.font_pt * 0.06);
+  // The end labels are centred on their ticks: keep their outer halves out of the page margin.
+  const double page_w = o.width_pt();
+  ax.x0 = std::max(ax.x0, kMargin + 0.5 * c.measure(tick, tick_text(ticks.front(), step)).x);
+  ax.x1 = std::min(ax.x1, page_w - kMargin - 0.5 * c.measure(tick, tick_text(ticks.back(), step)).x);
   for (double t : ticks) c.line({ax.at(t), y_top}, {ax.at(t), y}, rgb(225, 225, 225), lw);
   if (zero_line && ax.lo <= 0 && ax.hi >= 0) c.line({ax.at(0), y_top}, {ax.at(0), y}, kGrey, lw * 2);
   c.line({ax.x0, y}, {ax.x1, y}, kInk, lw);

@@ -37,5 +37,7 @@ void draw_distribution_chart(DisplayList& out, const DistributionChart& chart, c
 
 // "Nice" axis ticks (1, 2, 2.5, 5 x 10^k) covering [lo, hi], about `target` of them.
 std::vector<double> nice_ticks(double lo, double hi, int target);
+// A tick's text with as many decimals as the step needs (0.025 -> 3, 0.5 -> 1, 20 -> 0).
+std::string tick_text(double v, double step);
 
 }  // namespace ipd::ui

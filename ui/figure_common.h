@@ -13,6 +13,10 @@ constexpr Colour kInk = rgb(20, 20, 20), kGrey = rgb(110, 110, 110), kPinkC = rg
                  kRedC = rgb(235, 40, 40), kUnpairedC = rgb(160, 160, 160), kBlueC = rgb(40, 110, 230),
                  kGreenC = rgb(40, 160, 80), kBackdrop = rgb(0, 0, 0, 165), kWhite = rgb(255, 255, 255);
 
+// The blank border of every figure kind, on all four sides, in points: nothing is drawn inside it, so a
+// figure placed in a paper never has ink touching its edge.
+constexpr double kFigureMargin = 4.0;
+
 // Breaks `text` at spaces into lines no wider than `width` (a word longer than the width gets a line).
 std::vector<std::string> wrap(Canvas& c, const TextStyle& st, const std::string& text, double width);
 // Draws wrapped text from (x, y) down; returns the height used.

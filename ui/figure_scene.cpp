@@ -28,7 +28,7 @@ SceneNumbers scene_numbers(const SceneFigureInput& in) {
 
 namespace {
 
-constexpr double kMargin = 1.0;
+constexpr double kMargin = kFigureMargin;
 
 double aspect_of(const SceneFigureInput& in, const Crop& crop) {
   int w = in.image_w, h = in.image_h;

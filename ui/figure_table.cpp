@@ -38,7 +38,7 @@ double interval_pt(double cell_pt) { return std::max(kMinTextPt, 0.8 * cell_pt);
 
 void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptions& o) {
   o.validate();
-  const double W = o.width_pt(), m = 1.0, avail = W - 2 * m;
+  const double W = o.width_pt(), m = kFigureMargin, avail = W - 2 * m;
   const size_t cols = t.header.size();
   // The largest font (up to --font-pt) at which every column fits with its cells wrapped at spaces; columns
   // narrower than their longest cell share the shortfall in proportion.
