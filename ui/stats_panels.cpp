@@ -5,6 +5,9 @@
 #include <fmt/format.h>
 #include <imgui.h>
 
+#include "canvas_imgui.h"
+#include "stats_charts.h"
+
 namespace ipd::ui {
 
 namespace {
@@ -26,6 +29,7 @@ double round_step(double x) {
 
 const ImU32 kBar = IM_COL32(110, 160, 230, 255), kBarHot = IM_COL32(150, 200, 255, 255);
 const ImU32 kCurrent = IM_COL32(255, 215, 80, 255), kWhisker = IM_COL32(230, 230, 230, 255);
+constexpr double kLineToEm = 1.164;  // DejaVu Sans' line height over its em size (as ImGuiCanvas assumes)
 
 }  // namespace
 
@@ -110,6 +114,18 @@ void draw_compare(const StudyView& v, const SessionStatistics* stats, StatsPanel
   ImGui::PopTextWrapPos();
 }
 
+// The charts draw on the figure canvas in window pixels, text at the GUI font's size.
+TextStyle gui_text() { return {ImGui::GetFontSize() / kLineToEm, {}, false}; }
+
+Colour colour_of(ImU32 c) {
+  return rgb(int(c & 0xff), int((c >> 8) & 0xff), int((c >> 16) & 0xff), int((c >> 24) & 0xff));
+}
+
+ChartColours gui_colours() {
+  return {colour_of(kBar), colour_of(kBarHot), colour_of(kCurrent), rgb(150, 150, 150), colour_of(kWhisker),
+          colour_of(ImGui::GetColorU32(ImGuiCol_TextDisabled)), colour_of(ImGui::GetColorU32(ImGuiCol_Text))};
+}
+
 void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPanelState& st, UiState& ui) {
   ImGui::Text("Per-scene IPD, %s (click a bar: those scenes)", v.session->model().c_str());
   if (!stats || stats->scene_ipd.empty()) {
@@ -119,62 +135,65 @@ void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPan
   std::vector<double> values;
   for (const auto& [stem, val] : stats->scene_ipd) values.push_back(val);
   const HistogramBins h = histogram_bins(values, st.bins);
-  const int top = *std::max_element(h.counts.begin(), h.counts.end());
-  const float height = 70, full = ImGui::GetContentRegionAvail().x;
-  const float bar_w = std::max(4.0f, full / static_cast<float>(h.counts.size()) - 2);
-  // The current scene's bar is outlined.
-  double current = std::nan("");
-  if (!v.session->scenes().empty() && ui.scene < static_cast<int>(v.summaries->size())) current = (*v.summaries)[ui.scene].ipd;
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  for (size_t k = 0; k < h.counts.size(); ++k) {
-    if (k) ImGui::SameLine(0, 2);
-    const ImVec2 p0 = ImGui::GetCursorScreenPos();
-    ImGui::PushID(static_cast<int>(k));
-    const bool clicked = ImGui::InvisibleButton("bar", {bar_w, height});
-    ImGui::PopID();
-    const bool hot = ImGui::IsItemHovered();
-    const float bh = top > 0 ? height * h.counts[k] / top : 0;
-    dl->AddRectFilled({p0.x, p0.y + height - bh}, {p0.x + bar_w, p0.y + height}, hot ? kBarHot : kBar);
-    const double lo = h.start + k * h.width, hi = lo + h.width;
-    if (current >= lo && (current < hi || (k + 1 == h.counts.size() && current <= hi)))
-      dl->AddRect(p0, {p0.x + bar_w, p0.y + height}, kCurrent, 0, 0, 2);
-    const bool last = k + 1 == h.counts.size();
-    const std::string filter = fmt::format("ipd>={:g} ipd{}{:g}", lo, last ? "<=" : "<", hi);
-    if (hot) ImGui::SetTooltip("%d scene(s) with IPD in [%g, %g%s\nclick: show them in the scene list", h.counts[k],
-                               lo, hi, last ? "]" : ")");
+  HistogramInput in{h.start, h.width, h.counts, std::nan("")};
+  std::string current_stem;
+  if (!v.session->scenes().empty() && ui.scene < static_cast<int>(v.summaries->size())) {
+    in.current = (*v.summaries)[ui.scene].ipd;
+    current_stem = (*v.summaries)[ui.scene].stem;
+  }
+  const float line = ImGui::GetTextLineHeight();
+  const ImVec2 p0 = ImGui::GetCursorScreenPos(), size{ImGui::GetContentRegionAvail().x, 70 + 2 * line};
+  const bool clicked = ImGui::InvisibleButton("histogram", size);
+  ImGuiCanvas canvas(ImGui::GetWindowDrawList(), p0, 1, {});
+  const TextStyle text = gui_text();
+  const HistogramChart chart = layout_histogram(canvas, text, in, {0, 0, size.x, size.y});
+  int hot = -1;
+  if (ImGui::IsItemHovered()) {
+    const ImVec2 m = ImGui::GetMousePos();
+    for (size_t k = 0; k < chart.bars.size(); ++k) {
+      const PtRect& s = chart.bars[k].slot;
+      if (m.x - p0.x >= s.x0 && m.x - p0.x < s.x1 && m.y - p0.y >= s.y0 && m.y - p0.y <= s.y1) hot = static_cast<int>(k);
+    }
+  }
+  draw_histogram(canvas, text, chart, gui_colours(), hot);
+  if (hot >= 0) {
+    const HistogramBar& b = chart.bars[hot];
+    const bool last = hot + 1 == static_cast<int>(chart.bars.size());
+    ImGui::SetTooltip("%d scene(s) with IPD in [%g, %g%s\nclick: show them in the scene list", b.count, b.lo, b.hi,
+                      last ? "]" : ")");
+    const std::string filter = fmt::format("ipd>={:g} ipd{}{:g}", b.lo, last ? "<=" : "<", b.hi);
     if (clicked && filter.size() < sizeof ui.filter) std::snprintf(ui.filter, sizeof ui.filter, "%s", filter.c_str());
   }
-  ImGui::TextDisabled("%g .. %g, %zu scenes", h.start, h.start + h.width * h.counts.size(), values.size());
+  if (current_stem.empty() || std::isnan(in.current))
+    ImGui::TextDisabled("%zu scene%s", values.size(), values.size() == 1 ? "" : "s");
+  else
+    ImGui::TextDisabled("%zu scene%s; outlined: the bin of %s", values.size(), values.size() == 1 ? "" : "s",
+                        current_stem.c_str());
 }
 
 void draw_size_breakdown(const SessionStatistics* stats) {
   if (!stats || !stats->size) return;
   const CellBreakdown& b = *stats->size;
   ImGui::Text("IPD by %s rock size (px²)", b.a.c_str());
-  double top = 0;
-  for (const auto& bin : b.bins)
-    top = std::max({top, std::isnan(bin.ipd.high) ? 0.0 : bin.ipd.high, std::isnan(bin.ipd.estimate) ? 0.0 : bin.ipd.estimate});
-  if (top <= 0) top = 1;
-  ImDrawList* dl = ImGui::GetWindowDrawList();
-  const float label_w = 120, width = std::max(40.0f, ImGui::GetContentRegionAvail().x - label_w - 8);
-  const float row = ImGui::GetTextLineHeight();
-  for (const auto& bin : b.bins) {
-    ImGui::TextUnformatted(bin.label.c_str());
-    ImGui::SameLine(label_w);
-    const ImVec2 p0 = ImGui::GetCursorScreenPos();
-    ImGui::Dummy({width, row});
-    if (ImGui::IsItemHovered())
-      ImGui::SetTooltip("%s: IPD %s\n%ld pairs in %d scenes", bin.label.c_str(),
-                        interval(bin.ipd.estimate, bin.ipd.low, bin.ipd.high).c_str(), bin.pairs, bin.scenes);
-    if (std::isnan(bin.ipd.estimate)) continue;
-    auto x = [&](double val) { return p0.x + static_cast<float>(val / top) * width; };
-    dl->AddRectFilled({p0.x, p0.y + 2}, {x(bin.ipd.estimate), p0.y + row - 2}, kBar);
-    if (bin.ipd.has_interval()) {
-      const float ym = p0.y + row * 0.5f;
-      dl->AddLine({x(bin.ipd.low), ym}, {x(bin.ipd.high), ym}, kWhisker, 1.5f);
-      dl->AddLine({x(bin.ipd.low), ym - 3}, {x(bin.ipd.low), ym + 3}, kWhisker, 1.5f);
-      dl->AddLine({x(bin.ipd.high), ym - 3}, {x(bin.ipd.high), ym + 3}, kWhisker, 1.5f);
-    }
+  std::vector<ValueBarRow> rows;
+  for (const auto& bin : b.bins) rows.push_back({bin.label, bin.ipd.estimate, bin.ipd.low, bin.ipd.high});
+  const TextStyle text = gui_text();
+  const ImVec2 p0 = ImGui::GetCursorScreenPos();
+  ImGuiCanvas canvas(ImGui::GetWindowDrawList(), p0, 1, {});
+  const ImVec2 size{ImGui::GetContentRegionAvail().x, static_cast<float>(value_bars_height(canvas, text, rows.size()))};
+  ImGui::InvisibleButton("size bars", size);
+  const ValueBarsChart chart = layout_value_bars(canvas, text, rows, {0, 0, size.x - 2, size.y});
+  int hot = -1;
+  if (ImGui::IsItemHovered()) {
+    const ImVec2 m = ImGui::GetMousePos();
+    for (size_t i = 0; i < chart.rows.size(); ++i)
+      if (m.y - p0.y >= chart.rows[i].band.y0 && m.y - p0.y < chart.rows[i].band.y1) hot = static_cast<int>(i);
+  }
+  draw_value_bars(canvas, text, chart, rows, gui_colours(), hot);
+  if (hot >= 0) {
+    const BreakdownBin& bin = b.bins[hot];
+    ImGui::SetTooltip("%s: IPD %s\n%ld pairs in %d scenes", bin.label.c_str(),
+                      interval(bin.ipd.estimate, bin.ipd.low, bin.ipd.high).c_str(), bin.pairs, bin.scenes);
   }
 }
 

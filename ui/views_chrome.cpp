@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "stats_panels.h"
+#include "table_layout.h"
 #include "views.h"
 
 namespace ipd::ui {
@@ -243,9 +244,25 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
   ImGui::Separator();
   ImGui::TextUnformatted("Cross table (lower is better)");
   const auto& pairs = s.domain_pairs();
+  // Sized to its rows (two header rows, one per model): a fixed height left blank rows below them.
+  auto model_label = [](const ModelInfo& m) {
+    // "det-real (real)" says the training domain twice; the name alone when it already holds it.
+    const bool named = m.trained_on.empty() || m.name.find(m.trained_on) != std::string::npos;
+    return named ? m.name : m.name + " (" + m.trained_on + ")";
+  };
+  std::vector<float> widths(pairs.size() + 1, ImGui::CalcTextSize("train \\ eval").x);
+  for (const auto& m : s.study().models) widths[0] = std::max(widths[0], ImGui::CalcTextSize(model_label(m).c_str()).x);
+  for (size_t p = 0; p < pairs.size(); ++p)
+    widths[p + 1] = std::max({ImGui::CalcTextSize(pairs[p].first.c_str()).x,
+                              ImGui::CalcTextSize(("- " + pairs[p].second).c_str()).x, ImGui::CalcTextSize("0.0000").x});
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const TableSize size = cross_table_size(
+      widths, static_cast<int>(s.study().models.size()) + 2, ImGui::GetContentRegionAvail().x,
+      {ImGui::GetTextLineHeight(), style.CellPadding.x, style.CellPadding.y, 1, style.ScrollbarSize});
   if (ImGui::BeginTable("cross", static_cast<int>(pairs.size()) + 1,
-                        ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit | ImGuiTableFlags_ScrollX,
-                        ImVec2(0, ImGui::GetTextLineHeightWithSpacing() * (s.study().models.size() + 3.5f)))) {
+                        ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit |
+                            (size.scroll_x ? ImGuiTableFlags_ScrollX : ImGuiTableFlags_None),
+                        ImVec2(0, size.scroll_x ? size.height : 0))) {
     // Headers on two rows ("real" over "- principled"): a column is as wide as its longer domain name, not both
     // names, so three domain pairs fit the side panel at 1600 px.
     ImGui::TableSetupColumn("train \\ eval");
@@ -264,9 +281,7 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
     for (const auto& m : s.study().models) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      // "det-real (real)" says the training domain twice; the name alone when it already holds it.
-      const bool named = m.trained_on.empty() || m.name.find(m.trained_on) != std::string::npos;
-      ImGui::TextUnformatted(named ? m.name.c_str() : (m.name + " (" + m.trained_on + ")").c_str());
+      ImGui::TextUnformatted(model_label(m).c_str());
       if (!m.trained_on.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("trained on %s", m.trained_on.c_str());
       for (size_t p = 0; p < pairs.size(); ++p) {
         ImGui::TableNextColumn();
