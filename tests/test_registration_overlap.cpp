@@ -24,7 +24,9 @@ struct SmallOverlap {
 
 bool inside_picture(const Eigen::Vector2d& p) { return p.x() > 0 && p.y() > 0 && p.x() < 1 && p.y() < 1; }
 
-SmallOverlap small_overlap(unsigned seed, int shared = 3) {
+// `collinear`: the shared rocks lie on one line across the corner (within 0.2% of the width), so any triple of
+// them is too flat to give an affine.
+SmallOverlap small_overlap(unsigned seed, int shared = 3, bool collinear = false, int rocks = 15) {
   std::mt19937 g(seed);
   auto u = [&](double lo, double hi) { return lo + (hi - lo) * (g() / 4294967296.0); };
   auto separated = [&](const std::vector<Eigen::Vector2d>& taken, double lo, double hi) {
@@ -38,8 +40,10 @@ SmallOverlap small_overlap(unsigned seed, int shared = 3) {
   SmallOverlap s;
   // A: three rocks in its top-right corner, twelve elsewhere.
   std::vector<Eigen::Vector2d> where;
+  if (collinear)
+    for (int i = 0; i < shared; ++i) where.emplace_back(0.64 + 0.3 * i / (shared - 1), 0.66 + u(-0.002, 0.002));
   while (static_cast<int>(where.size()) < shared) where.push_back(separated(where, 0.62, 0.97));
-  while (where.size() < 15) where.push_back(separated(where, 0.03, 0.55));
+  while (static_cast<int>(where.size()) < rocks) where.push_back(separated(where, 0.03, 0.55));
   const double r = 25 * M_PI / 180;
   Eigen::Matrix2d rot, shear, scale;
   rot << std::cos(r), -std::sin(r), std::sin(r), std::cos(r);
@@ -60,13 +64,16 @@ SmallOverlap small_overlap(unsigned seed, int shared = 3) {
   for (const auto& x : s.a) taken.push_back(apply(s.b_from_a, x.centre()));
   for (int i = 0; i < shared; ++i) {
     Box y = transform_box(s.b_from_a, s.a[i]);
-    y.cx += u(-0.001, 0.001), y.cy += u(-0.001, 0.001);
+    // Re-labelled: 0.1% of the width; 0.4% on a line, as the benchmark's noise, which is what makes a flat
+    // triple's affine unreliable across the line.
+    const double noise = collinear ? 0.004 : 0.001;
+    y.cx += u(-noise, noise), y.cy += u(-noise, noise);
     s.truth.emplace_back(i, static_cast<int>(s.b.size()));
     s.b.push_back(y);
   }
   Affine2 a_from_b;
   invert(s.b_from_a, &a_from_b);
-  while (s.b.size() < 15) {
+  while (static_cast<int>(s.b.size()) < rocks) {
     const Eigen::Vector2d p = separated(taken, 0.03, 0.97);
     if (inside_picture(apply(a_from_b, p))) continue;  // A would have seen it
     taken.push_back(p);
@@ -99,24 +106,39 @@ void expect_recovered(int shared) {
 
 TEST(SmallOverlap, FourTruePairsAmongFifteenRocksAt25Degrees) { expect_recovered(4); }
 
-// The case. NOT MET: with three shared rocks a wrong alignment of four or five rocks of similar size
-// outscores the true one (3 of these 10 seeds are recovered); what the consensus reports instead is below.
-TEST(SmallOverlap, DISABLED_ThreeTruePairsAmongFifteenRocksAt25Degrees) { expect_recovered(3); }
+// The case: three shared rocks, far apart in A with other rocks between them, so no neighbourhood
+// triple holds them; the second look (every pair of rocks on each side) proposes them.
+TEST(SmallOverlap, ThreeTruePairsAmongFifteenRocksAt25Degrees) { expect_recovered(3); }
 
-// What it does with three: recovered, or (mostly) flagged ambiguous. Counted, so a change either way shows.
-TEST(SmallOverlap, ThreeTruePairsAreRecoveredOrMostlyFlagged) {
-  int recovered = 0, flagged_wrong = 0, confident_wrong = 0;
+// Three shared rocks on a line: no affine comes from them, the similarity along the line does, and the
+// pairing only needs the line. Pairs exact in all 10 seeds (a wrong answer would have to say so), the shared
+// rocks' images within 1.5% of the width: B's labels move by up to 0.57%, and a fit to three points on a line
+// carries that to its ends.
+TEST(SmallOverlap, ThreeCollinearTruePairsAmongFifteenRocks) {
+  int recovered = 0;
   for (unsigned seed = 1; seed <= 10; ++seed) {
-    const SmallOverlap s = small_overlap(seed, 3);
+    const SmallOverlap s = small_overlap(seed, 3, true);
     const RegistrationReport r = register_rocks(s.a, s.b, {});
-    if (r.pairs == s.truth) ++recovered;
-    else if (r.ambiguous) ++flagged_wrong;
-    else ++confident_wrong;
+    if (r.pairs != s.truth) {
+      EXPECT_TRUE(r.ambiguous) << "seed " << seed << ": a wrong pairing, confidence " << r.confidence;
+      continue;
+    }
+    ++recovered;
+    for (int i = 0; i < 3; ++i)
+      EXPECT_LT((apply(r.affine, s.a[i].centre()) - apply(s.b_from_a, s.a[i].centre())).norm(), 0.015)
+          << "seed " << seed << " rock " << i;
   }
-  // Comparing width and height apart (not just the area) turned 1 / 7 / 2 into 3 / 7 / 0.
-  EXPECT_EQ(recovered, 3);
-  EXPECT_EQ(flagged_wrong, 7);
-  EXPECT_EQ(confident_wrong, 0);
+  EXPECT_EQ(recovered, 10);
+}
+
+// Five shared rocks on a line among 22 a side: too many rocks for the second look, so the guided search must
+// find them, and every triple it can draw from them is flat: the similarity along the line is what it tries.
+TEST(SmallOverlap, FiveCollinearTruePairsAmongTwentyTwoRocks) {
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const SmallOverlap s = small_overlap(seed, 5, true, 22);
+    const RegistrationReport r = register_rocks(s.a, s.b, {});
+    EXPECT_EQ(r.pairs, s.truth) << "seed " << seed;
+  }
 }
 
 // Rocks of equal area but other shapes are different rocks. B: two rows of five rocks 0.15 apart; the

@@ -56,6 +56,27 @@ bool affine_least_squares_trimmed(const std::vector<Eigen::Vector2d>& src, const
   return true;
 }
 
+bool similarity_least_squares(const Eigen::Vector2d* src, const Eigen::Vector2d* dst, size_t n, Affine2* out) {
+  if (n < 2) return false;
+  Eigen::Vector2d ms = Eigen::Vector2d::Zero(), md = Eigen::Vector2d::Zero();
+  for (size_t k = 0; k < n; ++k) ms += src[k], md += dst[k];
+  ms /= static_cast<double>(n);
+  md /= static_cast<double>(n);
+  double c = 0, s = 0, norm = 0;  // the map is [c -s; s c] / norm
+  for (size_t k = 0; k < n; ++k) {
+    const Eigen::Vector2d p = src[k] - ms, q = dst[k] - md;
+    c += p.dot(q);
+    s += p.x() * q.y() - p.y() * q.x();
+    norm += p.squaredNorm();
+  }
+  if (!(norm > 0)) return false;
+  Eigen::Matrix2d lin;
+  lin << c / norm, -s / norm, s / norm, c / norm;
+  out->leftCols<2>() = lin;
+  out->col(2) = md - lin * ms;
+  return out->allFinite();
+}
+
 bool affine_weighted_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
                                    const std::vector<double>& w, Affine2* out) {
   const size_t n = src.size();

@@ -126,18 +126,7 @@ class ConsensusScorer {
   // Least squares on the inliers, first with a wide gate (a triple's affine extrapolates poorly far from
   // it) then the scoring gate, kept while the score improves (LO-RANSAC).
   void refine(Affine2* m, double* s) {
-    std::vector<Eigen::Vector2d> src, dst;
-    static constexpr double kGateScale[] = {9.0, 4.0, 1.0, 1.0, 1.0};
-    for (double scale : kGateScale) {
-      inlier_pairs(*m, scale * gate2_, &src, &dst);
-      Affine2 cand;
-      if (src.size() < 3 || !affine_least_squares(src, dst, &cand)) continue;
-      const double cs = score(cand);
-      if (cs > *s + 1e-9) {
-        *m = cand;
-        *s = cs;
-      }
-    }
+    improve(m, s);
     if (has_best_ && agrees_with_best(*m)) {
       confirm();
     } else if (*s > best_refined_score_) {  // a new, different best: start counting confirmations again
@@ -153,6 +142,22 @@ class ConsensusScorer {
                        binomial_tail(static_cast<int>(a_.size()) - 3, chance_, best_count_ - 3) * budget_ < kChanceLevel;
       if (std::find(best_anchors_.begin(), best_anchors_.end(), *anchor_) == best_anchors_.end())
         best_anchors_.push_back(*anchor_);
+    }
+  }
+
+  // The least-squares steps of refine() alone, without the search's bookkeeping (the second look uses it).
+  void improve(Affine2* m, double* s) {
+    std::vector<Eigen::Vector2d> src, dst;
+    static constexpr double kGateScale[] = {9.0, 4.0, 1.0, 1.0, 1.0};
+    for (double scale : kGateScale) {
+      inlier_pairs(*m, scale * gate2_, &src, &dst);
+      Affine2 cand;
+      if (src.size() < 3 || !affine_least_squares(src, dst, &cand)) continue;
+      const double cs = score(cand);
+      if (cs > *s + 1e-9) {
+        *m = cand;
+        *s = cs;
+      }
     }
   }
 

@@ -20,8 +20,9 @@ namespace ipd {
 namespace {
 
 // Bump when the entry layout or any registration method changes its results: 4 after the consensus changes
-// d3f1512, 5270185, 1e663dd and 4eeddd8 (entries of format 3 held their predecessors' answers).
-constexpr int kFormat = 4;
+// d3f1512, 5270185, 1e663dd and 4eeddd8 (entries of format 3 held their predecessors' answers); 5 for flat
+// triples proposing similarities and the second look.
+constexpr int kFormat = 5;
 
 struct Fnv {
   std::uint64_t h;

@@ -28,6 +28,10 @@ bool affine_least_squares(const std::vector<Eigen::Vector2d>& src, const std::ve
 bool affine_least_squares_trimmed(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
                                   Affine2* out);
 
+// Least-squares similarity (rotation, uniform scale, translation) over n >= 2 correspondences: what a nearly
+// collinear set still determines, where an affine would be free across the line. False when src is one point.
+bool similarity_least_squares(const Eigen::Vector2d* src, const Eigen::Vector2d* dst, size_t n, Affine2* out);
+
 // Weighted least squares (weights >= 0, at least three positive); used for robust (IRLS) refinement.
 bool affine_weighted_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
                                    const std::vector<double>& weights, Affine2* out);
