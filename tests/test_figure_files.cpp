@@ -178,6 +178,24 @@ TEST(FigureFiles, EveryKindKeepsTheSameMarginFreeOfText) {
     }
 }
 
+// A prediction inside another (both red): no spot beside the inner one reads as its own, so its confidence
+// is left out and the footnote says so; the outer one's and the other picture's stay.
+TEST(FigureFiles, ConfidenceLabelsThatCannotBeOwnedAreLeftOutAndCounted) {
+  test::TempDir d;
+  test::write_figure_study(d, false);
+  test::write_text(d / "real/predictions/det/s1.txt", "0 0.30 0.40 0.30 0.35 0.87\n0 0.30 0.40 0.06 0.06 0.55\n");
+  const std::string out = d / "nested.pdf";
+  const auto r = test::run_ipd("figure pairs " + d.path() + " --column double --layers gt,pred,conf,indices,pairs,legend --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const PdfText t = pdf_text(out);
+  EXPECT_TRUE(has_word(t, "0.87")) << t.all();
+  EXPECT_TRUE(has_word(t, "0.93")) << t.all();
+  EXPECT_FALSE(has_word(t, "0.55")) << t.all();
+  EXPECT_NE(t.all().find("1 confidence label left out: no free spot clearly beside its own box (try --crop)"),
+            std::string::npos) << t.all();
+  EXPECT_EQ(t.all().find("labels left out: no room"), std::string::npos) << t.all();
+}
+
 TEST(FigureFiles, SvgIsXmlWithASizeAndTextAsText) {
   test::TempDir d;
   test::write_figure_study(d, true);

@@ -79,6 +79,45 @@ TEST(LabelPlacer, LeftOutAndCountedWhenNothingFits) {
   EXPECT_GE(p.left_out, 1);
 }
 
+// A's label would sit above A's left corner, 1.5 pt from B's corner: which box it names is unclear. As an
+// exclusive label it keeps 2 pt from B (hypot(1.5, 0.5) = 1.58 < 2 above-left and below-left) and takes
+// the next spot, above A's right corner.
+TEST(LabelPlacer, ExclusiveLabelKeepsClearOfTheOtherExclusiveTargets) {
+  auto o = page(200, 200);
+  o.gap = 0.5;
+  o.exclusive_clearance = 2;
+  const LabelRect a{110, 110, 130, 130}, b{98, 110, 108.5, 130};
+  auto p = place_labels({{a, 10, 5}, {b, 10, 5}}, o);
+  EXPECT_EQ(p.labels[0].position, LabelPosition::kAbove);
+  EXPECT_DOUBLE_EQ(p.labels[0].box.x0, 110);  // plain labels: the first spot, next to B
+  p = place_labels({{a, 10, 5, true}, {b, 10, 5, true}}, o);
+  EXPECT_EQ(p.labels[0].position, LabelPosition::kAbove);
+  EXPECT_DOUBLE_EQ(p.labels[0].box.x0, 120);
+  EXPECT_DOUBLE_EQ(p.labels[0].box.y1, 109.5);
+  EXPECT_EQ(p.left_out_exclusive, 0);
+}
+
+// A box inside another of the same kind: every spot beside the inner one lies in the outer one, and any
+// leader out crosses its edge, so the inner label is left out (and counted) instead of read as the outer's.
+TEST(LabelPlacer, ExclusiveLabelIsLeftOutWhenNoSpotIsUnambiguous) {
+  auto o = page(40, 40);
+  o.gap = 0.5;
+  o.exclusive_clearance = 2;
+  const LabelRect outer{0, 0, 40, 40}, inner{10, 10, 30, 30};
+  auto p = place_labels({{outer, 8, 5, true}, {inner, 8, 5, true}}, o);
+  EXPECT_TRUE(p.labels[0].shown());
+  EXPECT_EQ(p.labels[1].position, LabelPosition::kLeftOut);
+  EXPECT_EQ(p.left_out, 1);
+  EXPECT_EQ(p.left_out_exclusive, 1);
+  p = place_labels({{outer, 8, 5}, {inner, 8, 5}}, o);  // plain labels: both placed
+  EXPECT_TRUE(p.labels[1].shown());
+  EXPECT_EQ(p.left_out_exclusive, 0);
+  // A plain target overlapping the inner box is the same rock: it does not block the inner label.
+  o.bounds = {-50, -50, 90, 90};
+  p = place_labels({{inner, 8, 5, true}, {{12, 12, 32, 32}, 8, 5}}, o);
+  EXPECT_EQ(p.labels[0].position, LabelPosition::kAbove);
+}
+
 TEST(LabelPlacer, NoTwoLabelsOverlapInACrowd) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0, 240);

@@ -57,19 +57,21 @@ double draw_legend(Canvas& c, Pt at, double width, const TextStyle& st, const st
 }
 
 int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bounds, const std::vector<PtRect>& taken,
-                bool backdrop) {
+                bool backdrop, int* left_out_exclusive) {
   std::vector<LabelRequest> req;
   const double pad = 0.6;  // backdrop margin around the text
   for (const Label& l : labels) {
     const Pt m = c.measure(l.style, l.text);
-    req.push_back({{l.target.x0, l.target.y0, l.target.x1, l.target.y1}, m.x + 2 * pad, m.y});
+    req.push_back({{l.target.x0, l.target.y0, l.target.x1, l.target.y1}, m.x + 2 * pad, m.y, l.exclusive});
   }
   LabelPlacementOptions o;
   o.bounds = {bounds.x0, bounds.y0, bounds.x1, bounds.y1};
   for (const PtRect& t : taken) o.taken.push_back({t.x0, t.y0, t.x1, t.y1});
   o.gap = 0.5;
   o.max_leader = 3;
+  o.exclusive_clearance = kExclusiveClearancePt;
   const LabelPlacement p = place_labels(req, o);
+  if (left_out_exclusive) *left_out_exclusive = p.left_out_exclusive;
   for (size_t i = 0; i < labels.size(); ++i) {
     const PlacedLabel& pl = p.labels[i];
     if (!pl.shown()) continue;

@@ -36,11 +36,15 @@ struct Label {
   std::string text;
   TextStyle style;
   PtRect target;
+  bool exclusive = false;  // must read as its own target's among the exclusive ones (LabelRequest::exclusive)
 };
 // Places labels inside `bounds` avoiding each other and `taken`; draws them (on a dark backdrop, leaders
-// in the label's colour) and returns how many were left out.
+// in the label's colour) and returns how many were left out; `left_out_exclusive` (optional): how many of
+// those were exclusive labels with no unambiguous spot.
 int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bounds, const std::vector<PtRect>& taken,
-                bool backdrop);
+                bool backdrop, int* left_out_exclusive = nullptr);
+// The clearance an exclusive label keeps from the other exclusive targets, in points.
+constexpr double kExclusiveClearancePt = 2.0;
 
 // "3 labels left out (no room at this size)"-style footnote; returns the height used (0 when none).
 double draw_footnote(Canvas& c, Pt at, double width, double font_pt, int left_out);

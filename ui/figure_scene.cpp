@@ -76,10 +76,11 @@ std::string title_of(const SceneFigureInput& in, const SceneNumbers& n) {
                      in.pairs_fixed ? ", pairs fixed by hand" : "");
 }
 
-// One side of Fig. 1: picture, boxes, then labels placed without collisions. Returns labels left out.
+// One side of Fig. 1: picture, boxes, then labels placed without collisions. Returns labels left out;
+// adds to `ambiguous` the confidences among them left out for want of a spot that reads as their box's.
 int draw_side(Canvas& c, const PanelMap& m, const cv::Mat& picture, const std::string& problem,
               const std::vector<Box>& gt, const std::vector<Box>& pred, const std::vector<int>& number,
-              const std::vector<int>& excluded, const FigureOptions& o) {
+              const std::vector<int>& excluded, const FigureOptions& o, int& ambiguous) {
   const FigureLayers& L = o.layers;
   const PtRect& P = m.panel;
   if (picture.empty()) {
@@ -134,9 +135,13 @@ int draw_side(Canvas& c, const PanelMap& m, const cv::Mat& picture, const std::s
     for (size_t k = 0; k < pred.size(); ++k) order[k] = k;
     std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return pred[x].conf > pred[y].conf; });
     for (size_t k : order)
-      if (m.box(pred[k], r)) labels.push_back({fmt::format("{:.2f}", pred[k].conf), style(o.font_pt * 0.85, kRedC), r});
+      // Exclusive: next to (or led to) its own box and clear of every other prediction box, else left out.
+      if (m.box(pred[k], r)) labels.push_back({fmt::format("{:.2f}", pred[k].conf), style(o.font_pt * 0.85, kRedC), r, true});
   }
-  return draw_labels(c, labels, P, {}, true);
+  int exclusive = 0;
+  const int left_out = draw_labels(c, labels, P, {}, true, &exclusive);
+  ambiguous += exclusive;
+  return left_out;
 }
 
 double draw_title(Canvas& c, const std::string& title, const FigureOptions& o) {
@@ -160,8 +165,9 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
   // The GUI's numbers (a pair is named by its left rock), so a figure and the screen agree.
   const std::vector<int> num_a = pair_numbers(in.pairs, in.gt_a.size(), true);
   const std::vector<int> num_b = pair_numbers(in.pairs, in.gt_b.size(), false);
-  int left_out = draw_side(out, left, in.picture_a, in.problem_a, in.gt_a, in.pred_a, num_a, in.excluded_a, o);
-  left_out += draw_side(out, right, in.picture_b, in.problem_b, in.gt_b, in.pred_b, num_b, in.excluded_b, o);
+  int ambiguous = 0;
+  int left_out = draw_side(out, left, in.picture_a, in.problem_a, in.gt_a, in.pred_a, num_a, in.excluded_a, o, ambiguous);
+  left_out += draw_side(out, right, in.picture_b, in.problem_b, in.gt_b, in.pred_b, num_b, in.excluded_b, o, ambiguous);
   y += ph + 0.35 * F;
   if (o.layers.legend) {
     std::vector<LegendItem> items;
@@ -173,7 +179,13 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
     if (o.layers.pred) items.push_back({Swatch::kBox, kRedC, o.layers.conf ? "prediction (confidence)" : "prediction"});
     y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items) + 0.2 * F;
   }
-  y += draw_footnote(out, {kMargin, y}, W - 2 * kMargin, F, left_out);
+  y += draw_footnote(out, {kMargin, y}, W - 2 * kMargin, F, left_out - ambiguous);
+  if (ambiguous > 0)
+    y += draw_wrapped(out, {kMargin, y}, style(F * 0.8, kGrey),
+                      fmt::format("{} confidence label{} left out: no free spot clearly beside {} own box (try "
+                                  "--crop)",
+                                  ambiguous, ambiguous == 1 ? "" : "s", ambiguous == 1 ? "its" : "their"),
+                      W - 2 * kMargin);
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);
   return {left.panel, right.panel};

@@ -15,6 +15,7 @@ void LabelPlacementOptions::validate() const {
     throw std::invalid_argument("label placement: the bounds are empty");
   if (!(gap >= 0)) throw std::invalid_argument("label placement: gap must be >= 0");
   if (!(max_leader >= 0)) throw std::invalid_argument("label placement: max_leader must be >= 0");
+  if (!(exclusive_clearance >= 0)) throw std::invalid_argument("label placement: exclusive_clearance must be >= 0");
 }
 
 namespace {
@@ -48,6 +49,12 @@ bool segment_hits(double px, double py, double qx, double qy, const LabelRect& r
   return true;
 }
 
+// The gap between two rectangles (0 when they touch or overlap).
+double distance(const LabelRect& a, const LabelRect& b) {
+  const double dx = std::max({0.0, a.x0 - b.x1, b.x0 - a.x1}), dy = std::max({0.0, a.y0 - b.y1, b.y0 - a.y1});
+  return std::hypot(dx, dy);
+}
+
 // The point of `r` nearest to (x, y).
 void nearest(const LabelRect& r, double x, double y, double& nx, double& ny) {
   nx = std::clamp(x, r.x0, r.x1);
@@ -76,6 +83,31 @@ LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const Lab
       if (k != self) a += overlap_area(r, requests[k].target);
     return a;
   };
+  // An exclusive label's spot must keep clear of the other exclusive targets (and its leader cross none).
+  // Nor does it cover another target that is not on its own (a label over another rock reads as that
+  // rock's; over the GT box its own prediction overlaps, it still names the same rock).
+  auto unambiguous = [&](const LabelRect& box, size_t self) {
+    if (!requests[self].exclusive) return true;
+    const LabelRect& own = requests[self].target;
+    for (size_t k = 0; k < requests.size(); ++k) {
+      if (k == self) continue;
+      const LabelRect& other = requests[k].target;
+      if (requests[k].exclusive ? distance(box, other) < o.exclusive_clearance
+                                : overlaps(box, other) && !overlaps(other, own))
+        return false;
+    }
+    return true;
+  };
+  auto leader_clear = [&](double x0, double y0, double x1, double y1, size_t self) {
+    if (!requests[self].exclusive) return true;
+    for (size_t k = 0; k < requests.size(); ++k) {
+      if (k == self || !requests[k].exclusive) continue;
+      const LabelRect& q = requests[k].target;
+      const double c = o.exclusive_clearance;
+      if (segment_hits(x0, y0, x1, y1, {q.x0 - c, q.y0 - c, q.x1 + c, q.y1 + c})) return false;
+    }
+    return true;
+  };
   for (size_t i = 0; i < requests.size(); ++i) {
     const LabelRect& t = requests[i].target;
     const double w = requests[i].width, h = requests[i].height;
@@ -102,7 +134,7 @@ LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const Lab
     int best = -1;
     double best_cover = INFINITY;
     for (size_t c = 0; c < cands.size() && best_cover > 0; ++c) {
-      if (!free(cands[c].box)) continue;
+      if (!free(cands[c].box) || !unambiguous(cands[c].box, i)) continue;
       const double cover = covers(cands[c].box, i);
       if (cover < best_cover) best_cover = cover, best = int(c);
     }
@@ -126,13 +158,13 @@ LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const Lab
         const double bx = ux > 1e-9 ? ax : ux < -1e-9 ? ax - w : ax - w / 2;
         const double by = uy > 1e-9 ? ay : uy < -1e-9 ? ay - h : ay - h / 2;
         const LabelRect box = at(bx, by, w, h);
-        if (!free(box) || overlaps(box, t)) continue;
+        if (!free(box) || overlaps(box, t) || !unambiguous(box, i)) continue;
         double lx0, ly0, lx1, ly1;
         nearest(box, cx, cy, lx1, ly1);
         nearest(t, lx1, ly1, lx0, ly0);
         bool crosses = false;
         for (const LabelRect& q : occupied) crosses |= segment_hits(lx0, ly0, lx1, ly1, q);
-        if (crosses) continue;
+        if (crosses || !leader_clear(lx0, ly0, lx1, ly1, i)) continue;
         placed.position = LabelPosition::kLeader;
         placed.box = box;
         placed.leader_x0 = lx0, placed.leader_y0 = ly0, placed.leader_x1 = lx1, placed.leader_y1 = ly1;
@@ -141,7 +173,10 @@ LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const Lab
         done = true;
       }
     }
-    if (!done) ++out.left_out;
+    if (!done) {
+      ++out.left_out;
+      out.left_out_exclusive += requests[i].exclusive;
+    }
   }
   return out;
 }

@@ -1,6 +1,7 @@
 // Collision-avoiding placement of text labels (rock numbers, confidences, legends) for figures: each label
 // tries positions around its target (above, below, inside corners, left, right), then a spot a little way
-// off with a short leader line, and is left out (counted) only when nothing fits. Pure and deterministic:
+// off with a short leader line, and is left out (counted) only when nothing fits. An exclusive label also
+// stays clear of the other exclusive targets, so it reads as its own target's. Pure and deterministic:
 // labels are placed greedily in the order given (put the important ones first).
 #pragma once
 
@@ -18,6 +19,10 @@ bool overlaps(const LabelRect& a, const LabelRect& b);  // interiors intersect
 struct LabelRequest {
   LabelRect target;             // what the label names (a point is an empty rect)
   double width = 0, height = 0;  // the text's box
+  // Among exclusive labels a reader must tell which target each names (e.g. confidences of overlapping
+  // boxes of one colour): the label keeps `exclusive_clearance` from every other exclusive target, and a
+  // leader crosses none; when no spot does, the label is left out (counted in left_out_exclusive).
+  bool exclusive = false;
 };
 
 enum class LabelPosition { kAbove, kBelow, kInsideTopLeft, kInsideTopRight, kInsideBottomLeft, kInsideBottomRight,
@@ -35,13 +40,15 @@ struct LabelPlacementOptions {
   std::vector<LabelRect> taken;   // already occupied (titles, captions, legends)
   double gap = 1;                 // clearance between a label and its target and between labels
   double max_leader = 3;          // the farthest a leader goes, in label heights
+  double exclusive_clearance = 1; // see LabelRequest::exclusive (more than gap: nearer its own target)
   // Validates: bounds non-empty, gap >= 0, max_leader >= 0; throws std::invalid_argument otherwise.
   void validate() const;
 };
 
 struct LabelPlacement {
   std::vector<PlacedLabel> labels;  // one per request, same order
-  int left_out = 0;
+  int left_out = 0;            // every label left out, exclusive ones included
+  int left_out_exclusive = 0;  // exclusive labels left out
   int with_leader = 0;
 };
 
