@@ -34,15 +34,20 @@ constexpr double kMaxLogSizeGap = 1.1;
 // Triangles flatter than this (twice the area over the longest side squared) propose a similarity, not an
 // affine: large tier F1 0.9413 -> 0.9457 and 0.9572 -> 0.9588 (seeds 1, 2); 0.1 and 0.2 gained less.
 constexpr double kFlatTriple = 0.05;
+// Sets with at least this many rocks a side are first registered on their kCoarseRocks largest.
+constexpr size_t kCoarseAbove = 160, kCoarseRocks = 64;
 
 // Proposes hypotheses as affines directly (estimator = identity pass-through) so that the cheap ones and
 // the triple ones share one loop, one budget and one stopping rule.
 class GuidedSampler {
  public:
-  GuidedSampler(const RegistrationFrame& f, const Bounds& bounds, double gate, std::uint64_t seed, bool record)
+  // `first`: hypotheses proposed before any other (the coarse pass of a large set).
+  GuidedSampler(const RegistrationFrame& f, const Bounds& bounds, double gate, std::uint64_t seed, bool record,
+                const std::vector<Affine2>& first)
       : f_(f), bounds_(bounds), gate2_(gate * gate), min_det_(bounds.min_scale * bounds.min_scale),
         max_det_(bounds.max_scale * bounds.max_scale), record_(record) {
     // 1. identity in image coordinates
+    queue_ = first;
     queue_.push_back(f.from_image(identity_affine()));
     // 2. the most voted translations (identity linear part), votes binned at the gate size
     vote_translations(gate);
@@ -298,6 +303,34 @@ void second_look(const RegistrationFrame& f, const std::vector<Box>& boxes_a, co
   out->confidence = confidence_from_scores(judged[best].total, rival);
 }
 
+// Large sets first register their largest rocks alone. Both labellings see the large rocks, which are few
+// and far apart, so a few hypotheses find their alignment; proposed first on the whole set, it is refined and
+// usually ends the search at once. Without it a dense layout of 500 rocks a side needed ~100 hypotheses,
+// each anchored on a third of B (8.2 ms against 1.4 at 200 rocks: twice the n log n trend), and under the
+// large tier's misalignment it mostly failed (synthetic 500 rocks: F1 0.54 -> 0.86, ceiling 0.86).
+std::vector<Affine2> coarse_hypotheses(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
+                                       const std::vector<Box>& boxes_b, const RegistrationOptions& o) {
+  const size_t rocks = kCoarseRocks;
+  if (boxes_a.size() < kCoarseAbove || boxes_b.size() < kCoarseAbove) return {};
+  auto largest = [&](const std::vector<Box>& boxes) {
+    std::vector<int> order(boxes.size());
+    std::iota(order.begin(), order.end(), 0);
+    // Ties by index, so the subset never depends on the sort's implementation.
+    std::partial_sort(order.begin(), order.begin() + rocks, order.end(), [&](int x, int y) {
+      const double ax = boxes[x].w * boxes[x].h, ay = boxes[y].w * boxes[y].h;
+      return ax != ay ? ax > ay : x < y;
+    });
+    std::vector<Box> out;
+    for (size_t k = 0; k < rocks; ++k) out.push_back(boxes[order[k]]);
+    return out;
+  };
+  RegistrationOptions sub = o;
+  sub.record_trace = false;
+  const RegistrationReport r = register_rocks(largest(boxes_a), largest(boxes_b), sub);
+  if (r.inliers < 3) return {};
+  return {f.from_image(r.affine)};
+}
+
 }  // namespace
 
 MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
@@ -313,7 +346,7 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
   if (!(gate > 0)) gate = std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2);
   out.affine_normalised = f.from_image(identity_affine());
   if (!f.a.empty() && !f.b.empty()) {
-    GuidedSampler sampler(f, bounds, gate, o.seed, o.record_trace);
+    GuidedSampler sampler(f, bounds, gate, o.seed, o.record_trace, coarse_hypotheses(f, boxes_a, boxes_b, o));
     ConsensusScorer scorer(f, gate, bounds, o.max_trials, &sampler.anchor);
     PassThroughEstimator estimator;
     RobustLoopOptions lo;
