@@ -59,7 +59,8 @@ TEST(StatsCharts, TheCurrentScenesLoneBarIsOutlinedNotCovered) {
   Recorder c;
   const TextStyle st;
   //   edge labels "0.020", "0.025": 30 pt; top pad max(5, 1.5 + 2 + 0.5) = 5; below: tick 3 + 1 + line 10;
-  //   plot height 100 - 5 - 14 = 81 -> count ticks 0, 1 (6 pt) and a gutter of 6 + 3 + 3 = 12 < 30 / 2.
+  //   plot height 100 - 5 - 14 = 81 (room for 6 intervals of 1.2 lines) -> count ticks 0, 1 (6 pt) and a
+  //   gutter of 6 + 3 + 3 = 12 < 30 / 2.
   const HistogramChart ch = layout_histogram(c, st, {0.02, 0.005, {1}, 0.0200}, {0, 0, 300, 100});
   expect_rect(ch.plot, 15, 5, 285, 86);
   ASSERT_EQ(ch.bars.size(), 1u);
@@ -109,7 +110,7 @@ TEST(StatsCharts, HistogramBarsStandOnTheCountAxis) {
   const HistogramChart ch = layout_histogram(c, {}, {0.0, 0.01, {4, 0, 2, 1, 0, 3}, 0.035}, {0, 0, 120, 100});
   expect_rect(ch.plot, 12, 5, 108, 86);
   ASSERT_EQ(ch.bars.size(), 6u);
-  //   count ticks for 4 with at most 5 intervals: 0..4 by 1; the 2-count bar is half the plot's height.
+  //   count ticks for 4 with at most 6 intervals: 0..4 by 1; the 2-count bar is half the plot's height.
   EXPECT_EQ(ch.count_axis.back().text, "4");
   EXPECT_DOUBLE_EQ(ch.bars[2].bar.y0, 86 - 81 * 2 / 4.0);
   EXPECT_TRUE(ch.bars[3].current);

@@ -51,7 +51,7 @@ HistogramChart layout_histogram(Canvas& c, const TextStyle& st, const HistogramI
   const double top_pad = std::max(0.5 * line, outline + 0.5), bottom = tick_len(line) + 1 + line;
   const double plot_h = std::max(1.0, area.height() - top_pad - bottom);
   const int top = n ? *std::max_element(in.counts.begin(), in.counts.end()) : 0;
-  const std::vector<double> counts = count_ticks(top, std::max(1, int(plot_h / (1.4 * line))));
+  const std::vector<double> counts = count_ticks(top, std::max(1, int(plot_h / (1.2 * line))));
   double gutter = 0;
   for (double v : counts) gutter = std::max(gutter, c.measure(st, tick_text(v, 1)).x);
   gutter += 0.3 * line + tick_len(line);
