@@ -142,7 +142,8 @@ void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPan
     current_stem = (*v.summaries)[ui.scene].stem;
   }
   const float line = ImGui::GetTextLineHeight();
-  const ImVec2 p0 = ImGui::GetCursorScreenPos(), size{ImGui::GetContentRegionAvail().x, 70 + 2 * line};
+  // Never zero-sized (ImGui asserts on an empty button), however narrow the panel.
+  const ImVec2 p0 = ImGui::GetCursorScreenPos(), size{std::max(8 * line, ImGui::GetContentRegionAvail().x), 70 + 2 * line};
   const bool clicked = ImGui::InvisibleButton("histogram", size);
   ImGuiCanvas canvas(ImGui::GetWindowDrawList(), p0, 1, {});
   const TextStyle text = gui_text();
@@ -180,7 +181,8 @@ void draw_size_breakdown(const SessionStatistics* stats) {
   const TextStyle text = gui_text();
   const ImVec2 p0 = ImGui::GetCursorScreenPos();
   ImGuiCanvas canvas(ImGui::GetWindowDrawList(), p0, 1, {});
-  const ImVec2 size{ImGui::GetContentRegionAvail().x, static_cast<float>(value_bars_height(canvas, text, rows.size()))};
+  const ImVec2 size{std::max(8 * ImGui::GetTextLineHeight(), ImGui::GetContentRegionAvail().x),
+                    static_cast<float>(value_bars_height(canvas, text, std::max<size_t>(1, rows.size())))};
   ImGui::InvisibleButton("size bars", size);
   const ValueBarsChart chart = layout_value_bars(canvas, text, rows, {0, 0, size.x - 2, size.y});
   int hot = -1;
