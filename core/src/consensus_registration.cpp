@@ -170,23 +170,25 @@ class GuidedSampler {
         const auto [u1, x1] = edges_[e1];
         const auto [u2, x2] = edges_[e2];
         if (u1 == u2 || x1 == x2) continue;
-        const Eigen::Vector2d src[3] = {f_.a[i], f_.a[ni[u1]], f_.a[ni[u2]]};
-        const Eigen::Vector2d dst[3] = {f_.b[j], f_.b[nj[x1]], f_.b[nj[x2]]};
         // Before solving: the triangle's orientation must survive (no reflection) and its area ratio is the
         // affine's determinant, bounded by the squared scale bounds. Two cross products reject most pairs.
-        Affine2 m;
-        if (flat_triple(src, dst)) {
-          // Nearly collinear (often the only true pairs of a small overlap): labelling noise decides the
-          // affine across the line, even the triangle's orientation, so only the similarity along it is tried.
-          if (!similarity_fits(src, dst, &m)) continue;
-        } else {
-          const Eigen::Vector2d a1 = src[1] - src[0], a2 = src[2] - src[0], b1 = dst[1] - dst[0], b2 = dst[2] - dst[0];
-          const double area_a = a1.x() * a2.y() - a1.y() * a2.x(), area_b = b1.x() * b2.y() - b1.y() * b2.x();
+        const Eigen::Vector2d a1 = f_.a[ni[u1]] - f_.a[i], a2 = f_.a[ni[u2]] - f_.a[i];
+        const Eigen::Vector2d b1 = f_.b[nj[x1]] - f_.b[j], b2 = f_.b[nj[x2]] - f_.b[j];
+        const double area_a = a1.x() * a2.y() - a1.y() * a2.x(), area_b = b1.x() * b2.y() - b1.y() * b2.x();
+        // Nearly collinear (often the only true pairs of a small overlap): labelling noise decides the affine
+        // across the line, even the triangle's orientation, so only the similarity along it is tried.
+        const bool flat = flat_triangle(area_a, a1, a2) || flat_triangle(area_b, b1, b2);
+        if (!flat) {
           if (!(area_a * area_b > 0)) continue;
           const double det = area_b / area_a;
           if (det < min_det_ || det > max_det_) continue;
-          if (!affine_from_three(src, dst, &m) || !bounds_.plausible(m.leftCols<2>())) continue;
         }
+        const Eigen::Vector2d src[3] = {f_.a[i], f_.a[ni[u1]], f_.a[ni[u2]]};
+        const Eigen::Vector2d dst[3] = {f_.b[j], f_.b[nj[x1]], f_.b[nj[x2]]};
+        Affine2 m;
+        if (flat ? !similarity_fits(src, dst, &m)
+                 : !affine_from_three(src, dst, &m) || !bounds_.plausible(m.leftCols<2>()))
+          continue;
         const int support = ni.size() >= 4 ? local_support(m, i, j, u1, u2) : 2;
         if (support >= 2) pending_.push_back(m);
         else if (support == 1) deferred_.emplace_back(i, m);
@@ -199,9 +201,10 @@ class GuidedSampler {
     std::reverse(pending_samples_.begin(), pending_samples_.end());
   }
 
-  bool flat_triple(const Eigen::Vector2d src[3], const Eigen::Vector2d dst[3]) const {
-    return std::min(triangle_conditioning(src[0], src[1], src[2]), triangle_conditioning(dst[0], dst[1], dst[2])) <
-           kFlatTriple;
+  // triangle_conditioning() < kFlatTriple, from the edges and cross product expand() already has.
+  static bool flat_triangle(double cross, const Eigen::Vector2d& e1, const Eigen::Vector2d& e2) {
+    const double longest = std::max({e1.squaredNorm(), e2.squaredNorm(), (e2 - e1).squaredNorm()});
+    return !(std::abs(cross) >= kFlatTriple * longest);
   }
   // The least-squares similarity of a flat triple, when it puts each of the three within the gate.
   bool similarity_fits(const Eigen::Vector2d src[3], const Eigen::Vector2d dst[3], Affine2* m) const {
