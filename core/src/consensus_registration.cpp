@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
+#include <cstdlib>
 
 #include "ipd/affine_estimator.h"
 #include "ipd/pairing.h"
@@ -33,7 +34,7 @@ constexpr double kBoundSlackScale = 1.25, kBoundSlackDeg = 15.0;
 constexpr double kMaxLogSizeGap = 1.1;
 // Triangles flatter than this (twice the area over the longest side squared) propose a similarity, not an
 // affine: large tier F1 0.9413 -> 0.9457 and 0.9572 -> 0.9588 (seeds 1, 2); 0.1 and 0.2 gained less.
-constexpr double kFlatTriple = 0.05;
+static double kFlatTriple = getenv("FLAT") ? atof(getenv("FLAT")) : 0.05;
 // Sets with at least this many rocks a side are first registered on their kCoarseRocks largest.
 constexpr size_t kCoarseAbove = 160, kCoarseRocks = 64;
 
@@ -186,9 +187,19 @@ class GuidedSampler {
         const Eigen::Vector2d src[3] = {f_.a[i], f_.a[ni[u1]], f_.a[ni[u2]]};
         const Eigen::Vector2d dst[3] = {f_.b[j], f_.b[nj[x1]], f_.b[nj[x2]]};
         Affine2 m;
-        if (flat ? !similarity_fits(src, dst, &m)
-                 : !affine_from_three(src, dst, &m) || !bounds_.plausible(m.leftCols<2>()))
-          continue;
+        if (flat) {
+          if (!similarity_fits(src, dst, &m)) continue;
+        } else {
+          // The affine [b1 b2] [a1 a2]^-1 from the edges and A's cross product already at hand (the triangle
+          // is not flat, so area_a is well away from 0).
+          const double inv = 1.0 / area_a;
+          m(0, 0) = (b1.x() * a2.y() - b2.x() * a1.y()) * inv;
+          m(0, 1) = (b2.x() * a1.x() - b1.x() * a2.x()) * inv;
+          m(1, 0) = (b1.y() * a2.y() - b2.y() * a1.y()) * inv;
+          m(1, 1) = (b2.y() * a1.x() - b1.y() * a2.x()) * inv;
+          m.col(2) = f_.b[j] - m.leftCols<2>() * f_.a[i];
+          if (!m.allFinite() || !bounds_.plausible(m.leftCols<2>())) continue;
+        }
         const int support = ni.size() >= 4 ? local_support(m, i, j, u1, u2) : 2;
         if (support >= 2) pending_.push_back(m);
         else if (support == 1) deferred_.emplace_back(i, m);
@@ -281,7 +292,7 @@ void second_look(const RegistrationFrame& f, const std::vector<Box>& boxes_a, co
                  const RegistrationOptions& o, const Bounds& bounds, ConsensusScorer* scorer, SearchRecorder* recorder,
                  MethodOutcome* out) {
   const double na = static_cast<double>(f.a.size()), nb = static_cast<double>(f.b.size());
-  if (out->stop == StopReason::kCannotBeBeaten) return;
+  if (out->stop == StopReason::kCannotBeBeaten || getenv("NOSL")) return;
   if (na < 2 || nb < 2 || na * (na - 1) / 2 * nb * (nb - 1) > kMaxEdgePairs) return;
   EdgeSearch edges = edge_candidates(f, bounds, scorer, kEdgeCandidates);
   out->hypotheses += edges.hypotheses;

@@ -90,12 +90,23 @@ class ConsensusScorer {
     return consensus(m, 1);
   }
 
+  // score() for the second look, which keeps only its best few: -inf once `floor` is out of reach (exact: any
+  // hypothesis scoring at least `floor` is scored in full).
+  double score_above(const Affine2& m, double floor) {
+    current_ = m;
+    ++scored_;
+    if (!bounds_.plausible(m.leftCols<2>())) return -INFINITY;
+    return consensus(m, 1, floor);
+  }
+
   // The soft consensus over every `stride`-th A rock.
-  double consensus(const Affine2& m, size_t stride) {
+  // With a `floor`: -inf as soon as the rest of A's rocks (each adds at most 1) can no longer lift it there.
+  double consensus(const Affine2& m, size_t stride, double floor = -INFINITY) {
     ++epoch_;
     const double l00 = std::abs(m(0, 0)), l01 = std::abs(m(0, 1)), l10 = std::abs(m(1, 0)), l11 = std::abs(m(1, 1));
     double total = 0;
     for (size_t i = 0; i < a_.size(); i += stride) {
+      if (total + static_cast<double>(a_.size() - i) < floor) return -INFINITY;
       double d2 = 0;
       const int j = grid_.nearest(apply(m, a_[i]), &d2, gate2_);
       if (j < 0 || !(d2 < gate2_)) continue;
