@@ -13,7 +13,6 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
-#include <cstdlib>
 
 #include "ipd/affine_estimator.h"
 #include "ipd/pairing.h"
@@ -34,7 +33,7 @@ constexpr double kBoundSlackScale = 1.25, kBoundSlackDeg = 15.0;
 constexpr double kMaxLogSizeGap = 1.1;
 // Triangles flatter than this (twice the area over the longest side squared) propose a similarity, not an
 // affine: large tier F1 0.9413 -> 0.9457 and 0.9572 -> 0.9588 (seeds 1, 2); 0.1 and 0.2 gained less.
-static double kFlatTriple = getenv("FLAT") ? atof(getenv("FLAT")) : 0.05;
+constexpr double kFlatTriple = 0.05;
 // Sets with at least this many rocks a side are first registered on their kCoarseRocks largest.
 constexpr size_t kCoarseAbove = 160, kCoarseRocks = 64;
 
@@ -292,7 +291,7 @@ void second_look(const RegistrationFrame& f, const std::vector<Box>& boxes_a, co
                  const RegistrationOptions& o, const Bounds& bounds, ConsensusScorer* scorer, SearchRecorder* recorder,
                  MethodOutcome* out) {
   const double na = static_cast<double>(f.a.size()), nb = static_cast<double>(f.b.size());
-  if (out->stop == StopReason::kCannotBeBeaten || getenv("NOSL")) return;
+  if (out->stop == StopReason::kCannotBeBeaten) return;
   if (na < 2 || nb < 2 || na * (na - 1) / 2 * nb * (nb - 1) > kMaxEdgePairs) return;
   EdgeSearch edges = edge_candidates(f, bounds, scorer, kEdgeCandidates);
   out->hypotheses += edges.hypotheses;
