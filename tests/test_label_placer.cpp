@@ -118,6 +118,50 @@ TEST(LabelPlacer, ExclusiveLabelIsLeftOutWhenNoSpotIsUnambiguous) {
   EXPECT_EQ(p.labels[0].position, LabelPosition::kAbove);
 }
 
+// Exclusive labels of different groups (rock numbers, confidences) do not keep the clearance from each
+// other's targets: the same setup as above, with B in group 1, gives A the first spot, next to B.
+TEST(LabelPlacer, ClearanceIsKeptOnlyWithinAGroup) {
+  auto o = page(200, 200);
+  o.gap = 0.5;
+  o.exclusive_clearance = 2;
+  const LabelRect a{110, 110, 130, 130}, b{98, 110, 108.5, 130};
+  LabelRequest ra{a, 10, 5, true, 0}, rb{b, 10, 5, true, 1};
+  auto p = place_labels({ra, rb}, o);
+  EXPECT_DOUBLE_EQ(p.labels[0].box.x0, 110);
+  rb.group = 0;
+  p = place_labels({ra, rb}, o);
+  EXPECT_DOUBLE_EQ(p.labels[0].box.x0, 120);
+}
+
+// keep_off: the above-left spot {100, 94.5, 110, 99.5} overlaps K = [95, 108] x [90, 99.8] and the page
+// ends at y = 125 (no room below), so the label goes above-right {110, 94.5, 120, 99.5}, 2 pt right of K.
+// With keep_off_clearance 3 that is too near, and so are the top inside corners (0.7 pt below K): it
+// goes to the bottom-left inside corner {100.5, 114.5}.
+TEST(LabelPlacer, KeepOffRectsAreAvoidedWithTheirClearance) {
+  auto o = page(200, 125);
+  o.gap = 0.5;
+  LabelRequest r{{100, 100, 120, 120}, 10, 5};
+  EXPECT_DOUBLE_EQ(place_labels({r}, o).labels[0].box.x0, 100);
+  r.exclusive = true;
+  r.keep_off = {{95, 90, 108, 99.8}};
+  auto p = place_labels({r}, o);
+  EXPECT_EQ(p.labels[0].position, LabelPosition::kAbove);
+  EXPECT_DOUBLE_EQ(p.labels[0].box.x0, 110);
+  r.keep_off_clearance = 3;
+  p = place_labels({r}, o);
+  EXPECT_EQ(p.labels[0].position, LabelPosition::kInsideBottomLeft);
+  EXPECT_DOUBLE_EQ(p.labels[0].box.x0, 100.5);
+  EXPECT_DOUBLE_EQ(p.labels[0].box.y0, 114.5);
+  // Walled in by keep_off rects on both sides and the page above and below: no spot and no leader (it
+  // would cross a wall), so left out and counted.
+  o.bounds = {0, 100, 200, 120};
+  r = {{100, 100, 104, 120}, 10, 5, true};
+  r.keep_off = {{90, 100, 100, 120}, {104, 100, 114, 120}};
+  p = place_labels({r}, o);
+  EXPECT_EQ(p.labels[0].position, LabelPosition::kLeftOut);
+  EXPECT_EQ(p.left_out_exclusive, 1);
+}
+
 TEST(LabelPlacer, NoTwoLabelsOverlapInACrowd) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0, 240);

@@ -57,12 +57,15 @@ double draw_legend(Canvas& c, Pt at, double width, const TextStyle& st, const st
 }
 
 int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bounds, const std::vector<PtRect>& taken,
-                bool backdrop, int* left_out_exclusive) {
+                bool backdrop, LabelPlacement* placement) {
   std::vector<LabelRequest> req;
   const double pad = 0.6;  // backdrop margin around the text
   for (const Label& l : labels) {
     const Pt m = c.measure(l.style, l.text);
-    req.push_back({{l.target.x0, l.target.y0, l.target.x1, l.target.y1}, m.x + 2 * pad, m.y, l.exclusive});
+    LabelRequest r{{l.target.x0, l.target.y0, l.target.x1, l.target.y1}, m.x + 2 * pad, m.y, l.exclusive, l.group};
+    for (const PtRect& k : l.keep_off) r.keep_off.push_back({k.x0, k.y0, k.x1, k.y1});
+    r.keep_off_clearance = l.keep_off_clearance;
+    req.push_back(std::move(r));
   }
   LabelPlacementOptions o;
   o.bounds = {bounds.x0, bounds.y0, bounds.x1, bounds.y1};
@@ -71,13 +74,13 @@ int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bound
   o.max_leader = 3;
   o.exclusive_clearance = kExclusiveClearancePt;
   const LabelPlacement p = place_labels(req, o);
-  if (left_out_exclusive) *left_out_exclusive = p.left_out_exclusive;
+  if (placement) *placement = p;
   for (size_t i = 0; i < labels.size(); ++i) {
     const PlacedLabel& pl = p.labels[i];
     if (!pl.shown()) continue;
     if (pl.position == LabelPosition::kLeader)
       c.line({pl.leader_x0, pl.leader_y0}, {pl.leader_x1, pl.leader_y1}, labels[i].style.colour,
-             std::max(0.4, labels[i].style.size_pt * 0.06));
+             std::max(kLeaderPt, labels[i].style.size_pt * 0.06));
     if (backdrop) c.fill_rect({pl.box.x0, pl.box.y0, pl.box.x1, pl.box.y1}, kBackdrop);
     c.text({pl.box.x0 + pad, pl.box.y0}, Anchor::kTopLeft, labels[i].style, labels[i].text);
   }

@@ -37,12 +37,16 @@ struct Label {
   TextStyle style;
   PtRect target;
   bool exclusive = false;  // must read as its own target's among the exclusive ones (LabelRequest::exclusive)
+  int group = 0;           // LabelRequest::group
+  std::vector<PtRect> keep_off = {};  // LabelRequest::keep_off, in points
+  double keep_off_clearance = 0;  // LabelRequest::keep_off_clearance
 };
 // Places labels inside `bounds` avoiding each other and `taken`; draws them (on a dark backdrop, leaders
-// in the label's colour) and returns how many were left out; `left_out_exclusive` (optional): how many of
-// those were exclusive labels with no unambiguous spot.
+// in the label's colour) and returns how many were left out; `placement` (optional): where each went.
 int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bounds, const std::vector<PtRect>& taken,
-                bool backdrop, int* left_out_exclusive = nullptr);
+                bool backdrop, LabelPlacement* placement = nullptr);
+// A leader's width: thin enough not to read as a box edge, thick enough to survive print (~0.6 pt).
+constexpr double kLeaderPt = 0.6;
 // The clearance an exclusive label keeps from the other exclusive targets, in points.
 constexpr double kExclusiveClearancePt = 2.0;
 

@@ -76,11 +76,20 @@ std::string title_of(const SceneFigureInput& in, const SceneNumbers& n) {
                      in.pairs_fixed ? ", pairs fixed by hand" : "");
 }
 
-// One side of Fig. 1: picture, boxes, then labels placed without collisions. Returns labels left out;
-// adds to `ambiguous` the confidences among them left out for want of a spot that reads as their box's.
-int draw_side(Canvas& c, const PanelMap& m, const cv::Mat& picture, const std::string& problem,
-              const std::vector<Box>& gt, const std::vector<Box>& pred, const std::vector<int>& number,
-              const std::vector<int>& excluded, const FigureOptions& o, int& ambiguous) {
+// What was left out on one side of Fig. 1, by kind.
+struct SideLeftOut {
+  int numbers = 0;      // rock numbers with no spot clear of the other rocks' boxes
+  int confidences = 0;  // confidences with no spot clearly beside their own box
+  int other = 0;
+};
+
+// One side of Fig. 1: picture, boxes, then labels placed without collisions. Every label must read as its
+// own: a rock number stays clear of the other rocks' boxes, a confidence of the other prediction boxes and
+// of every GT box but the one its prediction matches; a moved label gets a leader, an impossible one is
+// left out and counted.
+SideLeftOut draw_side(Canvas& c, const PanelMap& m, const cv::Mat& picture, const std::string& problem,
+                      const std::vector<Box>& gt, const std::vector<Box>& pred, const std::vector<int>& number,
+                      const std::vector<int>& excluded, const FigureOptions& o) {
   const FigureLayers& L = o.layers;
   const PtRect& P = m.panel;
   if (picture.empty()) {
@@ -127,22 +136,36 @@ int draw_side(Canvas& c, const PanelMap& m, const cv::Mat& picture, const std::s
       if (!m.box(gt[k], r)) continue;
       const std::string text = !L.pairs ? std::to_string(k + 1)
                                : number[k] > 0 ? std::to_string(number[k]) : "x" + std::to_string(k + 1);
-      labels.push_back({text, style(o.font_pt, colour_of(k)), r});
+      labels.push_back({text, style(o.font_pt, colour_of(k)), r, true, 0});
     }
   }
   if (L.pred && L.conf) {
     std::vector<size_t> order(pred.size());
     for (size_t k = 0; k < pred.size(); ++k) order[k] = k;
     std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return pred[x].conf > pred[y].conf; });
-    for (size_t k : order)
-      // Exclusive: next to (or led to) its own box and clear of every other prediction box, else left out.
-      if (m.box(pred[k], r)) labels.push_back({fmt::format("{:.2f}", pred[k].conf), style(o.font_pt * 0.85, kRedC), r, true});
+    for (size_t k : order) {
+      if (!m.box(pred[k], r)) continue;
+      // The one GT box this prediction matches (its highest IoU; a duplicate detection matches the rock
+      // it sits on too): the only GT box its confidence may lie on.
+      int matched = -1;
+      double matched_iou = 0;
+      for (size_t j = 0; j < gt.size(); ++j)
+        if (const double v = iou(gt[j], pred[k]); v > matched_iou) matched = int(j), matched_iou = v;
+      Label l{fmt::format("{:.2f}", pred[k].conf), style(o.font_pt * 0.85, kRedC), r, true, 1};
+      for (size_t j = 0; j < gt.size(); ++j)
+        if (int(j) != matched) l.keep_off.push_back(m.raw(gt[j]));
+      labels.push_back(std::move(l));
+    }
   }
-  int exclusive = 0;
-  const int left_out = draw_labels(c, labels, P, {}, true, &exclusive);
-  ambiguous += exclusive;
-  return left_out;
+  LabelPlacement placed;
+  SideLeftOut out;
+  draw_labels(c, labels, P, {}, true, &placed);
+  for (size_t i = 0; i < labels.size(); ++i)
+    if (!placed.labels[i].shown()) ++(labels[i].group == 0 ? out.numbers : out.confidences);
+  return out;
 }
+
+
 
 double draw_title(Canvas& c, const std::string& title, const FigureOptions& o) {
   return kMargin + draw_wrapped(c, {kMargin, kMargin}, style(o.font_pt, kInk), title, o.width_pt() - 2 * kMargin);
@@ -165,9 +188,9 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
   // The GUI's numbers (a pair is named by its left rock), so a figure and the screen agree.
   const std::vector<int> num_a = pair_numbers(in.pairs, in.gt_a.size(), true);
   const std::vector<int> num_b = pair_numbers(in.pairs, in.gt_b.size(), false);
-  int ambiguous = 0;
-  int left_out = draw_side(out, left, in.picture_a, in.problem_a, in.gt_a, in.pred_a, num_a, in.excluded_a, o, ambiguous);
-  left_out += draw_side(out, right, in.picture_b, in.problem_b, in.gt_b, in.pred_b, num_b, in.excluded_b, o, ambiguous);
+  const SideLeftOut la = draw_side(out, left, in.picture_a, in.problem_a, in.gt_a, in.pred_a, num_a, in.excluded_a, o);
+  const SideLeftOut lb = draw_side(out, right, in.picture_b, in.problem_b, in.gt_b, in.pred_b, num_b, in.excluded_b, o);
+  const int numbers = la.numbers + lb.numbers, ambiguous = la.confidences + lb.confidences;
   y += ph + 0.35 * F;
   if (o.layers.legend) {
     std::vector<LegendItem> items;
@@ -179,7 +202,12 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
     if (o.layers.pred) items.push_back({Swatch::kBox, kRedC, o.layers.conf ? "prediction (confidence)" : "prediction"});
     y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items) + 0.2 * F;
   }
-  y += draw_footnote(out, {kMargin, y}, W - 2 * kMargin, F, left_out - ambiguous);
+  if (numbers > 0)
+    y += draw_wrapped(out, {kMargin, y}, style(F * 0.8, kGrey),
+                      fmt::format("{} rock number{} left out: no free spot clear of the other rocks' boxes (try "
+                                  "--crop)",
+                                  numbers, numbers == 1 ? "" : "s"),
+                      W - 2 * kMargin);
   if (ambiguous > 0)
     y += draw_wrapped(out, {kMargin, y}, style(F * 0.8, kGrey),
                       fmt::format("{} confidence label{} left out: no free spot clearly beside {} own box (try "
@@ -234,13 +262,21 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
     out.pop_clip();
     if (o.layers.gt && o.layers.indices) {
       std::vector<Label> labels;
-      for (const auto& pair : in.pairs) {
-        const int i = pair.first;
+      const auto square = [](Pt q, double r) { return PtRect{q.x - r, q.y - r, q.x + r, q.y + r}; };
+      for (const auto& [i, j] : in.pairs) {
         if (i < 0 || i >= int(pa.size())) continue;
         const Pt q = pa[i];
         if (q.x < m.panel.x0 || q.x > m.panel.x1 || q.y < m.panel.y0 || q.y > m.panel.y1) continue;
-        // A pair is named by its left rock, as in the GUI and the pairs figure (pair_numbers).
-        labels.push_back({std::to_string(i + 1), style(F, kInk), {q.x - ring, q.y - ring, q.x + ring, q.y + ring}});
+        // A pair is named by its left rock, as in the GUI and the pairs figure (pair_numbers). The number
+        // must read as this marker's: clear of every other dot and ring but its partner's, else moved with
+        // a leader or left out.
+        Label l{std::to_string(i + 1), style(F, kInk), square(q, ring), true, 0};
+        for (size_t a = 0; a < pa.size(); ++a)
+          if (int(a) != i) l.keep_off.push_back(square(pa[a], dot));
+        for (size_t b = 0; b < pb.size(); ++b)
+          if (int(b) != j) l.keep_off.push_back(square(pb[b], ring));
+        l.keep_off_clearance = kExclusiveClearancePt;
+        labels.push_back(std::move(l));
       }
       left_out += draw_labels(out, labels, m.panel, {}, false);
     }

@@ -92,20 +92,27 @@ LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const Lab
     for (size_t k = 0; k < requests.size(); ++k) {
       if (k == self) continue;
       const LabelRect& other = requests[k].target;
-      if (requests[k].exclusive ? distance(box, other) < o.exclusive_clearance
-                                : overlaps(box, other) && !overlaps(other, own))
+      if (requests[k].exclusive && requests[k].group == requests[self].group
+              ? distance(box, other) < o.exclusive_clearance
+              : overlaps(box, other) && !overlaps(other, own))
         return false;
     }
+    const double c = requests[self].keep_off_clearance;
+    for (const LabelRect& r : requests[self].keep_off)
+      if (overlaps(box, r) || distance(box, r) < c) return false;
     return true;
   };
   auto leader_clear = [&](double x0, double y0, double x1, double y1, size_t self) {
     if (!requests[self].exclusive) return true;
     for (size_t k = 0; k < requests.size(); ++k) {
-      if (k == self || !requests[k].exclusive) continue;
+      if (k == self || !requests[k].exclusive || requests[k].group != requests[self].group) continue;
       const LabelRect& q = requests[k].target;
       const double c = o.exclusive_clearance;
       if (segment_hits(x0, y0, x1, y1, {q.x0 - c, q.y0 - c, q.x1 + c, q.y1 + c})) return false;
     }
+    const double c = requests[self].keep_off_clearance;
+    for (const LabelRect& q : requests[self].keep_off)
+      if (segment_hits(x0, y0, x1, y1, {q.x0 - c, q.y0 - c, q.x1 + c, q.y1 + c})) return false;
     return true;
   };
   for (size_t i = 0; i < requests.size(); ++i) {

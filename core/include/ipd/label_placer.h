@@ -23,6 +23,14 @@ struct LabelRequest {
   // boxes of one colour): the label keeps `exclusive_clearance` from every other exclusive target, and a
   // leader crosses none; when no spot does, the label is left out (counted in left_out_exclusive).
   bool exclusive = false;
+  // Exclusive labels only keep clear of the exclusive targets of their own group (rock numbers and
+  // confidences are two groups: a number may sit beside a prediction box, not beside another rock).
+  int group = 0;
+  // Other things an exclusive label must not read as naming: its box keeps `keep_off_clearance` from each
+  // (0: may touch, not overlap) and its leader crosses none (e.g. a confidence and every GT box but the one
+  // its prediction matches; a registration number and every other marker).
+  std::vector<LabelRect> keep_off = {};
+  double keep_off_clearance = 0;
 };
 
 enum class LabelPosition { kAbove, kBelow, kInsideTopLeft, kInsideTopRight, kInsideBottomLeft, kInsideBottomRight,
