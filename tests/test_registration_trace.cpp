@@ -170,6 +170,27 @@ TEST(RegistrationConfidence, SymmetricGridIsAmbiguous) {
   }
 }
 
+// A 6 x 4 grid and its last five columns, unmoved: shifting by one column fits as many rocks, so it is
+// ambiguous at any aspect ratio. At 960 x 600 the one-column shift is exactly 0 vertically, which sat on a
+// translation-vote bin edge (votes at +-1e-17 split in two) and the rival went unseen: confidence 0.25.
+TEST(RegistrationConfidence, AGridMovedAlongOneAxisIsAmbiguousAtAnyAspect) {
+  std::vector<Box> a, b;
+  for (int x = 0; x < 6; ++x)
+    for (int y = 0; y < 4; ++y) {
+      Box r;
+      r.cx = 0.15 + 0.14 * x, r.cy = 0.2 + 0.2 * y, r.w = 0.05, r.h = 0.08;
+      a.push_back(r);
+      if (x >= 1) b.push_back(r);
+    }
+  for (double aspect : {1.0, 1.6, 1936.0 / 1216.0}) {
+    RegistrationOptions o;
+    o.aspect = aspect;
+    const auto r = register_rocks(a, b, o);
+    EXPECT_TRUE(r.ambiguous) << "aspect " << aspect << ", confidence " << r.confidence;
+    EXPECT_EQ(r.pairs.size(), 20u) << "aspect " << aspect;
+  }
+}
+
 TEST(RegistrationConfidence, ADistinctiveLayoutIsNotAmbiguous) {
   const Scene s = scene();
   const auto r = register_rocks(s.a, s.b, {});

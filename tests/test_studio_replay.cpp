@@ -21,6 +21,18 @@ int run(const std::string& cmd) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// `command` in a fresh Xvfb, its output redirected by `redirections`; returns the command's own exit status.
+// xvfb-run's cleanup can fail after the command has finished ("problem while cleaning up temporary directory",
+// status 5, seen under load with other Xvfb runs), so the status is taken from a file the command leaves.
+int run_in_xvfb(const std::string& command, const std::string& redirections, const fs::path& dir) {
+  const fs::path status_file = dir / "exit-status.txt";
+  fs::remove(status_file);
+  const int xvfb = run(fmt::format("xvfb-run -a -s '-screen 0 1280x800x24' sh -c '{}; echo $? >{}' {}", command,
+                                   status_file.string(), redirections));
+  if (!fs::exists(status_file)) return xvfb;
+  return std::stoi(read_file(status_file));
+}
+
 TEST(StudioReplay, EditsReachThePairsFiles) {
   const char* studio = std::getenv("IPD_STUDIO");
   if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
@@ -43,10 +55,9 @@ TEST(StudioReplay, EditsReachThePairsFiles) {
                    "screenshot " + d / "shot.png\n");
   // The same edits through the Session API, opened before the GUI writes anything.
   Session s = Session::open(d / "study");
-  const std::string cmd = fmt::format(
-      "XDG_CACHE_HOME={} xvfb-run -a -s '-screen 0 1280x800x24' {} {} --replay {} >{} 2>&1", d / "cache", studio,
-      d / "study", d / "actions.txt", d / "log.txt");
-  ASSERT_EQ(run(cmd), 0) << read_file(d / "log.txt");
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d / "study", d / "actions.txt");
+  ASSERT_EQ(run_in_xvfb(cmd, fmt::format(">{} 2>&1", d / "log.txt"), d.path()), 0) << read_file(d / "log.txt");
   EXPECT_TRUE(fs::exists(d / "shot.png"));
   ASSERT_TRUE(fs::exists(d / "fig.pdf")) << read_file(d / "log.txt");  // exported in-process, on the worker
   EXPECT_EQ(read_file(d / "fig.pdf").substr(0, 5), "%PDF-");
@@ -88,10 +99,9 @@ TEST(StudioReplay, AStudyThatCannotBeOpenedSaysWhyOnStderr) {
   const char* studio = std::getenv("IPD_STUDIO");
   if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
   test::TempDir d;
-  const std::string cmd = fmt::format(
-      "XDG_CACHE_HOME={} xvfb-run -a -s '-screen 0 1280x800x24' {} {} --screenshot {} --frames 3 >/dev/null 2>{}",
-      d / "cache", studio, d / "missing", d / "shot.png", d / "err.txt");
-  EXPECT_EQ(run(cmd), 1);
+  const std::string cmd = fmt::format("XDG_CACHE_HOME={} {} {} --screenshot {} --frames 3", d / "cache", studio,
+                                      d / "missing", d / "shot.png");
+  EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path()), 1);
   // Contains, not equals: Xvfb and the GL driver may add their own lines to stderr.
   const std::string err = read_file(d / "err.txt");
   EXPECT_NE(err.find("error: could not open the study: " + d / "missing" + ": no such study directory\n"),

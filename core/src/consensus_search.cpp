@@ -82,9 +82,11 @@ std::vector<Eigen::Vector2d> top_translations(const Eigen::Matrix2d& lin, const 
     const Eigen::Vector2d p = lin * a[i];
     for (const auto& q : b) {
       const Eigen::Vector2d t = q - p;
+      // Bins centred on multiples of `bin`, not starting there: an exact shift of 0 along an axis (a grid
+      // moved along the other one) lands at +-1e-17 and was split between two bins, losing to lesser shifts.
       // Bin indices may be negative: pack them as unsigned (shifting a negative value is undefined).
-      const auto kx = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(t.x() / bin)));
-      const auto ky = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(t.y() / bin)));
+      const auto kx = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(t.x() / bin + 0.5)));
+      const auto ky = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(t.y() / bin + 0.5)));
       const std::uint64_t key = (kx << 32) ^ (ky & 0xffffffffull);
       const auto [it, added] = index.emplace(key, bins.size());
       if (added) bins.push_back({0, Eigen::Vector2d(0, 0), key});
