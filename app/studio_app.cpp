@@ -215,48 +215,7 @@ void StudioApp::frame() {
         worker_.submit(std::move(c));
       }
     }
-    if (ImGui::BeginTable("layout", 3, ImGuiTableFlags_Resizable | ImGuiTableFlags_BordersInnerV, {0, h})) {
-      ImGui::TableSetupColumn("browser", ImGuiTableColumnFlags_WidthFixed, ui::browser_width(v, 300, 460));
-      ImGui::TableSetupColumn("main", ImGuiTableColumnFlags_WidthStretch);
-      ImGui::TableSetupColumn("ipd", ImGuiTableColumnFlags_WidthFixed, 400);
-      ImGui::TableNextRow();
-      ImGui::TableNextColumn();
-      ImGui::BeginChild("browser", {0, h - 8});
-      ui::draw_study_browser(v, ui_, cmd);
-      ImGui::EndChild();
-      ImGui::TableNextColumn();
-      // The pictures' pane takes the height their aspect needs (no letterbox), unless the user dragged it.
-      const float w = ImGui::GetContentRegionAvail().x;
-      const int iw = left.width > 0 ? left.width : s->study().config.image_width;
-      const int ih = left.height > 0 ? left.height : s->study().config.image_height;
-      const float aspect = iw > 0 && ih > 0 ? float(iw) / ih : 1.6f;
-      const float fit = (w - 6) * 0.5f / aspect + ImGui::GetFrameHeightWithSpacing() + 4;
-      const float pic_h = std::clamp(ui_.pictures_height > 0 ? ui_.pictures_height : fit, 0.25f * h, 0.8f * h);
-      ImGui::BeginChild("pictures", {0, pic_h}, false, ImGuiWindowFlags_NoScrollWithMouse);
-      ui::draw_side_by_side(v, ui_, left, right, cmd);
-      ImGui::EndChild();
-      ImGui::InvisibleButton("##split", {-1, 6});
-      if (ImGui::IsItemActive()) ui_.pictures_height = pic_h + ImGui::GetIO().MouseDelta.y;
-      if (ImGui::IsItemHovered() || ImGui::IsItemActive()) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeNS);
-      const float rest = ImGui::GetContentRegionAvail().y - 8;
-      // The pair table's columns are sized from their text; the registration plot takes the rest.
-      const float table_w = 7 * 2 * ImGui::GetStyle().CellPadding.x + ImGui::CalcTextSize("99 x 99 0.000 0.000 excl. 999.9 0.00").x +
-                            3 * ImGui::GetStyle().WindowPadding.x + ImGui::GetStyle().ScrollbarSize + 110;
-      const float avail_w = ImGui::GetContentRegionAvail().x;
-      ImGui::BeginChild("registration", {std::max(avail_w * 0.45f, avail_w - table_w), rest}, true);
-      ui::draw_registration(v, ui_, cmd);
-      ImGui::EndChild();
-      ImGui::SameLine();
-      ImGui::BeginChild("pairtable", {0, rest}, true);
-      ui::draw_pair_table(v, ui_, cmd);
-      ImGui::EndChild();
-      ImGui::TableNextColumn();
-      ImGui::BeginChild("ipd", {0, h - 8});
-      ui::draw_ipd_panel(v, ui_, cmd);
-      ui::draw_stats_panels(v, v.stats, stats_.computing(), stats_ui_, ui_, cmd);
-      ImGui::EndChild();
-      ImGui::EndTable();
-    }
+    ui::draw_main_columns(v, ui_, left, right, h, [&] { ui::draw_stats_panels(v, v.stats, stats_.computing(), stats_ui_, ui_, cmd); }, cmd);
   }
   // The status bar sits on the window's last line, whatever the panels above took.
   ImGui::SetCursorPosY(ImGui::GetWindowHeight() - ImGui::GetFrameHeightWithSpacing());

@@ -3,6 +3,7 @@
 // app applies them in one place (study changes go to the worker, view changes stay here).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -85,6 +86,7 @@ struct UiState {
   bool browse_is_study = false;           // browse_dir has a study.yaml or domain folders
   std::vector<std::string> recent;        // recent studies, newest first
   float pictures_height = -1;             // height of the pictures pane; -1: fit the pictures' aspect
+  float browser_width = -1, stats_width = -1;  // side columns as dragged; -1: from their content
   bool quit_confirmed = false;
 };
 
@@ -117,6 +119,13 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
 void draw_registration(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out);
+// The three columns (browser, pictures + registration + pair table, IPD + `draw_stats`) in `h` pixels,
+// laid out by studio_columns() for the window's width.
+void draw_main_columns(const StudyView& v, UiState& ui, const Picture& left, const Picture& right, float h,
+                       const std::function<void()>& draw_stats, UiCommands& out);
+// Text wrapped to the available width at spaces only (wrap_at_spaces): numbers are never split.
+void text_wrapped_at_spaces(const std::string& text);
+void text_disabled_wrapped_at_spaces(const std::string& text);
 // Keyboard shortcuts that act on the whole window.
 void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out);
 // Every shortcut, for the help window (and README).

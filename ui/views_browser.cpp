@@ -102,9 +102,13 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   if (!ui.filter_error.empty()) ImGui::TextColored({1, 0.5f, 0.3f, 1}, "%s", ui.filter_error.c_str());
   ImGui::TextDisabled("%zu of %zu scenes%s", ui.order.size(), v.summaries->size(),
                       v.loading.empty() ? "" : " so far (the rest is loading)");
-  const ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
-                                ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable;
-  if (ImGui::BeginTable("scenes", 6, flags)) {
+  ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
+                          ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable;
+  // A column narrower than the table's text: scroll sideways rather than squeeze the scene names away.
+  const float needed = browser_width(v, 0, 1e9f) - 2 * ImGui::GetStyle().WindowPadding.x - 8;
+  const bool scroll_x = ImGui::GetContentRegionAvail().x < needed;
+  if (scroll_x) flags |= ImGuiTableFlags_ScrollX;
+  if (ImGui::BeginTable("scenes", 6, flags, {0, 0}, scroll_x ? needed : 0.0f)) {
     ImGui::TableSetupScrollFreeze(0, 1);
     setup_text_columns(browser_columns());
     if (ImGuiTableSortSpecs* spec = ImGui::TableGetSortSpecs(); spec && spec->SpecsDirty && spec->SpecsCount > 0) {

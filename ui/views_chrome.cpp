@@ -9,6 +9,7 @@
 
 #include "stats_panels.h"
 #include "table_layout.h"
+#include "studio_layout.h"
 #include "views.h"
 
 namespace ipd::ui {
@@ -37,6 +38,17 @@ std::string fmt_ipd(double v) {
   std::snprintf(b, sizeof b, "%.4f", v);
   return b;
 }
+
+namespace {
+void wrapped_lines(const std::string& text, bool disabled) {
+  const float width = std::max(40.0f, ImGui::GetContentRegionAvail().x);
+  for (const std::string& line : wrap_at_spaces(text, width, [](const std::string& t) { return ImGui::CalcTextSize(t.c_str()).x; }))
+    disabled ? ImGui::TextDisabled("%s", line.c_str()) : ImGui::TextUnformatted(line.c_str());
+}
+}  // namespace
+
+void text_wrapped_at_spaces(const std::string& text) { wrapped_lines(text, false); }
+void text_disabled_wrapped_at_spaces(const std::string& text) { wrapped_lines(text, true); }
 
 namespace {
 

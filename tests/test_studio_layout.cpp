@@ -1,0 +1,84 @@
+// ipd-studio's window layout and UI wording rules (ui/studio_layout.h), with hand-computed numbers.
+#include <gtest/gtest.h>
+
+#include "studio_layout.h"
+
+namespace ipd::ui {
+namespace {
+
+TEST(StudioColumns, WideWindowKeepsPreferredSideWidths) {
+  // 1600 - 2*6 = 1588 usable; 380 + 400 + max(320, 794) = 1574 fits.
+  const StudioColumns c = studio_columns(1600, 380, 400, 6);
+  EXPECT_FALSE(c.tabbed_side);
+  EXPECT_FLOAT_EQ(c.left, 380);
+  EXPECT_FLOAT_EQ(c.right, 400);
+  EXPECT_FLOAT_EQ(c.centre, 808);
+  EXPECT_FALSE(c.tabbed_centre);
+}
+
+TEST(StudioColumns, NarrowerWindowShrinksSidesInProportion) {
+  // 1000: usable 988, centre keeps 494; the sides share 494 as 380:400 -> 240.67 and 253.33.
+  const StudioColumns c = studio_columns(1000, 380, 400, 6);
+  EXPECT_FALSE(c.tabbed_side);
+  EXPECT_NEAR(c.left, 494.0 * 380 / 780, 1e-3);
+  EXPECT_NEAR(c.right, 494.0 * 400 / 780, 1e-3);
+  EXPECT_NEAR(c.centre, 494, 1e-3);
+  EXPECT_TRUE(c.tabbed_centre);  // 494 < 560: registration and pairs as tabs
+}
+
+TEST(StudioColumns, SideMinimumsHoldWhenOnePreferenceIsSmall) {
+  // 1000, prefs 100 and 700: proportional 61.75 is under 160, so the browser gets 160 and the
+  // statistics 494 - 160 = 334.
+  const StudioColumns c = studio_columns(1000, 100, 700, 6);
+  EXPECT_FLOAT_EQ(c.left, 160);
+  EXPECT_NEAR(c.right, 334, 1e-3);
+  EXPECT_NEAR(c.centre, 494, 1e-3);
+}
+
+TEST(StudioColumns, BelowNineHundredTheSidesShareOneTabbedColumn) {
+  // 700: usable 694; the tabbed column takes 40% (277.6), the centre 416.4.
+  const StudioColumns c = studio_columns(700, 380, 400, 6);
+  EXPECT_TRUE(c.tabbed_side);
+  EXPECT_NEAR(c.left, 277.6, 1e-3);
+  EXPECT_FLOAT_EQ(c.right, 0);
+  EXPECT_NEAR(c.centre, 416.4, 1e-3);
+  EXPECT_TRUE(c.tabbed_centre);
+  // Never wider than either side wants, never under the browser's minimum.
+  EXPECT_FLOAT_EQ(studio_columns(880, 200, 250, 6).left, 250);
+  EXPECT_FLOAT_EQ(studio_columns(300, 380, 400, 6).left, 160);
+}
+
+float chars(const std::string& s) { return 10.0f * static_cast<float>(s.size()); }  // 10 px per character
+
+TEST(WrapAtSpaces, NeverInsideANumber) {
+  // 150 px = 15 characters: "confidence 0.97" is exactly 15 and stays whole.
+  EXPECT_EQ(wrap_at_spaces("score 16.8972, confidence 0.97", 150, chars),
+            (std::vector<std::string>{"score 16.8972,", "confidence 0.97"}));
+  // 140 px: the number moves to the next line whole (ImGui's own wrap broke it after the point).
+  EXPECT_EQ(wrap_at_spaces("confidence 0.97 delta -0.064", 140, chars),
+            (std::vector<std::string>{"confidence", "0.97 delta", "-0.064"}));
+}
+
+TEST(WrapAtSpaces, LongWordOnItsOwnLineAndNewlinesKept) {
+  EXPECT_EQ(wrap_at_spaces("a 1234567890123 b", 50, chars), (std::vector<std::string>{"a", "1234567890123", "b"}));
+  EXPECT_EQ(wrap_at_spaces("one\ntwo three", 1000, chars), (std::vector<std::string>{"one", "two three"}));
+  EXPECT_EQ(wrap_at_spaces("", 100, chars), std::vector<std::string>{});
+}
+
+TEST(UiWording, CountedNounsThousandsAndNoNegativeZero) {
+  EXPECT_EQ(counted(1, "trial"), "1 trial");
+  EXPECT_EQ(counted(0, "scene"), "0 scenes");
+  EXPECT_EQ(counted(5982, "hypothesis", "hypotheses"), "5,982 hypotheses");
+  EXPECT_EQ(counted(1, "hypothesis", "hypotheses"), "1 hypothesis");
+  EXPECT_EQ(thousands(89700), "89,700");
+  EXPECT_EQ(thousands(999), "999");
+  EXPECT_EQ(thousands(-1234567), "-1,234,567");
+  EXPECT_EQ(thousands(0), "0");
+  EXPECT_EQ(fixed(-0.000001, 5), "0.00000");
+  EXPECT_EQ(fixed(-0.0000051, 5), "-0.00001");
+  EXPECT_EQ(fixed(-0.064, 3), "-0.064");
+  EXPECT_EQ(fixed(0.0, 2), "0.00");
+}
+
+}  // namespace
+}  // namespace ipd::ui

@@ -1,0 +1,92 @@
+#include "studio_layout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace ipd::ui {
+
+StudioColumns studio_columns(float width, float browser_pref, float stats_pref, float splitter) {
+  StudioColumns c;
+  if (width < kTwoColumnsBelow) {
+    const float usable = width - splitter;
+    c.tabbed_side = true;
+    c.left = std::max(kMinBrowserWidth, std::min(0.4f * usable, std::max(browser_pref, stats_pref)));
+    c.centre = usable - c.left;
+  } else {
+    const float usable = width - 2 * splitter;
+    const float centre_min = std::max(kMinCentreWidth, 0.5f * usable);
+    if (browser_pref + stats_pref + centre_min <= usable) {
+      c.left = browser_pref, c.right = stats_pref;
+    } else {
+      // Shrink both sides in proportion, then lift the one below its minimum at the other's expense.
+      const float sides = std::max(kMinBrowserWidth + kMinStatsWidth, usable - centre_min);
+      c.left = sides * browser_pref / (browser_pref + stats_pref);
+      c.right = sides - c.left;
+      if (c.left < kMinBrowserWidth) c.left = kMinBrowserWidth, c.right = sides - c.left;
+      if (c.right < kMinStatsWidth) c.right = kMinStatsWidth, c.left = sides - c.right;
+    }
+    c.centre = usable - c.left - c.right;
+  }
+  c.tabbed_centre = c.centre < kTabbedCentreBelow;
+  return c;
+}
+
+std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
+                                        const std::function<float(const std::string&)>& measure) {
+  std::vector<std::string> lines;
+  if (text.empty()) return lines;
+  size_t start = 0;
+  while (true) {  // each paragraph (between newlines) on its own
+    const size_t nl = text.find('\n', start);
+    const std::string para = text.substr(start, nl == std::string::npos ? std::string::npos : nl - start);
+    std::string line;
+    size_t p = 0;
+    bool any = false;
+    while (p <= para.size()) {
+      size_t sp = para.find(' ', p);
+      if (sp == std::string::npos) sp = para.size();
+      const std::string word = para.substr(p, sp - p);
+      p = sp + 1;
+      if (word.empty() && sp < para.size()) continue;  // runs of spaces
+      const std::string joined = line.empty() ? word : line + " " + word;
+      if (!line.empty() && measure(joined) > width) {
+        lines.push_back(line);
+        line = word;
+      } else {
+        line = joined;
+      }
+      any = true;
+    }
+    if (any || nl != std::string::npos) lines.push_back(line);
+    if (nl == std::string::npos) break;
+    start = nl + 1;
+  }
+  return lines;
+}
+
+std::string counted(long n, const char* singular, const char* plural) {
+  const std::string noun = n == 1 ? singular : plural ? plural : std::string(singular) + "s";
+  return thousands(n) + " " + noun;
+}
+
+std::string thousands(long long n) {
+  const bool negative = n < 0;
+  std::string digits = std::to_string(negative ? -(n + 1) + 1ULL : static_cast<unsigned long long>(n));
+  std::string out;
+  for (size_t k = 0; k < digits.size(); ++k) {
+    if (k > 0 && (digits.size() - k) % 3 == 0) out += ',';
+    out += digits[k];
+  }
+  return negative ? "-" + out : out;
+}
+
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  std::string s = buf;
+  if (s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
+  return s;
+}
+
+}  // namespace ipd::ui

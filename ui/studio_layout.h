@@ -1,0 +1,39 @@
+// Layout and wording rules of ipd-studio that need no ImGui, so tests can check them with hand-computed
+// numbers: the main window's column widths at any window width, wrapping text at spaces only (never inside
+// a number), counted nouns ("1 scene", "2 scenes") and plain numbers for UI text.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace ipd::ui {
+
+// The main window's columns. Wide windows: browser | centre | statistics, the side columns at their
+// preferred widths while the centre keeps at least half. Narrower: the side columns shrink in proportion to
+// their preferred widths, down to kMinBrowserWidth / kMinStatsWidth. Below kTwoColumnsBelow the browser and
+// the statistics share one tabbed column (40% of the width). A centre narrower than kTabbedCentreBelow shows
+// the registration panel and the pair table as tabs instead of side by side.
+constexpr float kMinBrowserWidth = 160, kMinStatsWidth = 200, kMinCentreWidth = 320;
+constexpr float kTwoColumnsBelow = 900, kTabbedCentreBelow = 560;
+struct StudioColumns {
+  bool tabbed_side = false;  // browser and statistics are tabs of the left column; right = 0
+  float left = 0, centre = 0, right = 0;
+  bool tabbed_centre = false;
+};
+// `width`: the window's content width; `splitter`: the width of each draggable gap between columns.
+StudioColumns studio_columns(float width, float browser_pref, float stats_pref, float splitter);
+
+// `text` broken into lines no wider than `width` (as `measure` says), at spaces only: a word, number
+// included, is never split; a word wider than `width` gets a line of its own. Newlines are kept.
+std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
+                                        const std::function<float(const std::string&)>& measure);
+
+// "1 scene", "3 scenes", "0 scenes"; `plural` defaults to singular + "s".
+std::string counted(long n, const char* singular, const char* plural = nullptr);
+// An integer with thousands separators: 89700 -> "89,700", -1234567 -> "-1,234,567".
+std::string thousands(long long n);
+// A fixed-point number that never reads "-0.000": a value that rounds to zero prints unsigned.
+std::string fixed(double v, int decimals);
+
+}  // namespace ipd::ui
