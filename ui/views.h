@@ -67,7 +67,7 @@ struct UiState {
   SideLayers layers;
   int selected_left = -1, selected_right = -1;  // a click on one side waits for one on the other
   int hover_left = -1, hover_right = -1;
-  int sort_column = 1;                           // browser: 0 stem, 1 IPD, 2 pairs, 3 unpaired, 4 suspect, 5 edited
+  int sort_column = 1;                           // browser: 0 stem, 1 IPD, 2 pairs, 3 unpaired, 4 suspect, 5 edited, 6 ambiguous
   bool sort_descending = true;                   // worst first: the audit order
   char filter[128] = "";
   ReplayState replay;
@@ -126,6 +126,16 @@ void draw_main_columns(const StudyView& v, UiState& ui, const Picture& left, con
 // Text wrapped to the available width at spaces only (wrap_at_spaces): numbers are never split.
 void text_wrapped_at_spaces(const std::string& text);
 void text_disabled_wrapped_at_spaces(const std::string& text);
+void text_coloured_wrapped_at_spaces(const ImVec4& colour, const std::string& text);
+// SameLine() when an item `width` wide still fits on this line, else nothing (it goes on the next line).
+void same_line_if_fits(float width);
+float button_width(const char* label);
+
+// The registration panel's words: its summary line ("real -> hapke: consensus, 1 trial, 5,982 hypotheses,
+// ..."), the replayed step ("step 350 of 5,000 (hypothesis): score ..."), and what a capped trace holds.
+std::string registration_summary(const std::string& a, const std::string& b, const RegistrationReport& r);
+std::string replay_step_line(const TraceStep& step, int k, int steps);
+std::string trace_cap_note(int steps, int hypotheses);
 // Keyboard shortcuts that act on the whole window.
 void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out);
 // Every shortcut, for the help window (and README).

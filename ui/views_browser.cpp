@@ -27,6 +27,7 @@ std::vector<int> browser_order(const std::vector<SceneSummary>& sums, UiState& u
       case 3: return m.unpaired_a + m.unpaired_b;
       case 4: return m.suspects;
       case 5: return m.edited;
+      case 6: return m.ambiguous;
       default: return 0;
     }
   };
@@ -46,8 +47,10 @@ const std::vector<TextColumn>& browser_columns() {
        num | ImGuiTableColumnFlags_DefaultSort},
       {"pairs", "999", "rock pairs counted in the IPD", num},
       {"unp.", "99/99", "unpaired rocks, left/right (excluded rocks are not counted)", num},
-      {"susp.", "99", "suspect pairs (? : registration could not decide)", num},
+      {"susp.", "99", "suspect pairs: paired rocks that the registration does not bring together", num},
       {"ed.", "hand", "pairs fixed by hand", num},
+      {"amb.", "?", "ambiguous registration: the rocks' overlap is too small to decide how the pictures align, "
+                    "so the pairs may be wrong; check them", num},
   };
   return columns;
 }
@@ -108,7 +111,7 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   const float needed = browser_width(v, 0, 1e9f) - 2 * ImGui::GetStyle().WindowPadding.x - 8;
   const bool scroll_x = ImGui::GetContentRegionAvail().x < needed;
   if (scroll_x) flags |= ImGuiTableFlags_ScrollX;
-  if (ImGui::BeginTable("scenes", 6, flags, {0, 0}, scroll_x ? needed : 0.0f)) {
+  if (ImGui::BeginTable("scenes", 7, flags, {0, 0}, scroll_x ? needed : 0.0f)) {
     ImGui::TableSetupScrollFreeze(0, 1);
     setup_text_columns(browser_columns());
     if (ImGuiTableSortSpecs* spec = ImGui::TableGetSortSpecs(); spec && spec->SpecsDirty && spec->SpecsCount > 0) {
@@ -139,9 +142,15 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
         ImGui::Text("%d/%d", m.unpaired_a, m.unpaired_b);
         ImGui::TableNextColumn();
         if (m.suspects > 0) ImGui::TextColored({1, 0.55f, 0, 1}, "%d", m.suspects);
-        else if (m.ambiguous) ImGui::TextColored({1, 0.8f, 0.3f, 1}, "?");
         ImGui::TableNextColumn();
         if (m.edited) ImGui::TextColored({0.4f, 0.8f, 1, 1}, "hand");
+        ImGui::TableNextColumn();
+        if (m.ambiguous) {
+          ImGui::TextColored({1, 0.8f, 0.3f, 1}, "?");
+          if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("ambiguous registration: the overlap is too small to decide how the pictures align;\n"
+                              "check this scene's pairs");
+        }
       }
     }
     ImGui::EndTable();

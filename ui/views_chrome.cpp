@@ -40,15 +40,25 @@ std::string fmt_ipd(double v) {
 }
 
 namespace {
-void wrapped_lines(const std::string& text, bool disabled) {
+void wrapped_lines(const std::string& text, const ImVec4* colour) {
   const float width = std::max(40.0f, ImGui::GetContentRegionAvail().x);
+  if (colour) ImGui::PushStyleColor(ImGuiCol_Text, *colour);
   for (const std::string& line : wrap_at_spaces(text, width, [](const std::string& t) { return ImGui::CalcTextSize(t.c_str()).x; }))
-    disabled ? ImGui::TextDisabled("%s", line.c_str()) : ImGui::TextUnformatted(line.c_str());
+    ImGui::TextUnformatted(line.c_str());
+  if (colour) ImGui::PopStyleColor();
 }
 }  // namespace
 
-void text_wrapped_at_spaces(const std::string& text) { wrapped_lines(text, false); }
-void text_disabled_wrapped_at_spaces(const std::string& text) { wrapped_lines(text, true); }
+void text_wrapped_at_spaces(const std::string& text) { wrapped_lines(text, nullptr); }
+void text_disabled_wrapped_at_spaces(const std::string& text) { wrapped_lines(text, &ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]); }
+void text_coloured_wrapped_at_spaces(const ImVec4& colour, const std::string& text) { wrapped_lines(text, &colour); }
+
+float button_width(const char* label) { return ImGui::CalcTextSize(label).x + 2 * ImGui::GetStyle().FramePadding.x; }
+
+void same_line_if_fits(float width) {
+  const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+  if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + width <= right) ImGui::SameLine();
+}
 
 namespace {
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "studio_layout.h"
 #include "views.h"
 
 namespace ipd::ui {
@@ -22,6 +23,24 @@ const char* kind_name(TraceStepKind k) {
 
 }  // namespace
 
+std::string registration_summary(const std::string& a, const std::string& b, const RegistrationReport& r) {
+  return a + " -> " + b + ": " + to_string(r.method) + ", " + counted(r.trials, "trial") + ", " +
+         counted(r.hypotheses, "hypothesis", "hypotheses") + ", " + counted(r.inliers, "inlier") + ", score " +
+         fixed(r.score, 4) + ", confidence " + fixed(r.confidence, 2);
+}
+
+std::string replay_step_line(const TraceStep& step, int k, int steps) {
+  return "step " + thousands(k + 1) + " of " + thousands(steps) + " (" + kind_name(step.kind) + "): score " +
+         fixed(step.score, 4) + ", best so far " + fixed(step.best_score, 4) + (step.new_best ? " (new best)" : "") +
+         ", " + counted(static_cast<long>(step.inliers_a.size()), "inlier");
+}
+
+std::string trace_cap_note(int steps, int hypotheses) {
+  return "the replay holds the first " + thousands(steps) + " steps of " +
+         counted(hypotheses, "hypothesis", "hypotheses") + " tried (the recording stops at " + thousands(steps) +
+         "; the search went on)";
+}
+
 void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const Session& s = *v.session;
   if (s.scenes().empty()) return;
@@ -30,20 +49,23 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const RegistrationReport& r = have_rerun ? *v.rerun : sc.automatic.registration;
   const auto& [da, db] = s.domain_pairs()[s.pair_index()];
   const int steps = static_cast<int>(r.trace.steps.size());
-  ImGui::TextWrapped("%s -> %s: %s, %d trials, %d hypotheses, %d inliers, score %.4f, confidence %.2f", da.c_str(), db.c_str(),
-              to_string(r.method), r.trials, r.hypotheses, r.inliers, r.score, r.confidence);
-  if (r.ambiguous) ImGui::TextColored({1, 0.8f, 0.3f, 1}, "ambiguous: the overlap is too small to decide; check the pairs");
-  ImGui::TextDisabled("stopped: %s%s%s", to_string(r.stop), r.note.empty() ? "" : "; ", r.note.c_str());
+  text_wrapped_at_spaces(registration_summary(da, db, r));
+  if (r.ambiguous)
+    text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1}, "ambiguous: the overlap is too small to decide; check the pairs");
+  text_disabled_wrapped_at_spaces(std::string("stopped: ") + to_string(r.stop) + (r.note.empty() ? "" : "; " + r.note));
   ReplayState& rp = ui.replay;
   const float end = static_cast<float>(steps) + 1.0f;  // the steps, then one unit of raw -> aligned motion
   if (ImGui::Button(rp.playing ? "pause" : "play")) {
     rp.playing = !rp.playing;
     if (rp.playing && rp.position >= end) rp.position = 0;
   }
+  // The scrubber names the same step as the line under it ("step K of N"), K = replay_step() + 1.
+  const int shown = rp.position < steps ? replay_step(r, rp.position) : -1;
+  const std::string scrub_label = steps == 0 ? "%.2f" : shown >= 0 ? "step " + thousands(shown + 1) + " of " + thousands(steps) : "final motion";
   ImGui::SameLine();
-  ImGui::SetNextItemWidth(std::max(80.0f, ImGui::GetContentRegionAvail().x * 0.35f));
-  if (ImGui::SliderFloat("##scrub", &rp.position, 0.0f, end, steps > 0 ? "step %.0f" : "%.2f")) rp.playing = false;
-  ImGui::SameLine();
+  ImGui::SetNextItemWidth(std::max(80.0f, std::min(ImGui::GetContentRegionAvail().x * 0.5f, ImGui::CalcTextSize("step 5,000 of 5,000").x + 24)));
+  if (ImGui::SliderFloat("##scrub", &rp.position, 0.0f, end, scrub_label.c_str())) rp.playing = false;
+  same_line_if_fits(90 + ImGui::CalcTextSize("steps/s").x + ImGui::GetStyle().ItemInnerSpacing.x);
   ImGui::SetNextItemWidth(90);
   ImGui::SliderFloat("steps/s", &rp.speed, 1.0f, 2000.0f, "%.0f", ImGuiSliderFlags_Logarithmic);
   if (rp.playing) {
@@ -52,24 +74,33 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
     rp.position += rp.position < steps ? dt * rp.speed : dt / 1.5f;
     if (rp.position >= end) rp.position = end, rp.playing = false;
   }
+  // The combo shows the method of the registration on display; choosing another re-runs with it.
   const auto& methods = registration_methods();
+  int displayed = 0;
+  for (size_t m = 0; m < methods.size(); ++m)
+    if (methods[m].method == r.method) displayed = static_cast<int>(m);
+  int chosen = displayed;
   ImGui::SetNextItemWidth(100);
-  ImGui::Combo(
-      "##method", &ui.rerun_method,
-      [](void* table, int k, const char** name) {
-        *name = (*static_cast<const std::vector<RegistrationMethodInfo>*>(table))[k].name;
-        return true;
-      },
-      const_cast<std::vector<RegistrationMethodInfo>*>(&methods), static_cast<int>(methods.size()));
-  if (ImGui::IsItemHovered() && ui.rerun_method >= 0 && ui.rerun_method < static_cast<int>(methods.size()))
-    ImGui::SetTooltip("%s", methods[ui.rerun_method].description);
+  if (ImGui::Combo(
+          "##method", &chosen,
+          [](void* table, int k, const char** name) {
+            *name = (*static_cast<const std::vector<RegistrationMethodInfo>*>(table))[k].name;
+            return true;
+          },
+          const_cast<std::vector<RegistrationMethodInfo>*>(&methods), static_cast<int>(methods.size())) &&
+      chosen != displayed) {
+    ui.rerun_method = chosen;
+    out.rerun_registration = true;
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s\n(the method of the registration shown; pick another to re-run with it)", methods[displayed].description);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
   ImGui::InputInt("seed", &ui.rerun_seed, 0);
-  ImGui::SameLine();
-  if (ImGui::Button("re-run")) out.rerun_registration = true;
+  same_line_if_fits(button_width("re-run"));
+  if (ImGui::Button("re-run")) ui.rerun_method = displayed, out.rerun_registration = true;
   if (have_rerun && !v.rerun_is_automatic) {
-    ImGui::SameLine();
+    same_line_if_fits(button_width("apply these pairs"));
     if (ImGui::Button("apply these pairs")) {
       RockPairs pairs = v.rerun->pairs;  // registration's (A, B) order; the view may show (B, A)
       if (s.swapped())
@@ -77,19 +108,20 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
       out.edits.push_back(Edit::replace(std::move(pairs)));
       ui.rerun_discarded = true;
     }
-    ImGui::SameLine();
+    same_line_if_fits(button_width("discard"));
     if (ImGui::Button("discard")) ui.rerun_discarded = true;
   }
   // Where on the timeline: a step of the search, or the final motion.
-  const int k = rp.position < steps ? replay_step(r, rp.position) : -1;
+  const int k = shown;
   const TraceStep* step = k >= 0 ? &r.trace.steps[k] : nullptr;
   if (step)
-    ImGui::Text("%s %d of %d: score %.4f, best so far %.4f%s, %zu inliers", kind_name(step->kind), k + 1, steps,
-                step->score, step->best_score, step->new_best ? " (new best)" : "", step->inliers_a.size());
+    text_wrapped_at_spaces(replay_step_line(*step, k, steps));
   else if (steps == 0)
     ImGui::TextDisabled(v.rerun ? "no search recorded for this method" : "recording the search...");
   else
-    ImGui::TextDisabled("final affine: raw -> aligned%s", r.trace.truncated ? " (trace truncated)" : "");
+    ImGui::TextDisabled("final affine: raw -> aligned");
+  if (r.trace.truncated)
+    text_disabled_wrapped_at_spaces(trace_cap_note(steps, r.hypotheses));
 
   // Canvas: B's centres (pink rings) fixed, A's moved by the current affine, in B's frame; the score curve
   // as a strip under it, full width (a column beside it left both too narrow and cut its caption).
@@ -157,10 +189,8 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
     int news = 0;
     for (const auto& st : r.trace.steps) news += st.new_best;
     // One line of caption (two when the stop reason is long), then the strip.
-    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + avail.x);
-    ImGui::TextDisabled("best score so far: %d improvement%s over %d steps; %s", news, news == 1 ? "" : "s", steps,
-                        r.trace.stop.c_str());
-    ImGui::PopTextWrapPos();
+    text_disabled_wrapped_at_spaces("best score so far: " + counted(news, "improvement") + " over " +
+                                    counted(steps, "step") + "; " + r.trace.stop);
     const ImVec2 c0 = ImGui::GetCursorScreenPos();
     const ImVec2 csz{avail.x - 4, std::max(30.0f, std::min(curve_h, ImGui::GetContentRegionAvail().y - 8))};  // a margin like the other sides
     ImGui::PlotLines("##best", best.data(), steps, 0, nullptr, FLT_MAX, FLT_MAX, csz);

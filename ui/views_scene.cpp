@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "studio_layout.h"
 #include "views.h"
 
 namespace ipd::ui {
@@ -73,33 +74,73 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
     ImGui::TextUnformatted("No scene is present in both domains.");
     return;
   }
+  // The toolbar wraps onto a second line in a narrow window rather than running off its edge.
+  const float box = ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x;
   ImGui::Checkbox("GT", &ui.layers.gt);
-  ImGui::SameLine();
+  same_line_if_fits(box + ImGui::CalcTextSize("predictions").x);
   ImGui::Checkbox("predictions", &ui.layers.predictions);
-  ImGui::SameLine();
+  same_line_if_fits(box + ImGui::CalcTextSize("numbers").x);
   ImGui::Checkbox("numbers", &ui.layers.indices);
-  ImGui::SameLine();
+  same_line_if_fits(box + ImGui::CalcTextSize("confidence").x);
   ImGui::Checkbox("confidence", &ui.layers.confidences);
-  ImGui::SameLine();
+  same_line_if_fits(box + ImGui::CalcTextSize("sync zoom").x);
   ImGui::Checkbox("sync zoom", &ui.sync_views);
-  ImGui::SameLine();
+  same_line_if_fits(button_width("unpair (U)"));
   if (ImGui::Button("unpair (U)") && (ui.selected_left >= 0 || ui.selected_right >= 0))
     out.edits.push_back(ui.selected_left >= 0 ? Edit::unpair(Side::kA, ui.selected_left)
                                               : Edit::unpair(Side::kB, ui.selected_right));
-  ImGui::SameLine();
+  same_line_if_fits(button_width("exclude (X)"));
   if (ImGui::Button("exclude (X)") && (ui.selected_left >= 0 || ui.selected_right >= 0))
     out.edits.push_back(Edit::toggle_exclude(ui.selected_left >= 0 ? Side::kA : Side::kB,
                                              ui.selected_left >= 0 ? ui.selected_left : ui.selected_right));
-  ImGui::SameLine();
+  same_line_if_fits(button_width("reset to automatic"));
   if (ImGui::Button("reset to automatic")) out.edits.push_back(Edit::reset());
-  ImGui::SameLine();
   // Only when it fits: the Help menu says the same.
-  if (ImGui::GetContentRegionAvail().x >= ImGui::CalcTextSize("F1: help").x) ImGui::TextDisabled("F1: help");
-  else ImGui::NewLine();
+  const float right_edge = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+  if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + ImGui::CalcTextSize("F1: help").x <= right_edge) {
+    ImGui::SameLine();
+    ImGui::TextDisabled("F1: help");
+  }
 
-  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  // The panes' captions (domain names) and notices ("no picture ... (labels only)") sit in a strip above
+  // the pictures, never over rocks or their numbers.
+  const float line = ImGui::GetTextLineHeightWithSpacing();
   const float gap = 6;
-  const ImVec2 size{(avail.x - gap) * 0.5f, std::max(50.0f, avail.y)};
+  const float pane_w = (ImGui::GetContentRegionAvail().x - gap) * 0.5f;
+  const float spacer = ImGui::CalcTextSize("  ").x;
+  auto notice = [](const Picture& pic) { return !pic.texture && !pic.placeholder.empty(); };
+  // A notice that does not fit beside its caption goes under it, wrapped at spaces to the pane's width.
+  auto measure = [](const std::string& t) { return ImGui::CalcTextSize(t.c_str()).x; };
+  bool below = false;
+  size_t notice_lines = 0;
+  for (int k = 0; k < 2; ++k) {
+    const Picture& pic = k == 0 ? left : right;
+    const std::string caption = k == 0 ? s.left_domain() : s.right_domain();
+    if (!notice(pic)) continue;
+    if (measure(caption) + spacer + measure(pic.placeholder) > pane_w) below = true;
+    notice_lines = std::max(notice_lines, wrap_at_spaces(pic.placeholder, pane_w, measure).size());
+  }
+  const float strip = below ? (1 + notice_lines) * line : line;
+  const ImVec2 strip0 = ImGui::GetCursorScreenPos();
+  for (int k = 0; k < 2; ++k) {
+    const Picture& pic = k == 0 ? left : right;
+    const ImVec2 at{strip0.x + k * (pane_w + gap), strip0.y};
+    ImDrawList* sl = ImGui::GetWindowDrawList();
+    sl->PushClipRect(at, {at.x + pane_w, at.y + strip}, true);
+    const std::string caption = k == 0 ? s.left_domain() : s.right_domain();
+    sl->AddText(at, IM_COL32(255, 255, 255, 255), caption.c_str());
+    if (notice(pic) && !below) {
+      sl->AddText({at.x + measure(caption) + spacer, at.y}, IM_COL32(255, 200, 120, 255), pic.placeholder.c_str());
+    } else if (notice(pic)) {
+      float y = at.y + line;
+      for (const std::string& l : wrap_at_spaces(pic.placeholder, pane_w, measure))
+        sl->AddText({at.x, y}, IM_COL32(255, 200, 120, 255), l.c_str()), y += line;
+    }
+    sl->PopClipRect();
+  }
+  ImGui::Dummy({2 * pane_w + gap, strip - ImGui::GetStyle().ItemSpacing.y});
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  const ImVec2 size{pane_w, std::max(50.0f, avail.y)};
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   Placement placed[2];
@@ -117,7 +158,11 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
     in.sample = replay_sample(v, ui, side);
     in.fill_background = false;
     in.min_box_px_for_confidence = 2.2f * ImGui::GetFontSize();
+    // Drawn in the strip above instead (the caption stays in `in` for the tooltips).
+    const std::string caption = std::move(in.caption), placeholder = std::move(in.placeholder);
+    in.caption.clear(), in.placeholder.clear();
     const int hit = draw_side(dl, p0, size, view, in, ui.layers, mouse);
+    in.caption = caption, in.placeholder = placeholder;
     placed[k] = place(p0, size, in.image_w, in.image_h, view);
     int& hover = k == 0 ? ui.hover_left : ui.hover_right;
     hover = hovered_area ? hit : -1;

@@ -93,8 +93,9 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   }
   out.trials = it;
   out.hypotheses = it;
-  out.trace = recorder.take_trace(fmt::format("{} ({} EM iterations, {:.3g} of {:.3g} point evaluations)",
-                                              to_string(out.stop), it, out.work, budget));
+  out.trace = recorder.take_trace(fmt::format("{} ({}, {} of {})", to_string(out.stop),
+                                              count_of(it, "EM iteration", "EM iterations"), grouped(out.work),
+                                              count_of(budget, "point evaluation", "point evaluations")));
   out.affine_normalised.leftCols<2>() = lin;
   out.affine_normalised.col(2) = t.transpose();
   if (!out.affine_normalised.allFinite()) {

@@ -140,15 +140,31 @@ double median_nn_distance(const std::vector<Eigen::Vector2d>& p) {
   return d[d.size() / 2];
 }
 
+std::string grouped(double n) {
+  const long long v = std::llround(n);
+  std::string digits = std::to_string(v < 0 ? -v : v), out = v < 0 ? "-" : "";
+  for (size_t k = 0; k < digits.size(); ++k) {
+    if (k > 0 && (digits.size() - k) % 3 == 0) out += ',';
+    out += digits[k];
+  }
+  return out;
+}
+
+std::string count_of(double n, const char* singular, const char* plural) {
+  return grouped(n) + " " + (std::llround(n) == 1 ? singular : plural);
+}
+
 std::string describe_stop(StopReason stop, int trials, int hypotheses, double work, double budget) {
   std::string s = to_string(stop);
+  const std::string samples = count_of(trials, "sample", "samples");
+  const std::string tried = count_of(hypotheses, "hypothesis", "hypotheses");
   switch (stop) {
     case StopReason::kWorkBudget:
-      return fmt::format("{} ({:.3g} of {:.3g} point evaluations; {} samples, {} hypotheses)", s, work, budget, trials,
-                         hypotheses);
+      return fmt::format("{} ({} of {}; {}, {})", s, grouped(work), count_of(budget, "point evaluation", "point evaluations"),
+                         samples, tried);
     case StopReason::kNotRun:
     case StopReason::kTooFewPoints: return s;
-    default: return fmt::format("{} ({} samples, {} hypotheses, {:.3g} point evaluations)", s, trials, hypotheses, work);
+    default: return fmt::format("{} ({}, {}, {})", s, samples, tried, count_of(work, "point evaluation", "point evaluations"));
   }
 }
 

@@ -48,6 +48,10 @@ double median_nn_distance(const std::vector<Eigen::Vector2d>& p);
 
 // The stop reason in words, with the numbers behind it.
 std::string describe_stop(StopReason stop, int trials, int hypotheses, double work, double budget);
+// "1 sample", "89,700 point evaluations": a count (rounded) with thousands separators and the noun's number,
+// as the stop descriptions print them (they are shown in ipd-studio: no "8.97e+04", no "1 samples").
+std::string count_of(double n, const char* singular, const char* plural);
+std::string grouped(double n);  // 89700 -> "89,700"
 
 MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o);
 MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
