@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "stats_charts.h"
+#include "stats_panels.h"
 #include "table_layout.h"
 
 namespace ipd::ui {
@@ -125,6 +126,42 @@ TEST(StatsCharts, HistogramBarsStandOnTheCountAxis) {
     if (op.kind == "fill") ++fills, hot += same(op.colour, kColours.bar_hot);
   EXPECT_EQ(fills, 4);
   EXPECT_EQ(hot, 1);
+}
+
+// 3000 scenes, two of them in the first bin: that bin's bar is 2 pt tall, not 81 * 2 / 4000 = 0.04 pt
+// (it drew nothing and looked empty).
+TEST(StatsCharts, ANonEmptyBinAlwaysShowsATwoPointBar) {
+  Recorder c;
+  const HistogramChart ch = layout_histogram(c, {}, {0.0, 0.1, {2, 2998, 0}, 0.15}, {0, 0, 300, 100});
+  ASSERT_EQ(ch.bars.size(), 3u);
+  EXPECT_DOUBLE_EQ(ch.bars[0].bar.y1, ch.plot.y1);
+  EXPECT_DOUBLE_EQ(ch.bars[0].bar.y0, ch.plot.y1 - 2);
+  EXPECT_DOUBLE_EQ(ch.bars[2].bar.y0, ch.plot.y1);  // empty stays empty
+  draw_histogram(c, {}, ch, kColours, -1);
+  int fills = 0;
+  for (const auto& op : c.ops) fills += op.kind == "fill";
+  EXPECT_EQ(fills, 2);
+}
+
+// One scene with IPD 0.0200: bins 0.015 | 0.020 | 0.025 | 0.030 and the bar centred at 0.020, on its tick
+// (centred in its bin it read 0.0225).
+TEST(StatsCharts, ALoneValuesBarSitsAtTheValue) {
+  const HistogramBins h = histogram_bins({0.02}, 4);
+  EXPECT_NEAR(h.width, 0.005, 1e-15);
+  EXPECT_NEAR(h.start, 0.015, 1e-12);
+  EXPECT_EQ(h.counts, (std::vector<int>{0, 1, 0}));
+  EXPECT_DOUBLE_EQ(h.lone_value, 0.02);
+  EXPECT_TRUE(std::isnan(histogram_bins({0.01, 0.02}, 4).lone_value));
+  Recorder c;
+  //   edge labels "0.015".."0.030" (30 pt, half 15) > gutter 12: plot x 15 .. 285, slots of 90 pt; the value
+  //   0.020 at 15 + 90 = 105, the bar 30 pt wide (3 lines) around it.
+  const HistogramChart ch = layout_histogram(c, {}, {h.start, h.width, h.counts, 0.02, h.lone_value}, {0, 0, 300, 100});
+  ASSERT_EQ(ch.bars.size(), 3u);
+  expect_rect(ch.bars[1].bar, 90, 5, 120, 86);
+  EXPECT_TRUE(ch.bars[1].current);
+  ASSERT_EQ(ch.edge_axis.size(), 4u);
+  EXPECT_EQ(ch.edge_axis[1].text, "0.020");
+  EXPECT_DOUBLE_EQ(ch.edge_axis[1].at, 105);
 }
 
 // The size breakdown's bars on an IPD axis: ticks round, the last one past every bar and whisker.

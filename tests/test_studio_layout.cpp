@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "studio_layout.h"
+#include "views.h"
 
 namespace ipd::ui {
 namespace {
@@ -78,6 +79,37 @@ TEST(UiWording, CountedNounsThousandsAndNoNegativeZero) {
   EXPECT_EQ(fixed(-0.0000051, 5), "-0.00001");
   EXPECT_EQ(fixed(-0.064, 3), "-0.064");
   EXPECT_EQ(fixed(0.0, 2), "0.00");
+}
+
+TEST(RegistrationWords, SingularCountsPlainNumbersOneStepNumber) {
+  RegistrationReport r;
+  r.method = RegistrationMethod::kConsensus;
+  r.trials = 1, r.hypotheses = 1, r.inliers = 17, r.score = 16.89721, r.confidence = 0.8449;
+  EXPECT_EQ(registration_summary("real", "principled", r),
+            "real -> principled: consensus, 1 trial, 1 hypothesis, 17 inliers, score 16.8972, confidence 0.84");
+  r.trials = 40, r.hypotheses = 5982, r.inliers = 1, r.score = -0.0000001, r.confidence = -0.000001;
+  EXPECT_EQ(registration_summary("a", "b", r),
+            "a -> b: consensus, 40 trials, 5,982 hypotheses, 1 inlier, score 0.0000, confidence 0.00");
+  TraceStep st;
+  st.kind = TraceStepKind::kHypothesis;
+  st.score = 0.5, st.best_score = 0.75, st.inliers_a = {3};
+  // k = 349 is the 350th step: the scrubber reads "step 350 of 5,000" too.
+  EXPECT_EQ(replay_step_line(st, 349, 5000), "step 350 of 5,000 (hypothesis): score 0.5000, best so far 0.7500, 1 inlier");
+  EXPECT_EQ(trace_cap_note(5000, 5982),
+            "the replay holds the first 5,000 steps of 5,982 hypotheses tried (the recording stops at 5,000; the search "
+            "went on)");
+}
+
+TEST(BrowserOrder, AmbiguousScenesSortOnTheirOwnColumn) {
+  std::vector<SceneSummary> sums(3);
+  sums[0].stem = "a", sums[0].suspects = 2;
+  sums[1].stem = "b", sums[1].ambiguous = true;
+  sums[2].stem = "c";
+  UiState ui;
+  ui.sort_column = 6, ui.sort_descending = true;
+  EXPECT_EQ(browser_order(sums, ui), (std::vector<int>{1, 0, 2}));  // ambiguity, not suspects
+  ui.sort_column = 4;
+  EXPECT_EQ(browser_order(sums, ui), (std::vector<int>{0, 1, 2}));
 }
 
 }  // namespace

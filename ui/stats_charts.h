@@ -5,6 +5,7 @@
 // Pure layout + drawing: no ImGui, no I/O.
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,7 @@ struct HistogramInput {
   double start = 0, width = 0;  // bin k covers [start + k width, start + (k+1) width)
   std::vector<int> counts;
   double current = 0;           // the current scene's value (NaN: none)
+  double lone_value = std::nan("");  // all values equal: the bar holding it is centred at it, not its bin
 };
 HistogramChart layout_histogram(Canvas& c, const TextStyle& text, const HistogramInput& in, const PtRect& area);
 struct ChartColours {

@@ -58,6 +58,11 @@ HistogramBins histogram_bins(const std::vector<double>& values, int bins) {
   const int n = std::max(1, static_cast<int>(std::floor((hi - h.start) / h.width)) + 1);
   h.counts.assign(n, 0);
   for (double v : values) h.counts[std::clamp(static_cast<int>(std::floor((v - h.start) / h.width)), 0, n - 1)]++;
+  if (lo == hi) {
+    h.start -= h.width;
+    h.counts = {0, static_cast<int>(values.size()), 0};
+    h.lone_value = lo;
+  }
   return h;
 }
 
@@ -135,7 +140,7 @@ void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPan
   std::vector<double> values;
   for (const auto& [stem, val] : stats->scene_ipd) values.push_back(val);
   const HistogramBins h = histogram_bins(values, st.bins);
-  HistogramInput in{h.start, h.width, h.counts, std::nan("")};
+  HistogramInput in{h.start, h.width, h.counts, std::nan(""), h.lone_value};
   std::string current_stem;
   if (!v.session->scenes().empty() && ui.scene < static_cast<int>(v.summaries->size())) {
     in.current = (*v.summaries)[ui.scene].ipd;

@@ -4,6 +4,7 @@
 // a SessionStatistics computed off the UI thread; they never compute.
 #pragma once
 
+#include <cmath>
 #include <string>
 
 #include "ipd/session_statistics.h"
@@ -30,6 +31,9 @@ void draw_stats_panels(const StudyView& v, const SessionStatistics* stats, bool 
 struct HistogramBins {
   double start = 0, width = 0;
   std::vector<int> counts;
+  // Every value the same (one scene, say): three bins with the value's bin in the middle, and the value,
+  // where its bar is drawn (not at its bin's centre, which would read half a bin off).
+  double lone_value = std::nan("");
 };
 HistogramBins histogram_bins(const std::vector<double>& values, int bins);
 
