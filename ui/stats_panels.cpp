@@ -1,4 +1,5 @@
 #include "stats_panels.h"
+#include "studio_layout.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,8 +15,8 @@ namespace {
 
 std::string interval(double v, double lo, double hi) {
   if (std::isnan(v)) return "n/a";
-  if (std::isnan(lo) || std::isnan(hi)) return fmt::format("{:.4f}", v);
-  return fmt::format("{:.4f} [{:.3f}, {:.3f}]", v, lo, hi);
+  if (std::isnan(lo) || std::isnan(hi)) return fixed(v, 4);
+  return fixed(v, 4) + " [" + fixed(lo, 3) + ", " + fixed(hi, 3) + "]";  // never "-0.000"
 }
 
 // 1, 2 or 5 times a power of ten, at least x.
@@ -76,7 +77,7 @@ void cell_interval_tooltip(const SessionStatistics* stats, const std::string& mo
   ImGui::Text("%s", interval(c->ipd, c->ci_low, c->ci_high).c_str());
   ImGui::TextDisabled("%g%% scene-bootstrap interval, %d resamples; se %.4f", 100 * stats->request.bootstrap.level,
                       stats->request.bootstrap.resamples, c->se);
-  ImGui::TextDisabled("%ld pairs in %d scenes", c->pairs, c->scenes);
+  ImGui::TextDisabled("%s in %s", counted(c->pairs, "pair").c_str(), counted(c->scenes, "scene").c_str());
   ImGui::EndTooltip();
 }
 
@@ -95,7 +96,7 @@ void draw_compare(const StudyView& v, const SessionStatistics* stats, StatsPanel
     }
   };
   combo("ref##cmp", &st.ref);
-  ImGui::SameLine();
+  same_line_if_fits(110 + ImGui::GetStyle().ItemInnerSpacing.x + ImGui::CalcTextSize("a").x);
   combo("a##cmp", &st.a);
   combo("b##cmp", &st.b);
   if (st.ref == st.a || st.ref == st.b || st.a == st.b) {
@@ -108,15 +109,15 @@ void draw_compare(const StudyView& v, const SessionStatistics* stats, StatsPanel
   }
   const RendererComparison& c = *stats->comparison;
   const Comparison& r = c.result;
-  ImGui::Text("IPD(%s,%s) %.4f  IPD(%s,%s) %.4f", c.ref.c_str(), c.a.c_str(), r.ipd_a, c.ref.c_str(), c.b.c_str(), r.ipd_b);
-  ImGui::Text("delta %s   p = %.2g", interval(r.delta.estimate, r.delta.low, r.delta.high).c_str(), r.p_value);
+  text_wrapped_at_spaces("IPD(" + c.ref + "," + c.a + ") " + fixed(r.ipd_a, 4) + "  IPD(" + c.ref + "," + c.b + ") " +
+                         fixed(r.ipd_b, 4));
+  text_wrapped_at_spaces("delta " + interval(r.delta.estimate, r.delta.low, r.delta.high) + "   p " +
+                         (r.p_value < 1e-4 ? "< 0.0001" : fmt::format("= {:.2g}", r.p_value)));
   // The GUI font has no Δ or typographic minus: spell them in ASCII.
   std::string sentence = comparison_sentence(c);
   for (const auto& [from, to] : {std::pair<std::string, std::string>{"ΔIPD", "delta IPD"}, {"−", "-"}})
     for (size_t at; (at = sentence.find(from)) != std::string::npos;) sentence.replace(at, from.size(), to);
-  ImGui::PushTextWrapPos(0);
-  ImGui::TextUnformatted(sentence.c_str());
-  ImGui::PopTextWrapPos();
+  text_wrapped_at_spaces(sentence);  // never "-0.|0799"
 }
 
 // The charts draw on the figure canvas in window pixels, text at the GUI font's size.
@@ -132,7 +133,7 @@ ChartColours gui_colours() {
 }
 
 void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPanelState& st, UiState& ui) {
-  ImGui::Text("Per-scene IPD, %s (click a bar: those scenes)", v.session->model().c_str());
+  text_wrapped_at_spaces("Per-scene IPD, " + v.session->model() + " (click a bar: those scenes)");
   if (!stats || stats->scene_ipd.empty()) {
     ImGui::TextDisabled("no scene with pairs");
     return;
@@ -165,16 +166,15 @@ void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPan
   if (hot >= 0) {
     const HistogramBar& b = chart.bars[hot];
     const bool last = hot + 1 == static_cast<int>(chart.bars.size());
-    ImGui::SetTooltip("%d scene(s) with IPD in [%g, %g%s\nclick: show them in the scene list", b.count, b.lo, b.hi,
+    ImGui::SetTooltip("%s with IPD in [%g, %g%s\nclick: show them in the scene list", counted(b.count, "scene").c_str(), b.lo, b.hi,
                       last ? "]" : ")");
     const std::string filter = fmt::format("ipd>={:g} ipd{}{:g}", b.lo, last ? "<=" : "<", b.hi);
     if (clicked && filter.size() < sizeof ui.filter) std::snprintf(ui.filter, sizeof ui.filter, "%s", filter.c_str());
   }
   if (current_stem.empty() || std::isnan(in.current))
-    ImGui::TextDisabled("%zu scene%s", values.size(), values.size() == 1 ? "" : "s");
+    text_disabled_wrapped_at_spaces(counted(values.size(), "scene"));
   else
-    ImGui::TextDisabled("%zu scene%s; outlined: the bin of %s", values.size(), values.size() == 1 ? "" : "s",
-                        current_stem.c_str());
+    text_disabled_wrapped_at_spaces(counted(values.size(), "scene") + "; outlined: the bin of " + current_stem);
 }
 
 void draw_size_breakdown(const SessionStatistics* stats) {
@@ -199,8 +199,8 @@ void draw_size_breakdown(const SessionStatistics* stats) {
   draw_value_bars(canvas, text, chart, rows, gui_colours(), hot);
   if (hot >= 0) {
     const BreakdownBin& bin = b.bins[hot];
-    ImGui::SetTooltip("%s: IPD %s\n%ld pairs in %d scenes", bin.label.c_str(),
-                      interval(bin.ipd.estimate, bin.ipd.low, bin.ipd.high).c_str(), bin.pairs, bin.scenes);
+    ImGui::SetTooltip("%s: IPD %s\n%s in %s", bin.label.c_str(), interval(bin.ipd.estimate, bin.ipd.low, bin.ipd.high).c_str(),
+                      counted(bin.pairs, "pair").c_str(), counted(bin.scenes, "scene").c_str());
   }
 }
 
@@ -214,8 +214,9 @@ void draw_stats_panels(const StudyView& v, const SessionStatistics* stats, bool 
     const auto& [a, b] = v.session->domain_pairs()[v.session->pair_index()];
     const TableCell* c = stats->table.cell(v.session->model(), a, b);
     if (c) ImGui::Text("IPD %s", interval(c->ipd, c->ci_low, c->ci_high).c_str());
-    ImGui::SameLine();
-    ImGui::TextDisabled("%g%% CI%s", 100 * stats->request.bootstrap.level, computing ? ", updating..." : "");
+    const std::string ci = fmt::format("{:g}% CI{}", 100 * stats->request.bootstrap.level, computing ? ", updating..." : "");
+    same_line_if_fits(ImGui::CalcTextSize(ci.c_str()).x);
+    ImGui::TextDisabled("%s", ci.c_str());
   } else {
     ImGui::TextDisabled("computing intervals...");
   }

@@ -115,6 +115,7 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out);  // help, go to scene, open study, quit
 void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out);
+float scene_toolbar_width();  // the pictures' toolbar on one line
 void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, const Picture& right, UiCommands& out);
 void draw_registration(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "studio_layout.h"
 #include "views.h"
 
 namespace ipd::ui {
@@ -103,7 +104,7 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   ImGui::SetNextItemWidth(-1);
   ImGui::InputTextWithHint("##filter", "filter: text, ipd>0.1, suspect, edited", ui.filter, sizeof ui.filter);
   if (!ui.filter_error.empty()) ImGui::TextColored({1, 0.5f, 0.3f, 1}, "%s", ui.filter_error.c_str());
-  ImGui::TextDisabled("%zu of %zu scenes%s", ui.order.size(), v.summaries->size(),
+  ImGui::TextDisabled("%s of %s%s", thousands(ui.order.size()).c_str(), counted(v.summaries->size(), "scene").c_str(),
                       v.loading.empty() ? "" : " so far (the rest is loading)");
   ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
                           ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable;

@@ -145,7 +145,7 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
 void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out) {
   if (v.session) {
     const Session& s = *v.session;
-    ImGui::Text("%s  |  %zu scenes  |  %s vs %s  |  %s", s.study().root.c_str(), s.scenes().size(),
+    ImGui::Text("%s  |  %s  |  %s vs %s  |  %s", s.study().root.c_str(), counted(s.scenes().size(), "scene").c_str(),
                 s.left_domain().c_str(), s.right_domain().c_str(), s.model().empty() ? "no predictions" : s.model().c_str());
     ImGui::SameLine();
   }
@@ -256,13 +256,14 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
   if (!s.scenes().empty()) {
     const SceneSummary& m = (*v.summaries)[ui.scene];
     ImGui::Text("scene %s", m.stem.c_str());
-    ImGui::Text("IPD %s  (%d pairs, unpaired %d / %d)", fmt_ipd(m.ipd).c_str(), m.pairs, m.unpaired_a, m.unpaired_b);
-    if (m.suspects) ImGui::TextColored({1, 0.55f, 0, 1}, "%d suspect pair(s): N jumps to the next one", m.suspects);
+    text_wrapped_at_spaces("IPD " + fmt_ipd(m.ipd) + "  (" + counted(m.pairs, "pair") + ", unpaired " + std::to_string(m.unpaired_a) +
+                           " / " + std::to_string(m.unpaired_b) + ")");
+    if (m.suspects) ImGui::TextColored({1, 0.55f, 0, 1}, "%s: N jumps to the next one", counted(m.suspects, "suspect pair").c_str());
   }
   const CellTotals t = s.totals();
   ImGui::Separator();
   ImGui::Text("IPD(%s, %s) for %s", s.left_domain().c_str(), s.right_domain().c_str(), s.model().c_str());
-  ImGui::Text("%s over %ld pairs in %d scenes", fmt_ipd(t.ipd()).c_str(), t.pairs, t.scenes);
+  ImGui::Text("%s over %s in %s", fmt_ipd(t.ipd()).c_str(), counted(t.pairs, "pair").c_str(), counted(t.scenes, "scene").c_str());
   ImGui::Separator();
   ImGui::TextUnformatted("Cross table (lower is better)");
   const auto& pairs = s.domain_pairs();
@@ -322,11 +323,11 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
   ImGui::BeginDisabled(!s.can_undo());
   if (ImGui::Button("undo (Ctrl+Z)")) out.undo = true;
   ImGui::EndDisabled();
-  ImGui::SameLine();
+  same_line_if_fits(button_width("redo (Ctrl+Y)"));
   ImGui::BeginDisabled(!s.can_redo());
   if (ImGui::Button("redo (Ctrl+Y)")) out.redo = true;
   ImGui::EndDisabled();
-  ImGui::SameLine();
+  same_line_if_fits(button_width("export figures"));
   if (ImGui::Button("export figures")) out.export_figures = true;
   if (s.read_only()) {
     ImGui::InputTextWithHint("##saveas", "directory for the edited pairs", ui.save_as_dir, sizeof ui.save_as_dir);

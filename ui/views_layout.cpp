@@ -29,7 +29,9 @@ void draw_centre(const StudyView& v, UiState& ui, const Picture& left, const Pic
   const int iw = left.width > 0 ? left.width : s.study().config.image_width;
   const int ih = left.height > 0 ? left.height : s.study().config.image_height;
   const float aspect = iw > 0 && ih > 0 ? float(iw) / ih : 1.6f;
-  const float fit = (w - 6) * 0.5f / aspect + 2 * ImGui::GetFrameHeightWithSpacing() + 4;
+  // Toolbar (one line, or two when narrow), the captions' strip, then the pictures.
+  const float toolbar = (w >= scene_toolbar_width() ? 1 : 2) * ImGui::GetFrameHeightWithSpacing();
+  const float fit = (w - 6) * 0.5f / aspect + toolbar + ImGui::GetTextLineHeightWithSpacing() + 4;
   const float pic_h = std::clamp(ui.pictures_height > 0 ? ui.pictures_height : fit, 0.25f * h, 0.8f * h);
   ImGui::BeginChild("pictures", {0, pic_h}, false, ImGuiWindowFlags_NoScrollWithMouse);
   draw_side_by_side(v, ui, left, right, out);
@@ -77,7 +79,7 @@ void draw_main_columns(const StudyView& v, UiState& ui, const Picture& left, con
                        const std::function<void()>& draw_stats, UiCommands& out) {
   const float gap = 8;
   const float width = ImGui::GetContentRegionAvail().x;
-  const float browser_pref = ui.browser_width > 0 ? ui.browser_width : browser_width(v, 300, 460);
+  const float browser_pref = ui.browser_width > 0 ? ui.browser_width : browser_width(v, 300, 500);
   const float stats_pref = ui.stats_width > 0 ? ui.stats_width : 400;
   const StudioColumns c = studio_columns(width, browser_pref, stats_pref, gap);
   const ImGuiWindowFlags side_flags = ImGuiWindowFlags_HorizontalScrollbar;

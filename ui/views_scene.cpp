@@ -68,6 +68,15 @@ SideInput side_input(const Session& s, const UiState& ui, Side side, const Pictu
   return in;
 }
 
+float scene_toolbar_width() {
+  const ImGuiStyle& st = ImGui::GetStyle();
+  const float box = ImGui::GetFrameHeight() + st.ItemInnerSpacing.x;
+  float w = -st.ItemSpacing.x;
+  for (const char* c : {"GT", "predictions", "numbers", "confidence", "sync zoom"}) w += box + ImGui::CalcTextSize(c).x + st.ItemSpacing.x;
+  for (const char* b : {"unpair (U)", "exclude (X)", "reset to automatic"}) w += button_width(b) + st.ItemSpacing.x;
+  return w;
+}
+
 void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, const Picture& right, UiCommands& out) {
   const Session& s = *v.session;
   if (s.scenes().empty()) {

@@ -118,12 +118,15 @@ std::string comparison_sentence(const RendererComparison& c, double alpha) {
     return (v < 0 && s.find_first_not_of("0.") != std::string::npos ? "−" : "") + s;
   };
   if (std::isnan(r.delta.estimate))
-    return fmt::format("no comparison of {} and {} against {} for {}: one of them has no rock pairs ({} scenes)", c.a,
-                       c.b, c.ref, c.model, r.scenes);
+    return fmt::format("no comparison of {} and {} against {} for {}: one of them has no rock pairs ({} {})", c.a,
+                       c.b, c.ref, c.model, r.scenes, r.scenes == 1 ? "scene" : "scenes");
   std::string numbers = "ΔIPD = " + num(r.delta.estimate, 4);
   if (r.delta.has_interval()) numbers += fmt::format(" [{}, {}]", num(r.delta.low, 3), num(r.delta.high, 3));
-  if (!std::isnan(r.p_value)) numbers += fmt::format(", p = {:.2g}{}", r.p_value, r.exact_p ? " (exact)" : "");
-  numbers += fmt::format(", {} scenes", r.scenes);
+  // Never scientific notation (the studio shows this sentence): {:.2g} writes p >= 0.0001 in full.
+  if (!std::isnan(r.p_value))
+    numbers += (r.p_value < 1e-4 ? std::string(", p < 0.0001") : fmt::format(", p = {:.2g}", r.p_value)) +
+               (r.exact_p ? " (exact)" : "");
+  numbers += fmt::format(", {} {}", r.scenes, r.scenes == 1 ? "scene" : "scenes");
   const bool interval_excludes_zero = !r.delta.has_interval() || r.delta.low > 0 || r.delta.high < 0;
   const bool significant = !std::isnan(r.p_value) && r.p_value < alpha && interval_excludes_zero;
   if (!significant)
