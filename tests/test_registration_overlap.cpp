@@ -1,5 +1,6 @@
 // Issue 13: registration when the two pictures barely overlap, and what the seed and the thread count may
 // (and may not) change.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -109,6 +110,25 @@ TEST(SmallOverlap, FourTruePairsAmongFifteenRocksAt25Degrees) { expect_recovered
 // The issue's case: three shared rocks, far apart in A with other rocks between them, so no neighbourhood
 // triple holds them; the second look (every pair of rocks on each side) proposes them.
 TEST(SmallOverlap, ThreeTruePairsAmongFifteenRocksAt25Degrees) { expect_recovered(3); }
+
+// The second look says what it did, and a replay shows the candidates it judged after the search's polish.
+TEST(SmallOverlap, TheSecondLookIsInTheReportAndTheTrace) {
+  const SmallOverlap s = small_overlap(1, 3);
+  RegistrationOptions o;
+  o.record_trace = true;
+  const RegistrationReport r = register_rocks(s.a, s.b, o);
+  EXPECT_EQ(r.note.rfind("second look: ", 0), 0u) << r.note;
+  const auto& steps = r.trace.steps;
+  const auto polish = std::find_if(steps.begin(), steps.end(),
+                                   [](const TraceStep& t) { return t.kind == TraceStepKind::kPolish; });
+  ASSERT_NE(polish, steps.end());
+  const long judged = std::count_if(polish, steps.end(), [](const TraceStep& t) {
+    return t.kind == TraceStepKind::kRefinement;
+  });
+  EXPECT_GE(judged, 1);
+  EXPECT_NE(r.note.find(fmt::format("{} candidates judged", judged)), std::string::npos) << r.note;
+  EXPECT_EQ(r.pairs, s.truth);
+}
 
 // Three shared rocks on a line: no affine comes from them, the similarity along the line does, and the
 // pairing only needs the line. Pairs exact in all 10 seeds (a wrong answer would have to say so), the shared

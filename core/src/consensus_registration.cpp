@@ -8,6 +8,7 @@
 // search stops once the consensus cannot reasonably be beaten. Rocks are then paired by an optimal (Hungarian)
 // assignment on the IoU of the aligned boxes.
 #include <Eigen/Dense>
+#include <fmt/format.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -307,10 +308,18 @@ void second_look(const RegistrationFrame& f, const std::vector<Box>& boxes_a, co
   double rival = -INFINITY;
   for (size_t k = 0; k < pool.size(); ++k)
     if (k != best) rival = std::max(rival, judged[k].total);
+  // Replays show the candidates the second look judged, then the one it kept (when not the search's best).
+  for (size_t k = 1; k < pool.size(); ++k)
+    recorder->add_step(TraceStepKind::kRefinement, pool[k], judged[k].consensus, out->score, false);
+  out->note = fmt::format("second look: {} similarities from rock pairs, {} candidates judged; ",
+                          edges.hypotheses, pool.size() - 1);
   if (best != 0) {
     out->affine_normalised = pool[best];
     out->score = judged[best].consensus;
     recorder->add_step(TraceStepKind::kPolish, pool[best], out->score, out->score, true);
+    out->note += "one of them replaced the search's best";
+  } else {
+    out->note += "the search's best kept";
   }
   // The judged pool now holds the rivals: confidence compares the best judgement with the next distinct one.
   out->confidence = confidence_from_scores(judged[best].total, rival);
