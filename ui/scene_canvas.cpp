@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <vector>
 
 namespace ipd::ui {
 
@@ -50,6 +51,13 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
   const float thick = std::max(1.0f, 1.5f * ts);
   char buf[32];
   int hovered = -1;
+  // Confidence labels are drawn last, where they hide no rock number and no number hides them.
+  struct Pending {
+    ImVec2 q0, q1;
+    float conf;
+  };
+  std::vector<Pending> confidences;
+  std::vector<ImVec4> number_rects;  // x0, y0, x1, y1
   if (layers.predictions && in.predictions) {
     for (size_t k = 0; k < in.predictions->size(); ++k) {
       const Box& b = (*in.predictions)[k];
@@ -57,10 +65,7 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
       const bool best = in.gt && std::find(in.best_prediction.begin(), in.best_prediction.end(), int(k)) !=
                                      in.best_prediction.end();
       dl->AddRect(q0, q1, best ? kRed : IM_COL32(235, 40, 40, 140), 0, 0, best ? 2 * thick : thick);
-      if (layers.confidences && q1.x - q0.x >= in.min_box_px_for_confidence) {
-        std::snprintf(buf, sizeof buf, "%.2f", b.conf);
-        text_with_backdrop(dl, {q0.x, q1.y + 1}, kRed, buf, 0.85f * ts);
-      }
+      if (layers.confidences && q1.x - q0.x >= in.min_box_px_for_confidence) confidences.push_back({q0, q1, b.conf});
     }
   }
   if (layers.gt && in.gt) {
@@ -86,8 +91,28 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
         if (number > 0) std::snprintf(buf, sizeof buf, "%d", number);
         else std::snprintf(buf, sizeof buf, "x%zu", k + 1);
         const float size = ImGui::GetFontSize() * ts;
-        text_with_backdrop(dl, {q0.x, q0.y - size - 1}, colour, buf, ts);
+        const ImVec2 at{q0.x, q0.y - size - 1};
+        const ImVec2 ext = ImGui::GetFont()->CalcTextSizeA(size, FLT_MAX, 0.0f, buf);
+        number_rects.push_back({at.x - 1, at.y, at.x + ext.x + 1, at.y + ext.y});
+        text_with_backdrop(dl, at, colour, buf, ts);
       }
+    }
+  }
+  // Below the box's left corner, else right of its bottom, else above its right end; with no free spot the
+  // label is left out rather than drawn under or over a rock number.
+  const float conf_size = 0.85f * ImGui::GetFontSize() * ts;
+  for (const Pending& p : confidences) {
+    std::snprintf(buf, sizeof buf, "%.2f", p.conf);
+    const ImVec2 ext = ImGui::GetFont()->CalcTextSizeA(conf_size, FLT_MAX, 0.0f, buf);
+    const ImVec2 spots[] = {{p.q0.x, p.q1.y + 1}, {p.q1.x + 2, p.q1.y - ext.y}, {p.q1.x - ext.x, p.q0.y - ext.y - 1}};
+    for (const ImVec2& at : spots) {
+      bool clear = true;
+      for (const ImVec4& r : number_rects)
+        if (at.x - 1 < r.z && at.x + ext.x + 1 > r.x && at.y < r.w && at.y + ext.y > r.y) clear = false;
+      if (!clear) continue;
+      text_with_backdrop(dl, at, kRed, buf, 0.85f * ts);
+      number_rects.push_back({at.x - 1, at.y, at.x + ext.x + 1, at.y + ext.y});  // confidences don't overlap either
+      break;
     }
   }
   if (!in.caption.empty()) text_with_backdrop(dl, {a0.x + 6, a0.y + 4}, IM_COL32(255, 255, 255, 255), in.caption.c_str(), 1.1f * ts);
