@@ -54,7 +54,7 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
   // Confidence labels are drawn last, where they hide no rock number and no number hides them.
   struct Pending {
     ImVec2 q0, q1;
-    float conf;
+    double conf;
   };
   std::vector<Pending> confidences;
   std::vector<ImVec4> number_rects;  // x0, y0, x1, y1
