@@ -8,7 +8,7 @@ namespace ipd::ui {
 namespace {
 
 TEST(StudioColumns, WideWindowKeepsPreferredSideWidths) {
-  // 1600 - 2*6 = 1588 usable; 380 + 400 + max(320, 794) = 1574 fits.
+  // 1600 - 2*6 = 1588 usable; 380 + 400 + max(320, 0.45 * 1588 = 714.6) = 1494.6 fits.
   const StudioColumns c = studio_columns(1600, 380, 400, 6);
   EXPECT_FALSE(c.tabbed_side);
   EXPECT_FLOAT_EQ(c.left, 380);
@@ -18,22 +18,23 @@ TEST(StudioColumns, WideWindowKeepsPreferredSideWidths) {
 }
 
 TEST(StudioColumns, NarrowerWindowShrinksSidesInProportion) {
-  // 1000: usable 988, centre keeps 494; the sides share 494 as 380:400 -> 240.67 and 253.33.
+  // 1000: usable 988, the centre keeps 0.45 * 988 = 444.6; the sides share 543.4 as 380:400 -> 264.73 and
+  // 278.67.
   const StudioColumns c = studio_columns(1000, 380, 400, 6);
   EXPECT_FALSE(c.tabbed_side);
-  EXPECT_NEAR(c.left, 494.0 * 380 / 780, 1e-3);
-  EXPECT_NEAR(c.right, 494.0 * 400 / 780, 1e-3);
-  EXPECT_NEAR(c.centre, 494, 1e-3);
-  EXPECT_TRUE(c.tabbed_centre);  // 494 < 560: registration and pairs as tabs
+  EXPECT_NEAR(c.left, 543.4 * 380 / 780, 1e-3);
+  EXPECT_NEAR(c.right, 543.4 * 400 / 780, 1e-3);
+  EXPECT_NEAR(c.centre, 444.6, 1e-3);
+  EXPECT_TRUE(c.tabbed_centre);  // 444.6 < 560: registration and pairs as tabs
 }
 
 TEST(StudioColumns, SideMinimumsHoldWhenOnePreferenceIsSmall) {
-  // 1000, prefs 100 and 700: proportional 61.75 is under 160, so the browser gets 160 and the
-  // statistics 494 - 160 = 334.
+  // 1000, prefs 100 and 700: proportional 543.4 / 8 = 67.9 is under 160, so the browser gets 160 and the
+  // statistics 543.4 - 160 = 383.4.
   const StudioColumns c = studio_columns(1000, 100, 700, 6);
   EXPECT_FLOAT_EQ(c.left, 160);
-  EXPECT_NEAR(c.right, 334, 1e-3);
-  EXPECT_NEAR(c.centre, 494, 1e-3);
+  EXPECT_NEAR(c.right, 383.4, 1e-3);
+  EXPECT_NEAR(c.centre, 444.6, 1e-3);
 }
 
 TEST(StudioColumns, BelowNineHundredTheSidesShareOneTabbedColumn) {

@@ -15,7 +15,7 @@ StudioColumns studio_columns(float width, float browser_pref, float stats_pref, 
     c.centre = usable - c.left;
   } else {
     const float usable = width - 2 * splitter;
-    const float centre_min = std::max(kMinCentreWidth, 0.5f * usable);
+    const float centre_min = std::max(kMinCentreWidth, kCentreShare * usable);
     if (browser_pref + stats_pref + centre_min <= usable) {
       c.left = browser_pref, c.right = stats_pref;
     } else {
