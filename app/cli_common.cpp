@@ -6,7 +6,24 @@
 #include <cstdio>
 #include <fmt/format.h>
 
+#include <cstdlib>
+
 namespace ipd::cli {
+
+std::vector<std::string> join_optional_values(int argc, char** argv) {
+  std::vector<std::string> args;
+  for (int k = 1; k < argc; ++k) {
+    std::string a = argv[k];
+    if (a == "--ci" && k + 1 < argc) {
+      const std::string next = argv[k + 1];
+      char* end = nullptr;
+      std::strtod(next.c_str(), &end);
+      if (!next.empty() && end == next.c_str() + next.size()) a += "=" + next, ++k;
+    }
+    args.push_back(std::move(a));
+  }
+  return {args.rbegin(), args.rend()};
+}
 
 bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines) {
   if (errors.empty()) return false;

@@ -14,6 +14,11 @@ constexpr int kOk = 0, kBadInput = 1, kUsage = 2;
 // summary; true when they are fatal: malformed lines unless skipped, and always a file that can't be read.
 bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines);
 
+// The arguments after the program name, reversed (as CLI::App::parse takes them), with `--ci 0.9` joined
+// into `--ci=0.9`: --ci is a flag with an optional level, so a level must be attached to it, and a
+// following word that is not a number (the STUDY) stays an argument of its own.
+std::vector<std::string> join_optional_values(int argc, char** argv);
+
 // A one-line progress indicator on stderr, only when stderr is a terminal.
 class Progress {
  public:

@@ -29,7 +29,9 @@ int main(int argc, char** argv) {
   add(ipd::cli::add_export_command);
   add(ipd::cli::add_metrics_command);
   try {
-    app.parse(argc, argv);
+    if (argc > 0) app.name(argv[0]);
+    std::vector<std::string> args = ipd::cli::join_optional_values(argc, argv);
+    app.parse(args);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

@@ -36,16 +36,15 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
   cmd->add_option("--bootstrap", o->bootstrap, "Scene-bootstrap resamples for intervals (0: none)")
       ->check(CLI::NonNegativeNumber)
       ->default_val(2000);
-  cmd->add_option_function<double>(
-         "--ci",
-         [o](double level) {
-           o->level = level;
-           o->ci_given = true;
-         },
-         "Interval level (default 0.95); with --format latex, print the intervals")
-      ->expected(0, 1)
-      ->default_str("0.95")
-      ->check(CLI::Range(0.5, 0.9999));
+  // A flag with an optional level (`--ci`, `--ci=0.9`; main() turns `--ci 0.9` into `--ci=0.9`), so it
+  // never takes the STUDY after it for a level, whatever follows.
+  cmd->add_flag("--ci{0.95}", o->ci_text,
+                "Interval level (default 0.95; --ci=LEVEL or --ci LEVEL); with --format latex, print the intervals")
+      ->check(CLI::Range(0.5, 0.9999))
+      ->each([o](const std::string& level) {
+        o->level = std::stod(level);
+        o->ci_given = true;
+      });
 }
 
 Study open_study_with_conf(const StudyOptions& o) {

@@ -22,6 +22,7 @@ struct StudyOptions {
   int bootstrap = 2000;         // resamples; 0 = off
   double level = 0.95;          // --ci LEVEL
   bool ci_given = false;        // --ci appeared (LaTeX prints intervals)
+  std::string ci_text;          // --ci's text as parsed (level holds its value)
   int threads = 0;
   bool skip_bad_lines = false;
   bool no_cache = false;        // --no-cache: register every scene again

@@ -67,6 +67,31 @@ TEST(FigureStats, TableWithIntervalsDistributionAndBreakdown) {
   EXPECT_EQ(r.exit_code, 2);
 }
 
+// --ci is a flag with an optional level: it never takes the STUDY after it for a level, whatever follows
+// (`figure table --ci STUDY --out F` failed with "--ci: Value STUDY not in range"), and the level can be
+// given as --ci=L or --ci L in either order.
+TEST(FigureStats, CiParsesTheSameWayInEveryOrder) {
+  test::TempDir d;
+  write_three_domain_study(d);
+  const std::string s = d.path(), out = " --bootstrap 100 --out " + d / "t.pdf";
+  for (const std::string& args : {"--ci " + s + out, s + " --ci" + out, "--ci 0.9 " + s + out, "--ci=0.9 " + s + out,
+                                 s + out + " --ci"}) {
+    const auto r = test::run_ipd("figure table " + args);
+    ASSERT_EQ(r.exit_code, 0) << args << ": " << r.err;
+    EXPECT_NE(pdf_words(d / "t.pdf").find("0.4000 [0.400, 0.400]"), std::string::npos) << args;
+  }
+  for (const std::string& args : {"--ci 0.9 " + s, s + " --ci 0.9", "--ci=0.9 " + s, s + " --ci=0.9 --bootstrap 100"}) {
+    const auto r = test::run_ipd("table --format latex " + args);
+    ASSERT_EQ(r.exit_code, 0) << args << ": " << r.err;
+    EXPECT_NE(r.out.find("90% scene-bootstrap percentile interval"), std::string::npos) << args << ": " << r.out;
+  }
+  const auto latex = test::run_ipd("table --format latex --ci " + s);
+  EXPECT_NE(latex.out.find("95% scene-bootstrap percentile interval"), std::string::npos) << latex.out;
+  const auto bad = test::run_ipd("table " + s + " --ci=2");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--ci: Value 2 not in range 0.500000 to 0.999900"), std::string::npos) << bad.err;
+}
+
 void expect_ticks(const std::vector<double>& got, const std::vector<double>& want) {
   ASSERT_EQ(got.size(), want.size());
   for (size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-12) << i;
