@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 #include <regex>
 
 #include "export_dialog.h"
@@ -149,6 +150,29 @@ TEST(FigureFiles, TableIntervalsFitOnOneLineInASingleColumn) {
   }
 }
 
+// The blank border around everything drawn on a PDF's page, in points (rendered at 4 px per point; a
+// pixel counts as ink when a channel is below 245).
+struct InkMargins {
+  double left = 0, top = 0, right = 0, bottom = 0;
+};
+InkMargins ink_margins(const std::string& pdf) {
+  const std::string png = pdf + ".ink";
+  const auto r = test::run_command("pdftoppm -r 288 -png -singlefile '" + pdf + "' '" + png + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const cv::Mat img = cv::imread(png + ".png", cv::IMREAD_COLOR);
+  if (img.empty()) return {};
+  cv::Mat channel_min;
+  cv::Mat channels[3];
+  cv::split(img, channels);
+  cv::min(channels[0], channels[1], channel_min);
+  cv::min(channel_min, channels[2], channel_min);
+  std::vector<cv::Point> ink;
+  cv::findNonZero(channel_min < 245, ink);
+  if (ink.empty()) return {};
+  const cv::Rect box = cv::boundingRect(ink);
+  return {box.x / 4.0, box.y / 4.0, (img.cols - box.x - box.width) / 4.0, (img.rows - box.y - box.height) / 4.0};
+}
+
 // Every kind, single and double column: no word within 4 pt (kFigureMargin) of the page's edges, and the
 // title starts right at that margin on every kind (the same margin everywhere, not one per kind). The
 // demo has a picture-less scene here, so the pairs panels and the registration plots are drawn boxes.
@@ -175,6 +199,20 @@ TEST(FigureFiles, EveryKindKeepsTheSameMarginFreeOfText) {
       }
       EXPECT_NEAR(left, margin, 0.1) << kind << " " << column;  // the title's first word
       EXPECT_NEAR(top, margin, 0.1) << kind << " " << column;
+      // Drawn extents too (axes, rules, panels, and the words' boxes, which include the font's descent):
+      // the blank border is the margin on every side, give or take a glyph's side bearing, anti-aliasing
+      // and the page height rounded up to a whole point. The breakdown's bottom was ~10 pt, the
+      // double-column distribution's right ~14 pt.
+      const InkMargins ink = ink_margins(out);
+      double right = 0, bottom = 0;
+      for (const Word& w : t.words) right = std::max(right, w.x1), bottom = std::max(bottom, w.y1);
+      const std::string at = kind + " " + column + ": blank ";
+      for (const auto& [side, blank] :
+           {std::pair<const char*, double>{"left", ink.left}, {"top", ink.top},
+            {"right", std::min(ink.right, t.width - right)}, {"bottom", std::min(ink.bottom, t.height - bottom)}}) {
+        EXPECT_GE(blank, margin - 0.3) << at << side << " " << blank << " pt";
+        EXPECT_LE(blank, margin + 1.3) << at << side << " " << blank << " pt";
+      }
     }
 }
 

@@ -114,5 +114,23 @@ TEST(FigureLabels, ARegistrationNumberIsNearerItsOwnMarkerThanAnyOther) {
   }
 }
 
+// A rock excluded by hand is drawn struck through; the legend says what the stroke means, only then.
+TEST(FigureLabels, TheExcludedRockStrokeHasALegendEntry) {
+  ui::SceneFigureInput in = tall_boxes_scene();
+  in.gt_a = {Box{0, 0.3, 0.5, 0.1, 0.1}};
+  in.gt_b = {Box{0, 0.3, 0.5, 0.1, 0.1}};
+  in.pairs = {{0, 0}};
+  const ui::FontMetrics metrics(ui::default_font_file());
+  ui::FigureOptions o;
+  o.width_in = ui::kDoubleColumnIn;
+  ui::DisplayList plain(metrics);
+  ui::draw_pairs_figure(plain, in, o);
+  EXPECT_FALSE(contains(plain, "excluded from the IPD (by hand)"));
+  in.excluded_a = {0};
+  ui::DisplayList struck(metrics);
+  ui::draw_pairs_figure(struck, in, o);
+  EXPECT_TRUE(contains(struck, "excluded from the IPD (by hand)"));
+}
+
 }  // namespace
 }  // namespace ipd

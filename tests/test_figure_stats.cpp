@@ -5,6 +5,7 @@
 #include <regex>
 
 #include "figure_charts.h"
+#include "figure_export.h"
 #include "pdf_text.h"
 #include "test_support.h"
 
@@ -95,6 +96,57 @@ TEST(FigureStats, CiParsesTheSameWayInEveryOrder) {
 void expect_ticks(const std::vector<double>& got, const std::vector<double>& want) {
   ASSERT_EQ(got.size(), want.size());
   for (size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-12) << i;
+}
+
+std::vector<std::string> chart_texts(const ui::DisplayList& fig) {
+  std::vector<std::string> out;
+  for (const auto& t : fig.texts()) out.push_back(t.text);
+  return out;
+}
+bool has_text(const std::vector<std::string>& texts, const std::string& s) {
+  return std::find(texts.begin(), texts.end(), s) != texts.end();
+}
+
+// The breakdown's IPD axis starts at 0 (IPD >= 0): rows 0.14 [0.065, 0.243] and 0.015 [0.008, 0.02] pad the
+// range by 5% (0.01175) to -0.0037, which put a tick at -0.05 before.
+TEST(FigureStats, AnIpdAxisStartsAtZero) {
+  ui::DotWhiskerChart ch;
+  ch.title = "t", ch.axis_label = "IPD";
+  ch.rows = {{"a", 0.14, 0.065, 0.243, ""}, {"b", 0.015, 0.008, 0.02, ""}};
+  ch.non_negative = true;
+  const ui::FontMetrics metrics(ui::default_font_file());
+  ui::FigureOptions o;
+  ui::DisplayList fig(metrics);
+  ui::draw_dot_whisker_chart(fig, ch, o);
+  auto texts = chart_texts(fig);
+  EXPECT_TRUE(has_text(texts, "0.00"));
+  for (const auto& t : texts) EXPECT_NE(t[0], '-') << t;
+  ch.non_negative = false;  // a difference (compare's ΔIPD) keeps its padding below
+  ui::DisplayList padded(metrics);
+  ui::draw_dot_whisker_chart(padded, ch, o);
+  EXPECT_TRUE(has_text(chart_texts(padded), "-0.05"));
+}
+
+// Two worst scenes at the same value are one place on the page: one name for both, not two stacked names
+// a reader cannot tell apart.
+TEST(FigureStats, WorstScenesAtOneSpotShareOneName) {
+  ui::DistributionChart ch;
+  ch.title = "t", ch.axis_label = "scene IPD";
+  ui::BoxRow r;
+  r.label = "|real - synth|";
+  r.values = {0.02, 0.05, 0.1, 0.1};
+  r.min = 0.02, r.q1 = 0.04, r.median = 0.075, r.q3 = 0.1, r.max = 0.1;
+  r.worst = {{"scene_01", 0.1}, {"scene_02", 0.1}, {"scene_03", 0.02}};
+  ch.rows = {r};
+  const ui::FontMetrics metrics(ui::default_font_file());
+  ui::FigureOptions o;
+  o.width_in = ui::kDoubleColumnIn;
+  ui::DisplayList fig(metrics);
+  ui::draw_distribution_chart(fig, ch, o);
+  const auto texts = chart_texts(fig);
+  EXPECT_TRUE(has_text(texts, "scene_01, scene_02"));
+  EXPECT_TRUE(has_text(texts, "scene_03"));
+  EXPECT_FALSE(has_text(texts, "scene_01"));
 }
 
 TEST(FigureStats, NiceTicks) {

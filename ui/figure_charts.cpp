@@ -45,7 +45,7 @@ struct Axis {
 // Picks the axis range and ticks whose labels fit the plot width; draws axis, ticks and label; returns
 // the height used below `y`.
 double draw_axis(Canvas& c, Axis& ax, double lo, double hi, double y_top, double y, const std::string& label,
-                 const FigureOptions& o, bool zero_line) {
+                 const FigureOptions& o, bool zero_line, bool end_on_tick = false) {
   const TextStyle tick = style(o.font_pt * 0.85, kInk);
   std::vector<double> ticks;
   for (int target = 6; target >= 2; --target) {
@@ -55,6 +55,8 @@ double draw_axis(Canvas& c, Axis& ax, double lo, double hi, double y_top, double
     for (double t : ticks) widest = std::max(widest, c.measure(tick, tick_text(t, step)).x);
     if ((ax.x1 - ax.x0) / std::max<size_t>(1, ticks.size() - 1) > widest * 1.6) break;
   }
+  // Ending on a labelled tick, an axis that runs to the page margin ends with ink there (its last label).
+  if (end_on_tick && ticks.size() > 1 && ticks.back() < hi - 1e-12) ticks.push_back(ticks.back() + ticks[1] - ticks[0]);
   ax.lo = std::min(lo, ticks.front());
   ax.hi = std::max(hi, ticks.back());
   const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1, lw = std::max(0.35, o.font_pt * 0.06);
@@ -119,16 +121,18 @@ void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& ch, const F
   if (ch.zero_line) lo = std::min(lo, 0.0), hi = std::max(hi, 0.0);
   if (!std::isfinite(lo)) lo = 0, hi = 1;
   const double pad = (hi - lo) * 0.05 + 1e-9;
+  // A quantity that cannot be negative (IPD) gets an axis from 0, not from a padding below it.
+  const double axis_lo = ch.non_negative && lo >= 0 ? std::max(0.0, lo - pad) : lo - pad;
   const double lw_labels = label_width(out, body, labels, W);
   double lw_notes = 0;
   for (const auto& n : notes) lw_notes = std::max(lw_notes, out.measure(note, n).x);
-  Axis ax{kMargin + lw_labels + 0.6 * F, W - kMargin - lw_notes - (lw_notes > 0 ? 0.6 * F : 0.3 * F), lo - pad, hi + pad};
+  Axis ax{kMargin + lw_labels + 0.6 * F, W - kMargin - lw_notes - (lw_notes > 0 ? 0.6 * F : 0.3 * F), axis_lo, hi + pad};
   const double line = out.measure(body, "Ag").y;
   const double row_h = std::max(line * 1.5, line * most_lines(out, body, labels, lw_labels) + 0.3 * F);
   const double top = y, bottom = y + row_h * ch.rows.size();
   const double lw = std::max(0.4, F * 0.08);
   Axis fitted = ax;
-  const double axis_h = draw_axis(out, fitted, lo - pad, hi + pad, top, bottom, ch.axis_label, o, ch.zero_line);
+  const double axis_h = draw_axis(out, fitted, axis_lo, hi + pad, top, bottom, ch.axis_label, o, ch.zero_line);
   for (size_t i = 0; i < ch.rows.size(); ++i) {
     const ChartRow& r = ch.rows[i];
     const double cy = top + row_h * (i + 0.5);
@@ -142,8 +146,10 @@ void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& ch, const F
     if (std::isfinite(r.estimate)) out.fill_circle({fitted.at(r.estimate), cy}, std::max(1.2, F * 0.22), kBlueC);
     if (!r.note.empty()) out.text({W - kMargin - lw_notes, cy}, Anchor::kLeft, note, r.note);
   }
-  y = bottom + axis_h + 0.4 * F;
-  if (!ch.footnote.empty()) y += draw_wrapped(out, {kMargin, y}, style(F * 0.8, kGrey), ch.footnote, W - 2 * kMargin);
+  // A footnote 0.4 font sizes below the axis; none: the page ends at the axis label (the 4 pt margin).
+  y = bottom + axis_h;
+  if (!ch.footnote.empty())
+    y += 0.4 * F + draw_wrapped(out, {kMargin, y + 0.4 * F}, style(F * 0.8, kGrey), ch.footnote, W - 2 * kMargin);
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);
 }
@@ -161,12 +167,12 @@ void draw_distribution_chart(DisplayList& out, const DistributionChart& ch, cons
   }
   if (!std::isfinite(hi) || hi <= 0) hi = 1;
   const double lw_labels = label_width(out, body, labels, W);
-  Axis ax{kMargin + lw_labels + 0.6 * F, W - kMargin - 0.5 * F, lo, hi * 1.05};
+  Axis ax{kMargin + lw_labels + 0.6 * F, W - kMargin, lo, hi * 1.05};
   // Room for a name above and below each box.
   const double line = out.measure(body, "Ag").y;
   const double row_h = std::max(line * 4.0, line * most_lines(out, body, labels, lw_labels) + 0.3 * F);
   const double top = y, bottom = y + row_h * ch.rows.size();
-  const double axis_h = draw_axis(out, ax, lo, hi * 1.05, top, bottom, ch.axis_label, o, false);
+  const double axis_h = draw_axis(out, ax, lo, hi * 1.05, top, bottom, ch.axis_label, o, false, true);
   const double lw = std::max(0.4, F * 0.08);
   int left_out = 0;
   for (size_t i = 0; i < ch.rows.size(); ++i) {
@@ -186,7 +192,14 @@ void draw_distribution_chart(DisplayList& out, const DistributionChart& ch, cons
     std::vector<Label> names;
     for (const auto& [stem, v] : r.worst) {
       out.circle({ax.at(v), cy}, dot * 2, kRedC, lw);
-      names.push_back({stem, name, {ax.at(v) - dot * 2, cy - dot * 2, ax.at(v) + dot * 2, cy + dot * 2}});
+      // Circles less than a dot apart are one place on the page: one name for them ("scene_01, scene_02").
+      const double x = ax.at(v);
+      bool merged = false;
+      for (Label& l : names)
+        if (std::abs((l.target.x0 + l.target.x1) / 2 - x) < dot) l.text += ", " + stem, merged = true;
+      // Exclusive: beside its own circle and 2 pt clear of the others (or led to it), so two close circles
+      // never get two names stacked between them that a reader cannot tell apart.
+      if (!merged) names.push_back({stem, name, {x - dot * 2, cy - dot * 2, x + dot * 2, cy + dot * 2}, true});
     }
     const PtRect band{ax.x0, top + row_h * i, W - kMargin, top + row_h * (i + 1)};
     // The box and every named circle are obstacles: a name never covers its own circle or a neighbour's.
@@ -194,8 +207,9 @@ void draw_distribution_chart(DisplayList& out, const DistributionChart& ch, cons
     for (const Label& l : names) taken.push_back(l.target);
     left_out += draw_labels(out, names, band, taken, false);
   }
-  y = bottom + axis_h + 0.4 * F;
-  if (!ch.footnote.empty()) y += draw_wrapped(out, {kMargin, y}, style(F * 0.8, kGrey), ch.footnote, W - 2 * kMargin);
+  y = bottom + axis_h;
+  if (!ch.footnote.empty())
+    y += 0.4 * F + draw_wrapped(out, {kMargin, y + 0.4 * F}, style(F * 0.8, kGrey), ch.footnote, W - 2 * kMargin);
   y += draw_footnote(out, {kMargin, y}, W - 2 * kMargin, F, left_out);
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);

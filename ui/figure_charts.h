@@ -20,6 +20,7 @@ struct DotWhiskerChart {
   std::string title, axis_label, footnote;
   std::vector<ChartRow> rows;
   bool zero_line = false;  // a reference line at 0 (ΔIPD)
+  bool non_negative = false;  // the values cannot be negative (IPD): the axis starts at 0
 };
 void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& chart, const FigureOptions& options);
 

@@ -46,6 +46,10 @@ double draw_legend(Canvas& c, Pt at, double width, const TextStyle& st, const st
     const double cy = y + h / 2, lw = std::max(0.5, st.size_pt * 0.09);
     switch (it.swatch) {
       case Swatch::kBox: c.rect({x + 0.5, y + h * 0.18, x + sw - 0.5, y + h * 0.82}, it.colour, lw * 1.3); break;
+      case Swatch::kStruckBox:
+        c.rect({x + 0.5, y + h * 0.18, x + sw - 0.5, y + h * 0.82}, it.colour, lw * 1.3);
+        c.line({x + 0.5, y + h * 0.18}, {x + sw - 0.5, y + h * 0.82}, it.colour, lw * 1.3);
+        break;
       case Swatch::kDot: c.fill_circle({x + sw / 2, cy}, h * 0.2, it.colour); break;
       case Swatch::kRing: c.circle({x + sw / 2, cy}, h * 0.3, it.colour, lw * 1.3); break;
       case Swatch::kLine: c.line({x, cy}, {x + sw, cy}, it.colour, lw * 1.5); break;

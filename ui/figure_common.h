@@ -22,7 +22,7 @@ std::vector<std::string> wrap(Canvas& c, const TextStyle& st, const std::string&
 // Draws wrapped text from (x, y) down; returns the height used.
 double draw_wrapped(Canvas& c, Pt at, const TextStyle& st, const std::string& text, double width);
 
-enum class Swatch { kBox, kDot, kRing, kLine };
+enum class Swatch { kBox, kDot, kRing, kLine, kStruckBox };  // kStruckBox: a box with a diagonal
 struct LegendItem {
   Swatch swatch;
   Colour colour;

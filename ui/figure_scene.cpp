@@ -199,21 +199,23 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
     const auto unpaired = [](const std::vector<int>& nums) { return std::count(nums.begin(), nums.end(), 0) > 0; };
     if (o.layers.gt && o.layers.pairs && (unpaired(num_a) || unpaired(num_b)))
       items.push_back({Swatch::kBox, kUnpairedC, "unpaired GT (x index)"});
+    if (o.layers.gt && (!in.excluded_a.empty() || !in.excluded_b.empty()))
+      items.push_back({Swatch::kStruckBox, kPinkC, "excluded from the IPD (by hand)"});
     if (o.layers.pred) items.push_back({Swatch::kBox, kRedC, o.layers.conf ? "prediction (confidence)" : "prediction"});
-    y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items) + 0.2 * F;
+    y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items);
   }
+  // Footnotes 0.2 font sizes below the legend; none: the page ends at the legend (the same 4 pt margin).
+  double note_gap = o.layers.legend ? 0.2 * F : 0;
+  const auto note = [&](const std::string& text) {
+    y += note_gap + draw_wrapped(out, {kMargin, y + note_gap}, style(F * 0.8, kGrey), text, W - 2 * kMargin);
+    note_gap = 0;
+  };
   if (numbers > 0)
-    y += draw_wrapped(out, {kMargin, y}, style(F * 0.8, kGrey),
-                      fmt::format("{} rock number{} left out: no free spot clear of the other rocks' boxes (try "
-                                  "--crop)",
-                                  numbers, numbers == 1 ? "" : "s"),
-                      W - 2 * kMargin);
+    note(fmt::format("{} rock number{} left out: no free spot clear of the other rocks' boxes (try --crop)", numbers,
+                     numbers == 1 ? "" : "s"));
   if (ambiguous > 0)
-    y += draw_wrapped(out, {kMargin, y}, style(F * 0.8, kGrey),
-                      fmt::format("{} confidence label{} left out: no free spot clearly beside {} own box (try "
-                                  "--crop)",
-                                  ambiguous, ambiguous == 1 ? "" : "s", ambiguous == 1 ? "its" : "their"),
-                      W - 2 * kMargin);
+    note(fmt::format("{} confidence label{} left out: no free spot clearly beside {} own box (try --crop)", ambiguous,
+                     ambiguous == 1 ? "" : "s", ambiguous == 1 ? "its" : "their"));
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);
   return {left.panel, right.panel};
@@ -290,9 +292,9 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
     }
     if (o.layers.pairs) items.push_back({Swatch::kLine, kGreenC, "rock pairs"});
     if (o.layers.indices && o.layers.gt) items.push_back({Swatch::kDot, kInk, "numbers: pairs, by " + in.a + " rock"});
-    y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items) + 0.2 * F;
+    y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items);
   }
-  y += draw_footnote(out, {kMargin, y}, W - 2 * kMargin, F, left_out);
+  if (left_out > 0) y += (o.layers.legend ? 0.2 * F : 0) + draw_footnote(out, {kMargin, y + (o.layers.legend ? 0.2 * F : 0)}, W - 2 * kMargin, F, left_out);
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);
 }

@@ -98,6 +98,7 @@ DotWhiskerChart breakdown_chart(const CellBreakdown& b, double level) {
   ch.title = fmt::format("IPD({}, {}) of {} by {} of the {} rock, {}% scene-bootstrap interval", b.a, b.b,
                          model_label(b.model, b.trained_on), by, b.a, pct);
   ch.axis_label = "IPD";
+  ch.non_negative = true;
   for (const BreakdownBin& bin : b.bins)
     ch.rows.push_back({bin.label, bin.ipd.estimate, bin.ipd.low, bin.ipd.high, fmt::format("{} pairs", bin.pairs)});
   return ch;
