@@ -104,7 +104,7 @@ void draw_compare(const StudyView& v, const SessionStatistics* stats, StatsPanel
     return;
   }
   if (!stats || !stats->comparison) {
-    if (stats && !stats->comparison_error.empty()) ImGui::TextWrapped("%s", stats->comparison_error.c_str());
+    if (stats && !stats->comparison_error.empty()) text_wrapped_at_spaces(stats->comparison_error);
     return;
   }
   const RendererComparison& c = *stats->comparison;

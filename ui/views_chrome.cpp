@@ -145,8 +145,17 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
 void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out) {
   if (v.session) {
     const Session& s = *v.session;
-    ImGui::Text("%s  |  %s  |  %s vs %s  |  %s", s.study().root.c_str(), counted(s.scenes().size(), "scene").c_str(),
-                s.left_domain().c_str(), s.right_domain().c_str(), s.model().empty() ? "no predictions" : s.model().c_str());
+    // The study's folder name alone when its whole path does not fit the window (the browser shows the path).
+    const std::string rest = "  |  " + counted(s.scenes().size(), "scene") + "  |  " + s.left_domain() + " vs " +
+                             s.right_domain() + "  |  " + (s.model().empty() ? "no predictions" : s.model());
+    std::string line = s.study().root + rest;
+    if (ImGui::CalcTextSize(line.c_str()).x > ImGui::GetContentRegionAvail().x)
+    {
+      std::filesystem::path root(s.study().root);
+      if (root.filename().empty()) root = root.parent_path();  // "…/study/"
+      line = root.filename().string() + rest;
+    }
+    ImGui::TextUnformatted(line.c_str());
     ImGui::SameLine();
   }
   if (!v.loading.empty()) {

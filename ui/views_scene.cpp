@@ -269,8 +269,9 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
     return std::abs(x.a - x.b) > std::abs(y.a - y.b);
   });
   const long excluded_rows = std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.excluded; });
-  ImGui::TextWrapped("%ld pairs counted (%ld excluded), %d suspect; typical residual %.1f px",
-                     long(rows.size()) - excluded_rows, excluded_rows, audit.suspects, audit.typical_residual_px);
+  text_wrapped_at_spaces(counted(long(rows.size()) - excluded_rows, "pair") + " counted (" + std::to_string(excluded_rows) +
+                         " excluded), " + std::to_string(audit.suspects) + " suspect; typical residual " +
+                         fixed(audit.typical_residual_px, 1) + " px");
   const float table_h = std::max(60.0f, ImGui::GetContentRegionAvail().y - 2.4f * ImGui::GetTextLineHeightWithSpacing());
   // ScrollX: a pane narrower than the columns scrolls instead of cutting the last ones off.
   if (ImGui::BeginTable("pairs", 7, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX |
