@@ -152,6 +152,17 @@ TEST(StatsCharts, ALoneValuesBarSitsAtTheValue) {
   EXPECT_EQ(h.counts, (std::vector<int>{0, 1, 0}));
   EXPECT_DOUBLE_EQ(h.lone_value, 0.02);
   EXPECT_TRUE(std::isnan(histogram_bins({0.01, 0.02}, 4).lone_value));
+  // Every IPD 0: bins of 0.01 from 0 (never below), the bar standing on the axis from x0.
+  const HistogramBins zero = histogram_bins({0.0, 0.0}, 4);
+  EXPECT_DOUBLE_EQ(zero.width, 0.01);
+  EXPECT_DOUBLE_EQ(zero.start, 0);
+  EXPECT_EQ(zero.counts, (std::vector<int>{2, 0, 0}));
+  {
+    Recorder z;
+    //   labels "0.00".."0.03" (24 pt, half 12), gutter 12: plot x 12 .. 288; the bar (30 pt) from the axis.
+    const HistogramChart zc = layout_histogram(z, {}, {zero.start, zero.width, zero.counts, 0.0, zero.lone_value}, {0, 0, 300, 100});
+    expect_rect(zc.bars[0].bar, 12, 5, 42, 86);
+  }
   Recorder c;
   //   edge labels "0.015".."0.030" (30 pt, half 15) > gutter 12: plot x 15 .. 285, slots of 90 pt; the value
   //   0.020 at 15 + 90 = 105, the bar 30 pt wide (3 lines) around it.

@@ -74,7 +74,9 @@ HistogramChart layout_histogram(Canvas& c, const TextStyle& st, const HistogramI
     // A non-empty bin always shows (and can be hovered): at least 2 pt, however many scenes the tallest has.
     const double h = b.count > 0 ? std::max(2.0, ch.plot.height() * b.count / axis_top) : 0.0;
     const bool lone = !std::isnan(in.lone_value) && b.count > 0 && in.lone_value >= b.lo && in.lone_value <= b.hi;
-    const double cx = lone ? ch.plot.x0 + (in.lone_value - in.start) / in.width * slot : 0.5 * (b.slot.x0 + b.slot.x1);
+    const double cx = lone ? std::clamp(ch.plot.x0 + (in.lone_value - in.start) / in.width * slot, ch.plot.x0 + 0.5 * bar_w,
+                                        ch.plot.x1 - 0.5 * bar_w)
+                           : 0.5 * (b.slot.x0 + b.slot.x1);
     b.bar = {cx - 0.5 * bar_w, ch.plot.y1 - h, cx + 0.5 * bar_w, ch.plot.y1};
     const bool last = k + 1 == n;
     b.current = in.current >= b.lo && (in.current < b.hi || (last && in.current <= b.hi));
