@@ -90,13 +90,19 @@ Runner add_compare_command(CLI::App& app) {
       for (const auto& r : results) {
         std::cout << comparison_sentence(r) << "\n";
         if (!std::isnan(r.result.delta_common))
-          std::cout << fmt::format("  over the {} ref rocks paired in both: ΔIPD = {:.4f}\n", r.result.pairs_common,
-                                   r.result.delta_common);
+          std::cout << fmt::format("  over the {} ref rocks paired in both: ΔIPD = {}\n", r.result.pairs_common,
+                                   minus_number(r.result.delta_common, 4));  // the sentence's minus sign
       }
-      const bool all_exact = std::all_of(results.begin(), results.end(), [](const auto& r) { return r.result.exact_p; });
+      // A row of fewer than 2 scenes has neither interval nor test (its sentence says so).
+      const auto tested = [](const RendererComparison& r) { return r.result.scenes >= 2; };
+      const bool all_exact =
+          std::all_of(results.begin(), results.end(), [&](const auto& r) { return r.result.exact_p || !tested(r); });
       const std::string test = all_exact ? std::string("exact: every swap pattern of the scenes")
-                                         : fmt::format("{} permutations, exact where 2^scenes <= that", co.permutations);
-      std::cout << fmt::format("({:g}% paired scene-bootstrap interval, {} resamples; sign-flip permutation test, "
+                                         : fmt::format("{} permutations, exact where 2^scenes ≤ that", co.permutations);
+      if (std::none_of(results.begin(), results.end(), tested))
+        std::cout << "(intervals and tests need at least 2 scenes)\n";
+      else
+        std::cout << fmt::format("({:g}% paired scene-bootstrap interval, {} resamples; sign-flip permutation test, "
                                "{}; seed {})\n",
                                100 * co.bootstrap.level, co.bootstrap.resamples, test, co.bootstrap.seed);
     }

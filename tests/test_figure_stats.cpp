@@ -120,11 +120,11 @@ TEST(FigureStats, AnIpdAxisStartsAtZero) {
   ui::draw_dot_whisker_chart(fig, ch, o);
   auto texts = chart_texts(fig);
   EXPECT_TRUE(has_text(texts, "0.00"));
-  for (const auto& t : texts) EXPECT_NE(t[0], '-') << t;
+  for (const auto& t : texts) EXPECT_NE(t.rfind("\u2212", 0), 0u) << t;
   ch.non_negative = false;  // a difference (compare's ΔIPD) keeps its padding below
   ui::DisplayList padded(metrics);
   ui::draw_dot_whisker_chart(padded, ch, o);
-  EXPECT_TRUE(has_text(chart_texts(padded), "-0.05"));
+  EXPECT_TRUE(has_text(chart_texts(padded), "\u22120.05"));  // a typographic minus, as in the notes
 }
 
 // Two worst scenes at the same value are one place on the page: one name for both, not two stacked names

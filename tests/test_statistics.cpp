@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <regex>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "ipd/demo_study.h"
 #include "ipd/statistics.h"
 #include "ipd/session_statistics.h"
 #include "ipd/study_statistics.h"
@@ -34,15 +36,42 @@ TEST(Statistics, BootstrapWithInjectedDrawsWorkedByHand) {
 }
 
 TEST(Statistics, ResamplesWithoutPairsAreLeftOut) {
-  const std::vector<SceneSum> scenes = {{0.5, 1}, {0, 0}};
-  FixedIndexSource draws({{1, 1}, {0, 1}, {0, 0}});
+  // {1,1,1} has no pairs (left out); {0,1,2} -> 0.7/2 = 0.35; {0,0,1} -> 1.0/2 = 0.5. A 95% interval of
+  // the two: 0.35 + 0.025 * 0.15 = 0.35375 and 0.35 + 0.975 * 0.15 = 0.49625.
+  const std::vector<SceneSum> scenes = {{0.5, 1}, {0, 0}, {0.2, 1}};
+  FixedIndexSource draws({{1, 1, 1}, {0, 1, 2}, {0, 0, 1}});
   BootstrapOptions o;
   o.resamples = 3;
   const Interval ci = bootstrap_pooled_mean(scenes, o, draws);
   EXPECT_EQ(ci.resamples, 2);
-  EXPECT_DOUBLE_EQ(ci.low, 0.5);
-  EXPECT_DOUBLE_EQ(ci.high, 0.5);
-  EXPECT_DOUBLE_EQ(ci.se, 0.0);
+  EXPECT_NEAR(ci.low, 0.35375, 1e-12);
+  EXPECT_NEAR(ci.high, 0.49625, 1e-12);
+  EXPECT_NEAR(ci.se, 0.15 / std::sqrt(2.0), 1e-12);
+}
+
+// One scene with pairs resamples to itself: [0.5, 0.5] would claim a certainty one scene cannot give, so
+// there is no interval (and no comparison interval or test).
+TEST(Statistics, OneSceneWithPairsHasNoIntervalAndNoTest) {
+  FixedIndexSource draws({{1, 1}, {0, 1}, {0, 0}});
+  BootstrapOptions o;
+  o.resamples = 3;
+  const Interval ci = bootstrap_pooled_mean({{0.5, 1}, {0, 0}}, o, draws);
+  EXPECT_DOUBLE_EQ(ci.estimate, 0.5);
+  EXPECT_FALSE(ci.has_interval());
+  EXPECT_EQ(ci.resamples, 0);
+  const std::vector<PairedScene> one(1, PairedScene{{0.1, 1}, {0.5, 1}, {0.1, 1}, {0.5, 1}});
+  CompareOptions co;
+  co.bootstrap.resamples = 10;
+  const Comparison c = compare_paired(one, co, "det|real|a|b");
+  EXPECT_NEAR(c.delta.estimate, -0.4, 1e-15);
+  EXPECT_FALSE(c.delta.has_interval());
+  EXPECT_TRUE(std::isnan(c.p_value));
+  EXPECT_FALSE(c.exact_p);
+  EXPECT_EQ(c.scenes, 1);
+  RendererComparison rc;
+  rc.model = "det", rc.ref = "real", rc.a = "a", rc.b = "b", rc.result = c;
+  EXPECT_EQ(comparison_sentence(rc),
+            "cannot tell whether a or b is closer to real for det: \u0394IPD = \u22120.4000, 1 scene: no interval, no test");
 }
 
 TEST(Statistics, SeededDrawsDependOnSeedAndKeyOnly) {
@@ -346,6 +375,28 @@ TEST(StatsCli, SameOutputForAnyThreadCountAndTheDocumentedJson) {
   EXPECT_EQ(latex.out.find("\\hline"), std::string::npos);
   EXPECT_EQ(latex.out.find("\\|"), std::string::npos);  // no double bars
   EXPECT_NE(latex.out.find("} ["), std::string::npos);  // \textbf{x} [lo, hi]
+}
+
+// A one-scene study: the CLI says there is no interval and no test instead of printing [x, x] and
+// "no significant difference" (an interval that excludes 0 beside p = 1).
+TEST(StatsCli, OneSceneSaysNoIntervalAndNoTest) {
+  test::TempDir d;
+  DemoStudyOptions demo;
+  demo.scenes = 1;
+  demo.labels_only = true;
+  write_demo_study(d.path(), demo);
+  const auto table = test::run_ipd("table " + d.path());
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  EXPECT_EQ(table.out.find('['), std::string::npos) << table.out;
+  EXPECT_TRUE(std::regex_search(table.out, std::regex(R"(0\.\d{4} \(\d+ pairs; 1 scene: no interval\))"))) << table.out;
+  const auto compare = test::run_ipd("compare " + d.path());
+  ASSERT_EQ(compare.exit_code, 0) << compare.err;
+  EXPECT_NE(compare.out.find("cannot tell whether principled or hapke is closer to real for det-real: \u0394IPD = "),
+            std::string::npos) << compare.out;
+  EXPECT_NE(compare.out.find(", 1 scene: no interval, no test\n"), std::string::npos) << compare.out;
+  EXPECT_EQ(compare.out.find("significant"), std::string::npos) << compare.out;
+  EXPECT_EQ(compare.out.find("= -"), std::string::npos) << compare.out;  // one minus sign: U+2212
+  EXPECT_NE(compare.out.find("(intervals and tests need at least 2 scenes)"), std::string::npos) << compare.out;
 }
 
 }  // namespace

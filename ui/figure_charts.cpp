@@ -37,6 +37,12 @@ namespace {
 
 constexpr double kMargin = kFigureMargin;
 
+// A figure's tick: a typographic minus (U+2212) as in the rows' notes and the titles, one style per page.
+std::string axis_tick(double v, double step) {
+  const std::string t = tick_text(v, step);
+  return !t.empty() && t[0] == '-' ? "\u2212" + t.substr(1) : t;
+}
+
 struct Axis {
   double x0, x1, lo, hi;
   double at(double v) const { return x0 + (v - lo) / (hi - lo) * (x1 - x0); }
@@ -52,7 +58,7 @@ double draw_axis(Canvas& c, Axis& ax, double lo, double hi, double y_top, double
     ticks = nice_ticks(lo, hi, target);
     const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1;
     double widest = 0;
-    for (double t : ticks) widest = std::max(widest, c.measure(tick, tick_text(t, step)).x);
+    for (double t : ticks) widest = std::max(widest, c.measure(tick, axis_tick(t, step)).x);
     if ((ax.x1 - ax.x0) / std::max<size_t>(1, ticks.size() - 1) > widest * 1.6) break;
   }
   // Ending on a labelled tick, an axis that runs to the page margin ends with ink there (its last label).
@@ -62,8 +68,8 @@ double draw_axis(Canvas& c, Axis& ax, double lo, double hi, double y_top, double
   const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1, lw = std::max(0.35, o.font_pt * 0.06);
   // The end labels are centred on their ticks: keep their outer halves out of the page margin.
   const double page_w = o.width_pt();
-  ax.x0 = std::max(ax.x0, kMargin + 0.5 * c.measure(tick, tick_text(ticks.front(), step)).x);
-  ax.x1 = std::min(ax.x1, page_w - kMargin - 0.5 * c.measure(tick, tick_text(ticks.back(), step)).x);
+  ax.x0 = std::max(ax.x0, kMargin + 0.5 * c.measure(tick, axis_tick(ticks.front(), step)).x);
+  ax.x1 = std::min(ax.x1, page_w - kMargin - 0.5 * c.measure(tick, axis_tick(ticks.back(), step)).x);
   for (double t : ticks) c.line({ax.at(t), y_top}, {ax.at(t), y}, rgb(225, 225, 225), lw);
   if (zero_line && ax.lo <= 0 && ax.hi >= 0) c.line({ax.at(0), y_top}, {ax.at(0), y}, kGrey, lw * 2);
   c.line({ax.x0, y}, {ax.x1, y}, kInk, lw);
@@ -71,7 +77,7 @@ double draw_axis(Canvas& c, Axis& ax, double lo, double hi, double y_top, double
   double h = 0;
   for (double t : ticks) {
     c.line({ax.at(t), y}, {ax.at(t), y + tick_len}, kInk, lw);
-    c.text({ax.at(t), y + tick_len + 0.5}, Anchor::kTop, tick, tick_text(t, step));
+    c.text({ax.at(t), y + tick_len + 0.5}, Anchor::kTop, tick, axis_tick(t, step));
     h = std::max(h, tick_len + 0.5 + c.measure(tick, "0").y);
   }
   const TextStyle ls = style(o.font_pt, kInk);

@@ -38,7 +38,9 @@ DotWhiskerChart compare_chart(const CrossTable& table, const std::vector<std::st
       const RendererComparison c = compare_renderers(table, m.name, ref, a, b, options);
       ch.rows.push_back({model_label(m.name, m.trained_on), c.result.delta.estimate, c.result.delta.low,
                          c.result.delta.high,
-                         fmt::format("{}, {}", signed_text(c.result.delta.estimate), p_text(c.result.p_value))});
+                         c.result.scenes < 2
+                             ? fmt::format("{}, {} scene: no test", signed_text(c.result.delta.estimate), c.result.scenes)
+                             : fmt::format("{}, {}", signed_text(c.result.delta.estimate), p_text(c.result.p_value))});
       (c.result.exact_p ? exact_rows : random_rows) += 1;
       min_scenes = min_scenes == 0 ? c.result.scenes : std::min(min_scenes, c.result.scenes);
       max_scenes = std::max(max_scenes, c.result.scenes);
@@ -50,7 +52,10 @@ DotWhiskerChart compare_chart(const CrossTable& table, const std::vector<std::st
   // 2 / 2^scenes); otherwise `permutations` random ones.
   const std::string n = min_scenes == max_scenes ? fmt::format("{}", max_scenes)
                                                  : fmt::format("{}\u2013{}", min_scenes, max_scenes);
-  if (random_rows == 0 && exact_rows > 0)
+  if (max_scenes < 2)
+    ch.footnote = fmt::format("{} scene present in all three domains: no interval, no test (they need at least 2).",
+                              max_scenes);
+  else if (random_rows == 0 && exact_rows > 0)
     ch.footnote = fmt::format("Sign-flip permutation test, exact (every swap pattern) over the {} scenes present in "
                               "all three domains.", n);
   else if (exact_rows == 0)

@@ -8,6 +8,8 @@
 #include "ipd/ipd.h"
 #include <fmt/format.h>
 
+#include "ipd/table_format.h"
+
 namespace ipd::ui {
 
 using namespace fig;
@@ -139,6 +141,8 @@ TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
       bold[c + 1] = cell.involves_training_domain && cell.ipd == best;
       if (ci && cell.involves_training_domain && std::isfinite(cell.ci_low) && std::isfinite(cell.ci_high))
         sub[c + 1] = fmt::format("[{:.3f},\u2009{:.3f}]", cell.ci_low, cell.ci_high);  // thin space: one word
+      else if (ci)
+        sub[c + 1] = no_interval_reason(cell);  // "1 scene: no interval"
     }
     if (ci) fig.sub.push_back(sub);
     fig.rows.push_back(row);

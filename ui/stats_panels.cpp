@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include "canvas_imgui.h"
+#include "ipd/table_format.h"
 #include "stats_charts.h"
 
 namespace ipd::ui {
@@ -17,6 +18,11 @@ std::string interval(double v, double lo, double hi) {
   if (std::isnan(v)) return "n/a";
   if (std::isnan(lo) || std::isnan(hi)) return fixed(v, 4);
   return fixed(v, 4) + " [" + fixed(lo, 3) + ", " + fixed(hi, 3) + "]";  // never "-0.000"
+}
+// A cell's IPD with its interval, or with why it has none ("0.0200, 1 scene: no interval").
+std::string cell_interval(const TableCell& c) {
+  const std::string why = std::isnan(c.ci_low) ? no_interval_reason(c) : std::string();
+  return interval(c.ipd, c.ci_low, c.ci_high) + (why.empty() ? "" : ", " + why);
 }
 
 // 1, 2 or 5 times a power of ten, at least x.
@@ -76,7 +82,7 @@ void cell_interval_tooltip(const SessionStatistics* stats, const std::string& mo
   if (!c || std::isnan(c->ipd)) return;
   ImGui::BeginTooltip();
   ImGui::Text("IPD(%s, %s) for %s", a.c_str(), b.c_str(), model.c_str());
-  ImGui::Text("%s", interval(c->ipd, c->ci_low, c->ci_high).c_str());
+  ImGui::Text("%s", cell_interval(*c).c_str());
   ImGui::TextDisabled("%g%% scene-bootstrap interval, %d resamples; se %.4f", 100 * stats->request.bootstrap.level,
                       stats->request.bootstrap.resamples, c->se);
   ImGui::TextDisabled("%s in %s", counted(c->pairs, "pair").c_str(), counted(c->scenes, "scene").c_str());
@@ -215,7 +221,7 @@ void draw_stats_panels(const StudyView& v, const SessionStatistics* stats, bool 
   if (stats) {
     const auto& [a, b] = v.session->domain_pairs()[v.session->pair_index()];
     const TableCell* c = stats->table.cell(v.session->model(), a, b);
-    if (c) ImGui::Text("IPD %s", interval(c->ipd, c->ci_low, c->ci_high).c_str());
+    if (c) ImGui::Text("IPD %s", cell_interval(*c).c_str());
     const std::string ci = fmt::format("{:g}% CI{}", 100 * stats->request.bootstrap.level, computing ? ", updating..." : "");
     same_line_if_fits(ImGui::CalcTextSize(ci.c_str()).x);
     ImGui::TextDisabled("%s", ci.c_str());

@@ -148,7 +148,9 @@ Interval bootstrap_with(const std::vector<SceneSum>& scenes, const BootstrapOpti
   if (const auto e = options.validate(); !e.empty()) throw std::invalid_argument(e);
   Interval out;
   out.estimate = pooled_mean(scenes);
-  if (std::isnan(out.estimate) || options.resamples == 0) return out;
+  // One scene with pairs resamples to itself: a zero-width "interval" would claim a certainty it lacks.
+  const auto with_pairs = std::count_if(scenes.begin(), scenes.end(), [](const SceneSum& s) { return s.count > 0; });
+  if (std::isnan(out.estimate) || options.resamples == 0 || with_pairs < 2) return out;
   const FlatScenes flat(scenes);
   std::vector<double> values;
   values.reserve(options.resamples);
@@ -212,7 +214,9 @@ Comparison compare_paired(const std::vector<PairedScene>& scenes, const CompareO
   c.ipd_b = all.nb > 0 ? all.sb / all.nb : kNaN;
   c.delta.estimate = all.delta();
   if (c.pairs_common > 0) c.delta_common = (common_a - common_b) / static_cast<double>(c.pairs_common);
-  if (std::isnan(c.delta.estimate)) return c;
+  // Fewer than two scenes: no interval (a resample is the scene itself) and no test (its only other swap
+  // pattern mirrors it, p = 1 whatever the data).
+  if (std::isnan(c.delta.estimate) || scenes.size() < 2) return c;
 
   const auto n = static_cast<std::uint32_t>(scenes.size());
   std::vector<std::uint32_t> idx(n);

@@ -110,16 +110,21 @@ RendererComparison compare_renderers(const CrossTable& table, const std::string&
   return out;
 }
 
+std::string minus_number(double v, int digits) {
+  if (std::isnan(v)) return "n/a";
+  const std::string s = fmt::format("{:.{}f}", std::abs(v), digits);
+  return (v < 0 && s.find_first_not_of("0.") != std::string::npos ? "−" : "") + s;
+}
+
 std::string comparison_sentence(const RendererComparison& c, double alpha) {
   const Comparison& r = c.result;
-  auto num = [](double v, int digits) {  // a typographic minus, as in print
-    if (std::isnan(v)) return std::string("n/a");
-    std::string s = fmt::format("{:.{}f}", std::abs(v), digits);
-    return (v < 0 && s.find_first_not_of("0.") != std::string::npos ? "−" : "") + s;
-  };
+  const auto num = minus_number;
   if (std::isnan(r.delta.estimate))
     return fmt::format("no comparison of {} and {} against {} for {}: one of them has no rock pairs ({} {})", c.a,
                        c.b, c.ref, c.model, r.scenes, r.scenes == 1 ? "scene" : "scenes");
+  if (r.scenes < 2)
+    return fmt::format("cannot tell whether {} or {} is closer to {} for {}: ΔIPD = {}, {} scene: no interval, no test",
+                       c.a, c.b, c.ref, c.model, num(r.delta.estimate, 4), r.scenes);
   std::string numbers = "ΔIPD = " + num(r.delta.estimate, 4);
   if (r.delta.has_interval()) numbers += fmt::format(" [{}, {}]", num(r.delta.low, 3), num(r.delta.high, 3));
   // Never scientific notation (the studio shows this sentence): {:.2g} writes p >= 0.0001 in full.

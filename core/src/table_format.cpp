@@ -9,6 +9,13 @@
 
 namespace ipd {
 
+std::string no_interval_reason(const TableCell& cell) {
+  if (!cell.involves_training_domain || std::isnan(cell.ipd)) return {};
+  const auto scenes = std::count_if(cell.per_scene.begin(), cell.per_scene.end(), [](const SceneIpd& s) { return s.pairs > 0; });
+  if (scenes >= 2) return {};
+  return fmt::format("{} scene{}: no interval", scenes, scenes == 1 ? "" : "s");
+}
+
 bool parse_table_format(const std::string& name, TableFormat* out) {
   static const std::pair<const char*, TableFormat> kNames[] = {{"text", TableFormat::kText},
                                                                {"csv", TableFormat::kCsv},
@@ -43,6 +50,13 @@ bool has_ci(const TableCell& c) { return !std::isnan(c.ci_low) && !std::isnan(c.
 std::string ci_text(const TableCell& c) {
   if (!c.involves_training_domain || std::isnan(c.ipd) || !has_ci(c)) return {};
   return fmt::format(" [{:.3f}, {:.3f}]", c.ci_low, c.ci_high);
+}
+
+// " (15 pairs)", " (15 pairs; 1 scene: no interval)" when intervals were asked for and the cell can't have one.
+std::string pairs_text(const TableCell& c, const TableFormatOptions& o) {
+  if (!c.involves_training_domain || std::isnan(c.ipd)) return {};
+  const std::string why = o.resamples > 0 && !has_ci(c) ? no_interval_reason(c) : std::string();
+  return fmt::format(" ({} pairs{}{})", c.pairs, why.empty() ? "" : "; ", why);
 }
 
 bool any_ci(const CrossTable& t) {
@@ -88,8 +102,7 @@ std::string text_table(const CrossTable& t, const TableFormatOptions& o) {
     std::vector<std::string> row = {row_title(t.models[r])};
     for (size_t c = 0; c < t.columns.size(); ++c) {
       const auto& cell = t.cells[r * t.columns.size() + c];
-      row.push_back(cell_text(cell, "–") + ci_text(cell) +
-                    (cell.involves_training_domain && !std::isnan(cell.ipd) ? fmt::format(" ({} pairs)", cell.pairs) : ""));
+      row.push_back(cell_text(cell, "–") + ci_text(cell) + pairs_text(cell, o));
     }
     grid.push_back(row);
   }

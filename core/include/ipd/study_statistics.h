@@ -44,6 +44,9 @@ RendererComparison compare_renderers(const CrossTable& table, const std::string&
 // [-0.112, -0.069], p = 0.0005, 40 scenes"; "no significant difference ..." when p >= alpha or the
 // interval contains 0.
 std::string comparison_sentence(const RendererComparison& c, double alpha = 0.05);
+// `v` with `digits` decimals and a typographic minus (U+2212), as in print and in comparison_sentence;
+// never a minus on a number that rounds to zero ("0.0000", not "−0.0000"); "n/a" for NaN.
+std::string minus_number(double v, int digits);
 
 // IPD of one cell broken down by a property of the reference (the cell's first domain, `a`) rock.
 enum class BreakdownBy { kSize, kRegion, kConfidence };

@@ -21,6 +21,10 @@ struct TableFormatOptions {
   double conf_threshold = 0;  // the prediction threshold the table was computed with (JSON)
 };
 
+// Why a shown cell has no interval: "1 scene: no interval" (or "0 scenes") when fewer than two of its
+// scenes have pairs (a scene bootstrap needs two); "" otherwise.
+std::string no_interval_reason(const TableCell& cell);
+
 bool parse_table_format(const std::string& name, TableFormat* out);
 std::string format_table(const CrossTable& table, TableFormat format, const TableFormatOptions& options = {});
 
