@@ -1,6 +1,8 @@
 // `ipd register REAL.txt SYNTH.txt` and `ipd register --list FILE.tsv`: rock pairing of label files.
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include <algorithm>
 
 #include <fstream>
@@ -17,6 +19,24 @@
 namespace ipd::cli {
 
 namespace {
+
+// A count rounded to a whole number with thousands separators: 1045000 -> "1,045,000" (not "1.05e+06").
+std::string grouped_count(double n) {
+  std::string digits = fmt::format("{:.0f}", std::abs(n));
+  for (int k = static_cast<int>(digits.size()) - 3; k > 0; k -= 3) digits.insert(static_cast<size_t>(k), ",");
+  return (n < 0 && digits != "0" ? "-" : "") + digits;
+}
+
+// "1 trial", "1,000 trials".
+std::string counted(double n, const char* singular, const char* plural) {
+  return grouped_count(n) + " " + (std::lround(n) == 1 ? singular : plural);
+}
+
+// Five decimals, and a number that rounds to zero prints as "0.00000", never "-0.00000".
+std::string fixed_no_minus_zero(double v) {
+  const std::string s = fmt::format("{:.5f}", v);
+  return s == "-0.00000" ? s.substr(1) : s;
+}
 
 struct Job {
   std::string real, synth;
@@ -164,18 +184,26 @@ Runner add_register_command(CLI::App& app) {
       }
       const auto& r = job.result;
       fmt::print("{} -> {}\n", job.real, job.synth);
-      fmt::print("  method {}: {} trials, {} hypotheses, {} inliers, score {:.5f}; stopped: {}\n",
-                 r["method"].get<std::string>(), r["trials"].get<int>(), r["hypotheses"].get<int>(),
-                 r["inliers"].get<int>(), r["score"].get<double>(), r["stop"].get<std::string>());
-      fmt::print("  work: {:.3g} of {:.3g} point evaluations; confidence {:.3f}{}\n", r["work"].get<double>(),
-                 r["work_budget"].get<double>(), r["confidence"].get<double>(),
+      const std::string method = r["method"].get<std::string>();
+      fmt::print("  method {}: {}, {}, score {}; stopped: {}\n", method,
+                 counted(r["trials"].get<double>(), "trial", "trials"),
+                 counted(r["hypotheses"].get<double>(), "hypothesis", "hypotheses"),
+                 fixed_no_minus_zero(r["score"].get<double>()), r["stop"].get<std::string>());
+      // Two different counts: A centres that land within the gate of some B centre after the alignment,
+      // and the one-to-one pairs the method then forms (which the IPD uses).
+      fmt::print("  {} within the gate; {} by {}\n", counted(r["inliers"].get<double>(), "centre", "centres"),
+                 counted(static_cast<double>(r["pairs"].size()), "pair", "pairs"),
+                 method == "paper" ? "mutual nearest neighbour" : "aligned-box IoU (one-to-one)");
+      fmt::print("  work: {} of {} point evaluations; confidence {:.3f}{}\n", grouped_count(r["work"].get<double>()),
+                 grouped_count(r["work_budget"].get<double>()), r["confidence"].get<double>(),
                  r["ambiguous"].get<bool>() ? " (AMBIGUOUS: another alignment fits almost as well)" : "");
       if (r.contains("note")) fmt::print("  note: {}\n", r["note"].get<std::string>());
       const auto& a = r["affine"];
-      fmt::print("  affine (real -> synth, normalised): [{:.5f} {:.5f} {:.5f}; {:.5f} {:.5f} {:.5f}]\n",
-                 a[0][0].get<double>(), a[0][1].get<double>(), a[0][2].get<double>(), a[1][0].get<double>(),
-                 a[1][1].get<double>(), a[1][2].get<double>());
-      fmt::print("  {} pairs (1-based real:synth):", r["pairs"].size());
+      fmt::print("  affine (real -> synth, normalised): [{} {} {}; {} {} {}]\n", fixed_no_minus_zero(a[0][0].get<double>()),
+                 fixed_no_minus_zero(a[0][1].get<double>()), fixed_no_minus_zero(a[0][2].get<double>()),
+                 fixed_no_minus_zero(a[1][0].get<double>()), fixed_no_minus_zero(a[1][1].get<double>()),
+                 fixed_no_minus_zero(a[1][2].get<double>()));
+      fmt::print("  pairs (1-based real:synth):");
       for (const auto& p : r["pairs"]) fmt::print(" {}:{}", p[0].get<int>() + 1, p[1].get<int>() + 1);
       fmt::print("\n");
     }

@@ -1,6 +1,8 @@
 // Study layout, configuration errors, the Table I layout and the CLI's contract.
 #include <gtest/gtest.h>
 
+#include <regex>
+
 #include <nlohmann/json.hpp>
 
 #include "ipd/ipd.h"
@@ -165,6 +167,25 @@ TEST(Cli, RegisterPrintsOneJsonObjectPerLine) {
   r = test::run_ipd("register " + d / "r.txt " + d / "none.txt");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, d / "none.txt" + ": no such label file\n");
+}
+
+// The text report says what each count counts, in plain numbers: centres within the gate vs the pairs the
+// method forms (how), "1 trial" in the singular, thousands separators (no "1.01e+06"), no "-0.00000".
+TEST(Cli, RegisterTextSaysWhatEachCountCounts) {
+  test::TempDir d;
+  test::write_text(d / "r.txt", "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.05 0.05\n0 0.4 0.8 0.05 0.05\n0 0.8 0.8 0.05 0.05\n");
+  test::write_text(d / "s.txt", "0 0.81 0.81 0.05 0.05\n0 0.21 0.21 0.05 0.05\n0 0.41 0.81 0.05 0.05\n");
+  auto r = test::run_ipd("register " + d / "r.txt " + d / "r.txt");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("  method consensus: 1 trial, 1 hypothesis, score 4.00000; stopped: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n  4 centres within the gate; 4 pairs by aligned-box IoU (one-to-one)\n"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(\n  work: 4 of \d{1,3}(,\d{3})+ point evaluations; confidence)"))) << r.out;
+  EXPECT_NE(r.out.find("[1.00000 0.00000 0.00000; 0.00000 1.00000 0.00000]"), std::string::npos) << r.out;
+  r = test::run_ipd("register " + d / "r.txt " + d / "s.txt --method paper");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("  method paper: 1,000 trials, 6,000 hypotheses, "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n  3 centres within the gate; 3 pairs by mutual nearest neighbour\n"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("e+"), std::string::npos) << r.out;
 }
 
 }  // namespace
