@@ -188,5 +188,29 @@ TEST(Cli, RegisterTextSaysWhatEachCountCounts) {
   EXPECT_EQ(r.out.find("e+"), std::string::npos) << r.out;
 }
 
+// `ipd table` states the prediction threshold it used and which scenes' registrations were ambiguous (the
+// paper method cannot tell the 4-rock and 3-rock layouts above apart: confidence 0.000).
+TEST(Cli, TableNamesTheThresholdAndTheAmbiguousRegistrations) {
+  test::TempDir d;
+  test::write_text(d / "study.yaml", "domains: [real, synth]\nmodels: {det: {trained_on: real}}\n");
+  test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.05 0.05\n0 0.4 0.8 0.05 0.05\n0 0.8 0.8 0.05 0.05\n");
+  test::write_text(d / "synth/labels/s1.txt", "0 0.81 0.81 0.05 0.05\n0 0.21 0.21 0.05 0.05\n0 0.41 0.81 0.05 0.05\n");
+  test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.05 0.05 0.9\n");
+  test::write_text(d / "synth/predictions/det/s1.txt", "0 0.81 0.81 0.05 0.05 0.4\n");
+  auto r = test::run_ipd("table " + d.path() + " --method paper --bootstrap 0 --conf 0.3");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\nPredictions with confidence below 0.3 dropped (--conf, else study.yaml's conf_threshold).\n"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n1 scene: registration ambiguous (see ipd-studio '?'); --verbose lists them\n"), std::string::npos)
+      << r.out;
+  r = test::run_ipd("table " + d.path() + " --method paper --bootstrap 0 --verbose");
+  EXPECT_EQ(r.out.find("Predictions with confidence below"), std::string::npos) << r.out;  // none dropped
+  EXPECT_NE(r.out.find("\n1 scene: registration ambiguous (see ipd-studio '?'):\n  real vs synth: s1\n"), std::string::npos)
+      << r.out;
+  r = test::run_ipd("table " + d.path() + " --method paper --bootstrap 0 --format csv");  // CSV stays CSV
+  EXPECT_EQ(r.out.find("ambiguous"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("note: 1 scene: registration ambiguous"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace ipd
