@@ -127,6 +127,24 @@ TEST(FigureStats, AnIpdAxisStartsAtZero) {
   EXPECT_TRUE(has_text(chart_texts(padded), "\u22120.05"));  // a typographic minus, as in the notes
 }
 
+// Padding never adds a whole tick step: ΔIPD from -0.0955 to 0 padded by 5% reaches -0.1003, and the axis
+// ran to -0.2 (ticks -0.2, -0.1, 0.0) in a single column; now it ends just past the tick -0.1.
+TEST(FigureStats, AxisPaddingDoesNotAddATickStep) {
+  ui::DotWhiskerChart ch;
+  ch.title = "t", ch.axis_label = "\u0394IPD";
+  ch.zero_line = true;
+  ch.rows = {{"det-real (real)", -0.0799, -0.0955, -0.064, "\u22120.080, p = 0.031"},
+             {"det-principled (principled)", -0.0591, -0.075, -0.047, "\u22120.059, p = 0.031"},
+             {"det-hapke (hapke)", -0.0537, -0.081, -0.030, "\u22120.054, p = 0.031"}};
+  const ui::FontMetrics metrics(ui::default_font_file());
+  ui::FigureOptions o;
+  ui::DisplayList fig(metrics);
+  ui::draw_dot_whisker_chart(fig, ch, o);
+  const auto texts = chart_texts(fig);
+  EXPECT_TRUE(has_text(texts, "\u22120.10")) << ::testing::PrintToString(texts);
+  for (const auto& t : texts) EXPECT_EQ(t.find("0.2"), std::string::npos) << t;
+}
+
 // Two worst scenes at the same value are one place on the page: one name for both, not two stacked names
 // a reader cannot tell apart.
 TEST(FigureStats, WorstScenesAtOneSpotShareOneName) {

@@ -50,12 +50,16 @@ struct Axis {
 
 // Picks the axis range and ticks whose labels fit the plot width; draws axis, ticks and label; returns
 // the height used below `y`.
+// Ticks cover [tick_lo, tick_hi] (the data; default [lo, hi]), the axis [lo, hi] (the data and its padding)
+// and the ticks: padding never adds a whole tick step (data from -0.095 ran to -0.2 when padded to -0.1).
 double draw_axis(Canvas& c, Axis& ax, double lo, double hi, double y_top, double y, const std::string& label,
-                 const FigureOptions& o, bool zero_line, bool end_on_tick = false) {
+                 const FigureOptions& o, bool zero_line, bool end_on_tick = false, double tick_lo = NAN,
+                 double tick_hi = NAN) {
   const TextStyle tick = style(o.font_pt * 0.85, kInk);
+  if (std::isnan(tick_lo) || std::isnan(tick_hi)) tick_lo = lo, tick_hi = hi;
   std::vector<double> ticks;
   for (int target = 6; target >= 2; --target) {
-    ticks = nice_ticks(lo, hi, target);
+    ticks = nice_ticks(tick_lo, tick_hi, target);
     const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1;
     double widest = 0;
     for (double t : ticks) widest = std::max(widest, c.measure(tick, axis_tick(t, step)).x);
@@ -138,7 +142,8 @@ void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& ch, const F
   const double top = y, bottom = y + row_h * ch.rows.size();
   const double lw = std::max(0.4, F * 0.08);
   Axis fitted = ax;
-  const double axis_h = draw_axis(out, fitted, axis_lo, hi + pad, top, bottom, ch.axis_label, o, ch.zero_line);
+  const double axis_h =
+      draw_axis(out, fitted, axis_lo, hi + pad, top, bottom, ch.axis_label, o, ch.zero_line, false, lo, hi);
   for (size_t i = 0; i < ch.rows.size(); ++i) {
     const ChartRow& r = ch.rows[i];
     const double cy = top + row_h * (i + 0.5);
