@@ -108,7 +108,9 @@ bool has_text(const std::vector<std::string>& texts, const std::string& s) {
 }
 
 // The breakdown's IPD axis starts at 0 (IPD >= 0): rows 0.14 [0.065, 0.243] and 0.015 [0.008, 0.02] pad the
-// range by 5% (0.01175) to -0.0037, which put a tick at -0.05 before.
+// range by 5% (0.01175) to -0.0037, which put a tick at -0.05 before. Now no tick lies below 0, and the
+// axis itself starts at 0: the "0.00" label is centred on the axis' left end, the row labels' edge + 0.6
+// font sizes; a padded axis (a difference) puts 0 further right.
 TEST(FigureStats, AnIpdAxisStartsAtZero) {
   ui::DotWhiskerChart ch;
   ch.title = "t", ch.axis_label = "IPD";
@@ -118,13 +120,20 @@ TEST(FigureStats, AnIpdAxisStartsAtZero) {
   ui::FigureOptions o;
   ui::DisplayList fig(metrics);
   ui::draw_dot_whisker_chart(fig, ch, o);
-  auto texts = chart_texts(fig);
-  EXPECT_TRUE(has_text(texts, "0.00"));
-  for (const auto& t : texts) EXPECT_NE(t.rfind("\u2212", 0), 0u) << t;
-  ch.non_negative = false;  // a difference (compare's ΔIPD) keeps its padding below
+  const auto zero_at = [](const ui::DisplayList& f) {
+    for (const auto& t : f.texts())
+      if (t.text == "0.00") return (t.box.x0 + t.box.x1) / 2;
+    return -1.0;
+  };
+  double label_right = 0;
+  for (const auto& t : fig.texts())
+    if (t.text == "a" || t.text == "b") label_right = std::max(label_right, t.box.x1);
+  for (const auto& t : chart_texts(fig)) EXPECT_NE(t.rfind("\u2212", 0), 0u) << t;
+  EXPECT_NEAR(zero_at(fig), label_right + 0.6 * 8, 0.01);
+  ch.non_negative = false;
   ui::DisplayList padded(metrics);
   ui::draw_dot_whisker_chart(padded, ch, o);
-  EXPECT_TRUE(has_text(chart_texts(padded), "\u22120.05"));  // a typographic minus, as in the notes
+  EXPECT_GT(zero_at(padded), zero_at(fig) + 0.5);
 }
 
 // Padding never adds a whole tick step: ΔIPD from -0.0955 to 0 padded by 5% reaches -0.1003, and the axis
