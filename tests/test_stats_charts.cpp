@@ -217,5 +217,11 @@ TEST(StatsCharts, CrossTableIsAsTallAsItsRows) {
   EXPECT_FLOAT_EQ(narrow.height, 5 * 19 + 1 + 14);
 }
 
+// The studio's cross-table header splits |a - b| after the minus, so the second row does not start with a
+// dash (it read "real" over "- principled", like a list).
+TEST(StatsCharts, CrossTableHeaderSplitsAfterTheMinus) {
+  EXPECT_EQ(cross_table_header("real", "principled"), std::make_pair(std::string("|real -"), std::string("principled|")));
+}
+
 }  // namespace
 }  // namespace ipd::ui

@@ -11,4 +11,8 @@ TableSize cross_table_size(const std::vector<float>& text_widths, int rows, floa
   return s;
 }
 
+std::pair<std::string, std::string> cross_table_header(const std::string& a, const std::string& b) {
+  return {"|" + a + " -", b + "|"};
+}
+
 }  // namespace ipd::ui

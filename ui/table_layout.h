@@ -3,6 +3,8 @@
 // out as one text line plus the cell padding above and below it.
 #pragma once
 
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace ipd::ui {
@@ -19,5 +21,9 @@ struct TableSize {
 };
 // `text_widths`: the widest text of each column; `rows` counts header rows too.
 TableSize cross_table_size(const std::vector<float>& text_widths, int rows, float avail_width, const TableMetrics& m);
+
+// A domain pair's header on two rows, the paper's |a − b| split after the minus: {"|real -", "principled|"}
+// ("real" over "- principled" read like a list item). ASCII '-': the studio's font has no U+2212.
+std::pair<std::string, std::string> cross_table_header(const std::string& a, const std::string& b);
 
 }  // namespace ipd::ui

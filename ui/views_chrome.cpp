@@ -284,9 +284,11 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
   };
   std::vector<float> widths(pairs.size() + 1, ImGui::CalcTextSize("train \\ eval").x);
   for (const auto& m : s.study().models) widths[0] = std::max(widths[0], ImGui::CalcTextSize(model_label(m).c_str()).x);
+  std::vector<std::pair<std::string, std::string>> headers;
+  for (const auto& [a, b] : pairs) headers.push_back(cross_table_header(a, b));
   for (size_t p = 0; p < pairs.size(); ++p)
-    widths[p + 1] = std::max({ImGui::CalcTextSize(pairs[p].first.c_str()).x,
-                              ImGui::CalcTextSize(("- " + pairs[p].second).c_str()).x, ImGui::CalcTextSize("0.0000").x});
+    widths[p + 1] = std::max({ImGui::CalcTextSize(headers[p].first.c_str()).x,
+                              ImGui::CalcTextSize(headers[p].second.c_str()).x, ImGui::CalcTextSize("0.0000").x});
   const ImGuiStyle& style = ImGui::GetStyle();
   const TableSize size = cross_table_size(
       widths, static_cast<int>(s.study().models.size()) + 2, ImGui::GetContentRegionAvail().x,
@@ -295,7 +297,7 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
                         ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit |
                             (size.scroll_x ? ImGuiTableFlags_ScrollX : ImGuiTableFlags_None),
                         ImVec2(0, size.scroll_x ? size.height : 0))) {
-    // Headers on two rows ("real" over "- principled"): a column is as wide as its longer domain name, not both
+    // Headers on two rows ("|real -" over "principled|"): a column is as wide as its longer domain name, not both
     // names, so three domain pairs fit the side panel at 1600 px.
     ImGui::TableSetupColumn("train \\ eval");
     for (size_t p = 0; p < pairs.size(); ++p) ImGui::TableSetupColumn(nullptr);
@@ -306,7 +308,7 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
       ImGui::TableHeader(row == 0 ? "train \\ eval" : "");
       for (size_t p = 0; p < pairs.size(); ++p) {
         ImGui::TableSetColumnIndex(static_cast<int>(p) + 1);
-        ImGui::TableHeader(row == 0 ? pairs[p].first.c_str() : ("- " + pairs[p].second).c_str());
+        ImGui::TableHeader(row == 0 ? headers[p].first.c_str() : headers[p].second.c_str());
       }
       ImGui::PopID();
     }
