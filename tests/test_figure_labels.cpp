@@ -3,9 +3,16 @@
 // a registration number is nearer its own marker than any other. Impossible ones are left out and counted.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
 
+#include "figure_input.h"
 #include "figure_scene.h"
+#include "ipd/audit.h"
+#include "ipd/demo_study.h"
+#include "ipd/study.h"
+#include "test_support.h"
 
 namespace ipd {
 namespace {
@@ -130,6 +137,62 @@ TEST(FigureLabels, TheExcludedRockStrokeHasALegendEntry) {
   ui::DisplayList struck(metrics);
   ui::draw_pairs_figure(struck, in, o);
   EXPECT_TRUE(contains(struck, "excluded from the IPD (by hand)"));
+}
+
+// The ownership rule on a dense generated scene (60 rocks a side, labels only), double column with every
+// layer: every shown rock number lies on no GT box but its own, every shown confidence on no GT box but
+// the one its prediction matches (highest IoU), and the footnotes count the rest.
+TEST(FigureLabels, EveryLabelOfADenseSceneIsOwned) {
+  test::TempDir d;
+  DemoStudyOptions demo;
+  demo.scenes = 1;
+  demo.min_rocks = demo.max_rocks = 60;
+  demo.labels_only = true;
+  write_demo_study(d.path(), demo);
+  const StudyLabels labels = load_labels(open_study(d.path()));
+  const std::string stem = labels.gt.begin()->second.begin()->first;
+  const ui::SceneFigureInput in =
+      ui::scene_input_from_study(labels, "real", "principled", "det-real", stem, 0, {});
+  ui::FigureOptions o;
+  o.width_in = ui::kDoubleColumnIn;
+  o.layers = ui::parse_layers("gt,pred,conf,indices,pairs,legend");
+  const ui::FontMetrics metrics(ui::default_font_file());
+  ui::DisplayList fig(metrics);
+  const ui::PairsLayout l = ui::draw_pairs_figure(fig, in, o);
+  int numbers = 0, confidences = 0;
+  for (int side = 0; side < 2; ++side) {
+    const ui::PtRect& panel = side == 0 ? l.left : l.right;
+    const auto& gt = side == 0 ? in.gt_a : in.gt_b;
+    const auto& pred = side == 0 ? in.pred_a : in.pred_b;
+    const std::vector<int> number = pair_numbers(in.pairs, gt.size(), side == 0);
+    for (const auto& t : fig.texts()) {
+      if (!over(t.box, panel) || t.text.empty()) continue;
+      const bool conf = t.text.size() == 4 && t.text.compare(0, 2, "0.") == 0;
+      std::vector<size_t> owners;  // the GT boxes this label may lie on
+      if (conf) {
+        ++confidences;
+        for (const Box& p : pred) {
+          if (fmt::format("{:.2f}", p.conf) != t.text) continue;
+          int matched = -1;
+          double best = 0;
+          for (size_t j = 0; j < gt.size(); ++j)
+            if (iou(gt[j], p) > best) best = iou(gt[j], p), matched = int(j);
+          if (matched >= 0) owners.push_back(size_t(matched));
+        }
+      } else {
+        ++numbers;
+        for (size_t k = 0; k < gt.size(); ++k)
+          if ((number[k] > 0 ? std::to_string(number[k]) : "x" + std::to_string(k + 1)) == t.text) owners.push_back(k);
+      }
+      for (size_t k = 0; k < gt.size(); ++k) {
+        if (std::find(owners.begin(), owners.end(), k) != owners.end()) continue;
+        EXPECT_FALSE(over(t.box, on_page(panel, gt[k]))) << (conf ? "confidence " : "number ") << t.text
+                                                          << " lies on GT box " << k + 1 << " (side " << side << ")";
+      }
+    }
+  }
+  EXPECT_GT(numbers, 60);      // most of the 2 x 60 numbers are shown
+  EXPECT_GT(confidences, 20);  // and a good share of the confidences
 }
 
 }  // namespace
