@@ -144,7 +144,7 @@ Runner add_register_command(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "Worker threads for --list (default: all cores)");
   cmd->add_flag("--json", args->json, "Print JSON (one object per line)");
   cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
-  return [args, cmd]() -> int {
+  return [args]() -> int {
     const bool list_mode = !args->list.empty();
     if (list_mode == (!args->real.empty() || !args->synth.empty()) || (!list_mode && args->synth.empty()))
       throw CLI::ValidationError("register", "give either REAL SYNTH or --list FILE.tsv");
