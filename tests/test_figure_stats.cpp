@@ -6,6 +6,7 @@
 
 #include "figure_charts.h"
 #include "figure_export.h"
+#include "ipd/demo_study.h"
 #include "pdf_text.h"
 #include "test_support.h"
 
@@ -96,6 +97,28 @@ TEST(FigureStats, CiParsesTheSameWayInEveryOrder) {
 void expect_ticks(const std::vector<double>& got, const std::vector<double>& want) {
   ASSERT_EQ(got.size(), want.size());
   for (size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-12) << i;
+}
+
+// A one-scene study's figures say there is no interval or test instead of drawing [x, x] and p = 1.
+TEST(FigureStats, OneSceneFiguresSayNoIntervalNoTest) {
+  test::TempDir d;
+  DemoStudyOptions demo;
+  demo.scenes = 1;
+  demo.labels_only = true;
+  write_demo_study(d.path(), demo);
+  auto r = test::run_ipd("figure table " + d.path() + " --ci --out " + d / "t.pdf");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string text = pdf_words(d / "t.pdf");
+  EXPECT_NE(text.find("1 scene: no interval"), std::string::npos) << text;
+  EXPECT_EQ(text.find("["), std::string::npos) << text;
+  EXPECT_EQ(text.find("Brackets"), std::string::npos) << text;
+  r = test::run_ipd("figure compare " + d.path() + " --out " + d / "c.pdf");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  text = pdf_words(d / "c.pdf");
+  EXPECT_NE(text.find("1 scene: no test"), std::string::npos) << text;
+  EXPECT_NE(text.find("1 scene present in all three domains: no interval, no test (they need at least 2)."),
+            std::string::npos) << text;
+  EXPECT_EQ(text.find("p = "), std::string::npos) << text;
 }
 
 std::vector<std::string> chart_texts(const ui::DisplayList& fig) {

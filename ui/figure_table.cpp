@@ -149,7 +149,11 @@ TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
     fig.bold.push_back(bold);
   }
   fig.note = "Rows: detector and its training domain. \u2013: pair not involving the training domain; bold: the row's best.";
-  if (ci) fig.note += fmt::format(" Brackets: {:g}% scene-bootstrap interval.", 100 * level);
+  // Only when some cell has brackets (a one-scene study has none: its cells say "1 scene: no interval").
+  const bool brackets = std::any_of(t.cells.begin(), t.cells.end(), [](const TableCell& c) {
+    return c.involves_training_domain && std::isfinite(c.ci_low) && std::isfinite(c.ci_high);
+  });
+  if (ci && brackets) fig.note += fmt::format(" Brackets: {:g}% scene-bootstrap interval.", 100 * level);
   return fig;
 }
 

@@ -119,8 +119,12 @@ void draw_compare(const StudyView& v, const SessionStatistics* stats, StatsPanel
   const Comparison& r = c.result;
   text_wrapped_at_spaces("IPD(" + c.ref + "," + c.a + ") " + fixed(r.ipd_a, 4) + "  IPD(" + c.ref + "," + c.b + ") " +
                          fixed(r.ipd_b, 4));
-  text_wrapped_at_spaces("delta " + interval(r.delta.estimate, r.delta.low, r.delta.high) + "   p " +
-                         (r.p_value < 1e-4 ? "< 0.0001" : fmt::format("= {:.2g}", r.p_value)));
+  // Fewer than two scenes: neither interval nor test (never "p = nan").
+  text_wrapped_at_spaces("delta " + interval(r.delta.estimate, r.delta.low, r.delta.high) +
+                         (r.scenes < 2                ? fmt::format(", {} scene: no interval, no test", r.scenes)
+                          : std::isnan(r.p_value)     ? std::string()
+                          : r.p_value < 1e-4          ? std::string("   p < 0.0001")
+                                                      : fmt::format("   p = {:.2g}", r.p_value)));
   // The GUI font has no Δ or typographic minus: spell them in ASCII.
   std::string sentence = comparison_sentence(c);
   for (const auto& [from, to] : {std::pair<std::string, std::string>{"ΔIPD", "delta IPD"}, {"−", "-"}})
@@ -222,7 +226,9 @@ void draw_stats_panels(const StudyView& v, const SessionStatistics* stats, bool 
     const auto& [a, b] = v.session->domain_pairs()[v.session->pair_index()];
     const TableCell* c = stats->table.cell(v.session->model(), a, b);
     if (c) ImGui::Text("IPD %s", cell_interval(*c).c_str());
-    const std::string ci = fmt::format("{:g}% CI{}", 100 * stats->request.bootstrap.level, computing ? ", updating..." : "");
+    const bool has_ci = c && !std::isnan(c->ci_low);
+    const std::string ci = fmt::format("{}{}", has_ci || !c ? fmt::format("{:g}% CI", 100 * stats->request.bootstrap.level) : "",
+                                       computing ? ", updating..." : "");
     same_line_if_fits(ImGui::CalcTextSize(ci.c_str()).x);
     ImGui::TextDisabled("%s", ci.c_str());
   } else {
