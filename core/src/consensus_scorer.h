@@ -158,7 +158,8 @@ class ConsensusScorer {
 
   // The least-squares steps of refine() alone, without the search's bookkeeping (the second look uses it).
   void improve(Affine2* m, double* s) {
-    std::vector<Eigen::Vector2d> src, dst;
+    auto& src = scratch_src_;
+    auto& dst = scratch_dst_;
     static constexpr double kGateScale[] = {9.0, 4.0, 1.0, 1.0, 1.0};
     for (double scale : kGateScale) {
       inlier_pairs(*m, scale * gate2_, &src, &dst);
@@ -234,9 +235,8 @@ class ConsensusScorer {
   }
 
   int count_inliers(const Affine2& m) {
-    std::vector<Eigen::Vector2d> s, d;
-    inlier_pairs(m, gate2_, &s, &d);
-    return static_cast<int>(s.size());
+    inlier_pairs(m, gate2_, &scratch_src_, &scratch_dst_);
+    return static_cast<int>(scratch_src_.size());
   }
 
  private:
@@ -273,6 +273,7 @@ class ConsensusScorer {
   std::vector<double> best_;
   std::vector<unsigned> stamp_;
   std::vector<std::pair<int, double>> claim_;
+  std::vector<Eigen::Vector2d> scratch_src_, scratch_dst_;  // reused by improve() and count_inliers()
   unsigned epoch_ = 0;
 };
 
