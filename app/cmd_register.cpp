@@ -13,6 +13,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "ipd/atomic_file.h"
+#include "ipd/registration.h"
 #include "ipd/parallel.h"
 #include "ipd/registration.h"
 
@@ -185,9 +186,12 @@ Runner add_register_command(CLI::App& app) {
       const auto& r = job.result;
       fmt::print("{} -> {}\n", job.real, job.synth);
       const std::string method = r["method"].get<std::string>();
-      fmt::print("  method {}: {}, {}, score {}; stopped: {}\n", method,
-                 counted(r["trials"].get<double>(), "trial", "trials"),
-                 counted(r["hypotheses"].get<double>(), "hypothesis", "hypotheses"),
+      // cpd has no trials or hypotheses: its count is EM iterations (the studio's header says the same).
+      const std::string searched =
+          method == "cpd" ? counted(r["trials"].get<double>(), "EM iteration", "EM iterations")
+                          : counted(r["trials"].get<double>(), "trial", "trials") + ", " +
+                                counted(r["hypotheses"].get<double>(), "hypothesis", "hypotheses");
+      fmt::print("  method {}: {}, score {}; stopped: {}\n", method, searched,
                  fixed_no_minus_zero(r["score"].get<double>()), r["stop"].get<std::string>());
       // Two different counts: A centres that land within the gate of some B centre after the alignment,
       // and the one-to-one pairs the method then forms (which the IPD uses).
@@ -196,7 +200,7 @@ Runner add_register_command(CLI::App& app) {
                  method == "paper" ? "mutual nearest neighbour" : "aligned-box IoU (one-to-one)");
       fmt::print("  work: {} of {} point evaluations; confidence {:.3f}{}\n", grouped_count(r["work"].get<double>()),
                  grouped_count(r["work_budget"].get<double>()), r["confidence"].get<double>(),
-                 r["ambiguous"].get<bool>() ? " (AMBIGUOUS: another alignment fits almost as well)" : "");
+                 r["ambiguous"].get<bool>() ? std::string(" (AMBIGUOUS: ") + kAmbiguousReason + ")" : std::string());
       if (r.contains("note")) fmt::print("  note: {}\n", r["note"].get<std::string>());
       const auto& a = r["affine"];
       fmt::print("  affine (real -> synth, normalised): [{} {} {}; {} {} {}]\n", fixed_no_minus_zero(a[0][0].get<double>()),

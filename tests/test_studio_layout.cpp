@@ -91,6 +91,13 @@ TEST(RegistrationWords, SingularCountsPlainNumbersOneStepNumber) {
   r.trials = 40, r.hypotheses = 5982, r.inliers = 1, r.score = -0.0000001, r.confidence = -0.000001;
   EXPECT_EQ(registration_summary("a", "b", r),
             "a -> b: consensus, 40 trials, 5,982 hypotheses, 1 inlier, score 0.0000, confidence 0.00");
+  // cpd counts EM iterations, never trials or hypotheses.
+  r.method = RegistrationMethod::kCpd;
+  r.trials = 22, r.hypotheses = 22, r.inliers = 17, r.score = 0.00031, r.confidence = 1;
+  EXPECT_EQ(registration_summary("real", "principled", r),
+            "real -> principled: cpd, 22 EM iterations, 17 inliers, score 0.0003, confidence 1.00");
+  r.trials = 1;
+  EXPECT_EQ(registration_summary("a", "b", r).substr(0, 28), "a -> b: cpd, 1 EM iteration,");
   TraceStep st;
   st.kind = TraceStepKind::kHypothesis;
   st.score = 0.5, st.best_score = 0.75, st.inliers_a = {3};
@@ -99,6 +106,25 @@ TEST(RegistrationWords, SingularCountsPlainNumbersOneStepNumber) {
   EXPECT_EQ(trace_cap_note(5000, 5982),
             "the replay holds the first 5,000 steps of 5,982 hypotheses tried (the recording stops at 5,000; the search "
             "went on)");
+}
+
+TEST(RegistrationCanvas, PlotClipStopsAboveTheLegendAndHoldsThePictureBox) {
+  // Canvas at (100, 200), 300 x 200, 15 px lines: the legend's three lines start at 200 + 200 - 45 - 4 = 351;
+  // the plot (and its clip) is (100, 200)-(400, 349); the picture box has 10 px margins: 280 x 129.
+  const RegistrationCanvas c = registration_canvas({100, 200}, {300, 200}, 15);
+  EXPECT_FLOAT_EQ(c.legend_top, 351);
+  EXPECT_FLOAT_EQ(c.plot_min.x, 100);
+  EXPECT_FLOAT_EQ(c.plot_min.y, 200);
+  EXPECT_FLOAT_EQ(c.plot_max.x, 400);
+  EXPECT_FLOAT_EQ(c.plot_max.y, 349);
+  EXPECT_FLOAT_EQ(c.box_min.x, 110);
+  EXPECT_FLOAT_EQ(c.box_min.y, 210);
+  EXPECT_FLOAT_EQ(c.box_size.x, 280);
+  EXPECT_FLOAT_EQ(c.box_size.y, 129);
+  // A canvas too short for the legend: the plot collapses to nothing rather than reaching above the canvas.
+  const RegistrationCanvas t = registration_canvas({0, 50}, {100, 40}, 15);
+  EXPECT_FLOAT_EQ(t.plot_max.y, 50);
+  EXPECT_FLOAT_EQ(t.box_size.y, 0);
 }
 
 TEST(BrowserOrder, AmbiguousScenesSortOnTheirOwnColumn) {

@@ -137,6 +137,13 @@ float button_width(const char* label);
 std::string registration_summary(const std::string& a, const std::string& b, const RegistrationReport& r);
 std::string replay_step_line(const TraceStep& step, int k, int steps);
 std::string trace_cap_note(int steps, int hypotheses);
+// The registration canvas at `p0` of `size`: the plot's clip rect (all of the canvas above the three legend
+// lines), the picture's box inside it (10 px margins) and the legend's top.
+struct RegistrationCanvas {
+  ImVec2 plot_min, plot_max, box_min, box_size;
+  float legend_top = 0;
+};
+RegistrationCanvas registration_canvas(ImVec2 p0, ImVec2 size, float line_h);
 // Keyboard shortcuts that act on the whole window.
 void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out);
 // Every shortcut, for the help window (and README).

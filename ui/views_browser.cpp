@@ -50,8 +50,8 @@ const std::vector<TextColumn>& browser_columns() {
       {"unp.", "99/99", "unpaired rocks, left/right (excluded rocks are not counted)", num},
       {"susp.", "99", "suspect pairs: paired rocks that the registration does not bring together", num},
       {"ed.", "hand", "pairs fixed by hand", num},
-      {"amb.", "?", "ambiguous registration: the rocks' overlap is too small to decide how the pictures align, "
-                    "so the pairs may be wrong; check them", num},
+      {"amb.", "?", "ambiguous registration: another alignment fits almost as well (e.g. a small overlap or a "
+                    "repetitive layout), so the pairs may be wrong; check them", num},
   };
   return columns;
 }
@@ -149,8 +149,7 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
         if (m.ambiguous) {
           ImGui::TextColored({1, 0.8f, 0.3f, 1}, "?");
           if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("ambiguous registration: the overlap is too small to decide how the pictures align;\n"
-                              "check this scene's pairs");
+            ImGui::SetTooltip("ambiguous registration: %s;\ncheck this scene's pairs", kAmbiguousReason);
         }
       }
     }

@@ -24,8 +24,11 @@ const char* kind_name(TraceStepKind k) {
 }  // namespace
 
 std::string registration_summary(const std::string& a, const std::string& b, const RegistrationReport& r) {
-  return a + " -> " + b + ": " + to_string(r.method) + ", " + counted(r.trials, "trial") + ", " +
-         counted(r.hypotheses, "hypothesis", "hypotheses") + ", " + counted(r.inliers, "inlier") + ", score " +
+  // cpd has no trials or hypotheses: one EM iteration per "trial".
+  const std::string searched = r.method == RegistrationMethod::kCpd
+                                   ? counted(r.trials, "EM iteration")
+                                   : counted(r.trials, "trial") + ", " + counted(r.hypotheses, "hypothesis", "hypotheses");
+  return a + " -> " + b + ": " + to_string(r.method) + ", " + searched + ", " + counted(r.inliers, "inlier") + ", score " +
          fixed(r.score, 4) + ", confidence " + fixed(r.confidence, 2);
 }
 
@@ -33,6 +36,16 @@ std::string replay_step_line(const TraceStep& step, int k, int steps) {
   return "step " + thousands(k + 1) + " of " + thousands(steps) + " (" + kind_name(step.kind) + "): score " +
          fixed(step.score, 4) + ", best so far " + fixed(step.best_score, 4) + (step.new_best ? " (new best)" : "") +
          ", " + counted(static_cast<long>(step.inliers_a.size()), "inlier");
+}
+
+RegistrationCanvas registration_canvas(ImVec2 p0, ImVec2 size, float line_h) {
+  RegistrationCanvas c;
+  c.legend_top = p0.y + size.y - 3 * line_h - 4;
+  c.plot_min = p0;
+  c.plot_max = {p0.x + size.x, std::max(p0.y, c.legend_top - 2)};
+  c.box_min = {p0.x + 10, p0.y + 10};
+  c.box_size = {std::max(0.0f, size.x - 20), std::max(0.0f, c.plot_max.y - p0.y - 20)};
+  return c;
 }
 
 std::string trace_cap_note(int steps, int hypotheses) {
@@ -51,7 +64,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const int steps = static_cast<int>(r.trace.steps.size());
   text_wrapped_at_spaces(registration_summary(da, db, r));
   if (r.ambiguous)
-    text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1}, "ambiguous: the overlap is too small to decide; check the pairs");
+    text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1}, std::string("ambiguous: ") + kAmbiguousReason + "; check the pairs");
   text_disabled_wrapped_at_spaces(std::string("stopped: ") + to_string(r.stop) + (r.note.empty() ? "" : "; " + r.note));
   ReplayState& rp = ui.replay;
   const float end = static_cast<float>(steps) + 1.0f;  // the steps, then one unit of raw -> aligned motion
@@ -134,8 +147,11 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const auto& ga = s.labels().gt_of(da, sc.stem).boxes;
   const auto& gb = s.labels().gt_of(db, sc.stem).boxes;
-  const Placement pl = place({p0.x + 10, p0.y + 10}, {size.x - 20, size.y - 20 - 3 * ImGui::GetTextLineHeight()}, s.study().config.image_width,
-                             s.study().config.image_height, CanvasView{});
+  const RegistrationCanvas canvas = registration_canvas(p0, size, ImGui::GetTextLineHeight());
+  const Placement pl = place(canvas.box_min, canvas.box_size, s.study().config.image_width, s.study().config.image_height, CanvasView{});
+  // A hypothesis can throw A's centres far off the picture: everything is drawn inside the plot's own rect,
+  // never over the text above it or the legend and curve below.
+  dl->PushClipRect(canvas.plot_min, canvas.plot_max, true);
   dl->AddRect(pl.origin, {pl.origin.x + pl.size.x, pl.origin.y + pl.size.y}, IM_COL32(90, 90, 100, 255));
   const Affine2 m = step ? step->b_from_a
                          : interpolate_from_identity(r.affine, steps > 0 ? std::clamp(rp.position - steps, 0.0f, 1.0f)
@@ -175,7 +191,8 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
       dl->AddCircle(pb[j], 10, kTriple, 12, 2.5f);
     }
   }
-  // The legend stays inside the plot (two lines), never under the score curve beside it.
+  dl->PopClipRect();
+  // The legend stays inside the canvas (three lines), under the plot, never under the score curve.
   dl->PushClipRect(p0, {p0.x + size.x, p0.y + size.y}, true);
   const float line = ImGui::GetTextLineHeight();
   const char* legend[] = {"blue: A moved   green: inliers", "rings: B   bright: the sample", "orange: suspect"};

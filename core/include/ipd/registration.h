@@ -64,6 +64,10 @@ struct RegistrationOptions {
   std::string validate() const;
 };
 
+// Why a registration is flagged ambiguous, worded once for the studio and `ipd register`.
+inline constexpr const char* kAmbiguousReason =
+    "another alignment fits almost as well (e.g. a small overlap or a repetitive layout)";
+
 struct RegistrationReport {
   RegistrationMethod method = RegistrationMethod::kConsensus;
   Affine2 affine = identity_affine();  // maps normalised A centres onto B's
@@ -77,7 +81,8 @@ struct RegistrationReport {
   double elapsed_ms = 0;
   double work = 0, work_budget = 0;    // point evaluations spent, and the bound they were held to
   // How sure the pairing is: 1 - (second-best distinct hypothesis' score / best score), in [0, 1]; 1 when
-  // no rival alignment came close. `ambiguous` is set when the overlap is too small to decide.
+  // no rival alignment came close. `ambiguous` is set when confidence < 0.2: a second, distinct alignment
+  // scores almost as well as the best (e.g. a small overlap or a repetitive layout); kAmbiguousReason says so.
   double confidence = 1.0;
   bool ambiguous = false;
   RegistrationTrace trace;             // empty unless options.record_trace
