@@ -44,17 +44,20 @@ const std::vector<TextColumn>& browser_columns() {
   const ImGuiTableColumnFlags num = ImGuiTableColumnFlags_WidthFixed | ImGuiTableColumnFlags_PreferSortDescending;
   static const std::vector<TextColumn> columns = {
       {"scene", nullptr, nullptr, ImGuiTableColumnFlags_WidthStretch},
+      {"amb.", "?", "ambiguous registration: another alignment fits almost as well (e.g. a small overlap or a "
+                    "repetitive layout), so the pairs may be wrong; check them", num},
+      {"susp.", "99", "suspect pairs: paired rocks that the registration does not bring together", num},
+      {"ed.", "hand", "pairs fixed by hand", num},
       {"IPD", "0.0000", "the scene's IPD for the model (sorted worst first)",
        num | ImGuiTableColumnFlags_DefaultSort},
       {"pairs", "999", "rock pairs counted in the IPD", num},
       {"unp.", "99/99", "unpaired rocks, left/right (excluded rocks are not counted)", num},
-      {"susp.", "99", "suspect pairs: paired rocks that the registration does not bring together", num},
-      {"ed.", "hand", "pairs fixed by hand", num},
-      {"amb.", "?", "ambiguous registration: another alignment fits almost as well (e.g. a small overlap or a "
-                    "repetitive layout), so the pairs may be wrong; check them", num},
   };
   return columns;
 }
+// The flag columns come right after the (frozen) name so a narrow list still shows them; UiState::sort_column
+// keeps its own numbering (0 stem, 1 IPD, 2 pairs, 3 unpaired, 4 suspect, 5 edited, 6 ambiguous).
+constexpr int kSortKeyOfColumn[] = {0, 6, 4, 5, 1, 2, 3};
 }  // namespace
 
 float browser_width(const StudyView& v, float min_w, float max_w) {
@@ -113,10 +116,10 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   const bool scroll_x = ImGui::GetContentRegionAvail().x < needed;
   if (scroll_x) flags |= ImGuiTableFlags_ScrollX;
   if (ImGui::BeginTable("scenes", 7, flags, {0, 0}, scroll_x ? needed : 0.0f)) {
-    ImGui::TableSetupScrollFreeze(0, 1);
+    ImGui::TableSetupScrollFreeze(1, 1);
     setup_text_columns(browser_columns());
     if (ImGuiTableSortSpecs* spec = ImGui::TableGetSortSpecs(); spec && spec->SpecsDirty && spec->SpecsCount > 0) {
-      ui.sort_column = spec->Specs[0].ColumnIndex;
+      ui.sort_column = kSortKeyOfColumn[std::clamp<int>(spec->Specs[0].ColumnIndex, 0, 6)];
       ui.sort_descending = spec->Specs[0].SortDirection == ImGuiSortDirection_Descending;
       spec->SpecsDirty = false;
       ui.order.clear();  // the app recomputes it
@@ -136,21 +139,21 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
           ImGui::SetTooltip("%s", m.stem.c_str());
         ImGui::PopID();
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(fmt_ipd(m.ipd).c_str());
-        ImGui::TableNextColumn();
-        ImGui::Text("%d", m.pairs);
-        ImGui::TableNextColumn();
-        ImGui::Text("%d/%d", m.unpaired_a, m.unpaired_b);
-        ImGui::TableNextColumn();
-        if (m.suspects > 0) ImGui::TextColored({1, 0.55f, 0, 1}, "%d", m.suspects);
-        ImGui::TableNextColumn();
-        if (m.edited) ImGui::TextColored({0.4f, 0.8f, 1, 1}, "hand");
-        ImGui::TableNextColumn();
         if (m.ambiguous) {
           ImGui::TextColored({1, 0.8f, 0.3f, 1}, "?");
           if (ImGui::IsItemHovered())
             ImGui::SetTooltip("ambiguous registration: %s;\ncheck this scene's pairs", kAmbiguousReason);
         }
+        ImGui::TableNextColumn();
+        if (m.suspects > 0) ImGui::TextColored({1, 0.55f, 0, 1}, "%d", m.suspects);
+        ImGui::TableNextColumn();
+        if (m.edited) ImGui::TextColored({0.4f, 0.8f, 1, 1}, "hand");
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(fmt_ipd(m.ipd).c_str());
+        ImGui::TableNextColumn();
+        ImGui::Text("%d", m.pairs);
+        ImGui::TableNextColumn();
+        ImGui::Text("%d/%d", m.unpaired_a, m.unpaired_b);
       }
     }
     ImGui::EndTable();
