@@ -119,6 +119,7 @@ TEST(FigureStats, OneSceneFiguresSayNoIntervalNoTest) {
   EXPECT_NE(text.find("1 scene present in all three domains: no interval, no test (they need at least 2)."),
             std::string::npos) << text;
   EXPECT_EQ(text.find("p = "), std::string::npos) << text;
+  EXPECT_EQ(text.find("scene-bootstrap"), std::string::npos) << text;  // the title promises no interval
 }
 
 std::vector<std::string> chart_texts(const ui::DisplayList& fig) {

@@ -61,6 +61,14 @@ TEST(WrapAtSpaces, NeverInsideANumber) {
             (std::vector<std::string>{"confidence", "0.97 delta", "-0.064"}));
 }
 
+TEST(WrapAtSpaces, NeverBetweenALabelAndItsNumber) {
+  // 150 px: "delta -0.0799 p" is 15 characters and would fit, leaving "= 0.031" alone on the next line; the
+  // label goes down with its number instead.
+  EXPECT_EQ(wrap_at_spaces("delta -0.0799 p = 0.031", 150, chars),
+            (std::vector<std::string>{"delta -0.0799", "p = 0.031"}));
+  EXPECT_EQ(wrap_at_spaces("x p < 0.0001 y", 100, chars), (std::vector<std::string>{"x", "p < 0.0001", "y"}));
+}
+
 TEST(WrapAtSpaces, LongWordOnItsOwnLineAndNewlinesKept) {
   EXPECT_EQ(wrap_at_spaces("a 1234567890123 b", 50, chars), (std::vector<std::string>{"a", "1234567890123", "b"}));
   EXPECT_EQ(wrap_at_spaces("one\ntwo three", 1000, chars), (std::vector<std::string>{"one", "two three"}));

@@ -52,6 +52,9 @@ DotWhiskerChart compare_chart(const CrossTable& table, const std::vector<std::st
   // 2 / 2^scenes); otherwise `permutations` random ones.
   const std::string n = min_scenes == max_scenes ? fmt::format("{}", max_scenes)
                                                  : fmt::format("{}\u2013{}", min_scenes, max_scenes);
+  if (max_scenes < 2)  // no row has an interval: the title promises none
+    ch.title = fmt::format("\u0394IPD = IPD({0}, {1}) \u2212 IPD({0}, {2}) per model; below 0: {1} is closer to {0}",
+                           ref, a, b);
   if (max_scenes < 2)
     ch.footnote = fmt::format("{} scene present in all three domains: no interval, no test (they need at least 2).",
                               max_scenes);

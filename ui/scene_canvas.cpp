@@ -91,7 +91,10 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
         if (number > 0) std::snprintf(buf, sizeof buf, "%d", number);
         else std::snprintf(buf, sizeof buf, "x%zu", k + 1);
         const float size = ImGui::GetFontSize() * ts;
-        const ImVec2 at{q0.x, q0.y - size - 1};
+        // Above the box; a box at the picture's top edge gets its number just inside, never cut by the edge.
+        const float top = std::max(a0.y, pl.origin.y);
+        const float above = q0.y - size - 1;
+        const ImVec2 at{q0.x, above < top && q1.y > top ? top : above};
         const ImVec2 ext = ImGui::GetFont()->CalcTextSizeA(size, FLT_MAX, 0.0f, buf);
         number_rects.push_back({at.x - 1, at.y, at.x + ext.x + 1, at.y + ext.y});
         text_with_backdrop(dl, at, colour, buf, ts);

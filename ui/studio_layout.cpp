@@ -32,6 +32,10 @@ StudioColumns studio_columns(float width, float browser_pref, float stats_pref, 
   return c;
 }
 
+namespace {
+bool is_relation(const std::string& w) { return w == "=" || w == "<" || w == ">" || w == "<=" || w == ">="; }
+}  // namespace
+
 std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
                                         const std::function<float(const std::string&)>& measure) {
   std::vector<std::string> lines;
@@ -40,15 +44,25 @@ std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
   while (true) {  // each paragraph (between newlines) on its own
     const size_t nl = text.find('\n', start);
     const std::string para = text.substr(start, nl == std::string::npos ? std::string::npos : nl - start);
-    std::string line;
-    size_t p = 0;
-    bool any = false;
-    while (p <= para.size()) {
+    std::vector<std::string> words;
+    bool after_relation = false;
+    for (size_t p = 0; p <= para.size();) {
       size_t sp = para.find(' ', p);
       if (sp == std::string::npos) sp = para.size();
-      const std::string word = para.substr(p, sp - p);
+      std::string word = para.substr(p, sp - p);
       p = sp + 1;
       if (word.empty() && sp < para.size()) continue;  // runs of spaces
+      // A label and its number stay together: "p = 0.031", "p < 0.0001" never break around the sign.
+      const bool glue = !words.empty() && (is_relation(word) || after_relation);
+      after_relation = is_relation(word);
+      if (glue)
+        words.back() += " " + word;
+      else
+        words.push_back(std::move(word));
+    }
+    std::string line;
+    bool any = false;
+    for (const std::string& word : words) {
       const std::string joined = line.empty() ? word : line + " " + word;
       if (!line.empty() && measure(joined) > width) {
         lines.push_back(line);
