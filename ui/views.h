@@ -27,10 +27,11 @@ struct TextColumn {
   const char* tooltip = nullptr;
   ImGuiTableColumnFlags flags = 0;
 };
-float text_column_width(const TextColumn& c);
+// `sortable`: room for the sort arrow beside the header (an unsortable table's headers need none).
+float text_column_width(const TextColumn& c, bool sortable = true);
 // TableSetupColumn for each (fixed width from text, or stretched when `widest` is null), then the header
 // row, with the tooltips.
-void setup_text_columns(const std::vector<TextColumn>& columns);
+void setup_text_columns(const std::vector<TextColumn>& columns, bool sortable = true);
 
 struct Picture {
   ImTextureID texture = nullptr;

@@ -14,16 +14,16 @@
 
 namespace ipd::ui {
 
-float text_column_width(const TextColumn& c) {
+float text_column_width(const TextColumn& c, bool sortable) {
   // The sort arrow takes about a line's height beside a sortable header.
-  const float header = ImGui::CalcTextSize(c.header).x + ImGui::GetTextLineHeight();
+  const float header = ImGui::CalcTextSize(c.header).x + (sortable ? ImGui::GetTextLineHeight() : 0.0f);
   return std::max(header, c.widest ? ImGui::CalcTextSize(c.widest).x : 0.0f);
 }
 
-void setup_text_columns(const std::vector<TextColumn>& columns) {
+void setup_text_columns(const std::vector<TextColumn>& columns, bool sortable) {
   for (const auto& c : columns)
     ImGui::TableSetupColumn(c.header, c.flags | (c.widest ? ImGuiTableColumnFlags_WidthFixed : 0),
-                            c.widest ? text_column_width(c) : 0.0f);
+                            c.widest ? text_column_width(c, sortable) : 0.0f);
   ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
   for (int k = 0; k < static_cast<int>(columns.size()); ++k) {
     if (!ImGui::TableSetColumnIndex(k)) continue;

@@ -277,7 +277,7 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
   if (ImGui::BeginTable("pairs", 7, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX |
                                         ImGuiTableFlags_BordersInnerV,
                         ImVec2(0, table_h))) {
-    ImGui::TableSetupScrollFreeze(0, 1);
+    ImGui::TableSetupScrollFreeze(1, 1);  // the pair stays in view when the table scrolls sideways
     const std::string partner = "its partner in " + s.right_domain();
     const std::string iou_l = "IoU of the left rock (" + s.left_domain() + ") with its best prediction";
     const std::string iou_r = "IoU of the right rock (" + s.right_domain() + ") with its best prediction";
@@ -285,9 +285,10 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
                         {"R#", "99", partner.c_str()},
                         {"IoU L", "0.000", iou_l.c_str()},
                         {"IoU R", "0.000", iou_r.c_str()},
-                        {"|diff|", "excl.", "|IoU L - IoU R|: the pair's share of the IPD"},
+                        {"|diff|", "0.000", "|IoU L - IoU R|: the pair's share of the IPD"},
                         {"res px", "999.9", "residual after the registration affine, pixels"},
-                        {"size", "0.00", "box-size ratio, aligned left / right (suspect outside 0.5-2)"}});
+                        {"size", "0.00", "box-size ratio, aligned left / right (suspect outside 0.5-2)"}},
+                       /*sortable=*/false);  // no sort arrow to leave room for: narrower, so more columns fit
     for (const auto& row : rows) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
