@@ -179,8 +179,13 @@ TEST(Cli, RegisterTextSaysWhatEachCountCounts) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("  method consensus: 1 trial, 1 hypothesis, score 4.00000; stopped: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n  4 centres within the gate; 4 pairs by aligned-box IoU (one-to-one)\n"), std::string::npos) << r.out;
-  EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(\n  work: 4 of \d{1,3}(,\d{3})+ point evaluations; confidence)"))) << r.out;
+  EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(\n  work: 4 of \d{1,3}(,\d{3})+ point evaluations \(the bound for this many rocks\); confidence)"))) << r.out;
   EXPECT_NE(r.out.find("[1.00000 0.00000 0.00000; 0.00000 1.00000 0.00000]"), std::string::npos) << r.out;
+  // Without --image-size it says what it assumed (ipd-studio and ipd table take the size from study.yaml).
+  EXPECT_NE(r.err.find("note: pictures taken as square (aspect 1); --image-size W,H measures angles in pixels"),
+            std::string::npos) << r.err;
+  EXPECT_EQ(test::run_ipd("register " + d / "r.txt " + d / "r.txt --image-size 960,600").err.find("note: pictures"),
+            std::string::npos);
   r = test::run_ipd("register " + d / "r.txt " + d / "s.txt --method paper");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("  method paper: 1,000 trials, 6,000 hypotheses, "), std::string::npos) << r.out;
