@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdint>
 #include <numeric>
-#include <unordered_map>
 
 #include "ipd/point_grid.h"
 
@@ -69,15 +68,15 @@ std::vector<Eigen::Vector2d> top_translations(const Eigen::Matrix2d& lin, const 
     Eigen::Vector2d sum;
     std::uint64_t key;
   };
-  // Counted in a hash map (linear in the votes); equally full bins are ranked by key, so the order does not
-  // depend on the map's iteration order.
-  std::unordered_map<std::uint64_t, size_t> index;
-  std::vector<Bin> bins;
+  // Votes sorted by bin key (stably, so each bin sums its votes in the order they were cast), then counted run
+  // by run; equally full bins are ranked by key, so the order depends on nothing but the votes. A sort of a
+  // few hundred keys costs less than the hash map it replaced (one allocation per bin).
   // 16 A rocks vote (every k-th): 64 made the votes cost n^2 up to 64 rocks a side and dominate sets of
   // 50-200 (synthetic 100 rocks: 1.4 -> 0.7 ms median); the benchmark tiers' F1 is the same.
   constexpr size_t kVoters = 16;
   const size_t stride = std::max<size_t>(1, a.size() / kVoters);
-  index.reserve((a.size() / stride + 1) * b.size());
+  std::vector<std::pair<std::uint64_t, Eigen::Vector2d>> votes;
+  votes.reserve((a.size() / stride + 1) * b.size());
   for (size_t i = 0; i < a.size(); i += stride) {
     const Eigen::Vector2d p = lin * a[i];
     for (const auto& q : b) {
@@ -87,12 +86,15 @@ std::vector<Eigen::Vector2d> top_translations(const Eigen::Matrix2d& lin, const 
       // Bin indices may be negative: pack them as unsigned (shifting a negative value is undefined).
       const auto kx = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(t.x() / bin + 0.5)));
       const auto ky = static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(t.y() / bin + 0.5)));
-      const std::uint64_t key = (kx << 32) ^ (ky & 0xffffffffull);
-      const auto [it, added] = index.emplace(key, bins.size());
-      if (added) bins.push_back({0, Eigen::Vector2d(0, 0), key});
-      ++bins[it->second].count;
-      bins[it->second].sum += t;
+      votes.emplace_back((kx << 32) ^ (ky & 0xffffffffull), t);
     }
+  }
+  std::stable_sort(votes.begin(), votes.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Bin> bins;
+  for (const auto& [key, t] : votes) {
+    if (bins.empty() || bins.back().key != key) bins.push_back({0, Eigen::Vector2d(0, 0), key});
+    ++bins.back().count;
+    bins.back().sum += t;
   }
   const size_t n = std::min(top, bins.size());
   std::partial_sort(bins.begin(), bins.begin() + n, bins.end(), [](const Bin& x, const Bin& y) {
