@@ -16,22 +16,21 @@ double triangle_conditioning(const Eigen::Vector2d& a, const Eigen::Vector2d& b,
 bool affine_from_three(const Eigen::Vector2d src[3], const Eigen::Vector2d dst[3], Affine2* out) {
   if (triangle_conditioning(src[0], src[1], src[2]) < kMinTriangleConditioning) return false;
   if (triangle_conditioning(dst[0], dst[1], dst[2]) < kMinTriangleConditioning) return false;
-  // lin = Q P^-1 with P, Q the edge matrices [s1 - s0, s2 - s0]; written out, as the consensus search solves
-  // thousands of these per registration (Eigen's comma initialiser and general inverse cost ~3x as much).
-  const double p00 = src[1].x() - src[0].x(), p10 = src[1].y() - src[0].y();
-  const double p01 = src[2].x() - src[0].x(), p11 = src[2].y() - src[0].y();
-  const double q00 = dst[1].x() - dst[0].x(), q10 = dst[1].y() - dst[0].y();
-  const double q01 = dst[2].x() - dst[0].x(), q11 = dst[2].y() - dst[0].y();
-  const double inv_det = 1.0 / (p00 * p11 - p01 * p10);
-  const double i00 = p11 * inv_det, i01 = -p01 * inv_det, i10 = -p10 * inv_det, i11 = p00 * inv_det;
+  const Eigen::Vector2d a1 = src[1] - src[0], a2 = src[2] - src[0];
+  affine_from_edges(a1, a2, dst[1] - dst[0], dst[2] - dst[0], a1.x() * a2.y() - a1.y() * a2.x(), src[0], dst[0], out);
+  return out->allFinite();
+}
+
+void affine_from_edges(const Eigen::Vector2d& a1, const Eigen::Vector2d& a2, const Eigen::Vector2d& b1,
+                       const Eigen::Vector2d& b2, double cross_a, const Eigen::Vector2d& src0,
+                       const Eigen::Vector2d& dst0, Affine2* out) {
+  const double inv = 1.0 / cross_a;
   Affine2& m = *out;
-  m(0, 0) = q00 * i00 + q01 * i10;
-  m(0, 1) = q00 * i01 + q01 * i11;
-  m(1, 0) = q10 * i00 + q11 * i10;
-  m(1, 1) = q10 * i01 + q11 * i11;
-  m(0, 2) = dst[0].x() - (m(0, 0) * src[0].x() + m(0, 1) * src[0].y());
-  m(1, 2) = dst[0].y() - (m(1, 0) * src[0].x() + m(1, 1) * src[0].y());
-  return m.allFinite();
+  m(0, 0) = (b1.x() * a2.y() - b2.x() * a1.y()) * inv;
+  m(0, 1) = (b2.x() * a1.x() - b1.x() * a2.x()) * inv;
+  m(1, 0) = (b1.y() * a2.y() - b2.y() * a1.y()) * inv;
+  m(1, 1) = (b2.y() * a1.x() - b1.y() * a2.x()) * inv;
+  m.col(2) = dst0 - m.leftCols<2>() * src0;
 }
 
 bool affine_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,

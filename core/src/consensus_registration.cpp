@@ -196,14 +196,8 @@ class GuidedSampler {
         if (flat) {
           if (!similarity_fits(src, dst, &m)) continue;
         } else {
-          // The affine [b1 b2] [a1 a2]^-1 from the edges and A's cross product already at hand (the triangle
-          // is not flat, so area_a is well away from 0).
-          const double inv = 1.0 / area_a;
-          m(0, 0) = (b1.x() * a2.y() - b2.x() * a1.y()) * inv;
-          m(0, 1) = (b2.x() * a1.x() - b1.x() * a2.x()) * inv;
-          m(1, 0) = (b1.y() * a2.y() - b2.y() * a1.y()) * inv;
-          m(1, 1) = (b2.y() * a1.x() - b1.y() * a2.x()) * inv;
-          m.col(2) = f_.b[j] - m.leftCols<2>() * f_.a[i];
+          // From the edges and cross product at hand (the triangle is not flat: area_a is well away from 0).
+          affine_from_edges(a1, a2, b1, b2, area_a, f_.a[i], f_.b[j], &m);
           if (!m.allFinite() || !bounds_.plausible(m.leftCols<2>())) continue;
         }
         const int support = ni.size() >= 4 ? local_support(m, i, j, u1, u2) : 2;
@@ -291,7 +285,7 @@ struct PassThroughEstimator {
 };
 
 // The second look (consensus_second_look.h) when the search ended unconfirmed (it ran out of hypotheses or
-// trials: 12% of the large tier's cases) on a small set: its candidates and the search's best are judged on
+// trials: 15% of the large tier's cases) on a small set: its candidates and the search's best are judged on
 // the pairing each produces, and the best judged wins. Confirmed searches keep their answer: looking again
 // there changed nothing on the benchmark.
 void second_look(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,

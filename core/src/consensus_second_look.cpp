@@ -48,7 +48,7 @@ EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, Con
   std::vector<std::pair<double, Affine2>> scored;
   std::priority_queue<double, std::vector<double>, std::greater<double>> best_scores;  // the keep best so far
   // Every B edge once (both directions): vector, length and log length; then no logarithm or square root per
-  // edge pair, which the filters below reject ~98% of.
+  // edge pair, which the filters below reject ~96% of (large tier).
   struct Edge {
     Eigen::Vector2d v;
     double length = 0, log_length = 0;

@@ -18,6 +18,13 @@ constexpr double kMinTriangleConditioning = 1e-3;
 // The affine mapping src[k] onto dst[k] (k = 0..2); false when either triangle is near-collinear.
 bool affine_from_three(const Eigen::Vector2d src[3], const Eigen::Vector2d dst[3], Affine2* out);
 
+// The affine mapping src0 + a1, src0 + a2 onto dst0 + b1, dst0 + b2 (and src0 onto dst0), given the edges and
+// `cross_a` = a1 x a2 (non-zero): [b1 b2] [a1 a2]^-1, written out. affine_from_three() after its checks, and
+// the consensus search, which has the edges and cross product at hand for thousands of triples.
+void affine_from_edges(const Eigen::Vector2d& a1, const Eigen::Vector2d& a2, const Eigen::Vector2d& b1,
+                       const Eigen::Vector2d& b2, double cross_a, const Eigen::Vector2d& src0,
+                       const Eigen::Vector2d& dst0, Affine2* out);
+
 // Least-squares affine over n >= 3 correspondences; false when the points are degenerate.
 bool affine_least_squares(const std::vector<Eigen::Vector2d>& src, const std::vector<Eigen::Vector2d>& dst,
                           Affine2* out);
