@@ -27,11 +27,11 @@ inline void write_figure_study(const TempDir& d, bool pictures) {
   }
 }
 
-// The demo study's first three scenes, labels only (no pictures): Table I and the statistics figures of the
-// demo, quick to write.
-inline void write_small_demo_study(const TempDir& d) {
+// The demo study's first `scenes` scenes, labels only (no pictures): Table I and the statistics figures of
+// the demo, quick to write (one scene: no interval, no test).
+inline void write_small_demo_study(const TempDir& d, int scenes = 3) {
   DemoStudyOptions demo;
-  demo.scenes = 3;
+  demo.scenes = scenes;
   demo.labels_only = true;
   write_demo_study(d.path(), demo);
 }

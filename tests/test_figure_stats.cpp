@@ -8,6 +8,7 @@
 #include "figure_export.h"
 #include "ipd/demo_study.h"
 #include "pdf_text.h"
+#include "figure_test_study.h"
 #include "test_support.h"
 
 namespace ipd {
@@ -102,10 +103,7 @@ void expect_ticks(const std::vector<double>& got, const std::vector<double>& wan
 // A one-scene study's figures say there is no interval or test instead of drawing [x, x] and p = 1.
 TEST(FigureStats, OneSceneFiguresSayNoIntervalNoTest) {
   test::TempDir d;
-  DemoStudyOptions demo;
-  demo.scenes = 1;
-  demo.labels_only = true;
-  write_demo_study(d.path(), demo);
+  test::write_small_demo_study(d, 1);
   auto r = test::run_ipd("figure table " + d.path() + " --ci --out " + d / "t.pdf");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::string text = pdf_words(d / "t.pdf");

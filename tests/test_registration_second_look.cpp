@@ -43,17 +43,17 @@ TEST(SimilarityLeastSquares, RecoversRotationScaleAndShiftFromTwoOrMorePoints) {
   EXPECT_FALSE(similarity_least_squares(src, dst, 1, &m));
   const Eigen::Vector2d same[2] = {{0.3, 0.3}, {0.3, 0.3}};
   EXPECT_FALSE(similarity_least_squares(same, dst, 2, &m));
-  // Least squares, not exact: a mirrored pair of points is fitted by the best rotation (here none, scale 0).
-  const Eigen::Vector2d mirror_src[2] = {{-1, 0}, {1, 0}}, mirror_dst[2] = {{0, -1}, {0, 1}};
-  ASSERT_TRUE(similarity_least_squares(mirror_src, mirror_dst, 2, &m));
-  EXPECT_NEAR(m(1, 0), 1.0, 1e-12);  // a quarter turn maps (-1,0) to (0,-1) and (1,0) to (0,1)
+  // Two points always fit exactly: (-1,0), (1,0) onto (0,-1), (0,1) is a quarter turn.
+  const Eigen::Vector2d turn_src[2] = {{-1, 0}, {1, 0}}, turn_dst[2] = {{0, -1}, {0, 1}};
+  ASSERT_TRUE(similarity_least_squares(turn_src, turn_dst, 2, &m));
+  EXPECT_NEAR(m(1, 0), 1.0, 1e-12);
   EXPECT_NEAR(m(0, 0), 0.0, 1e-12);
 }
 
 // Hand-computed judgement. A: three 0.1 x 0.1 boxes; B: two. Under the identity A0 meets B0 exactly (IoU 1),
 // A1 overlaps B1 shifted by half a width (IoU 0.05 / 0.15 = 1/3), A2 lies wholly inside B's picture with no
-// partner (one unpaired A rock). Shifting everything by 0.6 to the right instead pairs nothing and leaves
-// every A box outside B's picture except none, and B's boxes map back inside A's picture unpaired.
+// partner (one unpaired A rock). Shifted 0.6 to the right, nothing pairs: only A0 (now at x = 0.8) lands wholly
+// inside B's picture, unpaired; B's boxes map back to x = -0.4 and -0.05, outside A's picture.
 TEST(SecondLook, JudgesACandidateOnThePairingItProduces) {
   const std::vector<Box> a = {box(0.2, 0.2, 0.1, 0.1), box(0.5, 0.2, 0.1, 0.1), box(0.5, 0.7, 0.1, 0.1)};
   const std::vector<Box> b = {box(0.2, 0.2, 0.1, 0.1), box(0.55, 0.2, 0.1, 0.1)};
@@ -65,11 +65,11 @@ TEST(SecondLook, JudgesACandidateOnThePairingItProduces) {
   EXPECT_NEAR(j.total, 2.0 + 0.2 * (4.0 / 3.0) - 0.1 * 1, 1e-9);
 
   Affine2 shift = identity_affine();
-  shift(0, 2) = 0.6;  // A's boxes land at x = 0.8, 1.1, 1.1: only the first is inside B's picture
+  shift(0, 2) = 0.6;
   const auto k = detail::judge_candidate(f, a, b, f.from_image(shift), 0.0, 0.1);
   EXPECT_EQ(k.iou_sum, 0.0);
   EXPECT_EQ(k.unpaired_a, 1);
-  EXPECT_EQ(k.unpaired_b, 0);  // B's boxes map back to x = -0.4 and -0.05: outside A's picture
+  EXPECT_EQ(k.unpaired_b, 0);
   EXPECT_NEAR(k.total, -0.1, 1e-12);
 }
 

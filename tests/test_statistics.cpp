@@ -11,6 +11,7 @@
 #include "ipd/session_statistics.h"
 #include "ipd/study_statistics.h"
 #include "stats_study.h"
+#include "figure_test_study.h"
 #include "test_support.h"
 
 namespace ipd {
@@ -381,10 +382,7 @@ TEST(StatsCli, SameOutputForAnyThreadCountAndTheDocumentedJson) {
 // "no significant difference" (an interval that excludes 0 beside p = 1).
 TEST(StatsCli, OneSceneSaysNoIntervalAndNoTest) {
   test::TempDir d;
-  DemoStudyOptions demo;
-  demo.scenes = 1;
-  demo.labels_only = true;
-  write_demo_study(d.path(), demo);
+  test::write_small_demo_study(d, 1);
   const auto table = test::run_ipd("table " + d.path());
   ASSERT_EQ(table.exit_code, 0) << table.err;
   EXPECT_EQ(table.out.find('['), std::string::npos) << table.out;

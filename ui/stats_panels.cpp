@@ -61,17 +61,18 @@ HistogramBins histogram_bins(const std::vector<double>& values, int bins) {
   const double lo = *std::min_element(values.begin(), values.end());
   const double hi = *std::max_element(values.begin(), values.end());
   h.width = round_step(std::max(hi, 1e-9) / bins);
-  h.start = std::floor(lo / h.width) * h.width;
-  const int n = std::max(1, static_cast<int>(std::floor((hi - h.start) / h.width)) + 1);
-  h.counts.assign(n, 0);
-  for (double v : values) h.counts[std::clamp(static_cast<int>(std::floor((v - h.start) / h.width)), 0, n - 1)]++;
-  if (lo == hi) {
+  if (lo == hi) {  // one value: three bins around it, its bar drawn at the value
     if (h.width < 1e-6) h.width = 0.01;  // every IPD 0: a readable axis, not bins of 1e-9
     h.start = std::max(0.0, std::floor(lo / h.width) * h.width - h.width);  // an IPD is never negative
     h.counts.assign(3, 0);
     h.counts[std::clamp(static_cast<int>(std::floor((lo - h.start) / h.width + 1e-9)), 0, 2)] = static_cast<int>(values.size());
     h.lone_value = lo;
+    return h;
   }
+  h.start = std::floor(lo / h.width) * h.width;
+  const int n = std::max(1, static_cast<int>(std::floor((hi - h.start) / h.width)) + 1);
+  h.counts.assign(n, 0);
+  for (double v : values) h.counts[std::clamp(static_cast<int>(std::floor((v - h.start) / h.width)), 0, n - 1)]++;
   return h;
 }
 
