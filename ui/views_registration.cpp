@@ -142,7 +142,10 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const float text_h = ImGui::GetTextLineHeightWithSpacing();
   const float curve_h = steps > 0 ? std::clamp(avail.y * 0.25f, 36.0f, 110.0f) : 0.0f;
   const float below = steps > 0 ? curve_h + 2 * text_h + ImGui::GetStyle().ItemSpacing.y : 0.0f;
-  const ImVec2 size{avail.x, std::max(40.0f, avail.y - below)};
+  // At least 80 px for the picture box itself, besides the three legend lines and margins: a short panel
+  // scrolls rather than squeezing the rings into one blob (QA at 700 x 800).
+  const float min_canvas = 3 * ImGui::GetTextLineHeight() + 4 + 2 + 20 + 80;
+  const ImVec2 size{avail.x, std::max(min_canvas, avail.y - below)};
   ImGui::InvisibleButton("##reg", size);
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const auto& ga = s.labels().gt_of(da, sc.stem).boxes;
@@ -195,7 +198,8 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   // The legend stays inside the canvas (three lines), under the plot, never under the score curve.
   dl->PushClipRect(p0, {p0.x + size.x, p0.y + size.y}, true);
   const float line = ImGui::GetTextLineHeight();
-  const char* legend[] = {"blue: A moved   green: inliers", "rings: B   bright: the sample", "orange: suspect"};
+  const char* legend[] = {"blue: A moved   green: inliers", "rings: B   frame: B's picture",
+                          "bright: the sample   orange: suspect"};
   for (int k = 0; k < 3; ++k)
     dl->AddText({p0.x + 14, p0.y + size.y - (3 - k) * line - 4}, IM_COL32(200, 200, 200, 255), legend[k]);
   dl->PopClipRect();
