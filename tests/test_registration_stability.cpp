@@ -219,10 +219,11 @@ TEST(RegistrationStability, PolarSimCasesWithKnownAnswer) {
     f1_large += score_pairs(register_rocks(cl.a, cl.b, o).pairs, cl.truth).f1;
     f1_unequal += score_pairs(register_rocks(cu.a, cu.b, o).pairs, cu.truth).f1;
   }
-  // Since issue 13 the cases clip the moved side to the picture (rocks leave it), so the large tier is
-  // harder than before (was >= 0.93 without clipping); issue 13's goals (0.99 / 0.97 / 0.97) are not met yet.
+  // Since issue 13 the cases clip the moved side to the picture (rocks leave it). These 60 large-tier cases
+  // are a hard draw: 0.900 before the gate floor, soft refinement and guarded polish, 0.919 after (the
+  // benchmark's 300 cases: 0.961 -> 0.967 on seed 1).
   EXPECT_GE(f1_small / n, 0.97) << f1_small / n;
-  EXPECT_GE(f1_large / n, 0.84) << f1_large / n;
+  EXPECT_GE(f1_large / n, 0.91) << f1_large / n;
   EXPECT_GE(f1_unequal / n, 0.95) << f1_unequal / n;
 }
 
