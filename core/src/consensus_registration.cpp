@@ -403,7 +403,16 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
       // raising it alone would tilt that comparison (the 3 true pairs among 15 rocks, layout 5).
       if (r.stop == StopReason::kCannotBeBeaten && scorer.soft_refine(&out.affine_normalised, &out.score))
         recorder.add_step(TraceStepKind::kRefinement, out.affine_normalised, out.score, out.score, true);
-      scorer.polish(&out.affine_normalised);
+      {
+        // The polished fit is kept unless the pairing it gives is judged worse than the unpolished one's (it
+        // fits every inlier alike, a wrong one included). Large tier F1, mean of seeds 0-6: 0.9705 -> 0.9715,
+        // no seed worse.
+        const Affine2 searched = out.affine_normalised;
+        scorer.polish(&out.affine_normalised);
+        if (judge_candidate(f, boxes_a, boxes_b, searched, scorer.score(searched), o.min_pair_iou).total >
+            judge_candidate(f, boxes_a, boxes_b, out.affine_normalised, scorer.score(out.affine_normalised), o.min_pair_iou).total)
+          out.affine_normalised = searched;
+      }
       recorder.add_step(TraceStepKind::kPolish, out.affine_normalised, out.score, out.score, false);
       // The search stops as soon as its best can't be beaten, often before a rival is scored. Shifted
       // placements are the rivals a small overlap allows (a patch of rocks that fits in several places), so
