@@ -9,11 +9,11 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "cli_common.h"
 #include "commands.h"
 #include "ipd/atomic_file.h"
-#include "ipd/registration.h"
 #include "ipd/parallel.h"
 #include "ipd/registration.h"
 
@@ -39,6 +39,21 @@ std::string fixed_no_minus_zero(double v) {
   return s == "-0.00000" ? s.substr(1) : s;
 }
 
+// What a method's search counts, named alike in --json and the text report: cpd runs EM iterations (no trials,
+// no hypotheses); paper and consensus draw trials and score hypotheses.
+struct SearchCount {
+  const char* json_key;
+  const char* singular;
+  const char* plural;
+  int RegistrationReport::*value;
+};
+
+std::vector<SearchCount> search_counts(RegistrationMethod method) {
+  if (method == RegistrationMethod::kCpd) return {{"em_iterations", "EM iteration", "EM iterations", &RegistrationReport::trials}};
+  return {{"trials", "trial", "trials", &RegistrationReport::trials},
+          {"hypotheses", "hypothesis", "hypotheses", &RegistrationReport::hypotheses}};
+}
+
 struct Job {
   std::string real, synth;
   int line = 0;
@@ -54,8 +69,7 @@ nlohmann::json report_json(const Job& job, const RegistrationReport& r) {
   j["affine"] = {{r.affine(0, 0), r.affine(0, 1), r.affine(0, 2)}, {r.affine(1, 0), r.affine(1, 1), r.affine(1, 2)}};
   j["pairs"] = nlohmann::json::array();
   for (const auto& [a, b] : r.pairs) j["pairs"].push_back({a, b});
-  j["trials"] = r.trials;
-  j["hypotheses"] = r.hypotheses;
+  for (const auto& c : search_counts(r.method)) j[c.json_key] = r.*c.value;
   j["inliers"] = r.inliers;
   j["score"] = r.score;
   j["stop"] = ipd::to_string(r.stop);
@@ -129,7 +143,11 @@ Runner add_register_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("register", "Pair the rocks of two GT label files by point-set registration");
   cmd->add_option("REAL", args->real, "Real image's label file (YOLO txt)");
   cmd->add_option("SYNTH", args->synth, "Synthetic image's label file (YOLO txt)");
-  cmd->add_option("--list", args->list, "TSV file of real_path<TAB>synth_path lines; one JSON object per line out");
+  // What --list prints is checked by Cli.RegisterListPrintsWhatItsHelpSays.
+  cmd->add_option("--list", args->list,
+                  "TSV file of real_path<TAB>synth_path lines (blank and # lines skipped); prints one report per "
+                  "pair, in the file's order: text, or with --json one JSON object per line (a pair that fails: "
+                  "{real, synth, error})");
   cmd->add_option("--method", args->method, "Registration method:\n" + methods_help())
       ->check(CLI::IsMember(method_names()));
   cmd->add_option("--seed", args->seed, "Random seed (results are deterministic for a seed)");
@@ -143,7 +161,7 @@ Runner add_register_command(CLI::App& app) {
   cmd->add_option("--max-anisotropy", args->max_anisotropy,
                   "consensus: largest ratio of the affine's two scales (default 2)");
   cmd->add_option("--threads", args->threads, "Worker threads for --list (default: all cores)");
-  cmd->add_flag("--json", args->json, "Print JSON (one object per line)");
+  cmd->add_flag("--json", args->json, "Print JSON, one object per pair on its own line");
   cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
   return [args]() -> int {
     const bool list_mode = !args->list.empty();
@@ -187,11 +205,10 @@ Runner add_register_command(CLI::App& app) {
       ++reported;
       fmt::print("{} -> {}\n", job.real, job.synth);
       const std::string method = r["method"].get<std::string>();
-      // cpd has no trials or hypotheses: its count is EM iterations (the studio's header says the same).
-      const std::string searched =
-          method == "cpd" ? counted(r["trials"].get<double>(), "EM iteration", "EM iterations")
-                          : counted(r["trials"].get<double>(), "trial", "trials") + ", " +
-                                counted(r["hypotheses"].get<double>(), "hypothesis", "hypotheses");
+      // The same counts, under the same names, as --json (the studio's header says the same).
+      std::string searched;
+      for (const auto& c : search_counts(opt.method))
+        searched += (searched.empty() ? "" : ", ") + counted(r[c.json_key].get<double>(), c.singular, c.plural);
       fmt::print("  method {}: {}, score {}; stopped: {}\n", method, searched,
                  fixed_no_minus_zero(r["score"].get<double>()), r["stop"].get<std::string>());
       // Two different counts: A centres that land within the gate of some B centre after the alignment,

@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <regex>
+#include <sstream>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -142,10 +144,15 @@ TEST(Cli, ExitCodesAndMessages) {
   EXPECT_TRUE(std::filesystem::exists(d / "table.txt"));
 }
 
-TEST(Cli, RegisterPrintsOneJsonObjectPerLine) {
-  test::TempDir d;
+// r.txt: 4 rocks; s.txt: 3 of them shifted by (0.01, 0.01), listed in another order.
+void write_register_pair(const test::TempDir& d) {
   test::write_text(d / "r.txt", "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.05 0.05\n0 0.4 0.8 0.05 0.05\n0 0.8 0.8 0.05 0.05\n");
   test::write_text(d / "s.txt", "0 0.81 0.81 0.05 0.05\n0 0.21 0.21 0.05 0.05\n0 0.41 0.81 0.05 0.05\n");
+}
+
+TEST(Cli, RegisterPrintsOneJsonObjectPerLine) {
+  test::TempDir d;
+  write_register_pair(d);
   test::write_text(d / "list.tsv", d / "r.txt" + "\t" + d / "s.txt" + "\n" + d / "s.txt" + "\t" + d / "r.txt" + "\n");
   auto r = test::run_ipd("register --list " + d / "list.tsv" + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -169,12 +176,71 @@ TEST(Cli, RegisterPrintsOneJsonObjectPerLine) {
   EXPECT_EQ(r.err, d / "none.txt" + ": no such label file\n");
 }
 
+// --json names each count as the text report does: cpd counts EM iterations (it has no trials or hypotheses),
+// paper and consensus count trials and hypotheses.
+TEST(Cli, RegisterJsonNamesItsCountsAsTheTextDoes) {
+  test::TempDir d;
+  write_register_pair(d);
+  auto r = test::run_ipd("register " + d / "r.txt " + d / "s.txt --method cpd --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  std::string keys;
+  for (const auto& [key, value] : j.items()) keys += key + " ";
+  EXPECT_EQ(keys, "affine ambiguous confidence elapsed_ms em_iterations inliers method pairs real score stop synth work "
+                  "work_budget ");
+  EXPECT_EQ(j["em_iterations"], 6);
+  r = test::run_ipd("register " + d / "r.txt " + d / "s.txt --method cpd");
+  EXPECT_NE(r.out.find("  method cpd: 6 EM iterations, score 0.00000; stopped: "), std::string::npos) << r.out;
+  j = nlohmann::json::parse(test::run_ipd("register " + d / "r.txt " + d / "s.txt --method paper --json").out);
+  EXPECT_EQ(j["trials"], 1000);
+  EXPECT_EQ(j["hypotheses"], 6000);
+  EXPECT_FALSE(j.contains("em_iterations"));
+  j = nlohmann::json::parse(test::run_ipd("register " + d / "r.txt " + d / "r.txt --json").out);
+  EXPECT_EQ(j["method"], "consensus");
+  EXPECT_EQ(j["trials"], 1);
+  EXPECT_EQ(j["hypotheses"], 1);
+  EXPECT_FALSE(j.contains("em_iterations"));
+}
+
+// --list prints what its help says: one report per pair in the file's order (blank and # lines skipped), as
+// text or, with --json, one object per line; a pair that fails is an {real, synth, error} object (and the
+// error on stderr).
+TEST(Cli, RegisterListPrintsWhatItsHelpSays) {
+  test::TempDir d;
+  write_register_pair(d);
+  test::write_text(d / "list.tsv", d / "s.txt" + "\t" + d / "r.txt" + "\n# a comment\n\n" + d / "r.txt" + "\t" +
+                                       d / "none.txt" + "\n" + d / "r.txt" + "\t" + d / "s.txt" + "\n");
+  EXPECT_NE(test::run_ipd("register --help").out.find(
+                "TSV file of real_path<TAB>synth_path lines (blank and # lines skipped); prints one report per pair, "
+                "in the file's order: text, or with --json one JSON object per line (a pair that fails: {real, "
+                "synth, error})"),
+            std::string::npos);
+  auto r = test::run_ipd("register --list " + d / "list.tsv");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err.find(d / "none.txt: no such label file\n"), 0u) << r.err;
+  std::istringstream text(r.out);
+  std::vector<std::string> titles;  // the two reports' titles; every other line is indented, none for the failed pair
+  for (std::string line; std::getline(text, line);)
+    if (line.rfind("  ", 0) != 0) titles.push_back(line);
+  EXPECT_EQ(titles, (std::vector<std::string>{d / "s.txt -> " + d / "r.txt", d / "r.txt -> " + d / "s.txt"})) << r.out;
+  r = test::run_ipd("register --list " + d / "list.tsv --json");
+  EXPECT_EQ(r.exit_code, 1);
+  std::istringstream lines(r.out);
+  std::vector<nlohmann::json> objects;
+  for (std::string line; std::getline(lines, line);) objects.push_back(nlohmann::json::parse(line));
+  ASSERT_EQ(objects.size(), 3u) << r.out;
+  EXPECT_EQ(objects[0]["real"], d / "s.txt");
+  EXPECT_EQ(objects[1], nlohmann::json({{"real", d / "r.txt"}, {"synth", d / "none.txt"},
+                                        {"error", d / "none.txt: no such label file"}}));
+  EXPECT_EQ(objects[2]["real"], d / "r.txt");
+  EXPECT_EQ(objects[2]["pairs"], nlohmann::json::parse("[[0,1],[2,2],[3,0]]"));
+}
+
 // The text report says what each count counts, in plain numbers: centres within the gate vs the pairs the
 // method forms (how), "1 trial" in the singular, thousands separators (no "1.01e+06"), no "-0.00000".
 TEST(Cli, RegisterTextSaysWhatEachCountCounts) {
   test::TempDir d;
-  test::write_text(d / "r.txt", "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.05 0.05\n0 0.4 0.8 0.05 0.05\n0 0.8 0.8 0.05 0.05\n");
-  test::write_text(d / "s.txt", "0 0.81 0.81 0.05 0.05\n0 0.21 0.21 0.05 0.05\n0 0.41 0.81 0.05 0.05\n");
+  write_register_pair(d);
   auto r = test::run_ipd("register " + d / "r.txt " + d / "r.txt");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("  method consensus: 1 trial, 1 hypothesis, score 4.00000; stopped: "), std::string::npos) << r.out;
