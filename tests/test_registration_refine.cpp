@@ -68,8 +68,10 @@ TEST(GateFloor, LabellingOffsetsOfPointEightPercentStayInsideTheGateOfATightClus
   const RegistrationReport r = register_rocks(a, b, {});
   EXPECT_EQ(r.inliers, 12);
   EXPECT_EQ(r.pairs, truth);
-  EXPECT_NEAR(r.affine(0, 2), 0.05, 0.004);
-  EXPECT_NEAR(r.affine(1, 2), 0.03, 0.004);
+  // Where the rocks go, not the affine's entries: a fit to offsets that turn with the rocks' order may tilt
+  // the linear part a little (its translation is about the origin, far from the cluster).
+  for (const auto& x : a)
+    EXPECT_LT((apply(r.affine, x.centre()) - (x.centre() + Eigen::Vector2d(0.05, 0.03))).norm(), 0.008);
 }
 
 // A layout and a scorer over it, in the registration's own normalised frame.

@@ -220,10 +220,11 @@ TEST(RegistrationStability, PolarSimCasesWithKnownAnswer) {
     f1_unequal += score_pairs(register_rocks(cu.a, cu.b, o).pairs, cu.truth).f1;
   }
   // Since issue 13 the cases clip the moved side to the picture (rocks leave it). These 60 large-tier cases
-  // are a hard draw: 0.900 before the gate floor, soft refinement and guarded polish, 0.919 after (the
-  // benchmark's 300 cases: 0.961 -> 0.967 on seed 1).
+  // are a hard draw: 0.900 before the gate floor, soft refinement and guarded polish, 0.919 with them, 0.922
+  // with the final fit judged among polished, searched and least squares (the benchmark's 300 cases, seed 1:
+  // 0.961, 0.968, 0.971).
   EXPECT_GE(f1_small / n, 0.97) << f1_small / n;
-  EXPECT_GE(f1_large / n, 0.91) << f1_large / n;
+  EXPECT_GE(f1_large / n, 0.92) << f1_large / n;
   EXPECT_GE(f1_unequal / n, 0.95) << f1_unequal / n;
 }
 
