@@ -69,8 +69,22 @@ TEST(WrapAtSpaces, NeverBetweenALabelAndItsNumber) {
   EXPECT_EQ(wrap_at_spaces("x p < 0.0001 y", 100, chars), (std::vector<std::string>{"x", "p < 0.0001", "y"}));
 }
 
+TEST(WrapAtSpaces, NeverBetweenACountAndTheWordItCounts) {
+  // 120 px: "(exact), 8" is 10 characters and would fit, leaving "scenes" alone (ipd-studio's compare sentence
+  // at 1000 px, QA); the count goes down with its word.
+  EXPECT_EQ(wrap_at_spaces("p = 0.0078 (exact), 8 scenes", 120, chars),
+            (std::vector<std::string>{"p = 0.0078", "(exact),", "8 scenes"}));
+  EXPECT_EQ(wrap_at_spaces("tried 1,000 trials", 110, chars), (std::vector<std::string>{"tried", "1,000 trials"}));
+  // Not counts: a decimal ("0.97 delta" may part), a number ending its clause ("8,"), a count before a sign.
+  EXPECT_EQ(wrap_at_spaces("x 0.97 delta", 60, chars), (std::vector<std::string>{"x 0.97", "delta"}));
+  EXPECT_EQ(wrap_at_spaces("n 8, scenes", 40, chars), (std::vector<std::string>{"n 8,", "scenes"}));
+  EXPECT_EQ(wrap_at_spaces("8 -1", 30, chars), (std::vector<std::string>{"8", "-1"}));
+}
+
 TEST(WrapAtSpaces, LongWordOnItsOwnLineAndNewlinesKept) {
-  EXPECT_EQ(wrap_at_spaces("a 1234567890123 b", 50, chars), (std::vector<std::string>{"a", "1234567890123", "b"}));
+  // (A decimal: a whole number would keep "b" as the word it counts.)
+  EXPECT_EQ(wrap_at_spaces("a 1234567890.12 b", 50, chars), (std::vector<std::string>{"a", "1234567890.12", "b"}));
+  EXPECT_EQ(wrap_at_spaces("a 1234567 scenes", 50, chars), (std::vector<std::string>{"a", "1234567 scenes"}));
   EXPECT_EQ(wrap_at_spaces("one\ntwo three", 1000, chars), (std::vector<std::string>{"one", "two three"}));
   EXPECT_EQ(wrap_at_spaces("", 100, chars), std::vector<std::string>{});
 }

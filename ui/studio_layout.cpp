@@ -1,6 +1,7 @@
 #include "studio_layout.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 
@@ -34,6 +35,13 @@ StudioColumns studio_columns(float width, float browser_pref, float stats_pref, 
 
 namespace {
 bool is_relation(const std::string& w) { return w == "=" || w == "<" || w == ">" || w == "<=" || w == ">="; }
+// A whole count such as "8" or "1,000" (not "0.97", not "8," that ends a clause): it counts the word after it.
+bool is_count(const std::string& w) {
+  return !w.empty() && std::isdigit(static_cast<unsigned char>(w.front())) &&
+         std::isdigit(static_cast<unsigned char>(w.back())) &&
+         std::all_of(w.begin(), w.end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)) || ch == ','; });
+}
+bool starts_with_letter(const std::string& w) { return !w.empty() && std::isalpha(static_cast<unsigned char>(w[0])); }
 }  // namespace
 
 std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
@@ -45,16 +53,19 @@ std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
     const size_t nl = text.find('\n', start);
     const std::string para = text.substr(start, nl == std::string::npos ? std::string::npos : nl - start);
     std::vector<std::string> words;
-    bool after_relation = false;
+    bool after_relation = false, after_count = false;
     for (size_t p = 0; p <= para.size();) {
       size_t sp = para.find(' ', p);
       if (sp == std::string::npos) sp = para.size();
       std::string word = para.substr(p, sp - p);
       p = sp + 1;
       if (word.empty() && sp < para.size()) continue;  // runs of spaces
-      // A label and its number stay together: "p = 0.031", "p < 0.0001" never break around the sign.
-      const bool glue = !words.empty() && (is_relation(word) || after_relation);
+      // A label and its number stay together: "p = 0.031", "p < 0.0001" never break around the sign; so do a
+      // count and the word it counts: "8 scenes", "1,000 trials".
+      const bool glue =
+          !words.empty() && (is_relation(word) || after_relation || (after_count && starts_with_letter(word)));
       after_relation = is_relation(word);
+      after_count = is_count(word);
       if (glue)
         words.back() += " " + word;
       else

@@ -26,7 +26,8 @@ struct StudioColumns {
 StudioColumns studio_columns(float width, float browser_pref, float stats_pref, float splitter);
 
 // `text` broken into lines no wider than `width` (as `measure` says), at spaces only: a word, number
-// included, is never split; a word wider than `width` gets a line of its own. Newlines are kept.
+// included, is never split, nor a label from its number ("p = 0.031") or a count from the word it counts
+// ("8 scenes"); a word (or such a group) wider than `width` gets a line of its own. Newlines are kept.
 std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
                                         const std::function<float(const std::string&)>& measure);
 
