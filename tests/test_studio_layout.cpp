@@ -155,10 +155,33 @@ TEST(BrowserOrder, AmbiguousScenesSortOnTheirOwnColumn) {
   sums[1].stem = "b", sums[1].ambiguous = true;
   sums[2].stem = "c";
   UiState ui;
-  ui.sort_column = 6, ui.sort_descending = true;
+  ui.sort_column = kByAmbiguous, ui.sort_descending = true;
   EXPECT_EQ(browser_order(sums, ui), (std::vector<int>{1, 0, 2}));  // ambiguity, not suspects
-  ui.sort_column = 4;
+  ui.sort_column = kBySuspects;
   EXPECT_EQ(browser_order(sums, ui), (std::vector<int>{0, 1, 2}));
+}
+
+// The IPD comes right after the frozen scene name (in a 700 px window the list is cut after about four
+// columns, QA: the IPD was the one at the edge), and a click on each header sorts by what it shows.
+TEST(BrowserColumns, IpdRightAfterTheNameAndEachHeaderSortsByItsOwnValue) {
+  std::vector<std::string> headers;
+  for (const auto& c : browser_columns()) headers.push_back(c.text.header);
+  EXPECT_EQ(headers, (std::vector<std::string>{"scene", "IPD", "amb.", "susp.", "ed.", "pairs", "unp."}));
+  // Four scenes that each value ranks differently (descending; ties keep the scenes' order).
+  std::vector<SceneSummary> sums(4);
+  sums[0].stem = "z", sums[0].ipd = 0.01, sums[0].pairs = 1;
+  sums[1].stem = "b", sums[1].ipd = 0.09, sums[1].pairs = 2;
+  sums[2].stem = "c", sums[2].ipd = 0.02, sums[2].pairs = 9, sums[2].unpaired_a = 1, sums[2].suspects = 3;
+  sums[3].stem = "d", sums[3].ipd = 0.03, sums[3].pairs = 3, sums[3].unpaired_b = 4;
+  sums[3].edited = sums[3].ambiguous = true;
+  const std::vector<std::vector<int>> expected = {{0, 3, 2, 1}, {1, 3, 2, 0}, {3, 0, 1, 2}, {2, 0, 1, 3},
+                                                  {3, 0, 1, 2}, {2, 3, 1, 0}, {3, 2, 0, 1}};
+  UiState ui;
+  ui.sort_descending = true;
+  for (size_t k = 0; k < expected.size(); ++k) {
+    ui.sort_column = browser_columns()[k].sort_key;
+    EXPECT_EQ(browser_order(sums, ui), expected[k]) << headers[k];
+  }
 }
 
 }  // namespace

@@ -60,6 +60,9 @@ struct ReplayState {
   float speed = 20;     // steps per second
 };
 
+// What the scene list sorts by (UiState::sort_column); each of its columns sorts by one of these.
+enum SceneSortKey : int { kByStem, kByIpd, kByPairs, kByUnpaired, kBySuspects, kByEdited, kByAmbiguous };
+
 // What the views remember between frames (never study data).
 struct UiState {
   int scene = 0;
@@ -68,7 +71,7 @@ struct UiState {
   SideLayers layers;
   int selected_left = -1, selected_right = -1;  // a click on one side waits for one on the other
   int hover_left = -1, hover_right = -1;
-  int sort_column = 1;                           // browser: 0 stem, 1 IPD, 2 pairs, 3 unpaired, 4 suspect, 5 edited, 6 ambiguous
+  int sort_column = kByIpd;                      // browser: a SceneSortKey
   bool sort_descending = true;                   // worst first: the audit order
   char filter[128] = "";
   ReplayState replay;
@@ -109,6 +112,14 @@ struct UiCommands {
 
 // The scene order of the browser (sorted and filtered as the user asked); sets ui.filter_error.
 std::vector<int> browser_order(const std::vector<SceneSummary>& summaries, UiState& ui);
+
+// The scene list's columns, left to right: header (sized from text) and what a click on it sorts by, which is
+// also what its cells show.
+struct BrowserColumn {
+  TextColumn text;
+  SceneSortKey sort_key;
+};
+const std::vector<BrowserColumn>& browser_columns();
 
 // The study browser's width: the longest scene name and the numeric columns, within [min_w, max_w].
 float browser_width(const StudyView& v, float min_w, float max_w);

@@ -9,11 +9,6 @@
 
 namespace ipd::ui {
 
-namespace {
-
-
-}  // namespace
-
 std::vector<int> browser_order(const std::vector<SceneSummary>& sums, UiState& ui) {
   const SceneFilter filter = SceneFilter::parse(ui.filter);
   ui.filter_error = filter.error;
@@ -23,41 +18,79 @@ std::vector<int> browser_order(const std::vector<SceneSummary>& sums, UiState& u
   auto key = [&](int k) -> double {
     const auto& m = sums[k];
     switch (ui.sort_column) {
-      case 1: return std::isnan(m.ipd) ? -1.0 : m.ipd;
-      case 2: return m.pairs;
-      case 3: return m.unpaired_a + m.unpaired_b;
-      case 4: return m.suspects;
-      case 5: return m.edited;
-      case 6: return m.ambiguous;
+      case kByIpd: return std::isnan(m.ipd) ? -1.0 : m.ipd;
+      case kByPairs: return m.pairs;
+      case kByUnpaired: return m.unpaired_a + m.unpaired_b;
+      case kBySuspects: return m.suspects;
+      case kByEdited: return m.edited;
+      case kByAmbiguous: return m.ambiguous;
       default: return 0;
     }
   };
   std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
-    if (ui.sort_column == 0) return ui.sort_descending ? sums[x].stem > sums[y].stem : sums[x].stem < sums[y].stem;
+    if (ui.sort_column == kByStem) return ui.sort_descending ? sums[x].stem > sums[y].stem : sums[x].stem < sums[y].stem;
     return ui.sort_descending ? key(x) > key(y) : key(x) < key(y);
   });
   return order;
 }
 
-namespace {
-const std::vector<TextColumn>& browser_columns() {
+const std::vector<BrowserColumn>& browser_columns() {
   const ImGuiTableColumnFlags num = ImGuiTableColumnFlags_WidthFixed | ImGuiTableColumnFlags_PreferSortDescending;
-  static const std::vector<TextColumn> columns = {
-      {"scene", nullptr, nullptr, ImGuiTableColumnFlags_WidthStretch},
-      {"amb.", "?", "ambiguous registration: another alignment fits almost as well (e.g. a small overlap or a "
-                    "repetitive layout), so the pairs may be wrong; check them", num},
-      {"susp.", "99", "suspect pairs: paired rocks that the registration does not bring together", num},
-      {"ed.", "hand", "pairs fixed by hand", num},
-      {"IPD", "0.0000", "the scene's IPD for the model (sorted worst first)",
-       num | ImGuiTableColumnFlags_DefaultSort},
-      {"pairs", "999", "rock pairs counted in the IPD", num},
-      {"unp.", "99/99", "unpaired rocks, left/right (excluded rocks are not counted)", num},
+  // The IPD, the value a user looks for first, comes right after the (frozen) name, then the flags: a narrow
+  // list (700 px window) shows name, IPD, amb. and susp. without scrolling sideways.
+  static const std::vector<BrowserColumn> columns = {
+      {{"scene", nullptr, nullptr, ImGuiTableColumnFlags_WidthStretch}, kByStem},
+      {{"IPD", "0.0000", "the scene's IPD for the model (sorted worst first)",
+        num | ImGuiTableColumnFlags_DefaultSort}, kByIpd},
+      {{"amb.", "?", "ambiguous registration: another alignment fits almost as well (e.g. a small overlap or a "
+                     "repetitive layout), so the pairs may be wrong; check them", num}, kByAmbiguous},
+      {{"susp.", "99", "suspect pairs: paired rocks that the registration does not bring together", num}, kBySuspects},
+      {{"ed.", "hand", "pairs fixed by hand", num}, kByEdited},
+      {{"pairs", "999", "rock pairs counted in the IPD", num}, kByPairs},
+      {{"unp.", "99/99", "unpaired rocks, left/right (excluded rocks are not counted)", num}, kByUnpaired},
   };
   return columns;
 }
-// The flag columns come right after the (frozen) name so a narrow list still shows them; UiState::sort_column
-// keeps its own numbering (0 stem, 1 IPD, 2 pairs, 3 unpaired, 4 suspect, 5 edited, 6 ambiguous).
-constexpr int kSortKeyOfColumn[] = {0, 6, 4, 5, 1, 2, 3};
+
+namespace {
+const std::vector<TextColumn>& browser_text_columns() {
+  static const std::vector<TextColumn> text = [] {
+    std::vector<TextColumn> t;
+    for (const auto& c : browser_columns()) t.push_back(c.text);
+    return t;
+  }();
+  return text;
+}
+
+// One cell of a scene's row, by its column's sort key.
+void draw_scene_cell(SceneSortKey sort_key, const SceneSummary& m, int k, const UiState& ui, UiCommands& out) {
+  switch (sort_key) {
+    case kByStem:
+      ImGui::PushID(k);
+      if (ImGui::Selectable(m.stem.c_str(), k == ui.scene, ImGuiSelectableFlags_SpanAllColumns)) out.goto_scene = k;
+      // A name wider than its column: the whole of it on hover.
+      if (ImGui::IsItemHovered() && ImGui::CalcTextSize(m.stem.c_str()).x > ImGui::GetColumnWidth())
+        ImGui::SetTooltip("%s", m.stem.c_str());
+      ImGui::PopID();
+      break;
+    case kByIpd: ImGui::TextUnformatted(fmt_ipd(m.ipd).c_str()); break;
+    case kByPairs: ImGui::Text("%d", m.pairs); break;
+    case kByUnpaired: ImGui::Text("%d/%d", m.unpaired_a, m.unpaired_b); break;
+    case kBySuspects:
+      if (m.suspects > 0) ImGui::TextColored({1, 0.55f, 0, 1}, "%d", m.suspects);
+      break;
+    case kByEdited:
+      if (m.edited) ImGui::TextColored({0.4f, 0.8f, 1, 1}, "hand");
+      break;
+    case kByAmbiguous:
+      if (m.ambiguous) {
+        ImGui::TextColored({1, 0.8f, 0.3f, 1}, "?");
+        if (ImGui::IsItemHovered())
+          ImGui::SetTooltip("ambiguous registration: %s;\ncheck this scene's pairs", kAmbiguousReason);
+      }
+      break;
+  }
+}
 }  // namespace
 
 float browser_width(const StudyView& v, float min_w, float max_w) {
@@ -69,7 +102,7 @@ float browser_width(const StudyView& v, float min_w, float max_w) {
   const ImGuiStyle& st = ImGui::GetStyle();
   float w = (name ? ImGui::CalcTextSize(name->c_str()).x : 80.0f) + 2 * st.CellPadding.x;
   for (const auto& c : browser_columns())
-    if (c.widest) w += text_column_width(c) + 2 * st.CellPadding.x;
+    if (c.text.widest) w += text_column_width(c.text) + 2 * st.CellPadding.x;
   return std::clamp(w + st.ScrollbarSize + 2 * st.WindowPadding.x + 8, min_w, max_w);
 }
 
@@ -115,11 +148,13 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   const float needed = browser_width(v, 0, 1e9f) - 2 * ImGui::GetStyle().WindowPadding.x - 8;
   const bool scroll_x = ImGui::GetContentRegionAvail().x < needed;
   if (scroll_x) flags |= ImGuiTableFlags_ScrollX;
-  if (ImGui::BeginTable("scenes", 7, flags, {0, 0}, scroll_x ? needed : 0.0f)) {
+  const auto& columns = browser_columns();
+  const int n_columns = static_cast<int>(columns.size());
+  if (ImGui::BeginTable("scenes", n_columns, flags, {0, 0}, scroll_x ? needed : 0.0f)) {
     ImGui::TableSetupScrollFreeze(1, 1);
-    setup_text_columns(browser_columns());
+    setup_text_columns(browser_text_columns());
     if (ImGuiTableSortSpecs* spec = ImGui::TableGetSortSpecs(); spec && spec->SpecsDirty && spec->SpecsCount > 0) {
-      ui.sort_column = kSortKeyOfColumn[std::clamp<int>(spec->Specs[0].ColumnIndex, 0, 6)];
+      ui.sort_column = columns[std::clamp<int>(spec->Specs[0].ColumnIndex, 0, n_columns - 1)].sort_key;
       ui.sort_descending = spec->Specs[0].SortDirection == ImGuiSortDirection_Descending;
       spec->SpecsDirty = false;
       ui.order.clear();  // the app recomputes it
@@ -131,29 +166,10 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
         const int k = ui.order[row];
         const SceneSummary& m = (*v.summaries)[k];
         ImGui::TableNextRow();
-        ImGui::TableNextColumn();
-        ImGui::PushID(k);
-        if (ImGui::Selectable(m.stem.c_str(), k == ui.scene, ImGuiSelectableFlags_SpanAllColumns)) out.goto_scene = k;
-        // A name wider than its column: the whole of it on hover.
-        if (ImGui::IsItemHovered() && ImGui::CalcTextSize(m.stem.c_str()).x > ImGui::GetColumnWidth())
-          ImGui::SetTooltip("%s", m.stem.c_str());
-        ImGui::PopID();
-        ImGui::TableNextColumn();
-        if (m.ambiguous) {
-          ImGui::TextColored({1, 0.8f, 0.3f, 1}, "?");
-          if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("ambiguous registration: %s;\ncheck this scene's pairs", kAmbiguousReason);
+        for (const auto& c : columns) {
+          ImGui::TableNextColumn();
+          draw_scene_cell(c.sort_key, m, k, ui, out);
         }
-        ImGui::TableNextColumn();
-        if (m.suspects > 0) ImGui::TextColored({1, 0.55f, 0, 1}, "%d", m.suspects);
-        ImGui::TableNextColumn();
-        if (m.edited) ImGui::TextColored({0.4f, 0.8f, 1, 1}, "hand");
-        ImGui::TableNextColumn();
-        ImGui::TextUnformatted(fmt_ipd(m.ipd).c_str());
-        ImGui::TableNextColumn();
-        ImGui::Text("%d", m.pairs);
-        ImGui::TableNextColumn();
-        ImGui::Text("%d/%d", m.unpaired_a, m.unpaired_b);
       }
     }
     ImGui::EndTable();
