@@ -47,8 +47,8 @@ EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, Con
   for (size_t j = 0; j < nb; ++j) lb[j] = log_size(f.size_b[j]);
   std::vector<std::pair<double, Affine2>> scored;
   std::priority_queue<double, std::vector<double>, std::greater<double>> best_scores;  // the keep best so far
-  // Every B edge once (both directions): vector, length and log length; then no logarithm or square root per
-  // edge pair, which the filters below reject ~96% of (large tier).
+  // Every edge once (B's in both directions): vector, length and log length; then no logarithm or square root
+  // per edge pair, which the filters below reject ~96% of (large tier).
   struct Edge {
     Eigen::Vector2d v;
     double length = 0, log_length = 0;
@@ -60,7 +60,9 @@ EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, Con
     e.log_length = std::log(e.length);
     return e;
   };
-  std::vector<Edge> edges_b(nb * nb);
+  std::vector<Edge> edges_a(na * na), edges_b(nb * nb);
+  for (size_t i1 = 0; i1 < na; ++i1)
+    for (size_t i2 = i1 + 1; i2 < na; ++i2) edges_a[i1 * na + i2] = edge(f.a[i1], f.a[i2]);
   for (size_t j1 = 0; j1 < nb; ++j1)
     for (size_t j2 = 0; j2 < nb; ++j2)
       if (j1 != j2) edges_b[j1 * nb + j2] = edge(f.b[j1], f.b[j2]);
@@ -69,7 +71,7 @@ EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, Con
     for (size_t j1 = 0; j1 < nb; ++j1) {
       const double d1 = lb[j1] - la[i1];  // log size ratio of the first end
       for (size_t i2 = i1 + 1; i2 < na; ++i2) {
-        const Edge ea = edge(f.a[i1], f.a[i2]);
+        const Edge& ea = edges_a[i1 * na + i2];
         if (!(ea.length > 0)) continue;
         for (size_t j2 = 0; j2 < nb; ++j2) {
           if (j1 == j2) continue;

@@ -126,25 +126,41 @@ RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, 
     return k;
   };
   for (const Edge& e : edges) parent[find(e.i)] = find(n + e.j);
-  std::vector<std::vector<int>> component_edges(n + m);
-  for (size_t k = 0; k < edges.size(); ++k) component_edges[find(edges[k].i)].push_back(static_cast<int>(k));
+  // Edges grouped by component (sorted by root, then by position: each group keeps the order the whole
+  // problem would see), without a list per rock: most components are one A rock and one B rock.
+  std::vector<std::pair<int, int>> by_root(edges.size());
+  for (size_t k = 0; k < edges.size(); ++k) by_root[k] = {find(edges[k].i), static_cast<int>(k)};
+  std::sort(by_root.begin(), by_root.end());
   RockPairs pairs;
-  std::vector<int> local_a(n, -1), local_b(m, -1);
-  for (const auto& ce : component_edges) {
-    if (ce.empty()) continue;
-    std::vector<int> rows, cols;  // global indices, in increasing order as the whole problem would see them
-    for (int k : ce) {
-      if (local_a[edges[k].i] < 0) local_a[edges[k].i] = 0, rows.push_back(edges[k].i);
-      if (local_b[edges[k].j] < 0) local_b[edges[k].j] = 0, cols.push_back(edges[k].j);
+  std::vector<int> local_a(n, -1), local_b(m, -1), rows, cols;
+  std::vector<double> w;
+  for (size_t lo = 0; lo < by_root.size();) {
+    size_t hi = lo + 1;
+    while (hi < by_root.size() && by_root[hi].first == by_root[lo].first) ++hi;
+    if (hi - lo == 1) {  // one A rock, one B rock: the pair itself (its IoU is above min_iou)
+      const Edge& e = edges[by_root[lo].second];
+      pairs.emplace_back(e.i, e.j);
+      lo = hi;
+      continue;
+    }
+    rows.clear(), cols.clear();  // global indices, in increasing order as the whole problem would see them
+    for (size_t q = lo; q < hi; ++q) {
+      const Edge& e = edges[by_root[q].second];
+      if (local_a[e.i] < 0) local_a[e.i] = 0, rows.push_back(e.i);
+      if (local_b[e.j] < 0) local_b[e.j] = 0, cols.push_back(e.j);
     }
     std::sort(rows.begin(), rows.end());
     std::sort(cols.begin(), cols.end());
     for (size_t r = 0; r < rows.size(); ++r) local_a[rows[r]] = static_cast<int>(r);
     for (size_t c = 0; c < cols.size(); ++c) local_b[cols[c]] = static_cast<int>(c);
-    std::vector<double> w(rows.size() * cols.size(), 0.0);
-    for (int k : ce) w[local_a[edges[k].i] * cols.size() + local_b[edges[k].j]] = edges[k].w;
+    w.assign(rows.size() * cols.size(), 0.0);
+    for (size_t q = lo; q < hi; ++q) {
+      const Edge& e = edges[by_root[q].second];
+      w[local_a[e.i] * cols.size() + local_b[e.j]] = e.w;
+    }
     for (const auto& [r, c] : max_weight_assignment(w, static_cast<int>(rows.size()), static_cast<int>(cols.size()), min_iou))
       pairs.emplace_back(rows[r], cols[c]);
+    lo = hi;
   }
   std::sort(pairs.begin(), pairs.end());
   return pairs;
