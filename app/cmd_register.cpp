@@ -152,7 +152,10 @@ Runner add_register_command(CLI::App& app) {
       ->check(CLI::IsMember(method_names()));
   cmd->add_option("--seed", args->seed, "Random seed (results are deterministic for a seed)");
   cmd->add_option("--class", args->cls, "Only boxes of this class (default: all)");
-  cmd->add_option("--trials", args->trials, "paper: K samples (default 1000); consensus: hypothesis cap");
+  // Each method's own search budget, as `ipd bench registration` treats budgets (Cli.RegisterTrialsIsEachMethodsBudget).
+  cmd->add_option("--trials", args->trials,
+                  "Search budget: paper: K samples (default 1000); consensus: hypothesis cap (default 1000); cpd: EM "
+                  "iterations (default 100)");
   cmd->add_option("--budget-ms", args->budget_ms, "Stop searching after this many milliseconds per pair");
   cmd->add_option("--image-size", args->image_size, "W,H of the pictures, so angles are measured in pixels")
       ->delimiter(',')
@@ -163,14 +166,17 @@ Runner add_register_command(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "Worker threads for --list (default: all cores)");
   cmd->add_flag("--json", args->json, "Print JSON, one object per pair on its own line");
   cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
-  return [args]() -> int {
+  return [args, cmd]() -> int {
     const bool list_mode = !args->list.empty();
     if (list_mode == (!args->real.empty() || !args->synth.empty()) || (!list_mode && args->synth.empty()))
       throw CLI::ValidationError("register", "give either REAL SYNTH or --list FILE.tsv");
     RegistrationOptions opt;
     parse_method(args->method, &opt.method);
     opt.seed = args->seed;
-    if (args->trials > 0) opt.max_trials = args->trials;
+    if (cmd->count("--trials") > 0) {
+      if (args->trials < 1) throw CLI::ValidationError("--trials", fmt::format("must be at least 1, got {}", args->trials));
+      (opt.method == RegistrationMethod::kCpd ? opt.cpd_iterations : opt.max_trials) = args->trials;
+    }
     opt.time_budget_ms = args->budget_ms;
     if (args->max_rotation > 0) opt.max_rotation_deg = args->max_rotation;
     if (args->max_anisotropy > 0) opt.max_anisotropy = args->max_anisotropy;

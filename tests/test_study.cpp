@@ -104,6 +104,23 @@ TEST(Study, ClearErrorsForUnusableStudies) {
   EXPECT_EQ(message("rock_class: [0\n"), d / "study.yaml" + ":2: invalid YAML: end of sequence flow not found");
 }
 
+// study.yaml's registration.trials is the configured method's budget, as ipd register's --trials: cpd's EM
+// iterations (it used to be ignored for cpd), the others' trials; below 1 an error naming the line.
+TEST(Study, RegistrationTrialsIsTheMethodsBudget) {
+  auto c = parse_study_config("registration:\n  trials: 7\n  method: cpd\n", "study.yaml");
+  EXPECT_EQ(c.registration.cpd_iterations, 7);
+  EXPECT_EQ(c.registration.max_trials, RegistrationOptions().max_trials);
+  c = parse_study_config("registration: {method: paper, trials: 5}\n", "study.yaml");
+  EXPECT_EQ(c.registration.max_trials, 5);
+  EXPECT_EQ(c.registration.cpd_iterations, RegistrationOptions().cpd_iterations);
+  try {
+    parse_study_config("registration:\n  method: cpd\n  trials: 0\n", "study.yaml");
+    FAIL();
+  } catch (const StudyError& e) {
+    EXPECT_EQ(std::string(e.what()), "study.yaml:3: registration.trials must be at least 1, got 0");
+  }
+}
+
 TEST(Study, ScenesMatchedByStemAndMissingModelsWarned) {
   test::TempDir d;
   write_three_domain_study(d);
@@ -200,6 +217,32 @@ TEST(Cli, RegisterJsonNamesItsCountsAsTheTextDoes) {
   EXPECT_EQ(j["trials"], 1);
   EXPECT_EQ(j["hypotheses"], 1);
   EXPECT_FALSE(j.contains("em_iterations"));
+}
+
+// --trials is each method's own search budget, as its help says: cpd's EM iterations (it used to be ignored for
+// cpd: 12 iterations whatever --trials said), paper's K samples; below 1 it is a usage error, not the default.
+TEST(Cli, RegisterTrialsIsEachMethodsBudget) {
+  test::TempDir d;
+  write_register_pair(d);
+  EXPECT_NE(test::run_ipd("register --help").out.find("Search budget: paper: K samples (default 1000); consensus: "
+                                                      "hypothesis cap (default 1000); cpd: EM iterations (default 100)"),
+            std::string::npos);
+  auto j = nlohmann::json::parse(test::run_ipd("register " + d / "s.txt " + d / "r.txt --method cpd --json").out);
+  EXPECT_EQ(j["em_iterations"], 12);  // converges within the default 100
+  EXPECT_EQ(j["stop"], "converged");
+  auto r = test::run_ipd("register " + d / "s.txt " + d / "r.txt --method cpd --trials 7 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["em_iterations"], 7);
+  EXPECT_EQ(j["stop"], "reached the trial limit");
+  j = nlohmann::json::parse(test::run_ipd("register " + d / "r.txt " + d / "s.txt --method paper --trials 5 --json").out);
+  EXPECT_EQ(j["trials"], 5);
+  EXPECT_EQ(j["hypotheses"], 30);  // each sample in all 6 orders
+  for (const char* method : {"cpd", "paper", "consensus"}) {
+    r = test::run_ipd("register " + d / "r.txt " + d / "s.txt --trials 0 --method " + method);
+    EXPECT_EQ(r.exit_code, 2) << method;
+    EXPECT_NE(r.err.find("--trials: must be at least 1, got 0"), std::string::npos) << method << ": " << r.err;
+  }
 }
 
 // --list prints what its help says: one report per pair in the file's order (blank and # lines skipped), as

@@ -138,6 +138,7 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
     } else if (key == "registration") {
       if (!v.IsMap()) throw StudyError(fmt::format("{}:{}: registration must be a mapping", file, line));
       check_unique_keys(v, file, "registration.");
+      int trials = 0;  // 0: not given
       for (const auto& r : v) {
         const std::string k = r.first.as<std::string>();
         if (k == "method") {
@@ -148,7 +149,10 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
         } else if (k == "seed") {
           c.registration.seed = yaml_get<std::uint64_t>(r.second, file, "registration.seed");
         } else if (k == "trials") {
-          c.registration.max_trials = yaml_get<int>(r.second, file, "registration.trials");
+          trials = yaml_get<int>(r.second, file, "registration.trials");
+          if (trials < 1)
+            throw StudyError(fmt::format("{}:{}: registration.trials must be at least 1, got {}", file,
+                                         r.first.Mark().line + 1, trials));
         } else if (k == "gate") {
           c.registration.pair_gate = yaml_get<double>(r.second, file, "registration.gate");
         } else {
@@ -156,6 +160,10 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
                                        file, r.first.Mark().line + 1, k));
         }
       }
+      // trials is the configured method's search budget, as ipd register's --trials: cpd's EM iterations.
+      if (trials > 0)
+        (c.registration.method == RegistrationMethod::kCpd ? c.registration.cpd_iterations
+                                                           : c.registration.max_trials) = trials;
       const std::string bad = c.registration.validate();
       if (!bad.empty()) throw StudyError(fmt::format("{}:{}: {}", file, line, bad));
     } else {
