@@ -222,9 +222,10 @@ TEST(RegistrationStability, PolarSimCasesWithKnownAnswer) {
   // Since issue 13 the cases clip the moved side to the picture (rocks leave it). These 60 large-tier cases
   // are a hard draw: 0.900 before the gate floor, soft refinement and guarded polish, 0.919 with them, 0.922
   // with the final fit judged among polished, searched and least squares (the benchmark's 300 cases, seed 1:
-  // 0.961, 0.968, 0.971).
+  // 0.961, 0.968, 0.971). The bound leaves room for one case to flip on another machine's libm (a case here
+  // moves the mean by up to 0.017 / 3): it catches losing the refinement changes, not the judged fit alone.
   EXPECT_GE(f1_small / n, 0.97) << f1_small / n;
-  EXPECT_GE(f1_large / n, 0.92) << f1_large / n;
+  EXPECT_GE(f1_large / n, 0.915) << f1_large / n;
   EXPECT_GE(f1_unequal / n, 0.95) << f1_unequal / n;
 }
 
