@@ -1,6 +1,8 @@
 // ipd-studio's window layout and UI wording rules (ui/studio_layout.h), with hand-computed numbers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "studio_layout.h"
 #include "views.h"
 
@@ -79,6 +81,31 @@ TEST(WrapAtSpaces, NeverBetweenACountAndTheWordItCounts) {
   EXPECT_EQ(wrap_at_spaces("x 0.97 delta", 60, chars), (std::vector<std::string>{"x 0.97", "delta"}));
   EXPECT_EQ(wrap_at_spaces("n 8, scenes", 40, chars), (std::vector<std::string>{"n 8,", "scenes"}));
   EXPECT_EQ(wrap_at_spaces("8 -1", 30, chars), (std::vector<std::string>{"8", "-1"}));
+}
+
+TEST(WrapAtSpaces, NeverInsideDeltaIpd) {
+  // 590 px = 59 characters: "principled is closer to real than hapke for det-real: delta" is exactly 59 and
+  // would fit, leaving "IPD = -0.0802 ..." to start the next line (ipd-studio's compare sentence at 1600 px
+  // in ASCII, QA). "delta IPD" goes down whole, with its number.
+  const std::string s = "principled is closer to real than hapke for det-real: delta IPD = -0.0802 [-0.094, -0.066]";
+  EXPECT_EQ(wrap_at_spaces(s, 590, chars),
+            (std::vector<std::string>{"principled is closer to real than hapke for det-real:",
+                                      "delta IPD = -0.0802 [-0.094, -0.066]"}));
+  EXPECT_EQ(wrap_at_spaces("x delta IPD y", 70, chars), (std::vector<std::string>{"x", "delta IPD", "y"}));
+  // Only "delta" before "IPD": "delta" before a number may part, as may "IPD" after another word.
+  EXPECT_EQ(wrap_at_spaces("x delta -0.08", 70, chars), (std::vector<std::string>{"x delta", "-0.08"}));
+  EXPECT_EQ(wrap_at_spaces("x deltas IPD", 80, chars), (std::vector<std::string>{"x deltas", "IPD"}));
+}
+
+TEST(UiWording, GlyphsTheFontLacksAreSpelledInAscii) {
+  const std::string s = "a is closer: \u0394IPD = \u22120.0802 [\u22120.094, \u22120.066]";
+  auto has = [](std::vector<char32_t> glyphs) {
+    return [glyphs](char32_t g) { return std::find(glyphs.begin(), glyphs.end(), g) != glyphs.end(); };
+  };
+  EXPECT_EQ(spell_missing_glyphs(s, has({U'\u0394', U'\u2212'})), s);  // DejaVu Sans, as ipd-studio loads it
+  EXPECT_EQ(spell_missing_glyphs(s, has({})), "a is closer: delta IPD = -0.0802 [-0.094, -0.066]");  // ImGui's own
+  EXPECT_EQ(spell_missing_glyphs(s, has({U'\u0394'})), "a is closer: \u0394IPD = -0.0802 [-0.094, -0.066]");
+  EXPECT_EQ(spell_missing_glyphs("\u0394 alone", has({})), "\u0394 alone");  // only the symbol ΔIPD is spelled out
 }
 
 TEST(WrapAtSpaces, LongWordOnItsOwnLineAndNewlinesKept) {

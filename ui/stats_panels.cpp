@@ -126,11 +126,12 @@ void draw_compare(const StudyView& v, const SessionStatistics* stats, StatsPanel
                           : std::isnan(r.p_value)     ? std::string()
                           : r.p_value < 1e-4          ? std::string("   p < 0.0001")
                                                       : fmt::format("   p = {:.2g}", r.p_value)));
-  // The GUI font has no Δ or typographic minus: spell them in ASCII.
-  std::string sentence = comparison_sentence(c);
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"ΔIPD", "delta IPD"}, {"−", "-"}})
-    for (size_t at; (at = sentence.find(from)) != std::string::npos;) sentence.replace(at, from.size(), to);
-  text_wrapped_at_spaces(sentence);  // never "-0.|0799"
+  // ΔIPD and the typographic minus as comparison_sentence writes them when the font draws them (ipd-studio loads
+  // DejaVu Sans with both), in ASCII when it does not (ImGui's built-in font would draw '?').
+  const ImFont* font = ImGui::GetFont();
+  text_wrapped_at_spaces(spell_missing_glyphs(comparison_sentence(c), [font](char32_t g) {
+    return font->FindGlyphNoFallback(static_cast<ImWchar>(g)) != nullptr;
+  }));  // never "-0.|0799", never "delta" | "IPD"
 }
 
 // The charts draw on the figure canvas in window pixels, text at the GUI font's size.

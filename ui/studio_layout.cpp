@@ -44,6 +44,21 @@ bool is_count(const std::string& w) {
 bool starts_with_letter(const std::string& w) { return !w.empty() && std::isalpha(static_cast<unsigned char>(w[0])); }
 }  // namespace
 
+std::string spell_missing_glyphs(std::string text, const std::function<bool(char32_t)>& has_glyph) {
+  struct Spelling {
+    char32_t glyph;
+    const char* utf8;
+    const char* ascii;
+  };
+  for (const Spelling& s : {Spelling{U'\u0394', "\u0394IPD", "delta IPD"}, Spelling{U'\u2212', "\u2212", "-"}}) {
+    if (has_glyph(s.glyph)) continue;
+    const std::string from = s.utf8;
+    for (size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += std::char_traits<char>::length(s.ascii))
+      text.replace(at, from.size(), s.ascii);
+  }
+  return text;
+}
+
 std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
                                         const std::function<float(const std::string&)>& measure) {
   std::vector<std::string> lines;
@@ -53,7 +68,7 @@ std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
     const size_t nl = text.find('\n', start);
     const std::string para = text.substr(start, nl == std::string::npos ? std::string::npos : nl - start);
     std::vector<std::string> words;
-    bool after_relation = false, after_count = false;
+    bool after_relation = false, after_count = false, after_delta = false;
     for (size_t p = 0; p <= para.size();) {
       size_t sp = para.find(' ', p);
       if (sp == std::string::npos) sp = para.size();
@@ -61,11 +76,14 @@ std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
       p = sp + 1;
       if (word.empty() && sp < para.size()) continue;  // runs of spaces
       // A label and its number stay together: "p = 0.031", "p < 0.0001" never break around the sign; so do a
-      // count and the word it counts: "8 scenes", "1,000 trials".
-      const bool glue =
-          !words.empty() && (is_relation(word) || after_relation || (after_count && starts_with_letter(word)));
+      // count and the word it counts: "8 scenes", "1,000 trials"; and "delta IPD", ΔIPD spelled in ASCII, is one
+      // symbol.
+      const bool glue = !words.empty() && (is_relation(word) || after_relation ||
+                                           (after_count && starts_with_letter(word)) ||
+                                           (after_delta && word.rfind("IPD", 0) == 0));
       after_relation = is_relation(word);
       after_count = is_count(word);
+      after_delta = word == "delta";
       if (glue)
         words.back() += " " + word;
       else

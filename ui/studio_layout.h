@@ -27,9 +27,14 @@ StudioColumns studio_columns(float width, float browser_pref, float stats_pref, 
 
 // `text` broken into lines no wider than `width` (as `measure` says), at spaces only: a word, number
 // included, is never split, nor a label from its number ("p = 0.031") or a count from the word it counts
-// ("8 scenes"); a word (or such a group) wider than `width` gets a line of its own. Newlines are kept.
+// ("8 scenes"), nor "delta IPD" (ΔIPD in ASCII); a word (or such a group) wider than `width` gets a line of
+// its own. Newlines are kept.
 std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
                                         const std::function<float(const std::string&)>& measure);
+
+// `text` with what the GUI font has no glyph for (`has_glyph`: ImFont::FindGlyphNoFallback) spelled in ASCII:
+// "ΔIPD" -> "delta IPD" without U+0394, the typographic minus "−" -> "-" without U+2212; kept otherwise.
+std::string spell_missing_glyphs(std::string text, const std::function<bool(char32_t)>& has_glyph);
 
 // "1 scene", "3 scenes", "0 scenes"; `plural` defaults to singular + "s".
 std::string counted(long n, const char* singular, const char* plural = nullptr);
