@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
+#include "stats_panels.h"
 #include "studio_layout.h"
 #include "views.h"
 
@@ -106,6 +108,30 @@ TEST(UiWording, GlyphsTheFontLacksAreSpelledInAscii) {
   EXPECT_EQ(spell_missing_glyphs(s, has({})), "a is closer: delta IPD = -0.0802 [-0.094, -0.066]");  // ImGui's own
   EXPECT_EQ(spell_missing_glyphs(s, has({U'\u0394'})), "a is closer: \u0394IPD = -0.0802 [-0.094, -0.066]");
   EXPECT_EQ(spell_missing_glyphs("\u0394 alone", has({})), "\u0394 alone");  // only the symbol ΔIPD is spelled out
+}
+
+TEST(UiWording, CompareNumbersLineWritesDeltaIpdAsTheSentenceDoes) {
+  // The 8-scene demo's compare panel: the line above the sentence read "delta -0.0802 [-0.094, -0.066]   p =
+  // 0.0078" in ASCII while the sentence under it wrote ΔIPD and the typographic minus (QA).
+  Comparison r;
+  r.delta.estimate = -0.08021, r.delta.low = -0.09412, r.delta.high = -0.06561;
+  r.p_value = 0.0078125, r.scenes = 8;
+  const std::string line = compare_delta_line(r);
+  EXPECT_EQ(line, "\u0394IPD = \u22120.0802 [\u22120.094, \u22120.066]   p = 0.0078");
+  EXPECT_EQ(spell_missing_glyphs(line, [](char32_t) { return false; }),
+            "delta IPD = -0.0802 [-0.094, -0.066]   p = 0.0078");  // ImGui's own font
+  // "ΔIPD" never parts from its number, nor "p" from its value.
+  auto bytes = [](const std::string& t) { return 10.0f * static_cast<float>(t.size()); };
+  EXPECT_EQ(wrap_at_spaces(line, 190, bytes),
+            (std::vector<std::string>{"\u0394IPD = \u22120.0802", "[\u22120.094,", "\u22120.066]", "p = 0.0078"}));
+  // A number rounding to zero has no minus; a tiny p is never in scientific notation.
+  r.delta.estimate = -0.00001, r.delta.low = -0.0004, r.delta.high = 0.02, r.p_value = 0.00001;
+  EXPECT_EQ(compare_delta_line(r), "\u0394IPD = 0.0000 [0.000, 0.020]   p < 0.0001");
+  // Fewer than two scenes: neither interval nor test; no interval or no p: left out, never "nan".
+  r.scenes = 1, r.delta.estimate = 0.02;
+  EXPECT_EQ(compare_delta_line(r), "\u0394IPD = 0.0200, 1 scene: no interval, no test");
+  r.scenes = 5, r.delta.low = r.delta.high = r.p_value = std::nan("");
+  EXPECT_EQ(compare_delta_line(r), "\u0394IPD = 0.0200");
 }
 
 TEST(WrapAtSpaces, LongWordOnItsOwnLineAndNewlinesKept) {

@@ -76,6 +76,15 @@ HistogramBins histogram_bins(const std::vector<double>& values, int bins) {
   return h;
 }
 
+std::string compare_delta_line(const Comparison& r) {
+  std::string line = "\u0394IPD = " + minus_number(r.delta.estimate, 4);
+  if (r.scenes < 2) return line + fmt::format(", {} scene: no interval, no test", r.scenes);
+  if (!std::isnan(r.delta.estimate) && r.delta.has_interval())
+    line += " [" + minus_number(r.delta.low, 3) + ", " + minus_number(r.delta.high, 3) + "]";
+  if (std::isnan(r.p_value)) return line;
+  return line + (r.p_value < 1e-4 ? std::string("   p < 0.0001") : fmt::format("   p = {:.2g}", r.p_value));
+}
+
 void cell_interval_tooltip(const SessionStatistics* stats, const std::string& model, int pair) {
   if (!stats || !ImGui::IsItemHovered() || pair < 0 || pair >= static_cast<int>(stats->table.columns.size())) return;
   const auto& [a, b] = stats->table.columns[pair];
@@ -120,18 +129,13 @@ void draw_compare(const StudyView& v, const SessionStatistics* stats, StatsPanel
   const Comparison& r = c.result;
   text_wrapped_at_spaces("IPD(" + c.ref + "," + c.a + ") " + fixed(r.ipd_a, 4) + "  IPD(" + c.ref + "," + c.b + ") " +
                          fixed(r.ipd_b, 4));
-  // Fewer than two scenes: neither interval nor test (never "p = nan").
-  text_wrapped_at_spaces("delta " + interval(r.delta.estimate, r.delta.low, r.delta.high) +
-                         (r.scenes < 2                ? fmt::format(", {} scene: no interval, no test", r.scenes)
-                          : std::isnan(r.p_value)     ? std::string()
-                          : r.p_value < 1e-4          ? std::string("   p < 0.0001")
-                                                      : fmt::format("   p = {:.2g}", r.p_value)));
-  // ΔIPD and the typographic minus as comparison_sentence writes them when the font draws them (ipd-studio loads
-  // DejaVu Sans with both), in ASCII when it does not (ImGui's built-in font would draw '?').
+  // The numbers line writes ΔIPD and the typographic minus as the sentence under it (comparison_sentence) does,
+  // when the font draws them (ipd-studio loads DejaVu Sans with both); in ASCII when it does not (ImGui's built-in
+  // font would draw '?').
   const ImFont* font = ImGui::GetFont();
-  text_wrapped_at_spaces(spell_missing_glyphs(comparison_sentence(c), [font](char32_t g) {
-    return font->FindGlyphNoFallback(static_cast<ImWchar>(g)) != nullptr;
-  }));  // never "-0.|0799", never "delta" | "IPD"
+  auto has_glyph = [font](char32_t g) { return font->FindGlyphNoFallback(static_cast<ImWchar>(g)) != nullptr; };
+  text_wrapped_at_spaces(spell_missing_glyphs(compare_delta_line(r), has_glyph));
+  text_wrapped_at_spaces(spell_missing_glyphs(comparison_sentence(c), has_glyph));  // never "-0.|0799", never "delta" | "IPD"
 }
 
 // The charts draw on the figure canvas in window pixels, text at the GUI font's size.

@@ -20,6 +20,11 @@ struct StatsPanelState {
 // What to compute for the current view (the app hands it to its statistics job).
 SessionStatisticsRequest stats_request(const Session& s, const StatsPanelState& st);
 
+// The compare panel's numbers line, written as comparison_sentence writes them (ΔIPD, the typographic minus
+// U+2212): "ΔIPD = −0.0802 [−0.094, −0.066]   p = 0.0078"; the panel passes it through spell_missing_glyphs.
+// Fewer than two scenes: "ΔIPD = 0.0200, 1 scene: no interval, no test" (never "p = nan").
+std::string compare_delta_line(const Comparison& r);
+
 // A tooltip with the cell's interval when the last item is hovered (nothing while unknown).
 void cell_interval_tooltip(const SessionStatistics* stats, const std::string& model, int pair);
 
