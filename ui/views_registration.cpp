@@ -16,7 +16,7 @@ const char* kind_name(TraceStepKind k) {
     case TraceStepKind::kHypothesis: return "hypothesis";
     case TraceStepKind::kRefinement: return "refinement";
     case TraceStepKind::kIteration: return "EM iteration";
-    case TraceStepKind::kPolish: return "polish";
+    case TraceStepKind::kPolish: return "final fit";  // the polished, searched or least-squares fit that goes out
   }
   return "";
 }
