@@ -5,6 +5,7 @@
 #include <sstream>
 #include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "ipd/ipd.h"
@@ -217,6 +218,28 @@ TEST(Cli, RegisterJsonNamesItsCountsAsTheTextDoes) {
   EXPECT_EQ(j["trials"], 1);
   EXPECT_EQ(j["hypotheses"], 1);
   EXPECT_FALSE(j.contains("em_iterations"));
+}
+
+// An ambiguous registration says so after its confidence, the reason's "(e.g. ...)" not nested in another
+// parenthesis (it read "confidence 0.186 (AMBIGUOUS: ... as well (e.g. a small overlap or a repetitive
+// layout))", QA). A 3 x 3 block of identical rocks inside a 5 x 5 grid: nine placements fit equally well.
+TEST(Cli, RegisterSaysAmbiguousWithoutNestedParentheses) {
+  test::TempDir d;
+  std::string a, b;
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 5; ++x) {
+      a += fmt::format("0 {:.2f} {:.2f} 0.04 0.04\n", 0.1 + 0.2 * x, 0.1 + 0.2 * y);
+      if (x >= 1 && x <= 3 && y >= 1 && y <= 3) b += fmt::format("0 {:.2f} {:.2f} 0.04 0.04\n", 0.11 + 0.2 * x, 0.1 + 0.2 * y);
+    }
+  test::write_text(d / "a.txt", a);
+  test::write_text(d / "b.txt", b);
+  const auto r = test::run_ipd("register " + d / "a.txt " + d / "b.txt");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("; AMBIGUOUS: another alignment fits almost as well (e.g. a small overlap or a repetitive "
+                       "layout)\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("))"), std::string::npos) << r.out;
 }
 
 // --trials is each method's own search budget, as its help says: cpd's EM iterations (it used to be ignored for
