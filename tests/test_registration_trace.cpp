@@ -174,6 +174,43 @@ TEST(RegistrationConfidence, SymmetricGridIsAmbiguous) {
   }
 }
 
+// cpd scores no rival of its own; its confidence compares its alignment with the placements most rock pairs
+// agree on (it reported 1.0 for everything, even 2 of 17 rocks paired). The symmetric grid is ambiguous for it
+// too; twelve scattered rocks shifted by 2% are not.
+TEST(RegistrationConfidence, CpdMeasuresItsConfidenceAgainstRivalPlacements) {
+  std::vector<Box> grid_a, grid_b;
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 5; ++x) {
+      Box r;
+      r.cx = 0.1 + 0.2 * x, r.cy = 0.1 + 0.2 * y, r.w = r.h = 0.04;
+      grid_a.push_back(r);
+      if (x >= 1 && x <= 3 && y >= 1 && y <= 3) {
+        r.cx += 0.01;
+        grid_b.push_back(r);
+      }
+    }
+  RegistrationOptions o;
+  o.method = RegistrationMethod::kCpd;
+  const auto grid = register_rocks(grid_a, grid_b, o);
+  EXPECT_TRUE(grid.ambiguous) << "confidence " << grid.confidence;
+  EXPECT_LT(grid.confidence, 0.2);
+
+  std::vector<Box> a, b;
+  const double spots[12][2] = {{0.12, 0.2}, {0.3, 0.75}, {0.45, 0.3}, {0.6, 0.85}, {0.8, 0.15}, {0.2, 0.5},
+                               {0.7, 0.5}, {0.9, 0.7}, {0.35, 0.1}, {0.55, 0.6}, {0.15, 0.85}, {0.85, 0.4}};
+  for (int k = 0; k < 12; ++k) {
+    Box r;
+    r.cx = spots[k][0], r.cy = spots[k][1], r.w = 0.03 + 0.004 * k, r.h = 0.05 - 0.002 * k;
+    a.push_back(r);
+    r.cx += 0.02, r.cy -= 0.01;
+    b.push_back(r);
+  }
+  const auto clean = register_rocks(a, b, o);
+  EXPECT_EQ(clean.pairs.size(), 12u);
+  EXPECT_GT(clean.confidence, 0.5);
+  EXPECT_FALSE(clean.ambiguous);
+}
+
 // A 6 x 4 grid and its last five columns, unmoved: shifting by one column fits as many rocks, so it is
 // ambiguous at any aspect ratio. At 960 x 600 the one-column shift is exactly 0 vertically, which sat on a
 // translation-vote bin edge (votes at +-1e-17 split in two) and the rival went unseen: confidence 0.25.
