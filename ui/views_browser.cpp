@@ -42,7 +42,7 @@ const std::vector<BrowserColumn>& browser_columns() {
       {{"scene", nullptr, nullptr, ImGuiTableColumnFlags_WidthStretch}, kByStem},
       {{"IPD", "0.0000", "the scene's IPD for the model (sorted worst first)",
         num | ImGuiTableColumnFlags_DefaultSort}, kByIpd},
-      {{"amb.", "?", "ambiguous registration: another alignment fits almost as well (e.g. a small overlap or a "
+      {{"amb.", "?", "ambiguous registration: another alignment fits as well or almost as well (e.g. a small overlap or a "
                      "repetitive layout), so the pairs may be wrong; check them", num}, kByAmbiguous},
       {{"susp.", "99", "suspect pairs: paired rocks that the registration does not bring together", num}, kBySuspects},
       {{"ed.", "hand", "pairs fixed by hand", num}, kByEdited},

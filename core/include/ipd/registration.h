@@ -66,7 +66,7 @@ struct RegistrationOptions {
 
 // Why a registration is flagged ambiguous, worded once for the studio and `ipd register`.
 inline constexpr const char* kAmbiguousReason =
-    "another alignment fits almost as well (e.g. a small overlap or a repetitive layout)";
+    "another alignment fits as well or almost as well (e.g. a small overlap or a repetitive layout)";
 
 struct RegistrationReport {
   RegistrationMethod method = RegistrationMethod::kConsensus;
@@ -82,7 +82,8 @@ struct RegistrationReport {
   double work = 0, work_budget = 0;    // point evaluations spent, and the bound they were held to
   // How sure the pairing is: 1 - (second-best distinct hypothesis' score / best score), in [0, 1]; 1 when
   // no rival alignment came close. `ambiguous` is set when confidence < 0.2: a second, distinct alignment
-  // scores almost as well as the best (e.g. a small overlap or a repetitive layout); kAmbiguousReason says so.
+  // scores as well or almost as well as the best (e.g. a small overlap or a repetitive layout; cpd: a shifted
+  // placement it did not converge to may score better, confidence 0); kAmbiguousReason says so.
   double confidence = 1.0;
   bool ambiguous = false;
   RegistrationTrace trace;             // empty unless options.record_trace
