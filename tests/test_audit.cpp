@@ -5,11 +5,12 @@
 #include <stdexcept>
 
 #include "ipd/audit.h"
+#include "test_support.h"
 
 namespace ipd {
 namespace {
 
-Box box(double cx, double cy, double w, double h) { return Box{0, cx, cy, w, h, 1.0}; }
+using test::box;
 
 // B is A moved by +0.1 in x, except: pair 1 is 1 px off in y, pair 2 is 20 px off in x, pair 3's B box is
 // three times as large, pair 4 is paired with a rock far away. Image 1000 x 500: every box is 50 x 50 px.

@@ -4,15 +4,12 @@
 #include <limits>
 
 #include "ipd/geometry.h"
+#include "test_support.h"
 
 namespace ipd {
 namespace {
 
-Box box(double cx, double cy, double w, double h, double conf = 1.0) {
-  Box b;
-  b.cx = cx, b.cy = cy, b.w = w, b.h = h, b.conf = conf;
-  return b;
-}
+using test::box;
 
 TEST(Iou, HandComputedValues) {
   // Shifted by half a width: intersection 0.1 x 0.2 = 0.02, union 0.04 + 0.04 - 0.02 = 0.06.

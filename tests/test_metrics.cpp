@@ -16,7 +16,7 @@
 namespace ipd {
 namespace {
 
-Box box(double cx, double cy, double w, double h, double conf = 1) { return {0, cx, cy, w, h, conf}; }
+using test::box;
 
 // Image 1: GT g1 (0.2, 0.2), g2 (0.6, 0.6), 0.1 wide; d1 = g1 (conf 0.9, IoU 1), d2 shifted 0.02 off g2
 // (conf 0.6, IoU 0.008 / 0.012 = 2/3). Image 2: GT g3 (0.5, 0.5, 0.2 wide); d3 far away (conf 0.6, a tie with

@@ -10,15 +10,12 @@
 #include "ipd/registration.h"
 #include "consensus_scorer.h"  // core/src: internal
 #include "registration_frame.h"
+#include "test_support.h"
 
 namespace ipd {
 namespace {
 
-Box box(double cx, double cy, double w, double h) {
-  Box b;
-  b.cx = cx, b.cy = cy, b.w = w, b.h = h;
-  return b;
-}
+using test::box;
 
 // Rocks at least `separation` apart in [lo, hi]^2, 3% boxes.
 std::vector<Box> scattered(unsigned seed, int n, double lo, double hi, double separation) {

@@ -7,15 +7,12 @@
 #include "ipd/affine_estimator.h"
 #include "consensus_second_look.h"  // core/src: internal
 #include "registration_frame.h"
+#include "test_support.h"
 
 namespace ipd {
 namespace {
 
-Box box(double cx, double cy, double w, double h) {
-  Box b;
-  b.cx = cx, b.cy = cy, b.w = w, b.h = h;
-  return b;
-}
+using test::box;
 
 TEST(SimilarityLeastSquares, RecoversRotationScaleAndShiftFromTwoOrMorePoints) {
   // 1.2 x rotation by 30 degrees, then (0.5, -0.25): [c -s; s c] with c = 1.2 cos 30, s = 1.2 sin 30.

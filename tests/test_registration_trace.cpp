@@ -153,18 +153,22 @@ TEST(RegistrationTrace, StopsRecordingAtTheCap) {
 }
 
 // A 3 x 3 block of identical rocks seen inside a 5 x 5 grid of them: nine placements explain it equally well.
-TEST(RegistrationConfidence, SymmetricGridIsAmbiguous) {
-  std::vector<Box> a, b;
+void symmetric_grid(std::vector<Box>* a, std::vector<Box>* b) {
   for (int y = 0; y < 5; ++y)
     for (int x = 0; x < 5; ++x) {
       Box r;
       r.cx = 0.1 + 0.2 * x, r.cy = 0.1 + 0.2 * y, r.w = r.h = 0.04;
-      a.push_back(r);
+      a->push_back(r);
       if (x >= 1 && x <= 3 && y >= 1 && y <= 3) {
         r.cx += 0.01;
-        b.push_back(r);
+        b->push_back(r);
       }
     }
+}
+
+TEST(RegistrationConfidence, SymmetricGridIsAmbiguous) {
+  std::vector<Box> a, b;
+  symmetric_grid(&a, &b);
   for (auto m : {RegistrationMethod::kConsensus, RegistrationMethod::kPaper}) {
     RegistrationOptions o;
     o.method = m;
@@ -179,16 +183,7 @@ TEST(RegistrationConfidence, SymmetricGridIsAmbiguous) {
 // too; twelve scattered rocks shifted by 2% are not.
 TEST(RegistrationConfidence, CpdMeasuresItsConfidenceAgainstRivalPlacements) {
   std::vector<Box> grid_a, grid_b;
-  for (int y = 0; y < 5; ++y)
-    for (int x = 0; x < 5; ++x) {
-      Box r;
-      r.cx = 0.1 + 0.2 * x, r.cy = 0.1 + 0.2 * y, r.w = r.h = 0.04;
-      grid_a.push_back(r);
-      if (x >= 1 && x <= 3 && y >= 1 && y <= 3) {
-        r.cx += 0.01;
-        grid_b.push_back(r);
-      }
-    }
+  symmetric_grid(&grid_a, &grid_b);
   RegistrationOptions o;
   o.method = RegistrationMethod::kCpd;
   const auto grid = register_rocks(grid_a, grid_b, o);

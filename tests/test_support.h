@@ -3,7 +3,12 @@
 
 #include <string>
 
+#include "ipd/geometry.h"
+
 namespace ipd::test {
+
+// A class-0 box centred at (cx, cy), w x h, in normalised image coordinates.
+inline Box box(double cx, double cy, double w, double h, double conf = 1.0) { return Box{0, cx, cy, w, h, conf}; }
 
 // A fresh directory under the system temp dir, removed when the object dies.
 class TempDir {
