@@ -42,7 +42,7 @@ constexpr size_t kCoarseAbove = 160, kCoarseRocks = 64;
 // spacing in a tight cluster (0.9% of the width) left true pairs outside the gate. Large tier F1, mean of
 // seeds 0-6: 0.9697 without the floor, 0.9709 at 1.1%, 0.9721 at 1.5%, 0.9719 at 2%.
 constexpr double kMinGateOfWidth = 0.015, kMaxFloorOfSpacing = 0.5;
-// The fit that goes out is judged among several (below) when A x B is at most this (64 rocks a side).
+// The fit that goes out is judged among several (final_fit) when A x B is at most this (64 rocks a side).
 constexpr size_t kJudgedFitMaxPairs = 4096;
 
 // Proposes hypotheses as affines directly (estimator = identity pass-through) so that the cheap ones and
@@ -234,7 +234,7 @@ class GuidedSampler {
 
   // A rock's edges to its neighbours (vector, length) and, for every ordered pair of them (n x n, row p), the
   // cross product and whether their triangle is flat; filled on first use. A rock anchors many expansions, and
-  // the edge-pairing loop redid all of this per pair (large tier: 6% fewer instructions in all).
+  // the edge-pairing loop redid all of this per pair (large tier: 8% fewer instructions in all, callgrind).
   struct Star {
     std::vector<Edge> edges;
     std::vector<double> cross;
@@ -400,6 +400,34 @@ std::vector<Affine2> coarse_hypotheses(const RegistrationFrame& f, const std::ve
   return {f.from_image(r.affine)};
 }
 
+// The fit that goes out, judged on the pairing it gives (consensus + IoU - unpaired rocks) among the polished
+// one, the search's own (polishing fits every inlier alike, a wrong one included) and plain least squares on
+// the inliers (the consensus' kernel can prefer an exact fit of three rocks that pairs worse than a fit of all
+// of them). Large tier F1, mean of seeds 0-6: 0.9705 with the polished fit always, 0.9715 judged against the
+// search's, 0.9721 with least squares too (seed 1: 0.9675, 0.9691, 0.9705); no seed lost more than 0.0002 at
+// either step. Small sets only: with many inliers one wrong pair barely moves the polish, and the three
+// pairings would add a third to 500 rocks a side (callgrind: 21.4 -> 29.1 million instructions).
+Affine2 final_fit(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
+                  const RegistrationOptions& o, const Bounds& bounds, double gate, ConsensusScorer* scorer,
+                  const Affine2& searched) {
+  Affine2 polished = searched;
+  scorer->polish(&polished);
+  if (f.a.size() * f.b.size() > kJudgedFitMaxPairs) return polished;
+  std::vector<Affine2> fits{polished, searched};
+  std::vector<Eigen::Vector2d> src, dst;
+  scorer->inlier_pairs(searched, gate * gate, &src, &dst);
+  Affine2 least_squares;
+  if (src.size() >= 3 && affine_least_squares(src, dst, &least_squares) && bounds.plausible(least_squares.leftCols<2>()))
+    fits.push_back(least_squares);
+  Affine2 out = polished;
+  double best_total = -INFINITY;
+  for (const auto& m : fits) {
+    const double total = judge_candidate(f, boxes_a, boxes_b, m, scorer->score(m), o.min_pair_iou).total;
+    if (total > best_total) best_total = total, out = m;
+  }
+  return out;
+}
+
 }  // namespace
 
 MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
@@ -444,42 +472,12 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
       // raising it alone would tilt that comparison (the 3 true pairs among 15 rocks, layout 5).
       if (r.stop == StopReason::kCannotBeBeaten && scorer.soft_refine(&out.affine_normalised, &out.score))
         recorder.add_step(TraceStepKind::kRefinement, out.affine_normalised, out.score, out.score, true);
-      {
-        // The fit that goes out is judged on the pairing it gives (consensus + IoU - unpaired rocks), among the
-        // polished one, the search's own (polishing fits every inlier alike, a wrong one included) and plain
-        // least squares on the inliers (the consensus' kernel can prefer an exact fit of three rocks that
-        // pairs worse than a fit of all of them). Large tier F1, mean of seeds 0-6: 0.9705 with the polished
-        // fit always, 0.9715 judged against the search's, 0.9721 with least squares too (seed 1: 0.9675,
-        // 0.9691, 0.9705); no seed lost more than 0.0002 at either step. Small sets only: with many inliers
-        // one wrong pair barely moves the polish, and three pairings of 500 rocks would cost a third of the
-        // registration.
-        const Affine2 searched = out.affine_normalised;
-        scorer.polish(&out.affine_normalised);
-        if (f.a.size() * f.b.size() <= kJudgedFitMaxPairs) {
-          std::vector<Affine2> fits{out.affine_normalised, searched};
-          std::vector<Eigen::Vector2d> src, dst;
-          scorer.inlier_pairs(searched, gate * gate, &src, &dst);
-          Affine2 least_squares;
-          if (src.size() >= 3 && affine_least_squares(src, dst, &least_squares) &&
-              bounds.plausible(least_squares.leftCols<2>()))
-            fits.push_back(least_squares);
-          double best_total = -INFINITY;
-          for (const auto& m : fits) {
-            const double total = judge_candidate(f, boxes_a, boxes_b, m, scorer.score(m), o.min_pair_iou).total;
-            if (total > best_total) best_total = total, out.affine_normalised = m;
-          }
-        }
-      }
+      out.affine_normalised = final_fit(f, boxes_a, boxes_b, o, bounds, gate, &scorer, out.affine_normalised);
       recorder.add_step(TraceStepKind::kPolish, out.affine_normalised, out.score, out.score, false);
       // The search stops as soon as its best can't be beaten, often before a rival is scored. Shifted
       // placements are the rivals a small overlap allows (a patch of rocks that fits in several places), so
       // the translations most rock pairs agree on under the best's linear part are scored too.
-      double rival = recorder.rival_score();
-      for (const auto& t : top_translations(r.best.leftCols<2>(), f.a, f.b, 2 * gate, 4)) {
-        Affine2 m = r.best;
-        m.col(2) = t;
-        if (!recorder.agree(m, r.best)) rival = std::max(rival, scorer.score(m));
-      }
+      const double rival = std::max(recorder.rival_score(), shifted_rival(&scorer, recorder, f, r.best, r.best.leftCols<2>(), gate, false));
       out.confidence = confidence_from_scores(r.best_score, rival);
       second_look(f, boxes_a, boxes_b, o, bounds, &scorer, &recorder, &out);
     } else {

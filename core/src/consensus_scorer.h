@@ -14,6 +14,7 @@
 #include "ipd/robust_loop.h"
 #include "consensus_search.h"
 #include "registration_frame.h"
+#include "registration_recorder.h"
 
 namespace ipd::detail {
 
@@ -347,5 +348,23 @@ class ConsensusScorer {
   std::vector<Eigen::Vector2d> scratch_src_, scratch_dst_;  // reused by improve() and count_inliers()
   unsigned epoch_ = 0;
 };
+
+// The best score among the placements most rock pairs agree on under the linear part `linear`
+// (top_translations), other than `best` (0 when none): the rivals a small overlap allows, a patch of rocks that
+// fits in several places. `refine`: each is first fitted to its own rocks, for cpd, which scores no rival of
+// its own (the consensus search has refined its rivals already and scores these as they come).
+inline double shifted_rival(ConsensusScorer* scorer, const SearchRecorder& recorder, const RegistrationFrame& f,
+                            const Affine2& best, const Eigen::Matrix2d& linear, double gate, bool refine) {
+  double rival = 0;
+  for (const auto& t : top_translations(linear, f.a, f.b, 2 * gate, 4)) {
+    Affine2 m;
+    m.leftCols<2>() = linear;
+    m.col(2) = t;
+    double s = scorer->score(m);
+    if (refine) scorer->improve(&m, &s);
+    if (!recorder.agree(m, best)) rival = std::max(rival, s);
+  }
+  return rival;
+}
 
 }  // namespace ipd::detail
