@@ -1,10 +1,10 @@
 // Fuzzes `ipd import coco`: the input is the COCO annotations JSON, optionally followed by a line
 // "----results----" and a detection-results JSON. Entry problems go to the report (each naming its file);
 // structural ones are StudyError/IoError naming the file; anything else escaping is a bug.
-#include "fuzz_support.h"
-#include "ipd/atomic_file.h"
-#include "ipd/coco_import.h"
-#include "ipd/study.h"
+#include "tests/fuzz/fuzz_support.h"
+#include "core/util/atomic_file.h"
+#include "core/study/coco_import.h"
+#include "core/study/study.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -1,8 +1,8 @@
 // Fuzzes the YOLO label parser (ground truth and predictions), in memory and through a file.
 #include <cmath>
 
-#include "fuzz_support.h"
-#include "ipd/label_io.h"
+#include "tests/fuzz/fuzz_support.h"
+#include "core/io/label_io.h"
 
 namespace {
 

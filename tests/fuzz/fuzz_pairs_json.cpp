@@ -2,9 +2,9 @@
 // and ipd-studio call it. Accepted pairs must be in range and one-to-one; errors are StudyErrors naming the file.
 #include <set>
 
-#include "fuzz_support.h"
-#include "ipd/atomic_file.h"
-#include "ipd/study.h"
+#include "tests/fuzz/fuzz_support.h"
+#include "core/util/atomic_file.h"
+#include "core/study/study.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::filesystem::path root = ipd_fuzz::scratch_dir() / "study";

@@ -1,0 +1,62 @@
+#include "app/cli/cli_common.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fmt/format.h>
+
+#include <cstdlib>
+
+namespace ipd::cli {
+
+std::vector<std::string> join_optional_values(int argc, char** argv) {
+  std::vector<std::string> args;
+  for (int k = 1; k < argc; ++k) {
+    std::string a = argv[k];
+    if (a == "--ci" && k + 1 < argc) {
+      const std::string next = argv[k + 1];
+      char* end = nullptr;
+      std::strtod(next.c_str(), &end);
+      if (!next.empty() && end == next.c_str() + next.size()) a += "=" + next, ++k;
+    }
+    args.push_back(std::move(a));
+  }
+  return {args.rbegin(), args.rend()};
+}
+
+bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines) {
+  if (errors.empty()) return false;
+  // A file that can't be read (dangling link, no permission, a FIFO) is never skipped: its rocks would
+  // silently count as none.
+  const bool file_problems =
+      std::any_of(errors.begin(), errors.end(), [](const LabelError& e) { return e.malformed_lines() == 0; });
+  long lines = 0;
+  for (const auto& e : errors) {
+    lines += e.malformed_lines();
+    const bool warn = skip_bad_lines && e.malformed_lines() > 0;
+    fmt::print(stderr, "{}{}\n", warn ? "warning: " : "", e.to_string());
+  }
+  if (file_problems) return true;
+  if (skip_bad_lines) {
+    fmt::print(stderr, "warning: {} malformed line(s) skipped (--skip-bad-lines)\n", lines);
+    return false;
+  }
+  fmt::print(stderr, "error: {} malformed line(s); fix them, or pass --skip-bad-lines to skip them\n", lines);
+  return true;
+}
+
+Progress::Progress(std::string what) : what_(std::move(what)), tty_(::isatty(2) == 1) {}
+
+void Progress::update(int done, int total) {
+  if (!tty_ || total <= 0) return;
+  fmt::print(stderr, "\r{} {}/{} ({:.0f}%)", what_, done, total, 100.0 * done / total);
+  std::fflush(stderr);
+  shown_ = true;
+}
+
+Progress::~Progress() {
+  if (shown_) fmt::print(stderr, "\n");
+}
+
+}  // namespace ipd::cli

@@ -1,0 +1,35 @@
+// Shared bits of the `ipd` subcommands: exit codes, error reporting, progress.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/ipd/ipd.h"
+
+namespace ipd::cli {
+
+constexpr int kOk = 0, kBadInput = 1, kUsage = 2;
+
+// Prints the label errors (`FILE:LINE: ...`, at most kMaxListedErrors per file and a count of the rest) and a
+// summary; true when they are fatal: malformed lines unless skipped, and always a file that can't be read.
+bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines);
+
+// The arguments after the program name, reversed (as CLI::App::parse takes them), with `--ci 0.9` joined
+// into `--ci=0.9`: --ci is a flag with an optional level, so a level must be attached to it, and a
+// following word that is not a number (the STUDY) stays an argument of its own.
+std::vector<std::string> join_optional_values(int argc, char** argv);
+
+// A one-line progress indicator on stderr, only when stderr is a terminal.
+class Progress {
+ public:
+  explicit Progress(std::string what);
+  void update(int done, int total);
+  ~Progress();
+
+ private:
+  std::string what_;
+  bool tty_;
+  bool shown_ = false;
+};
+
+}  // namespace ipd::cli

@@ -1,0 +1,90 @@
+// `ipd breakdown STUDY --by size|region|confidence`: where the gap is — IPD with its interval per bin of a
+// property of the reference rock.
+#include <fmt/format.h>
+
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "app/cli/cli_common.h"
+#include "app/cli/commands.h"
+#include "core/stats/study_statistics.h"
+#include "app/cli/study_options.h"
+
+namespace ipd::cli {
+
+namespace {
+std::string interval_text(const Interval& i) {
+  if (std::isnan(i.estimate)) return "n/a";
+  if (!i.has_interval()) return fmt::format("{:.4f}", i.estimate);
+  return fmt::format("{:.4f} [{:.3f}, {:.3f}]", i.estimate, i.low, i.high);
+}
+nlohmann::ordered_json number(double v) { return std::isnan(v) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v); }
+}  // namespace
+
+Runner add_breakdown_command(CLI::App& app) {
+  struct Args {
+    StudyOptions study;
+    std::string by = "size", format = "text";
+    int bins = 4;
+    bool all_cells = false;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("breakdown", "IPD per bin of the reference rock's size, region or confidence");
+  add_study_options(cmd, &args->study, true);
+  cmd->add_option("--by", args->by, "size (box area, px²), region (3x3 grid) or confidence (of its best-IoU prediction)")
+      ->check(CLI::IsMember({"size", "region", "confidence"}));
+  cmd->add_option("--bins", args->bins, "Quantile bins for size and confidence")->check(CLI::Range(1, 100))->default_val(4);
+  cmd->add_option("--format", args->format, "text, csv, json or markdown")
+      ->check(CLI::IsMember({"text", "csv", "json", "markdown"}));
+  cmd->add_flag("--all-cells", args->all_cells, "Also the cells that don't involve the model's training domain");
+  return [args]() -> int {
+    auto loaded = load_study_table(args->study, false);
+    if (!loaded) return kBadInput;
+    BreakdownOptions bo;
+    parse_breakdown_by(args->by, &bo.by);
+    bo.bins = args->bins;
+    bo.bootstrap = loaded->bootstrap;
+    std::vector<CellBreakdown> out;
+    for (const auto& cell : loaded->table.cells) {
+      if (cell.missing_predictions || (!cell.involves_training_domain && !args->all_cells)) continue;
+      out.push_back(breakdown_cell(loaded->labels, cell, bo));
+    }
+    const std::string ref_note = "bins of the first domain's rock; ";
+    if (args->format == "json") {
+      nlohmann::ordered_json j = {{"by", args->by}, {"bootstrap", {{"resamples", bo.bootstrap.resamples}, {"level", bo.bootstrap.level}, {"seed", bo.bootstrap.seed}}}};
+      j["cells"] = nlohmann::ordered_json::array();
+      for (const auto& c : out) {
+        nlohmann::ordered_json bins = nlohmann::ordered_json::array();
+        for (const auto& b : c.bins)
+          bins.push_back({{"bin", b.label}, {"low", number(b.low)}, {"high", number(b.high)},
+                          {"ipd", number(b.ipd.estimate)}, {"ci_low", number(b.ipd.low)},
+                          {"ci_high", number(b.ipd.high)}, {"pairs", b.pairs}, {"scenes", b.scenes}});
+        j["cells"].push_back({{"model", c.model}, {"trained_on", c.trained_on}, {"a", c.a}, {"b", c.b}, {"bins", bins}});
+      }
+      std::cout << j.dump(2) << "\n";
+    } else if (args->format == "csv") {
+      std::cout << "model,trained_on,a,b,bin,low,high,ipd,ci_low,ci_high,pairs,scenes\n";
+      auto n = [](double v) { return std::isnan(v) ? std::string() : fmt::format("{:.6g}", v); };
+      for (const auto& c : out)
+        for (const auto& b : c.bins)
+          std::cout << fmt::format("{},{},{},{},\"{}\",{},{},{},{},{},{},{}\n", c.model, c.trained_on, c.a, c.b, b.label,
+                                   n(b.low), n(b.high), n(b.ipd.estimate), n(b.ipd.low), n(b.ipd.high), b.pairs, b.scenes);
+    } else {
+      const bool md = args->format == "markdown";
+      for (const auto& c : out) {
+        std::cout << fmt::format("{}{} ({}), |{} - {}|, by {}:\n", md ? "**" : "", c.model, c.trained_on, c.a, c.b,
+                                 args->by) << (md ? "**\n\n| bin | IPD [CI] | pairs | scenes |\n|---|---:|---:|---:|\n" : "");
+        for (const auto& b : c.bins)
+          std::cout << (md ? fmt::format("| {} | {} | {} | {} |\n", b.label, interval_text(b.ipd), b.pairs, b.scenes)
+                           : fmt::format("  {:<22} {:<26} {:>5} pairs {:>4} scenes\n", b.label, interval_text(b.ipd),
+                                         b.pairs, b.scenes));
+        std::cout << "\n";
+      }
+      std::cout << fmt::format("({}{:g}% scene-bootstrap intervals, {} resamples, seed {})\n", ref_note,
+                               100 * bo.bootstrap.level, bo.bootstrap.resamples, bo.bootstrap.seed);
+    }
+    return kOk;
+  };
+}
+
+}  // namespace ipd::cli

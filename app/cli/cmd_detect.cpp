@@ -1,0 +1,125 @@
+// `ipd detect IMAGES_DIR --onnx MODEL.onnx --out PRED_DIR` and `ipd detect STUDY --onnx MODEL --model NAME`:
+// a YOLOv5 ONNX export (or the demo's classical detector) run on pictures, written as YOLO txt predictions.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <future>
+#include <opencv2/imgcodecs.hpp>
+#include <set>
+
+#include "app/cli/cli_common.h"
+#include "app/cli/commands.h"
+#include "core/io/label_io.h"
+#include "core/detect/rock_detector.h"
+#include "core/study/study.h"
+#include "core/detect/yolo.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd::cli {
+
+namespace {
+
+struct Job {
+  std::string picture, out;
+};
+
+std::vector<Job> jobs_for_dir(const fs::path& images, const fs::path& out) {
+  static const std::set<std::string> kExt = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".webp"};
+  std::vector<Job> jobs;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(images, ec)) {
+    std::string ext = e.path().extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (e.is_regular_file() && kExt.count(ext))
+      jobs.push_back({e.path().string(), (out / (e.path().stem().string() + ".txt")).string()});
+  }
+  if (ec) throw StudyError(images.string() + ": cannot read the directory: " + ec.message());
+  std::sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) { return a.picture < b.picture; });
+  return jobs;
+}
+
+}  // namespace
+
+Runner add_detect_command(CLI::App& app) {
+  struct Args {
+    std::string input, onnx, out, model, detector = "yolo";
+    YoloOptions yolo;
+    int threads = 0;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("detect", "Run a YOLOv5 ONNX export (or the classical detector) on pictures");
+  cmd->add_option("INPUT", args->input, "A directory of pictures, or a study (with --model)")->required();
+  cmd->add_option("--onnx", args->onnx, "YOLOv5 ONNX export (export.py --include onnx)");
+  cmd->add_option("--out", args->out, "Directory for the predictions (pictures mode)");
+  cmd->add_option("--model", args->model, "Study mode: fill STUDY/<domain>/predictions/NAME/ for every domain");
+  cmd->add_option("--detector", args->detector, "yolo (default) or classical (the demo's OpenCV detector)")
+      ->check(CLI::IsMember({"yolo", "classical"}));
+  cmd->add_option("--imgsz", args->yolo.imgsz, "Network input size (square)");
+  cmd->add_option("--conf", args->yolo.conf, "Confidence threshold");
+  cmd->add_option("--iou", args->yolo.iou, "NMS IoU threshold");
+  cmd->add_option("--classes", args->yolo.classes, "Keep only these classes, e.g. 0,1")->delimiter(',');
+  cmd->add_option("--threads", args->threads, "Picture decoding threads (default: all cores)");
+  return [args]() -> int {
+    const bool study_mode = !args->model.empty();
+    if (study_mode == !args->out.empty())
+      throw CLI::ValidationError("detect", "give --out PRED_DIR for a directory of pictures, or --model NAME for a study");
+    if (args->detector == "yolo" && args->onnx.empty())
+      throw CLI::ValidationError("detect", "--onnx MODEL.onnx is required (or --detector classical)");
+    std::vector<Job> jobs;
+    if (study_mode) {
+      const Study st = open_study(args->input);
+      for (const auto& d : st.domains) {
+        const auto more = jobs_for_dir(fs::path(d.dir) / "images", fs::path(d.dir) / "predictions" / args->model);
+        jobs.insert(jobs.end(), more.begin(), more.end());
+      }
+      if (jobs.empty()) throw StudyError(args->input + ": no pictures in any <domain>/images/ directory");
+    } else {
+      if (!fs::is_directory(args->input)) throw StudyError(args->input + ": no such directory of pictures");
+      jobs = jobs_for_dir(args->input, args->out);
+      if (jobs.empty()) throw StudyError(args->input + ": no pictures (png, jpg, tif, bmp, webp) in this directory");
+    }
+    std::unique_ptr<YoloDetector> yolo;
+    if (args->detector == "yolo") {
+      yolo = std::make_unique<YoloDetector>(args->onnx, args->yolo);  // loaded once, layout checked
+      fmt::print(stderr, "{}: {} head, {} classes\n", args->onnx, yolo->head() == YoloHead::kV5 ? "YOLOv5" : "YOLOv8",
+                 yolo->classes());
+    }
+    // Decode ahead in parallel while the network runs on the previous batch.
+    const int threads = std::max(1, args->threads > 0 ? args->threads : static_cast<int>(std::thread::hardware_concurrency()));
+    Progress progress("detecting");
+    int failed = 0;
+    auto decode = [](const std::string& p) { return cv::imread(p, cv::IMREAD_COLOR); };
+    std::vector<std::future<cv::Mat>> batch;
+    size_t next = 0;
+    auto fill = [&] {
+      batch.clear();
+      for (int k = 0; k < threads && next + k < jobs.size(); ++k)
+        batch.push_back(std::async(std::launch::async, decode, jobs[next + k].picture));
+    };
+    fill();
+    while (next < jobs.size()) {
+      std::vector<cv::Mat> pictures;
+      for (auto& f : batch) pictures.push_back(f.get());
+      const size_t start = next;
+      next += pictures.size();
+      fill();
+      for (size_t k = 0; k < pictures.size(); ++k) {
+        const Job& job = jobs[start + k];
+        if (pictures[k].empty()) {
+          fmt::print(stderr, "{}: cannot decode the picture; skipped\n", job.picture);
+          ++failed;
+          continue;
+        }
+        std::vector<Box> boxes = yolo ? yolo->detect(pictures[k]) : detect_rocks(pictures[k], RockDetectorParams{});
+        write_labels(job.out, boxes, LabelKind::kPrediction);
+        progress.update(static_cast<int>(start + k + 1), static_cast<int>(jobs.size()));
+      }
+    }
+    fmt::print("{} pictures, predictions written{}\n", jobs.size() - failed,
+               failed ? fmt::format(", {} could not be decoded", failed) : "");
+    return failed ? kBadInput : kOk;
+  };
+}
+
+}  // namespace ipd::cli

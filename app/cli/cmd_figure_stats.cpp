@@ -1,0 +1,74 @@
+// `ipd figure table|compare|distribution|breakdown STUDY --out FILE.pdf|svg|png`: the study-wide figures,
+// built on the statistics of ipd/study_statistics.h (the numbers `ipd table --ci` prints).
+#include <fmt/format.h>
+
+#include "app/cli/cli_common.h"
+#include "app/cli/commands.h"
+#include "app/cli/figure_cli.h"
+#include "ui/figures/figure_study.h"
+#include "app/cli/study_options.h"
+
+namespace ipd::cli {
+
+namespace {
+
+struct StatsArgs {
+  StudyOptions study;
+  FigureOutputArgs output;
+  std::string ref, a, b, by = "size";
+  int permutations = 2000, worst = 2, bins = 4;
+};
+
+int run(const std::string& kind, const StatsArgs& args) {
+  ui::FigureOptions o;
+  if (const int rc = figure_options(args.output, &o)) return rc;
+  o.ci = args.study.ci_given;
+  o.by = args.by;
+  auto loaded = load_study_table(args.study, true);
+  if (!loaded) return kBadInput;
+  ui::StudyFigureRequest r;
+  r.kind = kind;
+  if (!args.study.models.empty()) r.model = args.study.models.front();
+  r.models = args.study.models;
+  r.ref = args.ref;
+  r.a = args.a;
+  r.b = args.b;
+  r.bootstrap = loaded->bootstrap;
+  r.permutations = args.permutations;
+  r.worst = args.worst;
+  r.bins = args.bins;
+  const ui::FontMetrics metrics(o.font_file);
+  ui::DisplayList fig(metrics);
+  const std::string title = ui::draw_study_figure(fig, loaded->table, loaded->labels, r, o);
+  write_figure(fig, metrics, o, args.output.out, title);
+  return kOk;
+}
+
+}  // namespace
+
+Runner add_figure_stats_commands(CLI::App* fig, std::shared_ptr<std::string> which) {
+  auto args = std::make_shared<StatsArgs>();
+  auto add = [&](const char* name, const char* what) {
+    CLI::App* cmd = fig->add_subcommand(name, what);
+    add_study_options(cmd, &args->study, true);
+    add_figure_output_options(cmd, &args->output);
+    cmd->callback([which, name] { *which = name; });
+    return cmd;
+  };
+  add("table", "The cross table (Table I) as a figure; --ci adds each cell's interval");
+  CLI::App* cmp = add("compare", "Which renderer is closer to the reference: ΔIPD with its interval per model, p-values");
+  cmp->add_option("--ref", args->ref, "Reference domain (default: the first, usually real)");
+  cmp->add_option("--a", args->a, "First renderer (default: the second domain)");
+  cmp->add_option("--b", args->b, "Second renderer (default: the third domain)");
+  cmp->add_option("--permutations", args->permutations, "Sign-flip permutations for the p-value")->check(CLI::NonNegativeNumber);
+  CLI::App* dist = add("distribution", "Per-scene IPD of one model for each domain pair (box plots, worst scenes named)");
+  dist->add_option("--worst", args->worst, "How many worst scenes to name per domain pair")->check(CLI::Range(0, 20));
+  CLI::App* br = add("breakdown", "IPD of one model and domain pair per bin of rock size, region or confidence");
+  br->add_option("--by", args->by, "size, region or confidence")->check(CLI::IsMember({"size", "region", "confidence"}));
+  br->add_option("--bins", args->bins, "Quantile bins for size and confidence")->check(CLI::Range(1, 20));
+  br->add_option("--a", args->a, "Reference domain (default: the first)");
+  br->add_option("--b", args->b, "Other domain (default: the second)");
+  return [args, which]() -> int { return run(*which, *args); };
+}
+
+}  // namespace ipd::cli

@@ -1,0 +1,34 @@
+// `ipd import coco ANNOTATIONS.json [--results RESULTS.json] --images DIR --out STUDY/<domain>`.
+#include <fmt/format.h>
+
+#include "app/cli/cli_common.h"
+#include "app/cli/commands.h"
+#include "core/study/coco_import.h"
+
+namespace ipd::cli {
+
+Runner add_import_command(CLI::App& app) {
+  auto o = std::make_shared<CocoImportOptions>();
+  CLI::App* imp = app.add_subcommand("import", "Bring labels from other formats into the study layout");
+  imp->require_subcommand(1);
+  CLI::App* cmd = imp->add_subcommand("coco", "COCO ground truth (and detection results) to YOLO txt");
+  cmd->add_option("ANNOTATIONS", o->annotations, "COCO instances JSON (images, annotations, categories)")->required();
+  cmd->add_option("--results", o->results, "COCO detection results JSON [{image_id, category_id, bbox, score}]");
+  cmd->add_option("--images", o->images_dir, "Directory the file_name entries resolve in (linked into images/)")->required();
+  cmd->add_option("--out", o->out_dir, "The domain directory to fill, e.g. STUDY/real")->required();
+  cmd->add_option("--model", o->model, "Prediction set name for --results (default coco-results)");
+  cmd->add_flag("--skip-bad-lines", o->skip_bad_entries, "Warn about malformed entries and skip them");
+  return [o]() -> int {
+    const CocoImportReport r = import_coco(*o);
+    if (report_label_errors(r.errors, o->skip_bad_entries) || !r.written) {
+      fmt::print(stderr, "error: {} malformed entr{}; nothing written (--skip-bad-lines skips them)\n", r.errors.size(),
+                 r.errors.size() == 1 ? "y" : "ies");
+      return kBadInput;
+    }
+    fmt::print("{} images, {} GT boxes, {} detections, {} classes, {} pictures linked -> {}\n", r.images, r.boxes,
+               r.detections, r.classes.size(), r.linked_images, o->out_dir);
+    return kOk;
+  };
+}
+
+}  // namespace ipd::cli

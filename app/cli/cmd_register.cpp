@@ -1,0 +1,249 @@
+// `ipd register REAL.txt SYNTH.txt` and `ipd register --list FILE.tsv`: rock pairing of label files.
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include <algorithm>
+
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <vector>
+
+#include "app/cli/cli_common.h"
+#include "app/cli/commands.h"
+#include "core/util/atomic_file.h"
+#include "core/util/parallel.h"
+#include "core/registration/registration.h"
+
+namespace ipd::cli {
+
+namespace {
+
+// A count rounded to a whole number with thousands separators: 1045000 -> "1,045,000" (not "1.05e+06").
+std::string grouped_count(double n) {
+  std::string digits = fmt::format("{:.0f}", std::abs(n));
+  for (int k = static_cast<int>(digits.size()) - 3; k > 0; k -= 3) digits.insert(static_cast<size_t>(k), ",");
+  return (n < 0 && digits != "0" ? "-" : "") + digits;
+}
+
+// "1 trial", "1,000 trials".
+std::string counted(double n, const char* singular, const char* plural) {
+  return grouped_count(n) + " " + (std::lround(n) == 1 ? singular : plural);
+}
+
+// Five decimals, and a number that rounds to zero prints as "0.00000", never "-0.00000".
+std::string fixed_no_minus_zero(double v) {
+  const std::string s = fmt::format("{:.5f}", v);
+  return s == "-0.00000" ? s.substr(1) : s;
+}
+
+// What a method's search counts, named alike in --json and the text report: cpd runs EM iterations (no trials,
+// no hypotheses); paper and consensus draw trials and score hypotheses.
+struct SearchCount {
+  const char* json_key;
+  const char* singular;
+  const char* plural;
+  int RegistrationReport::*value;
+};
+
+std::vector<SearchCount> search_counts(RegistrationMethod method) {
+  if (method == RegistrationMethod::kCpd) return {{"em_iterations", "EM iteration", "EM iterations", &RegistrationReport::trials}};
+  return {{"trials", "trial", "trials", &RegistrationReport::trials},
+          {"hypotheses", "hypothesis", "hypotheses", &RegistrationReport::hypotheses}};
+}
+
+struct Job {
+  std::string real, synth;
+  int line = 0;
+  nlohmann::json result;
+  std::vector<LabelError> errors;
+};
+
+nlohmann::json report_json(const Job& job, const RegistrationReport& r) {
+  nlohmann::json j;
+  j["real"] = job.real;
+  j["synth"] = job.synth;
+  j["method"] = to_string(r.method);
+  j["affine"] = {{r.affine(0, 0), r.affine(0, 1), r.affine(0, 2)}, {r.affine(1, 0), r.affine(1, 1), r.affine(1, 2)}};
+  j["pairs"] = nlohmann::json::array();
+  for (const auto& [a, b] : r.pairs) j["pairs"].push_back({a, b});
+  for (const auto& c : search_counts(r.method)) j[c.json_key] = r.*c.value;
+  j["inliers"] = r.inliers;
+  j["score"] = r.score;
+  j["stop"] = ipd::to_string(r.stop);
+  j["confidence"] = r.confidence;
+  j["ambiguous"] = r.ambiguous;
+  j["work"] = r.work;
+  j["work_budget"] = r.work_budget;
+  if (!r.note.empty()) j["note"] = r.note;
+  j["elapsed_ms"] = r.elapsed_ms;
+  return j;
+}
+
+void run_job(Job* job, const RegistrationOptions& opt, int cls, bool skip_bad_lines) {
+  LabelFile a = read_labels(job->real, {LabelKind::kGroundTruth});
+  LabelFile b = read_labels(job->synth, {LabelKind::kGroundTruth});
+  for (const auto* f : {&a, &b}) {
+    if (!f->exists) job->errors.push_back({f->path, 0, "no such label file"});
+    job->errors.insert(job->errors.end(), f->errors.begin(), f->errors.end());
+  }
+  const bool file_problem = std::any_of(job->errors.begin(), job->errors.end(),
+                                        [](const LabelError& e) { return e.malformed_lines() == 0; });
+  if (!job->errors.empty() && (!skip_bad_lines || file_problem)) return;
+  keep_class(&a, cls);
+  keep_class(&b, cls);
+  job->result = report_json(*job, register_rocks(a.boxes, b.boxes, opt));
+}
+
+std::vector<Job> read_list(const std::string& path) {
+  const std::string text = read_file(path);
+  std::vector<Job> jobs;
+  std::istringstream in(text);
+  std::string line;
+  int n = 0, unlisted = 0;
+  std::vector<std::string> bad;
+  while (std::getline(in, line)) {
+    ++n;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.find_first_not_of(" \t") == std::string::npos || line[0] == '#') continue;
+    const size_t tab = line.find('\t');
+    if (tab == std::string::npos || line.find('\t', tab + 1) != std::string::npos) {
+      if (bad.size() < kMaxListedErrors)
+        bad.push_back(fmt::format("{}:{}: expected real_path<TAB>synth_path, found '{}'", path, n,
+                                  line.size() > 40 ? line.substr(0, 37) + "..." : line));
+      else
+        ++unlisted;
+      continue;
+    }
+    jobs.push_back({line.substr(0, tab), line.substr(tab + 1), n, {}, {}});
+  }
+  if (!bad.empty()) {
+    std::string all;
+    for (const auto& b : bad) all += (all.empty() ? "" : "\n") + b;
+    if (unlisted > 0) all += fmt::format("\n{}: {} more malformed line(s) not listed", path, unlisted);
+    throw IoError(all);
+  }
+  return jobs;
+}
+
+}  // namespace
+
+Runner add_register_command(CLI::App& app) {
+  struct Args {
+    std::string real, synth, list, method = "consensus";
+    std::uint64_t seed = 0;
+    int cls = -1, trials = 0, threads = 0;
+    std::vector<int> image_size;
+    double budget_ms = 0, max_rotation = 0, max_anisotropy = 0;
+    bool json = false, skip_bad_lines = false;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("register", "Pair the rocks of two GT label files by point-set registration");
+  cmd->add_option("REAL", args->real, "Real image's label file (YOLO txt)");
+  cmd->add_option("SYNTH", args->synth, "Synthetic image's label file (YOLO txt)");
+  // What --list prints is checked by Cli.RegisterListPrintsWhatItsHelpSays.
+  cmd->add_option("--list", args->list,
+                  "TSV file of real_path<TAB>synth_path lines (blank and # lines skipped); prints one report per "
+                  "pair, in the file's order: text, or with --json one JSON object per line (a pair that fails: "
+                  "{real, synth, error})");
+  cmd->add_option("--method", args->method, "Registration method:\n" + methods_help())
+      ->check(CLI::IsMember(method_names()));
+  cmd->add_option("--seed", args->seed, "Random seed (results are deterministic for a seed)");
+  cmd->add_option("--class", args->cls, "Only boxes of this class (default: all)");
+  // Each method's own search budget, as `ipd bench registration` treats budgets (Cli.RegisterTrialsIsEachMethodsBudget).
+  cmd->add_option("--trials", args->trials,
+                  "Search budget: paper: K samples (default 1000); consensus: hypothesis cap (default 1000); cpd: EM "
+                  "iterations (default 100)");
+  cmd->add_option("--budget-ms", args->budget_ms, "Stop searching after this many milliseconds per pair");
+  cmd->add_option("--image-size", args->image_size, "W,H of the pictures, so angles are measured in pixels")
+      ->delimiter(',')
+      ->expected(2);
+  cmd->add_option("--max-rotation", args->max_rotation, "consensus: largest plausible rotation in degrees (default 30)");
+  cmd->add_option("--max-anisotropy", args->max_anisotropy,
+                  "consensus: largest ratio of the affine's two scales (default 2)");
+  cmd->add_option("--threads", args->threads, "Worker threads for --list (default: all cores)");
+  cmd->add_flag("--json", args->json, "Print JSON, one object per pair on its own line");
+  cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
+  return [args, cmd]() -> int {
+    const bool list_mode = !args->list.empty();
+    if (list_mode == (!args->real.empty() || !args->synth.empty()) || (!list_mode && args->synth.empty()))
+      throw CLI::ValidationError("register", "give either REAL SYNTH or --list FILE.tsv");
+    RegistrationOptions opt;
+    parse_method(args->method, &opt.method);
+    opt.seed = args->seed;
+    if (cmd->count("--trials") > 0) {
+      if (args->trials < 1) throw CLI::ValidationError("--trials", fmt::format("must be at least 1, got {}", args->trials));
+      (opt.method == RegistrationMethod::kCpd ? opt.cpd_iterations : opt.max_trials) = args->trials;
+    }
+    opt.time_budget_ms = args->budget_ms;
+    if (args->max_rotation > 0) opt.max_rotation_deg = args->max_rotation;
+    if (args->max_anisotropy > 0) opt.max_anisotropy = args->max_anisotropy;
+    if (args->image_size.size() == 2) {
+      if (args->image_size[0] <= 0 || args->image_size[1] <= 0)
+        throw CLI::ValidationError("--image-size", "width and height must be positive");
+      opt.aspect = static_cast<double>(args->image_size[0]) / args->image_size[1];
+    }
+    const std::string bad = opt.validate();
+    if (!bad.empty()) throw CLI::ValidationError("register", bad);
+    std::vector<Job> jobs;
+    if (list_mode) jobs = read_list(args->list);
+    else jobs.push_back({args->real, args->synth, 0, {}, {}});
+    parallel_for(jobs.size(), args->threads, [&](size_t k) { run_job(&jobs[k], opt, args->cls, args->skip_bad_lines); });
+    int failed = 0, reported = 0;
+    for (const auto& job : jobs) {
+      const bool fatal = job.result.is_null();
+      if (report_label_errors(job.errors, !fatal && args->skip_bad_lines) || fatal) {
+        ++failed;
+        if (list_mode && args->json) {
+          nlohmann::json e = {{"real", job.real}, {"synth", job.synth}};
+          e["error"] = job.errors.empty() ? "failed" : job.errors.front().to_string();
+          std::cout << e.dump() << "\n";
+        }
+        continue;
+      }
+      if (args->json) {
+        std::cout << job.result.dump() << "\n";
+        continue;
+      }
+      const auto& r = job.result;
+      ++reported;
+      fmt::print("{} -> {}\n", job.real, job.synth);
+      const std::string method = r["method"].get<std::string>();
+      // The same counts, under the same names, as --json (the studio's header says the same).
+      std::string searched;
+      for (const auto& c : search_counts(opt.method))
+        searched += (searched.empty() ? "" : ", ") + counted(r[c.json_key].get<double>(), c.singular, c.plural);
+      fmt::print("  method {}: {}, score {}; stopped: {}\n", method, searched,
+                 fixed_no_minus_zero(r["score"].get<double>()), r["stop"].get<std::string>());
+      // Two different counts: A centres that land within the gate of some B centre after the alignment,
+      // and the one-to-one pairs the method then forms (which the IPD uses).
+      fmt::print("  {} within the gate; {} by {}\n", counted(r["inliers"].get<double>(), "centre", "centres"),
+                 counted(static_cast<double>(r["pairs"].size()), "pair", "pairs"),
+                 method == "paper" ? "mutual nearest neighbour" : "aligned-box IoU (one-to-one)");
+      // The budget is the same for every method: 10^6 + 300 n log2 n point evaluations for n rocks in all.
+      fmt::print("  work: {} of {} point evaluations (the bound for this many rocks); confidence {:.3f}{}\n",
+                 grouped_count(r["work"].get<double>()),
+                 grouped_count(r["work_budget"].get<double>()), r["confidence"].get<double>(),
+                 r["ambiguous"].get<bool>() ? std::string("; AMBIGUOUS: ") + kAmbiguousReason : std::string());  // the reason has its own "(e.g. ...)"
+      if (r.contains("note")) fmt::print("  note: {}\n", r["note"].get<std::string>());
+      const auto& a = r["affine"];
+      fmt::print("  affine (real -> synth, normalised): [{} {} {}; {} {} {}]\n", fixed_no_minus_zero(a[0][0].get<double>()),
+                 fixed_no_minus_zero(a[0][1].get<double>()), fixed_no_minus_zero(a[0][2].get<double>()),
+                 fixed_no_minus_zero(a[1][0].get<double>()), fixed_no_minus_zero(a[1][1].get<double>()),
+                 fixed_no_minus_zero(a[1][2].get<double>()));
+      fmt::print("  pairs (1-based real:synth):");
+      for (const auto& p : r["pairs"]) fmt::print(" {}:{}", p[0].get<int>() + 1, p[1].get<int>() + 1);
+      fmt::print("\n");
+    }
+    // Angles and the rotation bound are measured in pixels: without the picture's size a wide picture's
+    // alignment reads differently from ipd-studio's and ipd table's, which take it from study.yaml.
+    if (reported > 0 && args->image_size.empty())
+      fmt::print(stderr, "note: pictures taken as square (aspect 1); --image-size W,H measures angles in pixels, "
+                         "as ipd table and ipd-studio do with study.yaml's image size\n");
+    return failed ? kBadInput : kOk;
+  };
+}
+
+}  // namespace ipd::cli

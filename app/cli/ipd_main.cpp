@@ -1,0 +1,54 @@
+// `ipd`: the command-line face of IPD Studio. Thin: parsing and printing; the work is in core/.
+#include <fmt/format.h>
+
+#include <exception>
+#include <vector>
+
+#include "app/cli/cli_common.h"
+#include "app/cli/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"ipd: Instance Performance Difference of real vs synthetic camera images"};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all", "Show help for every subcommand");
+  std::vector<std::pair<CLI::App*, ipd::cli::Runner>> runners;
+  auto add = [&](ipd::cli::Runner (*adder)(CLI::App&)) {
+    const size_t before = app.get_subcommands({}).size();
+    auto run = adder(app);
+    runners.emplace_back(app.get_subcommands({})[before], std::move(run));
+  };
+  add(ipd::cli::add_table_command);
+  add(ipd::cli::add_register_command);
+  add(ipd::cli::add_demo_command);
+  add(ipd::cli::add_figure_command);
+  add(ipd::cli::add_bench_command);
+  add(ipd::cli::add_detect_command);
+  add(ipd::cli::add_import_command);
+  add(ipd::cli::add_compare_command);
+  add(ipd::cli::add_breakdown_command);
+  add(ipd::cli::add_export_command);
+  add(ipd::cli::add_metrics_command);
+  try {
+    if (argc > 0) app.name(argv[0]);
+    std::vector<std::string> args = ipd::cli::join_optional_values(argc, argv);
+    app.parse(args);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return ipd::cli::kUsage;
+  }
+  try {
+    for (auto& [sub, run] : runners)
+      if (sub->parsed()) return run();
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return ipd::cli::kUsage;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return ipd::cli::kBadInput;
+  }
+  return ipd::cli::kUsage;
+}

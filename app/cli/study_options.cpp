@@ -1,0 +1,84 @@
+#include "app/cli/study_options.h"
+
+#include <fmt/format.h>
+
+#include "app/cli/cli_common.h"
+#include "core/registration/registration_cache.h"
+#include "core/ipd/study_cache.h"
+#include "core/stats/study_statistics.h"
+
+namespace ipd::cli {
+
+BootstrapOptions StudyOptions::bootstrap_options() const {
+  BootstrapOptions b;
+  b.resamples = bootstrap;
+  b.level = level;
+  b.seed = seed >= 0 ? static_cast<std::uint64_t>(seed) : 0;
+  return b;
+}
+
+void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
+  cmd->add_option("STUDY", o->study, "Study directory")->required();
+  cmd->add_option("--model", o->models, "Only these models (repeat or comma-separate)")->delimiter(',');
+  cmd->add_option("--domains", o->domains, "Only these domains, e.g. real,principled")->delimiter(',');
+  cmd->add_option("--method", o->method,
+                  "Registration method (default from study.yaml, else " + method_names().front() + "):\n" + methods_help())
+      ->check(CLI::IsMember(method_names()));
+  cmd->add_option("--seed", o->seed, "Registration and bootstrap seed (default from study.yaml, else 0)");
+  cmd->add_option("--conf", o->conf,
+                  "Drop predictions below this confidence (the GUI slider; default: study.yaml's conf_threshold)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--threads", o->threads, "Worker threads (0: every core); results don't depend on it")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--no-cache", o->no_cache, "Register every scene again (ignore STUDY/.ipd-cache/)");
+  cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "Warn about malformed label lines and skip them");
+  if (!with_bootstrap) return;
+  cmd->add_option("--bootstrap", o->bootstrap, "Scene-bootstrap resamples for intervals (0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->default_val(2000);
+  // A flag with an optional level (`--ci`, `--ci=0.9`; main() turns `--ci 0.9` into `--ci=0.9`), so it
+  // never takes the STUDY after it for a level, whatever follows.
+  cmd->add_flag("--ci{0.95}", o->ci_text,
+                "Interval level (default 0.95; --ci=LEVEL or --ci LEVEL); with --format latex, print the intervals")
+      ->check(CLI::Range(0.5, 0.9999))
+      ->each([o](const std::string& level) {
+        o->level = std::stod(level);
+        o->ci_given = true;
+      });
+}
+
+Study open_study_with_conf(const StudyOptions& o) {
+  Study study = open_study(o.study);
+  if (o.conf >= 0) study.config.conf_threshold = o.conf;
+  return study;
+}
+
+std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals) {
+  const Study study = open_study_with_conf(o);
+  // The GUI's parsed-study cache (study_cache.h): unchanged label files and registrations are read back.
+  StudyCache parsed(o.no_cache ? std::string() : parsed_study_cache_path(study.root), study.root);
+  LoadedStudy out{parsed.load_labels(study), {}, study.config.conf_threshold, {}};
+  if (report_label_errors(out.labels.errors, o.skip_bad_lines)) return std::nullopt;
+  RegistrationCache registration(o.no_cache ? std::string() : registration_cache_dir(study.root));
+  registration.preload(parsed.take_registrations());
+  TableOptions opt;
+  opt.models = o.models;
+  opt.domains = o.domains;
+  opt.threads = o.threads;
+  opt.registration = study.config.registration;
+  if (!o.method.empty()) parse_method(o.method, &opt.registration.method);
+  if (o.seed >= 0) opt.registration.seed = static_cast<std::uint64_t>(o.seed);
+  opt.cache_dir = registration.dir();
+  opt.registration_cache = &registration;
+  Progress progress("registering");
+  opt.progress = [&](int d, int t) { progress.update(d, t); };
+  out.table = compute_cross_table(out.labels, opt);
+  parsed.save(out.labels, registration);
+  for (const auto& w : out.table.warnings) fmt::print(stderr, "warning: {}\n", w);
+  out.bootstrap = o.bootstrap_options();
+  if (o.seed < 0) out.bootstrap.seed = opt.registration.seed;
+  if (with_intervals && o.bootstrap > 0) add_confidence_intervals(&out.table, out.bootstrap, o.threads);
+  return out;
+}
+
+}  // namespace ipd::cli

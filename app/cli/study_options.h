@@ -1,0 +1,49 @@
+// Options shared by the commands that compute IPD from a study (table, compare, breakdown, metrics, export):
+// STUDY, --model, --domains, --method, --seed, --conf, --bootstrap, --ci, --threads, --skip-bad-lines.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/ipd/ipd.h"
+#include "core/stats/statistics.h"
+
+namespace ipd::cli {
+
+struct StudyOptions {
+  std::string study;
+  std::vector<std::string> models, domains;
+  std::string method;
+  long long seed = -1;          // registration and bootstrap seed; -1: study.yaml's, else 0
+  double conf = -1;             // --conf X: prediction threshold (as the GUI slider); -1: study.yaml's
+  int bootstrap = 2000;         // resamples; 0 = off
+  double level = 0.95;          // --ci LEVEL
+  bool ci_given = false;        // --ci appeared (LaTeX prints intervals)
+  std::string ci_text;          // --ci's text as parsed (level holds its value)
+  int threads = 0;
+  bool skip_bad_lines = false;
+  bool no_cache = false;        // --no-cache: register every scene again
+
+  BootstrapOptions bootstrap_options() const;
+};
+
+// Adds the options to `cmd`. `with_bootstrap`: also --bootstrap and --ci.
+void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap);
+
+// The study with --conf applied, its labels (label errors reported; nullopt when they are fatal) and the
+// cross table with intervals (when o.bootstrap > 0).
+struct LoadedStudy {
+  StudyLabels labels;
+  CrossTable table;
+  double conf_threshold = 0;
+  BootstrapOptions bootstrap;  // as used: the seed is --seed, else the study's registration seed
+};
+std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals);
+
+// Opens the study and applies --conf (for commands that read labels themselves).
+Study open_study_with_conf(const StudyOptions& o);
+
+}  // namespace ipd::cli

@@ -1,0 +1,77 @@
+// ipd-studio's application object: the worker (study data), the texture cache (pictures), the view state,
+// and the one function that applies what the views asked for. main() only runs the window loop around it.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ui/gui/export_dialog.h"
+#include "app/studio/frame_stats.h"
+#include "ui/gui/stats_panels.h"
+#include "app/studio/studio_options.h"
+#include "app/studio/studio_replay.h"
+#include "app/studio/studio_stats.h"
+#include "app/studio/studio_textures.h"
+#include "app/studio/studio_worker.h"
+#include "ui/gui/views.h"
+
+namespace ipd::studio {
+
+
+class StudioApp {
+ public:
+  explicit StudioApp(StudioOptions options);  // throws std::runtime_error for a bad replay file
+  // Builds this frame's windows (between ImGui::NewFrame and ImGui::Render).
+  void frame();
+  // After the frame was rendered and finished: timing (wall clock, and the UI thread's own CPU time),
+  // replay progress; returns the screenshot path to save now (empty: none).
+  std::string after_render(double frame_ms, double ui_cpu_ms);
+  bool done() const { return done_; }
+  void request_quit() { ui_.show_quit = true; }
+  int print_stats() const;  // prints frame_ms / scene_ms; returns the exit code
+
+ private:
+  void apply(const ui::UiCommands& cmd);  // the one place commands take effect
+  void adopt_snapshot();
+  void next_suspect();
+  void goto_scene(int scene);
+  bool replay_step();  // one action of --replay; false while waiting
+  ui::Picture picture(const std::string& domain, const std::string& stem, bool urgent, bool* full);
+  void list_browse_dir();
+  void export_figure(const ui::ExportRequest& request);  // on the worker, from the current snapshot
+
+  StudioOptions o_;
+  StudyWorker worker_;
+  PictureLoader loader_;
+  TextureCache textures_;
+  ui::UiState ui_;
+  ui::ExportDialogState export_dialog_;
+  ui::StatsPanelState stats_ui_;
+  StatsJob stats_;  // intervals, histogram, breakdown, comparison: off the UI thread
+  std::shared_ptr<const Snapshot> snap_;
+  long order_version_ = -1;
+  std::string order_filter_;
+  int order_sort_ = -1;
+  bool order_desc_ = true;
+  long jump_serial_ = 0;
+  std::string traced_;  // "pair/stem" whose search was asked to be recorded
+  std::string listed_dir_;
+  bool done_ = false, open_failed_ = false;
+  // Timing
+  FrameStats stats_out_;
+  // Exports running on the worker: frames drawn meanwhile are timed apart.
+  std::shared_ptr<std::atomic<int>> exports_running_ = std::make_shared<std::atomic<int>>(0);
+  int counted_ = 0, settle_ = 0, since_change_ = 0;
+  bool changing_ = false, change_shown_ = false, pictures_full_ = false;
+  std::chrono::steady_clock::time_point change_started_;
+  // Replay
+  std::vector<ReplayAction> replay_;
+  size_t replay_next_ = 0;
+  int replay_wait_ = 0;
+  std::string screenshot_now_;
+};
+
+}  // namespace ipd::studio

@@ -1,0 +1,71 @@
+#include "app/studio/studio_replay.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/registration/registration.h"
+
+namespace ipd::studio {
+
+std::vector<ReplayAction> parse_replay(const std::string& text, const std::string& file) {
+  // verb -> (argument count, what they are)
+  static const std::map<std::string, std::pair<int, const char*>> verbs = {
+      {"wait", {1, "a frame count"}},       {"conf", {1, "a threshold in [0, 1]"}},
+      {"model", {1, "a model name"}},       {"domains", {2, "two domain names"}},
+      {"scene", {1, "next, prev or a scene name"}}, {"pair", {2, "two rock numbers (left, right)"}},
+      {"unpair", {1, "a left rock number"}}, {"exclude", {1, "a left rock number"}},
+      {"undo", {0, "nothing"}},             {"redo", {0, "nothing"}},
+      {"rerun", {1, "a registration method"}}, {"export", {1, "[a figure kind] and an output file"}},
+      {"screenshot", {1, "a PNG file"}},
+  };
+  std::vector<ReplayAction> out;
+  std::istringstream in(text);
+  int n = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++n;
+    if (const size_t hash = line.find('#'); hash != std::string::npos) line.resize(hash);
+    std::istringstream words(line);
+    ReplayAction a;
+    a.line = n;
+    if (!(words >> a.verb)) continue;
+    for (std::string w; words >> w;) a.args.push_back(w);
+    const auto it = verbs.find(a.verb);
+    auto fail = [&](const std::string& why) {
+      throw std::runtime_error(file + ":" + std::to_string(n) + ": " + why);
+    };
+    if (it == verbs.end())
+      fail("unknown action '" + a.verb + "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, undo, "
+           "redo, rerun, export or screenshot)");
+    const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
+    if (static_cast<int>(a.args.size()) != it->second.first && !export_with_kind)
+      fail("'" + a.verb + "' takes " + it->second.second + ", got " + std::to_string(a.args.size()) + " argument(s)");
+    auto positive = [&](const std::string& w) {
+      char* end = nullptr;
+      const long v = std::strtol(w.c_str(), &end, 10);
+      if (*end || v < 1) fail("'" + a.verb + "': expected a number >= 1, got '" + w + "'");
+    };
+    if (a.verb == "wait" || a.verb == "pair" || a.verb == "unpair" || a.verb == "exclude")
+      for (const auto& w : a.args) positive(w);
+    if (a.verb == "conf") {
+      char* end = nullptr;
+      const double v = std::strtod(a.args[0].c_str(), &end);
+      if (*end || !(v >= 0 && v <= 1)) fail("'conf': expected a threshold in [0, 1], got '" + a.args[0] + "'");
+    }
+    RegistrationMethod method;
+    if (a.verb == "rerun" && !parse_method(a.args[0], &method))
+      fail("'rerun': expected " + method_choices() + ", got '" + a.args[0] + "'");
+    static const std::vector<std::string> kinds = {"pairs", "registration", "table", "compare", "distribution",
+                                                   "breakdown", "breakdown-size", "breakdown-region",
+                                                   "breakdown-confidence"};
+    if (export_with_kind && std::find(kinds.begin(), kinds.end(), a.args[0]) == kinds.end())
+      fail("'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
+           "breakdown-size, breakdown-region or breakdown-confidence), got '" + a.args[0] + "'");
+    out.push_back(std::move(a));
+  }
+  return out;
+}
+
+}  // namespace ipd::studio

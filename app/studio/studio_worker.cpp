@@ -1,0 +1,270 @@
+#include "app/studio/studio_worker.h"
+
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+
+#include "core/demo/demo_study.h"
+#include "core/registration/registration_cache.h"
+#include "core/ipd/study_cache.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd::studio {
+
+namespace {
+// A first look opens this many scenes; studies no bigger open in one go.
+constexpr size_t kFirstLookScenes = 40;
+
+bool study_fits_first_look(const std::string& root) {
+  // Counting label files of the first domain is enough to tell a small study from a big one.
+  std::error_code ec;
+  for (fs::directory_iterator d(root, ec); !ec && d != fs::directory_iterator(); d.increment(ec)) {
+    const fs::path labels = d->path() / "labels";
+    if (d->path().filename().string().rfind('.', 0) == 0 || !fs::is_directory(labels, ec)) continue;
+    size_t n = 0;
+    for (fs::directory_iterator f(labels, ec); !ec && f != fs::directory_iterator(); f.increment(ec))
+      if (++n > kFirstLookScenes) return false;
+    return true;
+  }
+  return true;
+}
+}  // namespace
+
+StudyWorker::StudyWorker() : thread_([this] { run(); }) {}
+
+StudyWorker::~StudyWorker() {
+  {
+    std::lock_guard<std::mutex> l(mu_);
+    stop_ = true;
+  }
+  cv_.notify_all();
+  thread_.join();
+}
+
+void StudyWorker::submit(WorkerCommand c) {
+  {
+    std::lock_guard<std::mutex> l(mu_);
+    // A newer threshold or re-run replaces a queued one: dragging the slider or paging through scenes
+    // never builds a backlog.
+    if (c.kind == WorkerCommand::Kind::kConf || c.kind == WorkerCommand::Kind::kRerun)
+      for (auto& q : queue_)
+        if (q.kind == c.kind) {
+          q = std::move(c);
+          return;
+        }
+    queue_.push_back(std::move(c));
+  }
+  cv_.notify_one();
+}
+
+std::shared_ptr<const Snapshot> StudyWorker::snapshot() const {
+  std::lock_guard<std::mutex> l(mu_);
+  return snapshot_;
+}
+
+OpenProgress StudyWorker::progress() const {
+  std::lock_guard<std::mutex> l(mu_);
+  return progress_;
+}
+
+std::string StudyWorker::open_error() const {
+  std::lock_guard<std::mutex> l(mu_);
+  return open_error_;
+}
+
+std::vector<std::string> StudyWorker::take_messages() {
+  std::lock_guard<std::mutex> l(mu_);
+  return std::exchange(messages_, {});
+}
+
+bool StudyWorker::idle() const {
+  std::lock_guard<std::mutex> l(mu_);
+  return queue_.empty() && !busy_;
+}
+
+void yield_to_the_view() { setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 4); }
+
+void StudyWorker::run() {
+  yield_to_the_view();
+  while (true) {
+    WorkerCommand c;
+    {
+      std::unique_lock<std::mutex> l(mu_);
+      while (!stop_ && queue_.empty()) {
+        cv_.wait_for(l, std::chrono::milliseconds(250));
+        std::vector<std::shared_ptr<const Snapshot>> unused;
+        for (auto it = retired_.begin(); it != retired_.end();)
+          if (it->use_count() == 1) unused.push_back(std::move(*it)), it = retired_.erase(it);
+          else ++it;
+        l.unlock();
+        unused.clear();  // destroyed outside the lock
+        l.lock();
+      }
+      if (stop_) return;
+      c = std::move(queue_.front());
+      queue_.pop_front();
+      busy_ = true;
+    }
+    try {
+      execute(c);
+    } catch (const std::exception& e) {
+      std::lock_guard<std::mutex> l(mu_);
+      if (c.kind == WorkerCommand::Kind::kOpen) open_error_ = e.what();
+      else messages_.push_back(std::string("error: ") + e.what());
+    }
+    std::lock_guard<std::mutex> l(mu_);
+    busy_ = false;
+  }
+}
+
+// A session was just opened: the last re-run belongs to the old one, and the view gets a whole new snapshot.
+void StudyWorker::publish_new_session() {
+  rerun_.reset();
+  rerun_stem_.clear();
+  published_.reset();
+  publish(true);
+}
+
+void StudyWorker::publish(bool session_changed, int jump_to_scene) {
+  auto snap = std::make_shared<Snapshot>();
+  if (session_changed || !published_) {
+    published_ = std::make_shared<const Session>(*session_);
+    published_summaries_ = session_->summaries();
+  }
+  snap->session = published_;
+  snap->summaries = published_summaries_;
+  snap->version = ++version_;
+  if (jump_to_scene >= 0) ++jump_serial_;
+  snap->jump_to_scene = jump_to_scene;
+  snap->jump_serial = jump_serial_;
+  snap->rerun = rerun_;
+  snap->rerun_stem = rerun_stem_;
+  snap->rerun_pair = rerun_pair_;
+  snap->rerun_is_automatic = rerun_automatic_;
+  std::lock_guard<std::mutex> l(mu_);
+  if (snapshot_) retired_.push_back(std::move(snapshot_));
+  snapshot_ = std::move(snap);
+}
+
+void StudyWorker::execute(WorkerCommand& c) {
+  using K = WorkerCommand::Kind;
+  if (c.kind == K::kOpen) {
+    {
+      std::lock_guard<std::mutex> l(mu_);
+      progress_ = OpenProgress{};
+      progress_.opening = true;
+      progress_.stage = "label files";
+      open_error_.clear();
+    }
+    const auto start = std::chrono::steady_clock::now();
+    if (c.b == "demo" && !fs::exists(fs::path(c.a) / "study.yaml")) {
+      { std::lock_guard<std::mutex> l(mu_); progress_.stage = "generating the demo study"; }
+      write_demo_study(c.a);
+    }
+    SessionOptions o;
+    o.cache_dir = registration_cache_dir(c.a);
+    o.progress = [&](const char* stage, int done, int total) {
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::lock_guard<std::mutex> l(mu_);
+      if (progress_.stage != stage) progress_.eta_s = -1;
+      progress_.stage = stage;
+      progress_.done = done;
+      progress_.total = total;
+      progress_.elapsed_s = s;
+      if (done > 0 && done < total) progress_.eta_s = s / done * (total - done);
+    };
+    try {
+      // Content first: the first scenes on their own (a few hundred files) while the whole study loads.
+      if (!study_fits_first_look(c.a)) {
+        SessionOptions first = o;
+        first.first_scenes = kFirstLookScenes;
+        first.progress = {};
+        session_ = std::make_unique<Session>(Session::open(c.a, first));
+        publish_new_session();
+        std::lock_guard<std::mutex> l(mu_);
+        progress_.first_look = true;
+      }
+      o.study_cache_path = parsed_study_cache_path(c.a);
+      auto session = std::make_unique<Session>(Session::open(c.a, o));
+      session_ = std::move(session);
+    } catch (...) {
+      std::lock_guard<std::mutex> l(mu_);
+      progress_.opening = false;
+      throw;
+    }
+    publish_new_session();
+    std::lock_guard<std::mutex> l(mu_);
+    progress_.opening = false;
+    progress_.first_look = false;
+    progress_.cached = session_->cached_registrations();
+    progress_.study_cache = session_->study_cache_stats();
+    return;
+  }
+  if (!session_) return;
+  Session& s = *session_;
+  auto save = [&](SaveJob job) {
+    if (s.read_only()) {
+      std::lock_guard<std::mutex> l(mu_);
+      messages_.push_back("read-only study: the edit is kept in memory; use File > Save edits as…");
+    } else {
+      saver_.submit(std::move(job));
+    }
+  };
+  int jump = -1;
+  switch (c.kind) {
+    case K::kEdit:
+      if (c.scene >= 0 && c.scene < static_cast<int>(s.scenes().size())) save(s.apply(c.scene, c.edit));
+      break;
+    case K::kUndo:
+      if (auto job = s.undo()) save(std::move(*job)), jump = std::max(0, s.last_edited_scene());
+      break;
+    case K::kRedo:
+      if (auto job = s.redo()) save(std::move(*job)), jump = std::max(0, s.last_edited_scene());
+      break;
+    case K::kDomains:
+      s.select_domains(c.a, c.b);
+      break;
+    case K::kModel:
+      s.select(s.pair_index(), c.a);
+      break;
+    case K::kConf:
+      s.set_conf_threshold(c.value);
+      break;
+    case K::kRerun: {
+      if (c.scene < 0 || c.scene >= static_cast<int>(s.scenes().size())) return;
+      const auto& [a, b] = s.domain_pairs()[s.pair_index()];
+      const std::string& stem = s.scenes()[c.scene].stem;
+      RegistrationOptions o = c.automatic ? s.study().config.registration : c.registration;
+      o.aspect = s.study().aspect();
+      o.record_trace = true;
+      rerun_ = std::make_shared<const RegistrationReport>(
+          register_rocks(s.labels().gt_of(a, stem).boxes, s.labels().gt_of(b, stem).boxes, o));
+      rerun_stem_ = stem;
+      rerun_pair_ = s.pair_index();
+      rerun_automatic_ = c.automatic;
+      publish(false);
+      return;
+    }
+    case K::kSaveAllTo: {
+      for (auto& job : s.save_all_to(c.a)) saver_.submit(std::move(job));
+      std::lock_guard<std::mutex> l(mu_);
+      messages_.push_back("edited pairs written under " + c.a + "/pairs/");
+      return;
+    }
+    case K::kExport: {
+      std::string message = c.job ? c.job() : std::string("export failed: nothing to export");
+      std::lock_guard<std::mutex> l(mu_);
+      messages_.push_back(std::move(message));
+      return;
+    }
+    case K::kOpen: break;
+  }
+  publish(true, jump);
+}
+
+}  // namespace ipd::studio

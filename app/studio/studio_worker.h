@@ -1,0 +1,109 @@
+// The worker of ipd-studio (Tracy's worker/view split): it owns the study data and does every heavy job
+// (opening with progress, threshold/model/domain changes, edits, registration re-runs, exports); the view
+// reads an immutable Snapshot that is swapped in whole after every change, so no frame waits on it.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/session/session.h"
+#include "app/studio/studio_saver.h"
+
+namespace ipd::studio {
+
+// Everything the view may read; never modified after it is published.
+struct Snapshot {
+  std::shared_ptr<const Session> session;
+  std::vector<SceneSummary> summaries;  // per scene of the current domain pair, computed once per change
+  long version = 0;
+  // Set by undo/redo: the scene the view should show (with jump_serial changing each time).
+  int jump_to_scene = -1;
+  long jump_serial = 0;
+  // A registration re-run with its trace (the replay panel), for the scene `rerun_stem` of domain pair
+  // `rerun_pair`; null when none.
+  std::shared_ptr<const RegistrationReport> rerun;
+  std::string rerun_stem;
+  int rerun_pair = -1;
+  bool rerun_is_automatic = false;  // recorded with the study's own options (the replay of what was done)
+};
+
+struct OpenProgress {
+  bool opening = false;
+  std::string stage;    // "labels", "registration"
+  int done = 0, total = 0;
+  double elapsed_s = 0, eta_s = -1;  // time left, -1 when unknown
+  int cached = 0;       // registrations read from the cache
+  // The snapshot published so far shows the study's first scenes (a first look) while the rest loads.
+  bool first_look = false;
+  StudyCacheStats study_cache;  // of the last open
+};
+
+struct WorkerCommand {
+  enum class Kind { kOpen, kEdit, kUndo, kRedo, kDomains, kModel, kConf, kRerun, kSaveAllTo, kExport };
+  explicit WorkerCommand(Kind k = Kind::kEdit) : kind(k) {}
+  Kind kind;
+  int scene = -1;
+  Edit edit = Edit::reset();
+  std::string a, b;     // kOpen: study dir, "demo" when it is the demo; kDomains: left, right; kModel: a
+  double value = 0;     // kConf
+  RegistrationOptions registration;  // kRerun
+  bool automatic = false;            // kRerun: the study's own registration, recorded for the replay
+  // kExport: renders and writes a figure in-process (ui::export_figure on an immutable snapshot's
+  // session) and returns the status line.
+  std::function<std::string()> job;
+};
+
+// Lowers the calling thread's CPU priority a little (threads it starts inherit it): heavy jobs yield to the
+// window's frames, and to the rasteriser's threads, on a machine with few cores.
+void yield_to_the_view();
+
+class StudyWorker {
+ public:
+  StudyWorker();
+  ~StudyWorker();  // finishes queued saves
+  void submit(WorkerCommand c);
+  std::shared_ptr<const Snapshot> snapshot() const;  // null until a study is open
+  OpenProgress progress() const;
+  std::string open_error() const;
+  std::vector<std::string> take_messages();  // status lines (export finished, save failed, …)
+  bool idle() const;                         // nothing queued or running
+  Saver& saver() { return saver_; }
+
+ private:
+  void run();
+  void execute(WorkerCommand& c);
+  void publish(bool session_changed, int jump_to_scene = -1);
+  void publish_new_session();
+
+  mutable std::mutex mu_;
+  std::condition_variable cv_;
+  std::deque<WorkerCommand> queue_;
+  bool stop_ = false, busy_ = false;
+  std::shared_ptr<const Snapshot> snapshot_;
+  // Snapshots the view may still hold: freed here, on the worker, once the view lets go (freeing a
+  // 10,000-scene session takes longer than a frame).
+  std::vector<std::shared_ptr<const Snapshot>> retired_;
+  OpenProgress progress_;
+  std::string open_error_;
+  std::vector<std::string> messages_;
+  // Worker-thread only:
+  std::unique_ptr<Session> session_;
+  std::shared_ptr<const RegistrationReport> rerun_;
+  std::string rerun_stem_;
+  int rerun_pair_ = -1;
+  bool rerun_automatic_ = false;
+  std::shared_ptr<const Session> published_;  // reused when a command did not change the session
+  std::vector<SceneSummary> published_summaries_;
+  long version_ = 0, jump_serial_ = 0;
+  Saver saver_;
+  std::thread thread_;
+};
+
+}  // namespace ipd::studio

@@ -1,0 +1,308 @@
+#include "core/demo/demo_study.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <random>
+
+#include "core/util/atomic_file.h"
+#include "core/io/label_io.h"
+#include "core/detect/rock_detector.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+
+namespace {
+
+// Deterministic across standard libraries: mt19937_64's output is specified, the distributions are not.
+struct DemoRng {
+  std::mt19937_64 g;
+  explicit DemoRng(std::uint64_t seed) : g(seed) {}
+  double uniform(double lo, double hi) { return lo + (hi - lo) * (static_cast<double>(g() >> 11) / 9007199254740992.0); }
+  int below(int n) { return static_cast<int>(g() % static_cast<std::uint64_t>(n)); }
+};
+
+struct Rock {
+  double x, y, rx, ry, angle_deg, albedo;
+};
+
+struct Scene {
+  std::vector<Rock> rocks;
+  double sun_deg;
+  cv::Point2d wall_a, wall_b;  // the wall's shadow: the half-plane left of the line a->b, near the top-left
+  std::uint64_t texture_seed;
+};
+
+struct DomainLook {
+  const char* name;
+  double ground, ground_contrast, noise, shade_ambient, shadow_factor, blur;
+  bool camera_offset, wall_shadow;
+};
+
+const DomainLook kLooks[] = {
+    {"real", 96, 12, 8, 0.25, 0.40, 1.2, true, true},
+    {"principled", 100, 11, 4, 0.28, 0.45, 0.0, false, false},
+    {"hapke", 124, 7, 3, 0.62, 0.72, 0.0, false, false},
+};
+
+Scene make_scene(DemoRng& rng, int w, int h, int min_rocks, int max_rocks) {
+  Scene s;
+  s.sun_deg = rng.uniform(0, 360);
+  s.texture_seed = rng.g();
+  const int n = min_rocks + rng.below(std::max(1, max_rocks - min_rocks + 1));
+  // Smaller rocks when there are many, so they still fit.
+  const double shrink = std::sqrt(18.0 / std::max(18, n));
+  for (int k = 0; k < n; ++k) {
+    Rock r;
+    for (int attempt = 0; attempt < 50; ++attempt) {
+      const double size = shrink * std::min(w, h) * std::exp(rng.uniform(std::log(0.025), std::log(0.08)));
+      r = {rng.uniform(0.06, 0.94) * w, rng.uniform(0.08, 0.92) * h, size, size * rng.uniform(0.55, 0.9),
+           rng.uniform(-30, 30), rng.uniform(1.1, 1.6)};
+      bool clear = true;
+      for (const auto& o : s.rocks)
+        if (std::hypot(o.x - r.x, o.y - r.y) < 1.3 * (o.rx + r.rx)) clear = false;
+      if (clear) break;
+    }
+    s.rocks.push_back(r);
+  }
+  s.wall_a = {0, rng.uniform(0.15, 0.35) * h};
+  s.wall_b = {rng.uniform(0.25, 0.45) * w, 0};
+  return s;
+}
+
+bool in_wall_shadow(const Scene& s, double x, double y) {
+  const cv::Point2d d = s.wall_b - s.wall_a, p = cv::Point2d(x, y) - s.wall_a;
+  return d.x * p.y - d.y * p.x < 0;  // the side containing the top-left corner
+}
+
+// The real camera sits slightly off the simulated one.
+cv::Matx23d camera_offset(int scene_index, int w, int h) {
+  const double rot = (0.8 + 0.3 * scene_index) * M_PI / 180.0, scale = 1.015;
+  const double tx = 10 + 2 * scene_index, ty = -7 + scene_index;
+  const double c = scale * std::cos(rot), s = scale * std::sin(rot);
+  const double cx = 0.5 * w, cy = 0.5 * h;
+  return {c, -s, cx - c * cx + s * cy + tx, s, c, cy - s * cx - c * cy + ty};
+}
+
+cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& cam, int w, int h,
+               std::vector<Box>* gt) {
+  // Ground: two octaves of smoothed noise, the same field for every domain of a scene.
+  cv::RNG tex(scene.texture_seed);
+  cv::Mat coarse(h / 16 + 1, w / 16 + 1, CV_32F), fine(h / 4 + 1, w / 4 + 1, CV_32F);
+  tex.fill(coarse, cv::RNG::NORMAL, 0, 1);
+  tex.fill(fine, cv::RNG::NORMAL, 0, 1);
+  cv::resize(coarse, coarse, cv::Size(w, h), 0, 0, cv::INTER_CUBIC);
+  cv::resize(fine, fine, cv::Size(w, h), 0, 0, cv::INTER_LINEAR);
+  cv::Mat img = look.ground + look.ground_contrast * (0.7 * coarse + 0.3 * fine);
+  const double sun = scene.sun_deg * M_PI / 180.0;
+  const cv::Point2d light(std::cos(sun), std::sin(sun));
+  gt->clear();
+  for (const auto& r0 : scene.rocks) {
+    Rock r = r0;
+    if (look.camera_offset) {
+      r.x = cam(0, 0) * r0.x + cam(0, 1) * r0.y + cam(0, 2);
+      r.y = cam(1, 0) * r0.x + cam(1, 1) * r0.y + cam(1, 2);
+      r.rx *= 1.015;
+      r.ry *= 1.015;
+    }
+    // Shadow first, cast away from the sun; drawn only in the patch it can cover.
+    const cv::Point2d sc(r.x - 0.7 * r.rx * light.x, r.y - 0.7 * r.rx * light.y);
+    const int reach = static_cast<int>(std::ceil(r.rx * 1.15)) + 3;
+    const cv::Rect patch = cv::Rect(static_cast<int>(sc.x) - reach, static_cast<int>(sc.y) - reach, 2 * reach + 1,
+                                    2 * reach + 1) & cv::Rect(0, 0, w, h);
+    if (patch.area() > 0) {
+      cv::Mat shadow = cv::Mat::zeros(patch.size(), CV_8U);
+      cv::ellipse(shadow, sc - cv::Point2d(patch.x, patch.y), cv::Size2d(r.rx * 1.15, r.ry * 1.05), r.angle_deg, 0,
+                  360, 255, cv::FILLED, cv::LINE_AA);
+      cv::Mat sh_f;
+      shadow.convertTo(sh_f, CV_32F, 1.0 / 255);
+      cv::Mat roi = img(patch);
+      roi = roi.mul(1.0 - (1.0 - look.shadow_factor) * sh_f);
+    }
+    // The rock: a shaded half-ellipsoid.
+    const double ca = std::cos(r.angle_deg * M_PI / 180), sa = std::sin(r.angle_deg * M_PI / 180);
+    const int x0 = std::max(0, static_cast<int>(r.x - r.rx - 2)), x1 = std::min(w - 1, static_cast<int>(r.x + r.rx + 2));
+    const int y0 = std::max(0, static_cast<int>(r.y - r.rx - 2)), y1 = std::min(h - 1, static_cast<int>(r.y + r.rx + 2));
+    int bx0 = w, by0 = h, bx1 = -1, by1 = -1;
+    for (int y = y0; y <= y1; ++y) {
+      float* row = img.ptr<float>(y);
+      for (int x = x0; x <= x1; ++x) {
+        const double dx = x - r.x, dy = y - r.y;
+        const double u = (ca * dx + sa * dy) / r.rx, v = (-sa * dx + ca * dy) / r.ry;
+        const double q = u * u + v * v;
+        if (q > 1) continue;
+        const double nz = std::sqrt(1 - q);
+        // normal in image axes
+        const double nx = ca * u - sa * v, ny = sa * u + ca * v;
+        const double lambert = std::max(0.0, 0.75 * (nx * light.x + ny * light.y) + 0.55 * nz);
+        row[x] = static_cast<float>(look.ground * r.albedo * (look.shade_ambient + (1.2 - look.shade_ambient) * lambert));
+        bx0 = std::min(bx0, x), bx1 = std::max(bx1, x), by0 = std::min(by0, y), by1 = std::max(by1, y);
+      }
+    }
+    if (bx1 < bx0) continue;  // outside the frame
+    const bool hidden = look.wall_shadow && in_wall_shadow(scene, r.x, r.y);
+    if (hidden) continue;  // hand labellers can't see rocks in the wall's shadow
+    const double cw = bx1 - bx0 + 1, ch = by1 - by0 + 1;
+    if (cw < 4 || ch < 4) continue;
+    Box b;
+    b.cls = 0;
+    b.cx = (bx0 + 0.5 * cw) / w;
+    b.cy = (by0 + 0.5 * ch) / h;
+    b.w = cw / w;
+    b.h = ch / h;
+    gt->push_back(b);
+  }
+  if (look.wall_shadow) {
+    for (int y = 0; y < h; ++y) {
+      float* row = img.ptr<float>(y);
+      for (int x = 0; x < w; ++x)
+        if (in_wall_shadow(scene, x, y)) row[x] *= 0.18f;
+    }
+  }
+  if (look.blur > 0) cv::GaussianBlur(img, img, cv::Size(0, 0), look.blur);
+  cv::Mat noise(h, w, CV_32F);
+  tex.fill(noise, cv::RNG::NORMAL, 0, look.noise);
+  img += noise;
+  cv::Mat out8;
+  img.convertTo(out8, CV_8U);
+  cv::Mat bgr;
+  cv::cvtColor(out8, bgr, cv::COLOR_GRAY2BGR);
+  // A faint warm tint, as lunar-analogue photos have.
+  bgr.forEach<cv::Vec3b>([](cv::Vec3b& p, const int*) { p[2] = cv::saturate_cast<uchar>(p[2] * 1.04 + 2); });
+  return bgr;
+}
+
+void write_png(const std::string& path, const cv::Mat& img) {
+  std::vector<uchar> buf;
+  if (!cv::imencode(".png", img, buf)) throw IoError(path + ": PNG encoding failed");
+  write_file_atomically(path, std::string(buf.begin(), buf.end()));
+}
+
+const char* kReadme = R"(# IPD Studio demo study (generated)
+
+This study was generated by `ipd demo`; nothing in it is real data. It exists so that every feature of
+IPD Studio can be tried without downloading anything.
+
+- `real/`, `principled/`, `hapke/`: six scenes each, drawn with OpenCV: lunar-like ground, shaded rocks and
+  their shadows. `real` has a small camera offset, more noise, slight blur and a wall shadow in which rocks
+  are unlabelled (as in the POLAR photos); `hapke` has flatter shading than `principled`.
+- `labels/`: GT boxes (YOLO txt). Rows are shuffled per domain, so rock indices differ between domains
+  and pairing needs registration.
+- `predictions/det-<domain>/`: a classical OpenCV rock detector (background difference, threshold,
+  contours) whose parameters were tuned on `<domain>`, run on every domain.
+)";
+
+// The GT box of a rock as seen through `cam` (no picture): the rotated ellipse's bounding box, clipped.
+bool geometric_box(const Rock& r0, const DomainLook& look, const Scene& scene, const cv::Matx23d& cam, int w, int h,
+                   Box* out) {
+  Rock r = r0;
+  if (look.camera_offset) {
+    r.x = cam(0, 0) * r0.x + cam(0, 1) * r0.y + cam(0, 2);
+    r.y = cam(1, 0) * r0.x + cam(1, 1) * r0.y + cam(1, 2);
+    r.rx *= 1.015;
+    r.ry *= 1.015;
+  }
+  if (look.wall_shadow && in_wall_shadow(scene, r.x, r.y)) return false;
+  const double ca = std::cos(r.angle_deg * M_PI / 180), sa = std::sin(r.angle_deg * M_PI / 180);
+  const double ex = std::hypot(r.rx * ca, r.ry * sa), ey = std::hypot(r.rx * sa, r.ry * ca);
+  const double x0 = std::max(0.0, r.x - ex), x1 = std::min<double>(w, r.x + ex);
+  const double y0 = std::max(0.0, r.y - ey), y1 = std::min<double>(h, r.y + ey);
+  if (x1 - x0 < 4 || y1 - y0 < 4) return false;
+  *out = Box{0, 0.5 * (x0 + x1) / w, 0.5 * (y0 + y1) / h, (x1 - x0) / w, (y1 - y0) / h, 1.0};
+  return true;
+}
+
+// A detector that knows the GT: trained on its own domain it misses less and fits tighter.
+std::vector<Box> synthetic_predictions(DemoRng& rng, const std::vector<Box>& gt, bool own_domain) {
+  const double miss = own_domain ? 0.05 : 0.15, jitter = own_domain ? 0.08 : 0.18;
+  std::vector<Box> out;
+  for (const Box& g : gt) {
+    if (rng.uniform(0, 1) < miss) continue;
+    Box p = g;
+    p.cx += rng.uniform(-jitter, jitter) * g.w;
+    p.cy += rng.uniform(-jitter, jitter) * g.h;
+    p.w *= 1 + rng.uniform(-jitter, jitter);
+    p.h *= 1 + rng.uniform(-jitter, jitter);
+    p.conf = rng.uniform(0.3, 0.99);
+    out.push_back(p);
+  }
+  if (rng.uniform(0, 1) < 0.3) out.push_back(Box{0, rng.uniform(0.1, 0.9), rng.uniform(0.1, 0.9), 0.03, 0.03, rng.uniform(0.05, 0.5)});
+  return out;
+}
+
+void write_labels_only_study(const std::string& dir, const DemoStudyOptions& o) {
+  DemoRng rng(o.seed);
+  const size_t n_looks = std::size(kLooks);
+  auto stem = [&](int k) { return fmt::format("scene_{:05d}", k + 1); };
+  for (int k = 0; k < o.scenes; ++k) {
+    const Scene scene = make_scene(rng, o.width, o.height, o.min_rocks, o.max_rocks);
+    const cv::Matx23d cam = camera_offset(k % 20, o.width, o.height);
+    for (size_t d = 0; d < n_looks; ++d) {
+      std::vector<Box> gt;
+      Box b;
+      for (const auto& r : scene.rocks)
+        if (geometric_box(r, kLooks[d], scene, cam, o.width, o.height, &b)) gt.push_back(b);
+      for (size_t i = gt.size(); i > 1; --i) std::swap(gt[i - 1], gt[rng.below(static_cast<int>(i))]);
+      const fs::path base = fs::path(dir) / kLooks[d].name;
+      write_labels((base / "labels" / (stem(k) + ".txt")).string(), gt, LabelKind::kGroundTruth);
+      for (size_t m = 0; m < n_looks; ++m)
+        write_labels((base / "predictions" / (std::string("det-") + kLooks[m].name) / (stem(k) + ".txt")).string(),
+                     synthetic_predictions(rng, gt, m == d), LabelKind::kPrediction);
+    }
+  }
+  std::string yaml = "# Generated by `ipd demo --labels-only`: a synthetic labels-only study (no pictures).\n"
+                     "domains: [real, principled, hapke]\n";
+  yaml += fmt::format("image_size: [{}, {}]\nrock_class: 0\nmodels:\n", o.width, o.height);
+  for (size_t m = 0; m < n_looks; ++m) yaml += fmt::format("  det-{0}: {{trained_on: {0}}}\n", kLooks[m].name);
+  yaml += "registration: {method: consensus, seed: 0}\n";
+  write_file_atomically((fs::path(dir) / "study.yaml").string(), yaml);
+}
+
+}  // namespace
+
+void write_demo_study(const std::string& dir, const DemoStudyOptions& o) {
+  if (o.labels_only) return write_labels_only_study(dir, o);
+  const int w = o.width, h = o.height;
+  DemoRng rng(o.seed);
+  std::vector<Scene> scenes;
+  for (int k = 0; k < o.scenes; ++k) scenes.push_back(make_scene(rng, w, h, o.min_rocks, o.max_rocks));
+  const size_t n_looks = std::size(kLooks);
+  std::vector<std::vector<cv::Mat>> pictures(n_looks);
+  std::vector<std::vector<std::vector<Box>>> gts(n_looks);
+  auto stem = [](int k) { return fmt::format("scene_{:02d}", k + 1); };
+  for (size_t d = 0; d < n_looks; ++d) {
+    for (int k = 0; k < o.scenes; ++k) {
+      std::vector<Box> gt;
+      pictures[d].push_back(render(scenes[k], kLooks[d], camera_offset(k, w, h), w, h, &gt));
+      // Shuffle rows so that indices differ between domains, as independent labelling does.
+      for (size_t i = gt.size(); i > 1; --i) std::swap(gt[i - 1], gt[rng.below(static_cast<int>(i))]);
+      gts[d].push_back(gt);
+      const fs::path base = fs::path(dir) / kLooks[d].name;
+      write_png((base / "images" / (stem(k) + ".png")).string(), pictures[d].back());
+      write_labels((base / "labels" / (stem(k) + ".txt")).string(), gt, LabelKind::kGroundTruth);
+    }
+  }
+  std::string yaml =
+      "# Generated by `ipd demo`: a small synthetic study for trying IPD Studio.\n"
+      "domains: [real, principled, hapke]\n";
+  yaml += fmt::format("image_size: [{}, {}]\nrock_class: 0\nmodels:\n", w, h);
+  for (size_t m = 0; m < n_looks; ++m) {
+    const RockDetectorParams params = tune_detector(pictures[m], gts[m]);
+    const std::string model = std::string("det-") + kLooks[m].name;
+    yaml += fmt::format("  {}: {{trained_on: {}}}  # threshold {}, background {}, close {}\n", model, kLooks[m].name,
+                        params.threshold, params.background_kernel, params.close_kernel);
+    for (size_t d = 0; d < n_looks; ++d)
+      for (int k = 0; k < o.scenes; ++k)
+        write_labels((fs::path(dir) / kLooks[d].name / "predictions" / model / (stem(k) + ".txt")).string(),
+                     detect_rocks(pictures[d][k], params), LabelKind::kPrediction);
+  }
+  yaml += "registration: {method: consensus, seed: 0}\n";
+  write_file_atomically((fs::path(dir) / "study.yaml").string(), yaml);
+  write_file_atomically((fs::path(dir) / "README.md").string(), kReadme);
+}
+
+}  // namespace ipd

@@ -1,0 +1,95 @@
+#include "core/geometry/geometry.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+namespace ipd {
+
+double iou(const Box& a, const Box& b) {
+  const double aa = a.area(), ab = b.area();
+  if (!(aa > 0) || !(ab > 0)) return 0.0;
+  const double iw = std::min(a.x1(), b.x1()) - std::max(a.x0(), b.x0());
+  const double ih = std::min(a.y1(), b.y1()) - std::max(a.y0(), b.y0());
+  if (!(iw > 0) || !(ih > 0)) return 0.0;
+  const double inter = iw * ih;
+  const double uni = aa + ab - inter;
+  if (!(uni > 0) || !std::isfinite(uni)) return 0.0;
+  return std::clamp(inter / uni, 0.0, 1.0);
+}
+
+IouTable iou_table(const std::vector<Box>& gt, const std::vector<Box>& pred) {
+  IouTable t;
+  t.rows = static_cast<int>(gt.size());
+  t.cols = static_cast<int>(pred.size());
+  t.values.resize(gt.size() * pred.size());
+  for (size_t i = 0; i < gt.size(); ++i)
+    for (size_t j = 0; j < pred.size(); ++j) t.values[i * pred.size() + j] = iou(gt[i], pred[j]);
+  return t;
+}
+
+PerformanceValues performance_values(const std::vector<Box>& gt, const std::vector<Box>& pred) {
+  PerformanceValues pv;
+  pv.value.assign(gt.size(), 0.0);
+  pv.best_prediction.assign(gt.size(), -1);
+  for (size_t i = 0; i < gt.size(); ++i) {
+    for (size_t j = 0; j < pred.size(); ++j) {
+      const double v = iou(gt[i], pred[j]);
+      if (v > pv.value[i]) {
+        pv.value[i] = v;
+        pv.best_prediction[i] = static_cast<int>(j);
+      }
+    }
+  }
+  return pv;
+}
+
+Affine2 compose(const Affine2& b, const Affine2& a) {
+  Affine2 r;
+  r.leftCols<2>() = b.leftCols<2>() * a.leftCols<2>();
+  r.col(2) = b.leftCols<2>() * a.col(2) + b.col(2);
+  return r;
+}
+
+bool invert(const Affine2& m, Affine2* out) {
+  const Eigen::Matrix2d a = m.leftCols<2>();
+  const double det = a.determinant();
+  const double norm = a.cwiseAbs().maxCoeff();
+  if (!std::isfinite(det) || std::abs(det) <= 1e-12 * std::max(1.0, norm * norm)) return false;
+  const Eigen::Matrix2d ai = a.inverse();
+  out->leftCols<2>() = ai;
+  out->col(2) = -ai * m.col(2);
+  return true;
+}
+
+Affine2 interpolate_from_identity(const Affine2& m, double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  return (1.0 - t) * identity_affine() + t * m;
+}
+
+Box transform_box(const Affine2& m, const Box& b) {
+  const Eigen::Vector2d corners[4] = {{b.x0(), b.y0()}, {b.x1(), b.y0()}, {b.x0(), b.y1()}, {b.x1(), b.y1()}};
+  double lo_x = INFINITY, lo_y = INFINITY, hi_x = -INFINITY, hi_y = -INFINITY;
+  for (const auto& c : corners) {
+    const Eigen::Vector2d p = apply(m, c);
+    lo_x = std::min(lo_x, p.x());
+    hi_x = std::max(hi_x, p.x());
+    lo_y = std::min(lo_y, p.y());
+    hi_y = std::max(hi_y, p.y());
+  }
+  Box r = b;
+  r.cx = 0.5 * (lo_x + hi_x);
+  r.cy = 0.5 * (lo_y + hi_y);
+  r.w = hi_x - lo_x;
+  r.h = hi_y - lo_y;
+  return r;
+}
+
+std::vector<Eigen::Vector2d> centres(const std::vector<Box>& boxes) {
+  std::vector<Eigen::Vector2d> c;
+  c.reserve(boxes.size());
+  for (const auto& b : boxes) c.push_back(b.centre());
+  return c;
+}
+
+}  // namespace ipd

@@ -1,0 +1,179 @@
+#include "core/io/label_io.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fmt/format.h>
+#include <string_view>
+
+#include "core/util/atomic_file.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+
+std::string LabelError::to_string() const {
+  if (line > 0) return fmt::format("{}:{}: {}", file, line, message);
+  if (more > 0) return fmt::format("{}: {} more malformed line(s) not listed", file, more);
+  return fmt::format("{}: {}", file, message);
+}
+
+namespace {
+
+const char* const kColumnNames[] = {"class", "cx", "cy", "w", "h", "conf"};
+
+// Whitespace-separated fields of one line (up to a '#' comment), into `out` (reused: no allocation per line).
+void split_fields(std::string_view line, std::vector<std::string>* out) {
+  out->clear();
+  const size_t hash = line.find('#');
+  if (hash != std::string_view::npos) line = line.substr(0, hash);
+  size_t k = 0;
+  auto space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; };
+  while (k < line.size()) {
+    while (k < line.size() && space(line[k])) ++k;
+    const size_t start = k;
+    while (k < line.size() && !space(line[k])) ++k;
+    if (k > start) {
+      if (out->size() < 8) out->emplace_back(line.substr(start, k - start));
+      else out->push_back({});  // only the count matters beyond a box line's columns
+    }
+  }
+}
+
+// Untrusted text in a message: never more than 40 characters of it.
+std::string shorten(const std::string& s) { return s.size() > 40 ? s.substr(0, 37) + "..." : s; }
+
+// Parses a line's fields into a box or returns why not.
+std::string parse_box(const std::vector<std::string>& f, const LabelParseOptions& opt, Box* box) {
+  const size_t want = opt.kind == LabelKind::kPrediction ? 6 : 5;
+  if (f.size() != want) {
+    return fmt::format("expected {} columns ({}), found {}", want,
+                       want == 6 ? "class cx cy w h conf" : "class cx cy w h", f.size());
+  }
+  const std::string& c = f[0];
+  if (c.empty() || c.find_first_not_of("0123456789") != std::string::npos || c.size() > 9) {
+    return fmt::format("expected a non-negative integer class in column 1, found '{}'", shorten(c));
+  }
+  box->cls = std::atoi(c.c_str());
+  double v[6] = {0, 0, 0, 0, 0, 1};
+  for (size_t k = 1; k < want; ++k) {
+    const char* s = f[k].c_str();
+    char* end = nullptr;
+    errno = 0;
+    const double x = std::strtod(s, &end);
+    if (end == s || *end != '\0') {
+      return fmt::format("expected a number for {} in column {}, found '{}'", kColumnNames[k], k + 1, shorten(f[k]));
+    }
+    if (!std::isfinite(x)) {
+      return fmt::format("expected a finite number for {} in column {}, found '{}'", kColumnNames[k], k + 1,
+                         shorten(f[k]));
+    }
+    v[k] = x;
+  }
+  for (size_t k = 1; k < want; ++k) {
+    if (v[k] < -opt.range_tolerance || v[k] > 1.0 + opt.range_tolerance) {
+      return fmt::format("expected {} in [0, 1] (normalised), found {}", kColumnNames[k], shorten(f[k]));
+    }
+  }
+  if (v[3] <= 0) return fmt::format("expected w > 0, found {}", shorten(f[3]));
+  if (v[4] <= 0) return fmt::format("expected h > 0, found {}", shorten(f[4]));
+  box->cx = v[1];
+  box->cy = v[2];
+  box->w = v[3];
+  box->h = v[4];
+  box->conf = v[5];
+  return {};
+}
+
+}  // namespace
+
+LabelFile parse_labels(const std::string& text, const std::string& file_name, const LabelParseOptions& options) {
+  LabelFile out;
+  out.path = file_name;
+  out.exists = true;
+  std::string_view rest(text);
+  if (rest.substr(0, 3) == "\xEF\xBB\xBF") rest.remove_prefix(3);  // UTF-8 byte order mark (Windows editors)
+  std::vector<std::string> fields;
+  int line_no = 0, unlisted = 0;
+  while (!rest.empty()) {
+    const size_t eol = rest.find('\n');
+    const std::string_view line = rest.substr(0, eol);
+    rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
+    ++line_no;
+    split_fields(line, &fields);
+    if (fields.empty()) continue;
+    Box b;
+    const std::string why = parse_box(fields, options, &b);
+    if (!why.empty()) {
+      if (static_cast<int>(out.errors.size()) < kMaxListedErrors) out.errors.push_back({file_name, line_no, why});
+      else ++unlisted;
+      continue;
+    }
+    out.boxes.push_back(b);
+    out.line_of_box.push_back(line_no);
+  }
+  if (unlisted > 0) out.errors.push_back({file_name, 0, "", unlisted});
+  if (out.boxes.size() > kMaxBoxesPerFile)
+    out.errors.push_back({file_name, 0,
+                          fmt::format("{} boxes, more than the {} per image this tool handles (README: large inputs)",
+                                      out.boxes.size(), kMaxBoxesPerFile)});
+  return out;
+}
+
+LabelFile read_labels(const std::string& path, const LabelParseOptions& options) {
+  try {
+    if (file_kind(path) == FileKind::kMissing) {  // a dangling link or no access is an error, not "missing"
+      LabelFile missing;
+      missing.path = path;
+      return missing;
+    }
+    return parse_labels(read_file(path), path, options);
+  } catch (const IoError& e) {
+    LabelFile bad;
+    bad.path = path;
+    bad.exists = true;
+    // IoError's text already starts with the path.
+    bad.errors.push_back({path, 0, std::string(e.what()).substr(path.size() + 2)});
+    return bad;
+  }
+}
+
+void keep_class(LabelFile* file, int cls) {
+  if (cls < 0) return;
+  size_t k = 0;
+  for (size_t i = 0; i < file->boxes.size(); ++i) {
+    if (file->boxes[i].cls != cls) continue;
+    file->boxes[k] = file->boxes[i];
+    file->line_of_box[k] = file->line_of_box[i];
+    ++k;
+  }
+  file->boxes.resize(k);
+  file->line_of_box.resize(k);
+}
+
+void keep_confident(LabelFile* file, double threshold) {
+  if (threshold <= 0) return;
+  size_t k = 0;
+  for (size_t i = 0; i < file->boxes.size(); ++i) {
+    if (file->boxes[i].conf < threshold) continue;
+    file->boxes[k] = file->boxes[i];
+    file->line_of_box[k] = file->line_of_box[i];
+    ++k;
+  }
+  file->boxes.resize(k);
+  file->line_of_box.resize(k);
+}
+
+void write_labels(const std::string& path, const std::vector<Box>& boxes, LabelKind kind) {
+  std::string text;
+  for (const auto& b : boxes) {
+    text += fmt::format("{} {:.6f} {:.6f} {:.6f} {:.6f}", b.cls, b.cx, b.cy, b.w, b.h);
+    if (kind == LabelKind::kPrediction) text += fmt::format(" {:.4f}", b.conf);
+    text += '\n';
+  }
+  write_file_atomically(path, text);
+}
+
+}  // namespace ipd

@@ -1,0 +1,57 @@
+// Reading YOLO-format label files (ground truth: `class cx cy w h`; predictions: `... conf`).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/geometry/geometry.h"
+
+namespace ipd {
+
+enum class LabelKind { kGroundTruth, kPrediction };
+
+// One problem in one line of one file, printed as `FILE:LINE: message`.
+struct LabelError {
+  std::string file;
+  int line = 0;  // 1-based; 0 when the problem is the file itself (or this is a summary, below)
+  std::string message;
+  // A summary: `more` further malformed lines of `file` that are counted but not listed (a file lists at
+  // most kMaxListedErrors, so 10^6 bad lines don't make 67 MB of messages).
+  int more = 0;
+  std::string to_string() const;
+  int malformed_lines() const { return line > 0 ? 1 : more; }
+};
+constexpr int kMaxListedErrors = 50;
+// More boxes than this in one file is refused (an error naming the file): pairing and IoU tables grow with
+// the product of two images' rock counts, so 10^6-line files would run for minutes.
+constexpr size_t kMaxBoxesPerFile = 20000;
+
+struct LabelFile {
+  std::string path;
+  bool exists = false;           // a missing file means an image with no rocks
+  std::vector<Box> boxes;        // the valid box lines, in file order (a rock's index is its position here)
+  std::vector<int> line_of_box;  // 1-based source line of each box
+  std::vector<LabelError> errors;
+};
+
+struct LabelParseOptions {
+  LabelKind kind = LabelKind::kGroundTruth;
+  double range_tolerance = 1e-3;  // how far outside [0, 1] a normalised value may stray (rounding)
+};
+
+// Parses text that came from `file_name`; every malformed line becomes one LabelError (the first
+// kMaxListedErrors; then one summary with the count), the others are kept. A leading UTF-8 BOM is skipped.
+LabelFile parse_labels(const std::string& text, const std::string& file_name, const LabelParseOptions& options);
+
+// Reads and parses a file. A missing file is not an error (exists = false); an unreadable one is.
+LabelFile read_labels(const std::string& path, const LabelParseOptions& options);
+
+// Keeps only boxes of `cls` (and their line numbers); cls < 0 keeps all.
+void keep_class(LabelFile* file, int cls);
+// Drops predictions below a confidence threshold.
+void keep_confident(LabelFile* file, double threshold);
+
+// Writes boxes as YOLO txt (with confidence for predictions), atomically.
+void write_labels(const std::string& path, const std::vector<Box>& boxes, LabelKind kind);
+
+}  // namespace ipd

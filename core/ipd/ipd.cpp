@@ -1,0 +1,271 @@
+#include "core/ipd/ipd.h"
+
+#include "core/util/nested_lookup.h"
+#include "core/util/parallel.h"
+#include "core/registration/registration_cache.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <set>
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+
+namespace {
+const LabelFile kEmpty{};
+}
+
+const LabelFile& StudyLabels::gt_of(const std::string& d, const std::string& stem) const {
+  const auto di = gt.find(d);
+  if (di == gt.end()) return kEmpty;
+  const auto si = di->second.find(stem);
+  return si == di->second.end() ? kEmpty : si->second;
+}
+
+const LabelFile& StudyLabels::predictions_of(const std::string& d, const std::string& m, const std::string& s) const {
+  return lookup(predictions, d, m, s, kEmpty);
+}
+
+bool StudyLabels::has_predictions(const std::string& d, const std::string& m) const {
+  const auto di = predictions.find(d);
+  return di != predictions.end() && di->second.count(m) > 0;
+}
+
+StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress,
+                        const LabelReuse& reuse) {
+  StudyLabels out;
+  out.study = study;
+  const int cls = study.config.rock_class;
+  // Every file is read and parsed on every core into its own slot (the maps are filled first, serially);
+  // errors are then gathered in file order, so the result does not depend on the thread count.
+  struct Job {
+    LabelFile* slot;
+    std::string path;
+    const std::string *domain, *model, *stem;
+  };
+  static const std::string kGroundTruth;  // the model of a GT file
+  std::vector<Job> jobs;
+  for (const auto& d : study.domains) {
+    for (const auto& stem : d.stems)
+      jobs.push_back({&out.gt[d.name][stem], study.label_path(d.name, stem), &d.name, &kGroundTruth, &stem});
+    for (const auto& m : d.models) {
+      auto& files = out.predictions[d.name][m];
+      for (const auto& stem : d.stems)
+        jobs.push_back({&files[stem], study.prediction_path(d.name, m, stem), &d.name, &m, &stem});
+    }
+  }
+  std::atomic<int> done{0};
+  const int total = static_cast<int>(jobs.size());
+  parallel_for(jobs.size(), 0, [&](size_t k) {
+    const Job& j = jobs[k];
+    const bool prediction = !j.model->empty();
+    if (!reuse || !reuse(*j.domain, *j.model, *j.stem, j.path, j.slot)) {
+      LabelFile f = read_labels(j.path, {prediction ? LabelKind::kPrediction : LabelKind::kGroundTruth});
+      keep_class(&f, cls);
+      if (prediction) keep_confident(&f, study.config.conf_threshold);
+      *j.slot = std::move(f);
+    }
+    const int d = ++done;
+    if (progress && (d % 256 == 0 || d == total)) progress(d, total);
+  });
+  for (const Job& j : jobs) out.errors.insert(out.errors.end(), j.slot->errors.begin(), j.slot->errors.end());
+  return out;
+}
+
+ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
+                        const std::string& stem, const RegistrationOptions& options,
+                        const RegistrationCache* cache) {
+  ScenePairing p;
+  p.stem = stem;
+  const auto& ga = labels.gt_of(a, stem).boxes;
+  const auto& gb = labels.gt_of(b, stem).boxes;
+  p.count_a = static_cast<int>(ga.size());
+  p.count_b = static_cast<int>(gb.size());
+  if (auto fixed = read_fixed_pairs(labels.study, a, b, stem, p.count_a, p.count_b, &p.warnings)) {
+    p.fixed = true;
+    p.pairs = std::move(fixed->pairs);
+    p.excluded_a = std::move(fixed->excluded_a);
+    p.excluded_b = std::move(fixed->excluded_b);
+    return p;
+  }
+  p.registration = register_rocks_cached(cache, ga, gb, options, &p.from_cache);
+  p.pairs = p.registration.pairs;
+  return p;
+}
+
+double SceneIpd::ipd() const { return pairs > 0 ? sum_abs_diff / pairs : std::nan(""); }
+
+SceneIpd scene_contribution(const std::string& stem, const RockPairs& pairs, const std::vector<int>& excluded_a,
+                            const std::vector<int>& excluded_b, const std::vector<double>& pa,
+                            const std::vector<double>& pb) {
+  SceneIpd s;
+  s.stem = stem;
+  std::vector<char> used_a(pa.size(), 0), used_b(pb.size(), 0), out_a(pa.size(), 0), out_b(pb.size(), 0);
+  for (int i : excluded_a) out_a[i] = 1;
+  for (int j : excluded_b) out_b[j] = 1;
+  for (const auto& [i, j] : pairs) {
+    if (used_a[i] || used_b[j]) continue;
+    used_a[i] = used_b[j] = 1;
+    if (out_a[i] || out_b[j]) continue;  // an excluded rock takes its pair out of the IPD
+    s.perf_a.push_back(pa[i]);
+    s.perf_b.push_back(pb[j]);
+    s.counted.emplace_back(i, j);
+    s.sum_abs_diff += std::abs(pa[i] - pb[j]);
+    ++s.pairs;
+  }
+  for (size_t i = 0; i < pa.size(); ++i) s.unpaired_a += !used_a[i] && !out_a[i];
+  for (size_t j = 0; j < pb.size(); ++j) s.unpaired_b += !used_b[j] && !out_b[j];
+  return s;
+}
+
+SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, const std::vector<Box>& pred_a,
+                   const std::vector<Box>& gt_b, const std::vector<Box>& pred_b) {
+  return scene_contribution(pairing.stem, pairing.pairs, pairing.excluded_a, pairing.excluded_b,
+                            performance_values(gt_a, pred_a).value, performance_values(gt_b, pred_b).value);
+}
+
+TableCell make_table_cell(const ModelInfo& model, const std::string& a, const std::string& b) {
+  TableCell cell;
+  cell.model = model.name;
+  cell.trained_on = model.trained_on;
+  cell.a = a;
+  cell.b = b;
+  cell.involves_training_domain = model.trained_on.empty() || model.trained_on == a || model.trained_on == b;
+  return cell;
+}
+
+void total_table_cell(TableCell& cell) {
+  double sum = 0;
+  cell.pairs = cell.unpaired_a = cell.unpaired_b = 0;
+  for (const SceneIpd& s : cell.per_scene) {
+    sum += s.sum_abs_diff;
+    cell.pairs += s.pairs;
+    cell.unpaired_a += s.unpaired_a;
+    cell.unpaired_b += s.unpaired_b;
+  }
+  cell.scenes = static_cast<int>(cell.per_scene.size());
+  cell.ipd = cell.pairs > 0 ? sum / static_cast<double>(cell.pairs) : std::nan("");
+}
+
+const TableCell* CrossTable::cell(const std::string& model, const std::string& a, const std::string& b) const {
+  for (const auto& c : cells)
+    if (c.model == model && ((c.a == a && c.b == b) || (c.a == b && c.b == a))) return &c;
+  return nullptr;
+}
+
+std::vector<std::pair<std::string, std::string>> domain_pairs(const Study& study,
+                                                              const std::vector<std::string>& domains) {
+  std::vector<std::string> chosen;
+  for (const auto& d : study.domains)
+    if (domains.empty() || std::find(domains.begin(), domains.end(), d.name) != domains.end())
+      chosen.push_back(d.name);
+  std::vector<std::pair<std::string, std::string>> out;
+  for (size_t i = 0; i < chosen.size(); ++i)
+    for (size_t j = i + 1; j < chosen.size(); ++j) out.emplace_back(chosen[i], chosen[j]);
+  return out;
+}
+
+CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& options) {
+  const Study& study = labels.study;
+  for (const auto& d : options.domains)
+    if (!study.domain(d)) throw StudyError(fmt::format("{}: no domain '{}' in this study", study.root, d));
+  CrossTable t;
+  for (const auto& m : study.models)
+    if (options.models.empty() || std::count(options.models.begin(), options.models.end(), m.name)) t.models.push_back(m);
+  for (const auto& want : options.models) {
+    if (std::none_of(t.models.begin(), t.models.end(), [&](const auto& m) { return m.name == want; }))
+      throw StudyError(fmt::format("{}: no model '{}' (no <domain>/predictions/{}/ directory and not in study.yaml)",
+                                   study.root, want, want));
+  }
+  if (t.models.empty())
+    throw StudyError(study.root + ": no models (expected <domain>/predictions/<model>/ directories)");
+  t.columns = domain_pairs(study, options.domains);
+  if (t.columns.empty()) throw StudyError(study.root + ": at least two domains are needed to compare");
+
+  // Pair rocks once per (domain pair, scene): pairing depends only on GT, never on the model.
+  struct Job {
+    size_t column;
+    std::string stem;
+    ScenePairing result;
+    std::string error;
+  };
+  std::vector<Job> jobs;
+  std::vector<SceneMatch> matches;
+  for (size_t c = 0; c < t.columns.size(); ++c) {
+    const auto& [a, b] = t.columns[c];
+    SceneMatch m = match_scenes(*study.domain(a), *study.domain(b));
+    auto list = [](const std::vector<std::string>& v) {
+      std::string s;
+      for (size_t k = 0; k < std::min<size_t>(3, v.size()); ++k) s += (k ? ", " : "") + v[k];
+      return s + (v.size() > 3 ? ", ..." : "");
+    };
+    if (!m.only_a.empty())
+      t.warnings.push_back(fmt::format("{} scene(s) of '{}' have no counterpart in '{}' and are skipped: {}",
+                                       m.only_a.size(), a, b, list(m.only_a)));
+    if (!m.only_b.empty())
+      t.warnings.push_back(fmt::format("{} scene(s) of '{}' have no counterpart in '{}' and are skipped: {}",
+                                       m.only_b.size(), b, a, list(m.only_b)));
+    for (const auto& stem : m.common) jobs.push_back({c, stem, {}, {}});
+    matches.push_back(std::move(m));
+  }
+  RegistrationOptions reg = options.registration;
+  if (reg.aspect == 1.0) reg.aspect = study.aspect();
+  const auto start = std::chrono::steady_clock::now();
+  std::atomic<int> done{0};
+  const RegistrationCache own_cache(options.registration_cache ? std::string() : options.cache_dir);
+  const RegistrationCache& cache = options.registration_cache ? *options.registration_cache : own_cache;
+  parallel_for(jobs.size(), options.threads, [&](size_t k) {
+    auto& j = jobs[k];
+    try {
+      const auto& [a, b] = t.columns[j.column];
+      j.result = pair_scene(labels, a, b, j.stem, reg, &cache);
+    } catch (const std::exception& e) {
+      j.error = e.what();
+    }
+    const int d = ++done;
+    if (options.progress) options.progress(d, static_cast<int>(jobs.size()));
+  });
+  t.registration_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  for (const auto& j : jobs) {
+    if (!j.error.empty()) throw StudyError(j.error);
+    (j.result.fixed ? t.fixed_scenes : t.registrations)++;
+    t.cached_registrations += j.result.from_cache;
+    t.warnings.insert(t.warnings.end(), j.result.warnings.begin(), j.result.warnings.end());
+  }
+
+  t.pairings.resize(t.columns.size());
+  for (auto& j : jobs) t.pairings[j.column].push_back(j.result);
+
+  std::set<std::string> warned;
+  for (const auto& model : t.models) {
+    for (size_t c = 0; c < t.columns.size(); ++c) {
+      const auto& [a, b] = t.columns[c];
+      TableCell cell = make_table_cell(model, a, b);
+      for (const auto& d : {a, b}) {
+        if (labels.has_predictions(d, model.name)) continue;
+        cell.missing_predictions = true;
+        if (warned.insert(model.name + "\n" + d).second)
+          t.warnings.push_back(fmt::format("model '{}' has no predictions for domain '{}' (expected {}/): its cells are empty",
+                                           model.name, d,
+                                           (fs::path(study.root) / d / "predictions" / model.name).string()));
+      }
+      if (!cell.missing_predictions)
+        for (const auto& j : jobs)
+          if (j.column == c)
+            cell.per_scene.push_back(scene_ipd(j.result, labels.gt_of(a, j.stem).boxes,
+                                               labels.predictions_of(a, model.name, j.stem).boxes,
+                                               labels.gt_of(b, j.stem).boxes,
+                                               labels.predictions_of(b, model.name, j.stem).boxes));
+      total_table_cell(cell);
+      t.cells.push_back(std::move(cell));
+    }
+  }
+  return t;
+}
+
+}  // namespace ipd

@@ -1,0 +1,128 @@
+// The paper's Algorithm 1: performance-values per rock, rock pairs per image pair, IPD per domain pair and
+// model, and the cross table (rows: models by training domain; columns: domain pairs).
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/io/label_io.h"
+#include "core/util/nested_lookup.h"
+#include "core/registration/registration.h"
+#include "core/study/study.h"
+
+namespace ipd {
+
+// Every label file of a study, parsed once, with all problems found.
+struct StudyLabels {
+  Study study;
+  std::map<std::string, std::map<std::string, LabelFile>> gt;  // domain -> stem -> GT
+  // domain -> model -> stem -> predictions; a model absent here has no predictions for that domain
+  ByDomainModelStem<LabelFile> predictions;
+  std::vector<LabelError> errors;
+
+  const LabelFile& gt_of(const std::string& domain, const std::string& stem) const;
+  const LabelFile& predictions_of(const std::string& domain, const std::string& model, const std::string& stem) const;
+  bool has_predictions(const std::string& domain, const std::string& model) const;
+};
+
+// Lets load_labels take a file parsed earlier (study_cache.h): called from worker threads before each file
+// is read (model empty for GT); true when it filled `out` exactly as reading the file would have.
+using LabelReuse = std::function<bool(const std::string& domain, const std::string& model, const std::string& stem,
+                                      const std::string& path, LabelFile* out)>;
+
+// Reads every label and prediction file (class filter and confidence threshold from the study config).
+// `progress` (optional) is called from worker threads with files read so far.
+StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress = {},
+                        const LabelReuse& reuse = {});
+
+// How the rocks of one image pair were paired.
+struct ScenePairing {
+  std::string stem;
+  RockPairs pairs;
+  bool fixed = false;  // from pairs/<A>__<B>/<stem>.json
+  std::vector<int> excluded_a, excluded_b;
+  int count_a = 0, count_b = 0;
+  RegistrationReport registration;  // meaningful when !fixed
+  bool from_cache = false;          // registration read from the on-disk cache
+  std::vector<std::string> warnings;  // e.g. pairs files present in both name orders
+};
+
+class RegistrationCache;
+// `cache` (may be null): registration results on disk (registration_cache.h).
+ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
+                        const std::string& stem, const RegistrationOptions& options,
+                        const RegistrationCache* cache = nullptr);
+
+// One image pair's contribution for one model.
+struct SceneIpd {
+  std::string stem;
+  std::vector<double> perf_a, perf_b;  // per pair, in pairing order
+  RockPairs counted;                   // the (index in A, index in B) of each counted pair, same order
+  double sum_abs_diff = 0;
+  int pairs = 0, unpaired_a = 0, unpaired_b = 0;
+  double ipd() const;  // NaN when there are no pairs
+};
+
+// The one rule for a scene's counts (the engine's table and the GUI's header both use it): a pair counts
+// unless one of its rocks is excluded; a rock in two pairs counts once; `unpaired` counts rocks in no pair
+// that are not excluded (an excluded rock, or the partner of one, is out of the IPD, not unpaired).
+// `perf_a`/`perf_b`: each rock's performance value. Pair indices must be in range.
+SceneIpd scene_contribution(const std::string& stem, const RockPairs& pairs, const std::vector<int>& excluded_a,
+                            const std::vector<int>& excluded_b, const std::vector<double>& perf_a,
+                            const std::vector<double>& perf_b);
+
+SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, const std::vector<Box>& pred_a,
+                   const std::vector<Box>& gt_b, const std::vector<Box>& pred_b);
+
+struct TableCell {
+  std::string model, trained_on, a, b;
+  double ipd = 0;  // NaN when no pairs or no predictions
+  // scene-bootstrap interval and standard error (ipd/study_statistics.h); NaN until computed
+  double ci_low = std::nan(""), ci_high = std::nan(""), se = std::nan("");
+  long pairs = 0, unpaired_a = 0, unpaired_b = 0;
+  int scenes = 0;
+  bool involves_training_domain = true;  // false: computed, but shown as "–" like the paper
+  bool missing_predictions = false;
+  std::vector<SceneIpd> per_scene;
+};
+
+// A cell for `model` on domains (a, b), numbers still empty; total_table_cell fills them from per_scene.
+TableCell make_table_cell(const ModelInfo& model, const std::string& a, const std::string& b);
+// Pairs, unpaired counts, scenes and the pooled IPD (Σ|diff| / pairs; NaN without pairs) from per_scene.
+void total_table_cell(TableCell& cell);
+
+struct CrossTable {
+  std::vector<ModelInfo> models;
+  std::vector<std::pair<std::string, std::string>> columns;  // domain pairs
+  std::vector<TableCell> cells;                              // row-major: models x columns
+  std::vector<std::vector<ScenePairing>> pairings;           // per column, in the cells' per_scene order
+  std::vector<std::string> warnings;                         // skipped scenes, missing predictions
+  int registrations = 0, fixed_scenes = 0;
+  int cached_registrations = 0;  // of `registrations`, read from the on-disk cache
+  double registration_ms = 0;
+
+  const TableCell* cell(const std::string& model, const std::string& a, const std::string& b) const;
+};
+
+struct TableOptions {
+  std::vector<std::string> models;   // empty: all
+  std::vector<std::string> domains;  // empty: all
+  RegistrationOptions registration;
+  int threads = 0;  // 0: hardware concurrency
+  std::function<void(int done, int total)> progress;
+  std::string cache_dir;  // registration cache (registration_cache_dir()); empty: register every scene
+  const RegistrationCache* registration_cache = nullptr;  // used instead of one in cache_dir when set
+};
+
+// The domain pairs (i < j in study order) of the chosen domains.
+std::vector<std::pair<std::string, std::string>> domain_pairs(const Study& study,
+                                                              const std::vector<std::string>& domains);
+
+// Throws StudyError for unknown model or domain names, or fewer than two domains.
+CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& options);
+
+}  // namespace ipd

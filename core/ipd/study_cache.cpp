@@ -1,0 +1,416 @@
+#include "core/ipd/study_cache.h"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fmt/format.h>
+#include <mutex>
+#include <string_view>
+#include <type_traits>
+
+#include "core/util/atomic_file.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+
+namespace {
+
+constexpr char kMagic[8] = {'I', 'P', 'D', 'S', 'T', 'U', 'D', 'Y'};
+// Bump when the layout, label parsing or a registration method's results change.
+constexpr std::uint32_t kFormat = 2;
+constexpr size_t kHeaderBytes = sizeof kMagic + 4 + 8 + 8;  // magic, format, payload size, checksum
+
+// A word-at-a-time hash (several GB/s, so checking a 150 MB file costs little). Each step is a bijection
+// of the state for a fixed word, so any change confined to one 8-byte word always changes the result.
+std::uint64_t checksum(const char* p, size_t n) {
+  std::uint64_t h = 0x9ae16a3b2f90404full ^ n;
+  size_t k = 0;
+  for (; k + 8 <= n; k += 8) {
+    std::uint64_t w;
+    std::memcpy(&w, p + k, 8);
+    h = (h ^ w) * 0x9e3779b97f4a7c15ull;
+    h ^= h >> 29;
+  }
+  std::uint64_t tail = 0;
+  if (n > k) std::memcpy(&tail, p + k, n - k);  // p may be null when n == 0
+  h = (h ^ tail) * 0x9e3779b97f4a7c15ull;
+  return h ^ (h >> 32);
+}
+
+std::string entry_key(const std::string& domain, const std::string& model, const std::string& stem) {
+  return domain + '\n' + model + '\n' + stem;
+}
+
+class Writer {
+ public:
+  std::string out;
+  template <typename T>
+  void pod(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void str(const std::string& s) {
+    pod<std::uint32_t>(static_cast<std::uint32_t>(s.size()));
+    out.append(s);
+  }
+  template <typename T>
+  void vec(const std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    pod<std::uint64_t>(v.size());
+    if (!v.empty()) out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+};
+
+// Reads what Writer wrote; any read past the end throws (a truncated or corrupt file).
+class Reader {
+ public:
+  Reader(const char* p, size_t n) : p_(p), end_(p + n) {}
+  template <typename T>
+  T pod() {
+    T v;
+    need(sizeof v);
+    std::memcpy(&v, p_, sizeof v);
+    p_ += sizeof v;
+    return v;
+  }
+  std::string str() {
+    const auto n = pod<std::uint32_t>();
+    need(n);
+    std::string s(p_, n);
+    p_ += n;
+    return s;
+  }
+  template <typename T>
+  std::vector<T> vec() {
+    const auto n = pod<std::uint64_t>();
+    if (n > static_cast<std::uint64_t>(end_ - p_) / sizeof(T)) throw std::runtime_error("truncated");
+    std::vector<T> v(n);
+    if (n) std::memcpy(v.data(), p_, n * sizeof(T));  // an empty vector's data() may be null: UB for memcpy
+    p_ += n * sizeof(T);
+    return v;
+  }
+  bool at_end() const { return p_ == end_; }
+
+ private:
+  void need(size_t n) const {
+    if (n > static_cast<size_t>(end_ - p_)) throw std::runtime_error("truncated");
+  }
+  const char* p_;
+  const char* end_;
+};
+
+void write_label_file(Writer& w, const LabelFile& f) {
+  w.pod<std::uint8_t>(f.exists);
+  // Field by field: Box has padding, whose bytes would make the file differ from run to run.
+  w.pod<std::uint64_t>(f.boxes.size());
+  for (const Box& b : f.boxes) {
+    const double v[5] = {b.cx, b.cy, b.w, b.h, b.conf};
+    w.pod<std::int32_t>(b.cls);
+    w.pod(v);
+  }
+  w.vec(f.line_of_box);
+  w.pod<std::uint32_t>(static_cast<std::uint32_t>(f.errors.size()));
+  for (const auto& e : f.errors) {
+    w.str(e.file);
+    w.pod<std::int32_t>(e.line);
+    w.str(e.message);
+    w.pod<std::int32_t>(e.more);
+  }
+}
+
+LabelFile read_label_file(Reader& r, const std::string& path) {
+  LabelFile f;
+  f.path = path;
+  f.exists = r.pod<std::uint8_t>() != 0;
+  const auto boxes = r.pod<std::uint64_t>();
+  if (boxes > kMaxBoxesPerFile) throw std::runtime_error("too many boxes");
+  f.boxes.resize(boxes);
+  for (Box& b : f.boxes) {
+    b.cls = r.pod<std::int32_t>();
+    const auto v = r.pod<std::array<double, 5>>();
+    b.cx = v[0], b.cy = v[1], b.w = v[2], b.h = v[3], b.conf = v[4];
+  }
+  f.line_of_box = r.vec<int>();
+  if (f.line_of_box.size() != f.boxes.size()) throw std::runtime_error("box and line counts differ");
+  const auto errors = r.pod<std::uint32_t>();
+  for (std::uint32_t k = 0; k < errors; ++k) {
+    LabelError e;
+    e.file = r.str();
+    e.line = r.pod<std::int32_t>();
+    e.message = r.str();
+    e.more = r.pod<std::int32_t>();
+    f.errors.push_back(std::move(e));
+  }
+  return f;
+}
+
+// The fields the registration entry files keep (registration_cache.cpp), nothing more.
+void write_report(Writer& w, const RegistrationReport& r) {
+  w.pod<std::int32_t>(static_cast<int>(r.method));
+  for (int k = 0; k < 6; ++k) w.pod<double>(r.affine(k / 3, k % 3));
+  w.pod<std::uint64_t>(r.pairs.size());
+  for (const auto& [i, j] : r.pairs) w.pod<std::int32_t>(i), w.pod<std::int32_t>(j);
+  w.pod<std::int32_t>(r.trials);
+  w.pod<std::int32_t>(r.hypotheses);
+  w.pod<std::int32_t>(r.inliers);
+  w.pod<double>(std::isfinite(r.score) ? r.score : 0.0);
+  w.pod<std::int32_t>(static_cast<int>(r.stop));
+  w.str(r.note);
+  w.pod<double>(r.elapsed_ms);
+  w.pod<double>(std::isfinite(r.confidence) ? r.confidence : 0.0);
+  w.pod<std::uint8_t>(r.ambiguous);
+}
+
+RegistrationReport read_report(Reader& rd) {
+  RegistrationReport r;
+  const int method = rd.pod<std::int32_t>();
+  if (method < 0 || method > static_cast<int>(RegistrationMethod::kCpd)) throw std::runtime_error("bad method");
+  r.method = static_cast<RegistrationMethod>(method);
+  for (int k = 0; k < 6; ++k) {
+    r.affine(k / 3, k % 3) = rd.pod<double>();
+    if (!std::isfinite(r.affine(k / 3, k % 3))) throw std::runtime_error("bad affine");
+  }
+  const auto pairs = rd.pod<std::uint64_t>();
+  for (std::uint64_t k = 0; k < pairs; ++k) {
+    const int i = rd.pod<std::int32_t>();
+    r.pairs.emplace_back(i, rd.pod<std::int32_t>());
+  }
+  r.trials = rd.pod<std::int32_t>();
+  r.hypotheses = rd.pod<std::int32_t>();
+  r.inliers = rd.pod<std::int32_t>();
+  r.score = rd.pod<double>();
+  const int stop = rd.pod<std::int32_t>();
+  if (stop < 0 || stop > static_cast<int>(StopReason::kWorkBudget)) throw std::runtime_error("bad stop reason");
+  r.stop = static_cast<StopReason>(stop);
+  r.note = rd.str();
+  r.elapsed_ms = rd.pod<double>();
+  r.confidence = rd.pod<double>();
+  r.ambiguous = rd.pod<std::uint8_t>() != 0;
+  return r;
+}
+
+std::int64_t ns_of(const struct timespec& t) { return std::int64_t{t.tv_sec} * 1000000000 + t.tv_nsec; }
+
+void write_stamp(Writer& w, const FileStamp& s) {
+  w.pod(s.size);
+  w.pod(s.mtime_ns);
+  w.pod(s.ctime_ns);
+  w.pod(s.inode);
+  w.pod<std::uint8_t>(s.exists);
+}
+
+FileStamp read_stamp(Reader& r) {
+  FileStamp s;
+  s.size = r.pod<std::int64_t>();
+  s.mtime_ns = r.pod<std::int64_t>();
+  s.ctime_ns = r.pod<std::int64_t>();
+  s.inode = r.pod<std::uint64_t>();
+  s.exists = r.pod<std::uint8_t>() != 0;
+  return s;
+}
+
+}  // namespace
+
+FileStamp stamp_of(const std::string& path) {
+  FileStamp s;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return s;
+  s.exists = true;
+  s.size = st.st_size;
+  s.mtime_ns = ns_of(st.st_mtim);
+  s.ctime_ns = ns_of(st.st_ctim);
+  s.inode = st.st_ino;
+  return s;
+}
+
+std::string parsed_study_cache_path(const std::string& study_root) {
+  const fs::path dir = study_cache_dir(study_root);
+  if (dir.filename() == ".ipd-cache") return (dir / "parsed-study.bin").string();
+  // The user directory is shared by every read-only study: one file per study path.
+  std::error_code ec;
+  const fs::path abs = fs::weakly_canonical(fs::absolute(study_root, ec), ec);
+  const std::string name = abs.string();
+  return (dir / "parsed-study" / fmt::format("{:016x}.bin", checksum(name.data(), name.size()))).string();
+}
+
+struct StudyCache::Contents {
+  struct Entry {
+    FileStamp stamp;
+    LabelFile file;
+  };
+  int rock_class = -1;
+  double conf_threshold = 0;
+  std::unordered_map<std::string, Entry> labels;  // entry_key -> file as parsed
+  RegistrationEntries registrations;
+  // Filled by load_labels: each file's stamp as it was read, and how many files were taken from `labels`.
+  std::mutex mu;
+  std::unordered_map<std::string, FileStamp> stamps;
+  bool filters_match = false;
+};
+
+StudyCache::StudyCache(std::string path, const std::string& study_root)
+    : path_(std::move(path)), root_(study_root), contents_(std::make_unique<Contents>()) {
+  stats_.state = "missing";
+  if (path_.empty()) return;
+  // Mapped, not read: no 200 MB buffer to allocate, clear and copy into.
+  struct Mapping {
+    const char* data = nullptr;
+    size_t size = 0;
+    ~Mapping() {
+      if (data) ::munmap(const_cast<char*>(data), size);
+    }
+  } map;
+  try {
+    if (file_kind(path_) != FileKind::kRegular) return;
+  } catch (const std::exception&) {
+    stats_.state = "unreadable";
+    return;
+  }
+  {
+    const int fd = ::open(path_.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    struct stat st {};
+    if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+      if (fd >= 0) ::close(fd);
+      stats_.state = "unreadable";
+      return;
+    }
+    map.size = static_cast<size_t>(st.st_size);
+    void* p = map.size > 0 ? ::mmap(nullptr, map.size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0) : MAP_FAILED;
+    ::close(fd);
+    if (p == MAP_FAILED) {
+      stats_.state = map.size > 0 ? "unreadable" : "ignored: truncated";
+      return;
+    }
+    map.data = static_cast<const char*>(p);
+  }
+  const std::string_view bytes(map.data, map.size);
+  try {
+    if (bytes.size() < kHeaderBytes || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+      throw std::runtime_error("not a parsed-study cache");
+    Reader header(bytes.data() + sizeof kMagic, kHeaderBytes - sizeof kMagic);
+    if (header.pod<std::uint32_t>() != kFormat) throw std::runtime_error("another format version");
+    const auto size = header.pod<std::uint64_t>();
+    const auto sum = header.pod<std::uint64_t>();
+    if (size != bytes.size() - kHeaderBytes) throw std::runtime_error("truncated");
+    if (sum != checksum(bytes.data() + kHeaderBytes, size)) throw std::runtime_error("checksum");
+    Reader r(bytes.data() + kHeaderBytes, size);
+    if (r.str() != study_root) throw std::runtime_error("another study");
+    auto c = std::make_unique<Contents>();
+    c->rock_class = r.pod<std::int32_t>();
+    c->conf_threshold = r.pod<double>();
+    const auto files = r.pod<std::uint64_t>();
+    c->labels.reserve(files);
+    for (std::uint64_t k = 0; k < files; ++k) {
+      std::string key = r.str();
+      const std::string path = r.str();
+      Contents::Entry e;
+      e.stamp = read_stamp(r);
+      e.file = read_label_file(r, path);
+      c->labels.emplace(std::move(key), std::move(e));
+    }
+    const auto reports = r.pod<std::uint64_t>();
+    c->registrations.reserve(reports);
+    for (std::uint64_t k = 0; k < reports; ++k) {
+      std::string key = r.str();
+      c->registrations.emplace(std::move(key), read_report(r));
+    }
+    if (!r.at_end()) throw std::runtime_error("trailing bytes");
+    contents_ = std::move(c);
+    stats_.state = "loaded";
+    stats_.registrations_stored = static_cast<int>(contents_->registrations.size());
+  } catch (const std::exception& e) {
+    stats_.state = std::string("ignored: ") + e.what();
+  }
+}
+
+StudyCache::~StudyCache() = default;
+
+StudyLabels StudyCache::load_labels(const Study& study, const std::function<void(int done, int total)>& progress) {
+  Contents& c = *contents_;
+  c.filters_match = c.rock_class == study.config.rock_class && c.conf_threshold == study.config.conf_threshold;
+  std::atomic<int> reused{0}, parsed{0};
+  StudyLabels labels = ipd::load_labels(
+      study, progress,
+      [&](const std::string& domain, const std::string& model, const std::string& stem, const std::string& path,
+          LabelFile* out) {
+        const std::string key = entry_key(domain, model, stem);
+        const FileStamp now = stamp_of(path);
+        {
+          std::lock_guard<std::mutex> l(c.mu);
+          c.stamps[key] = now;
+        }
+        // Entries are only read here, each by one job: no lock needed to take one.
+        const auto it = c.filters_match ? c.labels.find(key) : c.labels.end();
+        if (it == c.labels.end() || !(it->second.stamp == now) || it->second.file.path != path) {
+          ++parsed;
+          return false;
+        }
+        *out = std::move(it->second.file);
+        it->second.stamp.size = -2;  // taken: a second use would find it empty
+        ++reused;
+        return true;
+      });
+  stats_.files_reused = reused;
+  stats_.files_parsed = parsed;
+  return labels;
+}
+
+RegistrationEntries StudyCache::take_registrations() { return std::move(contents_->registrations); }
+
+void StudyCache::save(const StudyLabels& labels, const RegistrationCache& registration) {
+  if (path_.empty()) return;
+  const RegistrationEntries served = registration.served();
+  size_t files = 0;
+  for (const auto& [d, stems] : labels.gt) files += stems.size();
+  for (const auto& [d, models] : labels.predictions)
+    for (const auto& [m, stems] : models) files += stems.size();
+  const bool labels_same = stats_.state == "loaded" && contents_->filters_match && stats_.files_parsed == 0 &&
+                           files == contents_->labels.size();
+  const bool registrations_same = stats_.state == "loaded" && registration.served_only_preloaded();
+  if (labels_same && registrations_same) return;
+  Writer w;
+  w.out.reserve(kHeaderBytes + files * 1500);
+  w.out.resize(kHeaderBytes);  // filled in below, once the payload's size and checksum are known
+  w.str(root_);
+  w.pod<std::int32_t>(labels.study.config.rock_class);
+  w.pod<double>(labels.study.config.conf_threshold);
+  w.pod<std::uint64_t>(files);
+  auto put = [&](const std::string& key, const LabelFile& f) {
+    w.str(key);
+    w.str(f.path);
+    const auto it = contents_->stamps.find(key);
+    write_stamp(w, it == contents_->stamps.end() ? FileStamp{} : it->second);
+    write_label_file(w, f);
+  };
+  for (const auto& [d, stems] : labels.gt)
+    for (const auto& [stem, f] : stems) put(entry_key(d, "", stem), f);
+  for (const auto& [d, models] : labels.predictions)
+    for (const auto& [m, stems] : models)
+      for (const auto& [stem, f] : stems) put(entry_key(d, m, stem), f);
+  w.pod<std::uint64_t>(served.size());
+  for (const auto& [key, report] : served) {
+    w.str(key);
+    write_report(w, report);
+  }
+  Writer header;
+  header.out.append(kMagic, sizeof kMagic);
+  header.pod<std::uint32_t>(kFormat);
+  header.pod<std::uint64_t>(w.out.size() - kHeaderBytes);
+  header.pod<std::uint64_t>(checksum(w.out.data() + kHeaderBytes, w.out.size() - kHeaderBytes));
+  std::memcpy(w.out.data(), header.out.data(), kHeaderBytes);
+  try {
+    write_file_atomically(path_, w.out);
+    stats_.written = true;
+  } catch (const std::exception&) {
+    // a cache that can't be written only costs time
+  }
+}
+
+}  // namespace ipd

@@ -1,0 +1,76 @@
+// The parsed-study cache: one binary file holding every label file of a study as parsed, and the
+// registration results the last open used, so reopening a 10,000-scene study reads one file instead of
+// 120,000 label files and 30,000 registration entries.
+//
+// It lives in study_cache_dir() (STUDY/.ipd-cache/parsed-study.bin, or the user cache directory, named
+// by a hash of the study's path, when the study is read-only). It is never trusted blindly:
+//  - a label file is reused only when its (size, mtime in ns, ctime in ns, inode) and whether it exists
+//    are what they were when it was parsed; any other file is parsed again;
+//  - the whole file carries a format version, the study root it belongs to, its payload size and a
+//    checksum: a truncated, corrupt, foreign or older file is ignored (and rebuilt), never read in part;
+//  - registrations are keyed by the same content hash as the entry files (registration_cache.h), so a
+//    changed label file or option simply misses.
+// Label files are stored as load_labels() returns them (class and confidence filters applied): the
+// filters are part of the header, and a run with other filters (`ipd table --conf`) parses again. The
+// file is rewritten (atomically) only when something changed.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <unordered_map>
+
+#include "core/ipd/ipd.h"
+#include "core/registration/registration_cache.h"
+
+namespace ipd {
+
+// What a label file looked like when it was parsed.
+struct FileStamp {
+  std::int64_t size = -1, mtime_ns = 0, ctime_ns = 0;
+  std::uint64_t inode = 0;
+  bool exists = false;
+  bool operator==(const FileStamp& o) const {
+    return size == o.size && mtime_ns == o.mtime_ns && ctime_ns == o.ctime_ns && inode == o.inode &&
+           exists == o.exists;
+  }
+};
+// The stamp of `path` now (exists = false when there is nothing there or it can't be examined).
+FileStamp stamp_of(const std::string& path);
+
+// STUDY/.ipd-cache/parsed-study.bin, or <user cache>/ipd-studio/parsed-study/<hash of the path>.bin.
+std::string parsed_study_cache_path(const std::string& study_root);
+
+struct StudyCacheStats {
+  std::string state;  // "missing", "loaded", or why the file was ignored ("corrupt: checksum", ...)
+  int files_reused = 0, files_parsed = 0;
+  int registrations_stored = 0;  // in the file when it was read
+  bool written = false;          // save() rewrote the file
+};
+
+class StudyCache {
+ public:
+  // Reads `path` (empty: no cache; every call below then just parses). An unusable file is ignored.
+  explicit StudyCache(std::string path, const std::string& study_root);
+  ~StudyCache();
+  StudyCache(const StudyCache&) = delete;
+  StudyCache& operator=(const StudyCache&) = delete;
+
+  // load_labels() that reuses every unchanged file's parse (same result, same errors).
+  StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress = {});
+  // The registrations stored in the file, for RegistrationCache::preload.
+  RegistrationEntries take_registrations();
+  // Rewrites the file (atomically) when `labels` (from load_labels above) or the registrations
+  // `registration.served()` differ from what was read. A cache that can't be written only costs time: failures are ignored.
+  void save(const StudyLabels& labels, const RegistrationCache& registration);
+
+  const StudyCacheStats& stats() const { return stats_; }
+
+ private:
+  struct Contents;
+  std::string path_, root_;
+  std::unique_ptr<Contents> contents_;
+  StudyCacheStats stats_;
+};
+
+}  // namespace ipd

@@ -1,0 +1,168 @@
+#include "core/registration/pairing.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "core/geometry/point_grid.h"
+
+namespace ipd {
+
+RockPairs mutual_nearest_pairs(const std::vector<Eigen::Vector2d>& a, const std::vector<Eigen::Vector2d>& b,
+                               double gate) {
+  RockPairs pairs;
+  if (a.empty() || b.empty()) return pairs;
+  const PointGrid ga(a), gb(b);
+  const double g2 = gate * gate;
+  for (size_t i = 0; i < a.size(); ++i) {
+    double d = 0;
+    const int j = gb.nearest(a[i], &d);
+    if (j < 0 || d > g2) continue;
+    if (ga.nearest(b[j], nullptr) == static_cast<int>(i)) pairs.emplace_back(static_cast<int>(i), j);
+  }
+  return pairs;
+}
+
+RockPairs max_weight_assignment(const std::vector<double>& weights, int rows, int cols, double min_weight) {
+  RockPairs pairs;
+  if (rows == 0 || cols == 0) return pairs;
+  // Rectangular Hungarian (potentials method, e-maxx), 1-based, with n <= m: the shorter side is the rows, so
+  // 10,000 vs 17 rocks costs 17^2 * 10,000 steps instead of padding to a 10,000^2 square.
+  const bool transposed = rows > cols;
+  const int n = transposed ? cols : rows, m = transposed ? rows : cols;
+  auto weight = [&](int r, int c) -> double {  // 0-based, in the solver's orientation
+    return transposed ? weights[static_cast<size_t>(c) * cols + r] : weights[static_cast<size_t>(r) * cols + c];
+  };
+  auto cost = [&](int i, int j) -> double {  // 1-based; weights at or below min_weight are worth nothing
+    const double w = weight(i - 1, j - 1);
+    return w > min_weight ? -w : 0.0;
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> u(n + 1, 0), v(m + 1, 0), minv(m + 1);
+  std::vector<int> p(m + 1, 0), way(m + 1, 0);
+  std::vector<char> used(m + 1);
+  for (int i = 1; i <= n; ++i) {
+    p[0] = i;
+    int j0 = 0;
+    std::fill(minv.begin(), minv.end(), inf);
+    std::fill(used.begin(), used.end(), 0);
+    do {
+      used[j0] = 1;
+      const int i0 = p[j0];
+      double delta = inf;
+      int j1 = 0;
+      for (int j = 1; j <= m; ++j) {
+        if (used[j]) continue;
+        const double cur = cost(i0, j) - u[i0] - v[j];
+        if (cur < minv[j]) {
+          minv[j] = cur;
+          way[j] = j0;
+        }
+        if (minv[j] < delta) {
+          delta = minv[j];
+          j1 = j;
+        }
+      }
+      for (int j = 0; j <= m; ++j) {
+        if (used[j]) {
+          u[p[j]] += delta;
+          v[j] -= delta;
+        } else {
+          minv[j] -= delta;
+        }
+      }
+      j0 = j1;
+    } while (p[j0] != 0);
+    do {
+      const int j1 = way[j0];
+      p[j0] = p[j1];
+      j0 = j1;
+    } while (j0);
+  }
+  for (int j = 1; j <= m; ++j) {
+    const int i = p[j];
+    if (i < 1 || weight(i - 1, j - 1) <= min_weight) continue;
+    if (transposed) pairs.emplace_back(j - 1, i - 1);
+    else pairs.emplace_back(i - 1, j - 1);
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+}  // namespace ipd
+
+namespace ipd {
+RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, const std::vector<Box>& b,
+                              double min_iou) {
+  // Boxes overlap only their neighbours, so the overlap graph falls apart into small connected components,
+  // and the optimal assignment is the union of each component's optimum (no allowed pair crosses two). Solving
+  // per component keeps thousands of rocks a side near-linear instead of one cubic assignment.
+  const int n = static_cast<int>(a.size()), m = static_cast<int>(b.size());
+  std::vector<Box> moved(a.size());
+  for (int i = 0; i < n; ++i) moved[i] = transform_box(a_to_b, a[i]);
+  // B sorted by left edge, so each moved A box only looks at B boxes that can overlap it in x.
+  std::vector<int> b_by_x0(m);
+  for (int j = 0; j < m; ++j) b_by_x0[j] = j;
+  std::sort(b_by_x0.begin(), b_by_x0.end(), [&](int x, int y) { return b[x].x0() < b[y].x0(); });
+  double widest_b = 0;
+  for (const Box& bx : b) widest_b = std::max(widest_b, bx.w);
+  struct Edge {
+    int i, j;
+    double w;
+  };
+  std::vector<Edge> edges;
+  for (int i = 0; i < n; ++i) {
+    const double lo = moved[i].x0() - widest_b, hi = moved[i].x1();
+    auto it = std::lower_bound(b_by_x0.begin(), b_by_x0.end(), lo, [&](int j, double v) { return b[j].x0() < v; });
+    for (; it != b_by_x0.end() && b[*it].x0() <= hi; ++it) {
+      const double w = iou(moved[i], b[*it]);
+      if (w > min_iou) edges.push_back({i, *it, w});
+    }
+  }
+  // Union-find over A (0..n-1) and B (n..n+m-1).
+  std::vector<int> parent(n + m);
+  for (int k = 0; k < n + m; ++k) parent[k] = k;
+  auto find = [&](int k) {
+    while (parent[k] != k) k = parent[k] = parent[parent[k]];
+    return k;
+  };
+  for (const Edge& e : edges) parent[find(e.i)] = find(n + e.j);
+  // Edges grouped by component (sorted by root, then by position: each group keeps the order the whole
+  // problem would see), without a list per rock: most components are one A rock and one B rock.
+  std::vector<std::pair<int, int>> by_root(edges.size());
+  for (size_t k = 0; k < edges.size(); ++k) by_root[k] = {find(edges[k].i), static_cast<int>(k)};
+  std::sort(by_root.begin(), by_root.end());
+  RockPairs pairs;
+  std::vector<int> local_a(n, -1), local_b(m, -1), rows, cols;
+  std::vector<double> w;
+  for (size_t lo = 0; lo < by_root.size();) {
+    size_t hi = lo + 1;
+    while (hi < by_root.size() && by_root[hi].first == by_root[lo].first) ++hi;
+    if (hi - lo == 1) {  // one A rock, one B rock: the pair itself (its IoU is above min_iou)
+      const Edge& e = edges[by_root[lo].second];
+      pairs.emplace_back(e.i, e.j);
+      lo = hi;
+      continue;
+    }
+    rows.clear(), cols.clear();  // global indices, in increasing order as the whole problem would see them
+    for (size_t q = lo; q < hi; ++q) {
+      const Edge& e = edges[by_root[q].second];
+      if (local_a[e.i] < 0) local_a[e.i] = 0, rows.push_back(e.i);
+      if (local_b[e.j] < 0) local_b[e.j] = 0, cols.push_back(e.j);
+    }
+    std::sort(rows.begin(), rows.end());
+    std::sort(cols.begin(), cols.end());
+    for (size_t r = 0; r < rows.size(); ++r) local_a[rows[r]] = static_cast<int>(r);
+    for (size_t c = 0; c < cols.size(); ++c) local_b[cols[c]] = static_cast<int>(c);
+    w.assign(rows.size() * cols.size(), 0.0);
+    for (size_t q = lo; q < hi; ++q) {
+      const Edge& e = edges[by_root[q].second];
+      w[local_a[e.i] * cols.size() + local_b[e.j]] = e.w;
+    }
+    for (const auto& [r, c] : max_weight_assignment(w, static_cast<int>(rows.size()), static_cast<int>(cols.size()), min_iou))
+      pairs.emplace_back(rows[r], cols[c]);
+    lo = hi;
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+}  // namespace ipd

@@ -1,0 +1,125 @@
+// The paper's registration, as it describes it: random triples on each side, all six orderings, an exact
+// affine per ordering, scored by the mean nearest-neighbour distance; best of K; then mutual nearest
+// neighbours within a gate become pairs.
+#include <cmath>
+
+#include "core/geometry/affine_estimator.h"
+#include "core/registration/pairing.h"
+#include "core/geometry/point_grid.h"
+#include "core/registration/registration_frame.h"
+#include "core/registration/registration_recorder.h"
+
+namespace ipd::detail {
+
+namespace {
+
+struct RandomTripleSampler {
+  const std::vector<Eigen::Vector2d>& a;
+  const std::vector<Eigen::Vector2d>& b;
+  Rng rng;
+  int ia[3] = {0, 0, 0}, ib[3] = {0, 0, 0};  // the current sample's rocks
+
+  static void pick3(Rng& rng, int n, int out[3]) {
+    out[0] = rng.below(n);
+    do out[1] = rng.below(n); while (out[1] == out[0]);
+    do out[2] = rng.below(n); while (out[2] == out[0] || out[2] == out[1]);
+  }
+  bool next(TriplePair* s) {
+    pick3(rng, static_cast<int>(a.size()), ia);
+    pick3(rng, static_cast<int>(b.size()), ib);
+    for (int k = 0; k < 3; ++k) {
+      s->src[k] = a[ia[k]];
+      s->dst[k] = b[ib[k]];
+    }
+    return true;
+  }
+};
+
+// Higher is better, so the score is minus the mean nearest-neighbour distance of transformed A to B.
+struct MeanNearestScorer {
+  const std::vector<Eigen::Vector2d>& a;
+  const PointGrid& grid_b;
+  double score(const Affine2& m) const {
+    double sum = 0;
+    for (const auto& p : a) {
+      double d2 = 0;
+      grid_b.nearest(apply(m, p), &d2);
+      sum += std::sqrt(d2);
+    }
+    const double mean = sum / static_cast<double>(a.size());
+    return std::isfinite(mean) ? -mean : -INFINITY;
+  }
+  bool worth_refining(double, double) const { return false; }  // the paper does no local optimisation
+  void refine(Affine2*, double*) const {}
+  bool cannot_be_beaten(double s) const { return s >= 0.0; }  // every centre lands exactly on one; else all K
+};
+
+}  // namespace
+
+MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o) {
+  MethodOutcome out;
+  const double gate = o.pair_gate;  // the normalised frame has unit spread
+  auto count_inliers = [&](const Affine2& m) {
+    std::vector<Eigen::Vector2d> moved;
+    for (const auto& p : f.a) moved.push_back(apply(m, p));
+    out.pairs = mutual_nearest_pairs(moved, f.b, gate);
+    const PointGrid gb(f.b);
+    int inl = 0;
+    for (const auto& p : moved) {
+      double d2 = INFINITY;
+      if (gb.nearest(p, &d2) >= 0 && d2 <= gate * gate) ++inl;
+    }
+    out.inliers = inl;
+  };
+  if (f.a.size() < 3 || f.b.size() < 3) {
+    out.stop = StopReason::kTooFewPoints;
+    // Identity in image coordinates, expressed in the normalised frame.
+    out.affine_normalised = f.from_image(identity_affine());
+    out.note = "fewer than 3 rocks on a side: no affine can be fitted, identity used";
+    if (!f.a.empty() && !f.b.empty()) count_inliers(out.affine_normalised);
+    return out;
+  }
+  const PointGrid grid_b(f.b);
+  RandomTripleSampler sampler{f.a, f.b, Rng(o.seed)};
+  AffinePermutationEstimator estimator;
+  MeanNearestScorer scorer{f.a, grid_b};
+  RobustLoopOptions lo;
+  lo.max_trials = o.max_trials;
+  lo.time_budget_ms = o.time_budget_ms;
+  lo.max_work = work_budget(o, f.a.size(), f.b.size());
+  lo.work_per_model = static_cast<double>(f.a.size());  // one nearest-neighbour query per A rock
+  // The trace's samples: A's triple in drawing order, B's in the order this model matched them.
+  auto sample_of = [&](const Affine2& m, std::vector<int>* sa, std::vector<int>* sb) {
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Vector2d p = apply(m, f.a[sampler.ia[k]]);
+      int best = 0;
+      for (int t = 1; t < 3; ++t)
+        if ((f.b[sampler.ib[t]] - p).squaredNorm() < (f.b[sampler.ib[best]] - p).squaredNorm()) best = t;
+      sa->push_back(sampler.ia[k]);
+      sb->push_back(sampler.ib[best]);
+    }
+  };
+  const double spread = f.spread;
+  SearchRecorder recorder(f, gate, o.record_trace, [spread](double s) { return -s * spread; }, sample_of);
+  const auto r = run_robust_loop<Affine2, TriplePair>(sampler, estimator, scorer, lo, recorder);
+  out.trials = r.trials;
+  out.hypotheses = r.hypotheses;
+  out.work = r.work;
+  out.stop = r.stop;
+  // Scores are mean distances (lower is better): confidence = 1 - best / best distinct rival.
+  if (r.found && std::isfinite(recorder.rival_score()))
+    out.confidence = confidence_from_scores(-recorder.rival_score(), -r.best_score);
+  out.ambiguous = out.confidence < kAmbiguousBelow;
+  out.trace = recorder.take_trace(describe_stop(r.stop, r.trials, r.hypotheses, r.work, lo.max_work));
+  if (!r.found) {
+    out.affine_normalised = f.from_image(identity_affine());
+    out.note = "every sampled triple was degenerate: identity used";
+  } else {
+    out.affine_normalised = r.best;
+    out.score = -r.best_score * f.spread;  // mean distance, as a fraction of the image width
+  }
+  count_inliers(out.affine_normalised);
+  return out;
+}
+
+}  // namespace ipd::detail

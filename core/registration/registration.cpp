@@ -1,0 +1,233 @@
+#include "core/registration/registration.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#include "core/geometry/point_grid.h"
+#include "core/registration/registration_frame.h"
+
+namespace ipd {
+
+const std::vector<RegistrationMethodInfo>& registration_methods() {
+  static const std::vector<RegistrationMethodInfo> table = {
+      {RegistrationMethod::kConsensus, "consensus",
+       "guided hypotheses (identity, voted shifts, neighbour triples), soft consensus with box sizes, LO refinement",
+       "hypothesis cap 1000, rotation <= 30 deg, scale 0.5-2, anisotropy <= 2, pairs by aligned-box IoU >= 0.1"},
+      {RegistrationMethod::kPaper, "paper",
+       "the paper's RANSAC: random triples, all 6 orders, best mean nearest-neighbour distance of K",
+       "K = 1000 samples, mutual nearest neighbours within 0.2 of the centres' spread"},
+      {RegistrationMethod::kCpd, "cpd", "Coherent Point Drift (affine, as pycpd), then pairs by aligned-box IoU",
+       "100 EM iterations, outlier weight 0.2"},
+  };
+  return table;
+}
+
+const RegistrationMethodInfo& method_info(RegistrationMethod m) {
+  for (const auto& info : registration_methods())
+    if (info.method == m) return info;
+  return registration_methods().front();
+}
+
+const char* to_string(RegistrationMethod m) { return method_info(m).name; }
+
+bool parse_method(const std::string& name, RegistrationMethod* out) {
+  for (const auto& info : registration_methods()) {
+    if (name == info.name) {
+      *out = info.method;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const auto& info : registration_methods()) names.emplace_back(info.name);
+  return names;
+}
+
+std::string method_choices() {
+  const auto names = method_names();
+  std::string s;
+  for (size_t k = 0; k < names.size(); ++k) s += (k == 0 ? "" : k + 1 == names.size() ? " or " : ", ") + names[k];
+  return s;
+}
+
+std::string methods_help() {
+  std::string s;
+  for (const auto& info : registration_methods())
+    s += fmt::format("{}{}{}: {} ({})", s.empty() ? "" : "\n", info.name,
+                     &info == &registration_methods().front() ? " (default)" : "", info.description, info.defaults);
+  return s;
+}
+
+std::string RegistrationOptions::validate() const {
+  if (max_trials < 1) return fmt::format("max_trials must be at least 1, got {}", max_trials);
+  if (!(time_budget_ms >= 0)) return fmt::format("time_budget_ms must be >= 0, got {}", time_budget_ms);
+  if (!(aspect > 0) || !std::isfinite(aspect)) return fmt::format("aspect must be a positive number, got {}", aspect);
+  if (!(pair_gate > 0)) return fmt::format("pair_gate must be > 0, got {}", pair_gate);
+  if (!(min_scale > 0) || !(max_scale >= min_scale))
+    return fmt::format("scale bounds must satisfy 0 < min_scale <= max_scale, got [{}, {}]", min_scale, max_scale);
+  if (!(max_rotation_deg > 0) || max_rotation_deg > 180)
+    return fmt::format("max_rotation_deg must be in (0, 180], got {}", max_rotation_deg);
+  if (!(max_anisotropy >= 1) || !std::isfinite(max_anisotropy))
+    return fmt::format("max_anisotropy must be a number >= 1, got {}", max_anisotropy);
+  if (!(inlier_gate >= 0)) return fmt::format("inlier_gate must be >= 0 (0: automatic), got {}", inlier_gate);
+  if (!(min_pair_iou >= 0 && min_pair_iou < 1)) return fmt::format("min_pair_iou must be in [0, 1), got {}", min_pair_iou);
+  if (!(work_budget >= 0) || !std::isfinite(work_budget))
+    return fmt::format("work_budget must be >= 0 (0: automatic), got {}", work_budget);
+  if (cpd_iterations < 1) return fmt::format("cpd_iterations must be at least 1, got {}", cpd_iterations);
+  if (!(cpd_outlier_weight >= 0 && cpd_outlier_weight < 1))
+    return fmt::format("cpd_outlier_weight must be in [0, 1), got {}", cpd_outlier_weight);
+  return {};
+}
+
+namespace detail {
+
+RegistrationFrame::RegistrationFrame(const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b, double asp)
+    : aspect(asp) {
+  auto iso = [&](const Box& bx) { return Eigen::Vector2d(bx.cx, bx.cy / aspect); };
+  auto centroid = [&](const std::vector<Box>& v) {
+    Eigen::Vector2d c(0, 0);
+    for (const auto& bx : v) c += iso(bx);
+    return v.empty() ? c : Eigen::Vector2d(c / static_cast<double>(v.size()));
+  };
+  centroid_a = centroid(boxes_a);
+  centroid_b = centroid(boxes_b);
+  double ss = 0;
+  size_t n = 0;
+  for (const auto& bx : boxes_a) ss += (iso(bx) - centroid_a).squaredNorm(), ++n;
+  for (const auto& bx : boxes_b) ss += (iso(bx) - centroid_b).squaredNorm(), ++n;
+  spread = n > 0 ? std::sqrt(ss / static_cast<double>(n)) : 1.0;
+  if (!(spread > 0) || !std::isfinite(spread)) spread = 1.0;
+  for (const auto& bx : boxes_a) {
+    a.push_back((iso(bx) - centroid_a) / spread);
+    size_a.emplace_back(bx.w / spread, bx.h / aspect / spread);
+  }
+  for (const auto& bx : boxes_b) {
+    b.push_back((iso(bx) - centroid_b) / spread);
+    size_b.emplace_back(bx.w / spread, bx.h / aspect / spread);
+  }
+}
+
+double work_budget(const RegistrationOptions& o, size_t na, size_t nb) {
+  if (o.work_budget > 0) return o.work_budget;
+  const double n = static_cast<double>(na + nb);
+  return 1e6 + 300.0 * n * std::log2(n + 2);
+}
+
+double median_nn_distance(const std::vector<Eigen::Vector2d>& p) {
+  if (p.size() < 2) return 0;
+  const PointGrid g(p);
+  std::vector<double> d;
+  std::vector<int> near;
+  for (size_t i = 0; i < p.size(); ++i) {
+    // nearest other point: widen the search until it holds one besides the point itself
+    double best = INFINITY;
+    for (double r = 1e-9; best == INFINITY && r < 1e6; r *= 4) {
+      g.within(p[i], r, &near);
+      for (int j : near)
+        if (j != static_cast<int>(i)) best = std::min(best, (p[j] - p[i]).norm());
+      if (best == INFINITY && near.size() > 64) break;  // many duplicates: zero spacing
+    }
+    if (best == INFINITY) best = 0;
+    d.push_back(best);
+  }
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return d[d.size() / 2];
+}
+
+std::string grouped(double n) {
+  const long long v = std::llround(n);
+  std::string digits = std::to_string(v < 0 ? -v : v), out = v < 0 ? "-" : "";
+  for (size_t k = 0; k < digits.size(); ++k) {
+    if (k > 0 && (digits.size() - k) % 3 == 0) out += ',';
+    out += digits[k];
+  }
+  return out;
+}
+
+std::string count_of(double n, const char* singular, const char* plural) {
+  return grouped(n) + " " + (std::llround(n) == 1 ? singular : plural);
+}
+
+std::string describe_stop(StopReason stop, int trials, int hypotheses, double work, double budget) {
+  std::string s = to_string(stop);
+  const std::string samples = count_of(trials, "sample", "samples");
+  const std::string tried = count_of(hypotheses, "hypothesis", "hypotheses");
+  switch (stop) {
+    case StopReason::kWorkBudget:
+      return fmt::format("{} ({} of {}; {}, {})", s, grouped(work), count_of(budget, "point evaluation", "point evaluations"),
+                         samples, tried);
+    case StopReason::kNotRun:
+    case StopReason::kTooFewPoints: return s;
+    default: return fmt::format("{} ({}, {}, {})", s, samples, tried, count_of(work, "point evaluation", "point evaluations"));
+  }
+}
+
+namespace {
+// image -> isotropic: S = diag(1, 1/aspect); set A -> normalised: (p - ca)/spread.
+Affine2 image_to_normalised(const Eigen::Vector2d& centroid, double aspect, double spread) {
+  Affine2 m;
+  m << 1.0 / spread, 0, -centroid.x() / spread, 0, 1.0 / (aspect * spread), -centroid.y() / spread;
+  return m;
+}
+}  // namespace
+
+Affine2 RegistrationFrame::to_image(const Affine2& m) const {
+  Affine2 to_a = image_to_normalised(centroid_a, aspect, spread), to_b = image_to_normalised(centroid_b, aspect, spread);
+  Affine2 from_b;
+  invert(to_b, &from_b);
+  return compose(from_b, compose(m, to_a));
+}
+
+Affine2 RegistrationFrame::from_image(const Affine2& m) const {
+  Affine2 to_a = image_to_normalised(centroid_a, aspect, spread), to_b = image_to_normalised(centroid_b, aspect, spread);
+  Affine2 from_a;
+  invert(to_a, &from_a);
+  return compose(to_b, compose(m, from_a));
+}
+
+}  // namespace detail
+
+RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<Box>& b,
+                                  const RegistrationOptions& options) {
+  const std::string problem = options.validate();
+  if (!problem.empty()) throw std::invalid_argument("registration options: " + problem);
+  const auto start = std::chrono::steady_clock::now();
+  const detail::RegistrationFrame frame(a, b, options.aspect);
+  detail::MethodOutcome out;
+  switch (options.method) {
+    case RegistrationMethod::kPaper: out = detail::register_paper(frame, options); break;
+    case RegistrationMethod::kConsensus: out = detail::register_consensus(frame, a, b, options); break;
+    case RegistrationMethod::kCpd: out = detail::register_cpd(frame, a, b, options); break;
+  }
+  RegistrationReport r;
+  r.method = options.method;
+  r.affine = frame.to_image(out.affine_normalised);
+  if (!r.affine.allFinite()) {
+    r.affine = identity_affine();
+    out.note += (out.note.empty() ? "" : "; ") + std::string("non-finite affine replaced by identity");
+  }
+  r.pairs = std::move(out.pairs);
+  std::sort(r.pairs.begin(), r.pairs.end());
+  r.trials = out.trials;
+  r.hypotheses = out.hypotheses;
+  r.inliers = out.inliers;
+  r.score = out.score;
+  r.stop = out.stop;
+  r.note = std::move(out.note);
+  r.confidence = out.confidence;
+  r.ambiguous = out.ambiguous;
+  r.work = out.work;
+  r.work_budget = detail::work_budget(options, a.size(), b.size());
+  r.trace = std::move(out.trace);
+  if (options.record_trace && r.trace.stop.empty()) r.trace.stop = to_string(r.stop);
+  r.elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace ipd

@@ -1,0 +1,96 @@
+// Rock pairing between two images of one scene: 2-D point-set registration of GT box centres, then an
+// assignment of rocks. Methods share one interface; `paper` is the paper's RANSAC exactly.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/geometry/geometry.h"
+#include "core/registration/registration_trace.h"
+#include "core/registration/robust_loop.h"
+
+namespace ipd {
+
+enum class RegistrationMethod { kPaper, kConsensus, kCpd };
+
+// The one table of registration methods, read by the CLI (--method help and validation), study.yaml and
+// ipd-studio's method combo. The default comes first.
+struct RegistrationMethodInfo {
+  RegistrationMethod method;
+  const char* name;         // as typed: --method NAME, registration: {method: NAME}
+  const char* description;  // one line
+  const char* defaults;     // what it runs with unless told otherwise
+};
+const std::vector<RegistrationMethodInfo>& registration_methods();
+const RegistrationMethodInfo& method_info(RegistrationMethod m);
+
+const char* to_string(RegistrationMethod m);
+// Parses a name of the table; false for anything else.
+bool parse_method(const std::string& name, RegistrationMethod* out);
+std::vector<std::string> method_names();  // in table order
+std::string method_choices();             // "consensus, paper or cpd", for messages
+std::string methods_help();               // one line per method: name, description, defaults
+
+using RockPairs = std::vector<std::pair<int, int>>;  // (index in A, index in B)
+
+struct RegistrationOptions {
+  RegistrationMethod method = RegistrationMethod::kConsensus;
+  std::uint64_t seed = 0;
+  int max_trials = 1000;        // paper: K samples (each tried in all 6 orders); consensus: hypotheses cap
+  double time_budget_ms = 0;    // 0: none
+  double aspect = 1.0;          // image width / height: distances and angles are measured in pixels
+  // paper: rocks are paired as mutual nearest neighbours closer than this fraction of the centres' RMS
+  // spread (scale-free; 0.2 is about 5% of the image width for rocks spread over the picture)
+  double pair_gate = 0.2;
+  // consensus: plausible affines only
+  double min_scale = 0.5, max_scale = 2.0;  // singular values of the linear part
+  double max_rotation_deg = 30.0;  // a camera misalignment, not an arbitrary rotation
+  // consensus: largest ratio of the linear part's singular values (one axis stretched this much more than the
+  // other). Wrong alignments of a small overlap are often strongly stretched (2.3-5x on the large tier's
+  // failures), a camera misalignment is not.
+  double max_anisotropy = 2.0;
+  double inlier_gate = 0;       // consensus, fraction of image width; 0: from the rock spacing
+  double min_pair_iou = 0.1;    // consensus, cpd: aligned boxes overlapping less than this stay unpaired
+  int cpd_iterations = 100;     // cpd: EM iterations
+  double cpd_outlier_weight = 0.2;
+  bool record_trace = false;    // fill RegistrationReport::trace (ipd-studio's replay); off in batch runs
+  // Bound on the work per pair, in point evaluations (one mapped rock scored, or one A-B term of an EM
+  // step); 0: automatic, growing as n log n in the rock count, so 5,000 rocks a side stop within seconds.
+  double work_budget = 0;
+
+  // Empty when usable; otherwise what is wrong, in one sentence.
+  std::string validate() const;
+};
+
+// Why a registration is flagged ambiguous, worded once for the studio and `ipd register`.
+inline constexpr const char* kAmbiguousReason =
+    "another alignment fits as well or almost as well (e.g. a small overlap or a repetitive layout)";
+
+struct RegistrationReport {
+  RegistrationMethod method = RegistrationMethod::kConsensus;
+  Affine2 affine = identity_affine();  // maps normalised A centres onto B's
+  RockPairs pairs;                     // sorted by A index
+  int trials = 0;                      // samples drawn (paper: K) or EM iterations (cpd)
+  int hypotheses = 0;                  // affines scored
+  int inliers = 0;                     // A centres within the gate of a B centre after alignment
+  double score = 0;                    // paper: mean nearest-neighbour distance; consensus: soft inlier count
+  StopReason stop = StopReason::kNotRun;
+  std::string note;                    // why a fallback was used, if one was
+  double elapsed_ms = 0;
+  double work = 0, work_budget = 0;    // point evaluations spent, and the bound they were held to
+  // How sure the pairing is: 1 - (second-best distinct hypothesis' score / best score), in [0, 1]; 1 when
+  // no rival alignment came close. `ambiguous` is set when confidence < 0.2: a second, distinct alignment
+  // scores as well or almost as well as the best (e.g. a small overlap or a repetitive layout; cpd: a shifted
+  // placement it did not converge to may score better, confidence 0); kAmbiguousReason says so.
+  double confidence = 1.0;
+  bool ambiguous = false;
+  RegistrationTrace trace;             // empty unless options.record_trace
+};
+
+// Registers A's GT boxes onto B's and pairs the rocks. Throws std::invalid_argument for bad options.
+RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<Box>& b,
+                                  const RegistrationOptions& options);
+
+}  // namespace ipd

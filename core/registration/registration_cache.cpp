@@ -1,0 +1,230 @@
+#include "core/registration/registration_cache.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/util/atomic_file.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace ipd {
+
+namespace {
+
+// Bump when the entry layout or any registration method changes its results: 4 after the consensus changes
+// d3f1512, 5270185, 1e663dd and 4eeddd8 (entries of format 3 held their predecessors' answers); 5 for flat
+// triples proposing similarities and the second look; 6 for translation votes in centred bins; 7 for the
+// gate's floor, the guarded polish and the soft refinement of a confirmed best; 8 for cpd's confidence; 9 for
+// cpd's rivals under the unmoved camera too.
+constexpr int kFormat = 9;
+
+struct Fnv {
+  std::uint64_t h;
+  void bytes(const void* p, size_t n) {
+    const auto* c = static_cast<const unsigned char*>(p);
+    for (size_t k = 0; k < n; ++k) h = (h ^ c[k]) * 0x100000001b3ull;
+  }
+  template <typename T>
+  void value(const T& v) { bytes(&v, sizeof v); }
+};
+
+template <typename F>
+void feed(F&& f, const std::vector<Box>& a, const std::vector<Box>& b, const RegistrationOptions& o) {
+  f.value(kFormat);
+  f.value(static_cast<int>(o.method));
+  f.value(o.seed);
+  f.value(o.max_trials);
+  f.value(o.time_budget_ms);
+  f.value(o.aspect);
+  f.value(o.pair_gate);
+  f.value(o.min_scale);
+  f.value(o.max_scale);
+  f.value(o.max_rotation_deg);
+  f.value(o.max_anisotropy);
+  f.value(o.inlier_gate);
+  f.value(o.min_pair_iou);
+  f.value(o.cpd_iterations);
+  f.value(o.cpd_outlier_weight);
+  f.value(o.work_budget);
+  for (const auto* set : {&a, &b}) {
+    f.value(set->size());
+    for (const Box& x : *set) {
+      f.value(x.cls);
+      f.value(x.cx);
+      f.value(x.cy);
+      f.value(x.w);
+      f.value(x.h);
+    }
+  }
+}
+
+std::string hex64(std::uint64_t v) { return fmt::format("{:016x}", v); }
+
+std::string checksum(const std::string& text) {
+  Fnv f{0xcbf29ce484222325ull};
+  f.bytes(text.data(), text.size());
+  return hex64(f.h);
+}
+
+}  // namespace
+
+std::string study_cache_dir(const std::string& study_root) {
+  std::error_code ec;
+  const fs::path own = fs::path(study_root) / ".ipd-cache";
+  const bool exists = fs::exists(own, ec);
+  if (exists ? ::access(own.c_str(), W_OK) == 0 : ::access(study_root.c_str(), W_OK) == 0) return own.string();
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  const char* home = std::getenv("HOME");
+  const fs::path base = xdg && *xdg ? fs::path(xdg) : fs::path(home ? home : "/tmp") / ".cache";
+  return (base / "ipd-studio").string();
+}
+
+std::string registration_cache_dir(const std::string& study_root) {
+  return (fs::path(study_cache_dir(study_root)) / "registration").string();
+}
+
+void RegistrationCache::preload(RegistrationEntries entries) { memory_->preloaded = std::move(entries); }
+
+RegistrationEntries RegistrationCache::served() const {
+  std::lock_guard<std::mutex> l(memory_->mu);
+  return memory_->served;
+}
+
+bool RegistrationCache::served_only_preloaded() const {
+  std::lock_guard<std::mutex> l(memory_->mu);
+  if (memory_->served.size() != memory_->preloaded.size()) return false;
+  for (const auto& entry : memory_->served)
+    if (!memory_->preloaded.count(entry.first)) return false;
+  return true;
+}
+
+void RegistrationCache::remember(const std::string& key, const RegistrationReport& report) const {
+  std::lock_guard<std::mutex> l(memory_->mu);
+  memory_->served.emplace(key, report);
+}
+
+std::string registration_cache_key(const std::vector<Box>& a, const std::vector<Box>& b,
+                                   const RegistrationOptions& o) {
+  Fnv h1{0xcbf29ce484222325ull}, h2{0x84222325cbf29ce4ull};
+  feed(h1, a, b, o);
+  feed(h2, a, b, o);
+  return hex64(h1.h) + hex64(h2.h);
+}
+
+std::string RegistrationCache::entry_path(const std::string& key) const {
+  return (fs::path(dir_) / key.substr(0, 2) / (key + ".json")).string();
+}
+
+std::optional<RegistrationReport> RegistrationCache::load(const std::string& key, int count_a, int count_b) const {
+  if (const auto it = memory_->preloaded.find(key); it != memory_->preloaded.end()) {
+    const RegistrationReport& r = it->second;
+    std::vector<char> used_a(std::max(count_a, 0), 0), used_b(std::max(count_b, 0), 0);
+    bool fits = true;
+    for (const auto& [i, j] : r.pairs) {
+      fits = fits && i >= 0 && i < count_a && j >= 0 && j < count_b && !used_a[i] && !used_b[j];
+      if (!fits) break;
+      used_a[i] = used_b[j] = 1;
+    }
+    if (fits) {
+      remember(key, r);
+      return r;
+    }
+  }
+  if (dir_.empty()) return std::nullopt;
+  const std::string path = entry_path(key);
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return std::nullopt;
+  try {
+    const std::string text = read_file(path);
+    // Layout: the payload on the first line, its checksum on the second.
+    const size_t nl = text.find('\n');
+    if (nl == std::string::npos || text.compare(nl + 1, 16, checksum(text.substr(0, nl))) != 0) return std::nullopt;
+    const json j = json::parse(text.substr(0, nl));
+    if (j.at("key").get<std::string>() != key || j.at("format").get<int>() != kFormat) return std::nullopt;
+    RegistrationReport r;
+    RegistrationMethod m;
+    if (!parse_method(j.at("method").get<std::string>(), &m)) return std::nullopt;
+    r.method = m;
+    const auto aff = j.at("affine").get<std::vector<double>>();
+    if (aff.size() != 6) return std::nullopt;
+    for (int k = 0; k < 6; ++k) {
+      if (!std::isfinite(aff[k])) return std::nullopt;
+      r.affine(k / 3, k % 3) = aff[k];
+    }
+    std::vector<char> used_a(count_a, 0), used_b(count_b, 0);
+    for (const auto& p : j.at("pairs")) {
+      const int i = p.at(0).get<int>(), jb = p.at(1).get<int>();
+      if (i < 0 || i >= count_a || jb < 0 || jb >= count_b || used_a[i] || used_b[jb]) return std::nullopt;
+      used_a[i] = used_b[jb] = 1;
+      r.pairs.emplace_back(i, jb);
+    }
+    r.trials = j.at("trials").get<int>();
+    r.hypotheses = j.at("hypotheses").get<int>();
+    r.inliers = j.at("inliers").get<int>();
+    r.score = j.at("score").get<double>();
+    const int stop = j.at("stop").get<int>();
+    if (stop < 0 || stop > static_cast<int>(StopReason::kWorkBudget)) return std::nullopt;
+    r.stop = static_cast<StopReason>(stop);
+    r.note = j.at("note").get<std::string>();
+    r.elapsed_ms = j.at("elapsed_ms").get<double>();
+    r.confidence = j.at("confidence").get<double>();
+    r.ambiguous = j.at("ambiguous").get<bool>();
+    remember(key, r);
+    return r;
+  } catch (const std::exception&) {
+    return std::nullopt;  // unreadable or not what we wrote: recompute
+  }
+}
+
+bool RegistrationCache::store(const std::string& key, const RegistrationReport& r) const {
+  if (dir_.empty()) return false;
+  remember(key, r);
+  json j;
+  j["format"] = kFormat;
+  j["key"] = key;
+  j["method"] = to_string(r.method);
+  std::vector<double> aff;
+  for (int k = 0; k < 6; ++k) aff.push_back(r.affine(k / 3, k % 3));
+  j["affine"] = aff;
+  j["pairs"] = r.pairs;
+  j["trials"] = r.trials;
+  j["hypotheses"] = r.hypotheses;
+  j["inliers"] = r.inliers;
+  j["score"] = std::isfinite(r.score) ? r.score : 0.0;
+  j["stop"] = static_cast<int>(r.stop);
+  j["note"] = r.note;
+  j["elapsed_ms"] = r.elapsed_ms;
+  j["confidence"] = std::isfinite(r.confidence) ? r.confidence : 0.0;
+  j["ambiguous"] = r.ambiguous;
+  const std::string payload = j.dump();
+  try {
+    write_file_atomically(entry_path(key), payload + "\n" + checksum(payload) + "\n");
+    return true;
+  } catch (const std::exception&) {
+    return false;  // a cache that can't be written only costs time
+  }
+}
+
+RegistrationReport register_rocks_cached(const RegistrationCache* cache, const std::vector<Box>& a,
+                                         const std::vector<Box>& b, const RegistrationOptions& options, bool* hit) {
+  if (hit) *hit = false;
+  if (!cache || cache->dir().empty() || options.record_trace) return register_rocks(a, b, options);
+  const std::string key = registration_cache_key(a, b, options);
+  if (auto r = cache->load(key, static_cast<int>(a.size()), static_cast<int>(b.size()))) {
+    if (hit) *hit = true;
+    return *r;
+  }
+  RegistrationReport r = register_rocks(a, b, options);
+  cache->store(key, r);
+  return r;
+}
+
+}  // namespace ipd

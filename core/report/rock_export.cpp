@@ -1,0 +1,126 @@
+#include "core/report/rock_export.h"
+
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/session/audit.h"
+#include "core/stats/image_metrics.h"
+#include "core/stats/study_statistics.h"
+
+namespace ipd {
+
+std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& table, const RockExportOptions& options) {
+  std::vector<RockRow> rows;
+  const size_t nc = table.columns.size();
+  std::vector<std::pair<int, int>> size_of_b(nc);
+  for (size_t c = 0; c < nc; ++c) size_of_b[c] = domain_image_size(labels.study, table.columns[c].second);
+  for (size_t k = 0; k < table.cells.size(); ++k) {
+    const TableCell& cell = table.cells[k];
+    if (cell.missing_predictions) continue;
+    const size_t column = k % nc;
+    const auto& pairings = table.pairings[column];
+    for (size_t s = 0; s < cell.per_scene.size(); ++s) {
+      const SceneIpd& sc = cell.per_scene[s];
+      const ScenePairing& pairing = pairings[s];
+      const auto& ga = labels.gt_of(cell.a, sc.stem).boxes;
+      const auto& gb = labels.gt_of(cell.b, sc.stem).boxes;
+      RockRow base;
+      base.model = cell.model;
+      base.trained_on = cell.trained_on;
+      base.a = cell.a;
+      base.b = cell.b;
+      base.scene = sc.stem;
+      base.source = pairing.fixed ? "hand" : "auto";
+      const auto [w, h] = size_of_b[column];
+      SceneAudit audit;
+      if (w > 0 && h > 0) audit = audit_pairs(ga, gb, sc.counted, scene_b_from_a(pairing, ga, gb), w, h);
+      std::vector<char> paired_a(ga.size(), 0), paired_b(gb.size(), 0);
+      for (size_t p = 0; p < sc.counted.size(); ++p) {
+        RockRow r = base;
+        std::tie(r.index_a, r.index_b) = sc.counted[p];
+        paired_a[r.index_a] = paired_b[r.index_b] = 1;
+        r.perf_a = sc.perf_a[p];
+        r.perf_b = sc.perf_b[p];
+        r.diff = std::abs(r.perf_a - r.perf_b);
+        r.box_a = ga[r.index_a];
+        r.box_b = gb[r.index_b];
+        if (!audit.pairs.empty()) r.residual_px = audit.pairs[p].residual_px;
+        rows.push_back(std::move(r));
+      }
+      if (!options.unpaired) continue;
+      const PerformanceValues pa = performance_values(ga, labels.predictions_of(cell.a, cell.model, sc.stem).boxes);
+      const PerformanceValues pb = performance_values(gb, labels.predictions_of(cell.b, cell.model, sc.stem).boxes);
+      for (size_t i = 0; i < ga.size(); ++i) {
+        if (paired_a[i]) continue;
+        RockRow r = base;
+        r.index_a = static_cast<int>(i);
+        r.perf_a = pa.value[i];
+        r.box_a = ga[i];
+        rows.push_back(std::move(r));
+      }
+      for (size_t j = 0; j < gb.size(); ++j) {
+        if (paired_b[j]) continue;
+        RockRow r = base;
+        r.index_b = static_cast<int>(j);
+        r.perf_b = pb.value[j];
+        r.box_b = gb[j];
+        rows.push_back(std::move(r));
+      }
+    }
+  }
+  return rows;
+}
+
+namespace {
+const char* const kColumns[] = {"model", "trained_on", "a",     "b",    "scene", "index_a", "index_b",
+                                "perf_a", "perf_b",    "diff",  "cx_a", "cy_a",  "w_a",     "h_a",
+                                "cx_b",   "cy_b",      "w_b",   "h_b",  "residual_px", "source"};
+
+std::string num(double v) { return std::isnan(v) ? std::string() : fmt::format("{:.12g}", v); }
+
+// CSV field: quoted when it holds a comma, quote or newline.
+std::string field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+}  // namespace
+
+std::string rock_rows_csv(const std::vector<RockRow>& rows) {
+  std::string out;
+  for (const char* c : kColumns) out += std::string(out.empty() ? "" : ",") + c;
+  out += "\n";
+  for (const auto& r : rows) {
+    const bool a = r.index_a >= 0, b = r.index_b >= 0;
+    auto box = [&](bool has, const Box& x) {
+      return has ? fmt::format("{},{},{},{}", num(x.cx), num(x.cy), num(x.w), num(x.h)) : std::string(",,,");
+    };
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", field(r.model), field(r.trained_on), field(r.a),
+                       field(r.b), field(r.scene), a ? std::to_string(r.index_a) : "", b ? std::to_string(r.index_b) : "",
+                       num(r.perf_a), num(r.perf_b), num(r.diff), box(a, r.box_a), box(b, r.box_b), num(r.residual_px),
+                       r.source);
+  }
+  return out;
+}
+
+std::string rock_rows_json(const std::vector<RockRow>& rows) {
+  auto n = [](double v) { return std::isnan(v) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v); };
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const auto& r : rows) {
+    const bool a = r.index_a >= 0, b = r.index_b >= 0;
+    const double nan = std::nan("");
+    out.push_back({
+        {"model", r.model}, {"trained_on", r.trained_on}, {"a", r.a}, {"b", r.b}, {"scene", r.scene},
+        {"index_a", a ? nlohmann::ordered_json(r.index_a) : nlohmann::ordered_json(nullptr)},
+        {"index_b", b ? nlohmann::ordered_json(r.index_b) : nlohmann::ordered_json(nullptr)}, {"perf_a", n(r.perf_a)},
+        {"perf_b", n(r.perf_b)}, {"diff", n(r.diff)}, {"cx_a", n(a ? r.box_a.cx : nan)},
+        {"cy_a", n(a ? r.box_a.cy : nan)}, {"w_a", n(a ? r.box_a.w : nan)}, {"h_a", n(a ? r.box_a.h : nan)},
+        {"cx_b", n(b ? r.box_b.cx : nan)}, {"cy_b", n(b ? r.box_b.cy : nan)}, {"w_b", n(b ? r.box_b.w : nan)},
+        {"h_b", n(b ? r.box_b.h : nan)}, {"residual_px", n(r.residual_px)}, {"source", r.source}});
+  }
+  return out.dump(1) + "\n";
+}
+
+}  // namespace ipd

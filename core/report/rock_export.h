@@ -1,0 +1,37 @@
+// `ipd export rocks`: one row per rock pair (per model and domain pair) so the numbers behind every IPD can
+// be analysed elsewhere (pandas reads the CSV and the JSON as they are). The mean of `diff` over a cell's
+// paired rows is that cell's IPD.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/ipd/ipd.h"
+
+namespace ipd {
+
+struct RockRow {
+  std::string model, trained_on, a, b, scene;
+  int index_a = -1, index_b = -1;  // 0-based rock indices; -1: no rock on that side (an unpaired row)
+  double perf_a = std::numeric_limits<double>::quiet_NaN(), perf_b = std::numeric_limits<double>::quiet_NaN();
+  double diff = std::numeric_limits<double>::quiet_NaN();  // |perf_a - perf_b|, NaN on unpaired rows
+  Box box_a, box_b;                // normalised centre and size, as in the label files
+  double residual_px = std::numeric_limits<double>::quiet_NaN();  // |affine(centre a) - centre b| in B's pixels
+  std::string source;              // "auto" (registration) or "hand" (pairs/<A>__<B>/<stem>.json)
+};
+
+struct RockExportOptions {
+  bool unpaired = false;  // also a row for every rock left unpaired (or excluded), partner fields empty
+};
+
+// Rows in a stable order: cells as in the table (models × domain pairs), scenes by stem, counted pairs in
+// pairing order, then unpaired A rocks, then unpaired B rocks. Cells without predictions give no rows.
+// Residuals use the scene's registration affine, or for hand-paired scenes a least-squares affine on the
+// hand pairs (needs 3); they are NaN when the picture size is unknown.
+std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& table, const RockExportOptions& options);
+
+std::string rock_rows_csv(const std::vector<RockRow>& rows);   // header + one line per row; NaN -> empty
+std::string rock_rows_json(const std::vector<RockRow>& rows);  // an array of records; NaN -> null
+
+}  // namespace ipd

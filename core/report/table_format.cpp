@@ -1,0 +1,244 @@
+#include "core/report/table_format.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/stats/study_statistics.h"
+
+namespace ipd {
+
+std::string no_interval_reason(const TableCell& cell) {
+  if (!cell.involves_training_domain || std::isnan(cell.ipd)) return {};
+  const auto scenes = std::count_if(cell.per_scene.begin(), cell.per_scene.end(), [](const SceneIpd& s) { return s.pairs > 0; });
+  if (scenes >= 2) return {};
+  return fmt::format("{} scene{}: no interval", scenes, scenes == 1 ? "" : "s");
+}
+
+bool parse_table_format(const std::string& name, TableFormat* out) {
+  static const std::pair<const char*, TableFormat> kNames[] = {{"text", TableFormat::kText},
+                                                               {"csv", TableFormat::kCsv},
+                                                               {"json", TableFormat::kJson},
+                                                               {"markdown", TableFormat::kMarkdown},
+                                                               {"latex", TableFormat::kLatex}};
+  for (const auto& [n, f] : kNames)
+    if (name == n) {
+      *out = f;
+      return true;
+    }
+  return false;
+}
+
+namespace {
+
+std::string column_title(const std::pair<std::string, std::string>& c) { return c.first + " - " + c.second; }
+std::string row_title(const ModelInfo& m) {
+  return m.trained_on.empty() ? m.name : fmt::format("{} ({})", m.name, m.trained_on);
+}
+
+// "–" for cells that don't involve the training domain (as the paper), "n/a" when nothing was measured.
+std::string cell_text(const TableCell& c, const char* dash) {
+  if (!c.involves_training_domain) return dash;
+  if (std::isnan(c.ipd)) return "n/a";
+  return fmt::format("{:.4f}", c.ipd);
+}
+
+bool has_ci(const TableCell& c) { return !std::isnan(c.ci_low) && !std::isnan(c.ci_high); }
+
+// " [0.214, 0.238]" when the cell has an interval and is shown.
+std::string ci_text(const TableCell& c) {
+  if (!c.involves_training_domain || std::isnan(c.ipd) || !has_ci(c)) return {};
+  return fmt::format(" [{:.3f}, {:.3f}]", c.ci_low, c.ci_high);
+}
+
+// " (15 pairs)", " (15 pairs; 1 scene: no interval)" when intervals were asked for and the cell can't have one.
+std::string pairs_text(const TableCell& c, const TableFormatOptions& o) {
+  if (!c.involves_training_domain || std::isnan(c.ipd)) return {};
+  const std::string why = o.resamples > 0 && !has_ci(c) ? no_interval_reason(c) : std::string();
+  return fmt::format(" ({} pairs{}{})", c.pairs, why.empty() ? "" : "; ", why);
+}
+
+bool any_ci(const CrossTable& t) {
+  return std::any_of(t.cells.begin(), t.cells.end(), [](const TableCell& c) { return has_ci(c); });
+}
+
+std::string ci_caption(const TableFormatOptions& o) {
+  return fmt::format("[low, high]: {:g}% scene-bootstrap percentile interval ({} resamples of scenes, seed {})",
+                     100 * o.level, o.resamples, o.seed);
+}
+
+std::string number_or_empty(double v) { return std::isnan(v) ? std::string() : fmt::format("{:.6f}", v); }
+nlohmann::json number_or_null(double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); }
+
+// The best (lowest) shown value of a row, bolded in Markdown and LaTeX as the paper does.
+double row_best(const CrossTable& t, size_t row) {
+  double best = INFINITY;
+  for (size_t c = 0; c < t.columns.size(); ++c) {
+    const auto& cell = t.cells[row * t.columns.size() + c];
+    if (cell.involves_training_domain && !std::isnan(cell.ipd)) best = std::min(best, cell.ipd);
+  }
+  return best;
+}
+
+std::string latex_escape(const std::string& s) {
+  std::string o;
+  for (char ch : s) {
+    if (ch == '\\') o += "\\textbackslash{}";
+    else if (ch == '~') o += "\\textasciitilde{}";
+    else if (ch == '^') o += "\\textasciicircum{}";
+    else if (ch == '_' || ch == '&' || ch == '%' || ch == '#' || ch == '$' || ch == '{' || ch == '}') o += std::string("\\") + ch;
+    else o += ch;
+  }
+  return o;
+}
+
+std::string text_table(const CrossTable& t, const TableFormatOptions& o) {
+  std::vector<std::vector<std::string>> grid;
+  std::vector<std::string> head = {"train \\ eval (IPD, lower is better)"};
+  for (const auto& c : t.columns) head.push_back("|" + column_title(c) + "|");
+  grid.push_back(head);
+  for (size_t r = 0; r < t.models.size(); ++r) {
+    std::vector<std::string> row = {row_title(t.models[r])};
+    for (size_t c = 0; c < t.columns.size(); ++c) {
+      const auto& cell = t.cells[r * t.columns.size() + c];
+      row.push_back(cell_text(cell, "–") + ci_text(cell) + pairs_text(cell, o));
+    }
+    grid.push_back(row);
+  }
+  std::vector<size_t> width(head.size(), 0);
+  auto display_len = [](const std::string& s) {  // UTF-8 aware enough for "–"
+    size_t n = 0;
+    for (unsigned char ch : s) n += (ch & 0xC0) != 0x80;
+    return n;
+  };
+  for (const auto& row : grid)
+    for (size_t k = 0; k < row.size(); ++k) width[k] = std::max(width[k], display_len(row[k]));
+  std::string out;
+  for (const auto& row : grid) {
+    for (size_t k = 0; k < row.size(); ++k) {
+      out += row[k] + std::string(width[k] - display_len(row[k]) + (k + 1 < row.size() ? 2 : 0), ' ');
+    }
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    out += '\n';
+  }
+  if (any_ci(t)) out += ci_caption(o) + "\n";
+  return out;
+}
+
+nlohmann::json distribution_json(const TableCell& c) {
+  const SceneDistribution d = scene_distribution(c);
+  nlohmann::json worst = nlohmann::json::array();
+  for (const auto& [stem, v] : d.worst) worst.push_back({{"scene", stem}, {"ipd", v}});
+  return {{"scenes", d.scenes},        {"min", number_or_null(d.min)}, {"q1", number_or_null(d.q1)},
+          {"median", number_or_null(d.median)}, {"q3", number_or_null(d.q3)}, {"max", number_or_null(d.max)},
+          {"worst", worst}};
+}
+
+std::string latex_table(const CrossTable& t, const TableFormatOptions& o) {
+  const size_t nc = t.columns.size();
+  const bool bt = o.booktabs;
+  const char* rule = bt ? "" : "\\hline\n";
+  std::string out = "% IPD cross table, generated by `ipd table --format latex`\n";
+  if (o.latex_ci && any_ci(t)) out += "% " + ci_caption(o) + "\n";
+  if (bt) {
+    out += "% needs \\usepackage{booktabs}\n\\begin{tabular}{l";
+    for (size_t k = 0; k < nc; ++k) out += "c";
+    out += "}\n\\toprule\n";
+    out += fmt::format(" & \\multicolumn{{{}}}{{c}}{{$\\downarrow$ Instance Performance Difference (IPD)}} \\\\\n", nc);
+    out += fmt::format("\\cmidrule(lr){{2-{}}}\n", nc + 1);
+  } else {
+    out += "\\begin{tabular}{|c|";
+    for (size_t k = 0; k < nc; ++k) out += "c|";
+    out += "}\n\\hline\n";
+    out += fmt::format(" & \\multicolumn{{{}}}{{c|}}{{$\\downarrow$ Instance Performance Difference (IPD)}} \\\\\n\\hline\n", nc);
+  }
+  out += "Train\\textbackslash Eval";
+  // Single bars: the paper's \| prints a double bar (a norm), not an absolute value.
+  for (const auto& c : t.columns) out += " & $|$" + latex_escape(c.first) + " $-$ " + latex_escape(c.second) + "$|$";
+  out += " \\\\\n";
+  out += bt ? "\\midrule\n" : rule;
+  for (size_t r = 0; r < t.models.size(); ++r) {
+    const double best = row_best(t, r);
+    out += latex_escape(row_title(t.models[r]));
+    for (size_t c = 0; c < nc; ++c) {
+      const auto& cell = t.cells[r * nc + c];
+      const std::string s = cell_text(cell, "--");  // an en dash in LaTeX, as the text table's "–"
+      out += " & " + (cell.involves_training_domain && cell.ipd == best ? "\\textbf{" + s + "}" : s);
+      if (o.latex_ci) out += ci_text(cell);
+    }
+    out += " \\\\\n";
+    if (!bt) out += rule;
+  }
+  if (bt) out += "\\bottomrule\n";
+  out += "\\end{tabular}\n";
+  return out;
+}
+
+}  // namespace
+
+std::string format_table(const CrossTable& t, TableFormat format, const TableFormatOptions& o) {
+  const size_t nc = t.columns.size();
+  switch (format) {
+    case TableFormat::kText:
+      return text_table(t, o);
+    case TableFormat::kCsv: {
+      std::string out =
+          "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se\n";
+      for (const auto& c : t.cells)
+        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.model, c.trained_on, c.a, c.b,
+                           number_or_empty(c.ipd), c.pairs, c.unpaired_a, c.unpaired_b, c.scenes,
+                           c.involves_training_domain ? "true" : "false", number_or_empty(c.ci_low),
+                           number_or_empty(c.ci_high), number_or_empty(c.se));
+      return out;
+    }
+    case TableFormat::kJson: {
+      nlohmann::json j;
+      j["cells"] = nlohmann::json::array();
+      for (const auto& c : t.cells) {
+        nlohmann::json cell = {{"model", c.model},           {"trained_on", c.trained_on},
+                               {"a", c.a},                   {"b", c.b},
+                               {"pairs", c.pairs},           {"unpaired_a", c.unpaired_a},
+                               {"unpaired_b", c.unpaired_b}, {"scenes", c.scenes},
+                               {"involves_training_domain", c.involves_training_domain}};
+        cell["ipd"] = number_or_null(c.ipd);
+        cell["ci_low"] = number_or_null(c.ci_low);
+        cell["ci_high"] = number_or_null(c.ci_high);
+        cell["se"] = number_or_null(c.se);
+        if (c.missing_predictions) cell["missing_predictions"] = true;
+        else cell["scene_ipd"] = distribution_json(c);
+        j["cells"].push_back(cell);
+      }
+      j["bootstrap"] = {{"resamples", o.resamples}, {"level", o.level}, {"seed", o.seed}};
+      j["conf_threshold"] = o.conf_threshold;
+      j["warnings"] = t.warnings;
+      return j.dump(2) + "\n";
+    }
+    case TableFormat::kMarkdown: {
+      std::string out = "| Train \\ Eval |";
+      for (const auto& c : t.columns) out += " \\|" + column_title(c) + "\\| |";
+      out += "\n|---|";
+      for (size_t k = 0; k < nc; ++k) out += "---:|";
+      out += "\n";
+      for (size_t r = 0; r < t.models.size(); ++r) {
+        const double best = row_best(t, r);
+        out += "| " + row_title(t.models[r]) + " |";
+        for (size_t c = 0; c < nc; ++c) {
+          const auto& cell = t.cells[r * nc + c];
+          const std::string s = cell_text(cell, "–");
+          out += (cell.involves_training_domain && cell.ipd == best ? " **" + s + "**" : " " + s) + ci_text(cell) + " |";
+        }
+        out += "\n";
+      }
+      out += "\nIPD: mean |performance-value difference| over matched rock pairs; lower is better.";
+      if (any_ci(t)) out += " " + ci_caption(o) + ".";
+      out += "\n";
+      return out;
+    }
+    case TableFormat::kLatex:
+      return latex_table(t, o);
+  }
+  return {};
+}
+
+}  // namespace ipd

@@ -1,0 +1,193 @@
+// The state of an inspection session, apart from any drawing: a loaded study, the rock pairs of every
+// image pair (automatic or hand-fixed), edits with undo/redo, and IPD figures kept up to date
+// incrementally (an edit touches one scene's contribution, never the whole study).
+//
+// It owns no thread and does no file I/O after loading: edits produce SaveJobs that the caller writes
+// (the GUI hands them to its saver thread).
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/util/atomic_file.h"
+#include "core/session/audit.h"
+#include "core/ipd/ipd.h"
+#include "core/ipd/study_cache.h"
+
+namespace ipd {
+
+enum class Side { kA, kB };
+
+struct Edit {
+  enum class Kind { kPair, kUnpair, kToggleExclude, kResetToAutomatic, kReplacePairs } kind;
+  int a = -1, b = -1;   // kPair: both; kUnpair / kToggleExclude: the rock on `side`
+  Side side = Side::kA;
+  RockPairs pairs;      // kReplacePairs: (left, right) pairs, e.g. from re-running registration
+
+  static Edit pair(int left, int right) { return {Kind::kPair, left, right, Side::kA, {}}; }
+  static Edit unpair(Side side, int rock) { return {Kind::kUnpair, rock, -1, side, {}}; }
+  static Edit toggle_exclude(Side side, int rock) { return {Kind::kToggleExclude, rock, -1, side, {}}; }
+  static Edit reset() { return {Kind::kResetToAutomatic, -1, -1, Side::kA, {}}; }
+  static Edit replace(RockPairs pairs) { return {Kind::kReplacePairs, -1, -1, Side::kA, std::move(pairs)}; }
+};
+
+// A file to write (atomically) or remove, so that `ipd table` sees what the session shows.
+struct SaveJob {
+  std::string path;
+  std::optional<std::string> contents;  // nullopt: remove the file (back to automatic pairing)
+  std::vector<std::string> also_remove;  // the same scene's file under the other name order
+};
+
+// Carries out a save job: atomic write, or removal. Throws IoError naming the file.
+// Order: the file read first (`path`) is written (temp, fsync, rename, fsync of the directory) before the
+// other name order is removed; going back to automatic removes the other name order first. A crash or a
+// failure at any instant leaves the old pairs or the new ones, never neither. `hook` is called after each
+// step ("temp written", "renamed", "directory synced", "other removed", "removed"); tests throw from it.
+void run_save_job(const SaveJob& job, const WriteStepHook& hook = {});
+
+struct SceneState {
+  std::string stem;
+  ScenePairing automatic;  // what registration found
+  FixedPairs current;      // what counts now
+  bool edited = false;     // current differs from automatic and is saved as fixed pairs
+  bool fixed_on_disk = false;
+};
+
+struct SceneSummary {
+  std::string stem;
+  double ipd = 0;  // NaN when no pairs
+  int pairs = 0, unpaired_a = 0, unpaired_b = 0;
+  bool edited = false;
+  int suspects = 0;        // suspect pairs (audit_pairs)
+  bool ambiguous = false;  // registration could not decide (RegistrationReport::ambiguous)
+};
+
+struct SessionOptions {
+  const RegistrationOptions* registration = nullptr;  // null: the study's own
+  std::string cache_dir;  // registration cache (registration_cache_dir()); empty: register every scene
+  // Session::open: the parsed-study cache (parsed_study_cache_path(), study_cache.h); empty: none.
+  std::string study_cache_path;
+  // Session::open: > 0 opens only the first N scenes (by stem, the same cut in every domain): a first look
+  // at a big study while the whole of it loads. Scene k of a domain pair is scene k of the whole study.
+  size_t first_scenes = 0;
+  // Used instead of a cache in `cache_dir` when set (Session::open passes one preloaded from the file).
+  const RegistrationCache* registration_cache = nullptr;
+  // Called from worker threads while opening: stage ("labels", "registration"), done, total.
+  std::function<void(const char* stage, int done, int total)> progress;
+};
+
+struct CellTotals {
+  double sum_abs_diff = 0;
+  long pairs = 0, unpaired_a = 0, unpaired_b = 0;
+  int scenes = 0;
+  double ipd() const;
+};
+
+class Session {
+ public:
+  // Loads labels and pairs every image pair of every domain pair (the heavy part: run it off the UI thread).
+  static Session open(const std::string& study_root, const RegistrationOptions* registration = nullptr);
+  static Session open(const std::string& study_root, const SessionOptions& options);
+  explicit Session(StudyLabels labels, const RegistrationOptions* registration = nullptr);
+  Session(StudyLabels labels, const SessionOptions& options);
+  // Copies are cheap enough to publish a snapshot after every change: labels are shared, not copied.
+
+  const Study& study() const { return labels_->study; }
+  const StudyLabels& labels() const { return *labels_; }
+  int cached_registrations() const { return cached_; }  // scenes whose registration came from the cache
+  const StudyCacheStats& study_cache_stats() const { return study_cache_stats_; }  // Session::open only
+  const std::vector<std::pair<std::string, std::string>>& domain_pairs() const { return pairs_; }
+  bool read_only() const { return read_only_; }
+
+  // The domain pair in view (index into domain_pairs()) and the model whose predictions count.
+  int pair_index() const { return pair_; }
+  const std::string& model() const { return model_; }
+  void select(int pair_index, const std::string& model);
+  // Finds the domain pair (a, b) in either order; false when it is not one.
+  bool select_domains(const std::string& a, const std::string& b);
+  bool swapped() const { return swapped_; }  // the view shows (b, a): left is the pair's second domain
+  const std::string& left_domain() const;
+  const std::string& right_domain() const;
+
+  // Scenes of the current domain pair, in stem order.
+  const std::vector<SceneState>& scenes() const { return scenes_[pair_]; }
+  int scene_index(const std::string& stem) const;
+  SceneSummary summary(int scene) const;
+  std::vector<SceneSummary> summaries() const;  // every scene of the current domain pair
+  // The audit of a scene's current pairs against its registration affine, in the domain pair's (A, B)
+  // orientation (audit.pairs[k].a indexes A even when the view is swapped).
+  const SceneAudit& audit(int scene) const { return audits_[pair_][scene]; }
+  // Per rock of a view side: 1 when its pair is suspect.
+  std::vector<char> suspect_rocks(Side side, int scene) const;
+  // The current pairs of a scene oriented as (left index, right index).
+  RockPairs view_pairs(int scene) const;
+  const std::vector<Box>& gt(Side side, int scene) const;
+  const std::vector<Box>& predictions(Side side, int scene) const;
+  const PerformanceValues& performance(Side side, int scene) const;
+  bool excluded(Side side, int scene, int rock) const;
+
+  // IPD of the current domain pair for the current model, and any cell of the cross table.
+  CellTotals totals() const { return totals_for(model_, pair_); }
+  CellTotals totals_for(const std::string& model, int pair_index) const;
+  // Each scene's contribution to a cell (scene order of the domain pair; `counted` in (A, B) indices);
+  // empty when the model lacks predictions for a domain. For the statistics (session_statistics.h).
+  const std::vector<SceneIpd>& contributions_for(const std::string& model, int pair_index) const;
+
+  // Edits of one scene; sides refer to the view (left = A unless swapped). Returns the save job.
+  SaveJob apply(int scene, Edit edit);
+  bool can_undo() const { return undo_pos_ > 0; }
+  bool can_redo() const { return undo_pos_ < history_.size(); }
+  std::optional<SaveJob> undo();  // nullopt when there is nothing to undo
+  std::optional<SaveJob> redo();
+  int last_edited_scene() const { return last_scene_; }
+
+  // Drops predictions below `threshold` (on top of the study's own) and recomputes every IPD.
+  void set_conf_threshold(double threshold);
+  double conf_threshold() const { return conf_threshold_; }
+
+  // Every hand-edited scene's pairs written under another study root (for read-only studies).
+  std::vector<SaveJob> save_all_to(const std::string& other_root) const;
+
+ private:
+  struct HistoryEntry {
+    int pair, scene;
+    FixedPairs before, after;
+    bool edited_before, edited_after;
+  };
+  SaveJob set_scene(int pair, int scene, const FixedPairs& pairs, bool edited);
+  SaveJob job_for(int pair, int scene, const std::string& root) const;
+  void recompute_performance();
+  void rebuild_totals();
+  SceneIpd contribution(const std::string& model, int pair, int scene) const;
+  void reaudit(int pair, int scene);
+  Side pair_side(Side view_side) const;  // view side -> side of the domain pair
+  const std::string& domain_of(Side view_side) const;
+
+  std::shared_ptr<const StudyLabels> labels_;
+  std::vector<std::pair<std::string, std::string>> pairs_;
+  std::vector<std::vector<SceneState>> scenes_;  // per domain pair
+  std::vector<std::vector<SceneAudit>> audits_;  // per domain pair, per scene
+  int cached_ = 0;
+  StudyCacheStats study_cache_stats_;
+  int pair_ = 0;
+  bool swapped_ = false;
+  std::string model_;
+  bool read_only_ = false;
+  double conf_threshold_ = 0;
+  // domain -> model -> stem -> performance values; and the filtered predictions they came from
+  // (shared between snapshots: replaced whole when the threshold changes, never modified)
+  std::shared_ptr<const ByDomainModelStem<PerformanceValues>> perf_;
+  std::shared_ptr<const ByDomainModelStem<std::vector<Box>>> shown_predictions_;
+  // (model, pair) -> totals, and each scene's contribution to them
+  std::map<std::pair<std::string, int>, CellTotals> totals_;
+  std::map<std::pair<std::string, int>, std::vector<SceneIpd>> contributions_;
+  std::vector<HistoryEntry> history_;
+  size_t undo_pos_ = 0;
+  int last_scene_ = -1;
+};
+
+}  // namespace ipd

@@ -1,0 +1,175 @@
+#include "core/study/coco_import.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fmt/format.h>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "core/util/atomic_file.h"
+#include "core/util/json_input.h"
+#include "core/study/study.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace ipd {
+
+namespace {
+
+// COCO nests at most 5 deep (segmentation polygons); 64 leaves room and stops a 66k-deep file.
+json parse_json_file(const std::string& path, const char* expected) {
+  return parse_json_input(read_file(path), path, expected, 64);
+}
+
+struct Image {
+  std::string file, stem;
+  double w = 0, h = 0;
+  std::vector<Box> gt, predictions;
+};
+
+// A COCO [x, y, w, h] box in pixels to a normalised YOLO box; empty string when fine, else what's wrong.
+std::string to_box(const json& bbox, const Image& img, Box* out) {
+  if (!bbox.is_array() || bbox.size() != 4 || !std::all_of(bbox.begin(), bbox.end(), [](const json& v) { return v.is_number(); }))
+    return fmt::format("expected bbox [x, y, w, h] of numbers, found {}", describe_json(bbox));
+  const double x = bbox[0], y = bbox[1], w = bbox[2], h = bbox[3];
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(w) || !std::isfinite(h) || w <= 0 || h <= 0)
+    return fmt::format("expected bbox with w > 0 and h > 0, found {}", describe_json(bbox));
+  const double tol = 1.0;  // a pixel of rounding beyond the border is fine
+  if (x < -tol || y < -tol || x + w > img.w + tol || y + h > img.h + tol)
+    return fmt::format("expected bbox inside the {}x{} image, found {}", img.w, img.h, describe_json(bbox));
+  out->cx = std::clamp((x + w / 2) / img.w, 0.0, 1.0);
+  out->cy = std::clamp((y + h / 2) / img.h, 0.0, 1.0);
+  out->w = std::min(w / img.w, 1.0);
+  out->h = std::min(h / img.h, 1.0);
+  return {};
+}
+
+}  // namespace
+
+namespace {
+CocoImportReport import_coco_checked(const CocoImportOptions& o);
+}
+
+CocoImportReport import_coco(const CocoImportOptions& o) {
+  try {
+    return import_coco_checked(o);
+  } catch (const json::exception& e) {  // a case the checks below missed still names the file
+    std::string why = e.what();
+    if (why.size() > 120) why = why.substr(0, 117) + "...";
+    throw StudyError(fmt::format("{}: {}", o.annotations, why));
+  }
+}
+
+namespace {
+CocoImportReport import_coco_checked(const CocoImportOptions& o) {
+  CocoImportReport r;
+  const json gt = parse_json_file(o.annotations, "a COCO object {\"images\": [...], \"annotations\": [...], ...}");
+  for (const char* key : {"images", "annotations", "categories"})
+    if (!gt.is_object() || !gt.contains(key) || !gt[key].is_array())
+      throw StudyError(fmt::format("{}: expected a COCO object with an \"{}\" array", o.annotations, key));
+  std::map<long, int> class_of;  // category id -> YOLO class
+  std::vector<std::pair<long, std::string>> cats;
+  for (const auto& c : gt["categories"]) {
+    if (!c.is_object() || !c.contains("id") || !c["id"].is_number_integer())
+      throw StudyError(fmt::format("{}: every category needs an integer \"id\", found {}", o.annotations, describe_json(c)));
+    if (c.contains("name") && !c["name"].is_string())
+      throw StudyError(fmt::format("{}: category {}: \"name\" must be a string, found {}", o.annotations,
+                                   c["id"].get<long>(), describe_json(c["name"])));
+    cats.emplace_back(c["id"].get<long>(), c.value("name", std::to_string(c["id"].get<long>())));
+  }
+  std::sort(cats.begin(), cats.end());
+  for (size_t k = 0; k < cats.size(); ++k) {
+    class_of[cats[k].first] = static_cast<int>(k);
+    r.classes.push_back(cats[k].second);
+  }
+  std::map<long, Image> images;
+  size_t k = 0;
+  for (const auto& im : gt["images"]) {
+    const std::string where = fmt::format("images[{}]", k++);
+    if (!im.is_object() || !im.contains("id") || !im["id"].is_number_integer() || !im.contains("file_name") ||
+        !im["file_name"].is_string() || !im.contains("width") || !im.contains("height") || !im["width"].is_number() ||
+        !im["height"].is_number() || !(im["width"].get<double>() > 0) || !(im["height"].get<double>() > 0)) {
+      r.errors.push_back({o.annotations, 0, where + ": expected {id, file_name, width > 0, height > 0}, found " + describe_json(im)});
+      continue;
+    }
+    Image img;
+    img.file = im["file_name"].get<std::string>();
+    img.stem = fs::path(img.file).stem().string();
+    img.w = im["width"];
+    img.h = im["height"];
+    if (!images.emplace(im["id"].get<long>(), img).second)
+      r.errors.push_back({o.annotations, 0, fmt::format("{}: image id {} appears twice", where, im["id"].get<long>())});
+  }
+  auto add = [&](const json& a, const std::string& file, const std::string& where, bool prediction) {
+    if (!a.is_object() || !a.contains("image_id") || !a["image_id"].is_number_integer() || !a.contains("category_id") ||
+        !a["category_id"].is_number_integer()) {
+      r.errors.push_back({file, 0, where + ": expected image_id and category_id integers, found " + describe_json(a)});
+      return;
+    }
+    const auto im = images.find(a["image_id"].get<long>());
+    if (im == images.end()) {
+      r.errors.push_back({file, 0, fmt::format("{}: image_id {} is not among the images", where, a["image_id"].get<long>())});
+      return;
+    }
+    const auto cls = class_of.find(a["category_id"].get<long>());
+    if (cls == class_of.end()) {
+      r.errors.push_back({file, 0, fmt::format("{}: category_id {} is not among the categories", where, a["category_id"].get<long>())});
+      return;
+    }
+    Box b;
+    b.cls = cls->second;
+    const std::string why = to_box(a.contains("bbox") ? a["bbox"] : json(), im->second, &b);
+    if (!why.empty()) {
+      r.errors.push_back({file, 0, where + ": " + why});
+      return;
+    }
+    if (prediction) {
+      if (!a.contains("score") || !a["score"].is_number() || !(a["score"].get<double>() >= 0 && a["score"].get<double>() <= 1)) {
+        r.errors.push_back({file, 0, where + ": expected a score in [0, 1], found " + (a.contains("score") ? describe_json(a["score"]) : "none")});
+        return;
+      }
+      b.conf = a["score"];
+      im->second.predictions.push_back(b);
+      ++r.detections;
+    } else {
+      im->second.gt.push_back(b);
+      ++r.boxes;
+    }
+  };
+  k = 0;
+  for (const auto& a : gt["annotations"]) add(a, o.annotations, fmt::format("annotations[{}]", k++), false);
+  if (!o.results.empty()) {
+    const json res = parse_json_file(o.results, "a JSON list of detections [{image_id, category_id, bbox, score}]");
+    if (!res.is_array()) throw StudyError(o.results + ": expected a JSON list of detections [{image_id, category_id, bbox, score}]");
+    k = 0;
+    for (const auto& a : res) add(a, o.results, fmt::format("[{}]", k++), true);
+  }
+  r.images = static_cast<int>(images.size());
+  if (!r.errors.empty() && !o.skip_bad_entries) return r;
+  const fs::path out(o.out_dir);
+  for (const auto& [id, img] : images) {
+    write_labels((out / "labels" / (img.stem + ".txt")).string(), img.gt, LabelKind::kGroundTruth);
+    if (!o.results.empty())
+      write_labels((out / "predictions" / o.model / (img.stem + ".txt")).string(), img.predictions, LabelKind::kPrediction);
+    const fs::path src = fs::absolute(fs::path(o.images_dir) / img.file);
+    std::error_code ec;
+    if (!o.images_dir.empty() && fs::exists(src, ec)) {
+      const fs::path dst = out / "images" / fs::path(img.file).filename();
+      fs::create_directories(dst.parent_path(), ec);
+      fs::remove(dst, ec);
+      fs::create_symlink(src, dst, ec);
+      if (!ec) ++r.linked_images;
+    }
+  }
+  std::string names;
+  for (const auto& c : r.classes) names += c + "\n";
+  write_file_atomically((out / "labels" / "classes.txt").string(), names);
+  r.written = true;
+  return r;
+}
+
+}  // namespace
+
+}  // namespace ipd

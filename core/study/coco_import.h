@@ -1,0 +1,32 @@
+// Turning COCO ground truth (instances JSON) and detection results (a JSON list) into the study layout:
+// <domain>/labels/<stem>.txt, <domain>/images/<file> (links), <domain>/predictions/<model>/<stem>.txt.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/io/label_io.h"
+
+namespace ipd {
+
+struct CocoImportOptions {
+  std::string annotations;  // COCO GT: images, annotations, categories
+  std::string results;      // optional: [{image_id, category_id, bbox, score}, ...]
+  std::string images_dir;   // where file_name resolves; linked into <out>/images
+  std::string out_dir;      // the domain directory, e.g. STUDY/real
+  std::string model = "coco-results";
+  bool skip_bad_entries = false;
+};
+
+struct CocoImportReport {
+  int images = 0, boxes = 0, detections = 0, linked_images = 0;
+  std::vector<std::string> classes;  // YOLO class k = k-th category by id
+  std::vector<LabelError> errors;    // all of them; nothing is written when any is fatal
+  bool written = false;
+};
+
+// Throws IoError / StudyError for unreadable or structurally wrong files; entry-level problems are
+// collected in the report (all of them) and, unless skipped, prevent writing anything.
+CocoImportReport import_coco(const CocoImportOptions& options);
+
+}  // namespace ipd

@@ -1,0 +1,86 @@
+// A study on disk: domains with labels, images and model predictions; optional study.yaml and fixed pairs.
+//
+//   STUDY/study.yaml                                  optional settings (StudyConfig)
+//   STUDY/<domain>/labels/<stem>.txt                  GT boxes, YOLO txt
+//   STUDY/<domain>/images/<stem>.<png|jpg|...>        optional pictures
+//   STUDY/<domain>/predictions/<model>/<stem>.txt     detector output, YOLO txt + confidence
+//   STUDY/pairs/<A>__<B>/<stem>.json                  fixed rock pairs, replacing registration
+#pragma once
+
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/util/errors.h"
+#include "core/io/label_io.h"
+#include "core/registration/registration.h"
+
+namespace ipd {
+
+struct ModelInfo {
+  std::string name;
+  std::string trained_on;  // a domain name, or empty when unknown
+};
+
+struct StudyConfig {
+  int rock_class = -1;         // -1: every class counts
+  double conf_threshold = 0;   // predictions below this are dropped
+  int image_width = 0, image_height = 0;  // for labels-only studies; 0 when unknown
+  std::vector<std::string> domain_order;  // optional preferred order
+  std::map<std::string, std::string> trained_on;  // model -> domain
+  RegistrationOptions registration;
+};
+
+// Parses study.yaml text; throws StudyError naming the file (and line when known).
+StudyConfig parse_study_config(const std::string& yaml_text, const std::string& file_name);
+
+struct Domain {
+  std::string name;
+  std::string dir;
+  std::vector<std::string> stems;             // sorted; scenes with labels or images
+  std::map<std::string, std::string> images;  // stem -> picture path
+  std::vector<std::string> models;            // prediction sets present
+};
+
+struct Study {
+  std::string root;
+  StudyConfig config;
+  std::vector<Domain> domains;
+  std::vector<ModelInfo> models;  // union over domains and config, sorted by training-domain order
+
+  const Domain* domain(const std::string& name) const;
+  std::string label_path(const std::string& domain, const std::string& stem) const;
+  std::string prediction_path(const std::string& domain, const std::string& model, const std::string& stem) const;
+  std::string pairs_dir(const std::string& a, const std::string& b) const;  // in the A__B order given
+  double aspect() const;  // image width / height for registration
+};
+
+// Scans a study directory; throws StudyError when it is missing, unreadable or has no domains.
+Study open_study(const std::string& root);
+
+// Scene stems present in both domains, and those only in one (for reporting).
+struct SceneMatch {
+  std::vector<std::string> common, only_a, only_b;
+};
+SceneMatch match_scenes(const Domain& a, const Domain& b);
+
+// Hand-fixed pairs for one image pair, oriented as (index in A, index in B).
+struct FixedPairs {
+  RockPairs pairs;
+  std::vector<int> excluded_a, excluded_b;  // rocks left out of the IPD on purpose
+};
+
+// Reads pairs/<A>__<B>/<stem>.json or pairs/<B>__<A>/<stem>.json (swapping indices); nullopt when neither
+// exists. Throws StudyError naming the file for bad JSON, unknown keys, indices out of range, a rock paired
+// twice, a dangling link or an unreadable file. When both exist, A__B counts and a warning names B__A.
+std::optional<FixedPairs> read_fixed_pairs(const Study& study, const std::string& a, const std::string& b,
+                                           const std::string& stem, int count_a, int count_b,
+                                           std::vector<std::string>* warnings = nullptr);
+// Writes pairs/<A>__<B>/<stem>.json atomically.
+void write_fixed_pairs(const Study& study, const std::string& a, const std::string& b, const std::string& stem,
+                       const FixedPairs& pairs);
+std::string fixed_pairs_json(const FixedPairs& pairs);
+
+}  // namespace ipd

@@ -1,0 +1,175 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "core/io/label_io.h"
+#include "tests/support/test_support.h"
+
+namespace ipd {
+namespace {
+
+LabelFile parse_gt(const std::string& text) { return parse_labels(text, "a.txt", {LabelKind::kGroundTruth}); }
+
+std::string only_error(const LabelFile& f) {
+  EXPECT_EQ(f.errors.size(), 1u);
+  return f.errors.empty() ? "" : f.errors[0].to_string();
+}
+
+TEST(LabelIo, ParsesBoxesCommentsAndBlankLines) {
+  const LabelFile f = parse_gt("# header\n\n0 0.5 0.25 0.1 0.2\n  1 0.1 0.9 0.05 0.05  # shadow\n");
+  ASSERT_TRUE(f.errors.empty());
+  ASSERT_EQ(f.boxes.size(), 2u);
+  EXPECT_EQ(f.boxes[0].cls, 0);
+  EXPECT_DOUBLE_EQ(f.boxes[0].cy, 0.25);
+  EXPECT_DOUBLE_EQ(f.boxes[0].conf, 1.0);
+  EXPECT_EQ(f.boxes[1].cls, 1);
+  EXPECT_EQ(f.line_of_box, (std::vector<int>{3, 4}));
+}
+
+TEST(LabelIo, PredictionsCarryConfidence) {
+  const LabelFile f = parse_labels("0 0.5 0.5 0.1 0.1 0.87\n", "p.txt", {LabelKind::kPrediction});
+  ASSERT_EQ(f.boxes.size(), 1u);
+  EXPECT_DOUBLE_EQ(f.boxes[0].conf, 0.87);
+}
+
+TEST(LabelIo, EveryBadLineIsReportedWithFileLineAndWhat) {
+  EXPECT_EQ(only_error(parse_gt("0 0.5 0.5\n")), "a.txt:1: expected 5 columns (class cx cy w h), found 3");
+  EXPECT_EQ(only_error(parse_labels("0 0.5 0.5 0.1 0.1\n", "p.txt", {LabelKind::kPrediction})),
+            "p.txt:1: expected 6 columns (class cx cy w h conf), found 5");
+  EXPECT_EQ(only_error(parse_gt("0 0.5 abc 0.1 0.1\n")), "a.txt:1: expected a number for cy in column 3, found 'abc'");
+  EXPECT_EQ(only_error(parse_gt("0 nan 0.5 0.1 0.1\n")),
+            "a.txt:1: expected a finite number for cx in column 2, found 'nan'");
+  EXPECT_EQ(only_error(parse_gt("0 0.5 0.5 inf 0.1\n")),
+            "a.txt:1: expected a finite number for w in column 4, found 'inf'");
+  EXPECT_EQ(only_error(parse_gt("0 0.5 0.5 0 0.1\n")), "a.txt:1: expected w > 0, found 0");
+  EXPECT_EQ(only_error(parse_gt("0 0.5 0.5 0.1 -0.2\n")), "a.txt:1: expected h in [0, 1] (normalised), found -0.2");
+  EXPECT_EQ(only_error(parse_gt("1.5 0.5 0.5 0.1 0.1\n")),
+            "a.txt:1: expected a non-negative integer class in column 1, found '1.5'");
+  EXPECT_EQ(only_error(parse_gt("-1 0.5 0.5 0.1 0.1\n")),
+            "a.txt:1: expected a non-negative integer class in column 1, found '-1'");
+  EXPECT_EQ(only_error(parse_gt("0 1.2 0.5 0.1 0.1\n")), "a.txt:1: expected cx in [0, 1] (normalised), found 1.2");
+  // A file name pasted into a label line, as found in POLAR-Sim.
+  EXPECT_EQ(only_error(parse_gt("01_A_off_180_L_0016.png\n")),
+            "a.txt:1: expected 5 columns (class cx cy w h), found 1");
+}
+
+TEST(LabelIo, SmallRoundingOutsideTheUnitRangeIsAccepted) {
+  const LabelFile f = parse_gt("0 1.0004 -0.0003 0.1 0.1\n");
+  EXPECT_TRUE(f.errors.empty());
+  EXPECT_EQ(f.boxes.size(), 1u);
+}
+
+TEST(LabelIo, AllErrorsNotOnlyTheFirstAndGoodLinesKept) {
+  const LabelFile f = parse_gt("0 0.5 0.5 0.1 0.1\nbad\n0 0.5 0.5 0.1\n0 0.2 0.2 0.1 0.1\n");
+  ASSERT_EQ(f.errors.size(), 2u);
+  EXPECT_EQ(f.errors[0].line, 2);
+  EXPECT_EQ(f.errors[1].line, 3);
+  EXPECT_EQ(f.boxes.size(), 2u);
+  EXPECT_EQ(f.line_of_box, (std::vector<int>{1, 4}));
+}
+
+TEST(LabelIo, MissingFileIsAnEmptyImageUnreadableIsAnError) {
+  test::TempDir dir;
+  const LabelFile missing = read_labels(dir / "nope.txt", {});
+  EXPECT_FALSE(missing.exists);
+  EXPECT_TRUE(missing.boxes.empty());
+  EXPECT_TRUE(missing.errors.empty());
+  test::write_text(dir / "sub/x.txt", "");
+  const LabelFile is_dir = read_labels(dir / "sub", {});
+  ASSERT_EQ(is_dir.errors.size(), 1u);
+  EXPECT_EQ(is_dir.errors[0].to_string(), dir / "sub" + ": is a directory, expected a file");
+}
+
+TEST(LabelIo, ClassAndConfidenceFilters) {
+  LabelFile f = parse_labels("0 0.5 0.5 0.1 0.1 0.9\n1 0.5 0.5 0.1 0.1 0.9\n0 0.2 0.2 0.1 0.1 0.1\n", "p.txt",
+                             {LabelKind::kPrediction});
+  keep_class(&f, 0);
+  ASSERT_EQ(f.boxes.size(), 2u);
+  keep_confident(&f, 0.25);
+  ASSERT_EQ(f.boxes.size(), 1u);
+  EXPECT_EQ(f.line_of_box[0], 1);
+}
+
+TEST(LabelIo, WriteThenReadRoundTrips) {
+  test::TempDir dir;
+  Box b;
+  b.cls = 2, b.cx = 0.125, b.cy = 0.5, b.w = 0.25, b.h = 0.0625, b.conf = 0.5;
+  write_labels(dir / "deep/p.txt", {b}, LabelKind::kPrediction);
+  const LabelFile f = read_labels(dir / "deep/p.txt", {LabelKind::kPrediction});
+  ASSERT_EQ(f.boxes.size(), 1u);
+  EXPECT_EQ(f.boxes[0].cls, 2);
+  EXPECT_DOUBLE_EQ(f.boxes[0].w, 0.25);
+  EXPECT_DOUBLE_EQ(f.boxes[0].conf, 0.5);
+}
+
+}  // namespace
+}  // namespace ipd
+
+namespace ipd {
+namespace {
+
+// Random bytes and mutated label lines never crash the parser: every line is a box or an error.
+TEST(LabelIo, GarbageNeverCrashesAndEveryLineIsAccountedFor) {
+  std::mt19937 g(12);
+  const std::string alphabet = "0123456789.-+eE nNaAiIfF#\t\r\x01\xff,;x";
+  for (int round = 0; round < 3000; ++round) {
+    std::string text;
+    const int lines = static_cast<int>(g() % 6);
+    for (int l = 0; l < lines; ++l) {
+      if (g() % 2) {
+        text += "0 0.5 0.5 0.1 0.1";  // a valid line, then mutate a few characters
+        for (int m = static_cast<int>(g() % 4); m > 0; --m) text[text.size() - 1 - g() % 17] = alphabet[g() % alphabet.size()];
+      } else {
+        for (int c = static_cast<int>(g() % 40); c > 0; --c) text += alphabet[g() % alphabet.size()];
+      }
+      text += '\n';
+    }
+    for (const auto kind : {LabelKind::kGroundTruth, LabelKind::kPrediction}) {
+      const LabelFile f = parse_labels(text, "fuzz.txt", {kind});
+      for (const auto& b : f.boxes) {
+        ASSERT_TRUE(std::isfinite(b.cx) && std::isfinite(b.w) && b.w > 0 && b.h > 0) << text;
+        ASSERT_GE(b.cls, 0);
+      }
+      for (const auto& e : f.errors) ASSERT_EQ(e.to_string().rfind("fuzz.txt:", 0), 0u);
+      // Every box line (anything but blanks before a '#') is a box or an error: none is dropped.
+      size_t box_lines = 0, start = 0;
+      while (start < text.size()) {
+        size_t eol = text.find('\n', start);
+        if (eol == std::string::npos) eol = text.size();
+        const std::string line = text.substr(start, std::min(eol, text.find('#', start)) - start);
+        if (line.find_first_not_of(" \t\r\v\f") != std::string::npos) ++box_lines;
+        start = eol + 1;
+      }
+      size_t accounted = f.boxes.size();
+      for (const auto& e : f.errors) accounted += static_cast<size_t>(e.malformed_lines());
+      ASSERT_EQ(accounted, box_lines) << text;
+    }
+  }
+}
+
+TEST(LabelIo, GarbageStudyFilesGiveExitOneNotACrash) {
+  test::TempDir d;
+  std::mt19937 g(5);
+  std::string junk;
+  for (int k = 0; k < 4000; ++k) junk += static_cast<char>(g() % 256);
+  test::write_text(d / "real/labels/a.txt", junk);
+  test::write_text(d / "synth/labels/a.txt", "0 0.5 0.5 0.1 0.1\n");
+  test::write_text(d / "real/predictions/m/a.txt", junk.substr(100));
+  test::write_text(d / "synth/predictions/m/a.txt", "");
+  auto r = test::run_ipd("table " + d.path());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  r = test::run_ipd("table " + d.path() + " --skip-bad-lines");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  test::write_text(d / "pairs/real__synth/a.json", junk);
+  r = test::run_ipd("table " + d.path() + " --skip-bad-lines");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(d / "pairs/real__synth/a.json" + ": invalid JSON"), std::string::npos) << r.err;
+  test::write_text(d / "study.yaml", junk.substr(0, 300));
+  r = test::run_ipd("table " + d.path());
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+}
+
+}  // namespace
+}  // namespace ipd

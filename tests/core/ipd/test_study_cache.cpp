@@ -1,0 +1,195 @@
+// The parsed-study cache (study_cache.h): reopening reuses unchanged label files and registrations, and a
+// truncated, corrupt or stale cache is never trusted: the study reads exactly as without a cache.
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "core/util/atomic_file.h"
+#include "core/session/session.h"
+#include "core/ipd/study_cache.h"
+#include "tests/support/test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+namespace {
+
+// Two domains x 3 scenes of 6 rocks, one model; scene s2 of `synth` has a malformed line.
+void write_study(const test::TempDir& d) {
+  for (int k = 0; k < 3; ++k) {
+    std::string real, synth;
+    for (int r = 0; r < 6; ++r) {
+      real += fmt::format("0 {:.3f} {:.3f} 0.050 0.040\n", 0.1 + 0.13 * r, 0.2 + 0.1 * ((r * 7 + k) % 5));
+      synth += fmt::format("0 {:.3f} {:.3f} 0.050 0.040\n", 0.12 + 0.13 * r, 0.2 + 0.1 * ((r * 7 + k) % 5));
+    }
+    if (k == 2) synth += "0 0.5 0.5 oops 0.1\n";
+    test::write_text(d / fmt::format("real/labels/s{}.txt", k), real);
+    test::write_text(d / fmt::format("synth/labels/s{}.txt", k), synth);
+    test::write_text(d / fmt::format("real/predictions/det/s{}.txt", k), "0 0.100 0.200 0.050 0.040 0.9\n");
+    test::write_text(d / fmt::format("synth/predictions/det/s{}.txt", k), "0 0.120 0.200 0.050 0.040 0.8\n");
+  }
+}
+
+// Every file's boxes, lines and errors, as one comparable text.
+std::string dump(const StudyLabels& l) {
+  std::string out;
+  auto file = [&](const LabelFile& f) {
+    out += fmt::format("{} exists={}\n", f.path, f.exists);
+    for (size_t k = 0; k < f.boxes.size(); ++k) {
+      const Box& b = f.boxes[k];
+      out += fmt::format("  {} {} {} {} {} {} line {}\n", b.cls, b.cx, b.cy, b.w, b.h, b.conf, f.line_of_box[k]);
+    }
+    for (const auto& e : f.errors) out += "  error " + e.to_string() + "\n";
+  };
+  for (const auto& [d, stems] : l.gt)
+    for (const auto& [s, f] : stems) file(f);
+  for (const auto& [d, models] : l.predictions)
+    for (const auto& [m, stems] : models)
+      for (const auto& [s, f] : stems) file(f);
+  return out;
+}
+
+struct Opened {
+  std::string labels;
+  StudyCacheStats stats;
+};
+
+// One open through the cache, as Session::open does it (labels, then save).
+Opened open_cached(const std::string& root) {
+  const Study study = open_study(root);
+  StudyCache cache(parsed_study_cache_path(root), study.root);
+  StudyLabels labels = cache.load_labels(study);
+  RegistrationCache registration("");
+  registration.preload(cache.take_registrations());
+  cache.save(labels, registration);
+  return {dump(labels), cache.stats()};
+}
+
+TEST(StudyCache, ReopenReusesEveryFileAndReadsTheSame) {
+  test::TempDir d;
+  write_study(d);
+  const std::string fresh = dump(load_labels(open_study(d.path())));
+  EXPECT_NE(fresh.find("s2.txt:7: "), std::string::npos) << fresh;  // the malformed line is reported
+
+  const Opened first = open_cached(d.path());
+  EXPECT_EQ(first.stats.state, "missing");
+  EXPECT_EQ(first.stats.files_parsed, 12);
+  EXPECT_TRUE(first.stats.written);
+  EXPECT_EQ(parsed_study_cache_path(d.path()), (fs::path(d.path()) / ".ipd-cache" / "parsed-study.bin").string());
+  EXPECT_EQ(first.labels, fresh);
+
+  const Opened again = open_cached(d.path());
+  EXPECT_EQ(again.stats.state, "loaded");
+  EXPECT_EQ(again.stats.files_reused, 12);
+  EXPECT_EQ(again.stats.files_parsed, 0);
+  EXPECT_FALSE(again.stats.written);  // nothing changed: not rewritten
+  EXPECT_EQ(again.labels, fresh);
+}
+
+TEST(StudyCache, TruncatedOrFlippedCacheIsIgnoredAndRebuilt) {
+  test::TempDir d;
+  write_study(d);
+  const std::string fresh = dump(load_labels(open_study(d.path())));
+  open_cached(d.path());
+  const std::string path = parsed_study_cache_path(d.path());
+  const std::string good = read_file(path);
+
+  write_file_atomically(path, good.substr(0, good.size() - 9));
+  Opened o = open_cached(d.path());
+  EXPECT_EQ(o.stats.state, "ignored: truncated");
+  EXPECT_EQ(o.stats.files_parsed, 12);
+  EXPECT_EQ(o.labels, fresh);
+  EXPECT_EQ(read_file(path), good);  // rebuilt
+
+  // One byte inside a stored box: the checksum refuses the file.
+  std::string flipped = good;
+  const size_t at = flipped.size() / 2;
+  flipped[at] = static_cast<char>(flipped[at] ^ 0x10);
+  write_file_atomically(path, flipped);
+  o = open_cached(d.path());
+  EXPECT_EQ(o.stats.state, "ignored: checksum");
+  EXPECT_EQ(o.labels, fresh);
+
+  write_file_atomically(path, "IPDSTUDY");
+  EXPECT_EQ(open_cached(d.path()).stats.state, "ignored: not a parsed-study cache");
+  std::string other_version = good;
+  other_version[8] = static_cast<char>(other_version[8] + 1);
+  write_file_atomically(path, other_version);
+  EXPECT_EQ(open_cached(d.path()).stats.state, "ignored: another format version");
+}
+
+TEST(StudyCache, AChangedLabelFileIsParsedAgain) {
+  test::TempDir d;
+  write_study(d);
+  open_cached(d.path());
+  // Same size, and the old modification time put back: the inode/ctime still tell.
+  const std::string file = d / "real/labels/s1.txt";
+  struct stat before {};
+  ASSERT_EQ(::stat(file.c_str(), &before), 0);
+  std::string text = read_file(file);
+  text[2] = text[2] == '1' ? '2' : '1';  // "0 0.1.." -> "0 0.2.." : first rock's cx moves by 0.1
+  test::write_text(file, text);
+  const struct timespec times[2] = {before.st_atim, before.st_mtim};
+  ASSERT_EQ(::utimensat(AT_FDCWD, file.c_str(), times, 0), 0);
+
+  const Opened o = open_cached(d.path());
+  EXPECT_EQ(o.stats.state, "loaded");
+  EXPECT_EQ(o.stats.files_parsed, 1);
+  EXPECT_EQ(o.stats.files_reused, 11);
+  EXPECT_TRUE(o.stats.written);
+  EXPECT_EQ(o.labels, dump(load_labels(open_study(d.path()))));
+  EXPECT_NE(o.labels.find(fmt::format("s1.txt exists=true\n  0 {} ", text[2] == '2' ? 0.2 : 0.1)), std::string::npos);
+
+  // A new scene and a removed one are seen too.
+  test::write_text(d / "real/labels/s3.txt", "0 0.5 0.5 0.1 0.1\n");
+  fs::remove(d / "synth/predictions/det/s0.txt");
+  const Opened o2 = open_cached(d.path());
+  EXPECT_EQ(o2.stats.files_parsed, 3);  // real/labels/s3, the removed prediction, synth/predictions of s3
+  EXPECT_EQ(o2.labels, dump(load_labels(open_study(d.path()))));
+}
+
+TEST(StudyCache, SessionReopensFromItWithTheSameFigures) {
+  test::TempDir d;
+  write_study(d);
+  SessionOptions o;
+  o.cache_dir = registration_cache_dir(d.path());
+  o.study_cache_path = parsed_study_cache_path(d.path());
+  const Session cold = Session::open(d.path(), o);
+  EXPECT_EQ(cold.cached_registrations(), 0);
+  // Registration entry files gone: the three registrations come from the one file.
+  fs::remove_all(o.cache_dir);
+  const Session warm = Session::open(d.path(), o);
+  EXPECT_EQ(warm.study_cache_stats().state, "loaded");
+  EXPECT_EQ(warm.study_cache_stats().registrations_stored, 3);
+  EXPECT_EQ(warm.cached_registrations(), 3);
+  EXPECT_FALSE(warm.study_cache_stats().written);
+  ASSERT_EQ(warm.scenes().size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(warm.view_pairs(k), cold.view_pairs(k));
+    EXPECT_EQ(warm.summary(k).ipd, cold.summary(k).ipd) << k;
+  }
+  EXPECT_EQ(warm.totals().pairs, cold.totals().pairs);
+  EXPECT_EQ(warm.totals().ipd(), cold.totals().ipd());
+}
+
+TEST(StudyCache, FirstScenesAreAPrefixOfTheStudy) {
+  test::TempDir d;
+  write_study(d);
+  test::write_text(d / "real/labels/s3.txt", "0 0.5 0.5 0.1 0.1\n");  // only in real: not a common scene
+  SessionOptions o;
+  o.first_scenes = 2;
+  const Session first = Session::open(d.path(), o);
+  const Session all = Session::open(d.path(), SessionOptions{});
+  ASSERT_EQ(first.scenes().size(), 2u);
+  ASSERT_EQ(all.scenes().size(), 3u);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(first.scenes()[k].stem, all.scenes()[k].stem);
+    EXPECT_EQ(first.view_pairs(k), all.view_pairs(k));
+  }
+}
+
+}  // namespace
+}  // namespace ipd

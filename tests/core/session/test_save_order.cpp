@@ -1,0 +1,123 @@
+// Hand pairs are the one thing that must never be lost: the save order (write + rename the new file, fsync,
+// only then remove the other name order) is checked by failing at every step.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+
+#include "core/session/session.h"
+#include "tests/support/test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+namespace {
+
+// real: perf {1, 1/3}; synth: perf {0, 1/3}. Automatic pairs (0,1), (1,0): IPD 1/2.
+void write_study_with_hand_pairs(const test::TempDir& d) {
+  test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+  test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
+  test::write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
+  // Hand pairs saved in the other name order: synth 1 <-> real 0 only: IPD |1 - 1/3| = 2/3.
+  test::write_text(d / "pairs/synth__real/s1.json", "{\"pairs\": [[1, 0]]}\n");
+}
+
+double ipd_on_disk(const std::string& root) {
+  return compute_cross_table(load_labels(open_study(root)), {}).cells[0].ipd;
+}
+
+constexpr double kHand = 2.0 / 3, kEdited = 1.0, kAutomatic = 0.5;
+
+TEST(SaveOrder, AFailedWriteKeepsTheOtherNameOrderFile) {
+  test::TempDir d;
+  write_study_with_hand_pairs(d);
+  Session s = Session::open(d.path());
+  ASSERT_NEAR(s.totals().ipd(), kHand, 1e-12);
+  const SaveJob job = s.apply(0, Edit::pair(0, 0));  // real 0 <-> synth 0 only: IPD 1
+  ASSERT_EQ(job.path, d / "pairs/real__synth/s1.json");
+  // The new file's directory can't be made (a file is in the way): the write fails, as on a full disk.
+  test::write_text(d / "pairs/real__synth", "in the way");
+  EXPECT_THROW(run_save_job(job), IoError);
+  EXPECT_TRUE(fs::exists(d / "pairs/synth__real/s1.json"));
+  EXPECT_NEAR(ipd_on_disk(d.path()), kHand, 1e-12);  // not the automatic 1/2
+}
+
+struct Crash : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+TEST(SaveOrder, ACrashBetweenAnyTwoStepsLeavesTheOldOrTheNewPairs) {
+  // step -> the state a crash right after it must leave (the new one once the rename happened)
+  const std::vector<std::pair<std::string, double>> write_steps = {
+      {"temp written", kHand}, {"renamed", kEdited}, {"directory synced", kEdited}, {"other removed", kEdited}};
+  for (const auto& [step, expected] : write_steps) {
+    test::TempDir d;
+    write_study_with_hand_pairs(d);
+    Session s = Session::open(d.path());
+    const SaveJob job = s.apply(0, Edit::pair(0, 0));
+    bool crashed = false;
+    try {
+      run_save_job(job, [&, step = step](const char* at) {
+        if (at == step) throw Crash(at);
+      });
+    } catch (const Crash&) {
+      crashed = true;
+    }
+    EXPECT_TRUE(crashed) << step;
+    EXPECT_NEAR(ipd_on_disk(d.path()), expected, 1e-12) << "crash after " << step;
+    EXPECT_NEAR(Session::open(d.path()).totals().ipd(), expected, 1e-12) << "crash after " << step;
+  }
+  // Back to automatic: the other name order goes first, so the file read first still holds the old pairs.
+  for (const auto& [step, expected] :
+       std::vector<std::pair<std::string, double>>{{"other removed", kEdited}, {"removed", kAutomatic}}) {
+    test::TempDir d;
+    write_study_with_hand_pairs(d);
+    test::write_text(d / "pairs/real__synth/s1.json", "{\"pairs\": [[0, 0]]}\n");  // both orders present
+    Session s = Session::open(d.path());
+    ASSERT_NEAR(s.totals().ipd(), kEdited, 1e-12);
+    const SaveJob job = s.apply(0, Edit::reset());
+    ASSERT_FALSE(job.contents.has_value());
+    try {
+      run_save_job(job, [&, step = step](const char* at) {
+        if (at == step) throw Crash(at);
+      });
+    } catch (const Crash&) {
+    }
+    EXPECT_NEAR(ipd_on_disk(d.path()), expected, 1e-12) << "crash after " << step;
+  }
+}
+
+TEST(SaveOrder, ASymlinkedPairsFileStaysALinkAndItsTargetIsReplaced) {
+  test::TempDir d, elsewhere;
+  write_study_with_hand_pairs(d);
+  fs::remove(d / "pairs/synth__real/s1.json");
+  test::write_text(elsewhere / "kept.json", "{\"pairs\": [[1, 0]]}\n");
+  fs::create_directories(d / "pairs/real__synth");
+  fs::create_symlink(elsewhere / "kept.json", d / "pairs/real__synth/s1.json");
+  Session s = Session::open(d.path());
+  run_save_job(s.apply(0, Edit::pair(0, 0)));
+  EXPECT_TRUE(fs::is_symlink(d / "pairs/real__synth/s1.json"));
+  EXPECT_NEAR(ipd_on_disk(d.path()), kEdited, 1e-12);
+  std::ifstream in(elsewhere / "kept.json");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "{\"pairs\":[[0,0]]}\n");
+}
+
+TEST(SaveOrder, StaleTempFilesOfDeadWritersAreRemoved) {
+  test::TempDir d;
+  // pid 2^22 + 1 is above Linux's pid_max limit: no such process.
+  test::write_text(d / "s1.json.tmp-4194305-77", "{\"pairs\": [");
+  test::write_text(d / ("s2.json.tmp-" + std::to_string(::getpid()) + "-5"), "a live writer's");
+  test::write_text(d / "s3.json", "{}");
+  EXPECT_EQ(remove_stale_temp_files(d.path()), 1);
+  EXPECT_FALSE(fs::exists(d / "s1.json.tmp-4194305-77"));
+  EXPECT_TRUE(fs::exists(d / ("s2.json.tmp-" + std::to_string(::getpid()) + "-5")));
+  EXPECT_TRUE(fs::exists(d / "s3.json"));
+}
+
+}  // namespace
+}  // namespace ipd

@@ -1,0 +1,112 @@
+// ipd-studio driven by --replay in a real window (Xvfb): the edits it makes reach the pairs files exactly
+// as the Session API makes them. Run by ctest (StudioReplayEdits, which sets IPD_STUDIO); skipped otherwise.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "core/util/atomic_file.h"
+#include "core/session/session.h"
+#include "tests/support/pdf_text.h"
+#include "tests/support/test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+namespace {
+
+int run(const std::string& cmd) {
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// `command` in a fresh Xvfb, its output redirected by `redirections`; returns the command's own exit status.
+// xvfb-run's cleanup can fail after the command has finished ("problem while cleaning up temporary directory",
+// status 5, seen under load with other Xvfb runs), so the status is taken from a file the command leaves.
+int run_in_xvfb(const std::string& command, const std::string& redirections, const fs::path& dir) {
+  const fs::path status_file = dir / "exit-status.txt";
+  fs::remove(status_file);
+  const int xvfb = run(fmt::format("xvfb-run -a -s '-screen 0 1280x800x24' sh -c '{}; echo $? >{}' {}", command,
+                                   status_file.string(), redirections));
+  if (!fs::exists(status_file)) return xvfb;
+  return std::stoi(read_file(status_file));
+}
+
+TEST(StudioReplay, EditsReachThePairsFiles) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd(fmt::format("demo {} --labels-only --scenes 3 --rocks 12", d / "study")).exit_code, 0);
+  test::write_text(d / "actions.txt",
+                   "# audit fixes\n"
+                   "scene scene_00002\n"
+                   "unpair 1\n"
+                   "pair 2 3\n"
+                   "exclude 4\n"
+                   "undo\n"
+                   "redo\n"
+                   "scene scene_00003\n"
+                   "pair 1 1\n"
+                   "undo\n"
+                   "export " + d / "fig.pdf\n"
+                   "export table " + d / "table.pdf\n"
+                   "export breakdown-confidence " + d / "breakdown.svg\n"
+                   "screenshot " + d / "shot.png\n");
+  // The same edits through the Session API, opened before the GUI writes anything.
+  Session s = Session::open(d / "study");
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d / "study", d / "actions.txt");
+  ASSERT_EQ(run_in_xvfb(cmd, fmt::format(">{} 2>&1", d / "log.txt"), d.path()), 0) << read_file(d / "log.txt");
+  EXPECT_TRUE(fs::exists(d / "shot.png"));
+  ASSERT_TRUE(fs::exists(d / "fig.pdf")) << read_file(d / "log.txt");  // exported in-process, on the worker
+  EXPECT_EQ(read_file(d / "fig.pdf").substr(0, 5), "%PDF-");
+  EXPECT_NE(test::pdf_words(d / "table.pdf").find("Instance Performance Difference"), std::string::npos);
+  EXPECT_NE(read_file(d / "breakdown.svg").find(">IPD(real, principled) of "), std::string::npos);
+
+  const int two = s.scene_index("scene_00002");
+  s.apply(two, Edit::unpair(Side::kA, 0));
+  s.apply(two, Edit::pair(1, 2));
+  const SaveJob expected = s.apply(two, Edit::toggle_exclude(Side::kA, 3));
+  ASSERT_TRUE(expected.contents.has_value());
+  EXPECT_EQ(read_file(d / "study/pairs/real__principled/scene_00002.json"), *expected.contents);
+  EXPECT_FALSE(fs::exists(d / "study/pairs/real__principled/scene_00003.json"));  // paired, then undone
+}
+
+TEST(StudioReplay, BadActionsNameTheFileAndLine) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  test::write_text(d / "actions.txt", "wait 2\npair 1\n");
+  const std::string cmd = fmt::format("{} --replay {} >{} 2>&1", studio, d / "actions.txt", d / "log.txt");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" + ":2: 'pair' takes two rock numbers (left, right), got 1 argument(s)\n");
+  test::write_text(d / "actions.txt", "export histogram x.pdf\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" +
+                ":1: 'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
+                "breakdown-size, breakdown-region or breakdown-confidence), got 'histogram'\n");
+  // The methods come from the one table (registration_methods()), the default first.
+  test::write_text(d / "actions.txt", "rerun cpd\nrerun ransac\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" + ":2: 'rerun': expected consensus, paper or cpd, got 'ransac'\n");
+}
+
+TEST(StudioReplay, AStudyThatCannotBeOpenedSaysWhyOnStderr) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  const std::string cmd = fmt::format("XDG_CACHE_HOME={} {} {} --screenshot {} --frames 3", d / "cache", studio,
+                                      d / "missing", d / "shot.png");
+  EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path()), 1);
+  // Contains, not equals: Xvfb and the GL driver may add their own lines to stderr.
+  const std::string err = read_file(d / "err.txt");
+  EXPECT_NE(err.find("error: could not open the study: " + d / "missing" + ": no such study directory\n"),
+            std::string::npos) << err;
+}
+
+}  // namespace
+}  // namespace ipd

@@ -1,0 +1,38 @@
+// Helpers for tests: temporary directories, writing files, running the CLI.
+#pragma once
+
+#include <string>
+
+#include "core/geometry/geometry.h"
+
+namespace ipd::test {
+
+// A class-0 box centred at (cx, cy), w x h, in normalised image coordinates.
+inline Box box(double cx, double cy, double w, double h, double conf = 1.0) { return Box{0, cx, cy, w, h, conf}; }
+
+// A fresh directory under the system temp dir, removed when the object dies.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::string& path() const { return path_; }
+  std::string operator/(const std::string& rel) const { return path_ + "/" + rel; }
+
+ private:
+  std::string path_;
+};
+
+void write_text(const std::string& path, const std::string& text);
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+// Runs the built `ipd` with the given argument string (shell-quoted by the caller).
+CommandResult run_ipd(const std::string& args);
+// Runs a shell command line (e.g. poppler's pdftotext), capturing its output.
+CommandResult run_command(const std::string& command);
+// The same, killed after `seconds` (exit code 124): for inputs that used to hang.
+CommandResult run_ipd_with_timeout(const std::string& args, int seconds);
+
+}  // namespace ipd::test

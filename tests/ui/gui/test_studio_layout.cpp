@@ -1,0 +1,245 @@
+// ipd-studio's window layout and UI wording rules (ui/gui/studio_layout.h), with hand-computed numbers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "ui/gui/stats_panels.h"
+#include "ui/gui/studio_layout.h"
+#include "ui/gui/views.h"
+
+namespace ipd::ui {
+namespace {
+
+TEST(StudioColumns, WideWindowKeepsPreferredSideWidths) {
+  // 1600 - 2*6 = 1588 usable; 380 + 400 + max(320, 0.45 * 1588 = 714.6) = 1494.6 fits.
+  const StudioColumns c = studio_columns(1600, 380, 400, 6);
+  EXPECT_FALSE(c.tabbed_side);
+  EXPECT_FLOAT_EQ(c.left, 380);
+  EXPECT_FLOAT_EQ(c.right, 400);
+  EXPECT_FLOAT_EQ(c.centre, 808);
+  EXPECT_FALSE(c.tabbed_centre);
+}
+
+TEST(StudioColumns, NarrowerWindowShrinksSidesInProportion) {
+  // 1000: usable 988, the centre keeps 0.45 * 988 = 444.6; the sides share 543.4 as 380:400 -> 264.73 and
+  // 278.67.
+  const StudioColumns c = studio_columns(1000, 380, 400, 6);
+  EXPECT_FALSE(c.tabbed_side);
+  EXPECT_NEAR(c.left, 543.4 * 380 / 780, 1e-3);
+  EXPECT_NEAR(c.right, 543.4 * 400 / 780, 1e-3);
+  EXPECT_NEAR(c.centre, 444.6, 1e-3);
+  EXPECT_TRUE(c.tabbed_centre);  // 444.6 < 560: registration and pairs as tabs
+}
+
+TEST(StudioColumns, SideMinimumsHoldWhenOnePreferenceIsSmall) {
+  // 1000, prefs 100 and 700: proportional 543.4 / 8 = 67.9 is under 160, so the browser gets 160 and the
+  // statistics 543.4 - 160 = 383.4.
+  const StudioColumns c = studio_columns(1000, 100, 700, 6);
+  EXPECT_FLOAT_EQ(c.left, 160);
+  EXPECT_NEAR(c.right, 383.4, 1e-3);
+  EXPECT_NEAR(c.centre, 444.6, 1e-3);
+}
+
+TEST(StudioColumns, BelowNineHundredTheSidesShareOneTabbedColumn) {
+  // 700: usable 694; the tabbed column takes 40% (277.6), the centre 416.4.
+  const StudioColumns c = studio_columns(700, 380, 400, 6);
+  EXPECT_TRUE(c.tabbed_side);
+  EXPECT_NEAR(c.left, 277.6, 1e-3);
+  EXPECT_FLOAT_EQ(c.right, 0);
+  EXPECT_NEAR(c.centre, 416.4, 1e-3);
+  EXPECT_TRUE(c.tabbed_centre);
+  // Never wider than either side wants, never under the browser's minimum.
+  EXPECT_FLOAT_EQ(studio_columns(880, 200, 250, 6).left, 250);
+  EXPECT_FLOAT_EQ(studio_columns(300, 380, 400, 6).left, 160);
+}
+
+float chars(const std::string& s) { return 10.0f * static_cast<float>(s.size()); }  // 10 px per character
+
+TEST(WrapAtSpaces, NeverInsideANumber) {
+  // 150 px = 15 characters: "confidence 0.97" is exactly 15 and stays whole.
+  EXPECT_EQ(wrap_at_spaces("score 16.8972, confidence 0.97", 150, chars),
+            (std::vector<std::string>{"score 16.8972,", "confidence 0.97"}));
+  // 140 px: the number moves to the next line whole (ImGui's own wrap broke it after the point).
+  EXPECT_EQ(wrap_at_spaces("confidence 0.97 delta -0.064", 140, chars),
+            (std::vector<std::string>{"confidence", "0.97 delta", "-0.064"}));
+}
+
+TEST(WrapAtSpaces, NeverBetweenALabelAndItsNumber) {
+  // 150 px: "delta -0.0799 p" is 15 characters and would fit, leaving "= 0.031" alone on the next line; the
+  // label goes down with its number instead.
+  EXPECT_EQ(wrap_at_spaces("delta -0.0799 p = 0.031", 150, chars),
+            (std::vector<std::string>{"delta -0.0799", "p = 0.031"}));
+  EXPECT_EQ(wrap_at_spaces("x p < 0.0001 y", 100, chars), (std::vector<std::string>{"x", "p < 0.0001", "y"}));
+}
+
+TEST(WrapAtSpaces, NeverBetweenACountAndTheWordItCounts) {
+  // 120 px: "(exact), 8" is 10 characters and would fit, leaving "scenes" alone (ipd-studio's compare sentence
+  // at 1000 px, QA); the count goes down with its word.
+  EXPECT_EQ(wrap_at_spaces("p = 0.0078 (exact), 8 scenes", 120, chars),
+            (std::vector<std::string>{"p = 0.0078", "(exact),", "8 scenes"}));
+  EXPECT_EQ(wrap_at_spaces("tried 1,000 trials", 110, chars), (std::vector<std::string>{"tried", "1,000 trials"}));
+  // Not counts: a decimal ("0.97 delta" may part), a number ending its clause ("8,"), a count before a sign.
+  EXPECT_EQ(wrap_at_spaces("x 0.97 delta", 60, chars), (std::vector<std::string>{"x 0.97", "delta"}));
+  EXPECT_EQ(wrap_at_spaces("n 8, scenes", 40, chars), (std::vector<std::string>{"n 8,", "scenes"}));
+  EXPECT_EQ(wrap_at_spaces("8 -1", 30, chars), (std::vector<std::string>{"8", "-1"}));
+}
+
+TEST(WrapAtSpaces, NeverInsideDeltaIpd) {
+  // 590 px = 59 characters: "principled is closer to real than hapke for det-real: delta" is exactly 59 and
+  // would fit, leaving "IPD = -0.0802 ..." to start the next line (ipd-studio's compare sentence at 1600 px
+  // in ASCII, QA). "delta IPD" goes down whole, with its number.
+  const std::string s = "principled is closer to real than hapke for det-real: delta IPD = -0.0802 [-0.094, -0.066]";
+  EXPECT_EQ(wrap_at_spaces(s, 590, chars),
+            (std::vector<std::string>{"principled is closer to real than hapke for det-real:",
+                                      "delta IPD = -0.0802 [-0.094, -0.066]"}));
+  EXPECT_EQ(wrap_at_spaces("x delta IPD y", 70, chars), (std::vector<std::string>{"x", "delta IPD", "y"}));
+  // Only "delta" before "IPD": "delta" before a number may part, as may "IPD" after another word.
+  EXPECT_EQ(wrap_at_spaces("x delta -0.08", 70, chars), (std::vector<std::string>{"x delta", "-0.08"}));
+  EXPECT_EQ(wrap_at_spaces("x deltas IPD", 80, chars), (std::vector<std::string>{"x deltas", "IPD"}));
+}
+
+TEST(UiWording, GlyphsTheFontLacksAreSpelledInAscii) {
+  const std::string s = "a is closer: \u0394IPD = \u22120.0802 [\u22120.094, \u22120.066]";
+  auto has = [](std::vector<char32_t> glyphs) {
+    return [glyphs](char32_t g) { return std::find(glyphs.begin(), glyphs.end(), g) != glyphs.end(); };
+  };
+  EXPECT_EQ(spell_missing_glyphs(s, has({U'\u0394', U'\u2212'})), s);  // DejaVu Sans, as ipd-studio loads it
+  EXPECT_EQ(spell_missing_glyphs(s, has({})), "a is closer: delta IPD = -0.0802 [-0.094, -0.066]");  // ImGui's own
+  EXPECT_EQ(spell_missing_glyphs(s, has({U'\u0394'})), "a is closer: \u0394IPD = -0.0802 [-0.094, -0.066]");
+  EXPECT_EQ(spell_missing_glyphs("\u0394 alone", has({})), "\u0394 alone");  // only the symbol ΔIPD is spelled out
+}
+
+TEST(UiWording, CompareNumbersLineWritesDeltaIpdAsTheSentenceDoes) {
+  // The 8-scene demo's compare panel: the line above the sentence read "delta -0.0802 [-0.094, -0.066]   p =
+  // 0.0078" in ASCII while the sentence under it wrote ΔIPD and the typographic minus (QA).
+  Comparison r;
+  r.delta.estimate = -0.08021, r.delta.low = -0.09412, r.delta.high = -0.06561;
+  r.p_value = 0.0078125, r.scenes = 8;
+  const std::string line = compare_delta_line(r);
+  EXPECT_EQ(line, "\u0394IPD = \u22120.0802 [\u22120.094, \u22120.066]   p = 0.0078");
+  EXPECT_EQ(spell_missing_glyphs(line, [](char32_t) { return false; }),
+            "delta IPD = -0.0802 [-0.094, -0.066]   p = 0.0078");  // ImGui's own font
+  // "ΔIPD" never parts from its number, nor "p" from its value.
+  auto bytes = [](const std::string& t) { return 10.0f * static_cast<float>(t.size()); };
+  EXPECT_EQ(wrap_at_spaces(line, 190, bytes),
+            (std::vector<std::string>{"\u0394IPD = \u22120.0802", "[\u22120.094,", "\u22120.066]", "p = 0.0078"}));
+  // A number rounding to zero has no minus; a tiny p is never in scientific notation.
+  r.delta.estimate = -0.00001, r.delta.low = -0.0004, r.delta.high = 0.02, r.p_value = 0.00001;
+  EXPECT_EQ(compare_delta_line(r), "\u0394IPD = 0.0000 [0.000, 0.020]   p < 0.0001");
+  // Fewer than two scenes: neither interval nor test; no interval or no p: left out, never "nan".
+  r.scenes = 1, r.delta.estimate = 0.02;
+  EXPECT_EQ(compare_delta_line(r), "\u0394IPD = 0.0200, 1 scene: no interval, no test");
+  r.scenes = 5, r.delta.low = r.delta.high = r.p_value = std::nan("");
+  EXPECT_EQ(compare_delta_line(r), "\u0394IPD = 0.0200");
+}
+
+TEST(WrapAtSpaces, LongWordOnItsOwnLineAndNewlinesKept) {
+  // (A decimal: a whole number would keep "b" as the word it counts.)
+  EXPECT_EQ(wrap_at_spaces("a 1234567890.12 b", 50, chars), (std::vector<std::string>{"a", "1234567890.12", "b"}));
+  EXPECT_EQ(wrap_at_spaces("a 1234567 scenes", 50, chars), (std::vector<std::string>{"a", "1234567 scenes"}));
+  EXPECT_EQ(wrap_at_spaces("one\ntwo three", 1000, chars), (std::vector<std::string>{"one", "two three"}));
+  EXPECT_EQ(wrap_at_spaces("", 100, chars), std::vector<std::string>{});
+}
+
+TEST(UiWording, CountedNounsThousandsAndNoNegativeZero) {
+  EXPECT_EQ(counted(1, "trial"), "1 trial");
+  EXPECT_EQ(counted(0, "scene"), "0 scenes");
+  EXPECT_EQ(counted(5982, "hypothesis", "hypotheses"), "5,982 hypotheses");
+  EXPECT_EQ(counted(1, "hypothesis", "hypotheses"), "1 hypothesis");
+  EXPECT_EQ(thousands(89700), "89,700");
+  EXPECT_EQ(thousands(999), "999");
+  EXPECT_EQ(thousands(-1234567), "-1,234,567");
+  EXPECT_EQ(thousands(0), "0");
+  EXPECT_EQ(fixed(-0.000001, 5), "0.00000");
+  EXPECT_EQ(fixed(-0.0000051, 5), "-0.00001");
+  EXPECT_EQ(fixed(-0.064, 3), "-0.064");
+  EXPECT_EQ(fixed(0.0, 2), "0.00");
+}
+
+TEST(RegistrationWords, SingularCountsPlainNumbersOneStepNumber) {
+  RegistrationReport r;
+  r.method = RegistrationMethod::kConsensus;
+  r.trials = 1, r.hypotheses = 1, r.inliers = 17, r.score = 16.89721, r.confidence = 0.8449;
+  EXPECT_EQ(registration_summary("real", "principled", r),
+            "real -> principled: consensus, 1 trial, 1 hypothesis, 17 inliers, score 16.8972, confidence 0.84");
+  r.trials = 40, r.hypotheses = 5982, r.inliers = 1, r.score = -0.0000001, r.confidence = -0.000001;
+  EXPECT_EQ(registration_summary("a", "b", r),
+            "a -> b: consensus, 40 trials, 5,982 hypotheses, 1 inlier, score 0.0000, confidence 0.00");
+  // cpd counts EM iterations, never trials or hypotheses.
+  r.method = RegistrationMethod::kCpd;
+  r.trials = 22, r.hypotheses = 22, r.inliers = 17, r.score = 0.00031, r.confidence = 1;
+  EXPECT_EQ(registration_summary("real", "principled", r),
+            "real -> principled: cpd, 22 EM iterations, 17 inliers, score 0.0003, confidence 1.00");
+  r.trials = 1;
+  EXPECT_EQ(registration_summary("a", "b", r).substr(0, 28), "a -> b: cpd, 1 EM iteration,");
+  TraceStep st;
+  st.kind = TraceStepKind::kHypothesis;
+  st.score = 0.5, st.best_score = 0.75, st.inliers_a = {3};
+  // k = 349 is the 350th step: the scrubber reads "step 350 of 5,000" too.
+  EXPECT_EQ(replay_step_line(st, 349, 5000), "step 350 of 5,000 (hypothesis): score 0.5000, best so far 0.7500, 1 inlier");
+  // Consensus' last step is the fit that goes out, judged among the polished, the searched and plain least
+  // squares (or the second look's pick): "polish" named only the first of them (QA).
+  st.kind = TraceStepKind::kPolish, st.score = st.best_score = 16.89719, st.inliers_a.assign(17, 0);
+  EXPECT_EQ(replay_step_line(st, 3, 4), "step 4 of 4 (final fit): score 16.8972, best so far 16.8972, 17 inliers");
+  EXPECT_EQ(trace_cap_note(5000, 5982),
+            "the replay holds the first 5,000 steps of 5,982 hypotheses tried (the recording stops at 5,000; the search "
+            "went on)");
+}
+
+TEST(RegistrationCanvas, PlotClipStopsAboveTheLegendAndHoldsThePictureBox) {
+  // Canvas at (100, 200), 300 x 200, 15 px lines: the legend's three lines start at 200 + 200 - 45 - 4 = 351;
+  // the plot (and its clip) is (100, 200)-(400, 349); the picture box has 10 px margins: 280 x 129.
+  const RegistrationCanvas c = registration_canvas({100, 200}, {300, 200}, 15);
+  EXPECT_FLOAT_EQ(c.legend_top, 351);
+  EXPECT_FLOAT_EQ(c.plot_min.x, 100);
+  EXPECT_FLOAT_EQ(c.plot_min.y, 200);
+  EXPECT_FLOAT_EQ(c.plot_max.x, 400);
+  EXPECT_FLOAT_EQ(c.plot_max.y, 349);
+  EXPECT_FLOAT_EQ(c.box_min.x, 110);
+  EXPECT_FLOAT_EQ(c.box_min.y, 210);
+  EXPECT_FLOAT_EQ(c.box_size.x, 280);
+  EXPECT_FLOAT_EQ(c.box_size.y, 129);
+  // A canvas too short for the legend: the plot collapses to nothing rather than reaching above the canvas.
+  const RegistrationCanvas t = registration_canvas({0, 50}, {100, 40}, 15);
+  EXPECT_FLOAT_EQ(t.plot_max.y, 50);
+  EXPECT_FLOAT_EQ(t.box_size.y, 0);
+}
+
+TEST(BrowserOrder, AmbiguousScenesSortOnTheirOwnColumn) {
+  std::vector<SceneSummary> sums(3);
+  sums[0].stem = "a", sums[0].suspects = 2;
+  sums[1].stem = "b", sums[1].ambiguous = true;
+  sums[2].stem = "c";
+  UiState ui;
+  ui.sort_column = kByAmbiguous, ui.sort_descending = true;
+  EXPECT_EQ(browser_order(sums, ui), (std::vector<int>{1, 0, 2}));  // ambiguity, not suspects
+  ui.sort_column = kBySuspects;
+  EXPECT_EQ(browser_order(sums, ui), (std::vector<int>{0, 1, 2}));
+}
+
+// The IPD comes right after the frozen scene name (in a 700 px window the list is cut after about four
+// columns, QA: the IPD was the one at the edge), and a click on each header sorts by what it shows.
+TEST(BrowserColumns, IpdRightAfterTheNameAndEachHeaderSortsByItsOwnValue) {
+  std::vector<std::string> headers;
+  for (const auto& c : browser_columns()) headers.push_back(c.text.header);
+  EXPECT_EQ(headers, (std::vector<std::string>{"scene", "IPD", "amb.", "susp.", "ed.", "pairs", "unp."}));
+  // Four scenes that each value ranks differently (descending; ties keep the scenes' order).
+  std::vector<SceneSummary> sums(4);
+  sums[0].stem = "z", sums[0].ipd = 0.01, sums[0].pairs = 1;
+  sums[1].stem = "b", sums[1].ipd = 0.09, sums[1].pairs = 2;
+  sums[2].stem = "c", sums[2].ipd = 0.02, sums[2].pairs = 9, sums[2].unpaired_a = 1, sums[2].suspects = 3;
+  sums[3].stem = "d", sums[3].ipd = 0.03, sums[3].pairs = 3, sums[3].unpaired_b = 4;
+  sums[3].edited = sums[3].ambiguous = true;
+  const std::vector<std::vector<int>> expected = {{0, 3, 2, 1}, {1, 3, 2, 0}, {3, 0, 1, 2}, {2, 0, 1, 3},
+                                                  {3, 0, 1, 2}, {2, 3, 1, 0}, {3, 2, 0, 1}};
+  UiState ui;
+  ui.sort_descending = true;
+  for (size_t k = 0; k < expected.size(); ++k) {
+    ui.sort_column = browser_columns()[k].sort_key;
+    EXPECT_EQ(browser_order(sums, ui), expected[k]) << headers[k];
+  }
+}
+
+}  // namespace
+}  // namespace ipd::ui

@@ -1,0 +1,103 @@
+#include "ui/figures/figure_common.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <sstream>
+
+#include "ui/figures/figure_options.h"
+
+namespace ipd::ui::fig {
+
+TextStyle style(double size_pt, Colour colour, bool bold) { return {std::max(kMinTextPt, size_pt), colour, bold}; }
+
+std::vector<std::string> wrap(Canvas& c, const TextStyle& st, const std::string& text, double width) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  std::string line;
+  for (std::string word; in >> word;) {
+    const std::string tried = line.empty() ? word : line + " " + word;
+    if (!line.empty() && c.measure(st, tried).x > width) {
+      lines.push_back(line);
+      line = word;
+    } else {
+      line = tried;
+    }
+  }
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+double draw_wrapped(Canvas& c, Pt at, const TextStyle& st, const std::string& text, double width) {
+  double y = at.y;
+  for (const std::string& line : wrap(c, st, text, width)) {
+    c.text({at.x, y}, Anchor::kTopLeft, st, line);
+    y += c.measure(st, line).y;
+  }
+  return y - at.y;
+}
+
+double draw_legend(Canvas& c, Pt at, double width, const TextStyle& st, const std::vector<LegendItem>& items) {
+  const double h = c.measure(st, "Ag").y, sw = h * 1.1, pad = h * 0.3, item_gap = h * 0.9;
+  double x = at.x, y = at.y;
+  for (const LegendItem& it : items) {
+    const double w = sw + pad + c.measure(st, it.text).x;
+    if (x > at.x && x + w > at.x + width) x = at.x, y += h * 1.15;
+    const double cy = y + h / 2, lw = std::max(0.5, st.size_pt * 0.09);
+    switch (it.swatch) {
+      case Swatch::kBox: c.rect({x + 0.5, y + h * 0.18, x + sw - 0.5, y + h * 0.82}, it.colour, lw * 1.3); break;
+      case Swatch::kStruckBox:
+        c.rect({x + 0.5, y + h * 0.18, x + sw - 0.5, y + h * 0.82}, it.colour, lw * 1.3);
+        c.line({x + 0.5, y + h * 0.18}, {x + sw - 0.5, y + h * 0.82}, it.colour, lw * 1.3);
+        break;
+      case Swatch::kDot: c.fill_circle({x + sw / 2, cy}, h * 0.2, it.colour); break;
+      case Swatch::kRing: c.circle({x + sw / 2, cy}, h * 0.3, it.colour, lw * 1.3); break;
+      case Swatch::kLine: c.line({x, cy}, {x + sw, cy}, it.colour, lw * 1.5); break;
+    }
+    c.text({x + sw + pad, y}, Anchor::kTopLeft, st, it.text);
+    x += w + item_gap;
+  }
+  return y + h - at.y;
+}
+
+int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bounds, const std::vector<PtRect>& taken,
+                bool backdrop, LabelPlacement* placement) {
+  std::vector<LabelRequest> req;
+  const double pad = 0.6;  // backdrop margin around the text
+  for (const Label& l : labels) {
+    const Pt m = c.measure(l.style, l.text);
+    LabelRequest r{{l.target.x0, l.target.y0, l.target.x1, l.target.y1}, m.x + 2 * pad, m.y, l.exclusive, l.group};
+    for (const PtRect& k : l.keep_off) r.keep_off.push_back({k.x0, k.y0, k.x1, k.y1});
+    r.keep_off_clearance = l.keep_off_clearance;
+    req.push_back(std::move(r));
+  }
+  LabelPlacementOptions o;
+  o.bounds = {bounds.x0, bounds.y0, bounds.x1, bounds.y1};
+  for (const PtRect& t : taken) o.taken.push_back({t.x0, t.y0, t.x1, t.y1});
+  o.gap = 0.5;
+  o.max_leader = 3;
+  o.exclusive_clearance = kExclusiveClearancePt;
+  const LabelPlacement p = place_labels(req, o);
+  if (placement) *placement = p;
+  for (size_t i = 0; i < labels.size(); ++i) {
+    const PlacedLabel& pl = p.labels[i];
+    if (!pl.shown()) continue;
+    if (pl.position == LabelPosition::kLeader)
+      c.line({pl.leader_x0, pl.leader_y0}, {pl.leader_x1, pl.leader_y1}, labels[i].style.colour,
+             std::max(kLeaderPt, labels[i].style.size_pt * 0.06));
+    if (backdrop) c.fill_rect({pl.box.x0, pl.box.y0, pl.box.x1, pl.box.y1}, kBackdrop);
+    c.text({pl.box.x0 + pad, pl.box.y0}, Anchor::kTopLeft, labels[i].style, labels[i].text);
+  }
+  return p.left_out;
+}
+
+double draw_footnote(Canvas& c, Pt at, double width, double font_pt, int left_out) {
+  if (left_out <= 0) return 0;
+  const TextStyle st = style(font_pt * 0.8, kGrey);
+  return draw_wrapped(c, at, st,
+                      fmt::format("{} label{} left out: no room at this size (try --column double or --crop)",
+                                  left_out, left_out == 1 ? "" : "s"),
+                      width);
+}
+
+}  // namespace ipd::ui::fig

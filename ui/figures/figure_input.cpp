@@ -1,0 +1,112 @@
+#include "ui/figures/figure_input.h"
+
+#include <algorithm>
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+#include "core/geometry/affine_estimator.h"
+
+namespace ipd::ui {
+
+namespace {
+
+int domain_rank(const Study& st, const std::string& d) {
+  for (size_t k = 0; k < st.domains.size(); ++k)
+    if (st.domains[k].name == d) return int(k);
+  return -1;
+}
+
+// The affine a -> b that explains the pairs when they aren't registration's own (trimmed: one wrong hand
+// pair shows as one long line, not as every pair bent).
+Affine2 affine_of_pairs(const SceneFigureInput& in) {
+  std::vector<Eigen::Vector2d> src, dst;
+  for (const auto& [i, j] : in.pairs) src.push_back(in.gt_a[i].centre()), dst.push_back(in.gt_b[j].centre());
+  Affine2 m;
+  return affine_least_squares_trimmed(src, dst, &m) ? m : identity_affine();
+}
+
+std::vector<Box> above(const std::vector<Box>& boxes, double threshold) {
+  std::vector<Box> out;
+  for (const Box& b : boxes)
+    if (b.conf >= threshold) out.push_back(b);
+  return out;
+}
+
+}  // namespace
+
+SceneFigureInput scene_input_from_study(const StudyLabels& labels, const std::string& a, const std::string& b,
+                                        const std::string& model, const std::string& stem, double conf_threshold,
+                                        const RegistrationOptions& registration) {
+  const Study& st = labels.study;
+  SceneFigureInput in;
+  in.stem = stem, in.a = a, in.b = b, in.model = model;
+  in.conf_threshold = std::max(conf_threshold, st.config.conf_threshold);
+  in.gt_a = labels.gt_of(a, stem).boxes;
+  in.gt_b = labels.gt_of(b, stem).boxes;
+  if (!model.empty()) {
+    in.pred_a = above(labels.predictions_of(a, model, stem).boxes, conf_threshold);
+    in.pred_b = above(labels.predictions_of(b, model, stem).boxes, conf_threshold);
+  }
+  const bool swapped = domain_rank(st, a) > domain_rank(st, b);
+  const ScenePairing p = pair_scene(labels, swapped ? b : a, swapped ? a : b, stem, registration);
+  in.pairs = p.pairs;
+  in.excluded_a = swapped ? p.excluded_b : p.excluded_a;
+  in.excluded_b = swapped ? p.excluded_a : p.excluded_b;
+  if (swapped) {  // as the GUI shows a swapped pair
+    for (auto& q : in.pairs) std::swap(q.first, q.second);
+    std::sort(in.pairs.begin(), in.pairs.end());
+  }
+  in.pairs_fixed = p.fixed;
+  in.method = to_string(p.registration.method);
+  in.affine = (p.fixed || swapped) ? affine_of_pairs(in) : p.registration.affine;
+  if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
+  return in;
+}
+
+SceneFigureInput scene_input_from_session(const Session& s, int scene) {
+  const SceneState& state = s.scenes().at(scene);
+  SceneFigureInput in;
+  in.stem = state.stem;
+  in.a = s.left_domain();
+  in.b = s.right_domain();
+  in.model = s.model();
+  in.conf_threshold = std::max(s.conf_threshold(), s.study().config.conf_threshold);
+  in.gt_a = s.gt(Side::kA, scene);
+  in.gt_b = s.gt(Side::kB, scene);
+  if (!in.model.empty()) {
+    in.pred_a = s.predictions(Side::kA, scene);
+    in.pred_b = s.predictions(Side::kB, scene);
+  }
+  in.pairs = s.view_pairs(scene);
+  for (int k = 0; k < int(in.gt_a.size()); ++k)
+    if (s.excluded(Side::kA, scene, k)) in.excluded_a.push_back(k);
+  for (int k = 0; k < int(in.gt_b.size()); ++k)
+    if (s.excluded(Side::kB, scene, k)) in.excluded_b.push_back(k);
+  in.pairs_fixed = state.edited;
+  in.method = to_string(state.automatic.registration.method);
+  in.affine = (state.edited || s.swapped()) ? affine_of_pairs(in) : state.automatic.registration.affine;
+  const Study& st = s.study();
+  if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
+  return in;
+}
+
+void load_pictures(SceneFigureInput& in, const Study& study) {
+  auto load = [&](const std::string& domain, cv::Mat& picture, std::string& problem) {
+    const Domain* d = study.domain(domain);
+    if (!d) return;
+    const auto it = d->images.find(in.stem);
+    if (it == d->images.end()) return;
+    picture = cv::imread(it->second, cv::IMREAD_COLOR);
+    if (picture.empty()) problem = "cannot decode " + it->second;
+  };
+  load(in.a, in.picture_a, in.problem_a);
+  load(in.b, in.picture_b, in.problem_b);
+}
+
+void draw_scene_figure(DisplayList& out, const std::string& kind, const SceneFigureInput& in, const FigureOptions& o) {
+  if (kind == "pairs") draw_pairs_figure(out, in, o);
+  else if (kind == "registration") draw_registration_figure(out, in, o);
+  else throw std::invalid_argument("unknown scene figure kind '" + kind + "' (expected pairs or registration)");
+}
+
+}  // namespace ipd::ui

@@ -1,0 +1,302 @@
+#include "ui/figures/figure_scene.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "ui/figures/figure_common.h"
+#include "core/session/audit.h"
+#include "core/ipd/ipd.h"
+
+namespace ipd::ui {
+
+using namespace fig;
+
+SceneNumbers scene_numbers(const SceneFigureInput& in) {
+  ScenePairing p;
+  p.stem = in.stem;
+  p.pairs = in.pairs;
+  p.fixed = in.pairs_fixed;
+  p.excluded_a = in.excluded_a;
+  p.excluded_b = in.excluded_b;
+  p.count_a = int(in.gt_a.size());
+  p.count_b = int(in.gt_b.size());
+  const SceneIpd s = scene_ipd(p, in.gt_a, in.pred_a, in.gt_b, in.pred_b);
+  return {s.ipd(), s.pairs};
+}
+
+namespace {
+
+constexpr double kMargin = kFigureMargin;
+
+double aspect_of(const SceneFigureInput& in, const Crop& crop) {
+  int w = in.image_w, h = in.image_h;
+  if (!in.picture_a.empty()) w = in.picture_a.cols, h = in.picture_a.rows;
+  const double a = (w > 0 && h > 0) ? double(w) / h : 1936.0 / 1216.0;
+  return a * (crop.x1 - crop.x0) / (crop.y1 - crop.y0);
+}
+
+// Normalised picture coordinates -> points inside a panel showing `crop`.
+struct PanelMap {
+  PtRect panel;
+  Crop crop;
+  Pt operator()(double x, double y) const {
+    return {panel.x0 + (x - crop.x0) / (crop.x1 - crop.x0) * panel.width(),
+            panel.y0 + (y - crop.y0) / (crop.y1 - crop.y0) * panel.height()};
+  }
+  // The box on the page, clipped to the panel; false when it is entirely outside.
+  bool box(const Box& b, PtRect& out) const {
+    const Pt p0 = (*this)(b.x0(), b.y0()), p1 = (*this)(b.x1(), b.y1());
+    out = {std::max(p0.x, panel.x0), std::max(p0.y, panel.y0), std::min(p1.x, panel.x1), std::min(p1.y, panel.y1)};
+    return out.x0 < out.x1 && out.y0 < out.y1;
+  }
+  PtRect raw(const Box& b) const {
+    const Pt p0 = (*this)(b.x0(), b.y0()), p1 = (*this)(b.x1(), b.y1());
+    return {p0.x, p0.y, p1.x, p1.y};
+  }
+};
+
+// The crop of a picture at its own resolution (never resampled here), on whole pixels, and the normalised
+// region those pixels cover (so boxes and pixels stay registered).
+FigurePicture crop_picture(const cv::Mat& img, const Crop& c, Crop* covered) {
+  const int x0 = std::clamp(int(std::floor(c.x0 * img.cols + 1e-6)), 0, img.cols - 1);
+  const int y0 = std::clamp(int(std::floor(c.y0 * img.rows + 1e-6)), 0, img.rows - 1);
+  const int x1 = std::clamp(int(std::ceil(c.x1 * img.cols - 1e-6)), x0 + 1, img.cols);
+  const int y1 = std::clamp(int(std::ceil(c.y1 * img.rows - 1e-6)), y0 + 1, img.rows);
+  *covered = {double(x0) / img.cols, double(y0) / img.rows, double(x1) / img.cols, double(y1) / img.rows};
+  return {c.whole() ? img : img(cv::Rect(x0, y0, x1 - x0, y1 - y0)).clone()};
+}
+
+std::string title_of(const SceneFigureInput& in, const SceneNumbers& n) {
+  return fmt::format("{}: {} vs {}, model {}, scene IPD {} ({} pair{}){}{}", in.stem, in.a, in.b,
+                     in.model.empty() ? "none" : in.model, std::isnan(n.ipd) ? "n/a" : fmt::format("{:.4f}", n.ipd),
+                     n.pairs, n.pairs == 1 ? "" : "s",
+                     in.conf_threshold > 0 ? fmt::format(", conf \u2265 {:g}", in.conf_threshold) : "",
+                     in.pairs_fixed ? ", pairs fixed by hand" : "");
+}
+
+// What was left out on one side of Fig. 1, by kind.
+struct SideLeftOut {
+  int numbers = 0;      // rock numbers with no spot clear of the other rocks' boxes
+  int confidences = 0;  // confidences with no spot clearly beside their own box
+  int other = 0;
+};
+
+// One side of Fig. 1: picture, boxes, then labels placed without collisions. Every label must read as its
+// own: a rock number stays clear of the other rocks' boxes, a confidence of the other prediction boxes and
+// of every GT box but the one its prediction matches; a moved label gets a leader, an impossible one is
+// left out and counted.
+SideLeftOut draw_side(Canvas& c, const PanelMap& m, const cv::Mat& picture, const std::string& problem,
+                      const std::vector<Box>& gt, const std::vector<Box>& pred, const std::vector<int>& number,
+                      const std::vector<int>& excluded, const FigureOptions& o) {
+  const FigureLayers& L = o.layers;
+  const PtRect& P = m.panel;
+  if (picture.empty()) {
+    c.fill_rect(P, rgb(70, 70, 76));
+    c.text({(P.x0 + P.x1) / 2, (P.y0 + P.y1) / 2}, Anchor::kCentre, style(o.font_pt * 0.8, rgb(255, 200, 120)),
+           problem.empty() ? "no picture" : problem);
+  } else {
+    Crop covered;
+    const FigurePicture pixels = crop_picture(picture, m.crop, &covered);
+    const Pt p0 = m(covered.x0, covered.y0), p1 = m(covered.x1, covered.y1);
+    c.push_clip(P);
+    c.image(pixels, {p0.x, p0.y, p1.x, p1.y});
+    c.pop_clip();
+  }
+  const double lw = std::max(0.35, o.font_pt * 0.07);
+  const std::vector<int> best = performance_values(gt, pred).best_prediction;
+  c.push_clip(P);
+  PtRect r;
+  if (L.pred)
+    for (size_t k = 0; k < pred.size(); ++k) {
+      const bool is_best = std::find(best.begin(), best.end(), int(k)) != best.end();
+      if (m.box(pred[k], r)) c.rect(m.raw(pred[k]), is_best ? kRedC : rgb(235, 40, 40, 150), is_best ? lw * 1.5 : lw);
+    }
+  auto colour_of = [&](size_t k) { return (!L.pairs || number[k] > 0) ? kPinkC : kUnpairedC; };
+  if (L.gt)
+    for (size_t k = 0; k < gt.size(); ++k) {
+      if (!m.box(gt[k], r)) continue;
+      const PtRect b = m.raw(gt[k]);
+      c.rect(b, colour_of(k), lw);
+      if (std::find(excluded.begin(), excluded.end(), int(k)) != excluded.end())
+        c.line({b.x0, b.y0}, {b.x1, b.y1}, colour_of(k), lw);
+    }
+  c.pop_clip();
+  std::vector<Label> labels;
+  if (L.gt && L.indices) {
+    // Pair numbers first, in number order (the ones a reader matches across the pictures), then the rest.
+    std::vector<size_t> order(gt.size());
+    for (size_t k = 0; k < gt.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) {
+      const int nx = number[x] > 0 ? number[x] : 1 << 30, ny = number[y] > 0 ? number[y] : 1 << 30;
+      return nx < ny;
+    });
+    for (size_t k : order) {
+      if (!m.box(gt[k], r)) continue;
+      const std::string text = !L.pairs ? std::to_string(k + 1)
+                               : number[k] > 0 ? std::to_string(number[k]) : "x" + std::to_string(k + 1);
+      labels.push_back({text, style(o.font_pt, colour_of(k)), r, true, 0});
+    }
+  }
+  if (L.pred && L.conf) {
+    std::vector<size_t> order(pred.size());
+    for (size_t k = 0; k < pred.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return pred[x].conf > pred[y].conf; });
+    for (size_t k : order) {
+      if (!m.box(pred[k], r)) continue;
+      // The one GT box this prediction matches (its highest IoU; a duplicate detection matches the rock
+      // it sits on too): the only GT box its confidence may lie on.
+      int matched = -1;
+      double matched_iou = 0;
+      for (size_t j = 0; j < gt.size(); ++j)
+        if (const double v = iou(gt[j], pred[k]); v > matched_iou) matched = int(j), matched_iou = v;
+      Label l{fmt::format("{:.2f}", pred[k].conf), style(o.font_pt * 0.85, kRedC), r, true, 1};
+      for (size_t j = 0; j < gt.size(); ++j)
+        if (int(j) != matched) l.keep_off.push_back(m.raw(gt[j]));
+      labels.push_back(std::move(l));
+    }
+  }
+  LabelPlacement placed;
+  SideLeftOut out;
+  draw_labels(c, labels, P, {}, true, &placed);
+  for (size_t i = 0; i < labels.size(); ++i)
+    if (!placed.labels[i].shown()) ++(labels[i].group == 0 ? out.numbers : out.confidences);
+  return out;
+}
+
+
+
+double draw_title(Canvas& c, const std::string& title, const FigureOptions& o) {
+  return kMargin + draw_wrapped(c, {kMargin, kMargin}, style(o.font_pt, kInk), title, o.width_pt() - 2 * kMargin);
+}
+
+}  // namespace
+
+PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, const FigureOptions& o) {
+  o.validate();
+  const double W = o.width_pt(), F = o.font_pt;
+  const double gap = std::max(4.0, 0.5 * F);
+  double y = draw_title(out, title_of(in, scene_numbers(in)), o) + 0.3 * F;
+  const double pw = (W - 2 * kMargin - gap) / 2, ph = pw / aspect_of(in, o.crop);
+  const TextStyle caption = style(F, kInk, true);
+  out.text({kMargin, y}, Anchor::kTopLeft, caption, in.a);
+  out.text({kMargin + pw + gap, y}, Anchor::kTopLeft, caption, in.b);
+  y += out.measure(caption, "Ag").y + 0.15 * F;
+  const PanelMap left{{kMargin, y, kMargin + pw, y + ph}, o.crop};
+  const PanelMap right{{kMargin + pw + gap, y, kMargin + 2 * pw + gap, y + ph}, o.crop};
+  // The GUI's numbers (a pair is named by its left rock), so a figure and the screen agree.
+  const std::vector<int> num_a = pair_numbers(in.pairs, in.gt_a.size(), true);
+  const std::vector<int> num_b = pair_numbers(in.pairs, in.gt_b.size(), false);
+  const SideLeftOut la = draw_side(out, left, in.picture_a, in.problem_a, in.gt_a, in.pred_a, num_a, in.excluded_a, o);
+  const SideLeftOut lb = draw_side(out, right, in.picture_b, in.problem_b, in.gt_b, in.pred_b, num_b, in.excluded_b, o);
+  const int numbers = la.numbers + lb.numbers, ambiguous = la.confidences + lb.confidences;
+  y += ph + 0.35 * F;
+  if (o.layers.legend) {
+    std::vector<LegendItem> items;
+    if (o.layers.gt) items.push_back({Swatch::kBox, kPinkC, o.layers.indices && o.layers.pairs ? "GT rock (pair number)" : "GT rock"});
+    // Only when the figure shows one: a legend entry for nothing on the page reads as a rendering error.
+    const auto unpaired = [](const std::vector<int>& nums) { return std::count(nums.begin(), nums.end(), 0) > 0; };
+    if (o.layers.gt && o.layers.pairs && (unpaired(num_a) || unpaired(num_b)))
+      items.push_back({Swatch::kBox, kUnpairedC, "unpaired GT (x index)"});
+    if (o.layers.gt && (!in.excluded_a.empty() || !in.excluded_b.empty()))
+      items.push_back({Swatch::kStruckBox, kPinkC, "excluded from the IPD (by hand)"});
+    if (o.layers.pred) items.push_back({Swatch::kBox, kRedC, o.layers.conf ? "prediction (confidence)" : "prediction"});
+    y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items);
+  }
+  // Footnotes 0.2 font sizes below the legend; none: the page ends at the legend (the same 4 pt margin).
+  double note_gap = o.layers.legend ? 0.2 * F : 0;
+  const auto note = [&](const std::string& text) {
+    y += note_gap + draw_wrapped(out, {kMargin, y + note_gap}, style(F * 0.8, kGrey), text, W - 2 * kMargin);
+    note_gap = 0;
+  };
+  if (numbers > 0)
+    note(fmt::format("{} rock number{} left out: no free spot clear of the other rocks' boxes (try --crop)", numbers,
+                     numbers == 1 ? "" : "s"));
+  if (ambiguous > 0)
+    note(fmt::format("{} confidence label{} left out: no free spot clearly beside {} own box (try --crop)", ambiguous,
+                     ambiguous == 1 ? "" : "s", ambiguous == 1 ? "its" : "their"));
+  out.width_pt = W;
+  out.height_pt = std::ceil(y + kMargin);
+  return {left.panel, right.panel};
+}
+
+void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, const FigureOptions& o) {
+  o.validate();
+  const double W = o.width_pt(), F = o.font_pt;
+  const double gap = std::max(4.0, 0.5 * F);
+  const std::string title =
+      fmt::format("{}: GT box centres of {} and {}, {} ({} pair{})", in.stem, in.a, in.b,
+                  in.pairs_fixed ? "pairs fixed by hand" : "registration: " + in.method, in.pairs.size(),
+                  in.pairs.size() == 1 ? "" : "s");
+  double y = draw_title(out, title, o) + 0.3 * F;
+  const double pw = (W - 2 * kMargin - gap) / 2, ph = pw / aspect_of(in, o.crop);
+  const TextStyle caption = style(F, kInk, true);
+  out.text({kMargin, y}, Anchor::kTopLeft, caption, "before registration");
+  out.text({kMargin + pw + gap, y}, Anchor::kTopLeft, caption,
+           in.pairs_fixed ? "aligned by the pairs" : "after registration");
+  y += out.measure(caption, "Ag").y + 0.15 * F;
+  const double dot = std::max(0.6, 0.11 * F), ring = dot * 2.8, lw = std::max(0.35, 0.07 * F);
+  int left_out = 0;
+  for (int k = 0; k < 2; ++k) {
+    const PanelMap m{{kMargin + k * (pw + gap), y, kMargin + k * (pw + gap) + pw, y + ph}, o.crop};
+    out.fill_rect(m.panel, rgb(248, 248, 248));
+    out.rect(m.panel, rgb(120, 120, 120), lw);
+    std::vector<Pt> pa, pb;
+    for (const Box& b : in.gt_a) {
+      const Eigen::Vector2d q = k == 0 ? b.centre() : apply(in.affine, b.centre());
+      pa.push_back(m(q.x(), q.y()));
+    }
+    for (const Box& b : in.gt_b) pb.push_back(m(b.cx, b.cy));
+    out.push_clip(m.panel);
+    // Rings first, pair lines over them with a white halo, the (small) dots last: a line shorter than a
+    // ring's radius (a small misalignment) still shows as a green stroke between the dot and the ring.
+    if (o.layers.gt)
+      for (const Pt& q : pb) out.circle(q, ring, kPinkC, lw * 1.4);
+    if (o.layers.pairs) {
+      for (int pass = 0; pass < 2; ++pass)
+        for (const auto& [i, j] : in.pairs)
+          if (i >= 0 && j >= 0 && i < int(pa.size()) && j < int(pb.size()))
+            out.line(pa[i], pb[j], pass == 0 ? kWhite : kGreenC, pass == 0 ? lw * 3.2 : lw * 1.6);
+    }
+    if (o.layers.gt)
+      for (const Pt& q : pa) out.fill_circle(q, dot, kBlueC);
+    out.pop_clip();
+    if (o.layers.gt && o.layers.indices) {
+      std::vector<Label> labels;
+      const auto square = [](Pt q, double r) { return PtRect{q.x - r, q.y - r, q.x + r, q.y + r}; };
+      for (const auto& [i, j] : in.pairs) {
+        if (i < 0 || i >= int(pa.size())) continue;
+        const Pt q = pa[i];
+        if (q.x < m.panel.x0 || q.x > m.panel.x1 || q.y < m.panel.y0 || q.y > m.panel.y1) continue;
+        // A pair is named by its left rock, as in the GUI and the pairs figure (pair_numbers). The number
+        // must read as this marker's: clear of every other dot and ring but its partner's, else moved with
+        // a leader or left out.
+        Label l{std::to_string(i + 1), style(F, kInk), square(q, ring), true, 0};
+        for (size_t a = 0; a < pa.size(); ++a)
+          if (int(a) != i) l.keep_off.push_back(square(pa[a], dot));
+        for (size_t b = 0; b < pb.size(); ++b)
+          if (int(b) != j) l.keep_off.push_back(square(pb[b], ring));
+        l.keep_off_clearance = kExclusiveClearancePt;
+        labels.push_back(std::move(l));
+      }
+      left_out += draw_labels(out, labels, m.panel, {}, false);
+    }
+  }
+  y += ph + 0.35 * F;
+  if (o.layers.legend) {
+    std::vector<LegendItem> items;
+    if (o.layers.gt) {
+      items.push_back({Swatch::kDot, kBlueC, "GT centres of " + in.a});
+      items.push_back({Swatch::kRing, kPinkC, "GT centres of " + in.b});
+    }
+    if (o.layers.pairs) items.push_back({Swatch::kLine, kGreenC, "rock pairs"});
+    if (o.layers.indices && o.layers.gt) items.push_back({Swatch::kDot, kInk, "numbers: pairs, by " + in.a + " rock"});
+    y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items);
+  }
+  if (left_out > 0) y += (o.layers.legend ? 0.2 * F : 0) + draw_footnote(out, {kMargin, y + (o.layers.legend ? 0.2 * F : 0)}, W - 2 * kMargin, F, left_out);
+  out.width_pt = W;
+  out.height_pt = std::ceil(y + kMargin);
+}
+
+}  // namespace ipd::ui

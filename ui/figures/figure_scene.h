@@ -1,0 +1,45 @@
+// Fig. 1 (pairs) and Fig. 2 (registration) of one scene, drawn on the figure canvas from exactly what a
+// view shows: domains, model, threshold, current pairs (edits included), excluded rocks, pictures. The CLI
+// builds the input from the study on disk, the GUI from its session (figure_input.h); both draw here.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ui/canvas/canvas.h"
+#include "ui/figures/figure_options.h"
+#include "core/geometry/geometry.h"
+#include "core/registration/registration.h"
+
+namespace ipd::ui {
+
+struct SceneFigureInput {
+  std::string stem, a, b, model;            // left domain a, right domain b
+  double conf_threshold = 0;                // predictions below it are already dropped; shown in the title
+  std::vector<Box> gt_a, gt_b, pred_a, pred_b;
+  RockPairs pairs;                          // (index in a, index in b), in pair-number order
+  std::vector<int> excluded_a, excluded_b;
+  bool pairs_fixed = false;                 // by hand (file or GUI edit) rather than registration
+  Affine2 affine = identity_affine();       // a -> b, for Fig. 2
+  std::string method;                       // registration method, for Fig. 2's title
+  cv::Mat picture_a, picture_b;             // BGR, empty when there is none
+  std::string problem_a, problem_b;         // why a picture is missing
+  int image_w = 1936, image_h = 1216;       // aspect when there is no picture
+};
+
+// The scene's IPD and number of pairs for the title, from the input's boxes and pairs.
+struct SceneNumbers {
+  double ipd = 0;  // NaN without pairs
+  int pairs = 0;
+};
+SceneNumbers scene_numbers(const SceneFigureInput& in);
+
+// Where the pictures went (points), for tests.
+struct PairsLayout {
+  PtRect left, right;
+};
+// Draws the figure into `out` and sets its page size (width from the options, height from the content).
+PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, const FigureOptions& options);
+void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, const FigureOptions& options);
+
+}  // namespace ipd::ui

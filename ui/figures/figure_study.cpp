@@ -1,0 +1,72 @@
+#include "ui/figures/figure_study.h"
+
+#include <fmt/format.h>
+
+#include "ui/figures/figure_charts.h"
+#include "ui/figures/figure_stats.h"
+#include "ui/figures/figure_table.h"
+
+namespace ipd::ui {
+
+bool is_study_figure_kind(const std::string& kind) {
+  return kind == "table" || kind == "compare" || kind == "distribution" || kind == "breakdown";
+}
+
+namespace {
+
+// The model a one-model figure shows: the request's, else one trained on `domain`, else the first.
+std::string pick_model(const CrossTable& t, const std::string& asked, const std::string& domain) {
+  if (!asked.empty()) return asked;
+  for (const auto& m : t.models)
+    if (m.trained_on == domain) return m.name;
+  if (t.models.empty()) throw StudyError("the study has no model predictions to draw");
+  return t.models.front().name;
+}
+
+}  // namespace
+
+std::string draw_study_figure(DisplayList& fig, const CrossTable& t, const StudyLabels& labels,
+                              const StudyFigureRequest& r, const FigureOptions& o) {
+  const Study& st = labels.study;
+  if (st.domains.empty()) throw StudyError(st.root + ": the study has no domains");
+  if (r.kind == "table") {
+    draw_table_figure(fig, table_figure_of(t, o.ci, r.bootstrap.level), o);
+    return "IPD cross table";
+  }
+  if (r.kind == "compare") {
+    if (st.domains.size() < 3 && (r.ref.empty() || r.a.empty() || r.b.empty()))
+      throw StudyError(st.root + ": compare needs three domains (a reference and two renderers)");
+    const std::string ref = r.ref.empty() ? st.domains[0].name : r.ref;
+    std::vector<std::string> others;
+    for (const auto& d : st.domains)
+      if (d.name != ref) others.push_back(d.name);
+    const std::string a = r.a.empty() ? others.at(0) : r.a, b = r.b.empty() ? others.at(1) : r.b;
+    CompareOptions co;
+    co.bootstrap = r.bootstrap;
+    co.permutations = r.permutations;
+    if (const std::string bad = co.validate(); !bad.empty()) throw StudyError(bad);
+    draw_dot_whisker_chart(fig, compare_chart(t, r.models, ref, a, b, co), o);
+    return fmt::format("IPD({0}, {1}) - IPD({0}, {2})", ref, a, b);
+  }
+  if (r.kind == "distribution") {
+    const std::string model = pick_model(t, r.model, st.domains.front().name);
+    draw_distribution_chart(fig, distribution_chart(t, model, r.worst), o);
+    return "Per-scene IPD of " + model;
+  }
+  if (r.kind != "breakdown") throw std::invalid_argument("not a study figure: '" + r.kind + "'");
+  if (st.domains.size() < 2) throw StudyError(st.root + ": a breakdown needs two domains, this study has one");
+  const std::string a = r.a.empty() ? st.domains[0].name : r.a;
+  const std::string b = !r.b.empty() ? r.b : st.domains[0].name == a ? st.domains[1].name : st.domains[0].name;
+  const std::string model = pick_model(t, r.model, a);
+  const TableCell* cell = t.cell(model, a, b);
+  if (!cell) throw StudyError(fmt::format("{}: no IPD({}, {}) for model {} in this study", st.root, a, b, model));
+  BreakdownOptions bo;
+  if (!parse_breakdown_by(o.by, &bo.by)) throw std::invalid_argument("--by: expected size, region or confidence, found '" + o.by + "'");
+  bo.bins = r.bins;
+  bo.bootstrap = r.bootstrap;
+  if (const std::string bad = bo.validate(); !bad.empty()) throw StudyError(bad);
+  draw_dot_whisker_chart(fig, breakdown_chart(breakdown_cell(labels, *cell, bo), bo.bootstrap.level), o);
+  return fmt::format("IPD({}, {}) by {}", a, b, o.by);
+}
+
+}  // namespace ipd::ui

@@ -1,0 +1,126 @@
+#include "ui/gui/scene_canvas.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <vector>
+
+namespace ipd::ui {
+
+Placement place(ImVec2 area_min, ImVec2 area_size, int image_w, int image_h, const CanvasView& view) {
+  const float aspect = (image_w > 0 && image_h > 0) ? float(image_w) / float(image_h) : 1936.0f / 1216.0f;
+  float w = area_size.x, h = w / aspect;
+  if (h > area_size.y) h = area_size.y, w = h * aspect;
+  w *= view.zoom;
+  h *= view.zoom;
+  Placement p;
+  p.size = {w, h};
+  p.origin = {area_min.x + 0.5f * area_size.x - (0.5f + view.pan.x) * w,
+              area_min.y + 0.5f * area_size.y - (0.5f + view.pan.y) * h};
+  return p;
+}
+
+namespace {
+
+void text_with_backdrop(ImDrawList* dl, ImVec2 at, ImU32 colour, const char* text, float scale) {
+  ImFont* font = ImGui::GetFont();
+  const float size = ImGui::GetFontSize() * scale;
+  const ImVec2 ext = font->CalcTextSizeA(size, FLT_MAX, 0.0f, text);
+  dl->AddRectFilled({at.x - 1, at.y}, {at.x + ext.x + 1, at.y + ext.y}, IM_COL32(0, 0, 0, 170));
+  dl->AddText(font, size, at, colour, text);
+}
+
+}  // namespace
+
+int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, const SideInput& in,
+              const SideLayers& layers, ImVec2 mouse, float ts) {
+  const ImVec2 a1{a0.x + asz.x, a0.y + asz.y};
+  dl->PushClipRect(a0, a1, true);
+  if (in.fill_background) dl->AddRectFilled(a0, a1, IM_COL32(30, 30, 34, 255));
+  const Placement pl = place(a0, asz, in.image_w, in.image_h, view);
+  const ImVec2 p1{pl.origin.x + pl.size.x, pl.origin.y + pl.size.y};
+  if (in.texture) {
+    dl->AddImage(in.texture, pl.origin, p1);
+  } else {
+    dl->AddRectFilled(pl.origin, p1, IM_COL32(70, 70, 76, 255));
+    if (!in.placeholder.empty()) {  // centred, clear of the caption in the corner
+      const float w = ImGui::GetFont()->CalcTextSizeA(ImGui::GetFontSize() * ts, FLT_MAX, 0, in.placeholder.c_str()).x;
+      text_with_backdrop(dl, {pl.origin.x + 0.5f * (pl.size.x - w), pl.origin.y + 0.5f * pl.size.y},
+                         IM_COL32(255, 200, 120, 255), in.placeholder.c_str(), ts);
+    }
+  }
+  const float thick = std::max(1.0f, 1.5f * ts);
+  char buf[32];
+  int hovered = -1;
+  // Confidence labels are drawn last, where they hide no rock number and no number hides them.
+  struct Pending {
+    ImVec2 q0, q1;
+    double conf;
+  };
+  std::vector<Pending> confidences;
+  std::vector<ImVec4> number_rects;  // x0, y0, x1, y1
+  if (layers.predictions && in.predictions) {
+    for (size_t k = 0; k < in.predictions->size(); ++k) {
+      const Box& b = (*in.predictions)[k];
+      const ImVec2 q0 = pl.to_screen(b.x0(), b.y0()), q1 = pl.to_screen(b.x1(), b.y1());
+      const bool best = in.gt && std::find(in.best_prediction.begin(), in.best_prediction.end(), int(k)) !=
+                                     in.best_prediction.end();
+      dl->AddRect(q0, q1, best ? kRed : IM_COL32(235, 40, 40, 140), 0, 0, best ? 2 * thick : thick);
+      if (layers.confidences && q1.x - q0.x >= in.min_box_px_for_confidence) confidences.push_back({q0, q1, b.conf});
+    }
+  }
+  if (layers.gt && in.gt) {
+    for (size_t k = 0; k < in.gt->size(); ++k) {
+      const Box& b = (*in.gt)[k];
+      const ImVec2 q0 = pl.to_screen(b.x0(), b.y0()), q1 = pl.to_screen(b.x1(), b.y1());
+      if (mouse.x >= q0.x && mouse.x <= q1.x && mouse.y >= q0.y && mouse.y <= q1.y && mouse.x >= a0.x &&
+          mouse.x <= a1.x && mouse.y >= a0.y && mouse.y <= a1.y)
+        hovered = int(k);
+      const int number = k < in.number.size() ? in.number[k] : 0;
+      const bool excluded = k < in.excluded.size() && in.excluded[k];
+      const bool suspect = k < in.suspect.size() && in.suspect[k];
+      const bool sampled = std::find(in.sample.begin(), in.sample.end(), int(k)) != in.sample.end();
+      ImU32 colour = number > 0 ? (suspect ? kSuspect : kPink) : kGreyUnpaired;
+      if (sampled) colour = kTriple;
+      if (int(k) == in.highlight) colour = kHighlight;
+      if (int(k) == in.selected) colour = kSelected;
+      const bool wide = int(k) == in.highlight || int(k) == in.selected || sampled || suspect;
+      dl->AddRect(q0, q1, colour, 0, 0, wide ? 2.5f * thick : thick);
+      if (excluded) dl->AddLine(q0, q1, colour, thick);
+      if (layers.indices) {
+        // Partners share their pair's number; an unpaired rock shows its own 1-based index after an "x".
+        if (number > 0) std::snprintf(buf, sizeof buf, "%d", number);
+        else std::snprintf(buf, sizeof buf, "x%zu", k + 1);
+        const float size = ImGui::GetFontSize() * ts;
+        // Above the box; a box at the picture's top edge gets its number just inside, never cut by the edge.
+        const float top = std::max(a0.y, pl.origin.y);
+        const float above = q0.y - size - 1;
+        const ImVec2 at{q0.x, above < top && q1.y > top ? top : above};
+        const ImVec2 ext = ImGui::GetFont()->CalcTextSizeA(size, FLT_MAX, 0.0f, buf);
+        number_rects.push_back({at.x - 1, at.y, at.x + ext.x + 1, at.y + ext.y});
+        text_with_backdrop(dl, at, colour, buf, ts);
+      }
+    }
+  }
+  // Below the box's left corner, else right of its bottom, else above its right end; with no free spot the
+  // label is left out rather than drawn under or over a rock number.
+  const float conf_size = 0.85f * ImGui::GetFontSize() * ts;
+  for (const Pending& p : confidences) {
+    std::snprintf(buf, sizeof buf, "%.2f", p.conf);
+    const ImVec2 ext = ImGui::GetFont()->CalcTextSizeA(conf_size, FLT_MAX, 0.0f, buf);
+    const ImVec2 spots[] = {{p.q0.x, p.q1.y + 1}, {p.q1.x + 2, p.q1.y - ext.y}, {p.q1.x - ext.x, p.q0.y - ext.y - 1}};
+    for (const ImVec2& at : spots) {
+      bool clear = true;
+      for (const ImVec4& r : number_rects)
+        if (at.x - 1 < r.z && at.x + ext.x + 1 > r.x && at.y < r.w && at.y + ext.y > r.y) clear = false;
+      if (!clear) continue;
+      text_with_backdrop(dl, at, kRed, buf, 0.85f * ts);
+      number_rects.push_back({at.x - 1, at.y, at.x + ext.x + 1, at.y + ext.y});  // confidences don't overlap either
+      break;
+    }
+  }
+  if (!in.caption.empty()) text_with_backdrop(dl, {a0.x + 6, a0.y + 4}, IM_COL32(255, 255, 255, 255), in.caption.c_str(), 1.1f * ts);
+  dl->PopClipRect();
+  return hovered;
+}
+
+}  // namespace ipd::ui

@@ -1,0 +1,45 @@
+// ipd-studio's statistics panels: the interval of each cross-table cell (tooltip), a renderer comparison
+// (ref / a / b -> ΔIPD, interval, p and the sentence), the histogram of per-scene IPD of the current cell
+// (a click on a bar filters the scene list to those scenes) and the size breakdown as small bars. They draw
+// a SessionStatistics computed off the UI thread; they never compute.
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "core/session/session_statistics.h"
+#include "ui/gui/views.h"
+
+namespace ipd::ui {
+
+struct StatsPanelState {
+  int ref = 0, a = 1, b = 2;  // domain indices of the comparison
+  int bins = 8;               // histogram bars
+};
+
+// What to compute for the current view (the app hands it to its statistics job).
+SessionStatisticsRequest stats_request(const Session& s, const StatsPanelState& st);
+
+// The compare panel's numbers line, written as comparison_sentence writes them (ΔIPD, the typographic minus
+// U+2212): "ΔIPD = −0.0802 [−0.094, −0.066]   p = 0.0078"; the panel passes it through spell_missing_glyphs.
+// Fewer than two scenes: "ΔIPD = 0.0200, 1 scene: no interval, no test" (never "p = nan").
+std::string compare_delta_line(const Comparison& r);
+
+// A tooltip with the cell's interval when the last item is hovered (nothing while unknown).
+void cell_interval_tooltip(const SessionStatistics* stats, const std::string& model, int pair);
+
+// `stats` may be null (first computation running) or older than the view (`computing` is then true).
+void draw_stats_panels(const StudyView& v, const SessionStatistics* stats, bool computing, StatsPanelState& st,
+                       UiState& ui, UiCommands& out);
+
+// Histogram bins of values: `bins` bars of a round width from 0 (or the minimum) up to the maximum.
+struct HistogramBins {
+  double start = 0, width = 0;
+  std::vector<int> counts;
+  // Every value the same (one scene, say): three bins with the value's bin in the middle, and the value,
+  // where its bar is drawn (not at its bin's centre, which would read half a bin off).
+  double lone_value = std::nan("");
+};
+HistogramBins histogram_bins(const std::vector<double>& values, int bins);
+
+}  // namespace ipd::ui

@@ -1,0 +1,170 @@
+// The panels of ipd-studio. They read an immutable snapshot of the study (the worker's Session and the
+// per-scene summaries) and the UI's own view state, and return what the user asked for as commands; the
+// app applies them in one place (study changes go to the worker, view changes stay here).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/session/scene_filter.h"
+#include "core/session/session.h"
+#include "core/session/session_statistics.h"
+#include "ui/gui/scene_canvas.h"
+
+namespace ipd::ui {
+
+// An IPD as the views print it: 4 decimals, "n/a" for NaN.
+std::string fmt_ipd(double v);
+
+// A table column sized from text, not pixels: wide enough for its header (with the sort arrow) and for
+// `widest`, the longest value it shows. `tooltip` explains a short header when it is hovered.
+struct TextColumn {
+  const char* header;
+  const char* widest;
+  const char* tooltip = nullptr;
+  ImGuiTableColumnFlags flags = 0;
+};
+// `sortable`: room for the sort arrow beside the header (an unsortable table's headers need none).
+float text_column_width(const TextColumn& c, bool sortable = true);
+// TableSetupColumn for each (fixed width from text, or stretched when `widest` is null), then the header
+// row, with the tooltips.
+void setup_text_columns(const std::vector<TextColumn>& columns, bool sortable = true);
+
+struct Picture {
+  ImTextureID texture = nullptr;
+  int width = 0, height = 0;
+  std::string placeholder;  // "loading…" or why it can't be shown
+};
+
+// What the views read this frame: never modified by them.
+struct StudyView {
+  const Session* session = nullptr;
+  const std::vector<SceneSummary>* summaries = nullptr;  // per scene, computed by the worker once per change
+  const RegistrationReport* rerun = nullptr;             // a re-run (with its trace) of the current scene
+  bool rerun_is_automatic = false;                       // the re-run repeats the study's own registration
+  // Status bar inputs.
+  int pending_saves = 0;
+  std::vector<std::string> failed_saves;
+  bool busy = false;  // the worker is computing
+  std::string loading;  // a first look is shown while the study loads: how far it got
+  const SessionStatistics* stats = nullptr;  // intervals etc. (stats_panels.h), computed off the UI thread
+};
+
+// The replay of a registration's search (the trace), as a position on its timeline.
+struct ReplayState {
+  bool playing = false;
+  float position = 0;   // 0 .. steps (hypotheses/iterations) + 1 (the final raw -> aligned motion)
+  float speed = 20;     // steps per second
+};
+
+// What the scene list sorts by (UiState::sort_column); each of its columns sorts by one of these.
+enum SceneSortKey : int { kByStem, kByIpd, kByPairs, kByUnpaired, kBySuspects, kByEdited, kByAmbiguous };
+
+// What the views remember between frames (never study data).
+struct UiState {
+  int scene = 0;
+  CanvasView left_view, right_view;
+  bool sync_views = true;
+  SideLayers layers;
+  int selected_left = -1, selected_right = -1;  // a click on one side waits for one on the other
+  int hover_left = -1, hover_right = -1;
+  int sort_column = kByIpd;                      // browser: a SceneSortKey
+  bool sort_descending = true;                   // worst first: the audit order
+  char filter[128] = "";
+  ReplayState replay;
+  int rerun_method = 0, rerun_seed = 0;  // rerun_method: index into registration_methods()
+  bool rerun_discarded = false;
+  float conf_threshold = 0.0f;
+  char save_as_dir[512] = "";
+  std::string status;
+  std::vector<int> order;  // browser_order(), recomputed by the app only when its inputs change
+  std::string filter_error;
+  // Chrome: menus and dialogs.
+  bool show_help = false, show_goto = false, show_open = false, show_quit = false;
+  char goto_text[128] = "";
+  std::string browse_dir;                 // the Open study… browser's directory
+  std::vector<std::string> browse_dirs;   // its subdirectories (listed by the app when browse_dir changes)
+  bool browse_is_study = false;           // browse_dir has a study.yaml or domain folders
+  std::vector<std::string> recent;        // recent studies, newest first
+  float pictures_height = -1;             // height of the pictures pane; -1: fit the pictures' aspect
+  float browser_width = -1, stats_width = -1;  // side columns as dragged; -1: from their content
+  bool quit_confirmed = false;
+};
+
+struct UiCommands {
+  std::vector<Edit> edits;
+  bool undo = false, redo = false;
+  int goto_scene = -1;
+  std::string left_domain, right_domain, model;
+  float conf_threshold = -1;
+  bool rerun_registration = false;
+  bool save_as = false;
+  bool export_figures = false;  // Fig. 1 and Fig. 2 of the current view, through `ipd figure`
+  bool export_dialog = false;   // File > Export figure… (the figure dialog hook)
+  std::string open_study;       // File > Open study… / Recent
+  bool retry_saves = false;
+  bool quit = false;            // confirmed (or nothing unsaved)
+  bool next_suspect = false;    // `N`: the next suspect pair anywhere in the study
+};
+
+// The scene order of the browser (sorted and filtered as the user asked); sets ui.filter_error.
+std::vector<int> browser_order(const std::vector<SceneSummary>& summaries, UiState& ui);
+
+// The scene list's columns, left to right: header (sized from text) and what a click on it sorts by, which is
+// also what its cells show.
+struct BrowserColumn {
+  TextColumn text;
+  SceneSortKey sort_key;
+};
+const std::vector<BrowserColumn>& browser_columns();
+
+// The study browser's width: the longest scene name and the numeric columns, within [min_w, max_w].
+float browser_width(const StudyView& v, float min_w, float max_w);
+void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out);
+void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out);
+void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out);  // help, go to scene, open study, quit
+void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out);
+float scene_toolbar_width();  // the pictures' toolbar on one line
+void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, const Picture& right, UiCommands& out);
+void draw_registration(const StudyView& v, UiState& ui, UiCommands& out);
+void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out);
+void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out);
+// The three columns (browser, pictures + registration + pair table, IPD + `draw_stats`) in `h` pixels,
+// laid out by studio_columns() for the window's width.
+void draw_main_columns(const StudyView& v, UiState& ui, const Picture& left, const Picture& right, float h,
+                       const std::function<void()>& draw_stats, UiCommands& out);
+// Text wrapped to the available width at spaces only (wrap_at_spaces): numbers are never split.
+void text_wrapped_at_spaces(const std::string& text);
+void text_disabled_wrapped_at_spaces(const std::string& text);
+void text_coloured_wrapped_at_spaces(const ImVec4& colour, const std::string& text);
+// SameLine() when an item `width` wide still fits on this line, else nothing (it goes on the next line).
+void same_line_if_fits(float width);
+float button_width(const char* label);
+
+// The registration panel's words: its summary line ("real -> hapke: consensus, 1 trial, 5,982 hypotheses,
+// ..."), the replayed step ("step 350 of 5,000 (hypothesis): score ..."), and what a capped trace holds.
+std::string registration_summary(const std::string& a, const std::string& b, const RegistrationReport& r);
+std::string replay_step_line(const TraceStep& step, int k, int steps);
+std::string trace_cap_note(int steps, int hypotheses);
+// The registration canvas at `p0` of `size`: the plot's clip rect (all of the canvas above the three legend
+// lines), the picture's box inside it (10 px margins) and the legend's top.
+struct RegistrationCanvas {
+  ImVec2 plot_min, plot_max, box_min, box_size;
+  float legend_top = 0;
+};
+RegistrationCanvas registration_canvas(ImVec2 p0, ImVec2 size, float line_h);
+// Keyboard shortcuts that act on the whole window.
+void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out);
+// Every shortcut, for the help window (and README).
+const std::vector<std::pair<const char*, const char*>>& shortcut_list();
+
+// Per-rock inputs of the canvas for one side of the current scene.
+SideInput side_input(const Session& s, const UiState& ui, Side side, const Picture& picture);
+
+// The trace step shown at a replay position (clamped), -1 when the trace is empty.
+int replay_step(const RegistrationReport& r, float position);
+
+}  // namespace ipd::ui

@@ -1,0 +1,179 @@
+// The study browser: domains, model, threshold, filter and the scene list (clipped: only visible rows are
+// built, so 10,000 scenes cost what 30 do).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "ui/gui/studio_layout.h"
+#include "ui/gui/views.h"
+
+namespace ipd::ui {
+
+std::vector<int> browser_order(const std::vector<SceneSummary>& sums, UiState& ui) {
+  const SceneFilter filter = SceneFilter::parse(ui.filter);
+  ui.filter_error = filter.error;
+  std::vector<int> order;
+  for (int k = 0; k < static_cast<int>(sums.size()); ++k)
+    if (filter.matches(sums[k])) order.push_back(k);
+  auto key = [&](int k) -> double {
+    const auto& m = sums[k];
+    switch (ui.sort_column) {
+      case kByIpd: return std::isnan(m.ipd) ? -1.0 : m.ipd;
+      case kByPairs: return m.pairs;
+      case kByUnpaired: return m.unpaired_a + m.unpaired_b;
+      case kBySuspects: return m.suspects;
+      case kByEdited: return m.edited;
+      case kByAmbiguous: return m.ambiguous;
+      default: return 0;
+    }
+  };
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
+    if (ui.sort_column == kByStem) return ui.sort_descending ? sums[x].stem > sums[y].stem : sums[x].stem < sums[y].stem;
+    return ui.sort_descending ? key(x) > key(y) : key(x) < key(y);
+  });
+  return order;
+}
+
+const std::vector<BrowserColumn>& browser_columns() {
+  const ImGuiTableColumnFlags num = ImGuiTableColumnFlags_WidthFixed | ImGuiTableColumnFlags_PreferSortDescending;
+  // The IPD, the value a user looks for first, comes right after the (frozen) name, then the flags: a narrow
+  // list (700 px window) shows name, IPD, amb. and susp. without scrolling sideways.
+  static const std::vector<BrowserColumn> columns = {
+      {{"scene", nullptr, nullptr, ImGuiTableColumnFlags_WidthStretch}, kByStem},
+      {{"IPD", "0.0000", "the scene's IPD for the model (sorted worst first)",
+        num | ImGuiTableColumnFlags_DefaultSort}, kByIpd},
+      {{"amb.", "?", "ambiguous registration: another alignment fits as well or almost as well (e.g. a small overlap or a "
+                     "repetitive layout), so the pairs may be wrong; check them", num}, kByAmbiguous},
+      {{"susp.", "99", "suspect pairs: paired rocks that the registration does not bring together", num}, kBySuspects},
+      {{"ed.", "hand", "pairs fixed by hand", num}, kByEdited},
+      {{"pairs", "999", "rock pairs counted in the IPD", num}, kByPairs},
+      {{"unp.", "99/99", "unpaired rocks, left/right (excluded rocks are not counted)", num}, kByUnpaired},
+  };
+  return columns;
+}
+
+namespace {
+const std::vector<TextColumn>& browser_text_columns() {
+  static const std::vector<TextColumn> text = [] {
+    std::vector<TextColumn> t;
+    for (const auto& c : browser_columns()) t.push_back(c.text);
+    return t;
+  }();
+  return text;
+}
+
+// One cell of a scene's row, by its column's sort key.
+void draw_scene_cell(SceneSortKey sort_key, const SceneSummary& m, int k, const UiState& ui, UiCommands& out) {
+  switch (sort_key) {
+    case kByStem:
+      ImGui::PushID(k);
+      if (ImGui::Selectable(m.stem.c_str(), k == ui.scene, ImGuiSelectableFlags_SpanAllColumns)) out.goto_scene = k;
+      // A name wider than its column: the whole of it on hover.
+      if (ImGui::IsItemHovered() && ImGui::CalcTextSize(m.stem.c_str()).x > ImGui::GetColumnWidth())
+        ImGui::SetTooltip("%s", m.stem.c_str());
+      ImGui::PopID();
+      break;
+    case kByIpd: ImGui::TextUnformatted(fmt_ipd(m.ipd).c_str()); break;
+    case kByPairs: ImGui::Text("%d", m.pairs); break;
+    case kByUnpaired: ImGui::Text("%d/%d", m.unpaired_a, m.unpaired_b); break;
+    case kBySuspects:
+      if (m.suspects > 0) ImGui::TextColored({1, 0.55f, 0, 1}, "%d", m.suspects);
+      break;
+    case kByEdited:
+      if (m.edited) ImGui::TextColored({0.4f, 0.8f, 1, 1}, "hand");
+      break;
+    case kByAmbiguous:
+      if (m.ambiguous) {
+        ImGui::TextColored({1, 0.8f, 0.3f, 1}, "?");
+        if (ImGui::IsItemHovered())
+          ImGui::SetTooltip("ambiguous registration: %s;\ncheck this scene's pairs", kAmbiguousReason);
+      }
+      break;
+  }
+}
+}  // namespace
+
+float browser_width(const StudyView& v, float min_w, float max_w) {
+  size_t longest = 0;
+  const std::string* name = nullptr;
+  if (v.summaries)
+    for (const auto& m : *v.summaries)
+      if (m.stem.size() > longest) longest = m.stem.size(), name = &m.stem;
+  const ImGuiStyle& st = ImGui::GetStyle();
+  float w = (name ? ImGui::CalcTextSize(name->c_str()).x : 80.0f) + 2 * st.CellPadding.x;
+  for (const auto& c : browser_columns())
+    if (c.text.widest) w += text_column_width(c.text) + 2 * st.CellPadding.x;
+  return std::clamp(w + st.ScrollbarSize + 2 * st.WindowPadding.x + 8, min_w, max_w);
+}
+
+void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
+  const Session& s = *v.session;
+  const Study& st = s.study();
+  ImGui::TextWrapped("%s", st.root.c_str());
+  if (s.read_only()) ImGui::TextColored({1, 0.6f, 0.2f, 1}, "read-only: edits stay in memory (File > Save edits as)");
+  auto domain_combo = [&](const char* label, const std::string& current, std::string* choice) {
+    if (ImGui::BeginCombo(label, current.c_str())) {
+      for (const auto& d : st.domains)
+        if (ImGui::Selectable(d.name.c_str(), d.name == current)) *choice = d.name;
+      ImGui::EndCombo();
+    }
+  };
+  std::string left, right;
+  domain_combo("left", s.left_domain(), &left);
+  domain_combo("right", s.right_domain(), &right);
+  if (!left.empty() && left != s.right_domain()) out.left_domain = left, out.right_domain = s.right_domain();
+  if (!right.empty() && right != s.left_domain()) out.left_domain = s.left_domain(), out.right_domain = right;
+  if (st.models.empty()) {
+    ImGui::TextColored({1, 0.8f, 0.3f, 1}, "No predictions in this study.");
+    ImGui::TextWrapped("IPD needs a detector's boxes. Make them with\n  ipd detect %s --onnx best.onnx --model yolo\n"
+                       "(or --detector classical), or put YOLO txt files under <domain>/predictions/<model>/, "
+                       "then reopen the study (File > Recent).",
+                       st.root.c_str());
+  } else if (ImGui::BeginCombo("model", s.model().c_str())) {
+    for (const auto& m : st.models) {
+      const std::string label = m.trained_on.empty() ? m.name : m.name + " (" + m.trained_on + ")";
+      if (ImGui::Selectable(label.c_str(), m.name == s.model())) out.model = m.name;
+    }
+    ImGui::EndCombo();
+  }
+  if (ImGui::SliderFloat("conf >=", &ui.conf_threshold, 0.0f, 1.0f, "%.2f")) out.conf_threshold = ui.conf_threshold;
+  ImGui::SetNextItemWidth(-1);
+  ImGui::InputTextWithHint("##filter", "filter: text, ipd>0.1, suspect, edited", ui.filter, sizeof ui.filter);
+  if (!ui.filter_error.empty()) ImGui::TextColored({1, 0.5f, 0.3f, 1}, "%s", ui.filter_error.c_str());
+  ImGui::TextDisabled("%s of %s%s", thousands(ui.order.size()).c_str(), counted(v.summaries->size(), "scene").c_str(),
+                      v.loading.empty() ? "" : " so far (the rest is loading)");
+  ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
+                          ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable;
+  // A column narrower than the table's text: scroll sideways rather than squeeze the scene names away.
+  const float needed = browser_width(v, 0, 1e9f) - 2 * ImGui::GetStyle().WindowPadding.x - 8;
+  const bool scroll_x = ImGui::GetContentRegionAvail().x < needed;
+  if (scroll_x) flags |= ImGuiTableFlags_ScrollX;
+  const auto& columns = browser_columns();
+  const int n_columns = static_cast<int>(columns.size());
+  if (ImGui::BeginTable("scenes", n_columns, flags, {0, 0}, scroll_x ? needed : 0.0f)) {
+    ImGui::TableSetupScrollFreeze(1, 1);
+    setup_text_columns(browser_text_columns());
+    if (ImGuiTableSortSpecs* spec = ImGui::TableGetSortSpecs(); spec && spec->SpecsDirty && spec->SpecsCount > 0) {
+      ui.sort_column = columns[std::clamp<int>(spec->Specs[0].ColumnIndex, 0, n_columns - 1)].sort_key;
+      ui.sort_descending = spec->Specs[0].SortDirection == ImGuiSortDirection_Descending;
+      spec->SpecsDirty = false;
+      ui.order.clear();  // the app recomputes it
+    }
+    ImGuiListClipper clipper;
+    clipper.Begin(static_cast<int>(ui.order.size()));
+    while (clipper.Step()) {
+      for (int row = clipper.DisplayStart; row < clipper.DisplayEnd; ++row) {
+        const int k = ui.order[row];
+        const SceneSummary& m = (*v.summaries)[k];
+        ImGui::TableNextRow();
+        for (const auto& c : columns) {
+          ImGui::TableNextColumn();
+          draw_scene_cell(c.sort_key, m, k, ui, out);
+        }
+      }
+    }
+    ImGui::EndTable();
+  }
+}
+
+}  // namespace ipd::ui

@@ -1,0 +1,382 @@
+// Around the panels: menu bar, status bar, shortcuts and their help, Go to scene, Open study (a directory
+// browser drawn in ImGui), the quit warning, and the IPD panel.
+#include <algorithm>
+#include <string>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "ui/gui/stats_panels.h"
+#include "ui/gui/table_layout.h"
+#include "ui/gui/studio_layout.h"
+#include "ui/gui/views.h"
+
+namespace ipd::ui {
+
+float text_column_width(const TextColumn& c, bool sortable) {
+  // The sort arrow takes about a line's height beside a sortable header.
+  const float header = ImGui::CalcTextSize(c.header).x + (sortable ? ImGui::GetTextLineHeight() : 0.0f);
+  return std::max(header, c.widest ? ImGui::CalcTextSize(c.widest).x : 0.0f);
+}
+
+void setup_text_columns(const std::vector<TextColumn>& columns, bool sortable) {
+  for (const auto& c : columns)
+    ImGui::TableSetupColumn(c.header, c.flags | (c.widest ? ImGuiTableColumnFlags_WidthFixed : 0),
+                            c.widest ? text_column_width(c, sortable) : 0.0f);
+  ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+  for (int k = 0; k < static_cast<int>(columns.size()); ++k) {
+    if (!ImGui::TableSetColumnIndex(k)) continue;
+    ImGui::TableHeader(ImGui::TableGetColumnName(k));
+    if (columns[k].tooltip && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", columns[k].tooltip);
+  }
+}
+
+std::string fmt_ipd(double v) {
+  if (std::isnan(v)) return "n/a";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4f", v);
+  return b;
+}
+
+namespace {
+void wrapped_lines(const std::string& text, const ImVec4* colour) {
+  const float width = std::max(40.0f, ImGui::GetContentRegionAvail().x);
+  if (colour) ImGui::PushStyleColor(ImGuiCol_Text, *colour);
+  for (const std::string& line : wrap_at_spaces(text, width, [](const std::string& t) { return ImGui::CalcTextSize(t.c_str()).x; }))
+    ImGui::TextUnformatted(line.c_str());
+  if (colour) ImGui::PopStyleColor();
+}
+}  // namespace
+
+void text_wrapped_at_spaces(const std::string& text) { wrapped_lines(text, nullptr); }
+void text_disabled_wrapped_at_spaces(const std::string& text) { wrapped_lines(text, &ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]); }
+void text_coloured_wrapped_at_spaces(const ImVec4& colour, const std::string& text) { wrapped_lines(text, &colour); }
+
+float button_width(const char* label) { return ImGui::CalcTextSize(label).x + 2 * ImGui::GetStyle().FramePadding.x; }
+
+void same_line_if_fits(float width) {
+  const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+  if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + width <= right) ImGui::SameLine();
+}
+
+namespace {
+
+
+bool pressed(int key) { return ImGui::IsKeyPressed(key, true); }
+
+constexpr int kKeyF1 = 290;  // GLFW_KEY_F1: the GLFW backend indexes KeysDown by GLFW key codes
+
+bool unsaved(const StudyView& v) {
+  if (v.pending_saves > 0 || !v.failed_saves.empty()) return true;
+  if (!v.session || !v.session->read_only()) return false;
+  for (const auto& sc : v.session->scenes())
+    if (sc.edited && !sc.fixed_on_disk) return true;
+  return false;
+}
+
+}  // namespace
+
+const std::vector<std::pair<const char*, const char*>>& shortcut_list() {
+  static const std::vector<std::pair<const char*, const char*>> list = {
+      {"click left rock, then right rock", "pair them (old partners are released)"},
+      {"U", "unpair the selected rock"},
+      {"X", "exclude the selected rock from the IPD (again: include)"},
+      {"Esc", "clear the selection"},
+      {"Ctrl+Z / Ctrl+Y", "undo / redo (every edit, any scene)"},
+      {"Right / J, Left / K", "next / previous scene in the list's order"},
+      {"N", "next suspect pair anywhere in the study"},
+      {"Ctrl+G", "go to a scene by name"},
+      {"Ctrl+O", "open another study"},
+      {"wheel", "zoom at the cursor"},
+      {"drag", "pan (both pictures when sync zoom is on)"},
+      {"F", "fit the picture to its pane"},
+      {"1", "1:1 (one picture pixel per screen pixel)"},
+      {"Space", "play / pause the registration replay"},
+      {"F1 or ?", "this list"},
+      {"filter box", "text, ipd>0.1, ipd<=0.05, suspect, edited, ambiguous (all must match)"},
+  };
+  return list;
+}
+
+void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
+  if (!ImGui::BeginMenuBar()) return;
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::MenuItem("Open study...", "Ctrl+O")) ui.show_open = true;
+    if (ImGui::BeginMenu("Recent studies", !ui.recent.empty())) {
+      for (const auto& r : ui.recent)
+        if (ImGui::MenuItem(r.c_str())) out.open_study = r;
+      ImGui::EndMenu();
+    }
+    ImGui::Separator();
+    if (ImGui::MenuItem("Export figure...", nullptr, false, v.session != nullptr)) out.export_dialog = true;
+    if (ImGui::MenuItem("Retry failed saves", nullptr, false, !v.failed_saves.empty())) out.retry_saves = true;
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) ui.show_quit = true;
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    ImGui::MenuItem("GT boxes", nullptr, &ui.layers.gt);
+    ImGui::MenuItem("Predictions", nullptr, &ui.layers.predictions);
+    ImGui::MenuItem("Pair numbers", nullptr, &ui.layers.indices);
+    ImGui::MenuItem("Confidences", nullptr, &ui.layers.confidences);
+    ImGui::MenuItem("Sync zoom", nullptr, &ui.sync_views);
+    if (ImGui::MenuItem("Fit pictures", "F")) ui.left_view = ui.right_view = CanvasView{};
+    if (ImGui::MenuItem("Go to scene...", "Ctrl+G")) ui.show_goto = true;
+    if (ImGui::MenuItem("Next suspect pair", "N")) out.next_suspect = true;
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Help")) {
+    if (ImGui::MenuItem("Shortcuts", "F1")) ui.show_help = true;
+    ImGui::EndMenu();
+  }
+  if (!v.failed_saves.empty()) {
+    // A banner on the always-visible menu bar: hand edits that are not on disk must not go unnoticed.
+    ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.75f, 0.1f, 0.1f, 1));
+    ImGui::PushStyleColor(ImGuiCol_ButtonHovered, ImVec4(0.9f, 0.2f, 0.2f, 1));
+    const std::string banner = std::to_string(v.failed_saves.size()) +
+                               " hand edit(s) NOT SAVED: " + v.failed_saves.front() + "  [Retry]";
+    if (ImGui::Button(banner.c_str())) out.retry_saves = true;
+    ImGui::PopStyleColor(2);
+  }
+  ImGui::EndMenuBar();
+}
+
+void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out) {
+  if (v.session) {
+    const Session& s = *v.session;
+    // The study's folder name alone when its whole path does not fit the window (the browser shows the path).
+    const std::string rest = "  |  " + counted(s.scenes().size(), "scene") + "  |  " + s.left_domain() + " vs " +
+                             s.right_domain() + "  |  " + (s.model().empty() ? "no predictions" : s.model());
+    std::string line = s.study().root + rest;
+    if (ImGui::CalcTextSize(line.c_str()).x > ImGui::GetContentRegionAvail().x)
+    {
+      std::filesystem::path root(s.study().root);
+      if (root.filename().empty()) root = root.parent_path();  // "…/study/"
+      line = root.filename().string() + rest;
+    }
+    ImGui::TextUnformatted(line.c_str());
+    ImGui::SameLine();
+  }
+  if (!v.loading.empty()) {
+    ImGui::TextColored({0.6f, 0.8f, 1, 1}, "|  %s", v.loading.c_str());
+    ImGui::SameLine();
+  } else if (v.busy) {
+    ImGui::TextColored({0.6f, 0.8f, 1, 1}, "|  computing...");
+    ImGui::SameLine();
+  }
+  if (v.pending_saves > 0) {
+    ImGui::Text("|  saving %d file(s)", v.pending_saves);
+    ImGui::SameLine();
+  }
+  if (!v.failed_saves.empty()) {
+    ImGui::TextColored({1, 0.35f, 0.3f, 1}, "|  %zu save(s) FAILED: %s", v.failed_saves.size(), v.failed_saves.front().c_str());
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Retry")) out.retry_saves = true;
+    ImGui::SameLine();
+  }
+  if (!ui.status.empty()) ImGui::TextUnformatted(("|  " + ui.status).c_str());
+  else ImGui::NewLine();
+}
+
+void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out) {
+  if (ui.show_help) ImGui::OpenPopup("Shortcuts");
+  if (ImGui::BeginPopupModal("Shortcuts", &ui.show_help, ImGuiWindowFlags_AlwaysAutoResize)) {
+    if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {
+      for (const auto& [k, what] : shortcut_list()) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::TextColored({1, 0.85f, 0.4f, 1}, "%s", k);
+        ImGui::TableNextColumn();
+        ImGui::TextUnformatted(what);
+      }
+      ImGui::EndTable();
+    }
+    ImGui::TextDisabled("Colours: pink GT pair, grey unpaired (x<rock>), orange suspect pair, red predictions.");
+    if (ImGui::Button("Close") || pressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) ui.show_help = false;
+    ImGui::EndPopup();
+  }
+  if (ui.show_goto) ImGui::OpenPopup("Go to scene");
+  if (ImGui::BeginPopupModal("Go to scene", &ui.show_goto, ImGuiWindowFlags_AlwaysAutoResize)) {
+    if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
+    const bool enter = ImGui::InputTextWithHint("##goto", "scene name (or part of it)", ui.goto_text, sizeof ui.goto_text,
+                                                ImGuiInputTextFlags_EnterReturnsTrue);
+    int first = -1, shown = 0;
+    if (v.session && ui.goto_text[0]) {
+      const auto& scenes = v.session->scenes();
+      for (int k = 0; k < static_cast<int>(scenes.size()) && shown < 12; ++k) {
+        if (scenes[k].stem.find(ui.goto_text) == std::string::npos) continue;
+        if (first < 0 || scenes[k].stem == ui.goto_text) first = k;
+        if (ImGui::Selectable(scenes[k].stem.c_str())) out.goto_scene = k, ui.show_goto = false;
+        ++shown;
+      }
+      if (shown == 0) ImGui::TextDisabled("no scene matches");
+    }
+    if (enter && first >= 0) out.goto_scene = first, ui.show_goto = false;
+    if (pressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) ui.show_goto = false;
+    ImGui::EndPopup();
+  }
+  if (ui.show_open) ImGui::OpenPopup("Open study");
+  ImGui::SetNextWindowSize({640, 420}, ImGuiCond_Appearing);
+  if (ImGui::BeginPopupModal("Open study", &ui.show_open)) {
+    ImGui::TextWrapped("%s", ui.browse_dir.c_str());
+    if (ImGui::Button("Up")) ui.browse_dir = std::filesystem::path(ui.browse_dir).parent_path().string();
+    ImGui::SameLine();
+    ImGui::BeginDisabled(!ui.browse_is_study);
+    if (ImGui::Button("Open this study")) out.open_study = ui.browse_dir, ui.show_open = false;
+    ImGui::EndDisabled();
+    if (!ui.browse_is_study) {
+      ImGui::SameLine();
+      ImGui::TextDisabled("(not a study: no study.yaml or <domain>/labels/)");
+    }
+    ImGui::BeginChild("dirs", {0, -ImGui::GetFrameHeightWithSpacing()}, true);
+    for (const auto& d : ui.browse_dirs)
+      if (ImGui::Selectable((d + "/").c_str(), false, ImGuiSelectableFlags_AllowDoubleClick))
+        ui.browse_dir = (std::filesystem::path(ui.browse_dir) / d).string();
+    ImGui::EndChild();
+    if (ImGui::Button("Cancel") || pressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) ui.show_open = false;
+    ImGui::EndPopup();
+  }
+  if (ui.show_quit) {
+    if (!unsaved(v)) {
+      out.quit = true;
+      ui.show_quit = false;
+    } else {
+      ImGui::OpenPopup("Unsaved edits");
+    }
+  }
+  if (ImGui::BeginPopupModal("Unsaved edits", &ui.show_quit, ImGuiWindowFlags_AlwaysAutoResize)) {
+    if (v.pending_saves > 0) ImGui::Text("%d edit(s) are still being written.", v.pending_saves);
+    if (!v.failed_saves.empty()) ImGui::TextColored({1, 0.4f, 0.3f, 1}, "%zu save(s) failed: %s", v.failed_saves.size(),
+                                                    v.failed_saves.front().c_str());
+    if (v.session && v.session->read_only())
+      ImGui::TextWrapped("This study is read-only: hand edits live only in memory until saved elsewhere.");
+    if (!v.failed_saves.empty() && ImGui::Button("Retry saves")) out.retry_saves = true;
+    ImGui::SameLine();
+    if (ImGui::Button("Quit anyway")) out.quit = true, ui.show_quit = false;
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) ui.show_quit = false;
+    ImGui::EndPopup();
+  }
+}
+
+void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
+  const Session& s = *v.session;
+  if (!s.scenes().empty()) {
+    const SceneSummary& m = (*v.summaries)[ui.scene];
+    ImGui::Text("scene %s", m.stem.c_str());
+    text_wrapped_at_spaces("IPD " + fmt_ipd(m.ipd) + "  (" + counted(m.pairs, "pair") + ", unpaired " + std::to_string(m.unpaired_a) +
+                           " / " + std::to_string(m.unpaired_b) + ")");
+    if (m.suspects) ImGui::TextColored({1, 0.55f, 0, 1}, "%s: N jumps to the next one", counted(m.suspects, "suspect pair").c_str());
+  }
+  const CellTotals t = s.totals();
+  ImGui::Separator();
+  ImGui::Text("IPD(%s, %s) for %s", s.left_domain().c_str(), s.right_domain().c_str(), s.model().c_str());
+  ImGui::Text("%s over %s in %s", fmt_ipd(t.ipd()).c_str(), counted(t.pairs, "pair").c_str(), counted(t.scenes, "scene").c_str());
+  ImGui::Separator();
+  ImGui::TextUnformatted("Cross table (lower is better)");
+  const auto& pairs = s.domain_pairs();
+  // Sized to its rows (two header rows, one per model): a fixed height left blank rows below them.
+  auto model_label = [](const ModelInfo& m) {
+    // "det-real (real)" says the training domain twice; the name alone when it already holds it.
+    const bool named = m.trained_on.empty() || m.name.find(m.trained_on) != std::string::npos;
+    return named ? m.name : m.name + " (" + m.trained_on + ")";
+  };
+  std::vector<float> widths(pairs.size() + 1, ImGui::CalcTextSize("train \\ eval").x);
+  for (const auto& m : s.study().models) widths[0] = std::max(widths[0], ImGui::CalcTextSize(model_label(m).c_str()).x);
+  std::vector<std::pair<std::string, std::string>> headers;
+  for (const auto& [a, b] : pairs) headers.push_back(cross_table_header(a, b));
+  for (size_t p = 0; p < pairs.size(); ++p)
+    widths[p + 1] = std::max({ImGui::CalcTextSize(headers[p].first.c_str()).x,
+                              ImGui::CalcTextSize(headers[p].second.c_str()).x, ImGui::CalcTextSize("0.0000").x});
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const TableSize size = cross_table_size(
+      widths, static_cast<int>(s.study().models.size()) + 2, ImGui::GetContentRegionAvail().x,
+      {ImGui::GetTextLineHeight(), style.CellPadding.x, style.CellPadding.y, 1, style.ScrollbarSize});
+  if (ImGui::BeginTable("cross", static_cast<int>(pairs.size()) + 1,
+                        ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit |
+                            (size.scroll_x ? ImGuiTableFlags_ScrollX : ImGuiTableFlags_None),
+                        ImVec2(0, size.scroll_x ? size.height : 0))) {
+    // Headers on two rows ("|real -" over "principled|"): a column is as wide as its longer domain name, not both
+    // names, so three domain pairs fit the side panel at 1600 px.
+    ImGui::TableSetupColumn("train \\ eval");
+    for (size_t p = 0; p < pairs.size(); ++p) ImGui::TableSetupColumn(nullptr);
+    for (int row = 0; row < 2; ++row) {
+      ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+      ImGui::TableSetColumnIndex(0);
+      ImGui::PushID(row);
+      ImGui::TableHeader(row == 0 ? "train \\ eval" : "");
+      for (size_t p = 0; p < pairs.size(); ++p) {
+        ImGui::TableSetColumnIndex(static_cast<int>(p) + 1);
+        ImGui::TableHeader(row == 0 ? headers[p].first.c_str() : headers[p].second.c_str());
+      }
+      ImGui::PopID();
+    }
+    for (const auto& m : s.study().models) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(model_label(m).c_str());
+      if (!m.trained_on.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("trained on %s", m.trained_on.c_str());
+      for (size_t p = 0; p < pairs.size(); ++p) {
+        ImGui::TableNextColumn();
+        const bool involves = m.trained_on.empty() || m.trained_on == pairs[p].first || m.trained_on == pairs[p].second;
+        const double val = s.totals_for(m.name, static_cast<int>(p)).ipd();
+        const bool current = m.name == s.model() && static_cast<int>(p) == s.pair_index();
+        if (!involves) ImGui::TextDisabled("-");
+        else if (current) ImGui::TextColored({1, 0.85f, 0.3f, 1}, "%s", fmt_ipd(val).c_str());
+        else ImGui::TextUnformatted(fmt_ipd(val).c_str());
+        if (involves) cell_interval_tooltip(v.stats, m.name, static_cast<int>(p));
+      }
+    }
+    ImGui::EndTable();
+  }
+  ImGui::Separator();
+  ImGui::BeginDisabled(!s.can_undo());
+  if (ImGui::Button("undo (Ctrl+Z)")) out.undo = true;
+  ImGui::EndDisabled();
+  same_line_if_fits(button_width("redo (Ctrl+Y)"));
+  ImGui::BeginDisabled(!s.can_redo());
+  if (ImGui::Button("redo (Ctrl+Y)")) out.redo = true;
+  ImGui::EndDisabled();
+  same_line_if_fits(button_width("export figures"));
+  if (ImGui::Button("export figures")) out.export_figures = true;
+  if (s.read_only()) {
+    ImGui::InputTextWithHint("##saveas", "directory for the edited pairs", ui.save_as_dir, sizeof ui.save_as_dir);
+    ImGui::SameLine();
+    if (ImGui::Button("save as")) out.save_as = true;
+  }
+}
+
+void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out) {
+  ImGuiIO& io = ImGui::GetIO();
+  if (io.WantTextInput) return;
+  const bool ctrl = io.KeyCtrl;
+  if (pressed(kKeyF1) || (!ctrl && io.InputQueueCharacters.contains('?'))) ui.show_help = true;
+  if (ctrl && pressed('O')) ui.show_open = true;
+  if (ctrl && pressed('Q')) ui.show_quit = true;
+  if (!v.session || v.session->scenes().empty()) return;
+  if (ctrl && pressed('Z')) out.undo = true;
+  if (ctrl && pressed('Y')) out.redo = true;
+  if (ctrl && pressed('G')) ui.show_goto = true, ui.goto_text[0] = 0;
+  if (ctrl) return;
+  const std::vector<int>& order = ui.order;
+  const auto pos = std::find(order.begin(), order.end(), ui.scene);
+  const int at = pos == order.end() ? -1 : static_cast<int>(pos - order.begin());
+  if ((pressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow)) || pressed('J')) && !order.empty())
+    out.goto_scene = order[std::min<int>(at + 1, order.size() - 1)];
+  if ((pressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow)) || pressed('K')) && !order.empty())
+    out.goto_scene = order[std::max(at - 1, 0)];
+  if (pressed('N')) out.next_suspect = true;
+  if (pressed(ImGui::GetKeyIndex(ImGuiKey_Space))) {
+    ui.replay.playing = !ui.replay.playing;
+  }
+  if (pressed('U') && ui.selected_left >= 0) out.edits.push_back(Edit::unpair(Side::kA, ui.selected_left));
+  if (pressed('U') && ui.selected_left < 0 && ui.selected_right >= 0)
+    out.edits.push_back(Edit::unpair(Side::kB, ui.selected_right));
+  if (pressed('X') && (ui.selected_left >= 0 || ui.selected_right >= 0))
+    out.edits.push_back(Edit::toggle_exclude(ui.selected_left >= 0 ? Side::kA : Side::kB,
+                                             ui.selected_left >= 0 ? ui.selected_left : ui.selected_right));
+  if (pressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) ui.selected_left = ui.selected_right = -1;
+}
+
+}  // namespace ipd::ui

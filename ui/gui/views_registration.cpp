@@ -1,0 +1,223 @@
+// The registration panel: the recorded search replayed (each hypothesis' sample joined across the sets,
+// its inliers lit, the best-so-far score as a curve), then the refinement and the raw -> aligned motion.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "ui/gui/studio_layout.h"
+#include "ui/gui/views.h"
+
+namespace ipd::ui {
+
+namespace {
+
+const char* kind_name(TraceStepKind k) {
+  switch (k) {
+    case TraceStepKind::kHypothesis: return "hypothesis";
+    case TraceStepKind::kRefinement: return "refinement";
+    case TraceStepKind::kIteration: return "EM iteration";
+    case TraceStepKind::kPolish: return "final fit";  // the polished, searched or least-squares fit that goes out
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string registration_summary(const std::string& a, const std::string& b, const RegistrationReport& r) {
+  // cpd has no trials or hypotheses: one EM iteration per "trial".
+  const std::string searched = r.method == RegistrationMethod::kCpd
+                                   ? counted(r.trials, "EM iteration")
+                                   : counted(r.trials, "trial") + ", " + counted(r.hypotheses, "hypothesis", "hypotheses");
+  return a + " -> " + b + ": " + to_string(r.method) + ", " + searched + ", " + counted(r.inliers, "inlier") + ", score " +
+         fixed(r.score, 4) + ", confidence " + fixed(r.confidence, 2);
+}
+
+std::string replay_step_line(const TraceStep& step, int k, int steps) {
+  return "step " + thousands(k + 1) + " of " + thousands(steps) + " (" + kind_name(step.kind) + "): score " +
+         fixed(step.score, 4) + ", best so far " + fixed(step.best_score, 4) + (step.new_best ? " (new best)" : "") +
+         ", " + counted(static_cast<long>(step.inliers_a.size()), "inlier");
+}
+
+RegistrationCanvas registration_canvas(ImVec2 p0, ImVec2 size, float line_h) {
+  RegistrationCanvas c;
+  c.legend_top = p0.y + size.y - 3 * line_h - 4;
+  c.plot_min = p0;
+  c.plot_max = {p0.x + size.x, std::max(p0.y, c.legend_top - 2)};
+  c.box_min = {p0.x + 10, p0.y + 10};
+  c.box_size = {std::max(0.0f, size.x - 20), std::max(0.0f, c.plot_max.y - p0.y - 20)};
+  return c;
+}
+
+std::string trace_cap_note(int steps, int hypotheses) {
+  return "the replay holds the first " + thousands(steps) + " steps of " +
+         counted(hypotheses, "hypothesis", "hypotheses") + " tried (the recording stops at " + thousands(steps) +
+         "; the search went on)";
+}
+
+void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
+  const Session& s = *v.session;
+  if (s.scenes().empty()) return;
+  const SceneState& sc = s.scenes()[ui.scene];
+  const bool have_rerun = v.rerun && !ui.rerun_discarded;
+  const RegistrationReport& r = have_rerun ? *v.rerun : sc.automatic.registration;
+  const auto& [da, db] = s.domain_pairs()[s.pair_index()];
+  const int steps = static_cast<int>(r.trace.steps.size());
+  text_wrapped_at_spaces(registration_summary(da, db, r));
+  if (r.ambiguous)
+    text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1}, std::string("ambiguous: ") + kAmbiguousReason + "; check the pairs");
+  text_disabled_wrapped_at_spaces(std::string("stopped: ") + to_string(r.stop) + (r.note.empty() ? "" : "; " + r.note));
+  ReplayState& rp = ui.replay;
+  const float end = static_cast<float>(steps) + 1.0f;  // the steps, then one unit of raw -> aligned motion
+  if (ImGui::Button(rp.playing ? "pause" : "play")) {
+    rp.playing = !rp.playing;
+    if (rp.playing && rp.position >= end) rp.position = 0;
+  }
+  // The scrubber names the same step as the line under it ("step K of N"), K = replay_step() + 1.
+  const int shown = rp.position < steps ? replay_step(r, rp.position) : -1;
+  const std::string scrub_label = steps == 0 ? "%.2f" : shown >= 0 ? "step " + thousands(shown + 1) + " of " + thousands(steps) : "final motion";
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(std::max(80.0f, std::min(ImGui::GetContentRegionAvail().x * 0.5f, ImGui::CalcTextSize("step 5,000 of 5,000").x + 24)));
+  if (ImGui::SliderFloat("##scrub", &rp.position, 0.0f, end, scrub_label.c_str())) rp.playing = false;
+  same_line_if_fits(90 + ImGui::CalcTextSize("steps/s").x + ImGui::GetStyle().ItemInnerSpacing.x);
+  ImGui::SetNextItemWidth(90);
+  ImGui::SliderFloat("steps/s", &rp.speed, 1.0f, 2000.0f, "%.0f", ImGuiSliderFlags_Logarithmic);
+  if (rp.playing) {
+    // Hypotheses at the chosen speed; the final motion always takes 1.5 s.
+    const float dt = ImGui::GetIO().DeltaTime;
+    rp.position += rp.position < steps ? dt * rp.speed : dt / 1.5f;
+    if (rp.position >= end) rp.position = end, rp.playing = false;
+  }
+  // The combo shows the method of the registration on display; choosing another re-runs with it.
+  const auto& methods = registration_methods();
+  int displayed = 0;
+  for (size_t m = 0; m < methods.size(); ++m)
+    if (methods[m].method == r.method) displayed = static_cast<int>(m);
+  int chosen = displayed;
+  ImGui::SetNextItemWidth(100);
+  if (ImGui::Combo(
+          "##method", &chosen,
+          [](void* table, int k, const char** name) {
+            *name = (*static_cast<const std::vector<RegistrationMethodInfo>*>(table))[k].name;
+            return true;
+          },
+          const_cast<std::vector<RegistrationMethodInfo>*>(&methods), static_cast<int>(methods.size())) &&
+      chosen != displayed) {
+    ui.rerun_method = chosen;
+    out.rerun_registration = true;
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s\n(the method of the registration shown; pick another to re-run with it)", methods[displayed].description);
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(70);
+  ImGui::InputInt("seed", &ui.rerun_seed, 0);
+  same_line_if_fits(button_width("re-run"));
+  if (ImGui::Button("re-run")) ui.rerun_method = displayed, out.rerun_registration = true;
+  if (have_rerun && !v.rerun_is_automatic) {
+    same_line_if_fits(button_width("apply these pairs"));
+    if (ImGui::Button("apply these pairs")) {
+      RockPairs pairs = v.rerun->pairs;  // registration's (A, B) order; the view may show (B, A)
+      if (s.swapped())
+        for (auto& p : pairs) std::swap(p.first, p.second);
+      out.edits.push_back(Edit::replace(std::move(pairs)));
+      ui.rerun_discarded = true;
+    }
+    same_line_if_fits(button_width("discard"));
+    if (ImGui::Button("discard")) ui.rerun_discarded = true;
+  }
+  // Where on the timeline: a step of the search, or the final motion.
+  const int k = shown;
+  const TraceStep* step = k >= 0 ? &r.trace.steps[k] : nullptr;
+  if (step)
+    text_wrapped_at_spaces(replay_step_line(*step, k, steps));
+  else if (steps == 0)
+    ImGui::TextDisabled(v.rerun ? "no search recorded for this method" : "recording the search...");
+  else
+    ImGui::TextDisabled("final affine: raw -> aligned");
+  if (r.trace.truncated)
+    text_disabled_wrapped_at_spaces(trace_cap_note(steps, r.hypotheses));
+
+  // Canvas: B's centres (pink rings) fixed, A's moved by the current affine, in B's frame; the score curve
+  // as a strip under it, full width (a column beside it left both too narrow and cut its caption).
+  const ImVec2 p0 = ImGui::GetCursorScreenPos(), avail = ImGui::GetContentRegionAvail();
+  const float text_h = ImGui::GetTextLineHeightWithSpacing();
+  const float curve_h = steps > 0 ? std::clamp(avail.y * 0.25f, 36.0f, 110.0f) : 0.0f;
+  const float below = steps > 0 ? curve_h + 2 * text_h + ImGui::GetStyle().ItemSpacing.y : 0.0f;
+  // At least 80 px for the picture box itself, besides the three legend lines and margins: a short panel
+  // scrolls rather than squeezing the rings into one blob (QA at 700 x 800).
+  const float min_canvas = 3 * ImGui::GetTextLineHeight() + 4 + 2 + 20 + 80;
+  const ImVec2 size{avail.x, std::max(min_canvas, avail.y - below)};
+  ImGui::InvisibleButton("##reg", size);
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const auto& ga = s.labels().gt_of(da, sc.stem).boxes;
+  const auto& gb = s.labels().gt_of(db, sc.stem).boxes;
+  const RegistrationCanvas canvas = registration_canvas(p0, size, ImGui::GetTextLineHeight());
+  const Placement pl = place(canvas.box_min, canvas.box_size, s.study().config.image_width, s.study().config.image_height, CanvasView{});
+  // A hypothesis can throw A's centres far off the picture: everything is drawn inside the plot's own rect,
+  // never over the text above it or the legend and curve below.
+  dl->PushClipRect(canvas.plot_min, canvas.plot_max, true);
+  dl->AddRect(pl.origin, {pl.origin.x + pl.size.x, pl.origin.y + pl.size.y}, IM_COL32(90, 90, 100, 255));
+  const Affine2 m = step ? step->b_from_a
+                         : interpolate_from_identity(r.affine, steps > 0 ? std::clamp(rp.position - steps, 0.0f, 1.0f)
+                                                                         : std::clamp(rp.position, 0.0f, 1.0f));
+  std::vector<ImVec2> pa, pb;
+  for (const auto& b : ga) {
+    const Eigen::Vector2d q = apply(m, b.centre());
+    pa.push_back(pl.to_screen(q.x(), q.y()));
+  }
+  for (const auto& b : gb) pb.push_back(pl.to_screen(b.cx, b.cy));
+  std::vector<char> lit(pa.size(), 0);
+  if (step)
+    for (int i : step->inliers_a)
+      if (i >= 0 && i < (int)lit.size()) lit[i] = 1;
+  if (!step) {
+    // The final pairs: green when the aligned centres agree, orange for suspect pairs.
+    const RockPairs& pairs = have_rerun ? v.rerun->pairs : sc.current.pairs;
+    const SceneAudit& audit = s.audit(ui.scene);
+    for (const auto& [i, j] : pairs) {
+      if (i >= (int)pa.size() || j >= (int)pb.size()) continue;
+      bool suspect = false;
+      for (const auto& p : audit.pairs)
+        if (p.a == i && p.b == j) suspect = p.suspect;
+      dl->AddLine(pa[i], pb[j], suspect ? kSuspect : IM_COL32(90, 220, 120, 200), 1.5f);
+    }
+  }
+  for (size_t q = 0; q < pb.size(); ++q) dl->AddCircle(pb[q], 7, kPink, 10, 1.5f);
+  for (size_t q = 0; q < pa.size(); ++q)
+    lit[q] ? dl->AddCircleFilled(pa[q], 4.5f, IM_COL32(120, 255, 140, 255), 8)
+           : dl->AddCircleFilled(pa[q], 3.0f, IM_COL32(80, 170, 255, 255), 8);
+  if (step) {
+    // The sample: A rocks (where the hypothesis moves them) joined to the B rocks they were matched with.
+    for (size_t q = 0; q < std::min(step->a_sample.size(), step->b_sample.size()); ++q) {
+      const int i = step->a_sample[q], j = step->b_sample[q];
+      if (i < 0 || i >= (int)pa.size() || j < 0 || j >= (int)pb.size()) continue;
+      dl->AddLine(pa[i], pb[j], kTriple, 2.5f);
+      dl->AddCircle(pb[j], 10, kTriple, 12, 2.5f);
+    }
+  }
+  dl->PopClipRect();
+  // The legend stays inside the canvas (three lines), under the plot, never under the score curve.
+  dl->PushClipRect(p0, {p0.x + size.x, p0.y + size.y}, true);
+  const float line = ImGui::GetTextLineHeight();
+  const char* legend[] = {"blue: A moved   green: inliers", "rings: B   frame: B's picture",
+                          "bright: the sample   orange: suspect"};
+  for (int k = 0; k < 3; ++k)
+    dl->AddText({p0.x + 14, p0.y + size.y - (3 - k) * line - 4}, IM_COL32(200, 200, 200, 255), legend[k]);
+  dl->PopClipRect();
+  if (steps > 0) {
+    // Best-so-far score over the steps, with the current one marked.
+    std::vector<float> best(steps);
+    for (int q = 0; q < steps; ++q) best[q] = static_cast<float>(r.trace.steps[q].best_score);
+    int news = 0;
+    for (const auto& st : r.trace.steps) news += st.new_best;
+    // One line of caption (two when the stop reason is long), then the strip.
+    text_disabled_wrapped_at_spaces("best score so far: " + counted(news, "improvement") + " over " +
+                                    counted(steps, "step") + "; " + r.trace.stop);
+    const ImVec2 c0 = ImGui::GetCursorScreenPos();
+    const ImVec2 csz{avail.x - 4, std::max(30.0f, std::min(curve_h, ImGui::GetContentRegionAvail().y - 8))};  // a margin like the other sides
+    ImGui::PlotLines("##best", best.data(), steps, 0, nullptr, FLT_MAX, FLT_MAX, csz);
+    const float x = c0.x + csz.x * std::clamp(rp.position / steps, 0.0f, 1.0f);
+    dl->AddLine({x, c0.y}, {x, c0.y + csz.y}, kHighlight, 1.5f);
+  }
+}
+
+}  // namespace ipd::ui
