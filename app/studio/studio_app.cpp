@@ -46,10 +46,7 @@ StudioApp::StudioApp(StudioOptions o) : o_(std::move(o)), textures_(o_.texture_b
   if (demo) o_.study = (cache_home() / "demo-study").string();
   ui_.recent = read_recent();
   ui_.browse_dir = fs::absolute(o_.study).parent_path().string();
-  WorkerCommand c{WorkerCommand::Kind::kOpen};
-  c.a = o_.study;
-  c.b = demo ? "demo" : "";
-  worker_.submit(std::move(c));
+  worker_.submit(command::OpenStudy{o_.study, demo});
 }
 
 void StudioApp::adopt_snapshot() {
@@ -209,7 +206,7 @@ void StudioApp::frame() {
       const std::string key = std::to_string(s->pair_index()) + "/" + stem;
       if (traced_ != key) {
         traced_ = key;
-        WorkerCommand c{WorkerCommand::Kind::kRerun};
+        command::RerunRegistration c;
         c.scene = ui_.scene;
         c.automatic = true;
         worker_.submit(std::move(c));
@@ -231,13 +228,10 @@ void StudioApp::frame() {
 }
 
 void StudioApp::apply(const ui::UiCommands& cmd) {
-  using K = WorkerCommand::Kind;
   if (cmd.quit) done_ = true;
   if (!cmd.open_study.empty()) {
-    WorkerCommand c{K::kOpen};
-    c.a = cmd.open_study;
     o_.study = cmd.open_study;
-    worker_.submit(std::move(c));
+    worker_.submit(command::OpenStudy{cmd.open_study});
     snap_.reset();
     ui_.order.clear();
     traced_.clear();
@@ -247,44 +241,30 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
   if (!snap_) return;
   const Session& s = *snap_->session;
   if (!cmd.left_domain.empty()) {
-    WorkerCommand c{K::kDomains};
-    c.a = cmd.left_domain;
-    c.b = cmd.right_domain;
-    worker_.submit(std::move(c));
+    worker_.submit(command::SelectDomains{cmd.left_domain, cmd.right_domain});
   }
   if (!cmd.model.empty()) {
-    WorkerCommand c{K::kModel};
-    c.a = cmd.model;
-    worker_.submit(std::move(c));
+    worker_.submit(command::SelectModel{cmd.model});
   }
   if (cmd.conf_threshold >= 0) {
     ui_.conf_threshold = cmd.conf_threshold;  // the slider shows a threshold set by a replay too
-    WorkerCommand c{K::kConf};
-    c.value = cmd.conf_threshold;
-    worker_.submit(std::move(c));
+    worker_.submit(command::SetConfThreshold{cmd.conf_threshold});
   }
   if (cmd.goto_scene >= 0 && cmd.goto_scene != ui_.scene) goto_scene(cmd.goto_scene);
-  for (const auto& e : cmd.edits) {
-    WorkerCommand c{K::kEdit};
-    c.scene = ui_.scene;
-    c.edit = e;
-    worker_.submit(std::move(c));
-  }
-  if (cmd.undo) worker_.submit(WorkerCommand{K::kUndo});
-  if (cmd.redo) worker_.submit(WorkerCommand{K::kRedo});
+  for (const auto& e : cmd.edits) worker_.submit(command::ApplyEdit{ui_.scene, e});
+  if (cmd.undo) worker_.submit(command::Undo{});
+  if (cmd.redo) worker_.submit(command::Redo{});
   if (cmd.next_suspect) next_suspect();
   if (cmd.save_as && ui_.save_as_dir[0]) {
-    WorkerCommand c{K::kSaveAllTo};
-    c.a = ui_.save_as_dir;
-    worker_.submit(std::move(c));
+    worker_.submit(command::SaveAllTo{ui_.save_as_dir});
   }
   if (cmd.rerun_registration && !s.scenes().empty()) {
-    WorkerCommand c{K::kRerun};
+    command::RerunRegistration c;
     c.scene = ui_.scene;
-    c.registration = s.study().config.registration;
+    c.options = s.study().config.registration;
     const auto& methods = registration_methods();
-    c.registration.method = methods[std::clamp<size_t>(ui_.rerun_method, 0, methods.size() - 1)].method;
-    c.registration.seed = static_cast<std::uint64_t>(std::max(0, ui_.rerun_seed));
+    c.options.method = methods[std::clamp<size_t>(ui_.rerun_method, 0, methods.size() - 1)].method;
+    c.options.seed = static_cast<std::uint64_t>(std::max(0, ui_.rerun_seed));
     worker_.submit(std::move(c));
     ui_.rerun_discarded = false;
   }
@@ -293,7 +273,7 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
 }
 
 void StudioApp::export_figure(const ui::ExportRequest& request) {
-  WorkerCommand c{WorkerCommand::Kind::kExport};
+  command::ExportFigure c;
   ++*exports_running_;
   c.job = [session = snap_->session, request, running = exports_running_] {
     // Rendering takes a second of CPU: a low-priority thread, so the window's frames keep theirs.

@@ -51,9 +51,9 @@ void StudyWorker::submit(WorkerCommand c) {
     std::lock_guard<std::mutex> l(mu_);
     // A newer threshold or re-run replaces a queued one: dragging the slider or paging through scenes
     // never builds a backlog.
-    if (c.kind == WorkerCommand::Kind::kConf || c.kind == WorkerCommand::Kind::kRerun)
+    if (std::holds_alternative<command::SetConfThreshold>(c) || std::holds_alternative<command::RerunRegistration>(c))
       for (auto& q : queue_)
-        if (q.kind == c.kind) {
+        if (q.index() == c.index()) {
           q = std::move(c);
           return;
         }
@@ -114,7 +114,7 @@ void StudyWorker::run() {
       execute(c);
     } catch (const std::exception& e) {
       std::lock_guard<std::mutex> l(mu_);
-      if (c.kind == WorkerCommand::Kind::kOpen) open_error_ = e.what();
+      if (std::holds_alternative<command::OpenStudy>(c)) open_error_ = e.what();
       else messages_.push_back(std::string("error: ") + e.what());
     }
     std::lock_guard<std::mutex> l(mu_);
@@ -151,60 +151,83 @@ void StudyWorker::publish(bool session_changed, int jump_to_scene) {
   snapshot_ = std::move(snap);
 }
 
-void StudyWorker::execute(WorkerCommand& c) {
-  using K = WorkerCommand::Kind;
-  if (c.kind == K::kOpen) {
-    {
+void StudyWorker::open(const command::OpenStudy& c) {
+  {
+    std::lock_guard<std::mutex> l(mu_);
+    progress_ = OpenProgress{};
+    progress_.opening = true;
+    progress_.stage = "label files";
+    open_error_.clear();
+  }
+  const auto start = std::chrono::steady_clock::now();
+  if (c.demo && !fs::exists(fs::path(c.dir) / "study.yaml")) {
+    { std::lock_guard<std::mutex> l(mu_); progress_.stage = "generating the demo study"; }
+    write_demo_study(c.dir);
+  }
+  SessionOptions o;
+  o.cache_dir = registration_cache_dir(c.dir);
+  o.progress = [&](const char* stage, int done, int total) {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::lock_guard<std::mutex> l(mu_);
+    if (progress_.stage != stage) progress_.eta_s = -1;
+    progress_.stage = stage;
+    progress_.done = done;
+    progress_.total = total;
+    progress_.elapsed_s = s;
+    if (done > 0 && done < total) progress_.eta_s = s / done * (total - done);
+  };
+  try {
+    // Content first: the first scenes on their own (a few hundred files) while the whole study loads.
+    if (!study_fits_first_look(c.dir)) {
+      SessionOptions first = o;
+      first.first_scenes = kFirstLookScenes;
+      first.progress = {};
+      session_ = std::make_unique<Session>(Session::open(c.dir, first));
+      publish_new_session();
       std::lock_guard<std::mutex> l(mu_);
-      progress_ = OpenProgress{};
-      progress_.opening = true;
-      progress_.stage = "label files";
-      open_error_.clear();
+      progress_.first_look = true;
     }
-    const auto start = std::chrono::steady_clock::now();
-    if (c.b == "demo" && !fs::exists(fs::path(c.a) / "study.yaml")) {
-      { std::lock_guard<std::mutex> l(mu_); progress_.stage = "generating the demo study"; }
-      write_demo_study(c.a);
-    }
-    SessionOptions o;
-    o.cache_dir = registration_cache_dir(c.a);
-    o.progress = [&](const char* stage, int done, int total) {
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      std::lock_guard<std::mutex> l(mu_);
-      if (progress_.stage != stage) progress_.eta_s = -1;
-      progress_.stage = stage;
-      progress_.done = done;
-      progress_.total = total;
-      progress_.elapsed_s = s;
-      if (done > 0 && done < total) progress_.eta_s = s / done * (total - done);
-    };
-    try {
-      // Content first: the first scenes on their own (a few hundred files) while the whole study loads.
-      if (!study_fits_first_look(c.a)) {
-        SessionOptions first = o;
-        first.first_scenes = kFirstLookScenes;
-        first.progress = {};
-        session_ = std::make_unique<Session>(Session::open(c.a, first));
-        publish_new_session();
-        std::lock_guard<std::mutex> l(mu_);
-        progress_.first_look = true;
-      }
-      o.study_cache_path = parsed_study_cache_path(c.a);
-      auto session = std::make_unique<Session>(Session::open(c.a, o));
-      session_ = std::move(session);
-    } catch (...) {
-      std::lock_guard<std::mutex> l(mu_);
-      progress_.opening = false;
-      throw;
-    }
-    publish_new_session();
+    o.study_cache_path = parsed_study_cache_path(c.dir);
+    auto session = std::make_unique<Session>(Session::open(c.dir, o));
+    session_ = std::move(session);
+  } catch (...) {
     std::lock_guard<std::mutex> l(mu_);
     progress_.opening = false;
-    progress_.first_look = false;
-    progress_.cached = session_->cached_registrations();
-    progress_.study_cache = session_->study_cache_stats();
-    return;
+    throw;
   }
+  publish_new_session();
+  std::lock_guard<std::mutex> l(mu_);
+  progress_.opening = false;
+  progress_.first_look = false;
+  progress_.cached = session_->cached_registrations();
+  progress_.study_cache = session_->study_cache_stats();
+}
+
+void StudyWorker::rerun(Session& s, const command::RerunRegistration& c) {
+  if (c.scene < 0 || c.scene >= static_cast<int>(s.scenes().size())) return;
+  const auto& [a, b] = s.domain_pairs()[s.pair_index()];
+  const std::string& stem = s.scenes()[c.scene].stem;
+  RegistrationOptions o = c.automatic ? s.study().config.registration : c.options;
+  o.aspect = s.study().aspect();
+  o.record_trace = true;
+  rerun_ = std::make_shared<const RegistrationReport>(
+      register_rocks(s.labels().gt_of(a, stem).boxes, s.labels().gt_of(b, stem).boxes, o));
+  rerun_stem_ = stem;
+  rerun_pair_ = s.pair_index();
+  rerun_automatic_ = c.automatic;
+  publish(false);
+}
+
+// Overload set for std::visit.
+template <class... F>
+struct Visitor : F... {
+  using F::operator()...;
+};
+template <class... F>
+Visitor(F...) -> Visitor<F...>;
+
+void StudyWorker::execute(WorkerCommand& c) {
+  if (auto* o = std::get_if<command::OpenStudy>(&c)) return open(*o);
   if (!session_) return;
   Session& s = *session_;
   auto save = [&](SaveJob job) {
@@ -215,56 +238,43 @@ void StudyWorker::execute(WorkerCommand& c) {
       saver_.submit(std::move(job));
     }
   };
+  auto say = [&](std::string message) {
+    std::lock_guard<std::mutex> l(mu_);
+    messages_.push_back(std::move(message));
+  };
+  // Each command says whether it changed the session (and publishes itself when it did not change it).
   int jump = -1;
-  switch (c.kind) {
-    case K::kEdit:
-      if (c.scene >= 0 && c.scene < static_cast<int>(s.scenes().size())) save(s.apply(c.scene, c.edit));
-      break;
-    case K::kUndo:
-      if (auto job = s.undo()) save(std::move(*job)), jump = std::max(0, s.last_edited_scene());
-      break;
-    case K::kRedo:
-      if (auto job = s.redo()) save(std::move(*job)), jump = std::max(0, s.last_edited_scene());
-      break;
-    case K::kDomains:
-      s.select_domains(c.a, c.b);
-      break;
-    case K::kModel:
-      s.select(s.pair_index(), c.a);
-      break;
-    case K::kConf:
-      s.set_conf_threshold(c.value);
-      break;
-    case K::kRerun: {
-      if (c.scene < 0 || c.scene >= static_cast<int>(s.scenes().size())) return;
-      const auto& [a, b] = s.domain_pairs()[s.pair_index()];
-      const std::string& stem = s.scenes()[c.scene].stem;
-      RegistrationOptions o = c.automatic ? s.study().config.registration : c.registration;
-      o.aspect = s.study().aspect();
-      o.record_trace = true;
-      rerun_ = std::make_shared<const RegistrationReport>(
-          register_rocks(s.labels().gt_of(a, stem).boxes, s.labels().gt_of(b, stem).boxes, o));
-      rerun_stem_ = stem;
-      rerun_pair_ = s.pair_index();
-      rerun_automatic_ = c.automatic;
-      publish(false);
-      return;
-    }
-    case K::kSaveAllTo: {
-      for (auto& job : s.save_all_to(c.a)) saver_.submit(std::move(job));
-      std::lock_guard<std::mutex> l(mu_);
-      messages_.push_back("edited pairs written under " + c.a + "/pairs/");
-      return;
-    }
-    case K::kExport: {
-      std::string message = c.job ? c.job() : std::string("export failed: nothing to export");
-      std::lock_guard<std::mutex> l(mu_);
-      messages_.push_back(std::move(message));
-      return;
-    }
-    case K::kOpen: break;
-  }
-  publish(true, jump);
+  const bool changed = std::visit(
+      Visitor{
+          [&](const command::OpenStudy&) { return false; },
+          [&](const command::ApplyEdit& e) {
+            if (e.scene >= 0 && e.scene < static_cast<int>(s.scenes().size())) save(s.apply(e.scene, e.edit));
+            return true;
+          },
+          [&](const command::Undo&) {
+            if (auto job = s.undo()) save(std::move(*job)), jump = std::max(0, s.last_edited_scene());
+            return true;
+          },
+          [&](const command::Redo&) {
+            if (auto job = s.redo()) save(std::move(*job)), jump = std::max(0, s.last_edited_scene());
+            return true;
+          },
+          [&](const command::SelectDomains& d) { return s.select_domains(d.left, d.right), true; },
+          [&](const command::SelectModel& m) { return s.select(s.pair_index(), m.model), true; },
+          [&](const command::SetConfThreshold& t) { return s.set_conf_threshold(t.threshold), true; },
+          [&](const command::RerunRegistration& r) { return rerun(s, r), false; },
+          [&](const command::SaveAllTo& d) {
+            for (auto& job : s.save_all_to(d.dir)) saver_.submit(std::move(job));
+            say("edited pairs written under " + d.dir + "/pairs/");
+            return false;
+          },
+          [&](const command::ExportFigure& x) {
+            say(x.job ? x.job() : std::string("export failed: nothing to export"));
+            return false;
+          },
+      },
+      c);
+  if (changed) publish(true, jump);
 }
 
 }  // namespace ipd::studio

@@ -11,6 +11,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <variant>
 #include <vector>
 
 #include "core/session/session.h"
@@ -45,20 +46,47 @@ struct OpenProgress {
   StudyCacheStats study_cache;  // of the last open
 };
 
-struct WorkerCommand {
-  enum class Kind { kOpen, kEdit, kUndo, kRedo, kDomains, kModel, kConf, kRerun, kSaveAllTo, kExport };
-  explicit WorkerCommand(Kind k = Kind::kEdit) : kind(k) {}
-  Kind kind;
+// What the view asks of the worker: one type per command, holding exactly what that command needs.
+namespace command {
+struct OpenStudy {
+  std::string dir;
+  bool demo = false;  // write the built-in demo study into `dir` first when it has none
+};
+struct ApplyEdit {
   int scene = -1;
   Edit edit = Edit::reset();
-  std::string a, b;     // kOpen: study dir, "demo" when it is the demo; kDomains: left, right; kModel: a
-  double value = 0;     // kConf
-  RegistrationOptions registration;  // kRerun
-  bool automatic = false;            // kRerun: the study's own registration, recorded for the replay
-  // kExport: renders and writes a figure in-process (ui::export_figure on an immutable snapshot's
-  // session) and returns the status line.
+};
+struct Undo {};
+struct Redo {};
+struct SelectDomains {
+  std::string left, right;
+};
+struct SelectModel {
+  std::string model;
+};
+struct SetConfThreshold {
+  double threshold = 0;
+};
+// Registers one scene again with its trace (the replay panel).
+struct RerunRegistration {
+  int scene = -1;
+  RegistrationOptions options;  // ignored when `automatic`
+  bool automatic = false;       // the study's own registration, recorded for the replay of what was done
+};
+struct SaveAllTo {
+  std::string dir;
+};
+// Renders and writes a figure in-process (ui::export_figure on an immutable snapshot's session) and returns
+// the status line.
+struct ExportFigure {
   std::function<std::string()> job;
 };
+}  // namespace command
+
+using WorkerCommand =
+    std::variant<command::OpenStudy, command::ApplyEdit, command::Undo, command::Redo, command::SelectDomains,
+                 command::SelectModel, command::SetConfThreshold, command::RerunRegistration, command::SaveAllTo,
+                 command::ExportFigure>;
 
 // Lowers the calling thread's CPU priority a little (threads it starts inherit it): heavy jobs yield to the
 // window's frames, and to the rasteriser's threads, on a machine with few cores.
@@ -79,6 +107,8 @@ class StudyWorker {
  private:
   void run();
   void execute(WorkerCommand& c);
+  void open(const command::OpenStudy& c);
+  void rerun(Session& s, const command::RerunRegistration& c);
   void publish(bool session_changed, int jump_to_scene = -1);
   void publish_new_session();
 

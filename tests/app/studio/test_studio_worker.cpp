@@ -1,0 +1,139 @@
+// The studio's worker and saver without a window: commands go in from one thread, immutable snapshots come
+// out, and hand edits reach the pairs files. Run under ThreadSanitizer too (preset "tsan").
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "app/studio/studio_worker.h"
+#include "core/demo/demo_study.h"
+#include "tests/support/test_support.h"
+
+namespace fs = std::filesystem;
+using namespace ipd;
+using namespace ipd::studio;
+using ipd::test::TempDir;
+
+namespace {
+
+// Waits until the worker has run everything queued and the saver has written it (a minute at most).
+void wait_done(StudyWorker& w) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+  while (!w.idle() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_TRUE(w.idle()) << "the worker is still busy after a minute";
+  w.saver().wait_idle();
+}
+
+std::string open_small_study(const TempDir& d, StudyWorker& w) {
+  DemoStudyOptions o;
+  o.scenes = 3;
+  o.labels_only = true;
+  const std::string dir = d / "study";
+  write_demo_study(dir, o);
+  w.submit(command::OpenStudy{dir});
+  wait_done(w);
+  return dir;
+}
+
+}  // namespace
+
+TEST(StudyWorker, OpensAStudyAndPublishesItsScenes) {
+  TempDir d;
+  StudyWorker w;
+  open_small_study(d, w);
+  const auto snap = w.snapshot();
+  ASSERT_TRUE(snap) << w.open_error();
+  EXPECT_EQ(snap->session->scenes().size(), 3u);
+  EXPECT_EQ(snap->summaries.size(), 3u);
+  EXPECT_EQ(w.open_error(), "");
+}
+
+TEST(StudyWorker, AStudyThatCannotBeOpenedLeavesTheReason) {
+  TempDir d;
+  StudyWorker w;
+  w.submit(command::OpenStudy{d / "nowhere"});
+  wait_done(w);
+  EXPECT_FALSE(w.snapshot());
+  EXPECT_NE(w.open_error().find("nowhere"), std::string::npos) << w.open_error();
+}
+
+TEST(StudyWorker, AnEditIsPublishedSavedAndUndone) {
+  TempDir d;
+  StudyWorker w;
+  const std::string dir = open_small_study(d, w);
+  const auto before = w.snapshot();
+  ASSERT_TRUE(before);
+  const std::string stem = before->session->scenes()[0].stem;
+  const auto& [a, b] = before->session->domain_pairs()[before->session->pair_index()];
+  const fs::path pairs_file = fs::path(dir) / "pairs" / (a + "__" + b) / (stem + ".json");
+  ASSERT_FALSE(before->session->excluded(Side::kA, 0, 0));
+
+  w.submit(command::ApplyEdit{0, Edit::toggle_exclude(Side::kA, 0)});
+  wait_done(w);
+  const auto after = w.snapshot();
+  EXPECT_GT(after->version, before->version);
+  EXPECT_TRUE(after->session->excluded(Side::kA, 0, 0));
+  EXPECT_FALSE(before->session->excluded(Side::kA, 0, 0)) << "a published snapshot never changes";
+  EXPECT_TRUE(after->summaries[0].edited);
+  EXPECT_TRUE(fs::exists(pairs_file)) << pairs_file;
+
+  w.submit(command::Undo{});
+  wait_done(w);
+  EXPECT_FALSE(w.snapshot()->session->excluded(Side::kA, 0, 0));
+  EXPECT_FALSE(fs::exists(pairs_file)) << "undone back to automatic pairing: the file goes";
+  EXPECT_EQ(w.snapshot()->jump_to_scene, 0);
+
+  w.submit(command::Redo{});
+  wait_done(w);
+  EXPECT_TRUE(w.snapshot()->session->excluded(Side::kA, 0, 0));
+  EXPECT_TRUE(fs::exists(pairs_file));
+}
+
+TEST(StudyWorker, ARerunIsPublishedWithoutChangingTheSession) {
+  TempDir d;
+  StudyWorker w;
+  open_small_study(d, w);
+  const auto before = w.snapshot();
+  command::RerunRegistration r;
+  r.scene = 1;
+  r.automatic = true;
+  w.submit(r);
+  wait_done(w);
+  const auto after = w.snapshot();
+  ASSERT_TRUE(after->rerun);
+  EXPECT_EQ(after->rerun_stem, before->session->scenes()[1].stem);
+  EXPECT_TRUE(after->rerun_is_automatic);
+  EXPECT_EQ(after->session, before->session) << "a re-run reuses the published session";
+  EXPECT_FALSE(after->rerun->trace.steps.empty()) << "re-runs record their trace for the replay panel";
+}
+
+TEST(StudyWorker, ThresholdsFromManyThreadsEndOnTheLastOne) {
+  TempDir d;
+  StudyWorker w;
+  open_small_study(d, w);
+  // The view thread and a replay may submit at once; the worker serialises them, and a queued threshold
+  // is replaced by a newer one, so the last submitted wins.
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&w, t] {
+      for (int k = 0; k < 20; ++k) w.submit(command::SetConfThreshold{0.01 * (t * 20 + k) / 80.0});
+    });
+  for (auto& t : threads) t.join();
+  w.submit(command::SetConfThreshold{0.5});
+  wait_done(w);
+  EXPECT_DOUBLE_EQ(w.snapshot()->session->conf_threshold(), 0.5);
+}
+
+TEST(StudyWorker, ExportJobsReportTheirStatusLine) {
+  TempDir d;
+  StudyWorker w;
+  open_small_study(d, w);
+  w.submit(command::ExportFigure{[] { return std::string("wrote x.pdf"); }});
+  w.submit(command::ExportFigure{});
+  wait_done(w);
+  const auto messages = w.take_messages();
+  ASSERT_EQ(messages.size(), 2u);
+  EXPECT_EQ(messages[0], "wrote x.pdf");
+  EXPECT_EQ(messages[1], "export failed: nothing to export");
+}
