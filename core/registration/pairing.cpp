@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <queue>
 
 #include "core/geometry/point_grid.h"
 
@@ -88,9 +89,88 @@ RockPairs max_weight_assignment(const std::vector<double>& weights, int rows, in
   return pairs;
 }
 
+RockPairs sparse_max_weight_assignment(const std::vector<WeightedEdge>& edges, int rows, int cols, double min_weight) {
+  RockPairs pairs;
+  if (rows == 0 || cols == 0) return pairs;
+  // Columns 0..cols-1 are B's; column cols + r is row r's own "unassigned" column (cost 0, only r reaches
+  // it). Costs are -weight; reduced costs cost - u[row] - v[col] stay >= 0 on every edge of a row already
+  // placed, and free columns keep v = 0, so each new row's cheapest augmenting path is a Dijkstra search.
+  std::vector<int> first(rows + 1, 0);
+  for (const WeightedEdge& e : edges)
+    if (e.weight > min_weight) ++first[e.row + 1];
+  for (int r = 0; r < rows; ++r) first[r + 1] += first[r];
+  std::vector<std::pair<int, double>> adj(first[rows]);  // (column, cost), grouped by row
+  {
+    std::vector<int> at(first.begin(), first.end() - 1);
+    for (const WeightedEdge& e : edges)
+      if (e.weight > min_weight) adj[at[e.row]++] = {e.col, -e.weight};
+  }
+  const int ncols = cols + rows;
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> u(rows, 0), v(ncols, 0), dist(ncols, inf);
+  std::vector<int> row_of(ncols, -1), col_of(rows, -1), pred(ncols, -1), touched;
+  std::vector<char> done(ncols, 0);
+  using Item = std::pair<double, int>;  // (distance, column): ties go to the lower column, deterministically
+  for (int i0 = 0; i0 < rows; ++i0) {
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+    touched.clear();
+    auto relax = [&](int row, double base) {
+      auto reach = [&](int c, double cost) {
+        if (done[c]) return;  // settled (a rounding-level negative reduced cost must not re-open it)
+        const double d = base + cost - u[row] - v[c];
+        if (d < dist[c]) {
+          if (dist[c] == inf) touched.push_back(c);
+          dist[c] = d, pred[c] = row;
+          heap.push({d, c});
+        }
+      };
+      for (int k = first[row]; k < first[row + 1]; ++k) reach(adj[k].first, adj[k].second);
+      reach(cols + row, 0.0);
+    };
+    relax(i0, 0.0);
+    int end = -1;
+    double total = 0;
+    std::vector<int> finalized;
+    while (!heap.empty()) {
+      const auto [d, c] = heap.top();
+      heap.pop();
+      if (done[c] || d > dist[c]) continue;
+      done[c] = 1;
+      if (row_of[c] < 0) {
+        end = c, total = d;
+        break;
+      }
+      finalized.push_back(c);
+      relax(row_of[c], d);
+    }
+    // Potentials: every column settled before the free one moves by its slack, which keeps the matched
+    // edges at reduced cost 0 and every other edge at >= 0.
+    for (int c : finalized) {
+      const double delta = total - dist[c];
+      v[c] -= delta;
+      u[row_of[c]] += delta;
+    }
+    u[i0] += total;
+    for (int c = end; c >= 0;) {  // augment along the predecessors
+      const int r = pred[c], previous = col_of[r];
+      row_of[c] = r, col_of[r] = c;
+      c = r == i0 ? -1 : previous;
+    }
+    for (int c : touched) dist[c] = inf, done[c] = 0, pred[c] = -1;
+  }
+  for (int r = 0; r < rows; ++r)
+    if (col_of[r] >= 0 && col_of[r] < cols) pairs.emplace_back(r, col_of[r]);
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
 }  // namespace ipd
 
 namespace ipd {
+// Above this much dense-solver work (min(rows, cols)^2 x max(rows, cols), ~0.1 s) a component is solved
+// sparsely: its rows x cols matrix would take gigabytes and minutes for thousands of packed rocks.
+constexpr double kDenseAssignmentWork = 1e8;
+
 RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, const std::vector<Box>& b,
                               double min_iou) {
   // Boxes overlap only their neighbours, so the overlap graph falls apart into small connected components,
@@ -153,6 +233,21 @@ RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, 
     std::sort(cols.begin(), cols.end());
     for (size_t r = 0; r < rows.size(); ++r) local_a[rows[r]] = static_cast<int>(r);
     for (size_t c = 0; c < cols.size(); ++c) local_b[cols[c]] = static_cast<int>(c);
+    const double nr = static_cast<double>(rows.size()), nc = static_cast<double>(cols.size());
+    if (std::min(nr, nc) * std::min(nr, nc) * std::max(nr, nc) > kDenseAssignmentWork) {
+      // One giant overlap component (densely packed boxes): the sparse solver, same optimum.
+      std::vector<WeightedEdge> local;
+      local.reserve(hi - lo);
+      for (size_t q = lo; q < hi; ++q) {
+        const Edge& e = edges[by_root[q].second];
+        local.push_back({local_a[e.i], local_b[e.j], e.w});
+      }
+      for (const auto& [r, c] : sparse_max_weight_assignment(local, static_cast<int>(rows.size()),
+                                                             static_cast<int>(cols.size()), min_iou))
+        pairs.emplace_back(rows[r], cols[c]);
+      lo = hi;
+      continue;
+    }
     w.assign(rows.size() * cols.size(), 0.0);
     for (size_t q = lo; q < hi; ++q) {
       const Edge& e = edges[by_root[q].second];

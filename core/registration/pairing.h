@@ -18,6 +18,18 @@ RockPairs mutual_nearest_pairs(const std::vector<Eigen::Vector2d>& a, const std:
 // O(min(rows, cols)^2 * max(rows, cols)).
 RockPairs max_weight_assignment(const std::vector<double>& weights, int rows, int cols, double min_weight);
 
+// One allowed pair of a sparse assignment problem: row, column, weight.
+struct WeightedEdge {
+  int row, col;
+  double weight;
+};
+// The same optimum over a sparse set of allowed pairs (edges with weight <= min_weight are never assigned):
+// shortest augmenting paths with potentials and a heap, O(edges) memory. Each row's search only explores
+// paths cheaper than leaving that row unassigned, so geometric overlap graphs stay near-linear where the
+// dense solver needs rows x cols memory and cubic time. Among several optima it may pick another one than
+// max_weight_assignment; the total weight is the same.
+RockPairs sparse_max_weight_assignment(const std::vector<WeightedEdge>& edges, int rows, int cols, double min_weight);
+
 }  // namespace ipd
 
 namespace ipd {

@@ -227,6 +227,58 @@ TEST(Assignment, HungarianBeatsGreedy) {
   EXPECT_EQ(max_weight_assignment({0.3, 0.6, 0.2}, 1, 3, 0.0), (RockPairs{{0, 1}}));
 }
 
+TEST(Assignment, SparseSolverFindsTheDenseOptimum) {
+  // Random sparse weight tables (about one pair in four allowed, some at or below the floor), rectangular
+  // both ways: the sparse solver's total weight equals the dense Hungarian's, one-to-one, floor respected.
+  std::mt19937 g(5);
+  auto u = [&] { return g() / 4294967296.0; };
+  for (int trial = 0; trial < 200; ++trial) {
+    const int rows = 1 + static_cast<int>(g() % 12), cols = 1 + static_cast<int>(g() % 12);
+    std::vector<double> w(static_cast<size_t>(rows) * cols, 0.0);
+    std::vector<WeightedEdge> edges;
+    for (int r = 0; r < rows; ++r)
+      for (int c = 0; c < cols; ++c)
+        if (u() < 0.25) {
+          const double x = trial % 3 == 0 ? 0.1 * (1 + g() % 4) : u();  // ties on every third table
+          w[r * cols + c] = x;
+          edges.push_back({r, c, x});
+        }
+    double dense = 0, sparse = 0;
+    for (const auto& [r, c] : max_weight_assignment(w, rows, cols, 0.05)) dense += w[r * cols + c];
+    const RockPairs got = sparse_max_weight_assignment(edges, rows, cols, 0.05);
+    std::vector<char> row_used(rows), col_used(cols);
+    for (const auto& [r, c] : got) {
+      EXPECT_GT(w[r * cols + c], 0.05);
+      EXPECT_FALSE(row_used[r]++);
+      EXPECT_FALSE(col_used[c]++);
+      sparse += w[r * cols + c];
+    }
+    EXPECT_NEAR(sparse, dense, 1e-12) << "table " << trial << ", " << rows << " x " << cols;
+    EXPECT_TRUE(std::is_sorted(got.begin(), got.end()));
+  }
+  EXPECT_EQ(sparse_max_weight_assignment({{0, 0, 0.9}, {0, 1, 0.8}, {1, 0, 0.8}, {1, 1, 0.1}}, 2, 2, 0.0),
+            (RockPairs{{0, 1}, {1, 0}}));
+}
+
+TEST(Assignment, APackedLayoutIsOneComponentSolvedSparsely) {
+  // 700 boxes a side packed so densely that their overlaps chain into one component: beyond the dense
+  // solver's work limit, pair_by_aligned_iou solves it sparsely, with the whole problem's optimal total.
+  std::mt19937 g(3);
+  auto u = [&] { return g() / 4294967296.0; };
+  std::vector<Box> a, b;
+  for (int k = 0; k < 700; ++k) a.push_back({0, u(), u(), 0.06, 0.06});
+  for (int k = 0; k < 700; ++k) b.push_back({0, u(), u(), 0.06, 0.06});
+  std::vector<double> w(a.size() * b.size());
+  for (size_t i = 0; i < a.size(); ++i)
+    for (size_t j = 0; j < b.size(); ++j) w[i * b.size() + j] = iou(a[i], b[j]);
+  double whole = 0, parts = 0;
+  for (const auto& [i, j] : max_weight_assignment(w, 700, 700, 0.1)) whole += w[i * b.size() + j];
+  const RockPairs got = pair_by_aligned_iou(identity_affine(), a, b, 0.1);
+  for (const auto& [i, j] : got) parts += w[i * b.size() + j];
+  EXPECT_GT(got.size(), 300u);
+  EXPECT_NEAR(parts, whole, 1e-9);
+}
+
 TEST(PaperRegistration, RecoversAKnownAffineOnACleanLayout) {
   const auto a = layout(8, 11);
   const auto perm = shuffled(8, 5);
