@@ -2,11 +2,15 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <string>
+
+#include "core/util/version.h"
 
 namespace ipd::studio {
 
 int parse_studio_options(int argc, char** argv, StudioOptions* o) {
   CLI::App cli{"ipd-studio: inspect and fix rock pairs, IPD live"};
+  cli.set_version_flag("--version", std::string("ipd-studio ") + ipd::version(), "Print the version and exit");
   cli.add_option("STUDY", o->study, "Study directory (default: the built-in demo study, generated on first run)");
   cli.add_option("--screenshot", o->screenshot, "Render --frames frames, save the window as this PNG and exit");
   cli.add_option("--frames", o->frames, "Frames to render before the screenshot")->check(CLI::Range(1, 100000));
