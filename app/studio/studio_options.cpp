@@ -22,7 +22,7 @@ int parse_studio_options(int argc, char** argv, StudioOptions* o) {
   cli.add_option("--cycle-step", o->cycle_step,
                  "Scenes to move per cycle (1: the prefetched neighbour; e.g. 7: far jumps)")
       ->check(CLI::Range(1, 1000000));
-  cli.add_option("--replay", o->replay, "Run the actions of this file, one per frame, then exit (see README)");
+  cli.add_option("--replay", o->replay, "Run the actions of this file, one per frame, then exit (see docs/gui.md)");
   cli.add_option("--texture-budget-mb", o->texture_budget_mb, "Texture cache size")->check(CLI::Range(16, 65536));
   cli.add_option("--size", o->width, "Window width")->check(CLI::Range(320, 10000));
   cli.add_option("--height", o->height, "Window height")->check(CLI::Range(240, 10000));
