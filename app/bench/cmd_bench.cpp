@@ -198,8 +198,8 @@ Row run_pycpd(const std::vector<RegistrationCase>& cases, const std::string& reg
   return row;
 }
 
-// Time of the default method against the rock count (synthetic layouts, small misalignment): the issue asks
-// for no worse than n log n up to 500 a side.
+// Time of the default method against the rock count (synthetic layouts, small misalignment): the goal is no
+// worse than n log n up to 500 a side.
 void scaling(double aspect, std::uint64_t seed) {
   fmt::print("default method against the rock count (synthetic layouts, small misalignment, 20 cases each):\n");
   fmt::print("{:>6} {:>10} {:>8} {:>22} {:>12} {:>12}\n", "rocks", "ms median", "F1", "ms / (n log2 n), n=25: 1",
@@ -447,7 +447,7 @@ Runner add_bench_command(CLI::App& app) {
                            r.config.budget, r.cases, r.ms_per_pair, r.ms_median, r.f1, r.precision, r.recall,
                            r.terr_median, r.terr_p90, r.ambiguous);
       }
-      // The goals of issue 13 for the default method, checked in the same run.
+      // The default method's goals, checked in the same run.
       const Row* floor = &tier[0];
       const Row* deflt = nullptr;
       const Row* py = nullptr;
@@ -456,7 +456,7 @@ Runner add_bench_command(CLI::App& app) {
         if (r.method == "pycpd-numpy") py = &r;
       }
       if (deflt) {
-        // Issue 13's goals: F1 >= 0.99 (small) or 0.97, transform error <= 1.1x the floor, median <= 0.5 ms
+        // The goals: F1 >= 0.99 (small) or 0.97, transform error <= 1.1x the floor, median <= 0.5 ms
         // per pair, >= 10x faster than the pycpd port by mean.
         auto verdict = [](bool met) { return met ? "met" : "NOT met"; };
         const double f1_goal = range.name == "small" ? 0.99 : 0.97;

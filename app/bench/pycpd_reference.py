@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """A numpy port of pycpd's AffineRegistration (pycpd 2.x, Myronenko & Song's CPD, affine), used by
-`ipd bench registration --pycpd` as the Python baseline the registration issue compares against. pycpd itself
+`ipd bench registration --pycpd` as the Python baseline the registration speed is compared against. pycpd itself
 is not installable here (no PyPI access, no Debian package); this follows its EMRegistration / AffineRegistration
 code step for step: sigma2 initialisation, E-step with the outlier weight w (default 0), M-step, tolerance 0.001
 on the objective, at most 100 iterations.

@@ -55,7 +55,7 @@ Chosen resolve(const Args& args, bool needs_scene) {
   if (!f.stem.empty() && std::find(match.common.begin(), match.common.end(), f.stem) == match.common.end())
     throw StudyError(fmt::format("{}: no scene '{}' in both '{}' and '{}'", st.root, f.stem, f.a, f.b));
   if (f.stem.empty() && !f.model.empty()) {
-    // The scene a reviewer asks about: the largest contribution to IPD(a, b).
+    // The scene a reader of the paper asks about first: the largest contribution to IPD(a, b).
     TableOptions opt;
     opt.domains = {f.a, f.b};
     opt.models = {f.model};

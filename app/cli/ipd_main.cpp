@@ -6,11 +6,13 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
+#include "core/util/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"ipd: Instance Performance Difference of real vs synthetic camera images"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all", "Show help for every subcommand");
+  app.set_version_flag("--version", std::string("ipd ") + ipd::version(), "Print the version and exit");
   std::vector<std::pair<CLI::App*, ipd::cli::Runner>> runners;
   auto add = [&](ipd::cli::Runner (*adder)(CLI::App&)) {
     const size_t before = app.get_subcommands({}).size();
@@ -35,6 +37,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     app.exit(e);

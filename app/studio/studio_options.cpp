@@ -2,11 +2,15 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <string>
+
+#include "core/util/version.h"
 
 namespace ipd::studio {
 
 int parse_studio_options(int argc, char** argv, StudioOptions* o) {
   CLI::App cli{"ipd-studio: inspect and fix rock pairs, IPD live"};
+  cli.set_version_flag("--version", std::string("ipd-studio ") + ipd::version(), "Print the version and exit");
   cli.add_option("STUDY", o->study, "Study directory (default: the built-in demo study, generated on first run)");
   cli.add_option("--screenshot", o->screenshot, "Render --frames frames, save the window as this PNG and exit");
   cli.add_option("--frames", o->frames, "Frames to render before the screenshot")->check(CLI::Range(1, 100000));
@@ -18,7 +22,7 @@ int parse_studio_options(int argc, char** argv, StudioOptions* o) {
   cli.add_option("--cycle-step", o->cycle_step,
                  "Scenes to move per cycle (1: the prefetched neighbour; e.g. 7: far jumps)")
       ->check(CLI::Range(1, 1000000));
-  cli.add_option("--replay", o->replay, "Run the actions of this file, one per frame, then exit (see README)");
+  cli.add_option("--replay", o->replay, "Run the actions of this file, one per frame, then exit (see docs/gui.md)");
   cli.add_option("--texture-budget-mb", o->texture_budget_mb, "Texture cache size")->check(CLI::Range(16, 65536));
   cli.add_option("--size", o->width, "Window width")->check(CLI::Range(320, 10000));
   cli.add_option("--height", o->height, "Window height")->check(CLI::Range(240, 10000));

@@ -117,7 +117,7 @@ LabelFile parse_labels(const std::string& text, const std::string& file_name, co
   if (unlisted > 0) out.errors.push_back({file_name, 0, "", unlisted});
   if (out.boxes.size() > kMaxBoxesPerFile)
     out.errors.push_back({file_name, 0,
-                          fmt::format("{} boxes, more than the {} per image this tool handles (README: large inputs)",
+                          fmt::format("{} boxes, more than the {} per image this tool handles (docs/study-format.md)",
                                       out.boxes.size(), kMaxBoxesPerFile)});
   return out;
 }

@@ -19,8 +19,8 @@ namespace {
 
 // EM finds one local optimum and scores no rival, so its confidence is measured as the consensus method's:
 // the soft consensus (closeness x box-size agreement, each B rock once) of its alignment against the best of
-// the placements most rock pairs agree on under its linear part, each refined. Before, cpd always reported
-// 1.0, even when it paired 2 of 17 rocks (QA). An alignment that a rival beats, or that aligns nothing, gets 0.
+// the placements most rock pairs agree on under its linear part, each refined. A constant confidence would
+// read 1.0 even when it paired 2 of 17 rocks. An alignment that a rival beats, or that aligns nothing, gets 0.
 double cpd_confidence(const RegistrationFrame& f, const Affine2& found, const SearchRecorder& recorder) {
   const double gate = std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2);
   const Bounds any{1e-3, 1e3, M_PI, 1e6};  // cpd's affine is not held to the consensus bounds
@@ -29,7 +29,7 @@ double cpd_confidence(const RegistrationFrame& f, const Affine2& found, const Se
   const double best = scorer.score(found);
   // Under cpd's own linear part and under the identity's (the camera unmoved): on a repetitive layout EM can
   // settle on a shrunk or stretched fit while the unmoved one fits as many rocks (a 3 x 3 block in a 5 x 5 grid
-  // at 960 x 600 read 0.33 with only its own shifts as rivals, QA).
+  // at 960 x 600 read 0.33 with only its own shifts as rivals).
   const double rival =
       std::max(shifted_rival(&scorer, recorder, f, found, found.leftCols<2>(), gate, true),
                shifted_rival(&scorer, recorder, f, found, f.from_image(identity_affine()).leftCols<2>(), gate, true));

@@ -1,5 +1,5 @@
-// The detection metrics reviewers know, beside IPD: COCO average precision (pycocotools' rules, one class)
-// and precision / recall / F1 at a confidence threshold.
+// The detection metrics every reader of a detection paper knows, beside IPD: COCO average precision
+// (pycocotools' rules, one class) and precision / recall / F1 at a confidence threshold.
 #pragma once
 
 #include <limits>

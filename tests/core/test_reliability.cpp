@@ -1,4 +1,4 @@
-// Issue 12's defects, each with a test that failed before its fix: bad files are errors naming the file
+// Reliability on bad input, one test per failure mode: bad files are errors naming the file
 // (never "missing", never a crash or a hang), JSON/YAML mistakes are never silent, worker exceptions reach
 // the caller, long tokens and many bad lines give short messages.
 #include <gtest/gtest.h>

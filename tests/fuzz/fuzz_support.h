@@ -1,6 +1,6 @@
 // Shared by the fuzzers: a scratch directory, and what counts as a bug besides a crash, a sanitizer report,
 // a hang or an exception that escapes (libFuzzer reports all of those): an error message that doesn't name
-// its file, or that grows with the input (issue 12: a 10 MB token must not become a 10 MB message).
+// its file, or that grows with the input (a 10 MB token must not become a 10 MB message).
 #pragma once
 
 #include <unistd.h>

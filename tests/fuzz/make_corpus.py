@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the seed corpus of the fuzzers (tests/fuzz/corpus/<fuzzer>/): a few valid files and the nasty inputs
-of issue 12 (deep nesting, huge integers, 1e309, a BOM, long tokens, duplicate YAML keys, extra YAML documents,
-unknown pairs keys, ...). The files are committed; rerun after adding a case: python3 tests/fuzz/make_corpus.py"""
+that break careless parsers (deep nesting, huge integers, 1e309, a BOM, long tokens, duplicate YAML keys, extra
+YAML documents, unknown pairs keys, ...). The files are committed; rerun after adding a case: python3 tests/fuzz/make_corpus.py"""
 import json
 import os
 

@@ -32,7 +32,7 @@ struct CommandResult {
 CommandResult run_ipd(const std::string& args);
 // Runs a shell command line (e.g. poppler's pdftotext), capturing its output.
 CommandResult run_command(const std::string& command);
-// The same, killed after `seconds` (exit code 124): for inputs that used to hang.
+// The same, killed after `seconds` (exit code 124): for inputs that could hang.
 CommandResult run_ipd_with_timeout(const std::string& args, int seconds);
 
 }  // namespace ipd::test

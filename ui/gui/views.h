@@ -158,7 +158,7 @@ struct RegistrationCanvas {
 RegistrationCanvas registration_canvas(ImVec2 p0, ImVec2 size, float line_h);
 // Keyboard shortcuts that act on the whole window.
 void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out);
-// Every shortcut, for the help window (and README).
+// Every shortcut, for the help window (and docs/gui.md).
 const std::vector<std::pair<const char*, const char*>>& shortcut_list();
 
 // Per-rock inputs of the canvas for one side of the current scene.

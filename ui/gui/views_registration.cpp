@@ -143,7 +143,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const float curve_h = steps > 0 ? std::clamp(avail.y * 0.25f, 36.0f, 110.0f) : 0.0f;
   const float below = steps > 0 ? curve_h + 2 * text_h + ImGui::GetStyle().ItemSpacing.y : 0.0f;
   // At least 80 px for the picture box itself, besides the three legend lines and margins: a short panel
-  // scrolls rather than squeezing the rings into one blob (QA at 700 x 800).
+  // scrolls rather than squeezing the rings into one blob (as at 700 x 800).
   const float min_canvas = 3 * ImGui::GetTextLineHeight() + 4 + 2 + 20 + 80;
   const ImVec2 size{avail.x, std::max(min_canvas, avail.y - below)};
   ImGui::InvisibleButton("##reg", size);

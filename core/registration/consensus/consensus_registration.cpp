@@ -469,7 +469,8 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
       out.affine_normalised = r.best;
       out.score = r.best_score;
       // A confirmed best only: an unconfirmed one is judged against the second look's candidates next, and
-      // raising it alone would tilt that comparison (the 3 true pairs among 15 rocks, layout 5).
+      // raising it alone would tilt that comparison (3 true pairs among 15 rocks: seed 5 of
+      // SmallOverlap.ThreeTruePairsAmongFifteenRocksAt25Degrees).
       if (r.stop == StopReason::kCannotBeBeaten && scorer.soft_refine(&out.affine_normalised, &out.score))
         recorder.add_step(TraceStepKind::kRefinement, out.affine_normalised, out.score, out.score, true);
       out.affine_normalised = final_fit(f, boxes_a, boxes_b, o, bounds, gate, &scorer, out.affine_normalised);

@@ -15,7 +15,7 @@ namespace {
 // Weights of the judgement, against the consensus score (one well-matched rock ~ 1). A is the first domain of
 // a pair, usually the real pictures: hand labels hold fewer rocks than the synthetic twin, so an A rock that B's
 // picture shows but B lacks is stronger evidence against an alignment than the converse. Chosen on the large
-// tier's candidates of seeds 1-4, checked on 5-6 (README: registration, the second look).
+// tier's candidates of seeds 1-4, checked on 5-6 (docs/method.md: tuned constants).
 constexpr double kWeightIou = 0.2, kWeightUnpairedA = 0.1, kWeightUnpairedB = 0.05;
 
 struct Rect {

@@ -1,4 +1,4 @@
-// Issue 13: registration when the two pictures barely overlap, and what the seed and the thread count may
+// Registration when the two pictures barely overlap, and what the seed and the thread count may
 // (and may not) change.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -107,8 +107,8 @@ void expect_recovered(int shared) {
 
 TEST(SmallOverlap, FourTruePairsAmongFifteenRocksAt25Degrees) { expect_recovered(4); }
 
-// The issue's case: three shared rocks, far apart in A with other rocks between them, so no neighbourhood
-// triple holds them; the second look (every pair of rocks on each side) proposes them.
+// The hardest small overlap: three shared rocks, far apart in A with other rocks between them, so no
+// neighbourhood triple holds them; the second look (every pair of rocks on each side) proposes them.
 TEST(SmallOverlap, ThreeTruePairsAmongFifteenRocksAt25Degrees) { expect_recovered(3); }
 
 // The second look says what it did, and a replay shows the candidates it judged after the search's polish.

@@ -219,7 +219,7 @@ TEST(RegistrationStability, PolarSimCasesWithKnownAnswer) {
     f1_large += score_pairs(register_rocks(cl.a, cl.b, o).pairs, cl.truth).f1;
     f1_unequal += score_pairs(register_rocks(cu.a, cu.b, o).pairs, cu.truth).f1;
   }
-  // Since issue 13 the cases clip the moved side to the picture (rocks leave it). These 60 large-tier cases
+  // The cases clip the moved side to the picture (rocks leave it). These 60 large-tier cases
   // are a hard draw: 0.900 before the gate floor, soft refinement and guarded polish, 0.919 with them, 0.922
   // with the final fit judged among polished, searched and least squares (the benchmark's 300 cases, seed 1:
   // 0.961, 0.968, 0.971). The bound leaves room for one case to flip on another machine's libm (a case here

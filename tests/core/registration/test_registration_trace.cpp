@@ -186,7 +186,7 @@ TEST(RegistrationConfidence, CpdMeasuresItsConfidenceAgainstRivalPlacements) {
   RegistrationOptions o;
   o.method = RegistrationMethod::kCpd;
   // At 960 x 600 (square boxes) EM settles on a fit shrunk by half that pairs all nine rocks wrongly, and the
-  // unmoved camera fits them as well: only that rival flags it (with cpd's own shifts alone: 0.33, QA).
+  // unmoved camera fits them as well: only that rival flags it (with cpd's own shifts alone: 0.33).
   for (double aspect : {1.0, 960.0 / 600.0}) {
     std::vector<Box> grid_a, grid_b;
     symmetric_grid(&grid_a, &grid_b, 0.04 * aspect);

@@ -106,7 +106,7 @@ TEST(Study, ClearErrorsForUnusableStudies) {
 }
 
 // study.yaml's registration.trials is the configured method's budget, as ipd register's --trials: cpd's EM
-// iterations (it used to be ignored for cpd), the others' trials; below 1 an error naming the line.
+// iterations, the others' trials; below 1 an error naming the line.
 TEST(Study, RegistrationTrialsIsTheMethodsBudget) {
   auto c = parse_study_config("registration:\n  trials: 7\n  method: cpd\n", "study.yaml");
   EXPECT_EQ(c.registration.cpd_iterations, 7);
@@ -222,7 +222,7 @@ TEST(Cli, RegisterJsonNamesItsCountsAsTheTextDoes) {
 
 // An ambiguous registration says so after its confidence, the reason's "(e.g. ...)" not nested in another
 // parenthesis (it read "confidence 0.186 (AMBIGUOUS: ... as well (e.g. a small overlap or a repetitive
-// layout))", QA). A 3 x 3 block of identical rocks inside a 5 x 5 grid: nine placements fit equally well.
+// layout))"). A 3 x 3 block of identical rocks inside a 5 x 5 grid: nine placements fit equally well.
 TEST(Cli, RegisterSaysAmbiguousWithoutNestedParentheses) {
   test::TempDir d;
   std::string a, b;
@@ -242,8 +242,8 @@ TEST(Cli, RegisterSaysAmbiguousWithoutNestedParentheses) {
   EXPECT_EQ(r.out.find("))"), std::string::npos) << r.out;
 }
 
-// --trials is each method's own search budget, as its help says: cpd's EM iterations (it used to be ignored for
-// cpd: 12 iterations whatever --trials said), paper's K samples; below 1 it is a usage error, not the default.
+// --trials is each method's own search budget, as its help says: cpd's EM iterations (so cpd stops
+// where --trials says, not after its own 12), paper's K samples; below 1 it is a usage error, not the default.
 TEST(Cli, RegisterTrialsIsEachMethodsBudget) {
   test::TempDir d;
   write_register_pair(d);

@@ -248,7 +248,7 @@ TEST(FigureFiles, SvgIsXmlWithASizeAndTextAsText) {
   EXPECT_NE(r.out.find("scene IPD 0.2182"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(" x2 "), std::string::npos) << r.out;
   // Small: the font cut to the glyphs used (the whole DejaVu Sans is 757 kB, 1 MB as base64), the pictures
-  // as JPEG. The demo's pairs figure went from 4.9 MB to 0.47 MB (README).
+  // as JPEG. The demo's pairs figure went from 4.9 MB to 0.47 MB (docs/benchmarks.md).
   const std::string svg = read_file(out);
   const std::string font = "data:font/ttf;base64,";
   size_t font_bytes = 0;

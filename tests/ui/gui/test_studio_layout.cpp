@@ -75,7 +75,7 @@ TEST(WrapAtSpaces, NeverBetweenALabelAndItsNumber) {
 
 TEST(WrapAtSpaces, NeverBetweenACountAndTheWordItCounts) {
   // 120 px: "(exact), 8" is 10 characters and would fit, leaving "scenes" alone (ipd-studio's compare sentence
-  // at 1000 px, QA); the count goes down with its word.
+  // at 1000 px); the count goes down with its word.
   EXPECT_EQ(wrap_at_spaces("p = 0.0078 (exact), 8 scenes", 120, chars),
             (std::vector<std::string>{"p = 0.0078", "(exact),", "8 scenes"}));
   EXPECT_EQ(wrap_at_spaces("tried 1,000 trials", 110, chars), (std::vector<std::string>{"tried", "1,000 trials"}));
@@ -88,7 +88,7 @@ TEST(WrapAtSpaces, NeverBetweenACountAndTheWordItCounts) {
 TEST(WrapAtSpaces, NeverInsideDeltaIpd) {
   // 590 px = 59 characters: "principled is closer to real than hapke for det-real: delta" is exactly 59 and
   // would fit, leaving "IPD = -0.0802 ..." to start the next line (ipd-studio's compare sentence at 1600 px
-  // in ASCII, QA). "delta IPD" goes down whole, with its number.
+  // in ASCII). "delta IPD" goes down whole, with its number.
   const std::string s = "principled is closer to real than hapke for det-real: delta IPD = -0.0802 [-0.094, -0.066]";
   EXPECT_EQ(wrap_at_spaces(s, 590, chars),
             (std::vector<std::string>{"principled is closer to real than hapke for det-real:",
@@ -111,8 +111,8 @@ TEST(UiWording, GlyphsTheFontLacksAreSpelledInAscii) {
 }
 
 TEST(UiWording, CompareNumbersLineWritesDeltaIpdAsTheSentenceDoes) {
-  // The 8-scene demo's compare panel: the line above the sentence read "delta -0.0802 [-0.094, -0.066]   p =
-  // 0.0078" in ASCII while the sentence under it wrote ΔIPD and the typographic minus (QA).
+  // The 8-scene demo's compare panel: the line above the sentence writes ΔIPD and the typographic minus as the
+  // sentence under it does, not "delta -0.0802 [-0.094, -0.066]   p = 0.0078" in ASCII.
   Comparison r;
   r.delta.estimate = -0.08021, r.delta.low = -0.09412, r.delta.high = -0.06561;
   r.p_value = 0.0078125, r.scenes = 8;
@@ -179,7 +179,7 @@ TEST(RegistrationWords, SingularCountsPlainNumbersOneStepNumber) {
   // k = 349 is the 350th step: the scrubber reads "step 350 of 5,000" too.
   EXPECT_EQ(replay_step_line(st, 349, 5000), "step 350 of 5,000 (hypothesis): score 0.5000, best so far 0.7500, 1 inlier");
   // Consensus' last step is the fit that goes out, judged among the polished, the searched and plain least
-  // squares (or the second look's pick): "polish" named only the first of them (QA).
+  // squares (or the second look's pick): "polish" would name only the first of them.
   st.kind = TraceStepKind::kPolish, st.score = st.best_score = 16.89719, st.inliers_a.assign(17, 0);
   EXPECT_EQ(replay_step_line(st, 3, 4), "step 4 of 4 (final fit): score 16.8972, best so far 16.8972, 17 inliers");
   EXPECT_EQ(trace_cap_note(5000, 5982),
@@ -219,7 +219,7 @@ TEST(BrowserOrder, AmbiguousScenesSortOnTheirOwnColumn) {
 }
 
 // The IPD comes right after the frozen scene name (in a 700 px window the list is cut after about four
-// columns, QA: the IPD was the one at the edge), and a click on each header sorts by what it shows.
+// columns: the IPD must not be the one at the edge), and a click on each header sorts by what it shows.
 TEST(BrowserColumns, IpdRightAfterTheNameAndEachHeaderSortsByItsOwnValue) {
   std::vector<std::string> headers;
   for (const auto& c : browser_columns()) headers.push_back(c.text.header);
