@@ -18,11 +18,27 @@
 
 #include "core/util/atomic_file.h"
 
+#include <nlohmann/json.hpp>
+
 namespace fs = std::filesystem;
 
 namespace ipd::studio {
 
 namespace {
+
+// One version of a pairs file for the conflict dialog: what it pairs, then the start of its text.
+std::string describe_pairs_file(const std::optional<std::string>& text) {
+  if (!text) return "no file: the automatic pairs";
+  std::string what = "not a pairs file";
+  try {
+    const nlohmann::json j = nlohmann::json::parse(*text);
+    auto count = [&](const char* key) { return j.contains(key) && j[key].is_array() ? j[key].size() : size_t{0}; };
+    what = fmt::format("{} pair(s), {} excluded rock(s)", count("pairs"), count("excluded_a") + count("excluded_b"));
+  } catch (const std::exception&) {
+  }
+  constexpr size_t kShown = 400;
+  return what + ": " + (text->size() > kShown ? text->substr(0, kShown) + "..." : *text);
+}
 
 fs::path cache_home() {
   const char* xdg = std::getenv("XDG_CACHE_HOME");
@@ -137,6 +153,8 @@ void StudioApp::frame() {
   ui::StudyView v;
   v.pending_saves = worker_.saver().pending();
   v.failed_saves = worker_.saver().failures();
+  for (const Conflict& c : worker_.saver().conflicts())
+    v.conflicts.push_back({c.job.path, c.message, describe_pairs_file(c.job.contents), describe_pairs_file(c.on_disk)});
   v.busy = !worker_.idle();
   if (const OpenProgress p = worker_.progress(); p.opening && p.first_look)
     v.loading = p.total > 0 ? fmt::format("first scenes shown; loading the study: {} / {} {}", p.done, p.total, p.stage)
@@ -244,6 +262,17 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
     return;
   }
   if (cmd.retry_saves) worker_.saver().retry_failed();
+  if (!cmd.keep_mine.empty()) worker_.saver().keep_mine(cmd.keep_mine);
+  if (!cmd.keep_theirs.empty()) {
+    for (const Conflict& c : worker_.saver().conflicts())
+      if (c.job.path == cmd.keep_theirs) {
+        WorkerCommand reload{K::kReload};
+        reload.scene = c.job.pair;
+        reload.a = c.job.stem;
+        worker_.submit(std::move(reload));
+      }
+    worker_.saver().keep_theirs(cmd.keep_theirs);
+  }
   if (!snap_) return;
   const Session& s = *snap_->session;
   if (!cmd.left_domain.empty()) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/session/session.h"
+#include "core/session/study_lock.h"
 #include "app/studio/studio_saver.h"
 
 namespace ipd::studio {
@@ -46,10 +47,10 @@ struct OpenProgress {
 };
 
 struct WorkerCommand {
-  enum class Kind { kOpen, kEdit, kUndo, kRedo, kDomains, kModel, kConf, kRerun, kSaveAllTo, kExport };
+  enum class Kind { kOpen, kEdit, kUndo, kRedo, kDomains, kModel, kConf, kRerun, kSaveAllTo, kExport, kReload };
   explicit WorkerCommand(Kind k = Kind::kEdit) : kind(k) {}
   Kind kind;
-  int scene = -1;
+  int scene = -1;        // kReload: the domain pair (Session::domain_pairs()), with the stem in `a`
   Edit edit = Edit::reset();
   std::string a, b;     // kOpen: study dir, "demo" when it is the demo; kDomains: left, right; kModel: a
   double value = 0;     // kConf
@@ -102,6 +103,7 @@ class StudyWorker {
   std::shared_ptr<const Session> published_;  // reused when a command did not change the session
   std::vector<SceneSummary> published_summaries_;
   long version_ = 0, jump_serial_ = 0;
+  std::unique_ptr<StudyLock> lock_;  // the open study's one-writer lock; null when read-only
   Saver saver_;
   std::thread thread_;
 };
