@@ -85,7 +85,14 @@ void StudioApp::adopt_snapshot() {
     if (r.size() > 10) r.resize(10);
     std::string text;
     for (const auto& x : r) text += x + "\n";
-    worker_.saver().submit(SaveJob{(cache_home() / "recent.txt").string(), text, {}});
+    SaveJob recent;  // in the user's cache, written as given (no study root to stay inside)
+    recent.path = (cache_home() / "recent.txt").string();
+    recent.contents = text;
+    worker_.saver().submit(std::move(recent));
+    // A scripted run has no banner to read: say on stderr that its edits will not be saved, and why.
+    if (s.read_only() && (!o_.replay.empty() || !o_.screenshot.empty()))
+      fmt::print(stderr, "note: {}: read-only{}{}: edits stay in memory\n", s.study().root,
+                 s.read_only_reason().empty() ? "" : ": ", s.read_only_reason());
   }
   if (snap_->version != order_version_ || ui_.order.empty()) {
     ui_.order = ui::browser_order(snap_->summaries, ui_);

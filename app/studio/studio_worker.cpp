@@ -173,8 +173,8 @@ void StudyWorker::execute(WorkerCommand& c) {
     const std::string lock_reason =
         lock ? std::string()
              : held_by.rfind("pid ", 0) == 0 || held_by == "another program"
-                   ? "another window holds this study (" + held_by + "): edits stay in memory"
-                   : "no edits are saved: " + held_by;
+                   ? "another window holds this study (" + held_by + ")"
+                   : "the study's lock can't be taken: " + held_by;
     SessionOptions o;
     o.cache_dir = registration_cache_dir(c.a);
     o.progress = [&](const char* stage, int done, int total) {
