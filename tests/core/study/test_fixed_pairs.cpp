@@ -148,6 +148,24 @@ TEST(FixedPairsBinding, TheCliExitsOneNamingTheFileUnlessSkipBadLines) {
   EXPECT_NE(lenient.err.find("warning: " + line + "\n"), std::string::npos) << lenient.err;
 }
 
+TEST(FixedPairsBinding, AFigureOfTheSceneSaysSoToo) {
+  test::TempDir d;
+  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n");
+  const std::string f = d / "pairs/real__synth/s1.json";
+  test::write_text(f, kHandPairs);
+  const std::string out = d / "fig.svg";
+  const auto strict = test::run_ipd("figure registration " + d.path() + " --scene s1 --out " + out);
+  EXPECT_EQ(strict.exit_code, 1) << strict.err;
+  EXPECT_NE(strict.err.find(f + ": hand pairs not used (registration counts instead): a stored rock is no longer in "
+                                "its label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" +
+                            d / "synth/labels/s1.txt" + ") (pass --skip-bad-lines to draw registration's pairs)\n"),
+            std::string::npos)
+      << strict.err;
+  const auto lenient = test::run_ipd("figure registration " + d.path() + " --scene s1 --skip-bad-lines --out " + out);
+  EXPECT_EQ(lenient.exit_code, 0) << lenient.err;
+  EXPECT_NE(lenient.err.find("warning: " + f + ": hand pairs not used"), std::string::npos) << lenient.err;
+}
+
 TEST(FixedPairsBinding, FilesWithoutBoxesLoadByIndexAndGainBoxesOnTheNextSave) {
   test::TempDir d;
   write_study(d, kReal, kSynth);
