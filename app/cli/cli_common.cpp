@@ -46,6 +46,24 @@ bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_li
   return true;
 }
 
+bool report_unusable_pairs(const std::vector<PairsProblem>& problems, bool skip_bad_lines,
+                           std::vector<std::string>* warnings) {
+  int unusable = 0;
+  for (const auto& p : problems) {
+    if (!p.unusable) continue;
+    ++unusable;
+    if (!skip_bad_lines) fmt::print(stderr, "{}\n", p.to_string());
+    else if (warnings) warnings->push_back(p.to_string());
+    else fmt::print(stderr, "warning: {}\n", p.to_string());
+  }
+  if (unusable == 0 || skip_bad_lines) return false;
+  fmt::print(stderr,
+             "error: the hand pairs of {} scene(s) can't be used; pair those scenes again, or pass --skip-bad-lines "
+             "to use registration for them\n",
+             unusable);
+  return true;
+}
+
 Progress::Progress(std::string what) : what_(std::move(what)), tty_(::isatty(2) == 1) {}
 
 void Progress::update(int done, int total) {

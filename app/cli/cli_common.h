@@ -14,6 +14,12 @@ constexpr int kOk = 0, kBadInput = 1, kUsage = 2;
 // summary; true when they are fatal: malformed lines unless skipped, and always a file that can't be read.
 bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines);
 
+// Hand pairs that can't be used (a stored rock is no longer in its label file): printed as errors (true:
+// fatal), or with --skip-bad-lines added to `warnings` (printed and in JSON output like the others; null:
+// printed as warnings here) while registration counts for those scenes.
+bool report_unusable_pairs(const std::vector<PairsProblem>& problems, bool skip_bad_lines,
+                           std::vector<std::string>* warnings);
+
 // The arguments after the program name, reversed (as CLI::App::parse takes them), with `--ci 0.9` joined
 // into `--ci=0.9`: --ci is a flag with an optional level, so a level must be attached to it, and a
 // following word that is not a number (the STUDY) stays an argument of its own.

@@ -68,6 +68,15 @@ Chosen resolve(const Args& args, bool needs_scene) {
     fmt::print(stderr, "scene {}: it contributes most to IPD({}, {}) for {}\n", f.stem, f.a, f.b, f.model);
   }
   if (f.stem.empty()) f.stem = match.common.front();
+  // The scene's hand pairs as `ipd table` judges them: moved rocks are a warning, unusable pairs an error
+  // (the figure would otherwise show registration's pairs without a word).
+  for (const PairsProblem& p :
+       load_fixed_pairs(st, f.a, f.b, f.stem, f.labels.gt_of(f.a, f.stem).boxes, f.labels.gt_of(f.b, f.stem).boxes)
+           .problems) {
+    if (p.unusable && !args.skip_bad_lines)
+      throw StudyError(p.to_string() + " (pass --skip-bad-lines to draw registration's pairs)");
+    fmt::print(stderr, "warning: {}\n", p.to_string());
+  }
   return f;
 }
 

@@ -74,6 +74,7 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   opt.progress = [&](int d, int t) { progress.update(d, t); };
   out.table = compute_cross_table(out.labels, opt);
   parsed.save(out.labels, registration);
+  if (report_unusable_pairs(out.table.pairs_problems, o.skip_bad_lines, &out.table.warnings)) return std::nullopt;
   for (const auto& w : out.table.warnings) fmt::print(stderr, "warning: {}\n", w);
   out.bootstrap = o.bootstrap_options();
   if (o.seed < 0) out.bootstrap.seed = opt.registration.seed;

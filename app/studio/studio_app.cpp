@@ -18,11 +18,27 @@
 
 #include "core/util/atomic_file.h"
 
+#include <nlohmann/json.hpp>
+
 namespace fs = std::filesystem;
 
 namespace ipd::studio {
 
 namespace {
+
+// One version of a pairs file for the conflict dialog: what it pairs, then the start of its text.
+std::string describe_pairs_file(const std::optional<std::string>& text) {
+  if (!text) return "no file: the automatic pairs";
+  std::string what = "not a pairs file";
+  try {
+    const nlohmann::json j = nlohmann::json::parse(*text);
+    auto count = [&](const char* key) { return j.contains(key) && j[key].is_array() ? j[key].size() : size_t{0}; };
+    what = fmt::format("{} pair(s), {} excluded rock(s)", count("pairs"), count("excluded_a") + count("excluded_b"));
+  } catch (const std::exception&) {
+  }
+  constexpr size_t kShown = 400;
+  return what + ": " + (text->size() > kShown ? text->substr(0, kShown) + "..." : *text);
+}
 
 fs::path cache_home() {
   const char* xdg = std::getenv("XDG_CACHE_HOME");
@@ -66,7 +82,14 @@ void StudioApp::adopt_snapshot() {
     if (r.size() > 10) r.resize(10);
     std::string text;
     for (const auto& x : r) text += x + "\n";
-    worker_.saver().submit(SaveJob{(cache_home() / "recent.txt").string(), text, {}});
+    SaveJob recent;  // in the user's cache, written as given (no study root to stay inside)
+    recent.path = (cache_home() / "recent.txt").string();
+    recent.contents = text;
+    worker_.saver().submit(std::move(recent));
+    // A scripted run has no banner to read: say on stderr that its edits will not be saved, and why.
+    if (s.read_only() && (!o_.replay.empty() || !o_.screenshot.empty()))
+      fmt::print(stderr, "note: {}: read-only{}{}: edits stay in memory\n", s.study().root,
+                 s.read_only_reason().empty() ? "" : ": ", s.read_only_reason());
   }
   if (snap_->version != order_version_ || ui_.order.empty()) {
     ui_.order = ui::browser_order(snap_->summaries, ui_);
@@ -134,6 +157,8 @@ void StudioApp::frame() {
   ui::StudyView v;
   v.pending_saves = worker_.saver().pending();
   v.failed_saves = worker_.saver().failures();
+  for (const Conflict& c : worker_.saver().conflicts())
+    v.conflicts.push_back({c.job.path, c.message, describe_pairs_file(c.job.contents), describe_pairs_file(c.on_disk)});
   v.busy = !worker_.idle();
   if (const OpenProgress p = worker_.progress(); p.opening && p.first_look)
     v.loading = p.total > 0 ? fmt::format("first scenes shown; loading the study: {} / {} {}", p.done, p.total, p.stage)
@@ -238,6 +263,14 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
     return;
   }
   if (cmd.retry_saves) worker_.saver().retry_failed();
+  if (!cmd.keep_mine.empty()) worker_.saver().keep_mine(cmd.keep_mine);
+  if (!cmd.keep_theirs.empty()) {
+    for (const Conflict& c : worker_.saver().conflicts())
+      if (c.job.path == cmd.keep_theirs) {
+        worker_.submit(command::ReloadScene{c.job.pair, c.job.stem});
+      }
+    worker_.saver().keep_theirs(cmd.keep_theirs);
+  }
   if (!snap_) return;
   const Session& s = *snap_->session;
   if (!cmd.left_domain.empty()) {

@@ -164,6 +164,15 @@ void StudyWorker::open(const command::OpenStudy& c) {
     { std::lock_guard<std::mutex> l(mu_); progress_.stage = "generating the demo study"; }
     write_demo_study(c.dir);
   }
+  // One writer per study: the lock is held while the study is open; without it the window is read-only.
+  std::string held_by;
+  lock_.reset();  // (reopening the same study must not find its own lock)
+  std::unique_ptr<StudyLock> lock = StudyLock::try_acquire(c.dir, &held_by);
+  const std::string lock_reason =
+      lock ? std::string()
+           : held_by.rfind("pid ", 0) == 0 || held_by == "another program"
+                 ? "another window holds this study (" + held_by + ")"
+                 : "the study's lock can't be taken: " + held_by;
   SessionOptions o;
   o.cache_dir = registration_cache_dir(c.dir);
   o.progress = [&](const char* stage, int done, int total) {
@@ -183,14 +192,28 @@ void StudyWorker::open(const command::OpenStudy& c) {
       first.first_scenes = kFirstLookScenes;
       first.progress = {};
       session_ = std::make_unique<Session>(Session::open(c.dir, first));
+      if (!lock) session_->set_read_only(lock_reason);
       publish_new_session();
       std::lock_guard<std::mutex> l(mu_);
       progress_.first_look = true;
     }
     o.study_cache_path = parsed_study_cache_path(c.dir);
     auto session = std::make_unique<Session>(Session::open(c.dir, o));
+    if (!lock) session->set_read_only(lock_reason);
     session_ = std::move(session);
+    lock_ = std::move(lock);
   } catch (...) {
+    // The study still shown (the one before, or the new one's first look) keeps a lock, or becomes
+    // read-only when someone took it meanwhile.
+    if (session_ && !session_->read_only()) {
+      if (lock && session_->study().root == c.dir) {
+        lock_ = std::move(lock);
+      } else {
+        lock.reset();
+        lock_ = StudyLock::try_acquire(session_->study().root, &held_by);
+        if (!lock_) session_->set_read_only("another window took this study's lock (" + held_by + ")");
+      }
+    }
     std::lock_guard<std::mutex> l(mu_);
     progress_.opening = false;
     throw;
@@ -268,6 +291,7 @@ void StudyWorker::execute(WorkerCommand& c) {
             say("edited pairs written under " + d.dir + "/pairs/");
             return false;
           },
+          [&](const command::ReloadScene& r) { return s.reload_scene(r.pair, r.stem), true; },
           [&](const command::ExportFigure& x) {
             say(x.job ? x.job() : std::string("export failed: nothing to export"));
             return false;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/session/session.h"
+#include "core/session/study_lock.h"
 #include "app/studio/studio_saver.h"
 
 namespace ipd::studio {
@@ -76,6 +77,11 @@ struct RerunRegistration {
 struct SaveAllTo {
   std::string dir;
 };
+// After a save conflict the user keeps the file on disk: the scene's pairs are read again.
+struct ReloadScene {
+  int pair = -1;  // index into Session::domain_pairs()
+  std::string stem;
+};
 // Renders and writes a figure in-process (ui::export_figure on an immutable snapshot's session) and returns
 // the status line.
 struct ExportFigure {
@@ -86,7 +92,7 @@ struct ExportFigure {
 using WorkerCommand =
     std::variant<command::OpenStudy, command::ApplyEdit, command::Undo, command::Redo, command::SelectDomains,
                  command::SelectModel, command::SetConfThreshold, command::RerunRegistration, command::SaveAllTo,
-                 command::ExportFigure>;
+                 command::ReloadScene, command::ExportFigure>;
 
 // Lowers the calling thread's CPU priority a little (threads it starts inherit it): heavy jobs yield to the
 // window's frames, and to the rasteriser's threads, on a machine with few cores.
@@ -133,6 +139,7 @@ class StudyWorker {
   std::vector<SceneSummary> published_summaries_;
   long version_ = 0, jump_serial_ = 0;
   Saver saver_;
+  std::unique_ptr<StudyLock> lock_;  // the open study's one-writer lock; null when read-only
   std::thread thread_;
 };
 

@@ -86,11 +86,13 @@ ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const s
   const auto& gb = labels.gt_of(b, stem).boxes;
   p.count_a = static_cast<int>(ga.size());
   p.count_b = static_cast<int>(gb.size());
-  if (auto fixed = read_fixed_pairs(labels.study, a, b, stem, p.count_a, p.count_b, &p.warnings)) {
+  FixedPairsRead read = load_fixed_pairs(labels.study, a, b, stem, ga, gb);
+  p.pairs_problems = std::move(read.problems);
+  if (read.pairs) {
     p.fixed = true;
-    p.pairs = std::move(fixed->pairs);
-    p.excluded_a = std::move(fixed->excluded_a);
-    p.excluded_b = std::move(fixed->excluded_b);
+    p.pairs = std::move(read.pairs->pairs);
+    p.excluded_a = std::move(read.pairs->excluded_a);
+    p.excluded_b = std::move(read.pairs->excluded_b);
     return p;
   }
   p.registration = register_rocks_cached(cache, ga, gb, options, &p.from_cache);
@@ -235,7 +237,10 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
     if (!j.error.empty()) throw StudyError(j.error);
     (j.result.fixed ? t.fixed_scenes : t.registrations)++;
     t.cached_registrations += j.result.from_cache;
-    t.warnings.insert(t.warnings.end(), j.result.warnings.begin(), j.result.warnings.end());
+    for (const PairsProblem& p : j.result.pairs_problems) {
+      t.pairs_problems.push_back(p);
+      if (!p.unusable) t.warnings.push_back(p.to_string());
+    }
   }
 
   t.pairings.resize(t.columns.size());

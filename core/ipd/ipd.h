@@ -48,7 +48,9 @@ struct ScenePairing {
   int count_a = 0, count_b = 0;
   RegistrationReport registration;  // meaningful when !fixed
   bool from_cache = false;          // registration read from the on-disk cache
-  std::vector<std::string> warnings;  // e.g. pairs files present in both name orders
+  // The pairs files' problems (rocks found again by box, pairs files in both name orders, hand pairs
+  // unusable because a stored rock is gone: then !fixed and registration counts).
+  std::vector<PairsProblem> pairs_problems;
 };
 
 class RegistrationCache;
@@ -101,6 +103,9 @@ struct CrossTable {
   std::vector<TableCell> cells;                              // row-major: models x columns
   std::vector<std::vector<ScenePairing>> pairings;           // per column, in the cells' per_scene order
   std::vector<std::string> warnings;                         // skipped scenes, missing predictions
+  // Every scene's pairs-file problems, in column and scene order; the ones that are not `unusable` are also
+  // in `warnings`. An unusable one is an error for the CLI (exit 1 unless --skip-bad-lines).
+  std::vector<PairsProblem> pairs_problems;
   int registrations = 0, fixed_scenes = 0;
   int cached_registrations = 0;  // of `registrations`, read from the on-disk cache
   double registration_ms = 0;

@@ -7,11 +7,13 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <fmt/format.h>
 #include <optional>
 #include <set>
 #include <unordered_set>
 
 #include "core/util/atomic_file.h"
+#include "core/util/contained_file.h"
 #include "core/util/parallel.h"
 #include "core/registration/registration_cache.h"
 
@@ -31,10 +33,39 @@ void remove_durably(const std::string& path) {
     ::close(fd);
   }
 }
-}  // namespace
 
-void run_save_job(const SaveJob& job, const WriteStepHook& hook) {
-  // `path` is the name order read_fixed_pairs tries first: while it exists, the other one doesn't count.
+// `path` below `root`, as the relative name contained_file.h walks.
+std::string relative_to(const std::string& root_in, const std::string& path) {
+  const std::string root = root_in.size() > 1 && root_in.back() == '/' ? root_in.substr(0, root_in.size() - 1) : root_in;
+  if (path.size() <= root.size() + 1 || path.compare(0, root.size(), root) != 0 || path[root.size()] != '/')
+    throw IoError(fmt::format("{}: is not inside {}; not saved", path, root));
+  return path.substr(root.size() + 1);
+}
+
+// Refuses the job (nothing written yet) when a file it touches holds neither what this window last saw
+// there nor what the job would leave there (a retried job may find its own result).
+void check_expected(const SaveJob& job) {
+  if (job.expected.empty()) return;
+  std::vector<std::string> paths = {job.path};
+  paths.insert(paths.end(), job.also_remove.begin(), job.also_remove.end());
+  if (job.expected.size() != paths.size()) throw IoError(job.path + ": a save job with the wrong number of versions");
+  std::vector<std::optional<std::string>> texts;
+  std::vector<DiskVersion> now;
+  for (const auto& p : paths) {
+    texts.push_back(read_file_beneath(job.root, relative_to(job.root, p)));
+    now.push_back(version_of(texts.back()));
+  }
+  for (size_t k = 0; k < paths.size(); ++k) {
+    const DiskVersion target = k == 0 ? version_of(job.contents) : DiskVersion{};
+    if (now[k] == job.expected[k] || now[k] == target) continue;
+    throw SaveConflict(fmt::format("{}: changed on disk since this window read it (another window or program saved "
+                                   "it); not overwritten: keep one version",
+                                   paths[k]),
+                       paths[k], texts[k], now);
+  }
+}
+
+void run_unchecked_save_job(const SaveJob& job, const WriteStepHook& hook) {
   if (job.contents) {
     write_file_atomically(job.path, *job.contents, hook);
     for (const auto& p : job.also_remove) {
@@ -47,6 +78,31 @@ void run_save_job(const SaveJob& job, const WriteStepHook& hook) {
       if (hook) hook("other removed");
     }
     remove_durably(job.path);
+    if (hook) hook("removed");
+  }
+}
+}  // namespace
+
+void run_save_job(const SaveJob& job, const WriteStepHook& hook) {
+  if (job.root.empty()) return run_unchecked_save_job(job, hook);
+  // Every file the job touches is looked at first: a link on the way refuses the job before anything changed.
+  const std::string rel = relative_to(job.root, job.path);
+  check_beneath(job.root, rel);
+  for (const auto& p : job.also_remove) check_beneath(job.root, relative_to(job.root, p));
+  check_expected(job);
+  // `path` is the name order read_fixed_pairs tries first: while it exists, the other one doesn't count.
+  if (job.contents) {
+    write_file_beneath(job.root, rel, *job.contents, hook);
+    for (const auto& p : job.also_remove) {
+      remove_file_beneath(job.root, relative_to(job.root, p));
+      if (hook) hook("other removed");
+    }
+  } else {
+    for (const auto& p : job.also_remove) {
+      remove_file_beneath(job.root, relative_to(job.root, p));
+      if (hook) hook("other removed");
+    }
+    remove_file_beneath(job.root, rel);
     if (hook) hook("removed");
   }
 }
@@ -75,11 +131,13 @@ void keep_first_scenes(Study* study, size_t n) {
 Session Session::open(const std::string& root, const SessionOptions& options) {
   Study study = open_study(root);
   if (options.first_scenes > 0) keep_first_scenes(&study, options.first_scenes);
-  // Temp files of saves that died mid-way (their writer is gone) would otherwise pile up beside the pairs.
+  // Temp files of saves that died mid-way (their writer is gone) would otherwise pile up beside the pairs;
+  // only real folders are tidied (a link in pairs/ is never followed out of the study).
   std::error_code ec;
-  for (fs::directory_iterator it(fs::path(study.root) / "pairs", ec); !ec && it != fs::directory_iterator();
-       it.increment(ec))
-    if (it->is_directory(ec)) remove_stale_temp_files(it->path().string());
+  if (!fs::is_symlink(fs::path(study.root) / "pairs", ec))
+    for (fs::directory_iterator it(fs::path(study.root) / "pairs", ec); !ec && it != fs::directory_iterator();
+         it.increment(ec))
+      if (it->symlink_status(ec).type() == fs::file_type::directory) remove_stale_temp_files(it->path().string());
   if (options.progress && !options.study_cache_path.empty()) options.progress("reading the study cache", 0, 0);
   StudyCache parsed(options.study_cache_path, study.root);
   StudyLabels labels = parsed.load_labels(study, [&](int done, int total) {
@@ -103,6 +161,8 @@ std::optional<std::unordered_set<std::string>> stems_with_pairs_files(const Stud
   std::unordered_set<std::string> out;
   for (const std::string& dir : {st.pairs_dir(a, b), st.pairs_dir(b, a)}) {
     std::error_code ec;
+    // A link is not listed: every scene is then looked up, and the lookup refuses it (fixed_pairs.h).
+    if (fs::is_symlink(fs::path(st.root) / "pairs", ec) || fs::is_symlink(dir, ec)) return std::nullopt;
     if (!fs::exists(dir, ec)) {
       if (ec) return std::nullopt;
       continue;
@@ -152,11 +212,16 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
       s.automatic.pairs = s.automatic.registration.pairs;
       s.current.pairs = s.automatic.pairs;
       try {
-        const bool may_have_file = !with_pairs_files || with_pairs_files->count(s.stem);
-        if (auto fixed = may_have_file ? read_fixed_pairs(st, a, b, s.stem, s.automatic.count_a, s.automatic.count_b)
-                                       : std::nullopt) {
-          s.current = std::move(*fixed);
-          s.edited = s.fixed_on_disk = true;
+        if (!with_pairs_files || with_pairs_files->count(s.stem)) {
+          FixedPairsRead read = load_fixed_pairs(st, a, b, s.stem, ga, gb);
+          s.disk_ab = read.version_ab;
+          s.disk_ba = read.version_ba;
+          s.pairs_unusable = read.unusable();
+          s.pairs_problems = std::move(read.problems);
+          if (read.pairs) {
+            s.current = std::move(*read.pairs);
+            s.edited = s.fixed_on_disk = true;
+          }
         }
       } catch (const std::exception& e) {
         errors[k] = e.what();
@@ -181,9 +246,22 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
   const fs::path pairs_dir = fs::path(st.root) / "pairs";
   // (the study's root and pairs/ must be writable for edits to be saved)
   std::error_code ec;
-  read_only_ = ::access(st.root.c_str(), W_OK) != 0 ||
-               (fs::exists(pairs_dir, ec) && ::access(pairs_dir.c_str(), W_OK) != 0);
+  if (::access(st.root.c_str(), W_OK) != 0) set_read_only("the study folder is not writable");
+  else if (fs::exists(pairs_dir, ec) && ::access(pairs_dir.c_str(), W_OK) != 0)
+    set_read_only("the study's pairs/ folder is not writable");
   recompute_performance();
+}
+
+void Session::set_read_only(const std::string& reason) {
+  read_only_ = true;
+  read_only_reason_ = reason;
+}
+
+std::vector<PairsProblem> Session::pairs_problems() const {
+  std::vector<PairsProblem> out;
+  for (const auto& list : scenes_)
+    for (const auto& sc : list) out.insert(out.end(), sc.pairs_problems.begin(), sc.pairs_problems.end());
+  return out;
 }
 
 void Session::select(int pair_index, const std::string& model) {
@@ -376,9 +454,13 @@ SaveJob Session::job_for(int pair, int scene, const std::string& root) const {
   const auto& [a, b] = pairs_[pair];
   const SceneState& s = scenes_[pair][scene];
   SaveJob job;
-  job.path = (fs::path(root) / "pairs" / (a + "__" + b) / (s.stem + ".json")).string();
-  job.also_remove.push_back((fs::path(root) / "pairs" / (b + "__" + a) / (s.stem + ".json")).string());
-  if (s.edited) job.contents = fixed_pairs_json(s.current);
+  job.root = root;
+  job.path = (fs::path(root) / fixed_pairs_relative_path(a, b, s.stem)).string();
+  job.also_remove.push_back((fs::path(root) / fixed_pairs_relative_path(b, a, s.stem)).string());
+  if (s.edited) job.contents = fixed_pairs_json(s.current, labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes);
+  if (root == labels_->study.root) job.expected = {s.disk_ab, s.disk_ba};
+  job.pair = pair;
+  job.stem = s.stem;
   return job;
 }
 
@@ -404,7 +486,11 @@ SaveJob Session::set_scene(int pair, int scene, const FixedPairs& fp, bool edite
   }
   reaudit(pair, scene);
   last_scene_ = scene;
-  return job_for(pair, scene, labels_->study.root);
+  SaveJob job = job_for(pair, scene, labels_->study.root);
+  // From now on this window's version is what the job leaves on disk.
+  s.disk_ab = version_of(job.contents);
+  s.disk_ba = DiskVersion{};
+  return job;
 }
 
 SaveJob Session::apply(int scene, Edit e) {
@@ -472,6 +558,37 @@ std::vector<SaveJob> Session::save_all_to(const std::string& other_root) const {
     for (size_t s = 0; s < scenes_[p].size(); ++s)
       if (scenes_[p][s].edited) jobs.push_back(job_for(static_cast<int>(p), static_cast<int>(s), other_root));
   return jobs;
+}
+
+void Session::reload_scene(int pair, const std::string& stem) {
+  if (pair < 0 || pair >= static_cast<int>(scenes_.size())) return;
+  const auto& list = scenes_[pair];
+  const auto it = std::find_if(list.begin(), list.end(), [&](const SceneState& sc) { return sc.stem == stem; });
+  if (it == list.end()) return;
+  const int scene = static_cast<int>(it - list.begin());
+  const auto& [a, b] = pairs_[pair];
+  FixedPairsRead read = load_fixed_pairs(labels_->study, a, b, stem, labels_->gt_of(a, stem).boxes,
+                                         labels_->gt_of(b, stem).boxes);
+  SceneState& s = scenes_[pair][scene];
+  FixedPairs next;
+  next.pairs = s.automatic.pairs;
+  const bool edited = read.pairs.has_value();
+  if (read.pairs) next = std::move(*read.pairs);
+  std::sort(next.pairs.begin(), next.pairs.end());
+  history_.resize(undo_pos_);
+  history_.push_back({pair, scene, s.current, next, s.edited, edited});
+  ++undo_pos_;
+  set_scene(pair, scene, next, edited);  // its job would write what is on disk: not needed
+  s.disk_ab = read.version_ab;
+  s.disk_ba = read.version_ba;
+  s.fixed_on_disk = edited;
+  s.pairs_unusable = read.unusable();
+  s.pairs_problems = std::move(read.problems);
+}
+
+SaveJob Session::overwrite(SaveJob job, const SaveConflict& conflict) {
+  if (conflict.observed.size() == job.expected.size()) job.expected = conflict.observed;
+  return job;
 }
 
 }  // namespace ipd

@@ -2,8 +2,8 @@
 // image pair (automatic or hand-fixed), edits with undo/redo, and IPD figures kept up to date
 // incrementally (an edit touches one scene's contribution, never the whole study).
 //
-// It owns no thread and does no file I/O after loading: edits produce SaveJobs that the caller writes
-// (the GUI hands them to its saver thread).
+// It owns no thread and does no file I/O after loading (apart from reload_scene, which the user asks for):
+// edits produce SaveJobs that the caller writes (the GUI hands them to its saver thread).
 #pragma once
 
 #include <functional>
@@ -40,9 +40,30 @@ struct SaveJob {
   std::string path;
   std::optional<std::string> contents;  // nullopt: remove the file (back to automatic pairing)
   std::vector<std::string> also_remove;  // the same scene's file under the other name order
+  // The study (or the folder chosen to save into) the paths are in: no symbolic link below it is written
+  // through or deleted through (contained_file.h). Empty: a path the user gave, written as given.
+  std::string root;
+  // What this window last read or wrote at `path` and at each of `also_remove` (same order): the save is
+  // refused with SaveConflict when the disk holds anything else. Empty: not checked.
+  std::vector<DiskVersion> expected;
+  int pair = -1;     // the domain pair (Session::domain_pairs()) and scene stem, for the conflict dialog
+  std::string stem;
 };
 
-// Carries out a save job: atomic write, or removal. Throws IoError naming the file.
+// A save refused because the file changed on disk since this window read or wrote it (another window, or
+// an editor): the edit stays in memory; the user keeps one version (Session::reload_scene or an overwrite).
+struct SaveConflict : IoError {
+  SaveConflict(const std::string& message, std::string file, std::optional<std::string> on_disk,
+               std::vector<DiskVersion> now)
+      : IoError(message), file(std::move(file)), on_disk(std::move(on_disk)), observed(std::move(now)) {}
+  std::string file;                    // the file that changed
+  std::optional<std::string> on_disk;  // its contents now (nullopt: removed)
+  std::vector<DiskVersion> observed;   // what the disk held at each path of the job (its `expected` order)
+};
+
+// Carries out a save job: atomic write, or removal. Throws IoError naming the file (SaveConflict when the
+// disk no longer holds what the job expects; nothing is written then). Every file it would remove is
+// checked before the first write: a symbolic link on the way refuses the whole job.
 // Order: the file read first (`path`) is written (temp, fsync, rename, fsync of the directory) before the
 // other name order is removed; going back to automatic removes the other name order first. A crash or a
 // failure at any instant leaves the old pairs or the new ones, never neither. `hook` is called after each
@@ -55,6 +76,13 @@ struct SceneState {
   FixedPairs current;      // what counts now
   bool edited = false;     // current differs from automatic and is saved as fixed pairs
   bool fixed_on_disk = false;
+  // Problems of the scene's pairs files found when the study was opened (rocks found again by their
+  // boxes, unusable hand pairs: then the automatic pairs count, `pairs_unusable`, and the file is kept
+  // until the scene is edited).
+  std::vector<PairsProblem> pairs_problems;
+  bool pairs_unusable = false;
+  // What this window last read or wrote at pairs/<A>__<B>/<stem>.json and pairs/<B>__<A>/<stem>.json.
+  DiskVersion disk_ab, disk_ba;
 };
 
 struct SceneSummary {
@@ -102,6 +130,14 @@ class Session {
   const StudyCacheStats& study_cache_stats() const { return study_cache_stats_; }  // Session::open only
   const std::vector<std::pair<std::string, std::string>>& domain_pairs() const { return pairs_; }
   bool read_only() const { return read_only_; }
+  // Why the study is read-only ("the study folder is not writable", "held by ..."); empty when it is not.
+  const std::string& read_only_reason() const { return read_only_reason_; }
+  // Makes the session read-only (edits stay in memory, save_all_to still works), e.g. because another
+  // window holds the study's lock (study_lock.h).
+  void set_read_only(const std::string& reason);
+
+  // Every scene's pairs-file problems, by domain pair then scene (for the problem list).
+  std::vector<PairsProblem> pairs_problems() const;
 
   // The domain pair in view (index into domain_pairs()) and the model whose predictions count.
   int pair_index() const { return pair_; }
@@ -152,6 +188,12 @@ class Session {
   // Every hand-edited scene's pairs written under another study root (for read-only studies).
   std::vector<SaveJob> save_all_to(const std::string& other_root) const;
 
+  // After a SaveConflict the user keeps the disk's version: the scene of domain pair `pair` is read again
+  // from its pairs files (as an edit that undo takes back). Throws StudyError for a bad file.
+  void reload_scene(int pair, const std::string& stem);
+  // The user keeps this window's version: the job again, expecting what the disk held at the conflict.
+  static SaveJob overwrite(SaveJob job, const SaveConflict& conflict);
+
  private:
   struct HistoryEntry {
     int pair, scene;
@@ -177,6 +219,7 @@ class Session {
   bool swapped_ = false;
   std::string model_;
   bool read_only_ = false;
+  std::string read_only_reason_;
   double conf_threshold_ = 0;
   // domain -> model -> stem -> performance values; and the filtered predictions they came from
   // (shared between snapshots: replaced whole when the threshold changes, never modified)

@@ -5,11 +5,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <set>
 
 #include "core/util/atomic_file.h"
-#include "core/util/json_input.h"
 
 namespace fs = std::filesystem;
 
@@ -312,110 +310,6 @@ SceneMatch match_scenes(const Domain& a, const Domain& b) {
   std::set_difference(a.stems.begin(), a.stems.end(), b.stems.begin(), b.stems.end(), std::back_inserter(m.only_a));
   std::set_difference(b.stems.begin(), b.stems.end(), a.stems.begin(), a.stems.end(), std::back_inserter(m.only_b));
   return m;
-}
-
-namespace {
-
-constexpr int kMaxJsonDepth = 16;  // {"pairs": [[i, j]]} needs 3
-
-// A rock index within [0, limit), without narrowing (4294967296 is not 0).
-bool as_index(const nlohmann::json& v, int limit, int* out) {
-  long long x = -1;
-  if (v.is_number_unsigned()) {
-    const auto u = v.get<std::uint64_t>();
-    if (u >= static_cast<std::uint64_t>(limit)) return false;
-    x = static_cast<long long>(u);
-  } else if (v.is_number_integer()) {
-    x = v.get<std::int64_t>();
-  } else {
-    return false;
-  }
-  if (x < 0 || x >= limit) return false;
-  *out = static_cast<int>(x);
-  return true;
-}
-
-FixedPairs parse_fixed_pairs(const std::string& text, const std::string& file, bool swapped, int count_a,
-                             int count_b) {
-  const nlohmann::json j = parse_json_input(text, file, "{\"pairs\": [[i, j], ...]}", kMaxJsonDepth);
-  if (!j.is_object() || !j.contains("pairs") || !j["pairs"].is_array())
-    throw StudyError(file + ": expected an object with a \"pairs\" array, like {\"pairs\": [[0, 2], [1, 0]]}");
-  for (const auto& item : j.items())
-    if (item.key() != "pairs" && item.key() != "excluded_a" && item.key() != "excluded_b")
-      throw StudyError(fmt::format("{}: unknown key \"{}\" (expected pairs, excluded_a, excluded_b)", file,
-                                   item.key().size() > 40 ? item.key().substr(0, 37) + "..." : item.key()));
-  FixedPairs fp;
-  // The file's own order: first index belongs to the first domain of its directory name.
-  const int n_first = swapped ? count_b : count_a, n_second = swapped ? count_a : count_b;
-  std::set<int> used_first, used_second;
-  int k = 0;
-  for (const auto& p : j["pairs"]) {
-    if (!p.is_array() || p.size() != 2 || !p[0].is_number_integer() || !p[1].is_number_integer())
-      throw StudyError(fmt::format("{}: pair {} must be two integer rock indices, found {}", file, k + 1, describe_json(p)));
-    int x = -1, y = -1;
-    if (!as_index(p[0], n_first, &x) || !as_index(p[1], n_second, &y))
-      throw StudyError(fmt::format("{}: pair {} [{}, {}] is out of range: the images have {} and {} rocks", file,
-                                   k + 1, describe_json(p[0]), describe_json(p[1]), n_first, n_second));
-    if (!used_first.insert(x).second || !used_second.insert(y).second)
-      throw StudyError(fmt::format("{}: pair {} [{}, {}] uses a rock that is already paired", file, k + 1, x, y));
-    fp.pairs.emplace_back(swapped ? y : x, swapped ? x : y);
-    ++k;
-  }
-  auto read_excluded = [&](const char* key, int limit, std::vector<int>* out) {
-    if (!j.contains(key)) return;
-    if (!j[key].is_array()) throw StudyError(fmt::format("{}: \"{}\" must be an array of rock indices", file, key));
-    for (const auto& v : j[key]) {
-      int x = -1;
-      if (!as_index(v, limit, &x))
-        throw StudyError(fmt::format("{}: \"{}\" holds {}, expected a rock index below {}", file, key, describe_json(v), limit));
-      out->push_back(x);
-    }
-  };
-  read_excluded("excluded_a", n_first, swapped ? &fp.excluded_b : &fp.excluded_a);
-  read_excluded("excluded_b", n_second, swapped ? &fp.excluded_a : &fp.excluded_b);
-  std::sort(fp.pairs.begin(), fp.pairs.end());
-  return fp;
-}
-
-}  // namespace
-
-std::optional<FixedPairs> read_fixed_pairs(const Study& study, const std::string& a, const std::string& b,
-                                           const std::string& stem, int count_a, int count_b,
-                                           std::vector<std::string>* warnings) {
-  std::optional<FixedPairs> found;
-  fs::path found_path;
-  for (const bool swapped : {false, true}) {
-    const fs::path p = fs::path(swapped ? study.pairs_dir(b, a) : study.pairs_dir(a, b)) / (stem + ".json");
-    try {
-      if (file_kind(p.string()) == FileKind::kMissing) continue;  // a dangling link or no access: IoError
-      if (found) {
-        // Both orders exist (e.g. a save interrupted before it removed the old name): the first one counts.
-        if (warnings)
-          warnings->push_back(fmt::format("{}: ignored: {} holds this scene's pairs too and is read first; remove one",
-                                          p.string(), found_path.string()));
-        break;
-      }
-      found = parse_fixed_pairs(read_file(p.string()), p.string(), swapped, count_a, count_b);
-      found_path = p;
-    } catch (const IoError& e) {
-      throw StudyError(e.what());
-    }
-  }
-  return found;
-}
-
-std::string fixed_pairs_json(const FixedPairs& fp) {
-  nlohmann::json j;
-  j["pairs"] = nlohmann::json::array();
-  for (const auto& [x, y] : fp.pairs) j["pairs"].push_back({x, y});
-  if (!fp.excluded_a.empty()) j["excluded_a"] = fp.excluded_a;
-  if (!fp.excluded_b.empty()) j["excluded_b"] = fp.excluded_b;
-  return j.dump() + "\n";
-}
-
-void write_fixed_pairs(const Study& study, const std::string& a, const std::string& b, const std::string& stem,
-                       const FixedPairs& fp) {
-  write_file_atomically((fs::path(study.pairs_dir(a, b)) / (stem + ".json")).string(), fixed_pairs_json(fp));
 }
 
 }  // namespace ipd

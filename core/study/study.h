@@ -4,7 +4,7 @@
 //   STUDY/<domain>/labels/<stem>.txt                  GT boxes, YOLO txt
 //   STUDY/<domain>/images/<stem>.<png|jpg|...>        optional pictures
 //   STUDY/<domain>/predictions/<model>/<stem>.txt     detector output, YOLO txt + confidence
-//   STUDY/pairs/<A>__<B>/<stem>.json                  fixed rock pairs, replacing registration
+//   STUDY/pairs/<A>__<B>/<stem>.json                  fixed rock pairs, replacing registration (fixed_pairs.h)
 #pragma once
 
 #include <map>
@@ -16,6 +16,7 @@
 #include "core/util/errors.h"
 #include "core/io/label_io.h"
 #include "core/registration/registration.h"
+#include "core/study/fixed_pairs.h"
 
 namespace ipd {
 
@@ -65,22 +66,5 @@ struct SceneMatch {
   std::vector<std::string> common, only_a, only_b;
 };
 SceneMatch match_scenes(const Domain& a, const Domain& b);
-
-// Hand-fixed pairs for one image pair, oriented as (index in A, index in B).
-struct FixedPairs {
-  RockPairs pairs;
-  std::vector<int> excluded_a, excluded_b;  // rocks left out of the IPD on purpose
-};
-
-// Reads pairs/<A>__<B>/<stem>.json or pairs/<B>__<A>/<stem>.json (swapping indices); nullopt when neither
-// exists. Throws StudyError naming the file for bad JSON, unknown keys, indices out of range, a rock paired
-// twice, a dangling link or an unreadable file. When both exist, A__B counts and a warning names B__A.
-std::optional<FixedPairs> read_fixed_pairs(const Study& study, const std::string& a, const std::string& b,
-                                           const std::string& stem, int count_a, int count_b,
-                                           std::vector<std::string>* warnings = nullptr);
-// Writes pairs/<A>__<B>/<stem>.json atomically.
-void write_fixed_pairs(const Study& study, const std::string& a, const std::string& b, const std::string& stem,
-                       const FixedPairs& pairs);
-std::string fixed_pairs_json(const FixedPairs& pairs);
 
 }  // namespace ipd

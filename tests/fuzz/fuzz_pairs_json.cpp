@@ -1,5 +1,6 @@
 // Fuzzes the fixed-pairs JSON reader (pairs/<A>__<B>/<stem>.json, read in either name order) as `ipd table`
-// and ipd-studio call it. Accepted pairs must be in range and one-to-one; errors are StudyErrors naming the file.
+// and ipd-studio call it, with stored boxes bound to the rocks. Accepted pairs must be in range and one-to-one;
+// errors are StudyErrors naming the file.
 #include <set>
 
 #include "tests/fuzz/fuzz_support.h"
@@ -11,6 +12,13 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   ipd::Study study;
   study.root = root.string();
   constexpr int kCountA = 16, kCountB = 12;  // rocks in the real and the synthetic picture
+  // Distinct boxes on a grid, so a stored box finds its rock again (or doesn't).
+  static const auto rocks = [](int n) {
+    std::vector<ipd::Box> out(n);
+    for (int k = 0; k < n; ++k) out[k].cx = 0.05 + 0.05 * k, out[k].cy = 0.5, out[k].w = out[k].h = 0.04;
+    return out;
+  };
+  static const std::vector<ipd::Box> gt_a = rocks(kCountA), gt_b = rocks(kCountB);
   // Odd-sized inputs go in the other name order, so the swapped reading is fuzzed too.
   const bool swapped = size % 2 == 1;
   const std::filesystem::path file = std::filesystem::path(swapped ? study.pairs_dir("synth", "real")
@@ -19,7 +27,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::filesystem::remove_all(root / "pairs", ec);
   ipd_fuzz::write_bytes(file, data, size);
   try {
-    const auto fp = ipd::read_fixed_pairs(study, "real", "synth", "scene", kCountA, kCountB);
+    const auto fp = ipd::read_fixed_pairs(study, "real", "synth", "scene", gt_a, gt_b);
     if (!fp) ipd_fuzz::fail("the pairs file was not found", file.string());
     std::set<int> used_a, used_b;
     for (const auto& [a, b] : fp->pairs) {

@@ -95,6 +95,14 @@ write(P, "truncated.json", '{"pairs": [[0, 1], [2')
 write(P, "trailing_garbage.json", '{"pairs": []} {"pairs": [[0, 0]]}')
 write(P, "empty.json", "")
 write(P, "invalid_utf8.json", b'{"pairs": [], "\xff\xfe": 1}')
+# Stored boxes (fuzz_pairs_json's rocks: cx = 0.05 + 0.05 k, cy 0.5, w = h = 0.04): at their rows, moved, gone.
+rock = lambda i, k: [i, 0.05 + 0.05 * k, 0.5, 0.04, 0.04]
+write(P, "rocks_bound.json", json.dumps({"pairs": [[0, 1], [2, 3]], "excluded_a": [4],
+                                         "rocks_a": [rock(0, 0), rock(2, 2), rock(4, 4)], "rocks_b": [rock(1, 1), rock(3, 3)]}))
+write(P, "rocks_moved.json", json.dumps({"pairs": [[20, 1]], "rocks_a": [rock(20, 5)], "rocks_b": [rock(1, 11)]}))
+write(P, "rocks_gone.json", json.dumps({"pairs": [[0, 1]], "rocks_a": [[0, 0.9, 0.9, 0.01, 0.01]], "rocks_b": [rock(1, 1)]}))
+write(P, "rocks_bad_shapes.json", '{"pairs": [[0, 1]], "rocks_a": [[0], [0, "x", 1, 1, 1], [1e400, 0, 0, 0, 0]], "rocks_b": {}}')
+write(P, "rocks_missing_box.json", json.dumps({"pairs": [[0, 1]], "rocks_a": [], "rocks_b": [rock(1, 1)]}))
 
 # --- COCO (annotations, optionally "\n----results----\n" and the detection results) --------------------------
 C = "fuzz_coco"

@@ -48,6 +48,13 @@ struct StudyView {
   // Status bar inputs.
   int pending_saves = 0;
   std::vector<std::string> failed_saves;
+  // Saves refused because someone else changed the file (the conflict dialog shows the first).
+  struct Conflict {
+    std::string key;      // the save's file (UiCommands::keep_mine / keep_theirs)
+    std::string message;  // "FILE: changed on disk since ..."
+    std::string mine, theirs;  // both versions, summarised ("3 pairs, 1 excluded rock: {...}")
+  };
+  std::vector<Conflict> conflicts;
   bool busy = false;  // the worker is computing
   std::string loading;  // a first look is shown while the study loads: how far it got
   const SessionStatistics* stats = nullptr;  // intervals etc. (stats_panels.h), computed off the UI thread
@@ -106,6 +113,7 @@ struct UiCommands {
   bool export_dialog = false;   // File > Export figure… (the figure dialog hook)
   std::string open_study;       // File > Open study… / Recent
   bool retry_saves = false;
+  std::string keep_mine, keep_theirs;  // a conflict's key: the version the user keeps
   bool quit = false;            // confirmed (or nothing unsaved)
   bool next_suspect = false;    // `N`: the next suspect pair anywhere in the study
 };

@@ -110,7 +110,13 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   const Session& s = *v.session;
   const Study& st = s.study();
   ImGui::TextWrapped("%s", st.root.c_str());
-  if (s.read_only()) ImGui::TextColored({1, 0.6f, 0.2f, 1}, "read-only: edits stay in memory (File > Save edits as)");
+  if (s.read_only()) {
+    // Why matters: a second window on the same study is read-only so that the first one's edits are not lost.
+    ImGui::PushTextWrapPos(0);
+    ImGui::TextColored({1, 0.6f, 0.2f, 1}, "read-only%s%s: edits stay in memory (File > Save edits as)",
+                       s.read_only_reason().empty() ? "" : ": ", s.read_only_reason().c_str());
+    ImGui::PopTextWrapPos();
+  }
   auto domain_combo = [&](const char* label, const std::string& current, std::string* choice) {
     if (ImGui::BeginCombo(label, current.c_str())) {
       for (const auto& d : st.domains)

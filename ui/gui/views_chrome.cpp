@@ -179,7 +179,37 @@ void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out) {
   else ImGui::NewLine();
 }
 
+namespace {
+// A save that would have overwritten someone else's change: both versions, and the user keeps one.
+void draw_conflict_dialog(const StudyView& v, UiCommands& out) {
+  const char* title = "Hand pairs changed on disk";
+  if (!v.conflicts.empty() && !ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  if (v.conflicts.empty()) {
+    ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+    return;
+  }
+  const StudyView::Conflict& c = v.conflicts.front();
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40);
+  ImGui::TextColored({1, 0.6f, 0.2f, 1}, "%s", c.message.c_str());
+  ImGui::TextUnformatted("Nothing was overwritten; this window's edit is kept in memory.");
+  ImGui::Separator();
+  ImGui::TextUnformatted("This window:");
+  ImGui::TextWrapped("%s", c.mine.c_str());
+  ImGui::TextUnformatted("On disk now:");
+  ImGui::TextWrapped("%s", c.theirs.c_str());
+  ImGui::PopTextWrapPos();
+  if (ImGui::Button("Keep this window's")) out.keep_mine = c.key;
+  ImGui::SameLine();
+  if (ImGui::Button("Keep the file on disk")) out.keep_theirs = c.key;
+  if (v.conflicts.size() > 1) ImGui::Text("%zu more conflict(s) after this one", v.conflicts.size() - 1);
+  ImGui::EndPopup();
+}
+}  // namespace
+
 void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out) {
+  draw_conflict_dialog(v, out);
   if (ui.show_help) ImGui::OpenPopup("Shortcuts");
   if (ImGui::BeginPopupModal("Shortcuts", &ui.show_help, ImGuiWindowFlags_AlwaysAutoResize)) {
     if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV)) {

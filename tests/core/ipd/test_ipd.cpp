@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/ipd/ipd.h"
+#include "core/util/atomic_file.h"
 #include "core/report/table_format.h"
 #include "tests/support/test_support.h"
 
@@ -143,13 +144,19 @@ TEST(Ipd, FixedPairsRoundTripAtomically) {
   FixedPairs fp;
   fp.pairs = {{0, 1}, {1, 0}};
   fp.excluded_b = {0};
-  write_fixed_pairs(s, "real", "synth", "s1", fp);
-  const auto back = read_fixed_pairs(s, "real", "synth", "s1", 2, 2);
+  const StudyLabels labels = load_labels(s);
+  const auto& real = labels.gt_of("real", "s1").boxes;
+  const auto& synth = labels.gt_of("synth", "s1").boxes;
+  write_fixed_pairs(s, "real", "synth", "s1", fp, real, synth);
+  EXPECT_EQ(read_file(d / "pairs/real__synth/s1.json"),
+            "{\"excluded_b\":[0],\"pairs\":[[0,1],[1,0]],\"rocks_a\":[[0,0.2,0.2,0.1,0.1],[1,0.6,0.6,0.1,0.1]],"
+            "\"rocks_b\":[[0,0.6,0.6,0.1,0.1],[1,0.2,0.2,0.1,0.1]]}\n");
+  const auto back = read_fixed_pairs(s, "real", "synth", "s1", real, synth);
   ASSERT_TRUE(back.has_value());
   EXPECT_EQ(back->pairs, fp.pairs);
   EXPECT_EQ(back->excluded_b, fp.excluded_b);
   // Read from the other side, indices swap.
-  const auto swapped = read_fixed_pairs(s, "synth", "real", "s1", 2, 2);
+  const auto swapped = read_fixed_pairs(s, "synth", "real", "s1", synth, real);
   EXPECT_EQ(swapped->pairs, (RockPairs{{0, 1}, {1, 0}}));
   EXPECT_EQ(swapped->excluded_a, (std::vector<int>{0}));
 }

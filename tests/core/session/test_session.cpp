@@ -56,7 +56,7 @@ TEST(Session, PairUnpairUndoRedoAndSaveAreSeenByTheEngine) {
   EXPECT_TRUE(s.summary(0).edited);
   EXPECT_EQ(job.path, d / "pairs/real__synth/s1.json");
   ASSERT_TRUE(job.contents.has_value());
-  EXPECT_EQ(*job.contents, "{\"pairs\":[[0,1]]}\n");
+  EXPECT_EQ(*job.contents, "{\"pairs\":[[0,1]],\"rocks_a\":[[0,0.2,0.2,0.1,0.1]],\"rocks_b\":[[1,0.2,0.2,0.1,0.1]]}\n");
   run_save_job(job);
   EXPECT_NEAR(table_ipd_from_disk(d.path()), 2.0 / 3, 1e-12);
   // Pair real 0 with synth 0: replaces real 0's old partner. perf 1 vs 0 -> IPD 1.
@@ -96,7 +96,9 @@ TEST(Session, ExcludeAndSwappedView) {
   const SaveJob job = s.apply(0, Edit::toggle_exclude(Side::kA, 0));
   EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
   EXPECT_TRUE(s.excluded(Side::kA, 0, 0));
-  EXPECT_EQ(*job.contents, "{\"excluded_b\":[0],\"pairs\":[[0,1],[1,0]]}\n");
+  EXPECT_EQ(*job.contents,
+            "{\"excluded_b\":[0],\"pairs\":[[0,1],[1,0]],\"rocks_a\":[[0,0.2,0.2,0.1,0.1],[1,0.6,0.6,0.1,0.1]],"
+            "\"rocks_b\":[[0,0.6,0.6,0.1,0.1],[1,0.2,0.2,0.1,0.1]]}\n");
   // The header: one pair counted; the excluded rock's partner (real 1, on the right) is not unpaired.
   EXPECT_EQ(s.summary(0).pairs, 1);
   EXPECT_EQ(s.summary(0).unpaired_a, 0);

@@ -1,0 +1,223 @@
+#include "core/util/contained_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fmt/format.h>
+#include <random>
+#include <vector>
+
+namespace ipd {
+
+namespace {
+
+std::string errno_text(int err) { return std::strerror(err); }
+
+// An open folder, closed when it goes out of scope.
+class Fd {
+ public:
+  explicit Fd(int fd = -1) : fd_(fd) {}
+  Fd(Fd&& o) noexcept : fd_(o.fd_) { o.fd_ = -1; }
+  Fd& operator=(Fd&& o) noexcept {
+    std::swap(fd_, o.fd_);
+    return *this;
+  }
+  Fd(const Fd&) = delete;
+  ~Fd() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  int get() const { return fd_; }
+
+ private:
+  int fd_;
+};
+
+std::string link_refused(const std::string& path, const char* action) {
+  return fmt::format("{}: is a symbolic link; {} through it is refused (links inside a study are never followed)",
+                     path, action);
+}
+
+// The folder names of `relative` and its file name; "." "..", empty parts and NUL bytes are refused, so the
+// walk can't climb out of root.
+std::vector<std::string> split_relative(const std::string& root, const std::string& relative) {
+  std::vector<std::string> parts;
+  size_t pos = 0;
+  while (pos <= relative.size()) {
+    const size_t slash = std::min(relative.find('/', pos), relative.size());
+    parts.push_back(relative.substr(pos, slash - pos));
+    pos = slash + 1;
+  }
+  for (const auto& p : parts)
+    if (p.empty() || p == "." || p == ".." || p.find('\0') != std::string::npos)
+      throw IoError(fmt::format("{}/{}: expected a plain path inside the folder", root, relative));
+  return parts;
+}
+
+// Opens the folders of `parts` (all but the last) below root, without following a link. Missing folders
+// are created when `create`; otherwise a missing one gives an Fd of -1. `shown` receives the path so far.
+Fd open_folders(const std::string& root, const std::vector<std::string>& parts, bool create, const char* action,
+                std::string* shown) {
+  Fd dir(::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+  if (dir.get() < 0) {
+    if (errno == ENOENT && !create) return Fd();
+    throw IoError(fmt::format("{}: cannot open the folder: {}", root, errno_text(errno)));
+  }
+  *shown = root.size() > 1 && root.back() == '/' ? root.substr(0, root.size() - 1) : root;
+  for (size_t k = 0; k + 1 < parts.size(); ++k) {
+    *shown += "/" + parts[k];
+    int fd = ::openat(dir.get(), parts[k].c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0 && errno == ENOENT) {
+      if (!create) return Fd();
+      if (::mkdirat(dir.get(), parts[k].c_str(), 0755) != 0 && errno != EEXIST)
+        throw IoError(fmt::format("{}: cannot create the folder: {}", *shown, errno_text(errno)));
+      fd = ::openat(dir.get(), parts[k].c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    }
+    if (fd < 0) {
+      const int err = errno;
+      struct stat st {};
+      if (::fstatat(dir.get(), parts[k].c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0) {
+        if (S_ISLNK(st.st_mode)) throw IoError(link_refused(*shown, action));
+        if (!S_ISDIR(st.st_mode)) throw IoError(fmt::format("{}: is a file, expected a folder", *shown));
+      }
+      throw IoError(fmt::format("{}: cannot open the folder: {}", *shown, errno_text(err)));
+    }
+    dir = Fd(fd);
+  }
+  *shown += "/" + parts.back();
+  return dir;
+}
+
+// What the last part is, examined without following it: 0 when missing, else st_mode's type bits.
+mode_t type_at(int dir, const std::string& name, const std::string& shown) {
+  struct stat st {};
+  if (::fstatat(dir, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0) return st.st_mode & S_IFMT;
+  if (errno == ENOENT) return 0;
+  throw IoError(fmt::format("{}: cannot examine: {}", shown, errno_text(errno)));
+}
+
+void write_all(int fd, const std::string& contents, const std::string& shown) {
+  size_t done = 0;
+  while (done < contents.size()) {
+    const ssize_t n = ::write(fd, contents.data() + done, contents.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw IoError(shown + ": cannot write: " + errno_text(errno));
+    }
+    done += static_cast<size_t>(n);
+  }
+  if (::fsync(fd) != 0) throw IoError(shown + ": cannot write: " + errno_text(errno));
+}
+
+}  // namespace
+
+void write_file_beneath(const std::string& root, const std::string& relative, const std::string& contents,
+                        const WriteStepHook& hook) {
+  const std::vector<std::string> parts = split_relative(root, relative);
+  std::string shown;
+  const Fd dir = open_folders(root, parts, true, "saving", &shown);
+  if (hook) hook("folder opened");
+  const std::string& name = parts.back();
+  const mode_t type = type_at(dir.get(), name, shown);
+  if (type == S_IFLNK) throw IoError(link_refused(shown, "saving"));
+  if (type != 0 && type != S_IFREG) throw IoError(shown + ": is not a regular file; not replaced");
+  if (hook) hook("checked");
+  std::random_device rd;
+  const std::string tmp = name + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(rd() & 0xffff);
+  // O_EXCL | O_NOFOLLOW: a link planted under the temp name is never written through.
+  const int fd = ::openat(dir.get(), tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0) throw IoError(shown + ": cannot write: " + errno_text(errno));
+  try {
+    write_all(fd, contents, shown);
+  } catch (...) {
+    ::close(fd);
+    ::unlinkat(dir.get(), tmp.c_str(), 0);
+    throw;
+  }
+  if (::close(fd) != 0) {
+    const std::string why = errno_text(errno);
+    ::unlinkat(dir.get(), tmp.c_str(), 0);
+    throw IoError(shown + ": cannot write: " + why);
+  }
+  if (hook) hook("temp written");
+  // renameat replaces whatever is at `name` now (even a link swapped in after the check) without following it.
+  if (::renameat(dir.get(), tmp.c_str(), dir.get(), name.c_str()) != 0) {
+    const std::string why = errno_text(errno);
+    ::unlinkat(dir.get(), tmp.c_str(), 0);
+    throw IoError(shown + ": cannot replace: " + why);
+  }
+  if (hook) hook("renamed");
+  ::fsync(dir.get());  // some file systems refuse it; the rename itself is still atomic
+  if (hook) hook("directory synced");
+}
+
+bool remove_file_beneath(const std::string& root, const std::string& relative, const WriteStepHook& hook) {
+  const std::vector<std::string> parts = split_relative(root, relative);
+  std::string shown;
+  const Fd dir = open_folders(root, parts, false, "deleting", &shown);
+  if (dir.get() < 0) return false;
+  if (hook) hook("folder opened");
+  const std::string& name = parts.back();
+  const mode_t type = type_at(dir.get(), name, shown);
+  if (type == 0) return false;
+  if (type == S_IFLNK) throw IoError(link_refused(shown, "deleting"));
+  if (type == S_IFDIR) throw IoError(shown + ": is a folder, expected a file; not removed");
+  if (hook) hook("checked");
+  // unlinkat removes a name in this folder; should a link have been swapped in, the link goes, not its target.
+  if (::unlinkat(dir.get(), name.c_str(), 0) != 0) {
+    if (errno == ENOENT) return false;
+    throw IoError(shown + ": cannot remove: " + errno_text(errno));
+  }
+  ::fsync(dir.get());  // the removal is durable before the next step depends on it
+  return true;
+}
+
+void check_beneath(const std::string& root, const std::string& relative) {
+  const std::vector<std::string> parts = split_relative(root, relative);
+  std::string shown;
+  const Fd dir = open_folders(root, parts, false, "saving", &shown);
+  if (dir.get() >= 0 && type_at(dir.get(), parts.back(), shown) == S_IFLNK)
+    throw IoError(link_refused(shown, "saving"));
+}
+
+std::optional<std::string> read_file_beneath(const std::string& root, const std::string& relative,
+                                             size_t max_bytes) {
+  const std::vector<std::string> parts = split_relative(root, relative);
+  std::string shown;
+  const Fd dir = open_folders(root, parts, false, "reading", &shown);
+  if (dir.get() < 0) return std::nullopt;
+  // O_NONBLOCK: a FIFO must not make open() hang; O_NOFOLLOW: a link is refused, not followed.
+  const int fd = ::openat(dir.get(), parts.back().c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT) return std::nullopt;
+    if (errno == ELOOP) throw IoError(link_refused(shown, "reading"));
+    throw IoError(shown + ": cannot read: " + errno_text(errno));
+  }
+  const Fd file(fd);
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) throw IoError(shown + ": cannot read: " + errno_text(errno));
+  if (S_ISDIR(st.st_mode)) throw IoError(shown + ": is a directory, expected a file");
+  if (!S_ISREG(st.st_mode)) throw IoError(shown + ": expected a regular file");
+  if (static_cast<unsigned long long>(st.st_size) > max_bytes)
+    throw IoError(fmt::format("{}: is {} MB, larger than the {} MB limit for this kind of file", shown,
+                              st.st_size >> 20, max_bytes >> 20));
+  std::string out;
+  char buf[65536];
+  for (;;) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw IoError(shown + ": cannot read: " + errno_text(errno));
+    }
+    if (n == 0) break;
+    if (out.size() + static_cast<size_t>(n) > max_bytes)
+      throw IoError(fmt::format("{}: grew beyond the {} MB limit for this kind of file while being read", shown,
+                                max_bytes >> 20));
+    out.append(buf, static_cast<size_t>(n));
+  }
+  return out;
+}
+
+}  // namespace ipd

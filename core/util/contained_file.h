@@ -1,0 +1,38 @@
+// Files below a folder the user chose (a study), reached without ever following a symbolic link below it.
+//
+// A study is untrusted input: a link inside it (`pairs -> /x`, `pairs/B__A -> /victim`) must not make the
+// tool write, delete or read outside it. Every folder on the way is opened with O_NOFOLLOW from the one
+// above it, and the file is then written, removed or read relative to that open folder, so a link swapped
+// in after a check is never followed either. The root itself may be a link: the user named it.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+
+#include "core/util/atomic_file.h"
+
+namespace ipd {
+
+// Replaces root/relative with `contents` atomically (temp file, fsync, rename, fsync of the folder),
+// creating missing folders. Refuses with IoError "PATH: is a symbolic link; ..." when a folder below root
+// or the file itself is one. `hook` steps: "folder opened", "checked", "temp written", "renamed",
+// "directory synced".
+void write_file_beneath(const std::string& root, const std::string& relative, const std::string& contents,
+                        const WriteStepHook& hook = {});
+
+// Removes root/relative durably (fsync of its folder); false when it was not there. Refuses (IoError) a
+// symbolic link, whether the file or a folder on the way. `hook` steps: "folder opened", "checked".
+bool remove_file_beneath(const std::string& root, const std::string& relative, const WriteStepHook& hook = {});
+
+// Checks that the folders of root/relative are real folders (or missing) and the file is not a link,
+// without changing anything ("saving through it is refused"): a save checks every file it will write or
+// remove before it changes the first one.
+void check_beneath(const std::string& root, const std::string& relative);
+
+// Reads root/relative (a regular file of at most `max_bytes`); nullopt when it or a folder on the way is
+// missing. Throws IoError naming the path for a symbolic link, a non-regular file, or a read error.
+std::optional<std::string> read_file_beneath(const std::string& root, const std::string& relative,
+                                             size_t max_bytes = kMaxReadBytes);
+
+}  // namespace ipd

@@ -1,0 +1,230 @@
+// Hand pairs are bound to rocks, not to row numbers: a label file re-exported with its rows reordered, a
+// row inserted or a paired rock removed never moves a hand pair onto another rock without a word.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/ipd/ipd.h"
+#include "core/session/session.h"
+#include "core/util/atomic_file.h"
+#include "tests/support/test_support.h"
+
+namespace ipd {
+namespace {
+
+// real rock 0 at (0.2, 0.2) (perf 1), rock 1 at (0.6, 0.6) (perf 1/3); synth rock 0 at (0.6, 0.6) (perf 0),
+// rock 1 at (0.2, 0.2) (perf 1/3). Hand pair real 0 <-> synth 1 only: IPD |1 - 1/3| = 2/3.
+const char* kReal = "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n";
+const char* kSynth = "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n";
+const char* kHandPairs =
+    R"({"pairs": [[0, 1]], "rocks_a": [[0, 0.2, 0.2, 0.1, 0.1]], "rocks_b": [[1, 0.2, 0.2, 0.1, 0.1]]})";
+
+void write_study(const test::TempDir& d, const std::string& real, const std::string& synth) {
+  test::write_text(d / "real/labels/s1.txt", real);
+  test::write_text(d / "synth/labels/s1.txt", synth);
+  test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
+  test::write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
+}
+
+CrossTable table_of(const std::string& root) { return compute_cross_table(load_labels(open_study(root)), {}); }
+
+TEST(FixedPairsBinding, RocksAtTheirRowsReadWithoutAWord) {
+  test::TempDir d;
+  write_study(d, kReal, kSynth);
+  test::write_text(d / "pairs/real__synth/s1.json", kHandPairs);
+  const CrossTable t = table_of(d.path());
+  EXPECT_NEAR(t.cells[0].ipd, 2.0 / 3, 1e-12);
+  EXPECT_EQ(t.fixed_scenes, 1);
+  EXPECT_TRUE(t.pairs_problems.empty());
+  EXPECT_TRUE(t.warnings.empty());
+}
+
+TEST(FixedPairsBinding, ReorderedRowsKeepThePairsOnTheirRocks) {
+  test::TempDir d;
+  // real re-exported with its two rows swapped: by row number the pair would be real (0.6, 0.6) <-> synth 1,
+  // |1/3 - 1/3| = 0.
+  write_study(d, "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n", kSynth);
+  const std::string f = d / "pairs/real__synth/s1.json";
+  test::write_text(f, kHandPairs);
+  const CrossTable t = table_of(d.path());
+  EXPECT_NEAR(t.cells[0].ipd, 2.0 / 3, 1e-12);
+  ASSERT_EQ(t.cells[0].per_scene.size(), 1u);
+  EXPECT_EQ(t.cells[0].per_scene[0].counted, (RockPairs{{1, 1}}));
+  ASSERT_EQ(t.pairs_problems.size(), 1u);
+  EXPECT_EQ(t.pairs_problems[0].file, f);
+  EXPECT_EQ(t.pairs_problems[0].line, 0);
+  EXPECT_FALSE(t.pairs_problems[0].unusable);
+  const std::string message =
+      "1 hand-paired rock(s) changed rows in their label files and were found again by their boxes: real 0 -> 1";
+  EXPECT_EQ(t.pairs_problems[0].message, message);
+  ASSERT_EQ(t.warnings.size(), 1u);
+  EXPECT_EQ(t.warnings[0], f + ": " + message);
+}
+
+TEST(FixedPairsBinding, AnInsertedRowShiftsNoPair) {
+  test::TempDir d;
+  // A new synth rock at the top: the paired synth rock (0.2, 0.2) is row 2 now.
+  write_study(d, kReal, "0 0.9 0.9 0.05 0.05\n" + std::string(kSynth));
+  test::write_text(d / "pairs/real__synth/s1.json", kHandPairs);
+  const CrossTable t = table_of(d.path());
+  EXPECT_NEAR(t.cells[0].ipd, 2.0 / 3, 1e-12);
+  EXPECT_EQ(t.cells[0].per_scene[0].counted, (RockPairs{{0, 2}}));
+  EXPECT_EQ(t.cells[0].unpaired_a, 1);
+  EXPECT_EQ(t.cells[0].unpaired_b, 2);
+  ASSERT_EQ(t.pairs_problems.size(), 1u);
+  EXPECT_EQ(t.pairs_problems[0].message,
+            "1 hand-paired rock(s) changed rows in their label files and were found again by their boxes: synth 1 -> 2");
+}
+
+TEST(FixedPairsBinding, ExcludedRocksAndTheOtherNameOrderAreBoundToo) {
+  test::TempDir d;
+  write_study(d, "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n", kSynth);  // real rows swapped
+  // Saved as synth__real: first index synth. Pairs synth 1 <-> real 0 and synth 0 <-> real 1; real 1 excluded.
+  test::write_text(d / "pairs/synth__real/s1.json",
+                   R"({"pairs": [[1, 0], [0, 1]], "excluded_b": [1],
+                       "rocks_a": [[0, 0.6, 0.6, 0.1, 0.1], [1, 0.2, 0.2, 0.1, 0.1]],
+                       "rocks_b": [[0, 0.2, 0.2, 0.1, 0.1], [1, 0.6, 0.6, 0.1, 0.1]]})");
+  const CrossTable t = table_of(d.path());
+  // real (0.6, 0.6) is excluded, so only real (0.2, 0.2) <-> synth (0.2, 0.2) counts: 2/3.
+  EXPECT_NEAR(t.cells[0].ipd, 2.0 / 3, 1e-12);
+  EXPECT_EQ(t.cells[0].per_scene[0].counted, (RockPairs{{1, 1}}));
+  EXPECT_EQ(t.pairings[0][0].excluded_a, (std::vector<int>{0}));
+  ASSERT_EQ(t.pairs_problems.size(), 1u);
+  EXPECT_EQ(t.pairs_problems[0].message,
+            "2 hand-paired rock(s) changed rows in their label files and were found again by their boxes: "
+            "real 0 -> 1, 1 -> 0");
+}
+
+TEST(FixedPairsBinding, ARemovedRockMakesTheScenesHandPairsUnusable) {
+  test::TempDir d;
+  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n");  // the paired synth rock (0.2, 0.2) is gone
+  const double registration_only = table_of(d.path()).cells[0].ipd;
+  const std::string f = d / "pairs/real__synth/s1.json";
+  test::write_text(f, kHandPairs);
+  const CrossTable t = table_of(d.path());
+  EXPECT_EQ(t.fixed_scenes, 0);
+  EXPECT_EQ(t.registrations, 1);
+  EXPECT_FALSE(t.pairings[0][0].fixed);
+  // The registration's pairs, not the hand pairs (NaN when registration pairs nothing).
+  EXPECT_TRUE(t.cells[0].ipd == registration_only || (std::isnan(t.cells[0].ipd) && std::isnan(registration_only)))
+      << t.cells[0].ipd << " vs " << registration_only;
+  EXPECT_EQ(t.pairings[0][0].pairs, t.pairings[0][0].registration.pairs);
+  ASSERT_EQ(t.pairs_problems.size(), 1u);
+  EXPECT_TRUE(t.pairs_problems[0].unusable);
+  const std::string message =
+      "hand pairs not used (registration counts instead): a stored rock is no longer in its label file: rock 1 "
+      "(0.2 0.2 0.1 0.1) of 'synth' (" + d / "synth/labels/s1.txt" + ")";
+  EXPECT_EQ(t.pairs_problems[0].message, message);
+  EXPECT_TRUE(t.warnings.empty());  // an error, not a warning: the CLI decides
+  // Callers without a problem list get the error itself.
+  const StudyLabels labels = load_labels(open_study(d.path()));
+  try {
+    read_fixed_pairs(labels.study, "real", "synth", "s1", labels.gt_of("real", "s1").boxes,
+                     labels.gt_of("synth", "s1").boxes);
+    FAIL() << "expected an error";
+  } catch (const StudyError& e) {
+    EXPECT_EQ(std::string(e.what()), f + ": " + message);
+  }
+}
+
+TEST(FixedPairsBinding, TheCliExitsOneNamingTheFileUnlessSkipBadLines) {
+  test::TempDir d;
+  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n");
+  const std::string f = d / "pairs/real__synth/s1.json";
+  test::write_text(f, kHandPairs);
+  const std::string line = f +
+                           ": hand pairs not used (registration counts instead): a stored rock is no longer in its "
+                           "label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" + d / "synth/labels/s1.txt" + ")";
+  const auto strict = test::run_ipd("table --no-cache --bootstrap 0 " + d.path());
+  EXPECT_EQ(strict.exit_code, 1) << strict.err;
+  EXPECT_NE(strict.err.find(line + "\n"), std::string::npos) << strict.err;
+  EXPECT_NE(strict.err.find("error: the hand pairs of 1 scene(s) can't be used; pair those scenes again, or pass "
+                            "--skip-bad-lines to use registration for them\n"),
+            std::string::npos)
+      << strict.err;
+  EXPECT_TRUE(strict.out.empty());
+  const auto lenient = test::run_ipd("table --no-cache --bootstrap 0 --skip-bad-lines " + d.path());
+  EXPECT_EQ(lenient.exit_code, 0) << lenient.err;
+  EXPECT_NE(lenient.err.find("warning: " + line + "\n"), std::string::npos) << lenient.err;
+}
+
+TEST(FixedPairsBinding, AFigureOfTheSceneSaysSoToo) {
+  test::TempDir d;
+  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n");
+  const std::string f = d / "pairs/real__synth/s1.json";
+  test::write_text(f, kHandPairs);
+  const std::string out = d / "fig.svg";
+  const auto strict = test::run_ipd("figure registration " + d.path() + " --scene s1 --out " + out);
+  EXPECT_EQ(strict.exit_code, 1) << strict.err;
+  EXPECT_NE(strict.err.find(f + ": hand pairs not used (registration counts instead): a stored rock is no longer in "
+                                "its label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" +
+                            d / "synth/labels/s1.txt" + ") (pass --skip-bad-lines to draw registration's pairs)\n"),
+            std::string::npos)
+      << strict.err;
+  const auto lenient = test::run_ipd("figure registration " + d.path() + " --scene s1 --skip-bad-lines --out " + out);
+  EXPECT_EQ(lenient.exit_code, 0) << lenient.err;
+  EXPECT_NE(lenient.err.find("warning: " + f + ": hand pairs not used"), std::string::npos) << lenient.err;
+}
+
+TEST(FixedPairsBinding, FilesWithoutBoxesLoadByIndexAndGainBoxesOnTheNextSave) {
+  test::TempDir d;
+  write_study(d, kReal, kSynth);
+  const std::string f = d / "pairs/real__synth/s1.json";
+  test::write_text(f, R"({"pairs": [[0, 1]]})");
+  EXPECT_NEAR(table_of(d.path()).cells[0].ipd, 2.0 / 3, 1e-12);
+  Session s = Session::open(d.path());
+  EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
+  EXPECT_TRUE(s.pairs_problems().empty());
+  run_save_job(s.apply(0, Edit::toggle_exclude(Side::kB, 0)));
+  EXPECT_EQ(read_file(f),
+            "{\"excluded_b\":[0],\"pairs\":[[0,1]],\"rocks_a\":[[0,0.2,0.2,0.1,0.1]],"
+            "\"rocks_b\":[[0,0.6,0.6,0.1,0.1],[1,0.2,0.2,0.1,0.1]]}\n");
+  // Now bound: reordering the synth rows keeps the pair on synth (0.2, 0.2).
+  test::write_text(d / "synth/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+  const CrossTable t = table_of(d.path());
+  EXPECT_NEAR(t.cells[0].ipd, 2.0 / 3, 1e-12);
+  EXPECT_EQ(t.pairings[0][0].excluded_b, (std::vector<int>{1}));
+}
+
+TEST(FixedPairsBinding, TheSessionListsProblemsAndFlagsUnusableScenes) {
+  test::TempDir d;
+  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n");
+  const std::string f = d / "pairs/real__synth/s1.json";
+  test::write_text(f, kHandPairs);
+  const Session s = Session::open(d.path());
+  ASSERT_EQ(s.scenes().size(), 1u);
+  EXPECT_TRUE(s.scenes()[0].pairs_unusable);
+  EXPECT_FALSE(s.scenes()[0].edited);
+  EXPECT_EQ(s.scenes()[0].current.pairs, s.scenes()[0].automatic.pairs);
+  const std::vector<PairsProblem> problems = s.pairs_problems();
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0].file, f);
+  EXPECT_TRUE(problems[0].unusable);
+}
+
+TEST(FixedPairsBinding, MalformedStoredRocksNameTheFile) {
+  test::TempDir d;
+  write_study(d, kReal, kSynth);
+  const std::string f = d / "pairs/real__synth/s1.json";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"({"pairs": [[0, 1]], "rocks_a": [[0, 0.2, 0.2, 0.1, 0.1]], "rocks_b": []})",
+       "rock 1 of 'synth' is paired or excluded but has no box in \"rocks_b\""},
+      {R"({"pairs": [[0, 1]], "rocks_a": [[0, 0.2, 0.2, 0.1]]})",
+       "\"rocks_a\" holds [0,0.2,0.2,0.1], expected [rock index, cx, cy, w, h]"},
+      {R"({"pairs": [[0, 1]], "rocks_a": [[0, 0.2, 0.2, 0.1, 0.1], [0, 0.2, 0.2, 0.1, 0.1]]})",
+       "\"rocks_a\" gives rock 0 twice"},
+      {R"({"pairs": [[0, 1]], "rocks_a": {"0": 1}})", "\"rocks_a\" must be an array of [index, cx, cy, w, h]"},
+  };
+  for (const auto& [text, why] : cases) {
+    test::write_text(f, text);
+    try {
+      table_of(d.path());
+      ADD_FAILURE() << "expected an error for " << text;
+    } catch (const StudyError& e) {
+      EXPECT_EQ(std::string(e.what()), f + ": " + why);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace ipd
