@@ -24,7 +24,7 @@ namespace {
 // triples proposing similarities and the second look; 6 for translation votes in centred bins; 7 for the
 // gate's floor, the guarded polish and the soft refinement of a confirmed best; 8 for cpd's confidence; 9 for
 // cpd's rivals under the unmoved camera too.
-constexpr int kFormat = 9;
+constexpr int kFormat = 10;
 
 struct Fnv {
   std::uint64_t h;

@@ -23,7 +23,8 @@
 namespace ipd {
 
 enum class StopReason {
-  kNotRun, kTooFewPoints, kMaxTrials, kExhausted, kConverged, kCannotBeBeaten, kTimeBudget, kWorkBudget
+  kNotRun, kTooFewPoints, kMaxTrials, kExhausted, kConverged, kCannotBeBeaten, kTimeBudget, kWorkBudget,
+  kIdenticalLayouts  // both sides hold exactly the same boxes: the identity, without a search
 };
 
 inline const char* to_string(StopReason r) {
@@ -36,6 +37,7 @@ inline const char* to_string(StopReason r) {
     case StopReason::kCannotBeBeaten: return "best score cannot be beaten";
     case StopReason::kTimeBudget: return "time budget spent";
     case StopReason::kWorkBudget: return "work budget spent";
+    case StopReason::kIdenticalLayouts: return "identical layouts (no search needed)";
   }
   return "?";
 }

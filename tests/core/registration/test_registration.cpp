@@ -279,6 +279,30 @@ TEST(Assignment, APackedLayoutIsOneComponentSolvedSparsely) {
   EXPECT_NEAR(parts, whole, 1e-9);
 }
 
+TEST(RegistrationMethods, IdenticalLayoutsGetTheIdentityWithoutASearch) {
+  // A twin rendered from the same labels: B holds A's boxes in another order. Every method returns the
+  // identity and pairs each rock with its own copy, without a search; one box moved by a hair is searched.
+  const auto a = layout(40, 3);
+  const auto perm = shuffled(40, 9);
+  std::vector<Box> b;
+  for (int k : perm) b.push_back(a[k]);
+  for (const RegistrationMethod m : {RegistrationMethod::kConsensus, RegistrationMethod::kPaper, RegistrationMethod::kCpd}) {
+    SCOPED_TRACE(to_string(m));
+    RegistrationOptions o;
+    o.method = m;
+    const RegistrationReport r = register_rocks(a, b, o);
+    EXPECT_EQ(r.stop, StopReason::kIdenticalLayouts);
+    EXPECT_EQ(r.affine, identity_affine());
+    EXPECT_EQ(r.pairs, pairs_of(perm));
+    EXPECT_EQ(r.trials, 0);
+    EXPECT_EQ(r.confidence, 1.0);
+    EXPECT_FALSE(r.ambiguous);
+    std::vector<Box> nudged = b;
+    nudged[7].cx += 1e-9;
+    EXPECT_NE(register_rocks(a, nudged, o).stop, StopReason::kIdenticalLayouts);
+  }
+}
+
 TEST(PaperRegistration, RecoversAKnownAffineOnACleanLayout) {
   const auto a = layout(8, 11);
   const auto perm = shuffled(8, 5);
