@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 
 #include "ui/figures/figure_common.h"
@@ -204,44 +205,71 @@ struct PairsLeftOut {
   int confidences = 0;       // confidences with no spot clearly beside their own box
 };
 
-// Places both sides' labels so that a pair's number shows on both pictures or on neither: pairs that fit on
-// one side only are dropped from both and the placement redone (dropping only frees room), until every
-// shown pair number shows twice. Then draws them.
+// Two panels' labels placed so that a pair's number shows on both panels or on neither: a reader matches a
+// pair by its number. Pairs that fit on one side only are dropped from both and the placement redone
+// (dropping only frees room) until every shown pair number shows twice. `make(side, unnumbered)` gives a
+// side's labels without the numbers of `unnumbered`.
+struct TwoPanelLabels {
+  SideLabels side[2];
+  LabelPlacement placed[2];
+  std::set<int> unnumbered;  // pairs in view on both panels, numbered on neither
+  int left_out_other[2] = {0, 0};  // labels not shown that number no pair in view on both panels
+};
+TwoPanelLabels place_on_both(Canvas& c, const std::function<SideLabels(int, const std::set<int>&)>& make,
+                             const PtRect bounds[2], const std::vector<PtRect> taken[2]) {
+  TwoPanelLabels t;
+  for (;;) {
+    std::set<int> requested[2], shown[2];
+    for (int k = 0; k < 2; ++k) {
+      t.side[k] = make(k, t.unnumbered);
+      t.placed[k] = place_figure_labels(c, t.side[k].labels, bounds[k], taken[k]);
+      requested[k] = requested_pairs(t.side[k]);
+      shown[k] = shown_pairs(t.side[k], t.placed[k]);
+    }
+    const size_t before = t.unnumbered.size();
+    for (int p : requested[0])  // in view on both panels, its number shown on one only
+      if (requested[1].count(p) && shown[0].count(p) != shown[1].count(p)) t.unnumbered.insert(p);
+    if (t.unnumbered.size() == before) {
+      for (int p : requested[0])  // shown on neither: counted with the dropped ones
+        if (requested[1].count(p) && !shown[0].count(p)) t.unnumbered.insert(p);
+      for (int k = 0; k < 2; ++k)
+        for (size_t i = 0; i < t.side[k].labels.size(); ++i)
+          if (!t.placed[k].labels[i].shown() && !t.unnumbered.count(t.side[k].pair[i])) ++t.left_out_other[k];
+      return t;
+    }
+  }
+}
+
+// Fig. 1's labels on both sides, drawn on their backdrops.
 PairsLeftOut draw_pair_labels(Canvas& c, const PanelMap& left, const PanelMap& right, const SceneFigureInput& in,
                               const std::vector<int>& num_a, const std::vector<int>& num_b,
                               const PtRect& notice_a, const PtRect& notice_b, const FigureOptions& o) {
   const auto taken = [](const PtRect& n) { return n.width() > 0 ? std::vector<PtRect>{n} : std::vector<PtRect>{}; };
-  std::set<int> unnumbered;
-  SideLabels sa, sb;
-  LabelPlacement pa, pb;
-  for (;;) {
-    sa = side_labels(left, in.gt_a, in.pred_a, num_a, unnumbered, o);
-    sb = side_labels(right, in.gt_b, in.pred_b, num_b, unnumbered, o);
-    pa = place_figure_labels(c, sa.labels, left.panel, taken(notice_a));
-    pb = place_figure_labels(c, sb.labels, right.panel, taken(notice_b));
-    const std::set<int> ra = requested_pairs(sa), rb = requested_pairs(sb), ka = shown_pairs(sa, pa),
-                        kb = shown_pairs(sb, pb);
-    size_t before = unnumbered.size();
-    for (int p : ra)  // a pair with both rocks in view, its number shown on one side only
-      if (rb.count(p) && ka.count(p) != kb.count(p)) unnumbered.insert(p);
-    if (unnumbered.size() == before) {
-      for (int p : ra)  // shown on neither: counted with the dropped ones
-        if (rb.count(p) && !ka.count(p)) unnumbered.insert(p);
-      break;
-    }
-  }
-  draw_placed_labels(c, sa.labels, pa, true);
-  draw_placed_labels(c, sb.labels, pb, true);
+  const PtRect bounds[2] = {left.panel, right.panel};
+  const std::vector<PtRect> obstacles[2] = {taken(notice_a), taken(notice_b)};
+  const TwoPanelLabels t = place_on_both(
+      c,
+      [&](int k, const std::set<int>& unnumbered) {
+        return k == 0 ? side_labels(left, in.gt_a, in.pred_a, num_a, unnumbered, o)
+                      : side_labels(right, in.gt_b, in.pred_b, num_b, unnumbered, o);
+      },
+      bounds, obstacles);
   PairsLeftOut out;
-  out.unnumbered_pairs = int(unnumbered.size());
-  for (const auto* side : {&sa, &sb}) {
-    const LabelPlacement& p = side == &sa ? pa : pb;
-    for (size_t i = 0; i < side->labels.size(); ++i) {
-      if (p.labels[i].shown() || side->pair[i] > 0) continue;
-      ++(side->labels[i].group == 0 ? out.numbers : out.confidences);
-    }
+  out.unnumbered_pairs = int(t.unnumbered.size());
+  for (int k = 0; k < 2; ++k) {
+    draw_placed_labels(c, t.side[k].labels, t.placed[k], true);
+    for (size_t i = 0; i < t.side[k].labels.size(); ++i)
+      if (!t.placed[k].labels[i].shown() && !t.unnumbered.count(t.side[k].pair[i]))
+        ++(t.side[k].labels[i].group == 0 ? out.numbers : out.confidences);
   }
   return out;
+}
+
+// "N pairs unnumbered: ..." for both scene figures.
+std::string unnumbered_note(int n, const FigureOptions& o) {
+  return fmt::format("{} pair{} unnumbered: no room for {} number on both pictures (to show {}: --crop, fewer "
+                     "--layers or {})",
+                     n, n == 1 ? "" : "s", n == 1 ? "its" : "their", n == 1 ? "it" : "them", wider_hint(o.width_in));
 }
 
 double draw_title(Canvas& c, const std::string& title, const FigureOptions& o) {
@@ -292,10 +320,7 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
     note_gap = 0;
   };
   const std::string wider = wider_hint(o.width_in);
-  if (const int n = left_out.unnumbered_pairs; n > 0)
-    note(fmt::format("{} pair{} unnumbered: no room for {} number on both pictures (to show {}: --crop, fewer "
-                     "--layers or {})",
-                     n, n == 1 ? "" : "s", n == 1 ? "its" : "their", n == 1 ? "it" : "them", wider));
+  if (const int n = left_out.unnumbered_pairs; n > 0) note(unnumbered_note(n, o));
   if (const int n = left_out.numbers; n > 0)
     note(fmt::format("{} rock number{} left out: no free spot clear of the other rocks' boxes (try --crop or {})", n,
                      n == 1 ? "" : "s", wider));
@@ -323,7 +348,8 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
            in.pairs_fixed ? "aligned by the pairs" : "after registration");
   y += out.measure(caption, "Ag").y + 0.15 * F;
   const double dot = std::max(0.6, 0.11 * F), ring = dot * 2.8, lw = std::max(0.35, 0.07 * F);
-  int left_out = 0;
+  SideLabels all[2];  // every pair number of each panel
+  PtRect panels[2];
   for (int k = 0; k < 2; ++k) {
     const PanelMap m{{kMargin + k * (pw + gap), y, kMargin + k * (pw + gap) + pw, y + ph}, o.crop};
     out.fill_rect(m.panel, rgb(248, 248, 248));
@@ -348,8 +374,9 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
     if (o.layers.gt)
       for (const Pt& q : pa) out.fill_circle(q, dot, kBlueC);
     out.pop_clip();
+    panels[k] = m.panel;
     if (o.layers.gt && o.layers.indices) {
-      std::vector<Label> labels;
+      std::vector<Label>& labels = all[k].labels;
       const auto square = [](Pt q, double r) { return PtRect{q.x - r, q.y - r, q.x + r, q.y + r}; };
       for (const auto& [i, j] : in.pairs) {
         if (i < 0 || i >= int(pa.size())) continue;
@@ -365,10 +392,22 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
           if (int(b) != j) l.keep_off.push_back(square(pb[b], ring));
         l.keep_off_clearance = kExclusiveClearancePt;
         labels.push_back(std::move(l));
+        all[k].pair.push_back(i + 1);
       }
-      left_out += draw_labels(out, labels, m.panel, {}, false);
     }
   }
+  const std::vector<PtRect> none[2];
+  const TwoPanelLabels t = place_on_both(
+      out,
+      [&](int k, const std::set<int>& unnumbered) {
+        SideLabels s;
+        for (size_t i = 0; i < all[k].labels.size(); ++i)
+          if (!unnumbered.count(all[k].pair[i])) s.labels.push_back(all[k].labels[i]), s.pair.push_back(all[k].pair[i]);
+        return s;
+      },
+      panels, none);
+  for (int k = 0; k < 2; ++k) draw_placed_labels(out, t.side[k].labels, t.placed[k], false);
+  const int left_out = t.left_out_other[0] + t.left_out_other[1];
   y += ph + 0.35 * F;
   if (o.layers.legend) {
     std::vector<LegendItem> items;
@@ -380,8 +419,14 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
     if (o.layers.indices && o.layers.gt) items.push_back({Swatch::kDot, kInk, "numbers: pairs, by " + in.a + " rock"});
     y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items);
   }
-  if (left_out > 0) y += (o.layers.legend ? 0.2 * F : 0) + draw_footnote(out, {kMargin, y + (o.layers.legend ? 0.2 * F : 0)}, W - 2 * kMargin, F, left_out,
-                                                                    "--crop or " + wider_hint(o.width_in));
+  double note_gap = o.layers.legend ? 0.2 * F : 0;
+  if (!t.unnumbered.empty()) {
+    y += note_gap + draw_wrapped(out, {kMargin, y + note_gap}, style(secondary_pt(F), kGrey),
+                                 unnumbered_note(int(t.unnumbered.size()), o), W - 2 * kMargin);
+    note_gap = 0;
+  }
+  if (left_out > 0)
+    y += note_gap + draw_footnote(out, {kMargin, y + note_gap}, W - 2 * kMargin, F, left_out, "--crop or " + wider_hint(o.width_in));
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);
 }
