@@ -15,7 +15,7 @@ Runner add_table_command(CLI::App& app) {
   struct Args {
     StudyOptions study;
     std::string format = "text", out;
-    bool booktabs = false, verbose = false;
+    bool booktabs = false, latex_wide = false, verbose = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("table", "Compute the IPD cross table (rows: models, columns: domain pairs)");
@@ -23,6 +23,9 @@ Runner add_table_command(CLI::App& app) {
   cmd->add_option("--format", args->format, "text, csv, json, markdown or latex")
       ->check(CLI::IsMember({"text", "csv", "json", "markdown", "latex"}));
   cmd->add_flag("--booktabs", args->booktabs, "LaTeX: \\toprule/\\midrule/\\bottomrule (needs the booktabs package)");
+  cmd->add_flag("--latex-wide", args->latex_wide,
+                "LaTeX: the wide layout (names spelled out, intervals beside the values) for a table* across both "
+                "columns; the default fits one IEEE column for up to 3 domains");
   cmd->add_option("--out", args->out, "Write the table to this file (atomically) instead of stdout");
   cmd->add_flag("--verbose", args->verbose, "List the scenes whose registration was ambiguous");
   return [args]() -> int {
@@ -33,6 +36,7 @@ Runner add_table_command(CLI::App& app) {
     TableFormatOptions fo;
     fo.latex_ci = args->study.ci_given;
     fo.booktabs = args->booktabs;
+    fo.latex_wide = args->latex_wide;
     fo.resamples = loaded->bootstrap.resamples;
     fo.level = loaded->bootstrap.level;
     fo.seed = loaded->bootstrap.seed;
@@ -55,6 +59,17 @@ Runner add_table_command(CLI::App& app) {
       notes.push_back(fmt::format("{} scene{}: registration ambiguous (see ipd-studio '?'){}", ambiguous.size(),
                                   ambiguous.size() == 1 ? "" : "s", args->verbose ? ":" : "; --verbose lists them"));
       if (args->verbose) notes.insert(notes.end(), ambiguous.begin(), ambiguous.end());
+    }
+    if (format == TableFormat::kLatex) {
+      // Whether the table fits where it is meant to go, at 10 pt type (never by shrinking it).
+      const double w = latex_table_width_pt(loaded->table, fo);
+      if (!fo.latex_wide && w > kIeeeColumnPt)
+        notes.push_back(fmt::format("the LaTeX table is about {:.0f} pt wide, more than one IEEE column ({:g} pt at 10 pt "
+                                    "type): only a table* across both columns fits it (--latex-wide spells the names out "
+                                    "for that)", w, kIeeeColumnPt));
+      else if (fo.latex_wide && w > kIeeeTextWidthPt)
+        notes.push_back(fmt::format("the LaTeX table is about {:.0f} pt wide, more than both IEEE columns ({:g} pt): "
+                                    "drop --latex-wide for the compact layout", w, kIeeeTextWidthPt));
     }
     for (const std::string& n : notes) {
       if (format == TableFormat::kText) text += n + "\n";

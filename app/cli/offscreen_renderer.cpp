@@ -100,16 +100,42 @@ ImTextureID OffscreenRenderer::upload(const cv::Mat& bgr, int max_width) {
   return reinterpret_cast<ImTextureID>(static_cast<intptr_t>(id));
 }
 
-cv::Mat OffscreenRenderer::render(const std::function<void(ImDrawList*, ImVec2)>& draw) {
+cv::Mat OffscreenRenderer::render(const std::function<void(const std::function<ImDrawList*()>&)>& draw) {
   Impl& m = *impl_;
   ImGui_ImplOpenGL2_NewFrame();
   ImGui::NewFrame();
-  draw(ImGui::GetBackgroundDrawList(), ImVec2(static_cast<float>(m.width), static_cast<float>(m.height)));
+  // Draw lists of our own, in drawing order: the OpenGL 2 renderer can't offset 16-bit indices, so a
+  // figure with more than 65,536 vertices needs several lists (ImGuiCanvas asks for the next).
+  std::vector<std::unique_ptr<ImDrawList>> lists;
+  const auto more = [&]() {
+    lists.push_back(std::make_unique<ImDrawList>(ImGui::GetDrawListSharedData()));
+    ImDrawList* dl = lists.back().get();
+    dl->_ResetForNewFrame();
+    dl->PushTextureID(ImGui::GetIO().Fonts->TexID);
+    dl->PushClipRectFullScreen();
+    return dl;
+  };
+  draw(more);
   ImGui::Render();
+  std::vector<ImDrawList*> cmd_lists;
+  ImDrawData data;
+  for (const auto& dl : lists) {
+    dl->_PopUnusedDrawCmd();
+    if (dl->CmdBuffer.Size == 0) continue;
+    cmd_lists.push_back(dl.get());
+    data.TotalVtxCount += dl->VtxBuffer.Size;
+    data.TotalIdxCount += dl->IdxBuffer.Size;
+  }
+  data.Valid = true;
+  data.CmdLists = cmd_lists.data();
+  data.CmdListsCount = int(cmd_lists.size());
+  data.DisplayPos = ImVec2(0, 0);
+  data.DisplaySize = ImVec2(static_cast<float>(m.width), static_cast<float>(m.height));
+  data.FramebufferScale = ImVec2(1, 1);
   glViewport(0, 0, m.width, m.height);
   glClearColor(1, 1, 1, 1);
   glClear(GL_COLOR_BUFFER_BIT);
-  ImGui_ImplOpenGL2_RenderDrawData(ImGui::GetDrawData());
+  ImGui_ImplOpenGL2_RenderDrawData(&data);
   glFinish();
   cv::Mat rgba(m.height, m.width, CV_8UC4, m.buffer.data());
   cv::Mat bgr;
@@ -126,9 +152,9 @@ std::string render_png(const ui::DisplayList& fig, const ui::FontMetrics& metric
   std::string all_text;
   for (const auto& t : fig.texts()) largest = std::max(largest, t.box.height()), all_text += t.text;
   OffscreenRenderer r(w, h, static_cast<float>(largest) * px_per_pt, metrics.file(), metrics.bold_file(), all_text);
-  const cv::Mat bgr = r.render([&](ImDrawList* dl, ImVec2) {
-    ui::ImGuiCanvas canvas(dl, {0, 0}, px_per_pt, [&](const cv::Mat& img) { return r.upload(img, w); }, &metrics,
-                           r.bold_font());
+  const cv::Mat bgr = r.render([&](const std::function<ImDrawList*()>& more) {
+    ui::ImGuiCanvas canvas(more(), {0, 0}, px_per_pt, [&](const cv::Mat& img) { return r.upload(img, w); }, &metrics,
+                           r.bold_font(), more);
     fig.replay(canvas);
   });
   std::vector<uchar> png;

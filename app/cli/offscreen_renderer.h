@@ -27,8 +27,9 @@ class OffscreenRenderer {
 
   // Uploads a BGR picture (downscaled to at most max_width) and returns its texture.
   ImTextureID upload(const cv::Mat& bgr, int max_width);
-  // Draws one frame on white with `draw(draw_list, size)` and returns it as BGR.
-  cv::Mat render(const std::function<void(ImDrawList*, ImVec2)>& draw);
+  // Draws one frame on white with `draw(more)` and returns it as BGR: `more()` gives a fresh draw list,
+  // drawn after the ones before (each holds at most 65,536 vertices: see ImGuiCanvas).
+  cv::Mat render(const std::function<void(const std::function<ImDrawList*()>& more)>& draw);
 
  private:
   struct Impl;

@@ -55,7 +55,7 @@ struct Axis {
 double draw_axis(Canvas& c, Axis& ax, double lo, double hi, double y_top, double y, const std::string& label,
                  const FigureOptions& o, bool zero_line, bool end_on_tick = false, double tick_lo = NAN,
                  double tick_hi = NAN) {
-  const TextStyle tick = style(o.font_pt * 0.85, kInk);
+  const TextStyle tick = style(secondary_pt(o.font_pt), kInk);
   if (std::isnan(tick_lo) || std::isnan(tick_hi)) tick_lo = lo, tick_hi = hi;
   std::vector<double> ticks;
   for (int target = 6; target >= 2; --target) {
@@ -118,7 +118,7 @@ size_t most_lines(Canvas& c, const TextStyle& st, const std::vector<std::string>
 void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& ch, const FigureOptions& o) {
   o.validate();
   const double W = o.width_pt(), F = o.font_pt;
-  const TextStyle body = style(F, kInk), note = style(F * 0.85, kGrey);
+  const TextStyle body = style(F, kInk), note = style(secondary_pt(F), kGrey);
   double y = kMargin + draw_wrapped(out, {kMargin, kMargin}, body, ch.title, W - 2 * kMargin) + 0.5 * F;
   std::vector<std::string> labels, notes;
   double lo = INFINITY, hi = -INFINITY;
@@ -160,7 +160,7 @@ void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& ch, const F
   // A footnote 0.4 font sizes below the axis; none: the page ends at the axis label (the 4 pt margin).
   y = bottom + axis_h;
   if (!ch.footnote.empty())
-    y += 0.4 * F + draw_wrapped(out, {kMargin, y + 0.4 * F}, style(F * 0.8, kGrey), ch.footnote, W - 2 * kMargin);
+    y += 0.4 * F + draw_wrapped(out, {kMargin, y + 0.4 * F}, style(secondary_pt(F), kGrey), ch.footnote, W - 2 * kMargin);
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);
 }
@@ -168,7 +168,7 @@ void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& ch, const F
 void draw_distribution_chart(DisplayList& out, const DistributionChart& ch, const FigureOptions& o) {
   o.validate();
   const double W = o.width_pt(), F = o.font_pt;
-  const TextStyle body = style(F, kInk), name = style(F * 0.85, kRedC);
+  const TextStyle body = style(F, kInk), name = style(secondary_pt(F), kRedC);
   double y = kMargin + draw_wrapped(out, {kMargin, kMargin}, body, ch.title, W - 2 * kMargin) + 0.5 * F;
   std::vector<std::string> labels;
   double lo = 0, hi = -INFINITY;
@@ -220,8 +220,8 @@ void draw_distribution_chart(DisplayList& out, const DistributionChart& ch, cons
   }
   y = bottom + axis_h;
   if (!ch.footnote.empty())
-    y += 0.4 * F + draw_wrapped(out, {kMargin, y + 0.4 * F}, style(F * 0.8, kGrey), ch.footnote, W - 2 * kMargin);
-  y += draw_footnote(out, {kMargin, y}, W - 2 * kMargin, F, left_out);
+    y += 0.4 * F + draw_wrapped(out, {kMargin, y + 0.4 * F}, style(secondary_pt(F), kGrey), ch.footnote, W - 2 * kMargin);
+  y += draw_footnote(out, {kMargin, y}, W - 2 * kMargin, F, left_out, wider_hint(o.width_in));
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);
 }

@@ -3,11 +3,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "ui/figures/figure_options.h"
 
 namespace ipd::ui::fig {
+
+namespace {
+constexpr double kLabelPad = 0.6;  // a label's backdrop margin around its text
+}  // namespace
 
 TextStyle style(double size_pt, Colour colour, bool bold) { return {std::max(kMinTextPt, size_pt), colour, bold}; }
 
@@ -44,11 +49,26 @@ double draw_legend(Canvas& c, Pt at, double width, const TextStyle& st, const st
     const double w = sw + pad + c.measure(st, it.text).x;
     if (x > at.x && x + w > at.x + width) x = at.x, y += h * 1.15;
     const double cy = y + h / 2, lw = std::max(0.5, st.size_pt * 0.09);
+    const bool halo = it.halo.a > 0;
+    // Inset so a halo stays inside the swatch's cell (and off the figure's margin).
+    const double inset = std::max(0.5, halo ? 0.5 * lw * 1.3 * kHaloRatio : 0.0);
+    const PtRect box{x + inset, y + h * 0.18, x + sw - inset, y + h * 0.82};
     switch (it.swatch) {
-      case Swatch::kBox: c.rect({x + 0.5, y + h * 0.18, x + sw - 0.5, y + h * 0.82}, it.colour, lw * 1.3); break;
+      case Swatch::kBox:
+        if (halo) c.rect(box, it.halo, lw * 1.3 * kHaloRatio);
+        c.rect(box, it.colour, lw * 1.3);
+        break;
+      case Swatch::kDashedBox:
+        if (halo) dashed_rect(c, box, it.halo, lw * 1.3 * kHaloRatio, box.width() * 0.32);
+        dashed_rect(c, box, it.colour, lw * 1.3, box.width() * 0.32);
+        break;
       case Swatch::kStruckBox:
-        c.rect({x + 0.5, y + h * 0.18, x + sw - 0.5, y + h * 0.82}, it.colour, lw * 1.3);
-        c.line({x + 0.5, y + h * 0.18}, {x + sw - 0.5, y + h * 0.82}, it.colour, lw * 1.3);
+        if (halo) {
+          c.rect(box, it.halo, lw * 1.3 * kHaloRatio);
+          c.line({box.x0, box.y0}, {box.x1, box.y1}, it.halo, lw * 1.3 * kHaloRatio);
+        }
+        c.rect(box, it.colour, lw * 1.3);
+        c.line({box.x0, box.y0}, {box.x1, box.y1}, it.colour, lw * 1.3);
         break;
       case Swatch::kDot: c.fill_circle({x + sw / 2, cy}, h * 0.2, it.colour); break;
       case Swatch::kRing: c.circle({x + sw / 2, cy}, h * 0.3, it.colour, lw * 1.3); break;
@@ -60,13 +80,12 @@ double draw_legend(Canvas& c, Pt at, double width, const TextStyle& st, const st
   return y + h - at.y;
 }
 
-int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bounds, const std::vector<PtRect>& taken,
-                bool backdrop, LabelPlacement* placement) {
+LabelPlacement place_figure_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bounds,
+                                   const std::vector<PtRect>& taken) {
   std::vector<LabelRequest> req;
-  const double pad = 0.6;  // backdrop margin around the text
   for (const Label& l : labels) {
     const Pt m = c.measure(l.style, l.text);
-    LabelRequest r{{l.target.x0, l.target.y0, l.target.x1, l.target.y1}, m.x + 2 * pad, m.y, l.exclusive, l.group};
+    LabelRequest r{{l.target.x0, l.target.y0, l.target.x1, l.target.y1}, m.x + 2 * kLabelPad, m.y, l.exclusive, l.group};
     for (const PtRect& k : l.keep_off) r.keep_off.push_back({k.x0, k.y0, k.x1, k.y1});
     r.keep_off_clearance = l.keep_off_clearance;
     req.push_back(std::move(r));
@@ -77,8 +96,10 @@ int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bound
   o.gap = 0.5;
   o.max_leader = 3;
   o.exclusive_clearance = kExclusiveClearancePt;
-  const LabelPlacement p = place_labels(req, o);
-  if (placement) *placement = p;
+  return place_labels(req, o);
+}
+
+void draw_placed_labels(Canvas& c, const std::vector<Label>& labels, const LabelPlacement& p, bool backdrop) {
   for (size_t i = 0; i < labels.size(); ++i) {
     const PlacedLabel& pl = p.labels[i];
     if (!pl.shown()) continue;
@@ -86,17 +107,45 @@ int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bound
       c.line({pl.leader_x0, pl.leader_y0}, {pl.leader_x1, pl.leader_y1}, labels[i].style.colour,
              std::max(kLeaderPt, labels[i].style.size_pt * 0.06));
     if (backdrop) c.fill_rect({pl.box.x0, pl.box.y0, pl.box.x1, pl.box.y1}, kBackdrop);
-    c.text({pl.box.x0 + pad, pl.box.y0}, Anchor::kTopLeft, labels[i].style, labels[i].text);
+    c.text({pl.box.x0 + kLabelPad, pl.box.y0}, Anchor::kTopLeft, labels[i].style, labels[i].text);
   }
+}
+
+int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bounds, const std::vector<PtRect>& taken,
+                bool backdrop, LabelPlacement* placement) {
+  const LabelPlacement p = place_figure_labels(c, labels, bounds, taken);
+  draw_placed_labels(c, labels, p, backdrop);
+  if (placement) *placement = p;
   return p.left_out;
 }
 
-double draw_footnote(Canvas& c, Pt at, double width, double font_pt, int left_out) {
+void dashed_rect(Canvas& c, const PtRect& r, Colour colour, double width_pt, double dash) {
+  const double gap = 0.6 * dash;
+  const auto edge = [&](Pt a, Pt b) {
+    const double len = std::hypot(b.x - a.x, b.y - a.y);
+    if (len <= 0) return;
+    const double ux = (b.x - a.x) / len, uy = (b.y - a.y) / len;
+    for (double t = 0; t < len; t += dash + gap) {
+      const double e = std::min(len, t + dash);
+      c.line({a.x + ux * t, a.y + uy * t}, {a.x + ux * e, a.y + uy * e}, colour, width_pt);
+    }
+  };
+  edge({r.x0, r.y0}, {r.x1, r.y0});
+  edge({r.x1, r.y0}, {r.x1, r.y1});
+  edge({r.x1, r.y1}, {r.x0, r.y1});
+  edge({r.x0, r.y1}, {r.x0, r.y0});
+}
+
+std::string wider_hint(double width_in) {
+  return width_in <= kSingleColumnIn + 0.01 ? "--column double" : "a larger --width-in";
+}
+
+double draw_footnote(Canvas& c, Pt at, double width, double font_pt, int left_out, const std::string& hint) {
   if (left_out <= 0) return 0;
-  const TextStyle st = style(font_pt * 0.8, kGrey);
+  const TextStyle st = style(secondary_pt(font_pt), kGrey);
   return draw_wrapped(c, at, st,
-                      fmt::format("{} label{} left out: no room at this size (try --column double or --crop)",
-                                  left_out, left_out == 1 ? "" : "s"),
+                      fmt::format("{} label{} left out: no room at this size{}", left_out, left_out == 1 ? "" : "s",
+                                  hint.empty() ? "" : " (try " + hint + ")"),
                       width);
 }
 

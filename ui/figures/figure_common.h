@@ -13,6 +13,15 @@ constexpr Colour kInk = rgb(20, 20, 20), kGrey = rgb(110, 110, 110), kPinkC = rg
                  kRedC = rgb(235, 40, 40), kUnpairedC = rgb(160, 160, 160), kBlueC = rgb(40, 110, 230),
                  kGreenC = rgb(40, 160, 80), kBackdrop = rgb(0, 0, 0, 165), kWhite = rgb(255, 255, 255);
 
+// Fig. 1's boxes must survive greyscale print and the common colour-vision deficiencies, on dark and on
+// bright terrain: GT and predictions differ by line style (solid, dashed), by luminance (a light stroke on a
+// dark halo, a dark stroke on a light halo) and by hue along the blue-yellow axis every deficiency keeps
+// (Okabe-Ito yellow and blue); the halo keeps each stroke apart from the terrain whatever its brightness.
+constexpr Colour kGtC = rgb(240, 228, 66), kGtUnpairedC = rgb(175, 175, 175), kPredC = rgb(0, 114, 178),
+                 kPredTextC = rgb(86, 180, 233), kDarkHalo = rgb(0, 0, 0, 210), kLightHalo = rgb(255, 255, 255, 225);
+// The halo's width over the stroke's.
+constexpr double kHaloRatio = 2.4;
+
 // The blank border of every figure kind, on all four sides, in points: nothing is drawn inside it, so a
 // figure placed in a paper never has ink touching its edge.
 constexpr double kFigureMargin = 4.0;
@@ -22,12 +31,17 @@ std::vector<std::string> wrap(Canvas& c, const TextStyle& st, const std::string&
 // Draws wrapped text from (x, y) down; returns the height used.
 double draw_wrapped(Canvas& c, Pt at, const TextStyle& st, const std::string& text, double width);
 
-enum class Swatch { kBox, kDot, kRing, kLine, kStruckBox };  // kStruckBox: a box with a diagonal
+// kStruckBox: a box with a diagonal; kDashedBox: a prediction's dashed box.
+enum class Swatch { kBox, kDot, kRing, kLine, kStruckBox, kDashedBox };
 struct LegendItem {
   Swatch swatch;
   Colour colour;
   std::string text;
+  Colour halo = rgb(0, 0, 0, 0);  // drawn under the swatch's strokes, as on the pictures (alpha 0: none)
 };
+
+// A box outline in dashes starting at each corner (so corners always show), `dash` long with `dash` * 0.6 gaps.
+void dashed_rect(Canvas& c, const PtRect& r, Colour colour, double width_pt, double dash);
 // Items flowing left to right, wrapping to new rows; returns the height used.
 double draw_legend(Canvas& c, Pt at, double width, const TextStyle& st, const std::vector<LegendItem>& items);
 
@@ -45,13 +59,21 @@ struct Label {
 // in the label's colour) and returns how many were left out; `placement` (optional): where each went.
 int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bounds, const std::vector<PtRect>& taken,
                 bool backdrop, LabelPlacement* placement = nullptr);
+// The two halves of draw_labels, for figures that decide what to show from where labels would go.
+LabelPlacement place_figure_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bounds,
+                                   const std::vector<PtRect>& taken);
+void draw_placed_labels(Canvas& c, const std::vector<Label>& labels, const LabelPlacement& placement, bool backdrop);
 // A leader's width: thin enough not to read as a box edge, thick enough to survive print (~0.6 pt).
 constexpr double kLeaderPt = 0.6;
 // The clearance an exclusive label keeps from the other exclusive targets, in points.
 constexpr double kExclusiveClearancePt = 2.0;
 
-// "3 labels left out (no room at this size)"-style footnote; returns the height used (0 when none).
-double draw_footnote(Canvas& c, Pt at, double width, double font_pt, int left_out);
+// "3 labels left out: no room at this size (try HINT)" footnote (no parentheses when `hint` is empty);
+// returns the height used (0 when none).
+double draw_footnote(Canvas& c, Pt at, double width, double font_pt, int left_out, const std::string& hint);
+// What makes a figure wider: "--column double" for a single-column figure, "a larger --width-in" otherwise
+// (a figure already double-column gains nothing from --column double).
+std::string wider_hint(double width_in);
 
 // Text style helpers: never below kMinTextPt.
 TextStyle style(double size_pt, Colour colour, bool bold = false);

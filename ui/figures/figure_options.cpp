@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -46,6 +47,8 @@ std::string to_string(const FigureLayers& l) {
   add(l.legend, "legend");
   return s;
 }
+
+double secondary_pt(double font_pt) { return std::max(std::min(font_pt, kReadablePt), 0.85 * font_pt); }
 
 FigureLayers default_layers(double width_in) {
   FigureLayers l;

@@ -8,6 +8,11 @@ namespace ipd::ui {
 
 constexpr double kSingleColumnIn = 3.5, kDoubleColumnIn = 7.16;  // IEEE column widths
 constexpr double kMinTextPt = 6;                                 // nothing smaller on the page
+// A journal's smallest print size: no text goes below it unless --font-pt itself asks for smaller.
+constexpr double kReadablePt = 7;
+// Footnotes, confidences, ticks and intervals: a little smaller than the body, never under kReadablePt
+// (or under --font-pt when that is smaller still).
+double secondary_pt(double font_pt);
 
 struct FigureLayers {
   bool gt = true, pred = true, conf = false, indices = true, pairs = true, legend = true;

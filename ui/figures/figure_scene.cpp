@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <set>
 
 #include "ui/figures/figure_common.h"
 #include "core/session/audit.h"
@@ -76,26 +78,23 @@ std::string title_of(const SceneFigureInput& in, const SceneNumbers& n) {
                      in.pairs_fixed ? ", pairs fixed by hand" : "");
 }
 
-// What was left out on one side of Fig. 1, by kind.
-struct SideLeftOut {
-  int numbers = 0;      // rock numbers with no spot clear of the other rocks' boxes
-  int confidences = 0;  // confidences with no spot clearly beside their own box
-  int other = 0;
-};
-
-// One side of Fig. 1: picture, boxes, then labels placed without collisions. Every label must read as its
-// own: a rock number stays clear of the other rocks' boxes, a confidence of the other prediction boxes and
-// of every GT box but the one its prediction matches; a moved label gets a leader, an impossible one is
-// left out and counted.
-SideLeftOut draw_side(Canvas& c, const PanelMap& m, const cv::Mat& picture, const std::string& problem,
-                      const std::vector<Box>& gt, const std::vector<Box>& pred, const std::vector<int>& number,
-                      const std::vector<int>& excluded, const FigureOptions& o) {
+// The picture of one side of Fig. 1 (or a notice naming why there is none) and its boxes: GT solid and
+// light on a dark halo, predictions dashed and dark on a light halo (figure_common.h: greyscale and
+// colour-vision safe). Returns the notice's box, which labels keep off (empty rect with a picture).
+PtRect draw_side_boxes(Canvas& c, const PanelMap& m, const cv::Mat& picture, const std::string& problem,
+                       const std::vector<Box>& gt, const std::vector<Box>& pred, const std::vector<int>& number,
+                       const std::vector<int>& excluded, const FigureOptions& o) {
   const FigureLayers& L = o.layers;
   const PtRect& P = m.panel;
+  PtRect notice{};
   if (picture.empty()) {
     c.fill_rect(P, rgb(70, 70, 76));
-    c.text({(P.x0 + P.x1) / 2, (P.y0 + P.y1) / 2}, Anchor::kCentre, style(o.font_pt * 0.8, rgb(255, 200, 120)),
-           problem.empty() ? "no picture" : problem);
+    const TextStyle st = style(secondary_pt(o.font_pt), rgb(255, 200, 120));
+    const std::string text = problem.empty() ? "no picture" : problem;
+    const Pt centre{(P.x0 + P.x1) / 2, (P.y0 + P.y1) / 2};
+    c.text(centre, Anchor::kCentre, st, text);
+    const Pt size = c.measure(st, text);
+    notice = text_box(centre, Anchor::kCentre, size.x, size.y);
   } else {
     Crop covered;
     const FigurePicture pixels = crop_picture(picture, m.crop, &covered);
@@ -104,26 +103,48 @@ SideLeftOut draw_side(Canvas& c, const PanelMap& m, const cv::Mat& picture, cons
     c.image(pixels, {p0.x, p0.y, p1.x, p1.y});
     c.pop_clip();
   }
-  const double lw = std::max(0.35, o.font_pt * 0.07);
+  const double lw = std::max(0.35, o.font_pt * 0.07), dash = std::max(1.5, 4 * lw);
   const std::vector<int> best = performance_values(gt, pred).best_prediction;
   c.push_clip(P);
   PtRect r;
   if (L.pred)
     for (size_t k = 0; k < pred.size(); ++k) {
+      if (!m.box(pred[k], r)) continue;
+      // A rock's best prediction (the one its performance value comes from) full strength, the others
+      // thinner and fainter.
       const bool is_best = std::find(best.begin(), best.end(), int(k)) != best.end();
-      if (m.box(pred[k], r)) c.rect(m.raw(pred[k]), is_best ? kRedC : rgb(235, 40, 40, 150), is_best ? lw * 1.5 : lw);
+      const double w = is_best ? lw * 1.5 : lw;
+      const auto faint = [&](Colour col) { return is_best ? col : rgb(col.r, col.g, col.b, col.a * 3 / 5); };
+      dashed_rect(c, m.raw(pred[k]), faint(kLightHalo), w * kHaloRatio, dash);
+      dashed_rect(c, m.raw(pred[k]), faint(kPredC), w, dash);
     }
-  auto colour_of = [&](size_t k) { return (!L.pairs || number[k] > 0) ? kPinkC : kUnpairedC; };
+  auto colour_of = [&](size_t k) { return (!L.pairs || number[k] > 0) ? kGtC : kGtUnpairedC; };
   if (L.gt)
     for (size_t k = 0; k < gt.size(); ++k) {
       if (!m.box(gt[k], r)) continue;
       const PtRect b = m.raw(gt[k]);
+      const bool struck = std::find(excluded.begin(), excluded.end(), int(k)) != excluded.end();
+      c.rect(b, kDarkHalo, lw * kHaloRatio);
+      if (struck) c.line({b.x0, b.y0}, {b.x1, b.y1}, kDarkHalo, lw * kHaloRatio);
       c.rect(b, colour_of(k), lw);
-      if (std::find(excluded.begin(), excluded.end(), int(k)) != excluded.end())
-        c.line({b.x0, b.y0}, {b.x1, b.y1}, colour_of(k), lw);
+      if (struck) c.line({b.x0, b.y0}, {b.x1, b.y1}, colour_of(k), lw);
     }
   c.pop_clip();
+  return notice;
+}
+
+// The labels of one side and, for each, the pair it numbers (0: an unpaired rock's "x" index, a plain
+// index or a confidence). Pairs in `unnumbered` get no number: a reader matches a pair by its number on
+// both pictures, so one that can't be shown on both is shown on neither.
+struct SideLabels {
   std::vector<Label> labels;
+  std::vector<int> pair;
+};
+SideLabels side_labels(const PanelMap& m, const std::vector<Box>& gt, const std::vector<Box>& pred,
+                       const std::vector<int>& number, const std::set<int>& unnumbered, const FigureOptions& o) {
+  const FigureLayers& L = o.layers;
+  SideLabels out;
+  PtRect r;
   if (L.gt && L.indices) {
     // Pair numbers first, in number order (the ones a reader matches across the pictures), then the rest.
     std::vector<size_t> order(gt.size());
@@ -134,9 +155,11 @@ SideLeftOut draw_side(Canvas& c, const PanelMap& m, const cv::Mat& picture, cons
     });
     for (size_t k : order) {
       if (!m.box(gt[k], r)) continue;
-      const std::string text = !L.pairs ? std::to_string(k + 1)
-                               : number[k] > 0 ? std::to_string(number[k]) : "x" + std::to_string(k + 1);
-      labels.push_back({text, style(o.font_pt, colour_of(k)), r, true, 0});
+      const int pair = L.pairs ? number[k] : 0;
+      if (pair > 0 && unnumbered.count(pair)) continue;
+      const std::string text = !L.pairs ? std::to_string(k + 1) : pair > 0 ? std::to_string(pair) : "x" + std::to_string(k + 1);
+      out.labels.push_back({text, style(o.font_pt, (!L.pairs || pair > 0) ? kGtC : kGtUnpairedC), r, true, 0});
+      out.pair.push_back(pair);
     }
   }
   if (L.pred && L.conf) {
@@ -151,21 +174,103 @@ SideLeftOut draw_side(Canvas& c, const PanelMap& m, const cv::Mat& picture, cons
       double matched_iou = 0;
       for (size_t j = 0; j < gt.size(); ++j)
         if (const double v = iou(gt[j], pred[k]); v > matched_iou) matched = int(j), matched_iou = v;
-      Label l{fmt::format("{:.2f}", pred[k].conf), style(o.font_pt * 0.85, kRedC), r, true, 1};
+      Label l{fmt::format("{:.2f}", pred[k].conf), style(secondary_pt(o.font_pt), kPredTextC), r, true, 1};
       for (size_t j = 0; j < gt.size(); ++j)
         if (int(j) != matched) l.keep_off.push_back(m.raw(gt[j]));
-      labels.push_back(std::move(l));
+      out.labels.push_back(std::move(l));
+      out.pair.push_back(0);
     }
   }
-  LabelPlacement placed;
-  SideLeftOut out;
-  draw_labels(c, labels, P, {}, true, &placed);
-  for (size_t i = 0; i < labels.size(); ++i)
-    if (!placed.labels[i].shown()) ++(labels[i].group == 0 ? out.numbers : out.confidences);
   return out;
 }
 
+// The pairs whose number is shown on a side.
+std::set<int> shown_pairs(const SideLabels& s, const LabelPlacement& p) {
+  std::set<int> out;
+  for (size_t i = 0; i < s.labels.size(); ++i)
+    if (s.pair[i] > 0 && p.labels[i].shown()) out.insert(s.pair[i]);
+  return out;
+}
+std::set<int> requested_pairs(const SideLabels& s) {
+  std::set<int> out;
+  for (int p : s.pair)
+    if (p > 0) out.insert(p);
+  return out;
+}
 
+// What Fig. 1's labels left out, by kind.
+struct PairsLeftOut {
+  int unnumbered_pairs = 0;  // pairs numbered on neither picture (no spot on one of them)
+  int numbers = 0;           // other rock numbers (unpaired rocks, plain indices) with no spot
+  int confidences = 0;       // confidences with no spot clearly beside their own box
+};
+
+// Two panels' labels placed so that a pair's number shows on both panels or on neither: a reader matches a
+// pair by its number. Pairs that fit on one side only are dropped from both and the placement redone
+// (dropping only frees room) until every shown pair number shows twice. `make(side, unnumbered)` gives a
+// side's labels without the numbers of `unnumbered`.
+struct TwoPanelLabels {
+  SideLabels side[2];
+  LabelPlacement placed[2];
+  std::set<int> unnumbered;  // pairs in view on both panels, numbered on neither
+  int left_out_other[2] = {0, 0};  // labels not shown that number no pair in view on both panels
+};
+TwoPanelLabels place_on_both(Canvas& c, const std::function<SideLabels(int, const std::set<int>&)>& make,
+                             const PtRect bounds[2], const std::vector<PtRect> taken[2]) {
+  TwoPanelLabels t;
+  for (;;) {
+    std::set<int> requested[2], shown[2];
+    for (int k = 0; k < 2; ++k) {
+      t.side[k] = make(k, t.unnumbered);
+      t.placed[k] = place_figure_labels(c, t.side[k].labels, bounds[k], taken[k]);
+      requested[k] = requested_pairs(t.side[k]);
+      shown[k] = shown_pairs(t.side[k], t.placed[k]);
+    }
+    const size_t before = t.unnumbered.size();
+    for (int p : requested[0])  // in view on both panels, its number shown on one only
+      if (requested[1].count(p) && shown[0].count(p) != shown[1].count(p)) t.unnumbered.insert(p);
+    if (t.unnumbered.size() == before) {
+      for (int p : requested[0])  // shown on neither: counted with the dropped ones
+        if (requested[1].count(p) && !shown[0].count(p)) t.unnumbered.insert(p);
+      for (int k = 0; k < 2; ++k)
+        for (size_t i = 0; i < t.side[k].labels.size(); ++i)
+          if (!t.placed[k].labels[i].shown() && !t.unnumbered.count(t.side[k].pair[i])) ++t.left_out_other[k];
+      return t;
+    }
+  }
+}
+
+// Fig. 1's labels on both sides, drawn on their backdrops.
+PairsLeftOut draw_pair_labels(Canvas& c, const PanelMap& left, const PanelMap& right, const SceneFigureInput& in,
+                              const std::vector<int>& num_a, const std::vector<int>& num_b,
+                              const PtRect& notice_a, const PtRect& notice_b, const FigureOptions& o) {
+  const auto taken = [](const PtRect& n) { return n.width() > 0 ? std::vector<PtRect>{n} : std::vector<PtRect>{}; };
+  const PtRect bounds[2] = {left.panel, right.panel};
+  const std::vector<PtRect> obstacles[2] = {taken(notice_a), taken(notice_b)};
+  const TwoPanelLabels t = place_on_both(
+      c,
+      [&](int k, const std::set<int>& unnumbered) {
+        return k == 0 ? side_labels(left, in.gt_a, in.pred_a, num_a, unnumbered, o)
+                      : side_labels(right, in.gt_b, in.pred_b, num_b, unnumbered, o);
+      },
+      bounds, obstacles);
+  PairsLeftOut out;
+  out.unnumbered_pairs = int(t.unnumbered.size());
+  for (int k = 0; k < 2; ++k) {
+    draw_placed_labels(c, t.side[k].labels, t.placed[k], true);
+    for (size_t i = 0; i < t.side[k].labels.size(); ++i)
+      if (!t.placed[k].labels[i].shown() && !t.unnumbered.count(t.side[k].pair[i]))
+        ++(t.side[k].labels[i].group == 0 ? out.numbers : out.confidences);
+  }
+  return out;
+}
+
+// "N pairs unnumbered: ..." for both scene figures.
+std::string unnumbered_note(int n, const FigureOptions& o) {
+  return fmt::format("{} pair{} unnumbered: no room for {} number on both pictures (to show {}: --crop, fewer "
+                     "--layers or {})",
+                     n, n == 1 ? "" : "s", n == 1 ? "its" : "their", n == 1 ? "it" : "them", wider_hint(o.width_in));
+}
 
 double draw_title(Canvas& c, const std::string& title, const FigureOptions& o) {
   return kMargin + draw_wrapped(c, {kMargin, kMargin}, style(o.font_pt, kInk), title, o.width_pt() - 2 * kMargin);
@@ -188,34 +293,40 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
   // The GUI's numbers (a pair is named by its left rock), so a figure and the screen agree.
   const std::vector<int> num_a = pair_numbers(in.pairs, in.gt_a.size(), true);
   const std::vector<int> num_b = pair_numbers(in.pairs, in.gt_b.size(), false);
-  const SideLeftOut la = draw_side(out, left, in.picture_a, in.problem_a, in.gt_a, in.pred_a, num_a, in.excluded_a, o);
-  const SideLeftOut lb = draw_side(out, right, in.picture_b, in.problem_b, in.gt_b, in.pred_b, num_b, in.excluded_b, o);
-  const int numbers = la.numbers + lb.numbers, ambiguous = la.confidences + lb.confidences;
+  const PtRect notice_a =
+      draw_side_boxes(out, left, in.picture_a, in.problem_a, in.gt_a, in.pred_a, num_a, in.excluded_a, o);
+  const PtRect notice_b =
+      draw_side_boxes(out, right, in.picture_b, in.problem_b, in.gt_b, in.pred_b, num_b, in.excluded_b, o);
+  const PairsLeftOut left_out = draw_pair_labels(out, left, right, in, num_a, num_b, notice_a, notice_b, o);
   y += ph + 0.35 * F;
   if (o.layers.legend) {
     std::vector<LegendItem> items;
-    if (o.layers.gt) items.push_back({Swatch::kBox, kPinkC, o.layers.indices && o.layers.pairs ? "GT rock (pair number)" : "GT rock"});
+    if (o.layers.gt)
+      items.push_back({Swatch::kBox, kGtC, o.layers.indices && o.layers.pairs ? "GT rock (pair number)" : "GT rock", kDarkHalo});
     // Only when the figure shows one: a legend entry for nothing on the page reads as a rendering error.
     const auto unpaired = [](const std::vector<int>& nums) { return std::count(nums.begin(), nums.end(), 0) > 0; };
     if (o.layers.gt && o.layers.pairs && (unpaired(num_a) || unpaired(num_b)))
-      items.push_back({Swatch::kBox, kUnpairedC, "unpaired GT (x index)"});
+      items.push_back({Swatch::kBox, kGtUnpairedC, "unpaired GT (x index)", kDarkHalo});
     if (o.layers.gt && (!in.excluded_a.empty() || !in.excluded_b.empty()))
-      items.push_back({Swatch::kStruckBox, kPinkC, "excluded from the IPD (by hand)"});
-    if (o.layers.pred) items.push_back({Swatch::kBox, kRedC, o.layers.conf ? "prediction (confidence)" : "prediction"});
+      items.push_back({Swatch::kStruckBox, kGtC, "excluded from the IPD (by hand)", kDarkHalo});
+    if (o.layers.pred)
+      items.push_back({Swatch::kDashedBox, kPredC, o.layers.conf ? "prediction (confidence)" : "prediction", kLightHalo});
     y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items);
   }
   // Footnotes 0.2 font sizes below the legend; none: the page ends at the legend (the same 4 pt margin).
   double note_gap = o.layers.legend ? 0.2 * F : 0;
   const auto note = [&](const std::string& text) {
-    y += note_gap + draw_wrapped(out, {kMargin, y + note_gap}, style(F * 0.8, kGrey), text, W - 2 * kMargin);
+    y += note_gap + draw_wrapped(out, {kMargin, y + note_gap}, style(secondary_pt(F), kGrey), text, W - 2 * kMargin);
     note_gap = 0;
   };
-  if (numbers > 0)
-    note(fmt::format("{} rock number{} left out: no free spot clear of the other rocks' boxes (try --crop)", numbers,
-                     numbers == 1 ? "" : "s"));
-  if (ambiguous > 0)
-    note(fmt::format("{} confidence label{} left out: no free spot clearly beside {} own box (try --crop)", ambiguous,
-                     ambiguous == 1 ? "" : "s", ambiguous == 1 ? "its" : "their"));
+  const std::string wider = wider_hint(o.width_in);
+  if (const int n = left_out.unnumbered_pairs; n > 0) note(unnumbered_note(n, o));
+  if (const int n = left_out.numbers; n > 0)
+    note(fmt::format("{} rock number{} left out: no free spot clear of the other rocks' boxes (try --crop or {})", n,
+                     n == 1 ? "" : "s", wider));
+  if (const int n = left_out.confidences; n > 0)
+    note(fmt::format("{} confidence label{} left out: no free spot clearly beside {} own box (try --crop or {})", n,
+                     n == 1 ? "" : "s", n == 1 ? "its" : "their", wider));
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);
   return {left.panel, right.panel};
@@ -237,7 +348,8 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
            in.pairs_fixed ? "aligned by the pairs" : "after registration");
   y += out.measure(caption, "Ag").y + 0.15 * F;
   const double dot = std::max(0.6, 0.11 * F), ring = dot * 2.8, lw = std::max(0.35, 0.07 * F);
-  int left_out = 0;
+  SideLabels all[2];  // every pair number of each panel
+  PtRect panels[2];
   for (int k = 0; k < 2; ++k) {
     const PanelMap m{{kMargin + k * (pw + gap), y, kMargin + k * (pw + gap) + pw, y + ph}, o.crop};
     out.fill_rect(m.panel, rgb(248, 248, 248));
@@ -262,8 +374,9 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
     if (o.layers.gt)
       for (const Pt& q : pa) out.fill_circle(q, dot, kBlueC);
     out.pop_clip();
+    panels[k] = m.panel;
     if (o.layers.gt && o.layers.indices) {
-      std::vector<Label> labels;
+      std::vector<Label>& labels = all[k].labels;
       const auto square = [](Pt q, double r) { return PtRect{q.x - r, q.y - r, q.x + r, q.y + r}; };
       for (const auto& [i, j] : in.pairs) {
         if (i < 0 || i >= int(pa.size())) continue;
@@ -279,10 +392,22 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
           if (int(b) != j) l.keep_off.push_back(square(pb[b], ring));
         l.keep_off_clearance = kExclusiveClearancePt;
         labels.push_back(std::move(l));
+        all[k].pair.push_back(i + 1);
       }
-      left_out += draw_labels(out, labels, m.panel, {}, false);
     }
   }
+  const std::vector<PtRect> none[2];
+  const TwoPanelLabels t = place_on_both(
+      out,
+      [&](int k, const std::set<int>& unnumbered) {
+        SideLabels s;
+        for (size_t i = 0; i < all[k].labels.size(); ++i)
+          if (!unnumbered.count(all[k].pair[i])) s.labels.push_back(all[k].labels[i]), s.pair.push_back(all[k].pair[i]);
+        return s;
+      },
+      panels, none);
+  for (int k = 0; k < 2; ++k) draw_placed_labels(out, t.side[k].labels, t.placed[k], false);
+  const int left_out = t.left_out_other[0] + t.left_out_other[1];
   y += ph + 0.35 * F;
   if (o.layers.legend) {
     std::vector<LegendItem> items;
@@ -294,7 +419,14 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
     if (o.layers.indices && o.layers.gt) items.push_back({Swatch::kDot, kInk, "numbers: pairs, by " + in.a + " rock"});
     y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items);
   }
-  if (left_out > 0) y += (o.layers.legend ? 0.2 * F : 0) + draw_footnote(out, {kMargin, y + (o.layers.legend ? 0.2 * F : 0)}, W - 2 * kMargin, F, left_out);
+  double note_gap = o.layers.legend ? 0.2 * F : 0;
+  if (!t.unnumbered.empty()) {
+    y += note_gap + draw_wrapped(out, {kMargin, y + note_gap}, style(secondary_pt(F), kGrey),
+                                 unnumbered_note(int(t.unnumbered.size()), o), W - 2 * kMargin);
+    note_gap = 0;
+  }
+  if (left_out > 0)
+    y += note_gap + draw_footnote(out, {kMargin, y + note_gap}, W - 2 * kMargin, F, left_out, "--crop or " + wider_hint(o.width_in));
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);
 }

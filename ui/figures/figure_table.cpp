@@ -33,8 +33,8 @@ void for_each_text(const TableFigure& t, size_t c, F&& f) {
   }
 }
 
-// The intervals' smaller font: 80% of the cells', never under 6 pt.
-double interval_pt(double cell_pt) { return std::max(kMinTextPt, 0.8 * cell_pt); }
+// The intervals' smaller font (secondary_pt of the cells').
+double interval_pt(double cell_pt) { return secondary_pt(cell_pt); }
 
 }  // namespace
 
@@ -44,10 +44,13 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
   const size_t cols = t.header.size();
   // The largest font (up to --font-pt) at which every column fits with its cells wrapped at spaces; columns
   // narrower than their longest cell share the shortfall in proportion.
+  // Never below the print minimum (kReadablePt) unless --font-pt asks for less: a table that still doesn't
+  // fit wraps its cells rather than shrinking further.
   double F = o.font_pt;
+  const double floor_pt = std::min(o.font_pt, kReadablePt);
   std::vector<double> w(cols);
   for (;; F -= 0.25) {
-    F = std::max(F, kMinTextPt);
+    F = std::max(F, floor_pt);
     const TextStyle bold = style(F, kInk, true), sub = style(interval_pt(F), kGrey);
     const double pad = 0.9 * F;
     std::vector<double> lo(cols, 0), hi(cols, 0);
@@ -62,7 +65,7 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
     for (size_t c = 0; c < cols; ++c) sum_lo += lo[c], sum_hi += hi[c];
     const double k = sum_hi <= avail ? 1.0 : sum_hi > sum_lo ? std::max(0.0, (avail - sum_lo) / (sum_hi - sum_lo)) : 0.0;
     for (size_t c = 0; c < cols; ++c) w[c] = lo[c] + k * (hi[c] - lo[c]);
-    if (sum_lo <= avail || F <= kMinTextPt) break;
+    if (sum_lo <= avail || F <= floor_pt) break;
   }
   // A table narrower than the page spreads its spare width over the value columns, so the rules span the
   // figure's width as a paper's full-width table does.
@@ -112,7 +115,7 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
   out.line({x[0], top + head_h}, {x[cols], top + head_h}, kInk, lw);
   out.line({x[0], y}, {x[cols], y}, kInk, lw * 2);
   y += 0.4 * F;
-  if (!t.note.empty()) y += draw_wrapped(out, {m, y}, style(o.font_pt * 0.8, kGrey), t.note, avail);
+  if (!t.note.empty()) y += draw_wrapped(out, {m, y}, style(secondary_pt(o.font_pt), kGrey), t.note, avail);
   out.width_pt = W;
   out.height_pt = std::ceil(y + m);
 }

@@ -34,6 +34,7 @@ ExportViewContext export_view_context(const Session& s, const UiState& ui, const
     c.base_name = s.scenes()[ui.scene].stem + "_" + s.left_domain() + "_" + s.right_domain();
   }
   c.model = s.model();
+  c.conf_threshold = s.conf_threshold();
   c.left = s.left_domain();
   c.right = s.right_domain();
   const SessionStatisticsRequest r = stats_request(s, stats);
@@ -45,11 +46,16 @@ ExportViewContext export_view_context(const Session& s, const UiState& ui, const
 
 std::string default_figure_name(const ExportDialogState& st, const ExportViewContext& ctx) {
   const std::string kind = kFigureKinds[std::clamp(st.kind, 0, 5)];
-  if (is_scene_kind(st.kind)) return ctx.base_name + "_" + kind;
-  if (kind == "table") return kind;
-  if (kind == "compare") return ctx.ref.empty() ? kind : kind + "_" + ctx.ref + "_" + ctx.a + "_" + ctx.b;
-  if (kind == "distribution") return kind + "_" + ctx.model;
-  return kind + "_" + kByNames[std::clamp(st.by, 0, 2)] + "_" + ctx.model + "_" + ctx.left + "_" + ctx.right;
+  char conf[32] = "";
+  if (ctx.conf_threshold > 0) std::snprintf(conf, sizeof conf, "_conf%g", ctx.conf_threshold);
+  const std::string model = ctx.model.empty() ? "" : "_" + ctx.model;
+  // The registration figure shows GT only: neither model nor threshold changes it.
+  if (kind == "registration") return ctx.base_name + "_" + kind;
+  if (is_scene_kind(st.kind)) return ctx.base_name + model + conf + "_" + kind;
+  if (kind == "table") return kind + conf;
+  if (kind == "compare") return (ctx.ref.empty() ? kind : kind + "_" + ctx.ref + "_" + ctx.a + "_" + ctx.b) + conf;
+  if (kind == "distribution") return kind + model + conf;
+  return kind + "_" + kByNames[std::clamp(st.by, 0, 2)] + model + "_" + ctx.left + "_" + ctx.right + conf;
 }
 
 void open_export_dialog(ExportDialogState& st, const ExportViewContext& ctx) {

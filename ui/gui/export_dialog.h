@@ -31,6 +31,7 @@ struct ExportDialogState {
 struct ExportViewContext {
   std::string default_dir, base_name;  // e.g. STUDY/figures, scene_02_real_principled
   std::string model, left, right;      // the view's model and domains (the study kinds' file names)
+  double conf_threshold = 0;           // the view's prediction threshold (0: none)
   std::string ref, a, b;               // the statistics panel's comparison (empty: the CLI's defaults)
   SideLayers layers;                   // the view's visible layers
   CanvasView view;                     // zoom and pan of the left picture
@@ -47,8 +48,10 @@ Crop crop_of_view(const CanvasView& view);
 
 // Opens the dialog pre-filled from the view.
 void open_export_dialog(ExportDialogState& state, const ExportViewContext& context);
-// The file name (without folder or extension) the dialog proposes for its kind, e.g.
-// "scene_02_real_principled_pairs", "table", "breakdown_size_det-real_real_principled".
+// The file name (without folder or extension) the dialog proposes for its kind: everything the figure
+// depends on (scene, domains, model, threshold), so exports of different views never overwrite each other,
+// e.g. "scene_02_real_principled_det-real_pairs", "scene_02_real_principled_det-real_conf0.4_pairs",
+// "table", "table_conf0.4", "breakdown_size_det-real_real_principled".
 std::string default_figure_name(const ExportDialogState& state, const ExportViewContext& context);
 // "pairs", ..., "breakdown" (with state.by = 0) or "breakdown-size|region|confidence" into the state's kind
 // and by; false for anything else.

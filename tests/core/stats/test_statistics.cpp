@@ -369,7 +369,7 @@ TEST(StatsCli, SameOutputForAnyThreadCountAndTheDocumentedJson) {
   const auto bad = test::run_ipd("compare " + d.path() + " --ref real --a real --b hapke");
   EXPECT_EQ(bad.exit_code, 1);
   EXPECT_EQ(bad.err, "error: compare needs three different domains, got --ref real --a real --b hapke\n");
-  const auto latex = test::run_ipd("table " + d.path() + " --format latex --ci --booktabs");
+  const auto latex = test::run_ipd("table " + d.path() + " --format latex --ci --booktabs --latex-wide");
   EXPECT_NE(latex.out.find("$|$real $-$ principled$|$"), std::string::npos) << latex.out;
   EXPECT_NE(latex.out.find("\\toprule"), std::string::npos);
   EXPECT_NE(latex.out.find("\\bottomrule"), std::string::npos);

@@ -49,7 +49,11 @@ TEST(TableLayout, ThreeDomainsLikeThePaper) {
   const std::string text = format_table(t, TableFormat::kText);
   EXPECT_NE(text.find("|real - principled|"), std::string::npos) << text;
   EXPECT_NE(text.find("det-real (real)"), std::string::npos);
-  const std::string latex = format_table(t, TableFormat::kLatex);
+  TableFormatOptions wide;
+  wide.latex_wide = true;
+  const std::string latex = format_table(t, TableFormat::kLatex, wide);
+  const std::string compact = format_table(t, TableFormat::kLatex);
+  EXPECT_NE(compact.find("\nA & \\textbf{0.6667} & \\textbf{0.6667} & -- \\\\\n"), std::string::npos) << compact;
   EXPECT_NE(latex.find("det-real (real) & \\textbf{0.6667} & \\textbf{0.6667} & -- \\\\"), std::string::npos) << latex;
   EXPECT_NE(latex.find("det-hapke (hapke) & -- & 0.6667 & \\textbf{0.0000} \\\\"), std::string::npos) << latex;
   const auto j = nlohmann::json::parse(format_table(t, TableFormat::kJson));

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "ui/figures/figure_export.h"
+#include "ui/gui/export_dialog.h"
 #include "core/session/session.h"
 #include "tests/support/pdf_text.h"
 #include "tests/support/stats_study.h"
@@ -89,6 +90,33 @@ TEST(FigureExport, UnknownKindIsReported) {
   request.path = d / "x.pdf";
   EXPECT_EQ(ui::export_figure(s, request), "export failed: unknown figure kind 'histogram'");
   EXPECT_FALSE(fs::exists(d / "x.pdf"));
+}
+
+// The dialog's proposed file names carry what the figure depends on: two views differing only in model or
+// threshold propose different names, so one export never overwrites the other.
+TEST(FigureExport, DefaultNamesNameModelAndThreshold) {
+  ui::ExportViewContext ctx;
+  ctx.base_name = "scene_02_real_principled";
+  ctx.model = "det-real", ctx.left = "real", ctx.right = "principled";
+  ui::ExportDialogState st;
+  const auto name = [&](const std::string& kind) {
+    EXPECT_TRUE(ui::set_export_kind(st, kind)) << kind;
+    return ui::default_figure_name(st, ctx);
+  };
+  EXPECT_EQ(name("pairs"), "scene_02_real_principled_det-real_pairs");
+  EXPECT_EQ(name("registration"), "scene_02_real_principled_registration");  // GT only
+  EXPECT_EQ(name("table"), "table");
+  EXPECT_EQ(name("distribution"), "distribution_det-real");
+  EXPECT_EQ(name("breakdown-region"), "breakdown_region_det-real_real_principled");
+  ctx.conf_threshold = 0.4;
+  EXPECT_EQ(name("pairs"), "scene_02_real_principled_det-real_conf0.4_pairs");
+  EXPECT_EQ(name("table"), "table_conf0.4");
+  EXPECT_EQ(name("distribution"), "distribution_det-real_conf0.4");
+  EXPECT_EQ(name("breakdown"), "breakdown_size_det-real_real_principled_conf0.4");
+  ctx.ref = "real", ctx.a = "principled", ctx.b = "hapke";
+  EXPECT_EQ(name("compare"), "compare_real_principled_hapke_conf0.4");
+  ctx.model = "det-hapke";
+  EXPECT_EQ(name("pairs"), "scene_02_real_principled_det-hapke_conf0.4_pairs");
 }
 
 }  // namespace

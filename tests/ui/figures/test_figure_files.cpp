@@ -229,7 +229,7 @@ TEST(FigureFiles, ConfidenceLabelsThatCannotBeOwnedAreLeftOutAndCounted) {
   EXPECT_TRUE(has_word(t, "0.87")) << t.all();
   EXPECT_TRUE(has_word(t, "0.93")) << t.all();
   EXPECT_FALSE(has_word(t, "0.55")) << t.all();
-  EXPECT_NE(t.all().find("1 confidence label left out: no free spot clearly beside its own box (try --crop)"),
+  EXPECT_NE(t.all().find("1 confidence label left out: no free spot clearly beside its own box (try --crop or a larger --width-in)"),
             std::string::npos) << t.all();
   EXPECT_EQ(t.all().find("labels left out: no room"), std::string::npos) << t.all();
 }

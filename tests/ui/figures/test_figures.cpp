@@ -81,25 +81,26 @@ TEST(Figures, BoxesStandWhereTheLabelsSay) {
   ui::DisplayList fig(metrics);
   const ui::PairsLayout l = ui::draw_pairs_figure(fig, in, o);
   EXPECT_EQ(img.rows, static_cast<int>(std::ceil(fig.height_pt * dpi / 72)));
-  // Whether a colour appears within 2 pixels of where the label puts an edge.
+  // Whether a colour appears within 2 pixels of where the label puts a (vertical) edge, or up to 8 pixels
+  // along it: predictions are dashed (a dash and its gap: 3.6 pt, 14 pixels).
   auto colour_near = [&](const ui::PtRect& panel, double x, double y, int r, int g, int b) {
     const double px = (panel.x0 + x * panel.width()) * dpi / 72, py = (panel.y0 + y * panel.height()) * dpi / 72;
-    for (int dy = -2; dy <= 2; ++dy)
+    for (int dy = -8; dy <= 8; ++dy)
       for (int dx = -2; dx <= 2; ++dx)
         if (near(img.at<cv::Vec3b>(static_cast<int>(py) + dy, static_cast<int>(px) + dx), r, g, b)) return true;
     return false;
   };
-  // Left GT box: left edge x = 0.20 (pink); its prediction's right edge x = 0.45 (red); inside, neither.
-  EXPECT_TRUE(colour_near(l.left, 0.20, 0.40, 255, 105, 200));
-  EXPECT_TRUE(colour_near(l.left, 0.45, 0.45, 235, 40, 40));
-  EXPECT_FALSE(colour_near(l.left, 0.33, 0.45, 255, 105, 200));
-  EXPECT_FALSE(colour_near(l.left, 0.33, 0.45, 235, 40, 40));
+  // Left GT box: left edge x = 0.20 (yellow); its prediction's right edge x = 0.45 (blue); inside, neither.
+  EXPECT_TRUE(colour_near(l.left, 0.20, 0.40, 240, 228, 66));
+  EXPECT_TRUE(colour_near(l.left, 0.45, 0.45, 0, 114, 178));
+  EXPECT_FALSE(colour_near(l.left, 0.33, 0.45, 240, 228, 66));
+  EXPECT_FALSE(colour_near(l.left, 0.33, 0.45, 0, 114, 178));
   // The unpaired second rock is grey (left edge x = 0.70), and there is no box there on the right.
-  EXPECT_TRUE(colour_near(l.left, 0.70, 0.70, 160, 160, 160));
-  EXPECT_FALSE(colour_near(l.right, 0.70, 0.70, 160, 160, 160));
-  // Right: GT left edge x = 0.20 (pink), prediction right edge x = 0.42 (red).
-  EXPECT_TRUE(colour_near(l.right, 0.20, 0.40, 255, 105, 200));
-  EXPECT_TRUE(colour_near(l.right, 0.42, 0.45, 235, 40, 40));
+  EXPECT_TRUE(colour_near(l.left, 0.70, 0.70, 175, 175, 175));
+  EXPECT_FALSE(colour_near(l.right, 0.70, 0.70, 175, 175, 175));
+  // Right: GT left edge x = 0.20 (yellow), prediction right edge x = 0.42 (blue).
+  EXPECT_TRUE(colour_near(l.right, 0.20, 0.40, 240, 228, 66));
+  EXPECT_TRUE(colour_near(l.right, 0.42, 0.45, 0, 114, 178));
 }
 
 // Fig. 2 with a misalignment smaller than a GT ring (about 2 pt on the page): the green pair line must still
