@@ -170,6 +170,8 @@ TEST(Cli, ExitCodesAndMessages) {
 void write_register_pair(const test::TempDir& d) {
   test::write_text(d / "r.txt", "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.05 0.05\n0 0.4 0.8 0.05 0.05\n0 0.8 0.8 0.05 0.05\n");
   test::write_text(d / "s.txt", "0 0.81 0.81 0.05 0.05\n0 0.21 0.21 0.05 0.05\n0 0.41 0.81 0.05 0.05\n");
+  // r.txt with one box a hair wider: the same centres, but not an identical layout, so it is searched.
+  test::write_text(d / "r2.txt", "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.05 0.05\n0 0.4 0.8 0.05 0.05\n0 0.8 0.8 0.05 0.051\n");
 }
 
 TEST(Cli, RegisterPrintsOneJsonObjectPerLine) {
@@ -217,7 +219,7 @@ TEST(Cli, RegisterJsonNamesItsCountsAsTheTextDoes) {
   EXPECT_EQ(j["trials"], 1000);
   EXPECT_EQ(j["hypotheses"], 6000);
   EXPECT_FALSE(j.contains("em_iterations"));
-  j = nlohmann::json::parse(test::run_ipd("register " + d / "r.txt " + d / "r.txt --json").out);
+  j = nlohmann::json::parse(test::run_ipd("register " + d / "r.txt " + d / "r2.txt --json").out);
   EXPECT_EQ(j["method"], "consensus");
   EXPECT_EQ(j["trials"], 1);
   EXPECT_EQ(j["hypotheses"], 1);
@@ -313,7 +315,11 @@ TEST(Cli, RegisterTextSaysWhatEachCountCounts) {
   write_register_pair(d);
   auto r = test::run_ipd("register " + d / "r.txt " + d / "r.txt");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("  method consensus: 1 trial, 1 hypothesis, score 4.00000; stopped: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  method consensus: 0 trials, 0 hypotheses, score 0.00000; stopped: identical layouts (no search needed)\n"),
+            std::string::npos) << r.out;
+  r = test::run_ipd("register " + d / "r.txt " + d / "r2.txt");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("  method consensus: 1 trial, 1 hypothesis, score 3.99843; stopped: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\n  4 centres within the gate; 4 pairs by aligned-box IoU (one-to-one)\n"), std::string::npos) << r.out;
   EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(\n  work: 4 of \d{1,3}(,\d{3})+ point evaluations \(the bound for this many rocks\); confidence)"))) << r.out;
   EXPECT_NE(r.out.find("[1.00000 0.00000 0.00000; 0.00000 1.00000 0.00000]"), std::string::npos) << r.out;
