@@ -20,6 +20,12 @@ Runner add_import_command(CLI::App& app) {
   cmd->add_flag("--skip-bad-lines", o->skip_bad_entries, "Warn about malformed entries and skip them");
   return [o]() -> int {
     const CocoImportReport r = import_coco(*o);
+    if (!r.collisions.empty()) {
+      for (const auto& c : r.collisions) fmt::print(stderr, "{}\n", c);
+      fmt::print(stderr, "error: {} image name collision{}; nothing written\n", r.collisions.size(),
+                 r.collisions.size() == 1 ? "" : "s");
+      return kBadInput;
+    }
     if (report_label_errors(r.errors, o->skip_bad_entries) || !r.written) {
       fmt::print(stderr, "error: {} malformed entr{}; nothing written (--skip-bad-lines skips them)\n", r.errors.size(),
                  r.errors.size() == 1 ? "y" : "ies");
