@@ -246,6 +246,13 @@ TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
     EXPECT_EQ(r.exit_code, 2) << seed;
     EXPECT_EQ(r.err.rfind("--seed: must be a whole number >= 0, got " + std::string(seed) + "\n", 0), 0u) << r.err;
   }
+  // ipd detect: a negative class kept nothing ("no rocks" everywhere), negative threads meant every core.
+  auto detect = test::run_ipd("detect " + d.path() + " --detector classical --out " + d / "x" + " --classes 0,-1");
+  EXPECT_EQ(detect.exit_code, 2);
+  EXPECT_EQ(detect.err.rfind("classes must be class numbers >= 0, got -1\n", 0), 0u) << detect.err;
+  detect = test::run_ipd("detect " + d.path() + " --detector classical --out " + d / "x" + " --threads -2");
+  EXPECT_EQ(detect.exit_code, 2);
+  EXPECT_EQ(detect.err.rfind("--threads: must be >= 0 (0: every core), got -2\n", 0), 0u) << detect.err;
   const auto demo = test::run_ipd("demo " + d / "demo" + " --seed -3");
   EXPECT_EQ(demo.exit_code, 2);
   EXPECT_FALSE(fs::exists(d / "demo"));
@@ -293,11 +300,12 @@ TEST(InputChecks, CocoImagesWhoseLabelsWouldCollideAreRefusedByName) {
   test::TempDir d;
   test::write_text(d / "ann.json", coco("[{\"id\": 1, \"file_name\": \"cam1/0001.png\", \"width\": 100, \"height\": 100},"
                                         " {\"id\": 2, \"file_name\": \"cam2/0001.png\", \"width\": 100, \"height\": 100}]"));
+  const std::string collision = d / "ann.json" +
+                                ": images[0] \"cam1/0001.png\" and images[1] \"cam2/0001.png\" would both write "
+                                "labels/0001.txt; give the images distinct names (or import each folder into a "
+                                "domain of its own)";
   CocoImportReport r = import_coco(coco_options(d));
-  EXPECT_EQ(r.collisions, std::vector<std::string>{d / "ann.json" +
-                                                   ": images[0] \"cam1/0001.png\" and images[1] \"cam2/0001.png\" would "
-                                                   "both write labels/0001.txt; give the images distinct names (or "
-                                                   "import each folder into a domain of its own)"});
+  EXPECT_EQ(r.collisions, std::vector<std::string>{collision});
   EXPECT_FALSE(r.written);
   EXPECT_FALSE(fs::exists(d / "study"));
   // Never skipped: --skip-bad-lines skips malformed entries, not labels that would land on each other.
@@ -307,7 +315,7 @@ TEST(InputChecks, CocoImagesWhoseLabelsWouldCollideAreRefusedByName) {
   const auto cli = test::run_ipd("import coco " + d / "ann.json" + " --images " + d.path() + " --out " +
                                  d / "study/real --skip-bad-lines");
   EXPECT_EQ(cli.exit_code, 1);
-  EXPECT_EQ(cli.err, r.collisions[0] + "\nerror: 1 image name collision; nothing written\n");
+  EXPECT_EQ(cli.err, collision + "\nerror: 1 image name collision; nothing written\n");
 
   test::write_text(d / "ann.json", coco("[{\"id\": 1, \"file_name\": \"classes.png\", \"width\": 100, \"height\": 100},"
                                         " {\"id\": 2, \"file_name\": \"b.png\", \"width\": 100, \"height\": 100}]"));
