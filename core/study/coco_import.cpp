@@ -9,6 +9,7 @@
 
 #include "core/util/atomic_file.h"
 #include "core/util/json_input.h"
+#include "core/util/number_text.h"
 #include "core/study/study.h"
 
 namespace fs = std::filesystem;
@@ -65,7 +66,8 @@ std::vector<std::string> name_collisions(const std::map<long, Image>& images, co
       const Image& other = *it->second;
       out.push_back(fmt::format("{}: images[{}] {} and images[{}] {} would both write labels/{}.txt; give the images "
                                 "distinct names (or import each folder into a domain of its own)",
-                                file, other.index, quoted(other.file), img.index, quoted(img.file), img.stem));
+                                file, other.index, quoted(other.file), img.index, quoted(img.file),
+                                quoted_for_message(img.stem)));
     }
   }
   return out;

@@ -122,7 +122,8 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
   try {
     documents.push_back(YAML::Load(text.substr(0, first_end)));
   } catch (const YAML::ParserException& e) {
-    throw StudyError(fmt::format("{}:{}: invalid YAML: {}", file, e.mark.line + 1, e.msg));
+    // yaml-cpp quotes the offending byte (a NUL, say) as it is: shown as \xHH.
+    throw StudyError(fmt::format("{}:{}: invalid YAML: {}", file, e.mark.line + 1, escape_non_utf8(e.msg)));
   }
   if (documents.empty()) return c;
   const YAML::Node& root = documents.front();
