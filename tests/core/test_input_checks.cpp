@@ -334,6 +334,28 @@ TEST(InputChecks, CocoImagesWhoseLabelsWouldCollideAreRefusedByName) {
   EXPECT_EQ(slurp(d / "study/real/labels/0002.txt"), "0 0.600000 0.600000 0.200000 0.200000\n");
 }
 
+// With --skip-bad-lines the import skipped a bad entry and wrote the rest, then said "nothing written" and
+// exited 1: a COCO entry has no line, and a line-less error read as an unreadable file.
+TEST(InputChecks, CocoSkippedEntriesAreWarningsAndTheImportSaysItWrote) {
+  test::TempDir d;
+  test::write_text(d / "ann.json",
+                   "{\"images\": [{\"id\": 1, \"file_name\": \"a.png\", \"width\": 200, \"height\": 100}],"
+                   " \"categories\": [{\"id\": 3, \"name\": \"rock\"}], \"annotations\": ["
+                   "{\"image_id\": 1, \"category_id\": 3, \"bbox\": [50, 25, 0, 10]},"
+                   " {\"image_id\": 1, \"category_id\": 3, \"bbox\": [50, 25, 10, 10]}]}");
+  const std::string import = "import coco " + d / "ann.json" + " --images " + d.path() + " --out " + d / "study/real";
+  const std::string entry = d / "ann.json" + ": annotations[0]: expected bbox with w > 0 and h > 0, found [50,25,0,10]";
+  auto r = test::run_ipd(import);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, entry + "\nerror: 1 malformed entry; nothing written (--skip-bad-lines skips them)\n");
+  EXPECT_FALSE(fs::exists(d / "study"));
+  r = test::run_ipd(import + " --skip-bad-lines");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "warning: " + entry + "\nwarning: 1 malformed entry skipped (--skip-bad-lines)\n");
+  EXPECT_EQ(r.out, "1 images, 1 GT boxes, 0 detections, 1 classes, 0 pictures linked -> " + d / "study/real" + "\n");
+  EXPECT_EQ(slurp(d / "study/real/labels/a.txt"), "0 0.275000 0.300000 0.050000 0.100000\n");
+}
+
 // Categories 3 and 3 (and 7) made classes 0, 1, 2 with class_of[3] = 1: the rocks became class 1 and
 // `rock_class: 0` dropped them all.
 TEST(InputChecks, CocoDuplicateCategoryIdIsAnError) {
