@@ -18,6 +18,7 @@
 #include "app/data_files.h"
 #include "core/util/atomic_file.h"
 #include "core/registration/pairing.h"
+#include "core/report/csv.h"
 #include "core/util/parallel.h"
 #include "app/bench/registration_benchmark.h"
 #include "core/session/session.h"
@@ -357,7 +358,7 @@ Runner add_bench_command(CLI::App& app) {
   CLI::App* cmd = bench->add_subcommand("registration", "Registration run time against pair F1 and transform error");
   cmd->add_option("--data", args->data, "POLAR-Sim label directory (containing labels/)");
   cmd->add_option("--cases", args->cases, "Cases per misalignment range")->check(CLI::Range(1, 100000));
-  cmd->add_option("--seed", args->seed, "Seed for the cases");
+  cmd->add_option("--seed", args->seed, "Seed for the cases")->check(seed_validator());
   cmd->add_option("--csv", args->csv, "Also write the table as CSV");
   cmd->add_option("--plot", args->plot, "Draw F1 against run time to this PNG");
   cmd->add_flag("--quick", args->quick, "One budget per method (for CI smoke runs)");
@@ -443,7 +444,7 @@ Runner add_bench_command(CLI::App& app) {
         fmt::print("{:<8} {:<11} {:>7} {:>9.4f} {:>8.4f} {:>7.4f} {:>7.4f} {:>7.4f} {:>10.4f} {:>10.4f} {:>6} {:>6}\n",
                    r.regime, r.method, budget, r.ms_per_pair, r.ms_median, r.f1, r.precision, r.recall,
                    100 * r.terr_median, 100 * r.terr_p90, amb, amb_f1);
-        csv += fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f}\n", r.regime, r.method,
+        csv += fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f}\n", csv_field(r.regime), csv_field(r.method),
                            r.config.budget, r.cases, r.ms_per_pair, r.ms_median, r.f1, r.precision, r.recall,
                            r.terr_median, r.terr_p90, r.ambiguous);
       }

@@ -25,6 +25,15 @@ std::vector<std::string> join_optional_values(int argc, char** argv) {
   return {args.rbegin(), args.rend()};
 }
 
+CLI::Validator seed_validator() {
+  return CLI::Validator(
+      [](std::string& s) {
+        const bool digits = !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
+        return digits ? std::string() : "must be a whole number >= 0, got " + s;
+      },
+      "SEED >= 0", "seed");
+}
+
 bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines) {
   if (errors.empty()) return false;
   // A file that can't be read (dangling link, no permission, a FIFO) is never skipped: its rocks would

@@ -1,6 +1,7 @@
 // Shared bits of the `ipd` subcommands: exit codes, error reporting, progress.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,10 @@ bool report_unusable_pairs(const std::vector<PairsProblem>& problems, bool skip_
 // into `--ci=0.9`: --ci is a flag with an optional level, so a level must be attached to it, and a
 // following word that is not a number (the STUDY) stays an argument of its own.
 std::vector<std::string> join_optional_values(int argc, char** argv);
+
+// For --seed: a whole number >= 0. CLI11 reads "-5" into an unsigned seed as 2^64 - 5, a different seed
+// without a word; "--seed: must be a whole number >= 0, got -5" instead.
+CLI::Validator seed_validator();
 
 // A one-line progress indicator on stderr, only when stderr is a terminal.
 class Progress {

@@ -9,6 +9,8 @@
 #include "app/cli/commands.h"
 #include "core/stats/study_statistics.h"
 #include "app/cli/study_options.h"
+#include "core/report/csv.h"
+#include "core/util/json_output.h"
 
 namespace ipd::cli {
 
@@ -40,6 +42,7 @@ Runner add_breakdown_command(CLI::App& app) {
   return [args]() -> int {
     auto loaded = load_study_table(args->study, false);
     if (!loaded) return kBadInput;
+    if (args->format == "json") require_utf8_names(loaded->labels.study);
     BreakdownOptions bo;
     parse_breakdown_by(args->by, &bo.by);
     bo.bins = args->bins;
@@ -61,14 +64,14 @@ Runner add_breakdown_command(CLI::App& app) {
                           {"ci_high", number(b.ipd.high)}, {"pairs", b.pairs}, {"scenes", b.scenes}});
         j["cells"].push_back({{"model", c.model}, {"trained_on", c.trained_on}, {"a", c.a}, {"b", c.b}, {"bins", bins}});
       }
-      std::cout << j.dump(2) << "\n";
+      std::cout << dump_json_output(j, 2) << "\n";
     } else if (args->format == "csv") {
       std::cout << "model,trained_on,a,b,bin,low,high,ipd,ci_low,ci_high,pairs,scenes\n";
       auto n = [](double v) { return std::isnan(v) ? std::string() : fmt::format("{:.6g}", v); };
       for (const auto& c : out)
         for (const auto& b : c.bins)
-          std::cout << fmt::format("{},{},{},{},\"{}\",{},{},{},{},{},{},{}\n", c.model, c.trained_on, c.a, c.b, b.label,
-                                   n(b.low), n(b.high), n(b.ipd.estimate), n(b.ipd.low), n(b.ipd.high), b.pairs, b.scenes);
+          std::cout << csv_row({c.model, c.trained_on, c.a, c.b, b.label, n(b.low), n(b.high), n(b.ipd.estimate),
+                                n(b.ipd.low), n(b.ipd.high), std::to_string(b.pairs), std::to_string(b.scenes)});
     } else {
       const bool md = args->format == "markdown";
       for (const auto& c : out) {

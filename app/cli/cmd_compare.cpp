@@ -10,6 +10,7 @@
 #include "app/cli/commands.h"
 #include "core/stats/study_statistics.h"
 #include "app/cli/study_options.h"
+#include "core/util/json_output.h"
 
 namespace ipd::cli {
 
@@ -50,6 +51,7 @@ Runner add_compare_command(CLI::App& app) {
   return [args]() -> int {
     StudyOptions so = args->study;
     const Study study = open_study_with_conf(so);
+    if (args->json) require_utf8_names(study);  // before the work, naming the file
     auto pick = [&](std::string name, size_t k, const char* flag) {
       if (!name.empty()) return name;
       if (study.domains.size() <= k)
@@ -80,11 +82,11 @@ Runner add_compare_command(CLI::App& app) {
     if (results.empty()) throw StudyError(fmt::format("{}: no model has predictions for {}, {} and {}", study.root, ref, a, b));
     if (args->json) {
       if (results.size() == 1) {
-        std::cout << comparison_json(results[0]).dump(2) << "\n";
+        std::cout << dump_json_output(comparison_json(results[0]), 2) << "\n";
       } else {
         nlohmann::ordered_json all = nlohmann::ordered_json::array();
         for (const auto& r : results) all.push_back(comparison_json(r));
-        std::cout << all.dump(2) << "\n";
+        std::cout << dump_json_output(all, 2) << "\n";
       }
     } else {
       for (const auto& r : results) {

@@ -16,7 +16,7 @@ Runner add_demo_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("demo", "Write the built-in demo study (generated pictures, labels, predictions)");
   cmd->add_option("OUT_DIR", args->out, "Directory to write the study into")->required();
-  cmd->add_option("--seed", args->seed, "Generator seed (the same seed gives the same study)");
+  cmd->add_option("--seed", args->seed, "Generator seed (the same seed gives the same study)")->check(seed_validator());
   cmd->add_option("--scenes", args->options.scenes, "Scenes per domain")->check(CLI::Range(1, 10000));
   cmd->add_option("--width", args->options.width, "Picture width")->check(CLI::Range(64, 10000));
   cmd->add_option("--height", args->options.height, "Picture height")->check(CLI::Range(64, 10000));

@@ -61,6 +61,8 @@ Runner add_detect_command(CLI::App& app) {
   cmd->add_option("--classes", args->yolo.classes, "Keep only these classes, e.g. 0,1")->delimiter(',');
   cmd->add_option("--threads", args->threads, "Picture decoding threads (default: all cores)");
   return [args]() -> int {
+    if (args->threads < 0) throw CLI::ValidationError("--threads", fmt::format("must be >= 0 (0: every core), got {}", args->threads));
+    if (const std::string bad = args->yolo.validate(); !bad.empty()) throw CLI::ValidationError(bad);
     const bool study_mode = !args->model.empty();
     if (study_mode == !args->out.empty())
       throw CLI::ValidationError("detect", "give --out PRED_DIR for a directory of pictures, or --model NAME for a study");

@@ -28,6 +28,7 @@ Runner add_export_command(CLI::App& app) {
   return [args]() -> int {
     auto loaded = load_study_table(args->study, false);
     if (!loaded) return kBadInput;
+    if (args->format == "json") require_utf8_names(loaded->labels.study);
     RockExportOptions eo;
     eo.unpaired = args->unpaired;
     const auto rows = rock_rows(loaded->labels, loaded->table, eo);

@@ -20,11 +20,23 @@ Runner add_import_command(CLI::App& app) {
   cmd->add_flag("--skip-bad-lines", o->skip_bad_entries, "Warn about malformed entries and skip them");
   return [o]() -> int {
     const CocoImportReport r = import_coco(*o);
-    if (report_label_errors(r.errors, o->skip_bad_entries) || !r.written) {
-      fmt::print(stderr, "error: {} malformed entr{}; nothing written (--skip-bad-lines skips them)\n", r.errors.size(),
-                 r.errors.size() == 1 ? "y" : "ies");
+    if (!r.collisions.empty()) {
+      for (const auto& c : r.collisions) fmt::print(stderr, "{}\n", c);
+      fmt::print(stderr, "error: {} image name collision{}; nothing written\n", r.collisions.size(),
+                 r.collisions.size() == 1 ? "" : "s");
       return kBadInput;
     }
+    // Entry problems name the JSON file and the entry, not a line (so report_label_errors, which takes a
+    // line-less error for an unreadable file, would call them fatal even when they were skipped and written).
+    const char* entries = r.errors.size() == 1 ? "y" : "ies";
+    for (const auto& e : r.errors) fmt::print(stderr, "{}{}\n", r.written ? "warning: " : "", e.to_string());
+    if (!r.written) {
+      fmt::print(stderr, "error: {} malformed entr{}; nothing written (--skip-bad-lines skips them)\n", r.errors.size(),
+                 entries);
+      return kBadInput;
+    }
+    if (!r.errors.empty())
+      fmt::print(stderr, "warning: {} malformed entr{} skipped (--skip-bad-lines)\n", r.errors.size(), entries);
     fmt::print("{} images, {} GT boxes, {} detections, {} classes, {} pictures linked -> {}\n", r.images, r.boxes,
                r.detections, r.classes.size(), r.linked_images, o->out_dir);
     return kOk;

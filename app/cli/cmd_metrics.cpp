@@ -12,6 +12,7 @@
 #include "core/stats/image_metrics.h"
 #include "core/stats/study_statistics.h"
 #include "app/cli/study_options.h"
+#include "core/util/json_output.h"
 
 namespace ipd::cli {
 
@@ -46,6 +47,7 @@ Runner add_metrics_command(CLI::App& app) {
   return [args]() -> int {
     const StudyOptions& so = args->study;
     Study study = open_study_with_conf(so);
+    if (args->json) require_utf8_names(study);  // before the work, naming the file
     const double threshold = study.config.conf_threshold;
     // AP ranks every detection in the files, as pycocotools would be given them; P/R/F1 use the threshold.
     Study all_detections = study;
@@ -126,7 +128,7 @@ Runner add_metrics_command(CLI::App& app) {
                           "with the registration affine; {:g}% scene-bootstrap intervals)\n",
                           100 * loaded->bootstrap.level);
     }
-    std::cout << (args->json ? j.dump(2) + "\n" : text);
+    std::cout << (args->json ? dump_json_output(j, 2) + "\n" : text);
     return kOk;
   };
 }

@@ -14,6 +14,7 @@
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 #include "core/util/atomic_file.h"
+#include "core/util/json_output.h"
 #include "core/util/parallel.h"
 #include "core/registration/registration.h"
 
@@ -138,6 +139,26 @@ Runner add_register_command(CLI::App& app) {
     std::vector<int> image_size;
     double budget_ms = 0, max_rotation = 0, max_anisotropy = 0;
     bool json = false, skip_bad_lines = false;
+
+    // Empty when every option given is in range, else "--option: what is wrong". A value out of range is an
+    // error, never the default (`--max-rotation -5` used to run with 30 degrees).
+    std::string validate(const CLI::App& cmd) const {
+      auto given = [&](const char* flag) { return cmd.count(flag) > 0; };
+      if (given("--trials") && trials < 1) return fmt::format("--trials: must be at least 1, got {}", trials);
+      if (given("--class") && cls < 0)
+        return fmt::format("--class: must be a class number >= 0 (leave it out for every class), got {}", cls);
+      if (given("--budget-ms") && !(budget_ms >= 0 && std::isfinite(budget_ms)))
+        return fmt::format("--budget-ms: must be a number of milliseconds >= 0 (0: no limit), got {}", budget_ms);
+      if (given("--max-rotation") && !(max_rotation > 0 && max_rotation <= 180))
+        return fmt::format("--max-rotation: must be in (0, 180] degrees, got {}", max_rotation);
+      if (given("--max-anisotropy") && !(max_anisotropy >= 1 && std::isfinite(max_anisotropy)))
+        return fmt::format("--max-anisotropy: must be a ratio >= 1 (1: no stretch allowed), got {}", max_anisotropy);
+      if (image_size.size() == 2 && (image_size[0] <= 0 || image_size[1] <= 0))
+        return fmt::format("--image-size: width and height must be positive, got {},{}", image_size[0], image_size[1]);
+      if (given("--threads") && threads < 0)
+        return fmt::format("--threads: must be >= 0 (0: every core), got {}", threads);
+      return {};
+    }
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("register", "Pair the rocks of two GT label files by point-set registration");
@@ -150,7 +171,7 @@ Runner add_register_command(CLI::App& app) {
                   "{real, synth, error})");
   cmd->add_option("--method", args->method, "Registration method:\n" + methods_help())
       ->check(CLI::IsMember(method_names()));
-  cmd->add_option("--seed", args->seed, "Random seed (results are deterministic for a seed)");
+  cmd->add_option("--seed", args->seed, "Random seed (results are deterministic for a seed)")->check(seed_validator());
   cmd->add_option("--class", args->cls, "Only boxes of this class (default: all)");
   // Each method's own search budget, as `ipd bench registration` treats budgets (Cli.RegisterTrialsIsEachMethodsBudget).
   cmd->add_option("--trials", args->trials,
@@ -170,21 +191,15 @@ Runner add_register_command(CLI::App& app) {
     const bool list_mode = !args->list.empty();
     if (list_mode == (!args->real.empty() || !args->synth.empty()) || (!list_mode && args->synth.empty()))
       throw CLI::ValidationError("register", "give either REAL SYNTH or --list FILE.tsv");
+    if (const std::string bad = args->validate(*cmd); !bad.empty()) throw CLI::ValidationError(bad);
     RegistrationOptions opt;
     parse_method(args->method, &opt.method);
     opt.seed = args->seed;
-    if (cmd->count("--trials") > 0) {
-      if (args->trials < 1) throw CLI::ValidationError("--trials", fmt::format("must be at least 1, got {}", args->trials));
-      (opt.method == RegistrationMethod::kCpd ? opt.cpd_iterations : opt.max_trials) = args->trials;
-    }
+    if (cmd->count("--trials") > 0) (opt.method == RegistrationMethod::kCpd ? opt.cpd_iterations : opt.max_trials) = args->trials;
     opt.time_budget_ms = args->budget_ms;
-    if (args->max_rotation > 0) opt.max_rotation_deg = args->max_rotation;
-    if (args->max_anisotropy > 0) opt.max_anisotropy = args->max_anisotropy;
-    if (args->image_size.size() == 2) {
-      if (args->image_size[0] <= 0 || args->image_size[1] <= 0)
-        throw CLI::ValidationError("--image-size", "width and height must be positive");
-      opt.aspect = static_cast<double>(args->image_size[0]) / args->image_size[1];
-    }
+    if (cmd->count("--max-rotation") > 0) opt.max_rotation_deg = args->max_rotation;
+    if (cmd->count("--max-anisotropy") > 0) opt.max_anisotropy = args->max_anisotropy;
+    if (args->image_size.size() == 2) opt.aspect = static_cast<double>(args->image_size[0]) / args->image_size[1];
     const std::string bad = opt.validate();
     if (!bad.empty()) throw CLI::ValidationError("register", bad);
     std::vector<Job> jobs;
@@ -193,18 +208,31 @@ Runner add_register_command(CLI::App& app) {
     parallel_for(jobs.size(), args->threads, [&](size_t k) { run_job(&jobs[k], opt, args->cls, args->skip_bad_lines); });
     int failed = 0, reported = 0;
     for (const auto& job : jobs) {
+      // JSON holds only UTF-8: a path in another encoding is this pair's error, named, not the whole output's.
+      if (args->json && (!is_utf8(job.real) || !is_utf8(job.synth))) {
+        const std::string why = fmt::format("{}: the name is not UTF-8 text, which JSON output cannot hold; rename "
+                                            "it (the text report takes it as it is)",
+                                            escape_non_utf8(is_utf8(job.real) ? job.synth : job.real));
+        fmt::print(stderr, "error: {}\n", why);
+        ++failed;
+        if (list_mode)
+          std::cout << dump_json_output(nlohmann::json{{"real", escape_non_utf8(job.real)},
+                                                       {"synth", escape_non_utf8(job.synth)}, {"error", why}})
+                    << "\n";
+        continue;
+      }
       const bool fatal = job.result.is_null();
       if (report_label_errors(job.errors, !fatal && args->skip_bad_lines) || fatal) {
         ++failed;
         if (list_mode && args->json) {
           nlohmann::json e = {{"real", job.real}, {"synth", job.synth}};
           e["error"] = job.errors.empty() ? "failed" : job.errors.front().to_string();
-          std::cout << e.dump() << "\n";
+          std::cout << dump_json_output(e) << "\n";
         }
         continue;
       }
       if (args->json) {
-        std::cout << job.result.dump() << "\n";
+        std::cout << dump_json_output(job.result) << "\n";
         continue;
       }
       const auto& r = job.result;

@@ -31,6 +31,7 @@ Runner add_table_command(CLI::App& app) {
   return [args]() -> int {
     auto loaded = load_study_table(args->study, true);
     if (!loaded) return kBadInput;
+    if (args->format == "json") require_utf8_names(loaded->labels.study);
     TableFormat format = TableFormat::kText;
     parse_table_format(args->format, &format);
     TableFormatOptions fo;

@@ -17,6 +17,15 @@ BootstrapOptions StudyOptions::bootstrap_options() const {
   return b;
 }
 
+std::string StudyOptions::validate() const {
+  if (seed < -1) return fmt::format("--seed: must be a whole number >= 0, got {}", seed);
+  if (conf != -1 && !(conf >= 0 && conf <= 1)) return fmt::format("--conf: must be in [0, 1], got {}", conf);
+  if (bootstrap < 0) return fmt::format("--bootstrap: must be >= 0 (0: no intervals), got {}", bootstrap);
+  if (!(level >= 0.5 && level <= 0.9999)) return fmt::format("--ci: must be in [0.5, 0.9999], got {}", level);
+  if (threads < 0) return fmt::format("--threads: must be >= 0 (0: every core), got {}", threads);
+  return {};
+}
+
 void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
   cmd->add_option("STUDY", o->study, "Study directory")->required();
   cmd->add_option("--model", o->models, "Only these models (repeat or comma-separate)")->delimiter(',');
@@ -24,7 +33,9 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
   cmd->add_option("--method", o->method,
                   "Registration method (default from study.yaml, else " + method_names().front() + "):\n" + methods_help())
       ->check(CLI::IsMember(method_names()));
-  cmd->add_option("--seed", o->seed, "Registration and bootstrap seed (default from study.yaml, else 0)");
+  // -1 stands for "not given": typed, it is as out of range as -5 (which used to mean "study.yaml's seed").
+  cmd->add_option("--seed", o->seed, "Registration and bootstrap seed (default from study.yaml, else 0)")
+      ->check(seed_validator());
   cmd->add_option("--conf", o->conf,
                   "Drop predictions below this confidence (the GUI slider; default: study.yaml's conf_threshold)")
       ->check(CLI::Range(0.0, 1.0));
@@ -48,6 +59,7 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
 }
 
 Study open_study_with_conf(const StudyOptions& o) {
+  if (const std::string bad = o.validate(); !bad.empty()) throw CLI::ValidationError(bad);
   Study study = open_study(o.study);
   if (o.conf >= 0) study.config.conf_threshold = o.conf;
   return study;

@@ -28,6 +28,9 @@ struct StudyOptions {
   bool no_cache = false;        // --no-cache: register every scene again
 
   BootstrapOptions bootstrap_options() const;
+  // Empty when every value is in range (or the "not given" value), else "--option: what is wrong": a value
+  // out of range is an error, never the default.
+  std::string validate() const;
 };
 
 // Adds the options to `cmd`. `with_bootstrap`: also --bootstrap and --ci.

@@ -1,12 +1,15 @@
 #include "app/studio/studio_replay.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
 #include "core/registration/registration.h"
+#include "core/util/number_text.h"
 
 namespace ipd::studio {
 
@@ -42,17 +45,18 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
     const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
     if (static_cast<int>(a.args.size()) != it->second.first && !export_with_kind)
       fail("'" + a.verb + "' takes " + it->second.second + ", got " + std::to_string(a.args.size()) + " argument(s)");
+    // The whole word is the number ("5\0" is not 5) and it fits the int the studio keeps it in.
     auto positive = [&](const std::string& w) {
-      char* end = nullptr;
-      const long v = std::strtol(w.c_str(), &end, 10);
-      if (*end || v < 1) fail("'" + a.verb + "': expected a number >= 1, got '" + w + "'");
+      long long v = 0;
+      if (!parse_integer(w, 1, std::numeric_limits<int>::max(), &v))
+        fail("'" + a.verb + "': expected a number >= 1, got '" + quoted_for_message(w) + "'");
     };
     if (a.verb == "wait" || a.verb == "pair" || a.verb == "unpair" || a.verb == "exclude")
       for (const auto& w : a.args) positive(w);
     if (a.verb == "conf") {
-      char* end = nullptr;
-      const double v = std::strtod(a.args[0].c_str(), &end);
-      if (*end || !(v >= 0 && v <= 1)) fail("'conf': expected a threshold in [0, 1], got '" + a.args[0] + "'");
+      double v = NAN;
+      if (!parse_decimal(a.args[0], &v) || !(v >= 0 && v <= 1))
+        fail("'conf': expected a threshold in [0, 1], got '" + quoted_for_message(a.args[0]) + "'");
     }
     RegistrationMethod method;
     if (a.verb == "rerun" && !parse_method(a.args[0], &method))

@@ -15,6 +15,8 @@ std::string YoloOptions::validate() const {
   if (!(conf >= 0 && conf <= 1)) return fmt::format("conf must be in [0, 1], got {}", conf);
   if (!(iou >= 0 && iou <= 1)) return fmt::format("iou must be in [0, 1], got {}", iou);
   if (max_det < 1) return fmt::format("max_det must be at least 1, got {}", max_det);
+  for (const int c : classes)  // a negative class matches no detection: every picture would read "no rocks"
+    if (c < 0) return fmt::format("classes must be class numbers >= 0, got {}", c);
   return {};
 }
 

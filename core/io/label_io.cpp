@@ -1,6 +1,5 @@
 #include "core/io/label_io.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -9,6 +8,7 @@
 #include <string_view>
 
 #include "core/util/atomic_file.h"
+#include "core/util/number_text.h"
 
 namespace fs = std::filesystem;
 
@@ -42,8 +42,8 @@ void split_fields(std::string_view line, std::vector<std::string>* out) {
   }
 }
 
-// Untrusted text in a message: never more than 40 characters of it.
-std::string shorten(const std::string& s) { return s.size() > 40 ? s.substr(0, 37) + "..." : s; }
+// Untrusted text in a message: never more than 40 characters of it, control bytes shown as \xHH.
+std::string shorten(const std::string& s) { return quoted_for_message(s); }
 
 // Parses a line's fields into a box or returns why not.
 std::string parse_box(const std::vector<std::string>& f, const LabelParseOptions& opt, Box* box) {
@@ -59,11 +59,9 @@ std::string parse_box(const std::vector<std::string>& f, const LabelParseOptions
   box->cls = std::atoi(c.c_str());
   double v[6] = {0, 0, 0, 0, 0, 1};
   for (size_t k = 1; k < want; ++k) {
-    const char* s = f[k].c_str();
-    char* end = nullptr;
-    errno = 0;
-    const double x = std::strtod(s, &end);
-    if (end == s || *end != '\0') {
+    // The whole field is the number: a NUL or any other byte after it is an error, never cut off.
+    double x = NAN;
+    if (!parse_decimal(f[k], &x) && !is_non_finite_word(f[k])) {
       return fmt::format("expected a number for {} in column {}, found '{}'", kColumnNames[k], k + 1, shorten(f[k]));
     }
     if (!std::isfinite(x)) {

@@ -68,16 +68,16 @@ std::string methods_help() {
 
 std::string RegistrationOptions::validate() const {
   if (max_trials < 1) return fmt::format("max_trials must be at least 1, got {}", max_trials);
-  if (!(time_budget_ms >= 0)) return fmt::format("time_budget_ms must be >= 0, got {}", time_budget_ms);
+  if (!(time_budget_ms >= 0) || !std::isfinite(time_budget_ms)) return fmt::format("time_budget_ms must be >= 0, got {}", time_budget_ms);
   if (!(aspect > 0) || !std::isfinite(aspect)) return fmt::format("aspect must be a positive number, got {}", aspect);
-  if (!(pair_gate > 0)) return fmt::format("pair_gate must be > 0, got {}", pair_gate);
-  if (!(min_scale > 0) || !(max_scale >= min_scale))
+  if (!(pair_gate > 0) || !std::isfinite(pair_gate)) return fmt::format("pair_gate must be > 0, got {}", pair_gate);
+  if (!(min_scale > 0) || !(max_scale >= min_scale) || !std::isfinite(max_scale))
     return fmt::format("scale bounds must satisfy 0 < min_scale <= max_scale, got [{}, {}]", min_scale, max_scale);
   if (!(max_rotation_deg > 0) || max_rotation_deg > 180)
     return fmt::format("max_rotation_deg must be in (0, 180], got {}", max_rotation_deg);
   if (!(max_anisotropy >= 1) || !std::isfinite(max_anisotropy))
     return fmt::format("max_anisotropy must be a number >= 1, got {}", max_anisotropy);
-  if (!(inlier_gate >= 0)) return fmt::format("inlier_gate must be >= 0 (0: automatic), got {}", inlier_gate);
+  if (!(inlier_gate >= 0) || !std::isfinite(inlier_gate)) return fmt::format("inlier_gate must be >= 0 (0: automatic), got {}", inlier_gate);
   if (!(min_pair_iou >= 0 && min_pair_iou < 1)) return fmt::format("min_pair_iou must be in [0, 1), got {}", min_pair_iou);
   if (!(work_budget >= 0) || !std::isfinite(work_budget))
     return fmt::format("work_budget must be >= 0 (0: automatic), got {}", work_budget);

@@ -7,6 +7,8 @@
 #include "core/session/audit.h"
 #include "core/stats/image_metrics.h"
 #include "core/stats/study_statistics.h"
+#include "core/report/csv.h"
+#include "core/util/json_output.h"
 
 namespace ipd {
 
@@ -78,14 +80,7 @@ const char* const kColumns[] = {"model", "trained_on", "a",     "b",    "scene",
                                 "cx_b",   "cy_b",      "w_b",   "h_b",  "residual_px", "source"};
 
 std::string num(double v) { return std::isnan(v) ? std::string() : fmt::format("{:.12g}", v); }
-
-// CSV field: quoted when it holds a comma, quote or newline.
-std::string field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
+std::string field(const std::string& s) { return csv_field(s); }
 }  // namespace
 
 std::string rock_rows_csv(const std::vector<RockRow>& rows) {
@@ -120,7 +115,7 @@ std::string rock_rows_json(const std::vector<RockRow>& rows) {
         {"cx_b", n(b ? r.box_b.cx : nan)}, {"cy_b", n(b ? r.box_b.cy : nan)}, {"w_b", n(b ? r.box_b.w : nan)},
         {"h_b", n(b ? r.box_b.h : nan)}, {"residual_px", n(r.residual_px)}, {"source", r.source}});
   }
-  return out.dump(1) + "\n";
+  return dump_json_output(out, 1) + "\n";
 }
 
 }  // namespace ipd

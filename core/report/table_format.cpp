@@ -6,6 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include "core/stats/study_statistics.h"
+#include "core/report/csv.h"
+#include "core/util/json_output.h"
 
 namespace ipd {
 
@@ -330,10 +332,10 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
       std::string out =
           "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se\n";
       for (const auto& c : t.cells)
-        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", c.model, c.trained_on, c.a, c.b,
-                           number_or_empty(c.ipd), c.pairs, c.unpaired_a, c.unpaired_b, c.scenes,
-                           c.involves_training_domain ? "true" : "false", number_or_empty(c.ci_low),
-                           number_or_empty(c.ci_high), number_or_empty(c.se));
+        out += csv_row({c.model, c.trained_on, c.a, c.b, number_or_empty(c.ipd), std::to_string(c.pairs),
+                        std::to_string(c.unpaired_a), std::to_string(c.unpaired_b), std::to_string(c.scenes),
+                        c.involves_training_domain ? "true" : "false", number_or_empty(c.ci_low),
+                        number_or_empty(c.ci_high), number_or_empty(c.se)});
       return out;
     }
     case TableFormat::kJson: {
@@ -356,7 +358,7 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
       j["bootstrap"] = {{"resamples", o.resamples}, {"level", o.level}, {"seed", o.seed}};
       j["conf_threshold"] = o.conf_threshold;
       j["warnings"] = t.warnings;
-      return j.dump(2) + "\n";
+      return dump_json_output(j, 2) + "\n";
     }
     case TableFormat::kMarkdown: {
       std::string out = "| Train \\ Eval |";

@@ -4,6 +4,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "core/util/number_text.h"
+
 namespace ipd {
 
 SceneFilter SceneFilter::parse(const std::string& text) {
@@ -19,9 +21,7 @@ SceneFilter SceneFilter::parse(const std::string& text) {
       const size_t len = (w.size() > 4 && w[4] == '=') ? 2 : 1;
       t.op = w.substr(3, len);
       const std::string number = w.substr(3 + len);
-      char* end = nullptr;
-      t.value = std::strtod(number.c_str(), &end);
-      if (number.empty() || *end != '\0' || !std::isfinite(t.value)) {
+      if (!parse_decimal(number, &t.value) || !std::isfinite(t.value)) {
         f.error = "'" + w + "': expected a number after " + t.op;
         continue;
       }

@@ -9,6 +9,7 @@
 
 #include "core/util/atomic_file.h"
 #include "core/util/json_input.h"
+#include "core/util/number_text.h"
 #include "core/study/study.h"
 
 namespace fs = std::filesystem;
@@ -24,6 +25,7 @@ json parse_json_file(const std::string& path, const char* expected) {
 }
 
 struct Image {
+  size_t index = 0;  // position in the "images" array, for messages
   std::string file, stem;
   double w = 0, h = 0;
   std::vector<Box> gt, predictions;
@@ -44,6 +46,31 @@ std::string to_box(const json& bbox, const Image& img, Box* out) {
   out->w = std::min(w / img.w, 1.0);
   out->h = std::min(h / img.h, 1.0);
   return {};
+}
+
+// Images whose labels would land in one file: the same stem in two folders (cam1/0001.png, cam2/0001.png) or
+// with two extensions, a stem of "classes" (labels/classes.txt holds the class names) or none at all. Each
+// would silently lose its boxes to another, so the import refuses them all, by name.
+std::vector<std::string> name_collisions(const std::map<long, Image>& images, const std::string& file) {
+  std::vector<std::string> out;
+  std::map<std::string, const Image*> by_stem;
+  auto quoted = [](const std::string& s) { return describe_json(nlohmann::json(s)); };
+  for (const auto& [id, img] : images) {
+    if (img.stem.empty() || img.stem == "." || img.stem == "..") {
+      out.push_back(fmt::format("{}: images[{}] {}: no file name to write its labels under", file, img.index,
+                                quoted(img.file)));
+    } else if (img.stem == "classes") {
+      out.push_back(fmt::format("{}: images[{}] {} would write labels/classes.txt, which holds the class names; "
+                                "rename the image", file, img.index, quoted(img.file)));
+    } else if (const auto [it, fresh] = by_stem.emplace(img.stem, &img); !fresh) {
+      const Image& other = *it->second;
+      out.push_back(fmt::format("{}: images[{}] {} and images[{}] {} would both write labels/{}.txt; give the images "
+                                "distinct names (or import each folder into a domain of its own)",
+                                file, other.index, quoted(other.file), img.index, quoted(img.file),
+                                quoted_for_message(img.stem)));
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -71,6 +98,7 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
       throw StudyError(fmt::format("{}: expected a COCO object with an \"{}\" array", o.annotations, key));
   std::map<long, int> class_of;  // category id -> YOLO class
   std::vector<std::pair<long, std::string>> cats;
+  std::map<long, size_t> category_at;  // id -> its index in "categories"
   for (const auto& c : gt["categories"]) {
     if (!c.is_object() || !c.contains("id") || !c["id"].is_number_integer())
       throw StudyError(fmt::format("{}: every category needs an integer \"id\", found {}", o.annotations, describe_json(c)));
@@ -78,6 +106,13 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
       throw StudyError(fmt::format("{}: category {}: \"name\" must be a string, found {}", o.annotations,
                                    c["id"].get<long>(), describe_json(c["name"])));
     cats.emplace_back(c["id"].get<long>(), c.value("name", std::to_string(c["id"].get<long>())));
+    // YOLO class k is the k-th category by id: an id given twice would shift every class after it (so
+    // `rock_class: 0` would select another category), and which name it has would be a guess.
+    const auto [first, fresh] = category_at.emplace(cats.back().first, cats.size() - 1);
+    if (!fresh)
+      throw StudyError(fmt::format("{}: categories[{}]: category id {} appears twice (also categories[{}]); every "
+                                   "category needs its own id, since YOLO class numbers follow the ids",
+                                   o.annotations, cats.size() - 1, cats.back().first, first->second));
   }
   std::sort(cats.begin(), cats.end());
   for (size_t k = 0; k < cats.size(); ++k) {
@@ -95,6 +130,7 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
       continue;
     }
     Image img;
+    img.index = k - 1;
     img.file = im["file_name"].get<std::string>();
     img.stem = fs::path(img.file).stem().string();
     img.w = im["width"];
@@ -147,7 +183,8 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
     for (const auto& a : res) add(a, o.results, fmt::format("[{}]", k++), true);
   }
   r.images = static_cast<int>(images.size());
-  if (!r.errors.empty() && !o.skip_bad_entries) return r;
+  r.collisions = name_collisions(images, o.annotations);
+  if (!r.collisions.empty() || (!r.errors.empty() && !o.skip_bad_entries)) return r;
   const fs::path out(o.out_dir);
   for (const auto& [id, img] : images) {
     write_labels((out / "labels" / (img.stem + ".txt")).string(), img.gt, LabelKind::kGroundTruth);

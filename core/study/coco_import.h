@@ -22,6 +22,9 @@ struct CocoImportReport {
   int images = 0, boxes = 0, detections = 0, linked_images = 0;
   std::vector<std::string> classes;  // YOLO class k = k-th category by id
   std::vector<LabelError> errors;    // all of them; nothing is written when any is fatal
+  // Images whose labels would overwrite each other's or the class names (same stem in two folders, an image
+  // named classes.png): never skipped, nothing is written while there is one.
+  std::vector<std::string> collisions;
   bool written = false;
 };
 

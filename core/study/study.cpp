@@ -3,11 +3,14 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <set>
 
 #include "core/util/atomic_file.h"
+#include "core/util/json_input.h"
+#include "core/util/json_output.h"
 
 namespace fs = std::filesystem;
 
@@ -43,6 +46,33 @@ void check_unique_keys(const YAML::Node& map, const std::string& file, const std
       throw StudyError(fmt::format("{}:{}: duplicate setting '{}{}' (first given on line {})", file, line, prefix,
                                    key.size() > 40 ? key.substr(0, 37) + "..." : key, it->second));
   }
+}
+
+// A model's settings: {trained_on: DOMAIN}, or nothing when the training domain is unknown. A misspelt key
+// (`traind_on`) or `trained_on: null` would otherwise leave the model without its training domain, and every
+// cell of its row would then count as a cross-domain cell.
+std::string parse_model_settings(const YAML::Node& settings, const std::string& file, const std::string& name) {
+  if (!settings.IsMap()) return "";
+  const std::string where = "models." + (name.size() > 40 ? name.substr(0, 37) + "..." : name);
+  check_unique_keys(settings, file, where + ".");
+  std::string trained_on;
+  for (const auto& kv : settings) {
+    const int line = kv.first.Mark().line + 1;
+    const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string("(a list or mapping)");
+    if (key != "trained_on")
+      throw StudyError(fmt::format("{}:{}: unknown setting '{}.{}' (expected trained_on)", file, line, where,
+                                   key.size() > 40 ? key.substr(0, 37) + "..." : key));
+    if (kv.second.IsNull())
+      throw StudyError(fmt::format("{}:{}: {}.trained_on is empty (null); expected the name of the domain the "
+                                   "model was trained on (leave the setting out when it is unknown)",
+                                   file, line, where));
+    trained_on = yaml_get<std::string>(kv.second, file, "trained_on");
+    if (trained_on.empty())
+      throw StudyError(fmt::format("{}:{}: {}.trained_on is an empty name; expected the name of the domain the "
+                                   "model was trained on (leave the setting out when it is unknown)",
+                                   file, line, where));
+  }
+  return trained_on;
 }
 
 }  // namespace
@@ -91,7 +121,8 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
   try {
     documents.push_back(YAML::Load(text.substr(0, first_end)));
   } catch (const YAML::ParserException& e) {
-    throw StudyError(fmt::format("{}:{}: invalid YAML: {}", file, e.mark.line + 1, e.msg));
+    // yaml-cpp quotes the offending byte (a NUL, say) as it is: shown as \xHH.
+    throw StudyError(fmt::format("{}:{}: invalid YAML: {}", file, e.mark.line + 1, escape_non_utf8(e.msg)));
   }
   if (documents.empty()) return c;
   const YAML::Node& root = documents.front();
@@ -129,9 +160,7 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
         if (!m.second.IsMap() && !m.second.IsNull())
           throw StudyError(fmt::format("{}:{}: models.{} must be a mapping like {{trained_on: real}}", file,
                                        m.first.Mark().line + 1, name));
-        if (m.second.IsMap()) check_unique_keys(m.second, file, "models." + name + ".");
-        const YAML::Node& t = m.second["trained_on"];
-        c.trained_on[name] = t ? yaml_get<std::string>(t, file, "trained_on") : "";
+        c.trained_on[name] = parse_model_settings(m.second, file, name);
       }
     } else if (key == "registration") {
       if (!v.IsMap()) throw StudyError(fmt::format("{}:{}: registration must be a mapping", file, line));
@@ -145,6 +174,10 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
             throw StudyError(fmt::format("{}:{}: unknown registration method '{}' (expected {})", file,
                                          r.first.Mark().line + 1, name, method_choices()));
         } else if (k == "seed") {
+          // yaml-cpp reads "-1" as 2^64 - 1 for an unsigned type: a negative seed is an error, not a seed.
+          if (r.second.IsScalar() && r.second.Scalar().rfind('-', 0) == 0)
+            throw StudyError(fmt::format("{}:{}: registration.seed must be a whole number >= 0, got {}", file,
+                                         r.first.Mark().line + 1, r.second.Scalar()));
           c.registration.seed = yaml_get<std::uint64_t>(r.second, file, "registration.seed");
         } else if (k == "trials") {
           trials = yaml_get<int>(r.second, file, "registration.trials");
@@ -153,6 +186,10 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
                                          r.first.Mark().line + 1, trials));
         } else if (k == "gate") {
           c.registration.pair_gate = yaml_get<double>(r.second, file, "registration.gate");
+          if (!(c.registration.pair_gate > 0) || !std::isfinite(c.registration.pair_gate))
+            throw StudyError(fmt::format("{}:{}: registration.gate must be a number > 0 (a fraction of the rocks' "
+                                         "spread; default 0.2), got {}",
+                                         file, r.first.Mark().line + 1, r.second.Scalar()));
         } else {
           throw StudyError(fmt::format("{}:{}: unknown registration setting '{}' (expected method, seed, trials, gate)",
                                        file, r.first.Mark().line + 1, k));
@@ -218,6 +255,64 @@ std::vector<fs::directory_entry> list_directory(const fs::path& dir) {
   return out;
 }
 
+// Label (or prediction) files of one directory, by stem. Only `<stem>.txt` is read (Study::label_path); a
+// file whose extension is .txt in another case (0001.TXT from a Windows tool) would be silently skipped and
+// its scene read as having no rocks, so it is an error, saying whether 0001.txt is there too.
+std::set<std::string> label_stems(const fs::path& dir) {
+  std::set<std::string> stems;
+  std::vector<fs::path> refused;
+  for (const auto& f : list_directory(dir)) {
+    const fs::path& p = f.path();
+    if (p.filename() == "classes.txt") continue;  // class names (ipd import coco), not a scene
+    if (p.extension() == ".txt") stems.insert(p.stem().string());
+    else if (lower(p.extension().string()) == ".txt") refused.push_back(p);
+  }
+  if (refused.empty()) return stems;
+  std::sort(refused.begin(), refused.end());
+  const fs::path& p = refused.front();
+  const std::string stem = p.stem().string();
+  if (stems.count(stem))
+    throw StudyError(fmt::format("{}: {}.txt holds this scene's boxes too, and only lower-case .txt files are read; "
+                                 "remove or merge one of them",
+                                 p.string(), stem));
+  throw StudyError(fmt::format("{}: only lower-case .txt label files are read; rename it to {}.txt", p.string(), stem));
+}
+
+// One domain: its scenes (label files and pictures), its pictures by stem and its prediction sets. Two
+// pictures of one scene (0001.png and 0001.jpg) are an error: which one is shown would depend on the
+// directory's order.
+Domain scan_domain(const fs::path& root, const std::string& name, std::set<std::string>* all_models) {
+  Domain d;
+  d.name = name;
+  d.dir = (root / name).string();
+  std::set<std::string> stems = label_stems(root / name / "labels");
+  if (kind_of(root / name / "images") == FileKind::kDirectory) {
+    std::vector<fs::path> pictures;
+    for (const auto& f : list_directory(root / name / "images"))
+      if (kImageExtensions.count(lower(f.path().extension().string()))) pictures.push_back(f.path());
+    std::sort(pictures.begin(), pictures.end());
+    for (const auto& p : pictures) {
+      const std::string stem = p.stem().string();
+      const auto [it, fresh] = d.images.emplace(stem, p.string());
+      if (!fresh)
+        throw StudyError(fmt::format("{}: {} is a picture of this scene too; keep one of them", p.string(),
+                                     fs::path(it->second).filename().string()));
+      stems.insert(stem);
+    }
+  }
+  if (kind_of(root / name / "predictions") == FileKind::kDirectory) {
+    for (const auto& m : list_directory(root / name / "predictions")) {
+      if (kind_of(m.path()) != FileKind::kDirectory) continue;
+      label_stems(m.path());  // the same rule as labels/: a 0001.TXT there would read as "nothing detected"
+      d.models.push_back(m.path().filename().string());
+      all_models->insert(d.models.back());
+    }
+    std::sort(d.models.begin(), d.models.end());
+  }
+  d.stems.assign(stems.begin(), stems.end());
+  return d;
+}
+
 }  // namespace
 
 Study open_study(const std::string& root_in) {
@@ -258,32 +353,7 @@ Study open_study(const std::string& root_in) {
     return std::make_pair(rank(x), x) < std::make_pair(rank(y), y);
   });
   std::set<std::string> all_models;
-  for (const auto& name : names) {
-    Domain d;
-    d.name = name;
-    d.dir = (root / name).string();
-    std::set<std::string> stems;
-    for (const auto& f : list_directory(root / name / "labels"))
-      if (f.path().extension() == ".txt" && f.path().filename() != "classes.txt") stems.insert(f.path().stem().string());
-    if (kind_of(root / name / "images") == FileKind::kDirectory) {
-      for (const auto& f : list_directory(root / name / "images")) {
-        if (!kImageExtensions.count(lower(f.path().extension().string()))) continue;
-        const std::string stem = f.path().stem().string();
-        stems.insert(stem);
-        d.images[stem] = f.path().string();
-      }
-    }
-    if (kind_of(root / name / "predictions") == FileKind::kDirectory) {
-      for (const auto& m : list_directory(root / name / "predictions")) {
-        if (kind_of(m.path()) != FileKind::kDirectory) continue;
-        d.models.push_back(m.path().filename().string());
-        all_models.insert(d.models.back());
-      }
-      std::sort(d.models.begin(), d.models.end());
-    }
-    d.stems.assign(stems.begin(), stems.end());
-    s.domains.push_back(std::move(d));
-  }
+  for (const auto& name : names) s.domains.push_back(scan_domain(root, name, &all_models));
   for (const auto& [m, dom] : s.config.trained_on) {
     if (!dom.empty() && !s.domain(dom))
       throw StudyError(fmt::format("{}: study.yaml says model '{}' was trained on '{}', which is not a domain here",
@@ -302,6 +372,24 @@ Study open_study(const std::string& root_in) {
   std::stable_sort(s.models.begin(), s.models.end(),
                    [&](const auto& x, const auto& y) { return dom_rank(x) < dom_rank(y); });
   return s;
+}
+
+void require_utf8_names(const Study& s) {
+  auto check = [](const std::string& name, const std::string& path) {
+    if (!is_utf8(name))
+      throw StudyError(fmt::format("{}: the name is not UTF-8 text, which JSON output cannot hold; rename it (text "
+                                   "and CSV output take it as it is)",
+                                   escape_non_utf8(path)));
+  };
+  for (const auto& d : s.domains) {
+    check(d.name, d.dir);
+    for (const auto& m : d.models) check(m, (fs::path(d.dir) / "predictions" / m).string());
+    for (const auto& stem : d.stems) {
+      const auto picture = d.images.find(stem);
+      check(stem, picture != d.images.end() ? picture->second : s.label_path(d.name, stem));
+    }
+  }
+  for (const auto& m : s.models) check(m.name, (fs::path(s.root) / "study.yaml").string() + " (models." + m.name + ")");
 }
 
 SceneMatch match_scenes(const Domain& a, const Domain& b) {

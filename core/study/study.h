@@ -61,6 +61,10 @@ struct Study {
 // Scans a study directory; throws StudyError when it is missing, unreadable or has no domains.
 Study open_study(const std::string& root);
 
+// JSON output holds only UTF-8 text: throws StudyError naming the first domain directory, prediction set,
+// label or picture file (or study.yaml model) whose name is not UTF-8, before any JSON is written.
+void require_utf8_names(const Study& study);
+
 // Scene stems present in both domains, and those only in one (for reporting).
 struct SceneMatch {
   std::vector<std::string> common, only_a, only_b;

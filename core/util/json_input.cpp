@@ -1,6 +1,9 @@
 #include "core/util/json_input.h"
 
 #include <fmt/format.h>
+#include <string>
+#include <unordered_set>
+#include <vector>
 
 #include "core/util/errors.h"
 
@@ -37,8 +40,26 @@ nlohmann::json parse_json_input(const std::string& text, const std::string& file
   if (deep != std::string::npos)
     throw StudyError(fmt::format("{}: JSON nested deeper than {} levels at byte {}: expected {}", file, max_depth,
                                  deep + 1, expected));
+  // nlohmann keeps the last of two equal keys: {"pairs": [...], "pairs": [...]} would silently drop the first
+  // list. The keys of each open object are collected (nesting is capped above) and a repeat is an error.
+  std::vector<std::unordered_set<std::string>> keys;
+  auto no_duplicate_keys = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    if (event == Event::object_start) {
+      keys.emplace_back();
+    } else if (event == Event::object_end) {
+      if (!keys.empty()) keys.pop_back();
+    } else if (event == Event::key && !keys.empty()) {
+      const std::string& key = parsed.get_ref<const std::string&>();
+      if (!keys.back().insert(key).second)
+        throw StudyError(fmt::format("{}: duplicate key {} in one object (a JSON reader keeps only one of them); "
+                                     "expected {}",
+                                     file, describe_json(parsed), expected));
+    }
+    return true;
+  };
   try {
-    return nlohmann::json::parse(text);
+    return nlohmann::json::parse(text, no_duplicate_keys);
   } catch (const nlohmann::json::parse_error& e) {
     throw StudyError(fmt::format("{}: invalid JSON at byte {}: expected {}", file, e.byte, expected));
   } catch (const nlohmann::json::exception& e) {  // e.g. 1e309: a number out of range

@@ -9,8 +9,9 @@
 namespace ipd {
 
 // Parses `text` read from `file`; throws StudyError "FILE: invalid JSON at byte N: expected <expected>",
-// "FILE: JSON nested deeper than <max_depth> levels at byte N: ..." or "FILE: invalid JSON: <why>" (numbers
-// out of range such as 1e309).
+// "FILE: JSON nested deeper than <max_depth> levels at byte N: ...", "FILE: duplicate key "k" in one object
+// ..." (nlohmann would keep the last one silently) or "FILE: invalid JSON: <why>" (numbers out of range such
+// as 1e309).
 nlohmann::json parse_json_input(const std::string& text, const std::string& file, const std::string& expected,
                                 int max_depth);
 

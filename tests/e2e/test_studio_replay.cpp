@@ -88,6 +88,18 @@ TEST(StudioReplay, BadActionsNameTheFileAndLine) {
             "error: " + d / "actions.txt" +
                 ":1: 'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
                 "breakdown-size, breakdown-region or breakdown-confidence), got 'histogram'\n");
+  // A number is the whole word: "5\0" (a zero-filled block) is not 5, and it must fit the studio's int.
+  test::write_text(d / "actions.txt", std::string("wait 5\0\n", 8));
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"), "error: " + d / "actions.txt" + ":1: 'wait': expected a number >= 1, got '5\\x00'\n");
+  test::write_text(d / "actions.txt", "wait 1\nwait 99999999999\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" + ":2: 'wait': expected a number >= 1, got '99999999999'\n");
+  test::write_text(d / "actions.txt", std::string("conf 0.5\0\n", 10));
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" + ":1: 'conf': expected a threshold in [0, 1], got '0.5\\x00'\n");
   // The methods come from the one table (registration_methods()), the default first.
   test::write_text(d / "actions.txt", "rerun cpd\nrerun ransac\n");
   EXPECT_EQ(run(cmd), 2);

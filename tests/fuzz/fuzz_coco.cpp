@@ -29,7 +29,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       if (e.file != o.annotations && e.file != o.results) ipd_fuzz::fail("a report error names another file", e.to_string());
       ipd_fuzz::check_message(e.to_string(), e.file);
     }
-    if (r.written != r.errors.empty()) ipd_fuzz::fail("written although entries were bad (or not written when fine)", o.annotations);
+    for (const std::string& c : r.collisions) ipd_fuzz::check_message(c, o.annotations);
+    if (r.written != (r.errors.empty() && r.collisions.empty()))
+      ipd_fuzz::fail("written although entries were bad or names collide (or not written when fine)", o.annotations);
   } catch (const ipd::StudyError& e) {
     const std::string m = e.what();
     ipd_fuzz::check_message(m, m.find(o.annotations) != std::string::npos ? o.annotations : o.results);

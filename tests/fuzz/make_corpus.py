@@ -40,6 +40,8 @@ write(L, "nul_and_cr.txt", b"0 0.5 0.5 0.1 0.1\x00\n0\r0.5 0.5 0.1 0.1\n\x00\x00
 write(L, "no_final_newline.txt", "0 0.5 0.5 0.1 0.2")
 write(L, "invalid_utf8.txt", b"\xff\xfe0 0.5 0.5 0.1 0.1\n\xc3\x28 0.5 0.5 0.1 0.1\n")
 write(L, "empty.txt", "")
+write(L, "nul_block_in_number.txt", b"0 0.5 0.5 0.1 0.20\x00\x00\x00\x00\n0 0.5 0.5 0.1 0.1 0.9\x00 4782\n")
+write(L, "bytes_after_number.txt", "0 0.5 0.5e 0.1 0.1\n0 0.5\x01 0.5 0.1 0.1\n0 .5 +0.5 5e-2 1.E-1\n0 0.5 0.5 0.1 0.1x\n")
 
 # --- study.yaml ---------------------------------------------------------------------------------------------
 Y = "fuzz_study_yaml"
@@ -68,6 +70,9 @@ write(Y, "long_token.yaml", "domains: [" + "r" * 100000 + "]\n" + "k" * 50000 + 
 write(Y, "not_a_mapping.yaml", "- rock_class\n- 0\n")
 write(Y, "invalid_yaml.yaml", "domains: [real, synth\nrock_class: : :\n\t- tab\n")
 write(Y, "non_scalar_key.yaml", "? [a, b]\n: 1\n{x: 1}: 2\n")
+write(Y, "model_setting_typo.yaml", "models:\n  det-real:\n    traind_on: real\n  det-b: {trained_on: real, epochs: 3}\n")
+write(Y, "trained_on_null.yaml", "models: {a: {trained_on: null}, b: {trained_on: ~}, c: {trained_on: }, d: {trained_on: ''}}\n")
+write(Y, "registration_out_of_range.yaml", "registration: {seed: -1, gate: 0, trials: -3}\nregistration2: {gate: .inf}\n")
 
 # --- pairs/<A>__<B>/<stem>.json -----------------------------------------------------------------------------
 P = "fuzz_pairs_json"
@@ -103,6 +108,7 @@ write(P, "rocks_moved.json", json.dumps({"pairs": [[20, 1]], "rocks_a": [rock(20
 write(P, "rocks_gone.json", json.dumps({"pairs": [[0, 1]], "rocks_a": [[0, 0.9, 0.9, 0.01, 0.01]], "rocks_b": [rock(1, 1)]}))
 write(P, "rocks_bad_shapes.json", '{"pairs": [[0, 1]], "rocks_a": [[0], [0, "x", 1, 1, 1], [1e400, 0, 0, 0, 0]], "rocks_b": {}}')
 write(P, "rocks_missing_box.json", json.dumps({"pairs": [[0, 1]], "rocks_a": [], "rocks_b": [rock(1, 1)]}))
+write(P, "duplicate_nested_keys.json", '{"pairs": [[0, 1]], "excluded_a": [0], "excluded_a": [1], "x": {"k": 1, "k": 2}}')
 
 # --- COCO (annotations, optionally "\n----results----\n" and the detection results) --------------------------
 C = "fuzz_coco"
@@ -139,3 +145,13 @@ write(C, "weird_file_names.json", json.dumps(dict(coco, images=[
 write(C, "not_coco.json", '{"images": {}, "annotations": [], "categories": []}')
 write(C, "long_file_name.json", json.dumps(dict(coco, images=[{"id": 1, "file_name": "f" * 100000, "width": 1, "height": 1}])))
 write(C, "truncated.json", json.dumps(coco)[:100])
+write(C, "same_stem_two_folders.json", json.dumps(dict(coco, images=[
+    {"id": 1, "file_name": "cam1/0001.png", "width": 1936, "height": 1216},
+    {"id": 2, "file_name": "cam2/0001.png", "width": 640, "height": 480}])))
+write(C, "same_stem_two_extensions.json", json.dumps(dict(coco, images=[
+    {"id": 1, "file_name": "0001.png", "width": 1936, "height": 1216},
+    {"id": 2, "file_name": "0001.jpg", "width": 640, "height": 480}])))
+write(C, "image_named_classes.json", json.dumps(dict(coco, images=[
+    {"id": 1, "file_name": "classes.png", "width": 1936, "height": 1216}, coco["images"][1]])))
+write(C, "duplicate_category_id.json", json.dumps(dict(coco, categories=coco["categories"] + [{"id": 3, "name": "stone"}])))
+write(C, "duplicate_keys.json", json.dumps(coco)[:-1] + ', "images": []}')

@@ -55,6 +55,37 @@ TEST(LabelIo, EveryBadLineIsReportedWithFileLineAndWhat) {
             "a.txt:1: expected 5 columns (class cx cy w h), found 1");
 }
 
+// strtod stops at the first byte it can't use: a field ending in a zero-filled block (what a crash leaves
+// in a file being written) read as the number before it, and the rock kept a wrong height.
+TEST(LabelIo, AByteThatIsNotPartOfTheNumberIsAnErrorNamingTheLine) {
+  using namespace std::string_literals;
+  EXPECT_EQ(only_error(parse_gt("0 0.5 0.5 0.1 0.20\0\0\0\0\n"s)),
+            "a.txt:1: expected a number for h in column 5, found '0.20\\x00\\x00\\x00\\x00'");
+  EXPECT_EQ(only_error(parse_labels("0 0.5 0.5 0.1 0.1 0.9\0 4782\n"s, "p.txt", {LabelKind::kPrediction})),
+            "p.txt:1: expected 6 columns (class cx cy w h conf), found 7");
+  EXPECT_EQ(only_error(parse_labels("0 0.5 0.5 0.1 0.1 0.9\0\n"s, "p.txt", {LabelKind::kPrediction})),
+            "p.txt:1: expected a number for conf in column 6, found '0.9\\x00'");
+  EXPECT_EQ(only_error(parse_gt("\n0 0.5\x01 0.5 0.1 0.1\n")),
+            "a.txt:2: expected a number for cx in column 2, found '0.5\\x01'");
+  EXPECT_EQ(only_error(parse_gt("0\0 0.5 0.5 0.1 0.1\n"s)),
+            "a.txt:1: expected a non-negative integer class in column 1, found '0\\x00'");
+  EXPECT_EQ(only_error(parse_gt("0 0x1p-2 0.5 0.1 0.1\n")),
+            "a.txt:1: expected a number for cx in column 2, found '0x1p-2'");
+  EXPECT_EQ(only_error(parse_gt("0 0.5 0.5e 0.1 0.1\n")),
+            "a.txt:1: expected a number for cy in column 3, found '0.5e'");
+  EXPECT_EQ(only_error(parse_gt("0 0.5 0.5 . 0.1\n")), "a.txt:1: expected a number for w in column 4, found '.'");
+  EXPECT_EQ(only_error(parse_gt("0 -Infinity 0.5 0.1 0.1\n")),
+            "a.txt:1: expected a finite number for cx in column 2, found '-Infinity'");
+  // Every decimal spelling a label tool writes still reads.
+  const LabelFile ok = parse_gt("0 +0.5 .25 5e-2 1.E-1\n");
+  ASSERT_TRUE(ok.errors.empty()) << ok.errors[0].to_string();
+  ASSERT_EQ(ok.boxes.size(), 1u);
+  EXPECT_DOUBLE_EQ(ok.boxes[0].cx, 0.5);
+  EXPECT_DOUBLE_EQ(ok.boxes[0].cy, 0.25);
+  EXPECT_DOUBLE_EQ(ok.boxes[0].w, 0.05);
+  EXPECT_DOUBLE_EQ(ok.boxes[0].h, 0.1);
+}
+
 TEST(LabelIo, SmallRoundingOutsideTheUnitRangeIsAccepted) {
   const LabelFile f = parse_gt("0 1.0004 -0.0003 0.1 0.1\n");
   EXPECT_TRUE(f.errors.empty());

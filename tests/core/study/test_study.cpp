@@ -109,6 +109,38 @@ TEST(Study, ClearErrorsForUnusableStudies) {
   EXPECT_EQ(message("rock_class: [0\n"), d / "study.yaml" + ":2: invalid YAML: end of sequence flow not found");
 }
 
+// A misspelt model setting or `trained_on: null` left the model without its training domain (every cell of
+// its row then read as cross-domain), with no message; both are errors naming the line and what is allowed.
+TEST(Study, ModelSettingsAreCheckedAtEveryLevel) {
+  auto message = [](const std::string& yaml) {
+    try {
+      parse_study_config(yaml, "study.yaml");
+    } catch (const StudyError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("models:\n  det-real:\n    traind_on: real\n"),
+            "study.yaml:3: unknown setting 'models.det-real.traind_on' (expected trained_on)");
+  EXPECT_EQ(message("models: {det: {trained_on: real, epochs: 30}}\n"),
+            "study.yaml:1: unknown setting 'models.det.epochs' (expected trained_on)");
+  for (const char* empty : {"null", "~", ""})
+    EXPECT_EQ(message(std::string("models:\n  det:\n    trained_on: ") + empty + "\n"),
+              "study.yaml:3: models.det.trained_on is empty (null); expected the name of the domain the model was "
+              "trained on (leave the setting out when it is unknown)")
+        << empty;
+  EXPECT_EQ(message("models: {det: {trained_on: ''}}\n"),
+            "study.yaml:1: models.det.trained_on is an empty name; expected the name of the domain the model was "
+            "trained on (leave the setting out when it is unknown)");
+  EXPECT_EQ(message("registration: {method: cpd, sed: 3}\n"),
+            "study.yaml:1: unknown registration setting 'sed' (expected method, seed, trials, gate)");
+  // What stays allowed: a model with no settings (training domain unknown) and a quoted domain named null.
+  const StudyConfig c = parse_study_config("models: {a: , b: {}, c: {trained_on: 'null'}}\n", "study.yaml");
+  EXPECT_EQ(c.trained_on.at("a"), "");
+  EXPECT_EQ(c.trained_on.at("b"), "");
+  EXPECT_EQ(c.trained_on.at("c"), "null");
+}
+
 // study.yaml's registration.trials is the configured method's budget, as ipd register's --trials: cpd's EM
 // iterations, the others' trials; below 1 an error naming the line.
 TEST(Study, RegistrationTrialsIsTheMethodsBudget) {

@@ -1,0 +1,28 @@
+// Numbers written in text we don't control (label files, replay scripts, filters): the whole text is one
+// number or it is an error. strtod/strtol alone stop at the first byte they can't use, so "0.20\0\0\0" (a
+// zero-filled block after a crash) read as 0.20 and "5x" as 5.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace ipd {
+
+// [+-] digits [. digits] [e [+-] digits], also ".5" and "5."; nothing else (no hex, no spaces, no "nan").
+bool is_decimal(std::string_view s);
+
+// The value of a decimal (is_decimal), read in the C locale's spelling whatever the process locale; false
+// for anything else. 1e309 reads as infinity: range checks are the caller's.
+bool parse_decimal(const std::string& s, double* out);
+
+// [-] digits within [lo, hi]; false for anything else (a sign alone, "5x", a value out of range).
+bool parse_integer(const std::string& s, long long lo, long long hi, long long* out);
+
+// "nan", "-inf", "Infinity": a number, but not a finite one (said so, rather than "not a number").
+bool is_non_finite_word(std::string_view s);
+
+// Untrusted text for a message: at most 40 characters of it, control bytes (a NUL, an escape) and bytes that
+// are not UTF-8 as \xHH, so the message stays readable on a terminal and fits in a JSON error object.
+std::string quoted_for_message(std::string_view s);
+
+}  // namespace ipd

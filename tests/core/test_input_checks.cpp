@@ -1,0 +1,378 @@
+// Inputs that used to give exit 0 and a wrong or silently changed number: label files in another case,
+// duplicate JSON keys, names that are not UTF-8, CSV fields with commas, options out of range, COCO
+// imports whose images overwrite each other's labels. Each is an error naming the file (and line) now.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "core/report/csv.h"
+#include "core/report/table_format.h"
+#include "core/study/coco_import.h"
+#include "core/study/study.h"
+#include "core/util/errors.h"
+#include "core/util/json_input.h"
+#include "core/util/json_output.h"
+#include "core/util/number_text.h"
+#include "tests/support/test_support.h"
+
+namespace ipd {
+namespace {
+
+namespace fs = std::filesystem;
+
+void write_tiny_study(const test::TempDir& d) {
+  test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+  test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
+  test::write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
+}
+
+std::string open_error(const std::string& root) {
+  try {
+    open_study(root);
+  } catch (const StudyError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// --- whole-text numbers -------------------------------------------------------------------------------------
+
+TEST(NumberText, TheWholeTextIsTheNumber) {
+  double v = -1;
+  EXPECT_TRUE(parse_decimal("0.25", &v));
+  EXPECT_EQ(v, 0.25);
+  EXPECT_TRUE(parse_decimal("-.5e1", &v));
+  EXPECT_EQ(v, -5.0);
+  EXPECT_FALSE(parse_decimal(std::string("0.20\0", 5), &v));
+  EXPECT_FALSE(parse_decimal("0.2 ", &v));
+  EXPECT_FALSE(parse_decimal(" 0.2", &v));
+  EXPECT_FALSE(parse_decimal("0x10", &v));
+  EXPECT_FALSE(parse_decimal("1e", &v));
+  EXPECT_FALSE(parse_decimal("", &v));
+  EXPECT_FALSE(parse_decimal("nan", &v));
+  EXPECT_EQ(v, -5.0);  // untouched by a refusal
+  long long n = 0;
+  EXPECT_TRUE(parse_integer("42", 1, 100, &n));
+  EXPECT_EQ(n, 42);
+  EXPECT_FALSE(parse_integer(std::string("5\0", 2), 1, 100, &n));
+  EXPECT_FALSE(parse_integer("0", 1, 100, &n));
+  EXPECT_FALSE(parse_integer("-", -5, 5, &n));
+  EXPECT_FALSE(parse_integer("99999999999999999999", 1, 100, &n));
+  EXPECT_EQ(quoted_for_message(std::string("a\0b\x1b\xff", 5)), "a\\x00b\\x1B\\xFF");
+}
+
+// --- label files in another case ----------------------------------------------------------------------------
+
+// 0001.TXT was skipped without a word and its scene read as "no rocks"; next to a 0001.txt it would be
+// ambiguous which one counts. Only lower-case .txt is read; any other case is an error naming the file.
+TEST(InputChecks, LabelFilesInAnotherCaseAreRefusedByName) {
+  test::TempDir d;
+  write_tiny_study(d);
+  test::write_text(d / "real/labels/s2.TXT", "0 0.5 0.5 0.1 0.1\n");
+  EXPECT_EQ(open_error(d.path()),
+            d / "real/labels/s2.TXT" + ": only lower-case .txt label files are read; rename it to s2.txt");
+  fs::rename(d / "real/labels/s2.TXT", d / "real/labels/s1.Txt");
+  EXPECT_EQ(open_error(d.path()), d / "real/labels/s1.Txt" +
+                                      ": s1.txt holds this scene's boxes too, and only lower-case .txt files are "
+                                      "read; remove or merge one of them");
+  fs::remove(d / "real/labels/s1.Txt");
+  // A prediction file in another case would read as "the detector found nothing" in that scene.
+  test::write_text(d / "synth/predictions/det/S1.TXT", "0 0.25 0.2 0.1 0.1 0.8\n");
+  EXPECT_EQ(open_error(d.path()),
+            d / "synth/predictions/det/S1.TXT" + ": only lower-case .txt label files are read; rename it to S1.txt");
+  fs::remove(d / "synth/predictions/det/S1.TXT");
+  // Two pictures of one scene: which one is shown depended on the directory's order.
+  test::write_text(d / "real/images/s1.png", "");
+  test::write_text(d / "real/images/s1.jpg", "");
+  EXPECT_EQ(open_error(d.path()), d / "real/images/s1.png" + ": s1.jpg is a picture of this scene too; keep one of them");
+  fs::remove(d / "real/images/s1.jpg");
+  EXPECT_EQ(open_error(d.path()), "no error");
+  // classes.txt (written by ipd import coco) is not a scene.
+  test::write_text(d / "real/labels/classes.txt", "rock\n");
+  EXPECT_EQ(open_study(d.path()).domain("real")->stems, std::vector<std::string>{"s1"});
+  const auto r = test::run_ipd("table " + d.path() + " --bootstrap 0");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+// --- duplicate keys in JSON ---------------------------------------------------------------------------------
+
+// nlohmann keeps the last of two equal keys: {"pairs": [...], "pairs": [...]} silently dropped the first
+// list of hand pairs.
+TEST(InputChecks, DuplicateJsonKeysAreAnErrorNamingFileAndKey) {
+  const std::string expected = "{\"pairs\": [[i, j], ...]}";
+  auto message = [&](const std::string& text) {
+    try {
+      parse_json_input(text, "p.json", expected, 16);
+    } catch (const StudyError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("{\"pairs\": [[0, 1]], \"pairs\": [[1, 0]]}"),
+            "p.json: duplicate key \"pairs\" in one object (a JSON reader keeps only one of them); expected " + expected);
+  EXPECT_EQ(message("{\"a\": {\"x\": 1, \"y\": 2, \"x\": 3}}"),
+            "p.json: duplicate key \"x\" in one object (a JSON reader keeps only one of them); expected " + expected);
+  // The same key in different objects is fine.
+  EXPECT_EQ(message("{\"a\": {\"x\": 1}, \"b\": {\"x\": 2}, \"c\": [{\"x\": 3}, {\"x\": 4}]}"), "no error");
+  // Through the study, as ipd table reads a pairs file.
+  test::TempDir d;
+  write_tiny_study(d);
+  test::write_text(d / "pairs/real__synth/s1.json", "{\"pairs\": [[0, 1]], \"excluded_a\": [], \"pairs\": [[1, 0]]}");
+  const auto r = test::run_ipd("table " + d.path() + " --bootstrap 0");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: " + d / "pairs/real__synth/s1.json" +
+                       ": duplicate key \"pairs\" in one object (a JSON reader keeps only one of them); expected " +
+                       expected + "\n");
+}
+
+// --- names that are not UTF-8 in JSON output ----------------------------------------------------------------
+
+TEST(InputChecks, Utf8IsCheckedStrictly) {
+  EXPECT_TRUE(is_utf8("Ger\xC3\xB6lle \xE2\x80\x93 \xF0\x9F\xAA\xA8"));
+  EXPECT_FALSE(is_utf8("Ger\xF6lle"));            // Latin-1
+  EXPECT_FALSE(is_utf8("\xC0\xAF"));              // overlong '/'
+  EXPECT_FALSE(is_utf8("\xED\xA0\x80"));          // a surrogate
+  EXPECT_FALSE(is_utf8("\xF4\x90\x80\x80"));      // above U+10FFFF
+  EXPECT_FALSE(is_utf8("\xE2\x80"));              // cut short
+  EXPECT_EQ(escape_non_utf8("Ger\xF6lle\xC3\xB6\n"), "Ger\\xF6lle\xC3\xB6\\x0A");
+}
+
+// A Latin-1 scene name made every JSON output fail with nlohmann's bare "invalid UTF-8 byte at index 3:
+// 0xF6"; now the error names the file to rename, and the text output still works.
+TEST(InputChecks, NamesThatAreNotUtf8AreRefusedInJsonNamingTheFile) {
+  test::TempDir d;
+  write_tiny_study(d);
+  const std::string latin1 = "Ger\xF6lle";
+  for (const char* dom : {"real", "synth"}) {
+    fs::rename(std::string(d / dom) + "/labels/s1.txt", std::string(d / dom) + "/labels/" + latin1 + ".txt");
+    fs::rename(std::string(d / dom) + "/predictions/det/s1.txt",
+               std::string(d / dom) + "/predictions/det/" + latin1 + ".txt");
+  }
+  const std::string message = "error: " + d / "real/labels/Ger\\xF6lle.txt" +
+                              ": the name is not UTF-8 text, which JSON output cannot hold; rename it (text and CSV "
+                              "output take it as it is)\n";
+  for (const std::string command : {"table --bootstrap 0 --format json", "export rocks --format json", "breakdown --bootstrap 0 --format json"}) {
+    const auto r = test::run_ipd(command + " " + d.path());
+    EXPECT_EQ(r.exit_code, 1) << command;
+    EXPECT_EQ(r.err, message) << command;
+    EXPECT_EQ(r.out, "") << command;
+  }
+  EXPECT_EQ(test::run_ipd("table " + d.path() + " --bootstrap 0").exit_code, 0);
+  EXPECT_EQ(test::run_ipd("export rocks --format csv " + d.path()).exit_code, 0);
+  // ipd register --json: the path itself is the name.
+  const auto r = test::run_ipd("register --json " + d / "real/labels/" + latin1 + ".txt " + d / "synth/labels/" +
+                               latin1 + ".txt");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: " + d / "real/labels/Ger\\xF6lle.txt" +
+                       ": the name is not UTF-8 text, which JSON output cannot hold; rename it (the text report takes "
+                       "it as it is)\n");
+  // Anything else that reaches JSON output is quoted, escaped, never nlohmann's bare message.
+  try {
+    dump_json_output(nlohmann::json{{"x", {latin1}}});
+    ADD_FAILURE();
+  } catch (const StudyError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "cannot write JSON: 'Ger\\xF6lle' is not UTF-8 text, and JSON holds only UTF-8; rename the file or "
+              "directory it comes from (text and CSV output take it as it is)");
+  }
+}
+
+// --- CSV quoting ---------------------------------------------------------------------------------------------
+
+TEST(InputChecks, CsvFieldsAreQuotedAsRfc4180) {
+  EXPECT_EQ(csv_field("plain"), "plain");
+  EXPECT_EQ(csv_field("a,b"), "\"a,b\"");
+  EXPECT_EQ(csv_field("say \"hi\""), "\"say \"\"hi\"\"\"");
+  EXPECT_EQ(csv_field("two\nlines"), "\"two\nlines\"");
+  EXPECT_EQ(csv_field("cr\r"), "\"cr\r\"");
+  EXPECT_EQ(csv_row({"a", "b,c", ""}), "a,\"b,c\",\n");
+}
+
+// A model named "det,v2" shifted every column of the table's CSV by one.
+TEST(InputChecks, TableCsvQuotesNamesWithCommas) {
+  test::TempDir d;
+  write_tiny_study(d);
+  fs::rename(d / "real/predictions/det", d / "real/predictions/det,v2");
+  fs::rename(d / "synth/predictions/det", d / "synth/predictions/det,v2");
+  test::write_text(d / "study.yaml", "models: {'det,v2': {trained_on: real}}\n");
+  const auto r = test::run_ipd("table --format csv --bootstrap 0 " + d.path());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se\n"
+            "\"det,v2\",real,real,synth,0.500000,2,0,0,1,true,,,\n");
+  const auto b = test::run_ipd("breakdown --format csv --bootstrap 0 --by region " + d.path());
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_NE(b.out.find("\n\"det,v2\",real,real,synth,"), std::string::npos) << b.out;
+}
+
+// --- options out of range ------------------------------------------------------------------------------------
+
+// `--max-rotation -5` and `--max-anisotropy 0` ran with the defaults (30 degrees, 2), exit 0.
+TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
+  test::TempDir d;
+  write_tiny_study(d);
+  const std::string pair = " " + d / "real/labels/s1.txt" + " " + d / "synth/labels/s1.txt";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--max-rotation -5", "--max-rotation: must be in (0, 180] degrees, got -5"},
+      {"--max-rotation 0", "--max-rotation: must be in (0, 180] degrees, got 0"},
+      {"--max-rotation 181", "--max-rotation: must be in (0, 180] degrees, got 181"},
+      {"--max-anisotropy 0", "--max-anisotropy: must be a ratio >= 1 (1: no stretch allowed), got 0"},
+      {"--max-anisotropy 0.5", "--max-anisotropy: must be a ratio >= 1 (1: no stretch allowed), got 0.5"},
+      {"--budget-ms -1", "--budget-ms: must be a number of milliseconds >= 0 (0: no limit), got -1"},
+      {"--class -2", "--class: must be a class number >= 0 (leave it out for every class), got -2"},
+      {"--threads -1", "--threads: must be >= 0 (0: every core), got -1"},
+      {"--image-size 0,10", "--image-size: width and height must be positive, got 0,10"},
+      // CLI11 read -5 into the unsigned seed as 2^64 - 5: another seed, without a word.
+      {"--seed -5", "--seed: must be a whole number >= 0, got -5"},
+  };
+  for (const auto& [option, message] : cases) {
+    const auto r = test::run_ipd("register" + pair + " " + option);
+    EXPECT_EQ(r.exit_code, 2) << option;
+    EXPECT_NE(r.err.find(message), std::string::npos) << option << ": " << r.err;
+    EXPECT_EQ(r.out, "") << option;
+  }
+  EXPECT_EQ(test::run_ipd("register --max-rotation 180 --max-anisotropy 1" + pair).exit_code, 0);
+  // The study commands: a negative --seed read as "not given" (study.yaml's seed).
+  for (const char* seed : {"-5", "-1"}) {
+    const auto r = test::run_ipd("table --seed " + std::string(seed) + " " + d.path());
+    EXPECT_EQ(r.exit_code, 2) << seed;
+    EXPECT_EQ(r.err.rfind("--seed: must be a whole number >= 0, got " + std::string(seed) + "\n", 0), 0u) << r.err;
+  }
+  // ipd detect: a negative class kept nothing ("no rocks" everywhere), negative threads meant every core.
+  auto detect = test::run_ipd("detect " + d.path() + " --detector classical --out " + d / "x" + " --classes 0,-1");
+  EXPECT_EQ(detect.exit_code, 2);
+  EXPECT_EQ(detect.err.rfind("classes must be class numbers >= 0, got -1\n", 0), 0u) << detect.err;
+  detect = test::run_ipd("detect " + d.path() + " --detector classical --out " + d / "x" + " --threads -2");
+  EXPECT_EQ(detect.exit_code, 2);
+  EXPECT_EQ(detect.err.rfind("--threads: must be >= 0 (0: every core), got -2\n", 0), 0u) << detect.err;
+  const auto demo = test::run_ipd("demo " + d / "demo" + " --seed -3");
+  EXPECT_EQ(demo.exit_code, 2);
+  EXPECT_FALSE(fs::exists(d / "demo"));
+}
+
+// study.yaml's registration block: every number is checked where it is written.
+TEST(InputChecks, StudyYamlRegistrationNumbersAreChecked) {
+  auto message = [](const std::string& yaml) {
+    try {
+      parse_study_config(yaml, "study.yaml");
+    } catch (const StudyError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message("registration:\n  seed: -1\n"), "study.yaml:2: registration.seed must be a whole number >= 0, got -1");
+  EXPECT_EQ(message("registration:\n  gate: 0\n"),
+            "study.yaml:2: registration.gate must be a number > 0 (a fraction of the rocks' spread; default 0.2), got 0");
+  EXPECT_EQ(message("registration:\n  gate: .inf\n"),
+            "study.yaml:2: registration.gate must be a number > 0 (a fraction of the rocks' spread; default 0.2), got "
+            ".inf");
+  EXPECT_EQ(message("registration:\n  method: paper\n  trials: -3\n"),
+            "study.yaml:3: registration.trials must be at least 1, got -3");
+  EXPECT_EQ(parse_study_config("registration: {seed: 12, gate: 0.3}\n", "study.yaml").registration.seed, 12u);
+}
+
+// --- ipd import coco -----------------------------------------------------------------------------------------
+
+CocoImportOptions coco_options(const test::TempDir& d) {
+  CocoImportOptions o;
+  o.annotations = d / "ann.json";
+  o.out_dir = d / "study/real";
+  return o;
+}
+
+std::string coco(const std::string& images, const std::string& categories = "[{\"id\": 3, \"name\": \"rock\"}]") {
+  return "{\"images\": " + images + ", \"categories\": " + categories +
+         ", \"annotations\": [{\"image_id\": 1, \"category_id\": 3, \"bbox\": [10, 10, 20, 20]},"
+         " {\"image_id\": 2, \"category_id\": 3, \"bbox\": [50, 50, 20, 20]}]}";
+}
+
+// cam1/0001.png and cam2/0001.png both wrote labels/0001.txt (the second won), and an image named
+// classes.png lost its labels to the class names; exit 0 both times.
+TEST(InputChecks, CocoImagesWhoseLabelsWouldCollideAreRefusedByName) {
+  test::TempDir d;
+  test::write_text(d / "ann.json", coco("[{\"id\": 1, \"file_name\": \"cam1/0001.png\", \"width\": 100, \"height\": 100},"
+                                        " {\"id\": 2, \"file_name\": \"cam2/0001.png\", \"width\": 100, \"height\": 100}]"));
+  const std::string collision = d / "ann.json" +
+                                ": images[0] \"cam1/0001.png\" and images[1] \"cam2/0001.png\" would both write "
+                                "labels/0001.txt; give the images distinct names (or import each folder into a "
+                                "domain of its own)";
+  CocoImportReport r = import_coco(coco_options(d));
+  EXPECT_EQ(r.collisions, std::vector<std::string>{collision});
+  EXPECT_FALSE(r.written);
+  EXPECT_FALSE(fs::exists(d / "study"));
+  // Never skipped: --skip-bad-lines skips malformed entries, not labels that would land on each other.
+  auto skipping = coco_options(d);
+  skipping.skip_bad_entries = true;
+  EXPECT_FALSE(import_coco(skipping).written);
+  const auto cli = test::run_ipd("import coco " + d / "ann.json" + " --images " + d.path() + " --out " +
+                                 d / "study/real --skip-bad-lines");
+  EXPECT_EQ(cli.exit_code, 1);
+  EXPECT_EQ(cli.err, collision + "\nerror: 1 image name collision; nothing written\n");
+
+  test::write_text(d / "ann.json", coco("[{\"id\": 1, \"file_name\": \"classes.png\", \"width\": 100, \"height\": 100},"
+                                        " {\"id\": 2, \"file_name\": \"b.png\", \"width\": 100, \"height\": 100}]"));
+  r = import_coco(coco_options(d));
+  EXPECT_EQ(r.collisions, std::vector<std::string>{d / "ann.json" +
+                                                   ": images[0] \"classes.png\" would write labels/classes.txt, which "
+                                                   "holds the class names; rename the image"});
+  EXPECT_FALSE(r.written);
+
+  // Distinct names import as before.
+  test::write_text(d / "ann.json", coco("[{\"id\": 1, \"file_name\": \"cam1/0001.png\", \"width\": 100, \"height\": 100},"
+                                        " {\"id\": 2, \"file_name\": \"cam2/0002.png\", \"width\": 100, \"height\": 100}]"));
+  r = import_coco(coco_options(d));
+  EXPECT_TRUE(r.collisions.empty());
+  EXPECT_TRUE(r.written);
+  EXPECT_EQ(slurp(d / "study/real/labels/0002.txt"), "0 0.600000 0.600000 0.200000 0.200000\n");
+}
+
+// With --skip-bad-lines the import skipped a bad entry and wrote the rest, then said "nothing written" and
+// exited 1: a COCO entry has no line, and a line-less error read as an unreadable file.
+TEST(InputChecks, CocoSkippedEntriesAreWarningsAndTheImportSaysItWrote) {
+  test::TempDir d;
+  test::write_text(d / "ann.json",
+                   "{\"images\": [{\"id\": 1, \"file_name\": \"a.png\", \"width\": 200, \"height\": 100}],"
+                   " \"categories\": [{\"id\": 3, \"name\": \"rock\"}], \"annotations\": ["
+                   "{\"image_id\": 1, \"category_id\": 3, \"bbox\": [50, 25, 0, 10]},"
+                   " {\"image_id\": 1, \"category_id\": 3, \"bbox\": [50, 25, 10, 10]}]}");
+  const std::string import = "import coco " + d / "ann.json" + " --images " + d.path() + " --out " + d / "study/real";
+  const std::string entry = d / "ann.json" + ": annotations[0]: expected bbox with w > 0 and h > 0, found [50,25,0,10]";
+  auto r = test::run_ipd(import);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, entry + "\nerror: 1 malformed entry; nothing written (--skip-bad-lines skips them)\n");
+  EXPECT_FALSE(fs::exists(d / "study"));
+  r = test::run_ipd(import + " --skip-bad-lines");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.err, "warning: " + entry + "\nwarning: 1 malformed entry skipped (--skip-bad-lines)\n");
+  EXPECT_EQ(r.out, "1 images, 1 GT boxes, 0 detections, 1 classes, 0 pictures linked -> " + d / "study/real" + "\n");
+  EXPECT_EQ(slurp(d / "study/real/labels/a.txt"), "0 0.275000 0.300000 0.050000 0.100000\n");
+}
+
+// Categories 3 and 3 (and 7) made classes 0, 1, 2 with class_of[3] = 1: the rocks became class 1 and
+// `rock_class: 0` dropped them all.
+TEST(InputChecks, CocoDuplicateCategoryIdIsAnError) {
+  test::TempDir d;
+  test::write_text(d / "ann.json",
+                   coco("[{\"id\": 1, \"file_name\": \"a.png\", \"width\": 100, \"height\": 100}]",
+                        "[{\"id\": 3, \"name\": \"rock\"}, {\"id\": 7, \"name\": \"shadow\"}, {\"id\": 3, \"name\": \"stone\"}]"));
+  try {
+    import_coco(coco_options(d));
+    ADD_FAILURE() << "accepted";
+  } catch (const StudyError& e) {
+    EXPECT_EQ(std::string(e.what()), d / "ann.json" +
+                                         ": categories[2]: category id 3 appears twice (also categories[0]); every "
+                                         "category needs its own id, since YOLO class numbers follow the ids");
+  }
+  EXPECT_FALSE(fs::exists(d / "study"));
+}
+
+}  // namespace
+}  // namespace ipd
