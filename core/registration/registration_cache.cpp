@@ -10,7 +10,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "core/util/atomic_file.h"
+#include "core/util/cache_file.h"
+#include "core/util/cache_signer.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -23,8 +24,10 @@ namespace {
 // d3f1512, 5270185, 1e663dd and 4eeddd8 (entries of format 3 held their predecessors' answers); 5 for flat
 // triples proposing similarities and the second look; 6 for translation votes in centred bins; 7 for the
 // gate's floor, the guarded polish and the soft refinement of a confirmed best; 8 for cpd's confidence; 9 for
-// cpd's rivals under the unmoved camera too.
-constexpr int kFormat = 9;
+// cpd's rivals under the unmoved camera too; 10 for entries signed with the installation's key (cache_signer.h).
+constexpr int kFormat = 10;
+// An entry of 20,000 pairs is under 1 MB; anything much larger was not written by store().
+constexpr size_t kMaxEntryBytes = size_t{16} << 20;
 
 struct Fnv {
   std::uint64_t h;
@@ -68,12 +71,6 @@ void feed(F&& f, const std::vector<Box>& a, const std::vector<Box>& b, const Reg
 
 std::string hex64(std::uint64_t v) { return fmt::format("{:016x}", v); }
 
-std::string checksum(const std::string& text) {
-  Fnv f{0xcbf29ce484222325ull};
-  f.bytes(text.data(), text.size());
-  return hex64(f.h);
-}
-
 }  // namespace
 
 std::string study_cache_dir(const std::string& study_root) {
@@ -81,10 +78,7 @@ std::string study_cache_dir(const std::string& study_root) {
   const fs::path own = fs::path(study_root) / ".ipd-cache";
   const bool exists = fs::exists(own, ec);
   if (exists ? ::access(own.c_str(), W_OK) == 0 : ::access(study_root.c_str(), W_OK) == 0) return own.string();
-  const char* xdg = std::getenv("XDG_CACHE_HOME");
-  const char* home = std::getenv("HOME");
-  const fs::path base = xdg && *xdg ? fs::path(xdg) : fs::path(home ? home : "/tmp") / ".cache";
-  return (base / "ipd-studio").string();
+  return user_cache_root();
 }
 
 std::string registration_cache_dir(const std::string& study_root) {
@@ -120,7 +114,16 @@ std::string registration_cache_key(const std::vector<Box>& a, const std::vector<
 }
 
 std::string RegistrationCache::entry_path(const std::string& key) const {
-  return (fs::path(dir_) / key.substr(0, 2) / (key + ".json")).string();
+  return (fs::path(dir_) / entry_name(key)).string();
+}
+
+std::string RegistrationCache::entry_name(const std::string& key) { return key.substr(0, 2) + "/" + key + ".json"; }
+
+const CacheDir* RegistrationCache::directory(bool create) const {
+  std::lock_guard<std::mutex> l(memory_->dir_mu);
+  if (!memory_->dir && (create || !memory_->dir_looked_for)) memory_->dir = CacheDir::open(dir_, create);
+  memory_->dir_looked_for = true;
+  return memory_->dir.get();
 }
 
 std::optional<RegistrationReport> RegistrationCache::load(const std::string& key, int count_a, int count_b) const {
@@ -139,15 +142,18 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     }
   }
   if (dir_.empty()) return std::nullopt;
-  const std::string path = entry_path(key);
-  std::error_code ec;
-  if (!fs::exists(path, ec)) return std::nullopt;
+  const CacheDir* dir = directory(false);
+  if (!dir) return std::nullopt;
+  const std::optional<std::string> text = dir->read(entry_name(key), kMaxEntryBytes);
+  if (!text) return std::nullopt;
   try {
-    const std::string text = read_file(path);
-    // Layout: the payload on the first line, its checksum on the second.
-    const size_t nl = text.find('\n');
-    if (nl == std::string::npos || text.compare(nl + 1, 16, checksum(text.substr(0, nl))) != 0) return std::nullopt;
-    const json j = json::parse(text.substr(0, nl));
+    // Layout: the payload on the first line, its signature (64 hex digits) on the second. An entry this
+    // installation did not write (copied with a study, written by hand or by another build) doesn't verify.
+    const size_t nl = text->find('\n');
+    if (nl == std::string::npos || text->size() != nl + 1 + 64 + 1 ||
+        text->compare(nl + 1, 64, CacheSigner::instance().mac_hex(kRegistrationEntrySignature, std::string_view(*text).substr(0, nl))) != 0)
+      return std::nullopt;
+    const json j = json::parse(text->substr(0, nl));
     if (j.at("key").get<std::string>() != key || j.at("format").get<int>() != kFormat) return std::nullopt;
     RegistrationReport r;
     RegistrationMethod m;
@@ -205,12 +211,9 @@ bool RegistrationCache::store(const std::string& key, const RegistrationReport& 
   j["confidence"] = std::isfinite(r.confidence) ? r.confidence : 0.0;
   j["ambiguous"] = r.ambiguous;
   const std::string payload = j.dump();
-  try {
-    write_file_atomically(entry_path(key), payload + "\n" + checksum(payload) + "\n");
-    return true;
-  } catch (const std::exception&) {
-    return false;  // a cache that can't be written only costs time
-  }
+  // A cache that can't be written only costs time: failures just return false.
+  const CacheDir* dir = directory(true);
+  return dir && dir->write(entry_name(key), payload + "\n" + CacheSigner::instance().mac_hex(kRegistrationEntrySignature, payload) + "\n");
 }
 
 RegistrationReport register_rocks_cached(const RegistrationCache* cache, const std::vector<Box>& a,

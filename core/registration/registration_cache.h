@@ -2,7 +2,8 @@
 // register every scene again. An entry is keyed by a hash of both scenes' GT boxes (the label files'
 // contents as parsed), the method and every option that can change the result; it lives in
 // STUDY/.ipd-cache/registration/, or in the user cache directory when the study is read-only. Entries are
-// written atomically and carry a checksum: a missing, truncated or corrupt entry is recomputed, never used.
+// written atomically without following links (cache_file.h) and signed with this installation's key
+// (cache_signer.h): a missing, truncated, corrupt, copied or forged entry is recomputed, never used.
 // Traces (RegistrationOptions::record_trace) are not cached: a replay registers the scene again.
 #pragma once
 
@@ -15,6 +16,7 @@
 
 #include "core/geometry/geometry.h"
 #include "core/registration/registration.h"
+#include "core/util/cache_file.h"
 
 namespace ipd {
 
@@ -29,6 +31,9 @@ std::string registration_cache_dir(const std::string& study_root);
 // 32 hex digits: two 64-bit FNV-1a hashes (different seeds) of the boxes and the options.
 std::string registration_cache_key(const std::vector<Box>& a, const std::vector<Box>& b,
                                    const RegistrationOptions& options);
+
+// What an entry's signature says it is (cache_signer.h), so a signed file of another cache can't pass for one.
+inline constexpr const char* kRegistrationEntrySignature = "registration entry";
 
 using RegistrationEntries = std::unordered_map<std::string, RegistrationReport>;  // key -> report
 
@@ -51,13 +56,19 @@ class RegistrationCache {
   // Writes the entry atomically; false (and nothing written) when the directory can't be written.
   bool store(const std::string& key, const RegistrationReport& report) const;
   std::string entry_path(const std::string& key) const;
+  static std::string entry_name(const std::string& key);  // "ab/<key>.json", relative to dir()
 
  private:
   struct Memory {
     RegistrationEntries preloaded;
     mutable std::mutex mu;
     RegistrationEntries served;  // guarded by mu
+    std::mutex dir_mu;
+    std::shared_ptr<const CacheDir> dir;  // guarded by dir_mu; opened on first use
+    bool dir_looked_for = false;
   };
+  // The opened cache directory (created when `create`); nullptr when missing or refused.
+  const CacheDir* directory(bool create) const;
   void remember(const std::string& key, const RegistrationReport& report) const;
   std::string dir_;
   std::shared_ptr<Memory> memory_ = std::make_shared<Memory>();
