@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "core/study/study_names.h"
 #include "core/util/atomic_file.h"
 #include "core/util/json_input.h"
 
@@ -128,6 +129,10 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
       check_unique_keys(v, file, "models.");
       for (const auto& m : v) {
         const std::string name = m.first.as<std::string>();
+        // The name becomes the default model and part of export file names: it must be one.
+        if (const std::string why = file_name_problem(name, kMaxModelNameBytes); !why.empty())
+          throw StudyError(fmt::format("{}:{}: model name '{}' {}", file, m.first.Mark().line + 1,
+                                       printable_name(name), why));
         if (!m.second.IsMap() && !m.second.IsNull())
           throw StudyError(fmt::format("{}:{}: models.{} must be a mapping like {{trained_on: real}}", file,
                                        m.first.Mark().line + 1, name));
@@ -211,6 +216,12 @@ FileKind kind_of(const fs::path& p) {
   }
 }
 
+// A folder or file name that the study turns into parts of other file names (study_names.h).
+void check_name(const fs::path& where, const std::string& name, const char* what, size_t max_bytes) {
+  if (const std::string why = file_name_problem(name, max_bytes); !why.empty())
+    throw StudyError(fmt::format("{}: {} name '{}' {}", printable_name(where.string()), what, printable_name(name), why));
+}
+
 // Every entry of a directory; one that can't be read is an error, never an empty directory.
 std::vector<fs::directory_entry> list_directory(const fs::path& dir) {
   std::vector<fs::directory_entry> out;
@@ -232,7 +243,7 @@ Study open_study(const std::string& root_in) {
   const fs::path yaml = root / "study.yaml";
   if (kind_of(yaml) != FileKind::kMissing) {
     try {
-      s.config = parse_study_config(read_file(yaml.string()), yaml.string());
+      s.config = parse_study_config(read_file(yaml.string(), kMaxStudyYamlBytes), yaml.string());
     } catch (const IoError& e) {
       throw StudyError(e.what());
     }
@@ -264,13 +275,18 @@ Study open_study(const std::string& root_in) {
     Domain d;
     d.name = name;
     d.dir = (root / name).string();
+    check_name(root / name, name, "domain", kMaxDomainNameBytes);
     std::set<std::string> stems;
-    for (const auto& f : list_directory(root / name / "labels"))
-      if (f.path().extension() == ".txt" && f.path().filename() != "classes.txt") stems.insert(f.path().stem().string());
+    for (const auto& f : list_directory(root / name / "labels")) {
+      if (f.path().extension() != ".txt" || f.path().filename() == "classes.txt") continue;
+      check_name(f.path(), f.path().stem().string(), "scene", kMaxStemBytes);
+      stems.insert(f.path().stem().string());
+    }
     if (kind_of(root / name / "images") == FileKind::kDirectory) {
       for (const auto& f : list_directory(root / name / "images")) {
         if (!kImageExtensions.count(lower(f.path().extension().string()))) continue;
         const std::string stem = f.path().stem().string();
+        check_name(f.path(), stem, "scene", kMaxStemBytes);
         stems.insert(stem);
         d.images[stem] = f.path().string();
       }
@@ -278,6 +294,7 @@ Study open_study(const std::string& root_in) {
     if (kind_of(root / name / "predictions") == FileKind::kDirectory) {
       for (const auto& m : list_directory(root / name / "predictions")) {
         if (kind_of(m.path()) != FileKind::kDirectory) continue;
+        check_name(m.path(), m.path().filename().string(), "model", kMaxModelNameBytes);
         d.models.push_back(m.path().filename().string());
         all_models.insert(d.models.back());
       }
@@ -395,7 +412,7 @@ std::optional<FixedPairs> read_fixed_pairs(const Study& study, const std::string
                                           p.string(), found_path.string()));
         break;
       }
-      found = parse_fixed_pairs(read_file(p.string()), p.string(), swapped, count_a, count_b);
+      found = parse_fixed_pairs(read_file(p.string(), kMaxPairsFileBytes), p.string(), swapped, count_a, count_b);
       found_path = p;
     } catch (const IoError& e) {
       throw StudyError(e.what());

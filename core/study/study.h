@@ -72,6 +72,12 @@ struct FixedPairs {
   std::vector<int> excluded_a, excluded_b;  // rocks left out of the IPD on purpose
 };
 
+// Read caps: what a real file of each kind needs, with room to spare; a larger file is refused with its size
+// and the limit (never read into memory). A pairs file of a 20,000-rock scene is under 2 MB and its JSON
+// document takes about 25 times its size while parsed, so 8 MB bounds that at ~200 MB; study.yaml is a few KB.
+constexpr size_t kMaxPairsFileBytes = size_t{8} << 20;
+constexpr size_t kMaxStudyYamlBytes = size_t{1} << 20;
+
 // Reads pairs/<A>__<B>/<stem>.json or pairs/<B>__<A>/<stem>.json (swapping indices); nullopt when neither
 // exists. Throws StudyError naming the file for bad JSON, unknown keys, indices out of range, a rock paired
 // twice, a dangling link or an unreadable file. When both exist, A__B counts and a warning names B__A.
