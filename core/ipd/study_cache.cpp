@@ -367,9 +367,14 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
 
 RegistrationEntries StudyCache::take_registrations() { return std::move(contents_->registrations); }
 
+void StudyCache::hand_registrations_to(RegistrationCache& registration) {
+  registration.preload(take_registrations());
+  if (!path_.empty()) registration.defer_writes();
+}
+
 void StudyCache::save(const StudyLabels& labels, const RegistrationCache& registration) {
   if (path_.empty()) return;
-  const RegistrationEntries served = registration.served();
+  const RegistrationEntries served = registration.entries_to_keep();
   size_t files = 0;
   for (const auto& [d, stems] : labels.gt) files += stems.size();
   for (const auto& [d, models] : labels.predictions)

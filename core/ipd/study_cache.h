@@ -71,8 +71,11 @@ class StudyCache {
   StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress = {});
   // The registrations stored in the file, for RegistrationCache::preload.
   RegistrationEntries take_registrations();
-  // Rewrites the file (atomically) when `labels` (from load_labels above) or the registrations
-  // `registration.served()` differ from what was read. A cache that can't be written only costs time: failures are ignored.
+  // Preloads `registration` with the file's registrations and, when this cache has a file to save, defers
+  // its entry writes to save(): one signed file written once instead of one file per registration.
+  void hand_registrations_to(RegistrationCache& registration);
+  // Rewrites the file (atomically) when `labels` (from load_labels above) differ from what was read or
+  // `registration` served entries the file did not hold; it keeps registration.entries_to_keep(). A cache that can't be written only costs time: failures are ignored.
   void save(const StudyLabels& labels, const RegistrationCache& registration);
 
   const StudyCacheStats& stats() const { return stats_; }

@@ -94,10 +94,19 @@ RegistrationEntries RegistrationCache::served() const {
 
 bool RegistrationCache::served_only_preloaded() const {
   std::lock_guard<std::mutex> l(memory_->mu);
-  if (memory_->served.size() != memory_->preloaded.size()) return false;
   for (const auto& entry : memory_->served)
     if (!memory_->preloaded.count(entry.first)) return false;
   return true;
+}
+
+RegistrationEntries RegistrationCache::entries_to_keep() const {
+  std::lock_guard<std::mutex> l(memory_->mu);
+  RegistrationEntries out = memory_->served;
+  size_t unused = 0;
+  for (const auto& entry : memory_->preloaded) unused += !out.count(entry.first);
+  if (unused > kKeptUnusedFactor * memory_->served.size()) return out;
+  for (const auto& entry : memory_->preloaded) out.emplace(entry.first, entry.second);
+  return out;
 }
 
 void RegistrationCache::remember(const std::string& key, const RegistrationReport& report) const {
@@ -146,29 +155,35 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
   if (!dir) return std::nullopt;
   const std::optional<std::string> text = dir->read(entry_name(key), kMaxEntryBytes);
   if (!text) return std::nullopt;
+  // An entry file that is there but not usable is replaced by store(): forged or foreign entries don't stay.
+  const auto unusable = [&] {
+    std::lock_guard<std::mutex> l(memory_->mu);
+    memory_->unusable_on_disk.insert(key);
+    return std::optional<RegistrationReport>();
+  };
   try {
     // Layout: the payload on the first line, its signature (64 hex digits) on the second. An entry this
     // installation did not write (copied with a study, written by hand or by another build) doesn't verify.
     const size_t nl = text->find('\n');
     if (nl == std::string::npos || text->size() != nl + 1 + 64 + 1 ||
         text->compare(nl + 1, 64, CacheSigner::instance().mac_hex(kRegistrationEntrySignature, std::string_view(*text).substr(0, nl))) != 0)
-      return std::nullopt;
+      return unusable();
     const json j = json::parse(text->substr(0, nl));
-    if (j.at("key").get<std::string>() != key || j.at("format").get<int>() != kFormat) return std::nullopt;
+    if (j.at("key").get<std::string>() != key || j.at("format").get<int>() != kFormat) return unusable();
     RegistrationReport r;
     RegistrationMethod m;
-    if (!parse_method(j.at("method").get<std::string>(), &m)) return std::nullopt;
+    if (!parse_method(j.at("method").get<std::string>(), &m)) return unusable();
     r.method = m;
     const auto aff = j.at("affine").get<std::vector<double>>();
-    if (aff.size() != 6) return std::nullopt;
+    if (aff.size() != 6) return unusable();
     for (int k = 0; k < 6; ++k) {
-      if (!std::isfinite(aff[k])) return std::nullopt;
+      if (!std::isfinite(aff[k])) return unusable();
       r.affine(k / 3, k % 3) = aff[k];
     }
     std::vector<char> used_a(count_a, 0), used_b(count_b, 0);
     for (const auto& p : j.at("pairs")) {
       const int i = p.at(0).get<int>(), jb = p.at(1).get<int>();
-      if (i < 0 || i >= count_a || jb < 0 || jb >= count_b || used_a[i] || used_b[jb]) return std::nullopt;
+      if (i < 0 || i >= count_a || jb < 0 || jb >= count_b || used_a[i] || used_b[jb]) return unusable();
       used_a[i] = used_b[jb] = 1;
       r.pairs.emplace_back(i, jb);
     }
@@ -177,7 +192,7 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     r.inliers = j.at("inliers").get<int>();
     r.score = j.at("score").get<double>();
     const int stop = j.at("stop").get<int>();
-    if (stop < 0 || stop > static_cast<int>(StopReason::kWorkBudget)) return std::nullopt;
+    if (stop < 0 || stop > static_cast<int>(StopReason::kWorkBudget)) return unusable();
     r.stop = static_cast<StopReason>(stop);
     r.note = j.at("note").get<std::string>();
     r.elapsed_ms = j.at("elapsed_ms").get<double>();
@@ -186,13 +201,17 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     remember(key, r);
     return r;
   } catch (const std::exception&) {
-    return std::nullopt;  // unreadable or not what we wrote: recompute
+    return unusable();  // unreadable or not what we wrote: recompute
   }
 }
 
 bool RegistrationCache::store(const std::string& key, const RegistrationReport& r) const {
   if (dir_.empty()) return false;
   remember(key, r);
+  if (memory_->deferred) {
+    std::lock_guard<std::mutex> l(memory_->mu);
+    if (!memory_->unusable_on_disk.count(key)) return true;
+  }
   json j;
   j["format"] = kFormat;
   j["key"] = key;

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "core/geometry/geometry.h"
@@ -47,8 +48,16 @@ class RegistrationCache {
   // caller can write the set this run used back in one file.
   void preload(RegistrationEntries entries);
   RegistrationEntries served() const;
-  // True when this run used exactly the preloaded entries (the one-file copy needs no rewrite).
+  // True when this run used no entry beyond the preloaded ones (the one-file copy needs no rewrite).
   bool served_only_preloaded() const;
+  // What the one file should keep: the entries served this run, plus preloaded ones this run did not use
+  // (another method's, another domain selection's) while they are at most kKeptUnusedFactor times as many,
+  // so switching between a few settings keeps each one's results without the file growing without end.
+  static constexpr size_t kKeptUnusedFactor = 3;
+  RegistrationEntries entries_to_keep() const;
+  // Entries are only remembered, not written one file each: the caller writes them all at once (the
+  // parsed-study file). Creating 30,000 entry files cost more than registering the scenes again.
+  void defer_writes() { memory_->deferred = true; }
 
   // The cached report for `key`, or nullopt when absent or unusable (bad checksum, other key, pair
   // indices outside [0, count) or a rock paired twice).
@@ -66,6 +75,8 @@ class RegistrationCache {
     std::mutex dir_mu;
     std::shared_ptr<const CacheDir> dir;  // guarded by dir_mu; opened on first use
     bool dir_looked_for = false;
+    bool deferred = false;
+    std::unordered_set<std::string> unusable_on_disk;  // guarded by mu: rewritten by store() even when deferred
   };
   // The opened cache directory (created when `create`); nullptr when missing or refused.
   const CacheDir* directory(bool create) const;

@@ -157,6 +157,36 @@ TEST(StudyCache, AFileSignedElsewhereIsIgnoredAndRebuilt) {
   EXPECT_EQ(o.labels, fresh);  // the rebuilt file serves exactly the fresh parse
 }
 
+// With the parsed-study file in use, registrations are written once, in it, not one file each (creating
+// 30,000 entry files cost more than registering again); another method's results are kept beside them.
+TEST(StudyCache, RegistrationsGoInTheOneFileAndAnotherMethodsAreKept) {
+  test::TempDir d;
+  write_study(d);
+  auto cached_with = [&](RegistrationMethod m) {
+    const Study study = open_study(d.path());
+    StudyCache cache(parsed_study_cache_path(study.root), study.root);
+    const StudyLabels labels = cache.load_labels(study);
+    RegistrationCache registration(registration_cache_dir(study.root));
+    cache.hand_registrations_to(registration);
+    TableOptions t;
+    t.registration = study.config.registration;
+    t.registration.method = m;
+    t.cache_dir = registration.dir();
+    t.registration_cache = &registration;
+    const CrossTable table = compute_cross_table(labels, t);
+    cache.save(labels, registration);
+    EXPECT_EQ(table.registrations, 3);
+    return table.cached_registrations;
+  };
+  EXPECT_EQ(cached_with(RegistrationMethod::kConsensus), 0);
+  EXPECT_FALSE(fs::exists(registration_cache_dir(d.path())));  // no entry files
+  EXPECT_EQ(cached_with(RegistrationMethod::kConsensus), 3);
+  EXPECT_EQ(cached_with(RegistrationMethod::kPaper), 0);
+  EXPECT_EQ(cached_with(RegistrationMethod::kConsensus), 3);  // kept while the paper method's were added
+  EXPECT_EQ(cached_with(RegistrationMethod::kPaper), 3);
+  EXPECT_FALSE(fs::exists(registration_cache_dir(d.path())));
+}
+
 TEST(StudyCache, AChangedLabelFileIsParsedAgain) {
   test::TempDir d;
   write_study(d);

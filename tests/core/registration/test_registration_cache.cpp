@@ -129,42 +129,54 @@ TEST(RegistrationCache, ForgedOrForeignEntriesAreIgnoredRecomputedAndOverwritten
   }
 }
 
-// A study shipped with a cache signed elsewhere: `ipd table` prints exactly what --no-cache prints, and a
-// forged entry that changes the table when signed with the user's own key shows the test can tell.
+// A study shipped with caches signed elsewhere: `ipd table` prints exactly what --no-cache prints, and the
+// forged entries, which change the table under the key that signed them (so the test can tell), are replaced.
 TEST(RegistrationCache, ForeignCachesChangeNothingInTheTable) {
   test::TempDir d;
   ASSERT_EQ(test::run_ipd(fmt::format("demo {} --labels-only --scenes 3 --rocks 12", d / "study")).exit_code, 0);
-  const std::string args = fmt::format("table {} --format csv --bootstrap 0", d / "study");
   auto table_as = [&](const std::string& home, const std::string& extra = "") {
-    const test::CommandResult r =
-        test::run_command(fmt::format("XDG_CACHE_HOME={} {} {} {}", d / home, IPD_BINARY, args, extra));
+    const test::CommandResult r = test::run_command(fmt::format(
+        "XDG_CACHE_HOME={} {} table {} --format csv --bootstrap 0 {}", d / home, IPD_BINARY, d / "study", extra));
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return r.out;
   };
   const std::string fresh = table_as("mine", "--no-cache");
-  EXPECT_EQ(table_as("theirs"), fresh);  // the collaborator's run leaves caches signed with their key
-  // Every entry forged to pair nothing, signed with the collaborator's key; their parsed-study file goes too
-  // (it holds the same registrations).
-  auto forge_entries = [&](const std::string& key_path) {
-    int forged = 0;
-    fs::remove(d / "study/.ipd-cache/parsed-study.bin");
-    for (const auto& e : fs::recursive_directory_iterator(d / "study/.ipd-cache/registration")) {
-      if (e.path().extension() != ".json") continue;
-      const std::string text = read_file(e.path().string());
-      nlohmann::json j = nlohmann::json::parse(text.substr(0, text.find('\n')));
-      j["pairs"] = nlohmann::json::array();
-      const std::string payload = j.dump();
-      write_file_atomically(e.path().string(),
-                            payload + "\n" + CacheSigner(key_path).mac_hex(kRegistrationEntrySignature, payload) + "\n");
-      ++forged;
-    }
-    return forged;
+  // One entry file per registration, as `ipd table` keys them (compute_cross_table with the study's options).
+  {
+    const StudyLabels labels = load_labels(open_study(d / "study"));
+    TableOptions t;
+    t.registration = labels.study.config.registration;
+    t.cache_dir = registration_cache_dir(d / "study");
+    EXPECT_EQ(compute_cross_table(labels, t).registrations, 9);  // 3 domain pairs x 3 scenes
+  }
+  // Each forged to pair nothing and signed with the collaborator's key.
+  auto entries = [&] {
+    std::vector<fs::path> out;
+    for (const auto& e : fs::recursive_directory_iterator(d / "study/.ipd-cache/registration"))
+      if (e.path().extension() == ".json") out.push_back(e.path());
+    return out;
   };
-  EXPECT_EQ(forge_entries(d / "theirs/ipd-studio/key"), 9);  // 3 domain pairs x 3 scenes
+  ASSERT_EQ(entries().size(), 9u);
+  for (const fs::path& p : entries()) {
+    const std::string text = read_file(p.string());
+    nlohmann::json j = nlohmann::json::parse(text.substr(0, text.find('\n')));
+    j["pairs"] = nlohmann::json::array();
+    const std::string payload = j.dump();
+    write_file_atomically(p.string(), payload + "\n" +
+                                          CacheSigner(d / "theirs/ipd-studio/key").mac_hex(kRegistrationEntrySignature, payload) + "\n");
+  }
   EXPECT_NE(table_as("theirs"), fresh);  // under the key that signed them, the forgeries count
-  forge_entries(d / "theirs/ipd-studio/key");
-  EXPECT_EQ(table_as("mine"), fresh);  // under mine: ignored and recomputed, byte for byte
+  // Their run also left a parsed-study file holding the forged registrations, signed with their key.
+  ASSERT_TRUE(fs::exists(d / "study/.ipd-cache/parsed-study.bin"));
+  EXPECT_EQ(table_as("mine"), fresh);  // under mine: both ignored and recomputed, byte for byte
   EXPECT_EQ(table_as("mine"), fresh);  // and what replaced them is served as the same
+  // The forged entry files were overwritten with ones this installation signed.
+  const CacheSigner mine(d / "mine/ipd-studio/key");
+  for (const fs::path& p : entries()) {
+    const std::string text = read_file(p.string());
+    const size_t nl = text.find('\n');
+    EXPECT_EQ(text.substr(nl + 1, 64), mine.mac_hex(kRegistrationEntrySignature, text.substr(0, nl))) << p;
+  }
 }
 
 }  // namespace
