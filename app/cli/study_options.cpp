@@ -72,7 +72,7 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   LoadedStudy out{parsed.load_labels(study), {}, study.config.conf_threshold, {}};
   if (report_label_errors(out.labels.errors, o.skip_bad_lines)) return std::nullopt;
   RegistrationCache registration(o.no_cache ? std::string() : registration_cache_dir(study.root));
-  registration.preload(parsed.take_registrations());
+  parsed.hand_registrations_to(registration);
   TableOptions opt;
   opt.models = o.models;
   opt.domains = o.domains;

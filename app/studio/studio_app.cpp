@@ -308,7 +308,7 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
 void StudioApp::export_figure(const ui::ExportRequest& request) {
   command::ExportFigure c;
   ++*exports_running_;
-  c.job = [session = snap_->session, request, running = exports_running_] {
+  c.job = [session = snap_->session, request, running = exports_running_, failures = export_failures_] {
     // Rendering takes a second of CPU: a low-priority thread, so the window's frames keep theirs.
     std::string message;
     std::thread low([&] {
@@ -316,6 +316,10 @@ void StudioApp::export_figure(const ui::ExportRequest& request) {
       message = ui::export_figure(*session, request);
     });
     low.join();
+    if (message.rfind("exported ", 0) != 0) {  // a scripted run must hear of it, not only the status line
+      std::lock_guard<std::mutex> l(failures->mu);
+      failures->messages.push_back(request.path + ": " + message);
+    }
     --*running;
     return message;
   };
@@ -369,7 +373,7 @@ bool StudioApp::replay_step() {
     fmt::print(stderr, "error: {}:{}: {}\n", o_.replay, a.line, why);
     replay_next_ = replay_.size() + 1;
     done_ = true;
-    open_failed_ = true;
+    replay_failed_ = true;
   };
   auto rock = [&](const std::string& w, Side side) {
     const int n = std::atoi(w.c_str());
@@ -436,7 +440,8 @@ std::string StudioApp::after_render(double ms, double ui_cpu_ms) {
       if (counted_ > 2) stats_out_.add_frame(ms);  // the first frames upload textures
       ++counted_;
     }
-    const bool replay_done = replay_.empty() || replay_next_ > replay_.size();
+    // A study that can't be opened ends the replay: its actions have nothing to act on.
+    const bool replay_done = replay_.empty() || replay_next_ > replay_.size() || open_failed_;
     if (replay_done && counted_ >= o_.frames && (o_.cycle_scenes == 0 || !changing_)) {
       worker_.saver().wait_idle();
       done_ = true;
@@ -456,7 +461,27 @@ int StudioApp::print_stats() const {
   if (!o_.screenshot.empty()) fmt::print("{}\n", o_.screenshot);
   // Scripted runs (--screenshot, --replay) exit 1 on a study that can't be opened: say why on stderr too.
   if (open_failed_) fmt::print(stderr, "error: could not open the study: {}\n", worker_.open_error());
-  return open_failed_ ? 1 : 0;
+  const std::vector<std::string> problems = open_failed_ ? std::vector<std::string>{} : replay_problems();
+  for (const auto& p : problems) fmt::print(stderr, "error: replay {}: {}\n", o_.replay, p);
+  return open_failed_ || replay_failed_ || !problems.empty() ? 1 : 0;
+}
+
+std::vector<std::string> StudioApp::replay_problems() const {
+  std::vector<std::string> out;
+  if (replay_.empty() || replay_failed_) return out;
+  if (replay_next_ <= replay_.size())
+    out.push_back(fmt::format("stopped before line {} (the window was closed)", replay_[std::min(replay_next_, replay_.size() - 1)].line));
+  for (const auto& why : worker_.saver().failures()) out.push_back("edit not saved: " + why);
+  if (const int n = worker_.saver().pending(); n > 0)
+    out.push_back(fmt::format("{} edit(s) still being saved when the replay ended", n));
+  if (const int n = worker_.unsaved_edits(); n > 0)
+    out.push_back(fmt::format("{} edit(s) only in memory: the study is read-only (save them elsewhere with File > Save edits as)", n));
+  {
+    std::lock_guard<std::mutex> l(export_failures_->mu);
+    out.insert(out.end(), export_failures_->messages.begin(), export_failures_->messages.end());
+  }
+  if (const int n = *exports_running_; n > 0) out.push_back(fmt::format("{} export(s) still running when the replay ended", n));
+  return out;
 }
 
 }  // namespace ipd::studio

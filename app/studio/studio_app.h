@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,8 @@ class StudioApp {
   ui::Picture picture(const std::string& domain, const std::string& stem, bool urgent, bool* full);
   void list_browse_dir();
   void export_figure(const ui::ExportRequest& request);  // on the worker, from the current snapshot
+  // What a finished replay left undone (failed or unsaved edits, failed or unfinished exports), one line each.
+  std::vector<std::string> replay_problems() const;
 
   StudioOptions o_;
   StudyWorker worker_;
@@ -59,11 +62,16 @@ class StudioApp {
   long jump_serial_ = 0;
   std::string traced_;  // "pair/stem" whose search was asked to be recorded
   std::string listed_dir_;
-  bool done_ = false, open_failed_ = false;
+  bool done_ = false, open_failed_ = false, replay_failed_ = false;
   // Timing
   FrameStats stats_out_;
   // Exports running on the worker: frames drawn meanwhile are timed apart.
   std::shared_ptr<std::atomic<int>> exports_running_ = std::make_shared<std::atomic<int>>(0);
+  struct ExportFailures {
+    std::mutex mu;
+    std::vector<std::string> messages;  // guarded by mu
+  };
+  std::shared_ptr<ExportFailures> export_failures_ = std::make_shared<ExportFailures>();
   int counted_ = 0, settle_ = 0, since_change_ = 0;
   bool changing_ = false, change_shown_ = false, pictures_full_ = false;
   std::chrono::steady_clock::time_point change_started_;

@@ -87,6 +87,11 @@ bool StudyWorker::idle() const {
   return queue_.empty() && !busy_;
 }
 
+int StudyWorker::unsaved_edits() const {
+  std::lock_guard<std::mutex> l(mu_);
+  return unsaved_edits_;
+}
+
 void yield_to_the_view() { setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), 4); }
 
 void StudyWorker::run() {
@@ -158,6 +163,7 @@ void StudyWorker::open(const command::OpenStudy& c) {
     progress_.opening = true;
     progress_.stage = "label files";
     open_error_.clear();
+    unsaved_edits_ = 0;
   }
   const auto start = std::chrono::steady_clock::now();
   if (c.demo && !fs::exists(fs::path(c.dir) / "study.yaml")) {
@@ -257,6 +263,7 @@ void StudyWorker::execute(WorkerCommand& c) {
     if (s.read_only()) {
       std::lock_guard<std::mutex> l(mu_);
       messages_.push_back("read-only study: the edit is kept in memory; use File > Save edits as…");
+      ++unsaved_edits_;
     } else {
       saver_.submit(std::move(job));
     }
@@ -288,6 +295,10 @@ void StudyWorker::execute(WorkerCommand& c) {
           [&](const command::RerunRegistration& r) { return rerun(s, r), false; },
           [&](const command::SaveAllTo& d) {
             for (auto& job : s.save_all_to(d.dir)) saver_.submit(std::move(job));
+            {
+              std::lock_guard<std::mutex> l(mu_);
+              unsaved_edits_ = 0;
+            }
             say("edited pairs written under " + d.dir + "/pairs/");
             return false;
           },

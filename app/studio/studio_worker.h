@@ -108,7 +108,10 @@ class StudyWorker {
   std::string open_error() const;
   std::vector<std::string> take_messages();  // status lines (export finished, save failed, …)
   bool idle() const;                         // nothing queued or running
+  // Edits of a read-only study kept only in memory since it was opened or last saved elsewhere.
+  int unsaved_edits() const;
   Saver& saver() { return saver_; }
+  const Saver& saver() const { return saver_; }
 
  private:
   void run();
@@ -129,6 +132,7 @@ class StudyWorker {
   OpenProgress progress_;
   std::string open_error_;
   std::vector<std::string> messages_;
+  int unsaved_edits_ = 0;
   // Worker-thread only:
   std::unique_ptr<Session> session_;
   std::shared_ptr<const RegistrationReport> rerun_;

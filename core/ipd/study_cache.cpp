@@ -14,7 +14,8 @@
 #include <string_view>
 #include <type_traits>
 
-#include "core/util/atomic_file.h"
+#include "core/util/cache_file.h"
+#include "core/util/cache_signer.h"
 
 namespace fs = std::filesystem;
 
@@ -23,13 +24,13 @@ namespace ipd {
 namespace {
 
 constexpr char kMagic[8] = {'I', 'P', 'D', 'S', 'T', 'U', 'D', 'Y'};
-// Bump when the layout, label parsing or a registration method's results change.
-constexpr std::uint32_t kFormat = 2;
-constexpr size_t kHeaderBytes = sizeof kMagic + 4 + 8 + 8;  // magic, format, payload size, checksum
+// Bump when the layout, label parsing or a registration method's results change: 3 for the signature.
+constexpr std::uint32_t kFormat = 3;
+constexpr size_t kHeaderBytes = kParsedStudyHeaderBytes;
+static_assert(kHeaderBytes == sizeof kMagic + 4 + 8 + CacheSigner::kMacBytes);
 
-// A word-at-a-time hash (several GB/s, so checking a 150 MB file costs little). Each step is a bijection
-// of the state for a fixed word, so any change confined to one 8-byte word always changes the result.
-std::uint64_t checksum(const char* p, size_t n) {
+// A word-at-a-time hash, naming a read-only study's file in the user cache directory by its path.
+std::uint64_t path_hash(const char* p, size_t n) {
   std::uint64_t h = 0x9ae16a3b2f90404full ^ n;
   size_t k = 0;
   for (; k + 8 <= n; k += 8) {
@@ -237,7 +238,7 @@ std::string parsed_study_cache_path(const std::string& study_root) {
   std::error_code ec;
   const fs::path abs = fs::weakly_canonical(fs::absolute(study_root, ec), ec);
   const std::string name = abs.string();
-  return (dir / "parsed-study" / fmt::format("{:016x}.bin", checksum(name.data(), name.size()))).string();
+  return (dir / "parsed-study" / fmt::format("{:016x}.bin", path_hash(name.data(), name.size()))).string();
 }
 
 struct StudyCache::Contents {
@@ -267,17 +268,17 @@ StudyCache::StudyCache(std::string path, const std::string& study_root)
       if (data) ::munmap(const_cast<char*>(data), size);
     }
   } map;
-  try {
-    if (file_kind(path_) != FileKind::kRegular) return;
-  } catch (const std::exception&) {
-    stats_.state = "unreadable";
-    return;
-  }
+  // Reached without following links (a study may bring a .ipd-cache whose entries point anywhere).
+  const fs::path where(path_);
+  const auto dir = CacheDir::open(where.parent_path().string(), false);
+  if (!dir) return;
+  dir->remove_stale_temp_files();  // what writers killed mid-save left (each as large as the file)
   {
-    const int fd = ::open(path_.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    const int fd = dir->open_file(where.filename().string());
+    if (fd < 0) return;  // missing, or refused and said so
     struct stat st {};
-    if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-      if (fd >= 0) ::close(fd);
+    if (::fstat(fd, &st) != 0) {
+      ::close(fd);
       stats_.state = "unreadable";
       return;
     }
@@ -297,9 +298,11 @@ StudyCache::StudyCache(std::string path, const std::string& study_root)
     Reader header(bytes.data() + sizeof kMagic, kHeaderBytes - sizeof kMagic);
     if (header.pod<std::uint32_t>() != kFormat) throw std::runtime_error("another format version");
     const auto size = header.pod<std::uint64_t>();
-    const auto sum = header.pod<std::uint64_t>();
+    const std::string_view mac = bytes.substr(kHeaderBytes - CacheSigner::kMacBytes, CacheSigner::kMacBytes);
     if (size != bytes.size() - kHeaderBytes) throw std::runtime_error("truncated");
-    if (sum != checksum(bytes.data() + kHeaderBytes, size)) throw std::runtime_error("checksum");
+    // Only what this installation wrote is trusted: a file that came with the study doesn't verify.
+    if (!CacheSigner::instance().verify(kParsedStudySignature, bytes.substr(kHeaderBytes), mac))
+      throw std::runtime_error("not signed by this installation");
     Reader r(bytes.data() + kHeaderBytes, size);
     if (r.str() != study_root) throw std::runtime_error("another study");
     auto c = std::make_unique<Contents>();
@@ -364,9 +367,14 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
 
 RegistrationEntries StudyCache::take_registrations() { return std::move(contents_->registrations); }
 
+void StudyCache::hand_registrations_to(RegistrationCache& registration) {
+  registration.preload(take_registrations());
+  if (!path_.empty()) registration.defer_writes();
+}
+
 void StudyCache::save(const StudyLabels& labels, const RegistrationCache& registration) {
   if (path_.empty()) return;
-  const RegistrationEntries served = registration.served();
+  const RegistrationEntries served = registration.entries_to_keep();
   size_t files = 0;
   for (const auto& [d, stems] : labels.gt) files += stems.size();
   for (const auto& [d, models] : labels.predictions)
@@ -403,14 +411,12 @@ void StudyCache::save(const StudyLabels& labels, const RegistrationCache& regist
   header.out.append(kMagic, sizeof kMagic);
   header.pod<std::uint32_t>(kFormat);
   header.pod<std::uint64_t>(w.out.size() - kHeaderBytes);
-  header.pod<std::uint64_t>(checksum(w.out.data() + kHeaderBytes, w.out.size() - kHeaderBytes));
+  header.out.append(CacheSigner::instance().mac(kParsedStudySignature, std::string_view(w.out).substr(kHeaderBytes)));
   std::memcpy(w.out.data(), header.out.data(), kHeaderBytes);
-  try {
-    write_file_atomically(path_, w.out);
-    stats_.written = true;
-  } catch (const std::exception&) {
-    // a cache that can't be written only costs time
-  }
+  // A cache that can't be written only costs time: failures are ignored.
+  const fs::path where(path_);
+  if (const auto dir = CacheDir::open(where.parent_path().string(), true))
+    stats_.written = dir->write(where.filename().string(), w.out, write_hook_);
 }
 
 }  // namespace ipd

@@ -3,11 +3,17 @@
 // 120,000 label files and 30,000 registration entries.
 //
 // It lives in study_cache_dir() (STUDY/.ipd-cache/parsed-study.bin, or the user cache directory, named
-// by a hash of the study's path, when the study is read-only). It is never trusted blindly:
+// by a hash of the study's path, when the study is read-only), reached without following links
+// (cache_file.h). It is never trusted blindly:
+//  - the whole file carries a format version, the study root it belongs to, its payload size and an
+//    HMAC-SHA-256 under this installation's key (cache_signer.h): a truncated, corrupt, copied, forged or
+//    older file is ignored (and rebuilt), never read in part;
 //  - a label file is reused only when its (size, mtime in ns, ctime in ns, inode) and whether it exists
-//    are what they were when it was parsed; any other file is parsed again;
-//  - the whole file carries a format version, the study root it belongs to, its payload size and a
-//    checksum: a truncated, corrupt, foreign or older file is ignored (and rebuilt), never read in part;
+//    are what they were when it was parsed; any other file is parsed again. Stamps suffice, without
+//    re-reading the content, because the signature proves this installation recorded them right after
+//    parsing that very file, and every change to a file's bytes or name moves its ctime, which no program
+//    can set back (only the system clock can). A file rewritten within the file system's timestamp tick
+//    of its parse, with the same size and inode, is the one change a stamp can miss;
 //  - registrations are keyed by the same content hash as the entry files (registration_cache.h), so a
 //    changed label file or option simply misses.
 // Label files are stored as load_labels() returns them (class and confidence filters applied): the
@@ -24,6 +30,11 @@
 #include "core/registration/registration_cache.h"
 
 namespace ipd {
+
+// The file's layout: magic "IPDSTUDY", format (u32), payload size (u64), then the HMAC-SHA-256 of the payload
+// signed as kParsedStudySignature (which names the format too, so no other signed cache passes for one).
+inline constexpr const char* kParsedStudySignature = "parsed study 3";
+inline constexpr size_t kParsedStudyHeaderBytes = 8 + 4 + 8 + 32;
 
 // What a label file looked like when it was parsed.
 struct FileStamp {
@@ -60,15 +71,22 @@ class StudyCache {
   StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress = {});
   // The registrations stored in the file, for RegistrationCache::preload.
   RegistrationEntries take_registrations();
-  // Rewrites the file (atomically) when `labels` (from load_labels above) or the registrations
-  // `registration.served()` differ from what was read. A cache that can't be written only costs time: failures are ignored.
+  // Preloads `registration` with the file's registrations and, when this cache has a file to save, defers
+  // its entry writes to save(): one signed file written once instead of one file per registration.
+  void hand_registrations_to(RegistrationCache& registration);
+  // Rewrites the file (atomically) when `labels` (from load_labels above) differ from what was read or
+  // `registration` served entries the file did not hold; it keeps registration.entries_to_keep(). A cache that can't be written only costs time: failures are ignored.
   void save(const StudyLabels& labels, const RegistrationCache& registration);
 
   const StudyCacheStats& stats() const { return stats_; }
+  // Called with "checked" between the check that the file's name is not a link and the rename over it
+  // (tests swap a link in there).
+  void set_write_hook(std::function<void(const char*)> hook) { write_hook_ = std::move(hook); }
 
  private:
   struct Contents;
   std::string path_, root_;
+  std::function<void(const char*)> write_hook_;
   std::unique_ptr<Contents> contents_;
   StudyCacheStats stats_;
 };

@@ -10,7 +10,8 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "core/util/atomic_file.h"
+#include "core/util/cache_file.h"
+#include "core/util/cache_signer.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -23,8 +24,11 @@ namespace {
 // d3f1512, 5270185, 1e663dd and 4eeddd8 (entries of format 3 held their predecessors' answers); 5 for flat
 // triples proposing similarities and the second look; 6 for translation votes in centred bins; 7 for the
 // gate's floor, the guarded polish and the soft refinement of a confirmed best; 8 for cpd's confidence; 9 for
-// cpd's rivals under the unmoved camera too.
-constexpr int kFormat = 10;
+// cpd's rivals under the unmoved camera too; 10 for entries signed with the installation's key (cache_signer.h); 11
+// for the identity given to identical layouts without a search.
+constexpr int kFormat = 11;
+// An entry of 20,000 pairs is under 1 MB; anything much larger was not written by store().
+constexpr size_t kMaxEntryBytes = size_t{16} << 20;
 
 struct Fnv {
   std::uint64_t h;
@@ -68,12 +72,6 @@ void feed(F&& f, const std::vector<Box>& a, const std::vector<Box>& b, const Reg
 
 std::string hex64(std::uint64_t v) { return fmt::format("{:016x}", v); }
 
-std::string checksum(const std::string& text) {
-  Fnv f{0xcbf29ce484222325ull};
-  f.bytes(text.data(), text.size());
-  return hex64(f.h);
-}
-
 }  // namespace
 
 std::string study_cache_dir(const std::string& study_root) {
@@ -81,10 +79,7 @@ std::string study_cache_dir(const std::string& study_root) {
   const fs::path own = fs::path(study_root) / ".ipd-cache";
   const bool exists = fs::exists(own, ec);
   if (exists ? ::access(own.c_str(), W_OK) == 0 : ::access(study_root.c_str(), W_OK) == 0) return own.string();
-  const char* xdg = std::getenv("XDG_CACHE_HOME");
-  const char* home = std::getenv("HOME");
-  const fs::path base = xdg && *xdg ? fs::path(xdg) : fs::path(home ? home : "/tmp") / ".cache";
-  return (base / "ipd-studio").string();
+  return user_cache_root();
 }
 
 std::string registration_cache_dir(const std::string& study_root) {
@@ -100,10 +95,19 @@ RegistrationEntries RegistrationCache::served() const {
 
 bool RegistrationCache::served_only_preloaded() const {
   std::lock_guard<std::mutex> l(memory_->mu);
-  if (memory_->served.size() != memory_->preloaded.size()) return false;
   for (const auto& entry : memory_->served)
     if (!memory_->preloaded.count(entry.first)) return false;
   return true;
+}
+
+RegistrationEntries RegistrationCache::entries_to_keep() const {
+  std::lock_guard<std::mutex> l(memory_->mu);
+  RegistrationEntries out = memory_->served;
+  size_t unused = 0;
+  for (const auto& entry : memory_->preloaded) unused += !out.count(entry.first);
+  if (unused > kKeptUnusedFactor * memory_->served.size()) return out;
+  for (const auto& entry : memory_->preloaded) out.emplace(entry.first, entry.second);
+  return out;
 }
 
 void RegistrationCache::remember(const std::string& key, const RegistrationReport& report) const {
@@ -120,7 +124,16 @@ std::string registration_cache_key(const std::vector<Box>& a, const std::vector<
 }
 
 std::string RegistrationCache::entry_path(const std::string& key) const {
-  return (fs::path(dir_) / key.substr(0, 2) / (key + ".json")).string();
+  return (fs::path(dir_) / entry_name(key)).string();
+}
+
+std::string RegistrationCache::entry_name(const std::string& key) { return key.substr(0, 2) + "/" + key + ".json"; }
+
+const CacheDir* RegistrationCache::directory(bool create) const {
+  std::lock_guard<std::mutex> l(memory_->dir_mu);
+  if (!memory_->dir && (create || !memory_->dir_looked_for)) memory_->dir = CacheDir::open(dir_, create);
+  memory_->dir_looked_for = true;
+  return memory_->dir.get();
 }
 
 std::optional<RegistrationReport> RegistrationCache::load(const std::string& key, int count_a, int count_b) const {
@@ -139,30 +152,39 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     }
   }
   if (dir_.empty()) return std::nullopt;
-  const std::string path = entry_path(key);
-  std::error_code ec;
-  if (!fs::exists(path, ec)) return std::nullopt;
+  const CacheDir* dir = directory(false);
+  if (!dir) return std::nullopt;
+  const std::optional<std::string> text = dir->read(entry_name(key), kMaxEntryBytes);
+  if (!text) return std::nullopt;
+  // An entry file that is there but not usable is replaced by store(): forged or foreign entries don't stay.
+  const auto unusable = [&] {
+    std::lock_guard<std::mutex> l(memory_->mu);
+    memory_->unusable_on_disk.insert(key);
+    return std::optional<RegistrationReport>();
+  };
   try {
-    const std::string text = read_file(path);
-    // Layout: the payload on the first line, its checksum on the second.
-    const size_t nl = text.find('\n');
-    if (nl == std::string::npos || text.compare(nl + 1, 16, checksum(text.substr(0, nl))) != 0) return std::nullopt;
-    const json j = json::parse(text.substr(0, nl));
-    if (j.at("key").get<std::string>() != key || j.at("format").get<int>() != kFormat) return std::nullopt;
+    // Layout: the payload on the first line, its signature (64 hex digits) on the second. An entry this
+    // installation did not write (copied with a study, written by hand or by another build) doesn't verify.
+    const size_t nl = text->find('\n');
+    if (nl == std::string::npos || text->size() != nl + 1 + 64 + 1 ||
+        text->compare(nl + 1, 64, CacheSigner::instance().mac_hex(kRegistrationEntrySignature, std::string_view(*text).substr(0, nl))) != 0)
+      return unusable();
+    const json j = json::parse(text->substr(0, nl));
+    if (j.at("key").get<std::string>() != key || j.at("format").get<int>() != kFormat) return unusable();
     RegistrationReport r;
     RegistrationMethod m;
-    if (!parse_method(j.at("method").get<std::string>(), &m)) return std::nullopt;
+    if (!parse_method(j.at("method").get<std::string>(), &m)) return unusable();
     r.method = m;
     const auto aff = j.at("affine").get<std::vector<double>>();
-    if (aff.size() != 6) return std::nullopt;
+    if (aff.size() != 6) return unusable();
     for (int k = 0; k < 6; ++k) {
-      if (!std::isfinite(aff[k])) return std::nullopt;
+      if (!std::isfinite(aff[k])) return unusable();
       r.affine(k / 3, k % 3) = aff[k];
     }
     std::vector<char> used_a(count_a, 0), used_b(count_b, 0);
     for (const auto& p : j.at("pairs")) {
       const int i = p.at(0).get<int>(), jb = p.at(1).get<int>();
-      if (i < 0 || i >= count_a || jb < 0 || jb >= count_b || used_a[i] || used_b[jb]) return std::nullopt;
+      if (i < 0 || i >= count_a || jb < 0 || jb >= count_b || used_a[i] || used_b[jb]) return unusable();
       used_a[i] = used_b[jb] = 1;
       r.pairs.emplace_back(i, jb);
     }
@@ -171,7 +193,7 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     r.inliers = j.at("inliers").get<int>();
     r.score = j.at("score").get<double>();
     const int stop = j.at("stop").get<int>();
-    if (stop < 0 || stop > static_cast<int>(StopReason::kWorkBudget)) return std::nullopt;
+    if (stop < 0 || stop > static_cast<int>(StopReason::kWorkBudget)) return unusable();
     r.stop = static_cast<StopReason>(stop);
     r.note = j.at("note").get<std::string>();
     r.elapsed_ms = j.at("elapsed_ms").get<double>();
@@ -180,13 +202,17 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     remember(key, r);
     return r;
   } catch (const std::exception&) {
-    return std::nullopt;  // unreadable or not what we wrote: recompute
+    return unusable();  // unreadable or not what we wrote: recompute
   }
 }
 
 bool RegistrationCache::store(const std::string& key, const RegistrationReport& r) const {
   if (dir_.empty()) return false;
   remember(key, r);
+  if (memory_->deferred) {
+    std::lock_guard<std::mutex> l(memory_->mu);
+    if (!memory_->unusable_on_disk.count(key)) return true;
+  }
   json j;
   j["format"] = kFormat;
   j["key"] = key;
@@ -205,12 +231,9 @@ bool RegistrationCache::store(const std::string& key, const RegistrationReport& 
   j["confidence"] = std::isfinite(r.confidence) ? r.confidence : 0.0;
   j["ambiguous"] = r.ambiguous;
   const std::string payload = j.dump();
-  try {
-    write_file_atomically(entry_path(key), payload + "\n" + checksum(payload) + "\n");
-    return true;
-  } catch (const std::exception&) {
-    return false;  // a cache that can't be written only costs time
-  }
+  // A cache that can't be written only costs time: failures just return false.
+  const CacheDir* dir = directory(true);
+  return dir && dir->write(entry_name(key), payload + "\n" + CacheSigner::instance().mac_hex(kRegistrationEntrySignature, payload) + "\n");
 }
 
 RegistrationReport register_rocks_cached(const RegistrationCache* cache, const std::vector<Box>& a,

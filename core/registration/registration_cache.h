@@ -2,7 +2,8 @@
 // register every scene again. An entry is keyed by a hash of both scenes' GT boxes (the label files'
 // contents as parsed), the method and every option that can change the result; it lives in
 // STUDY/.ipd-cache/registration/, or in the user cache directory when the study is read-only. Entries are
-// written atomically and carry a checksum: a missing, truncated or corrupt entry is recomputed, never used.
+// written atomically without following links (cache_file.h) and signed with this installation's key
+// (cache_signer.h): a missing, truncated, corrupt, copied or forged entry is recomputed, never used.
 // Traces (RegistrationOptions::record_trace) are not cached: a replay registers the scene again.
 #pragma once
 
@@ -11,10 +12,12 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "core/geometry/geometry.h"
 #include "core/registration/registration.h"
+#include "core/util/cache_file.h"
 
 namespace ipd {
 
@@ -30,6 +33,9 @@ std::string registration_cache_dir(const std::string& study_root);
 std::string registration_cache_key(const std::vector<Box>& a, const std::vector<Box>& b,
                                    const RegistrationOptions& options);
 
+// What an entry's signature says it is (cache_signer.h), so a signed file of another cache can't pass for one.
+inline constexpr const char* kRegistrationEntrySignature = "registration entry";
+
 using RegistrationEntries = std::unordered_map<std::string, RegistrationReport>;  // key -> report
 
 class RegistrationCache {
@@ -42,8 +48,16 @@ class RegistrationCache {
   // caller can write the set this run used back in one file.
   void preload(RegistrationEntries entries);
   RegistrationEntries served() const;
-  // True when this run used exactly the preloaded entries (the one-file copy needs no rewrite).
+  // True when this run used no entry beyond the preloaded ones (the one-file copy needs no rewrite).
   bool served_only_preloaded() const;
+  // What the one file should keep: the entries served this run, plus preloaded ones this run did not use
+  // (another method's, another domain selection's) while they are at most kKeptUnusedFactor times as many,
+  // so switching between a few settings keeps each one's results without the file growing without end.
+  static constexpr size_t kKeptUnusedFactor = 3;
+  RegistrationEntries entries_to_keep() const;
+  // Entries are only remembered, not written one file each: the caller writes them all at once (the
+  // parsed-study file). Creating 30,000 entry files cost more than registering the scenes again.
+  void defer_writes() { memory_->deferred = true; }
 
   // The cached report for `key`, or nullopt when absent or unusable (bad checksum, other key, pair
   // indices outside [0, count) or a rock paired twice).
@@ -51,13 +65,21 @@ class RegistrationCache {
   // Writes the entry atomically; false (and nothing written) when the directory can't be written.
   bool store(const std::string& key, const RegistrationReport& report) const;
   std::string entry_path(const std::string& key) const;
+  static std::string entry_name(const std::string& key);  // "ab/<key>.json", relative to dir()
 
  private:
   struct Memory {
     RegistrationEntries preloaded;
     mutable std::mutex mu;
     RegistrationEntries served;  // guarded by mu
+    std::mutex dir_mu;
+    std::shared_ptr<const CacheDir> dir;  // guarded by dir_mu; opened on first use
+    bool dir_looked_for = false;
+    bool deferred = false;
+    std::unordered_set<std::string> unusable_on_disk;  // guarded by mu: rewritten by store() even when deferred
   };
+  // The opened cache directory (created when `create`); nullptr when missing or refused.
+  const CacheDir* directory(bool create) const;
   void remember(const std::string& key, const RegistrationReport& report) const;
   std::string dir_;
   std::shared_ptr<Memory> memory_ = std::make_shared<Memory>();

@@ -144,7 +144,7 @@ Session Session::open(const std::string& root, const SessionOptions& options) {
     if (options.progress) options.progress("label files", done, total);
   });
   RegistrationCache registration(options.cache_dir);
-  registration.preload(parsed.take_registrations());
+  parsed.hand_registrations_to(registration);
   SessionOptions with_cache = options;
   with_cache.registration_cache = &registration;
   Session session(std::move(labels), with_cache);

@@ -274,7 +274,7 @@ FixedPairsRead load_fixed_pairs(const Study& study, const std::string& a, const 
     const std::string shown = (fs::path(study.root) / rel).string();
     std::optional<std::string> text;
     try {
-      text = read_file_beneath(study.root, rel);
+      text = read_file_beneath(study.root, rel, kMaxPairsFileBytes);
     } catch (const IoError& e) {
       throw StudyError(e.what());
     }

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <set>
 
+#include "core/study/study_names.h"
 #include "core/util/atomic_file.h"
 #include "core/util/json_input.h"
 #include "core/util/json_output.h"
@@ -157,6 +158,10 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
       check_unique_keys(v, file, "models.");
       for (const auto& m : v) {
         const std::string name = m.first.as<std::string>();
+        // The name becomes the default model and part of export file names: it must be one.
+        if (const std::string why = file_name_problem(name, kMaxModelNameBytes); !why.empty())
+          throw StudyError(fmt::format("{}:{}: model name '{}' {}", file, m.first.Mark().line + 1,
+                                       printable_name(name), why));
         if (!m.second.IsMap() && !m.second.IsNull())
           throw StudyError(fmt::format("{}:{}: models.{} must be a mapping like {{trained_on: real}}", file,
                                        m.first.Mark().line + 1, name));
@@ -246,6 +251,12 @@ FileKind kind_of(const fs::path& p) {
   }
 }
 
+// A folder or file name that the study turns into parts of other file names (study_names.h).
+void check_name(const fs::path& where, const std::string& name, const char* what, size_t max_bytes) {
+  if (const std::string why = file_name_problem(name, max_bytes); !why.empty())
+    throw StudyError(fmt::format("{}: {} name '{}' {}", printable_name(where.string()), what, printable_name(name), why));
+}
+
 // Every entry of a directory; one that can't be read is an error, never an empty directory.
 std::vector<fs::directory_entry> list_directory(const fs::path& dir) {
   std::vector<fs::directory_entry> out;
@@ -264,7 +275,10 @@ std::set<std::string> label_stems(const fs::path& dir) {
   for (const auto& f : list_directory(dir)) {
     const fs::path& p = f.path();
     if (p.filename() == "classes.txt") continue;  // class names (ipd import coco), not a scene
-    if (p.extension() == ".txt") stems.insert(p.stem().string());
+    if (p.extension() == ".txt") {
+      check_name(p, p.stem().string(), "scene", kMaxStemBytes);
+      stems.insert(p.stem().string());
+    }
     else if (lower(p.extension().string()) == ".txt") refused.push_back(p);
   }
   if (refused.empty()) return stems;
@@ -285,6 +299,7 @@ Domain scan_domain(const fs::path& root, const std::string& name, std::set<std::
   Domain d;
   d.name = name;
   d.dir = (root / name).string();
+  check_name(root / name, name, "domain", kMaxDomainNameBytes);
   std::set<std::string> stems = label_stems(root / name / "labels");
   if (kind_of(root / name / "images") == FileKind::kDirectory) {
     std::vector<fs::path> pictures;
@@ -293,6 +308,7 @@ Domain scan_domain(const fs::path& root, const std::string& name, std::set<std::
     std::sort(pictures.begin(), pictures.end());
     for (const auto& p : pictures) {
       const std::string stem = p.stem().string();
+      check_name(p, stem, "scene", kMaxStemBytes);
       const auto [it, fresh] = d.images.emplace(stem, p.string());
       if (!fresh)
         throw StudyError(fmt::format("{}: {} is a picture of this scene too; keep one of them", p.string(),
@@ -303,6 +319,7 @@ Domain scan_domain(const fs::path& root, const std::string& name, std::set<std::
   if (kind_of(root / name / "predictions") == FileKind::kDirectory) {
     for (const auto& m : list_directory(root / name / "predictions")) {
       if (kind_of(m.path()) != FileKind::kDirectory) continue;
+      check_name(m.path(), m.path().filename().string(), "model", kMaxModelNameBytes);
       label_stems(m.path());  // the same rule as labels/: a 0001.TXT there would read as "nothing detected"
       d.models.push_back(m.path().filename().string());
       all_models->insert(d.models.back());
@@ -325,7 +342,7 @@ Study open_study(const std::string& root_in) {
   const fs::path yaml = root / "study.yaml";
   if (kind_of(yaml) != FileKind::kMissing) {
     try {
-      s.config = parse_study_config(read_file(yaml.string()), yaml.string());
+      s.config = parse_study_config(read_file(yaml.string(), kMaxStudyYamlBytes), yaml.string());
     } catch (const IoError& e) {
       throw StudyError(e.what());
     }

@@ -71,4 +71,10 @@ struct SceneMatch {
 };
 SceneMatch match_scenes(const Domain& a, const Domain& b);
 
+// Read caps: what a real file of each kind needs, with room to spare; a larger file is refused with its size
+// and the limit (never read into memory). A pairs file of a 20,000-rock scene is under 2 MB and its JSON
+// document takes about 25 times its size while parsed, so 8 MB bounds that at ~200 MB; study.yaml is a few KB.
+constexpr size_t kMaxPairsFileBytes = size_t{8} << 20;
+constexpr size_t kMaxStudyYamlBytes = size_t{1} << 20;
+
 }  // namespace ipd

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fmt/format.h>
@@ -139,8 +140,9 @@ std::string read_file(const std::string& path, size_t max_bytes) {
   }
   if (static_cast<unsigned long long>(st.st_size) > max_bytes) {
     ::close(fd);
-    throw IoError(fmt::format("{}: is {} MB, larger than the {} MB limit for this kind of file", path,
-                              st.st_size >> 20, max_bytes >> 20));
+    // Rounded up, so a file just over the limit never reads as equal to it.
+    throw IoError(fmt::format("{}: is {:.1f} MB, larger than the {:g} MB limit for this kind of file", path,
+                              std::ceil(st.st_size * 10 / 1048576.0) / 10, max_bytes / 1048576.0));
   }
   std::string out;
   out.resize(static_cast<size_t>(st.st_size));
@@ -165,18 +167,21 @@ std::string read_file(const std::string& path, size_t max_bytes) {
   return out;
 }
 
+bool is_stale_temp_name(const std::string& name) {
+  const size_t at = name.rfind(".tmp-");
+  if (at == std::string::npos) return false;
+  const std::string rest = name.substr(at + 5);  // <pid>-<n>
+  const size_t dash = rest.find('-');
+  if (dash == std::string::npos || dash == 0 || rest.find_first_not_of("0123456789-") != std::string::npos) return false;
+  const long pid = std::strtol(rest.substr(0, dash).c_str(), nullptr, 10);
+  return pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;  // the writer is gone
+}
+
 int remove_stale_temp_files(const std::string& dir) {
   int removed = 0;
   std::error_code ec;
   for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    const size_t at = name.rfind(".tmp-");
-    if (at == std::string::npos) continue;
-    const std::string rest = name.substr(at + 5);  // <pid>-<n>
-    const size_t dash = rest.find('-');
-    if (dash == std::string::npos || dash == 0 || rest.find_first_not_of("0123456789-") != std::string::npos) continue;
-    const long pid = std::strtol(rest.substr(0, dash).c_str(), nullptr, 10);
-    if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH)) continue;  // writer alive
+    if (!is_stale_temp_name(it->path().filename().string())) continue;
     std::error_code rm;
     if (it->is_regular_file(rm) && fs::remove(it->path(), rm)) ++removed;
   }

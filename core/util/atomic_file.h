@@ -34,5 +34,7 @@ std::string read_file(const std::string& path, size_t max_bytes = kMaxReadBytes)
 // Removes `<name>.tmp-<pid>-<n>` files left in `dir` by writers that died (their process is gone).
 // Returns how many were removed; problems are ignored (this is tidying, not a correctness step).
 int remove_stale_temp_files(const std::string& dir);
+// True for `<name>.tmp-<pid>-<n>` whose writer process is gone.
+bool is_stale_temp_name(const std::string& name);
 
 }  // namespace ipd

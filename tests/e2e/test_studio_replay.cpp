@@ -120,5 +120,40 @@ TEST(StudioReplay, AStudyThatCannotBeOpenedSaysWhyOnStderr) {
             std::string::npos) << err;
 }
 
+// Scripted runs must end and say what went wrong: a replay on a study that can't be opened used to wait
+// forever for the study (`timeout` turns a hang into 124, not 1).
+TEST(StudioReplay, AReplayOnAStudyThatCannotBeOpenedExits1) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  test::write_text(d / "actions.txt", "scene next\nunpair 1\n");
+  const std::string cmd = fmt::format("XDG_CACHE_HOME={} timeout 120 {} {} --replay {}", d / "cache", studio,
+                                      d / "missing", d / "actions.txt");
+  EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path()), 1);
+  const std::string err = read_file(d / "err.txt");
+  EXPECT_NE(err.find("error: could not open the study: " + d / "missing" + ": no such study directory\n"),
+            std::string::npos) << err;
+}
+
+// An edit that could not be saved and an export that could not be written fail the run, each named.
+TEST(StudioReplay, FailedSavesAndExportsMakeTheReplayFail) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd(fmt::format("demo {} --labels-only --scenes 3 --rocks 12", d / "study")).exit_code, 0);
+  test::write_text(d / "study/pairs/real__principled", "a file where the pairs folder should be\n");
+  test::write_text(d / "blocker", "a file where the figure's folder should be\n");
+  test::write_text(d / "actions.txt", "scene scene_00002\nunpair 1\nexport " + d / "blocker/fig.pdf" + "\n");
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} timeout 120 {} {} --replay {}", d / "cache", studio, d / "study", d / "actions.txt");
+  EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path()), 1);
+  const std::string err = read_file(d / "err.txt");
+  const std::string prefix = "error: replay " + d / "actions.txt" + ": ";
+  EXPECT_NE(err.find(prefix + "edit not saved: " + d / "study/pairs/real__principled/scene_00002.json: "),
+            std::string::npos) << err;
+  EXPECT_NE(err.find(prefix + d / "blocker/fig.pdf" + ": export failed: "), std::string::npos) << err;
+  EXPECT_EQ(err.find("could not open the study"), std::string::npos) << err;
+}
+
 }  // namespace
 }  // namespace ipd

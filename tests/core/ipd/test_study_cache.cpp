@@ -10,6 +10,7 @@
 #include "core/util/atomic_file.h"
 #include "core/session/session.h"
 #include "core/ipd/study_cache.h"
+#include "core/util/cache_signer.h"
 #include "tests/support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -104,13 +105,13 @@ TEST(StudyCache, TruncatedOrFlippedCacheIsIgnoredAndRebuilt) {
   EXPECT_EQ(o.labels, fresh);
   EXPECT_EQ(read_file(path), good);  // rebuilt
 
-  // One byte inside a stored box: the checksum refuses the file.
+  // One byte inside a stored box: the signature refuses the file.
   std::string flipped = good;
   const size_t at = flipped.size() / 2;
   flipped[at] = static_cast<char>(flipped[at] ^ 0x10);
   write_file_atomically(path, flipped);
   o = open_cached(d.path());
-  EXPECT_EQ(o.stats.state, "ignored: checksum");
+  EXPECT_EQ(o.stats.state, "ignored: not signed by this installation");
   EXPECT_EQ(o.labels, fresh);
 
   write_file_atomically(path, "IPDSTUDY");
@@ -119,6 +120,71 @@ TEST(StudyCache, TruncatedOrFlippedCacheIsIgnoredAndRebuilt) {
   other_version[8] = static_cast<char>(other_version[8] + 1);
   write_file_atomically(path, other_version);
   EXPECT_EQ(open_cached(d.path()).stats.state, "ignored: another format version");
+}
+
+// A parsed-study file is served only when this installation signed it: one that came with the study
+// (signed by another key) is rebuilt, and what is served equals a fresh parse.
+TEST(StudyCache, AFileSignedElsewhereIsIgnoredAndRebuilt) {
+  test::TempDir d;
+  write_study(d);
+  const std::string fresh = dump(load_labels(open_study(d.path())));
+  open_cached(d.path());
+  const std::string path = parsed_study_cache_path(d.path());
+  const std::string good = read_file(path);
+  // Move real/s0's first box from x 0.100 to 0.900, re-signing the payload with `key_path`.
+  const double from = 0.1, to = 0.9;
+  const size_t at = good.find(std::string(reinterpret_cast<const char*>(&from), 8));
+  ASSERT_NE(at, std::string::npos);
+  auto forged_with = [&](const CacheSigner& signer) {
+    std::string f = good;
+    f.replace(at, 8, std::string(reinterpret_cast<const char*>(&to), 8));
+    const std::string mac = signer.mac(kParsedStudySignature, std::string_view(f).substr(kParsedStudyHeaderBytes));
+    f.replace(kParsedStudyHeaderBytes - mac.size(), mac.size(), mac);
+    return f;
+  };
+  write_file_atomically(path, forged_with(CacheSigner::instance()));
+  Opened o = open_cached(d.path());
+  EXPECT_EQ(o.stats.state, "loaded");  // signed by this installation: served as stored
+  EXPECT_NE(o.labels.find("0 0.9 0.2 0.05 0.04 1 line 1"), std::string::npos) << o.labels;
+
+  write_file_atomically(path, forged_with(CacheSigner(d / "other/key")));
+  o = open_cached(d.path());
+  EXPECT_EQ(o.stats.state, "ignored: not signed by this installation");
+  EXPECT_EQ(o.stats.files_parsed, 12);
+  EXPECT_EQ(o.labels, fresh);
+  o = open_cached(d.path());
+  EXPECT_EQ(o.stats.state, "loaded");
+  EXPECT_EQ(o.labels, fresh);  // the rebuilt file serves exactly the fresh parse
+}
+
+// With the parsed-study file in use, registrations are written once, in it, not one file each (creating
+// 30,000 entry files cost more than registering again); another method's results are kept beside them.
+TEST(StudyCache, RegistrationsGoInTheOneFileAndAnotherMethodsAreKept) {
+  test::TempDir d;
+  write_study(d);
+  auto cached_with = [&](RegistrationMethod m) {
+    const Study study = open_study(d.path());
+    StudyCache cache(parsed_study_cache_path(study.root), study.root);
+    const StudyLabels labels = cache.load_labels(study);
+    RegistrationCache registration(registration_cache_dir(study.root));
+    cache.hand_registrations_to(registration);
+    TableOptions t;
+    t.registration = study.config.registration;
+    t.registration.method = m;
+    t.cache_dir = registration.dir();
+    t.registration_cache = &registration;
+    const CrossTable table = compute_cross_table(labels, t);
+    cache.save(labels, registration);
+    EXPECT_EQ(table.registrations, 3);
+    return table.cached_registrations;
+  };
+  EXPECT_EQ(cached_with(RegistrationMethod::kConsensus), 0);
+  EXPECT_FALSE(fs::exists(registration_cache_dir(d.path())));  // no entry files
+  EXPECT_EQ(cached_with(RegistrationMethod::kConsensus), 3);
+  EXPECT_EQ(cached_with(RegistrationMethod::kPaper), 0);
+  EXPECT_EQ(cached_with(RegistrationMethod::kConsensus), 3);  // kept while the paper method's were added
+  EXPECT_EQ(cached_with(RegistrationMethod::kPaper), 3);
+  EXPECT_FALSE(fs::exists(registration_cache_dir(d.path())));
 }
 
 TEST(StudyCache, AChangedLabelFileIsParsedAgain) {

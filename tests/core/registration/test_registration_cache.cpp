@@ -5,11 +5,13 @@
 #include <filesystem>
 #include <fmt/format.h>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "core/util/atomic_file.h"
 #include "core/ipd/ipd.h"
 #include "core/registration/registration_cache.h"
 #include "core/session/session.h"
+#include "core/util/cache_signer.h"
 #include "tests/support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -49,7 +51,7 @@ TEST(RegistrationCache, StoresLoadsAndRecomputesCorruptEntries) {
   EXPECT_NE(registration_cache_key(a, rocks(0.021), o), key);
   EXPECT_EQ(key.size(), 32u);
 
-  // A flipped digit fails the checksum; a truncated entry fails to parse; both are recomputed.
+  // A flipped digit fails the signature; a truncated entry fails to parse; both are recomputed.
   const std::string path = cache.entry_path(key);
   std::string text = read_file(path);
   const size_t at = text.find("\"pairs\":[[") + 10;
@@ -95,6 +97,86 @@ TEST(RegistrationCache, TableAndSessionShareItAndAgree) {
   const Session s = Session::open(d.path(), so);
   EXPECT_EQ(s.cached_registrations(), 3);
   EXPECT_DOUBLE_EQ(s.totals().ipd(), cold.cells[0].ipd);
+}
+
+
+TEST(RegistrationCache, ForgedOrForeignEntriesAreIgnoredRecomputedAndOverwritten) {
+  test::TempDir d;
+  const RegistrationCache cache(d / "cache");
+  const auto a = rocks(0), b = rocks(0.02);
+  const RegistrationOptions o;
+  const RegistrationReport first = register_rocks_cached(&cache, a, b, o);
+  const std::string key = registration_cache_key(a, b, o);
+  const std::string path = cache.entry_path(key);
+  nlohmann::json j = nlohmann::json::parse(read_file(path).substr(0, read_file(path).find('\n')));
+  j["pairs"] = {{0, 6}};  // a well-formed entry that would change every IPD using it
+  const std::string forged = j.dump();
+  // Signed by this installation it would be served: the signature is the only thing that stops it.
+  write_file_atomically(path, forged + "\n" + CacheSigner::instance().mac_hex(kRegistrationEntrySignature, forged) + "\n");
+  ASSERT_TRUE(cache.load(key, 7, 7).has_value());
+  EXPECT_EQ(cache.load(key, 7, 7)->pairs, (RockPairs{{0, 6}}));
+  // Signed by another installation (a study copied with its cache), or carrying the old unkeyed checksum:
+  // ignored, recomputed and overwritten with an entry this installation trusts.
+  for (const std::string& sig : {CacheSigner(d / "other/key").mac_hex(kRegistrationEntrySignature, forged),
+                                 std::string("0123456789abcdef")}) {
+    write_file_atomically(path, forged + "\n" + sig + "\n");
+    EXPECT_FALSE(cache.load(key, 7, 7).has_value());
+    bool hit = true;
+    EXPECT_EQ(register_rocks_cached(&cache, a, b, o, &hit).pairs, first.pairs);
+    EXPECT_FALSE(hit);
+    ASSERT_TRUE(cache.load(key, 7, 7).has_value());
+    EXPECT_EQ(cache.load(key, 7, 7)->pairs, first.pairs);
+  }
+}
+
+// A study shipped with caches signed elsewhere: `ipd table` prints exactly what --no-cache prints, and the
+// forged entries, which change the table under the key that signed them (so the test can tell), are replaced.
+TEST(RegistrationCache, ForeignCachesChangeNothingInTheTable) {
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd(fmt::format("demo {} --labels-only --scenes 3 --rocks 12", d / "study")).exit_code, 0);
+  auto table_as = [&](const std::string& home, const std::string& extra = "") {
+    const test::CommandResult r = test::run_command(fmt::format(
+        "XDG_CACHE_HOME={} {} table {} --format csv --bootstrap 0 {}", d / home, IPD_BINARY, d / "study", extra));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.out;
+  };
+  const std::string fresh = table_as("mine", "--no-cache");
+  // One entry file per registration, as `ipd table` keys them (compute_cross_table with the study's options).
+  {
+    const StudyLabels labels = load_labels(open_study(d / "study"));
+    TableOptions t;
+    t.registration = labels.study.config.registration;
+    t.cache_dir = registration_cache_dir(d / "study");
+    EXPECT_EQ(compute_cross_table(labels, t).registrations, 9);  // 3 domain pairs x 3 scenes
+  }
+  // Each forged to pair nothing and signed with the collaborator's key.
+  auto entries = [&] {
+    std::vector<fs::path> out;
+    for (const auto& e : fs::recursive_directory_iterator(d / "study/.ipd-cache/registration"))
+      if (e.path().extension() == ".json") out.push_back(e.path());
+    return out;
+  };
+  ASSERT_EQ(entries().size(), 9u);
+  for (const fs::path& p : entries()) {
+    const std::string text = read_file(p.string());
+    nlohmann::json j = nlohmann::json::parse(text.substr(0, text.find('\n')));
+    j["pairs"] = nlohmann::json::array();
+    const std::string payload = j.dump();
+    write_file_atomically(p.string(), payload + "\n" +
+                                          CacheSigner(d / "theirs/ipd-studio/key").mac_hex(kRegistrationEntrySignature, payload) + "\n");
+  }
+  EXPECT_NE(table_as("theirs"), fresh);  // under the key that signed them, the forgeries count
+  // Their run also left a parsed-study file holding the forged registrations, signed with their key.
+  ASSERT_TRUE(fs::exists(d / "study/.ipd-cache/parsed-study.bin"));
+  EXPECT_EQ(table_as("mine"), fresh);  // under mine: both ignored and recomputed, byte for byte
+  EXPECT_EQ(table_as("mine"), fresh);  // and what replaced them is served as the same
+  // The forged entry files were overwritten with ones this installation signed.
+  const CacheSigner mine(d / "mine/ipd-studio/key");
+  for (const fs::path& p : entries()) {
+    const std::string text = read_file(p.string());
+    const size_t nl = text.find('\n');
+    EXPECT_EQ(text.substr(nl + 1, 64), mine.mac_hex(kRegistrationEntrySignature, text.substr(0, nl))) << p;
+  }
 }
 
 }  // namespace

@@ -1,0 +1,165 @@
+#include "core/util/cache_signer.h"
+
+#include <fcntl.h>
+#include <openssl/crypto.h>
+#include <openssl/evp.h>
+#include <openssl/params.h>
+#include <sys/random.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fmt/format.h>
+#include <stdexcept>
+
+#ifndef IPD_VERSION
+#define IPD_VERSION "unknown"
+#endif
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+
+namespace {
+
+constexpr size_t kKeyBytes = 32;
+
+// HMAC-SHA-256 over a 0-separated pair, so ("ab", "c") and ("a", "bc") sign differently. Incremental: a
+// 150 MB parsed-study file is signed in place, not copied.
+std::string hmac_sha256(std::string_view key, std::string_view a, std::string_view b) {
+  static EVP_MAC* const hmac = EVP_MAC_fetch(nullptr, "HMAC", nullptr);
+  EVP_MAC_CTX* ctx = hmac ? EVP_MAC_CTX_new(hmac) : nullptr;
+  if (!ctx) throw std::runtime_error("HMAC-SHA-256 is not available");
+  char digest[] = "SHA256";
+  const OSSL_PARAM params[] = {OSSL_PARAM_construct_utf8_string("digest", digest, 0), OSSL_PARAM_construct_end()};
+  const auto* k = reinterpret_cast<const unsigned char*>(key.data());
+  unsigned char out[EVP_MAX_MD_SIZE];
+  size_t len = 0;
+  const unsigned char zero = 0;
+  const bool ok = EVP_MAC_init(ctx, k, key.size(), params) &&
+                  EVP_MAC_update(ctx, reinterpret_cast<const unsigned char*>(a.data()), a.size()) &&
+                  EVP_MAC_update(ctx, &zero, 1) &&
+                  EVP_MAC_update(ctx, reinterpret_cast<const unsigned char*>(b.data()), b.size()) &&
+                  EVP_MAC_final(ctx, out, &len, sizeof out);
+  EVP_MAC_CTX_free(ctx);
+  if (!ok) throw std::runtime_error("HMAC-SHA-256 failed");
+  return std::string(reinterpret_cast<const char*>(out), len);
+}
+
+std::string random_bytes(size_t n) {
+  std::string out(n, '\0');
+  size_t done = 0;
+  while (done < n) {
+    const ssize_t got = ::getrandom(out.data() + done, n - done, 0);
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error(std::string("no random bytes: ") + std::strerror(errno));
+    }
+    done += static_cast<size_t>(got);
+  }
+  return out;
+}
+
+// Reads the key at `path`: true with the key, false when there is none; throws (with the reason) when the
+// file is there but can't be trusted as private to this user.
+bool read_key(const std::string& path, std::string* key) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT) return false;
+    throw std::runtime_error(fmt::format("{}: cannot read: {}", path, std::strerror(errno)));
+  }
+  struct stat st {};
+  std::string why;
+  if (::fstat(fd, &st) != 0) why = std::strerror(errno);
+  else if (!S_ISREG(st.st_mode)) why = "not a regular file";
+  else if (st.st_uid != ::geteuid()) why = "owned by another user";
+  else if ((st.st_mode & 077) != 0) why = fmt::format("readable or writable by others (mode {:o}, expected 600)", st.st_mode & 0777);
+  else if (st.st_size != static_cast<off_t>(kKeyBytes)) why = fmt::format("{} bytes, expected {}", st.st_size, kKeyBytes);
+  key->assign(kKeyBytes, '\0');
+  if (why.empty() && ::read(fd, key->data(), kKeyBytes) != static_cast<ssize_t>(kKeyBytes)) why = "short read";
+  ::close(fd);
+  if (!why.empty()) throw std::runtime_error(fmt::format("{}: cannot be used as the cache key: {}; remove it to make a new one", path, why));
+  return true;
+}
+
+// Creates the key so that no reader ever sees a partial one: written and synced under a temporary name,
+// then hard-linked to its name (which fails, leaving the other process's key, when two create it at once).
+void create_key(const std::string& path) {
+  std::error_code ec;
+  fs::create_directories(fs::path(path).parent_path(), ec);
+  const std::string tmp = fmt::format("{}.tmp-{}-{}", path, ::getpid(), static_cast<unsigned>(random_bytes(2)[0]) & 0xff);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0) throw std::runtime_error(fmt::format("{}: cannot create: {}", path, std::strerror(errno)));
+  const std::string key = random_bytes(kKeyBytes);
+  const bool ok = ::write(fd, key.data(), key.size()) == static_cast<ssize_t>(key.size()) && ::fsync(fd) == 0;
+  const int err = errno;
+  ::close(fd);
+  if (!ok) {
+    ::unlink(tmp.c_str());
+    throw std::runtime_error(fmt::format("{}: cannot create: {}", path, std::strerror(err)));
+  }
+  const int linked = ::link(tmp.c_str(), path.c_str());
+  const int link_err = errno;
+  ::unlink(tmp.c_str());
+  if (linked != 0 && link_err != EEXIST)
+    throw std::runtime_error(fmt::format("{}: cannot create: {}", path, std::strerror(link_err)));
+}
+
+}  // namespace
+
+std::string user_cache_root() {
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  const char* home = std::getenv("HOME");
+  const fs::path base = xdg && *xdg ? fs::path(xdg) : fs::path(home ? home : "/tmp") / ".cache";
+  return (base / "ipd-studio").string();
+}
+
+std::string user_key_path() { return (fs::path(user_cache_root()) / "key").string(); }
+
+std::string build_identity() { return std::string("ipd-studio " IPD_VERSION " ") + __VERSION__; }
+
+CacheSigner::CacheSigner(const std::string& key_path) {
+  std::string file_key;
+  try {
+    if (!read_key(key_path, &file_key)) {
+      create_key(key_path);
+      if (!read_key(key_path, &file_key)) throw std::runtime_error(key_path + ": vanished after it was created");
+    }
+    persistent_ = true;
+  } catch (const std::exception& e) {
+    problem_ = e.what();
+    file_key = random_bytes(kKeyBytes);
+  }
+  key_ = hmac_sha256(file_key, "build", build_identity());
+}
+
+const CacheSigner& CacheSigner::instance() {
+  static const CacheSigner signer = [] {
+    CacheSigner s(user_key_path());
+    if (!s.persistent())
+      std::fprintf(stderr, "%s; caches written now serve this run only\n", s.problem().c_str());
+    return s;
+  }();
+  return signer;
+}
+
+std::string CacheSigner::mac(std::string_view kind, std::string_view data) const {
+  return hmac_sha256(key_, kind, data);
+}
+
+std::string CacheSigner::mac_hex(std::string_view kind, std::string_view data) const {
+  std::string out;
+  for (const unsigned char c : mac(kind, data)) out += fmt::format("{:02x}", c);
+  return out;
+}
+
+bool CacheSigner::verify(std::string_view kind, std::string_view data, std::string_view given) const {
+  const std::string want = mac(kind, data);
+  return given.size() == want.size() && CRYPTO_memcmp(want.data(), given.data(), want.size()) == 0;
+}
+
+}  // namespace ipd

@@ -1,0 +1,216 @@
+// Cache files inside an untrusted study (cache_file.h): a symbolic link anywhere from .ipd-cache on is
+// never written, created or deleted through, even when swapped in between the check and the write; and the
+// signer (cache_signer.h) trusts only its own key, kept private to the user.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "core/ipd/study_cache.h"
+#include "core/registration/registration_cache.h"
+#include "core/util/atomic_file.h"
+#include "core/util/cache_file.h"
+#include "core/util/cache_signer.h"
+#include "tests/support/test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+namespace {
+
+// A process id that no process has now: a child that has exited and been reaped.
+pid_t dead_pid() {
+  const pid_t pid = ::fork();
+  if (pid == 0) ::_exit(0);
+  ::waitpid(pid, nullptr, 0);
+  return pid;
+}
+
+std::vector<Box> rocks(double dx) {
+  std::vector<Box> out;
+  const double xs[] = {0.1, 0.35, 0.6, 0.8, 0.2, 0.5, 0.75};
+  const double ys[] = {0.2, 0.15, 0.3, 0.6, 0.7, 0.5, 0.85};
+  for (int k = 0; k < 7; ++k) out.push_back(Box{0, xs[k] + dx, ys[k], 0.04 + 0.005 * k, 0.05, 1.0});
+  return out;
+}
+
+TEST(CacheDir, AnchorIsTheStudyRootBeforeTheLastIpdCache) {
+  EXPECT_EQ(cache_anchor("/s/.ipd-cache/registration"), "/s");
+  EXPECT_EQ(cache_anchor("/s/.ipd-cache"), "/s");
+  EXPECT_EQ(cache_anchor(".ipd-cache/registration"), ".");
+  EXPECT_EQ(cache_anchor("/a/.ipd-cache/b/.ipd-cache/c"), "/a/.ipd-cache/b");
+  EXPECT_EQ(cache_anchor("/home/u/.cache/ipd-studio/registration"), "/home/u/.cache/ipd-studio/registration");
+}
+
+TEST(CacheDir, ALinkedIpdCacheIsNeitherWrittenNorReadAndSaidOnce) {
+  test::TempDir d;
+  fs::create_directories(d / "study");
+  fs::create_directories(d / "outside");
+  fs::create_symlink(d / "outside", d / "study/.ipd-cache");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(CacheDir::open(d / "study/.ipd-cache/registration", true), nullptr);
+  EXPECT_EQ(CacheDir::open(d / "study/.ipd-cache", false), nullptr);
+  const RegistrationCache cache(d / "study/.ipd-cache/registration");
+  bool hit = true;
+  const RegistrationReport r = register_rocks_cached(&cache, rocks(0), rocks(0.02), RegistrationOptions{}, &hit);
+  EXPECT_FALSE(hit);
+  EXPECT_EQ(r.pairs.size(), 7u);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), d / "study/.ipd-cache" + ": is a symbolic link; not used\n");
+  EXPECT_TRUE(fs::is_empty(d / "outside"));  // no registration/ folder created through the link
+}
+
+TEST(CacheDir, LinkedEntriesAndFoldersAtAnyDepthAreLeftAlone) {
+  test::TempDir d;
+  fs::create_directories(d / "study/.ipd-cache/registration");
+  fs::create_directories(d / "outside");
+  test::write_text(d / "outside/victim", "precious\n");
+  const RegistrationOptions o;
+  const auto a = rocks(0), b = rocks(0.02);
+  const std::string key = registration_cache_key(a, b, o);
+  const RegistrationCache cache(d / "study/.ipd-cache/registration");
+  // The entry's two-digit folder is a link: nothing is stored through it.
+  fs::create_symlink(d / "outside", d / "study/.ipd-cache/registration/" + key.substr(0, 2));
+  testing::internal::CaptureStderr();
+  EXPECT_FALSE(cache.store(key, register_rocks(a, b, o)));
+  EXPECT_FALSE(cache.load(key, 7, 7).has_value());
+  EXPECT_EQ(testing::internal::GetCapturedStderr(),
+            d / "study/.ipd-cache/registration/" + key.substr(0, 2) + ": is a symbolic link; not used\n");
+  EXPECT_EQ(fs::directory_iterator(d / "outside")->path().filename(), "victim");  // nothing added
+  EXPECT_TRUE(fs::is_symlink(d / "study/.ipd-cache/registration/" + key.substr(0, 2)));
+
+  // The entry itself is a link to a file outside: not replaced, not read, the target unchanged.
+  fs::remove(d / "study/.ipd-cache/registration/" + key.substr(0, 2));
+  fs::create_directories(d / "study/.ipd-cache/registration/" + key.substr(0, 2));
+  fs::create_symlink(d / "outside/victim", cache.entry_path(key));
+  testing::internal::CaptureStderr();
+  EXPECT_FALSE(cache.store(key, register_rocks(a, b, o)));
+  EXPECT_FALSE(cache.load(key, 7, 7).has_value());
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), cache.entry_path(key) + ": is a symbolic link; not used\n");
+  EXPECT_EQ(read_file(d / "outside/victim"), "precious\n");
+  EXPECT_TRUE(fs::is_symlink(cache.entry_path(key)));
+
+  // registration/ is a dangling link: its target's folders are never created.
+  fs::remove_all(d / "study/.ipd-cache/registration");
+  fs::create_symlink(d / "outside/new/deeper", d / "study/.ipd-cache/registration");
+  const RegistrationCache dangling(d / "study/.ipd-cache/registration");
+  testing::internal::CaptureStderr();
+  EXPECT_FALSE(dangling.store(key, register_rocks(a, b, o)));
+  EXPECT_EQ(testing::internal::GetCapturedStderr(),
+            d / "study/.ipd-cache/registration: is a symbolic link; not used\n");
+  EXPECT_FALSE(fs::exists(d / "outside/new"));
+}
+
+TEST(CacheDir, ALinkSwappedInBeforeTheRenameIsReplacedNotWrittenThrough) {
+  test::TempDir d;
+  fs::create_directories(d / "study");
+  test::write_text(d / "victim", "precious\n");
+  const auto dir = CacheDir::open(d / "study/.ipd-cache", true);
+  ASSERT_NE(dir, nullptr);
+  int calls = 0;
+  EXPECT_TRUE(dir->write("parsed-study.bin", "cache bytes", [&](const char* step) {
+    EXPECT_STREQ(step, "checked");
+    ++calls;
+    fs::create_symlink(d / "victim", d / "study/.ipd-cache/parsed-study.bin");  // the attacker's move
+  }));
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(read_file(d / "victim"), "precious\n");
+  EXPECT_FALSE(fs::is_symlink(d / "study/.ipd-cache/parsed-study.bin"));
+  EXPECT_EQ(read_file(d / "study/.ipd-cache/parsed-study.bin"), "cache bytes");
+
+  // .ipd-cache itself swapped for a link after it was opened: the write stays in the folder that was opened.
+  fs::create_directories(d / "outside");
+  fs::rename(d / "study/.ipd-cache", d / "study/moved");
+  fs::create_symlink(d / "outside", d / "study/.ipd-cache");
+  EXPECT_TRUE(dir->write("sub/entry", "x"));
+  EXPECT_TRUE(fs::is_empty(d / "outside"));
+  EXPECT_EQ(read_file(d / "study/moved/sub/entry"), "x");
+}
+
+TEST(CacheDir, StudyCacheNeverWritesThroughALinkedParsedStudyFile) {
+  test::TempDir d;
+  test::write_text(d / "study/real/labels/s0.txt", "0 0.5 0.5 0.1 0.1\n");
+  test::write_text(d / "victim", "precious\n");
+  fs::create_directories(d / "study/.ipd-cache");
+  fs::create_symlink(d / "victim", d / "study/.ipd-cache/parsed-study.bin");
+  const Study study = open_study(d / "study");
+  testing::internal::CaptureStderr();
+  StudyCache cache(parsed_study_cache_path(study.root), study.root);
+  const StudyLabels labels = cache.load_labels(study);
+  cache.save(labels, RegistrationCache(""));
+  EXPECT_EQ(testing::internal::GetCapturedStderr(),
+            d / "study/.ipd-cache/parsed-study.bin: is a symbolic link; not used\n");
+  EXPECT_FALSE(cache.stats().written);
+  EXPECT_EQ(read_file(d / "victim"), "precious\n");
+
+  // The swap between check and rename, through the StudyCache's own write.
+  fs::remove(d / "study/.ipd-cache/parsed-study.bin");
+  StudyCache again(parsed_study_cache_path(study.root), study.root);
+  again.set_write_hook([&](const char*) { fs::create_symlink(d / "victim", d / "study/.ipd-cache/parsed-study.bin"); });
+  again.save(again.load_labels(study), RegistrationCache(""));
+  EXPECT_TRUE(again.stats().written);
+  EXPECT_EQ(read_file(d / "victim"), "precious\n");
+  EXPECT_EQ(read_file(d / "study/.ipd-cache/parsed-study.bin").substr(0, 8), "IPDSTUDY");
+}
+
+TEST(CacheDir, TempFilesOfKilledWritersAreRemoved) {
+  test::TempDir d;
+  test::write_text(d / "study/real/labels/s0.txt", "0 0.5 0.5 0.1 0.1\n");
+  const std::string dead = fmt::format("parsed-study.bin.tmp-{}-7", dead_pid());
+  const std::string alive = fmt::format("parsed-study.bin.tmp-{}-7", ::getpid());
+  test::write_text(d / "study/.ipd-cache/" + dead, "half a cache");
+  test::write_text(d / "study/.ipd-cache/" + alive, "being written");
+  test::write_text(d / "outside", "precious\n");
+  const std::string dead_link = fmt::format("x.tmp-{}-8", dead_pid());
+  fs::create_symlink(d / "outside", d / "study/.ipd-cache/" + dead_link);
+  const Study study = open_study(d / "study");
+  StudyCache cache(parsed_study_cache_path(study.root), study.root);
+  EXPECT_FALSE(fs::exists(d / "study/.ipd-cache/" + dead));
+  EXPECT_TRUE(fs::exists(d / "study/.ipd-cache/" + alive));  // its writer still runs
+  EXPECT_FALSE(fs::is_symlink(d / "study/.ipd-cache/" + dead_link));  // the link itself goes ...
+  EXPECT_EQ(read_file(d / "outside"), "precious\n");                  // ... never its target
+}
+
+TEST(CacheSigner, KeyIsCreatedPrivateAndSignsOnlyForItsOwner) {
+  test::TempDir d;
+  const CacheSigner signer(d / "cache/ipd-studio/key");
+  ASSERT_TRUE(signer.persistent()) << signer.problem();
+  struct stat st {};
+  ASSERT_EQ(::stat((d / "cache/ipd-studio/key").c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  EXPECT_EQ(st.st_size, 32);
+  const std::string mac = signer.mac("registration entry", "payload");
+  EXPECT_EQ(mac.size(), 32u);
+  EXPECT_EQ(signer.mac_hex("registration entry", "payload").size(), 64u);
+  EXPECT_TRUE(signer.verify("registration entry", "payload", mac));
+  EXPECT_FALSE(signer.verify("registration entry", "payloaD", mac));
+  EXPECT_FALSE(signer.verify("parsed study 3", "payload", mac));       // another cache's kind
+  EXPECT_FALSE(signer.verify("registration entr", "ypayload", mac));    // the kind/data boundary counts
+  EXPECT_EQ(CacheSigner(d / "cache/ipd-studio/key").mac("registration entry", "payload"), mac);  // same key
+  EXPECT_NE(CacheSigner(d / "other/key").mac("registration entry", "payload"), mac);  // another installation
+  EXPECT_EQ(std::distance(fs::directory_iterator(d / "cache/ipd-studio"), fs::directory_iterator()), 1);  // no temp left
+}
+
+TEST(CacheSigner, AKeyOthersCanReadIsNotTrusted) {
+  test::TempDir d;
+  { const CacheSigner make(d / "key"); }
+  fs::permissions(d / "key", fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
+  const CacheSigner shared(d / "key");
+  EXPECT_FALSE(shared.persistent());
+  EXPECT_EQ(shared.problem(), d / "key" + ": cannot be used as the cache key: readable or writable by others (mode 644, "
+                                          "expected 600); remove it to make a new one");
+  test::write_text(d / "short", "0123");
+  fs::permissions(d / "short", fs::perms::owner_read | fs::perms::owner_write);
+  EXPECT_EQ(CacheSigner(d / "short").problem(),
+            d / "short" + ": cannot be used as the cache key: 4 bytes, expected 32; remove it to make a new one");
+  fs::create_symlink(d / "key", d / "link");
+  EXPECT_EQ(CacheSigner(d / "link").problem(), d / "link" + ": cannot read: Too many levels of symbolic links");
+  // Two signers of one process with unusable keys still disagree with each other: nothing they write
+  // outlives the run.
+  EXPECT_NE(CacheSigner(d / "link").mac("k", "x"), CacheSigner(d / "link").mac("k", "x"));
+}
+
+}  // namespace
+}  // namespace ipd
