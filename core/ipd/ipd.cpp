@@ -2,11 +2,11 @@
 
 #include "core/util/nested_lookup.h"
 #include "core/util/parallel.h"
+#include "core/ipd/study_pipeline.h"
 #include "core/registration/registration_cache.h"
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
@@ -75,27 +75,6 @@ StudyLabels load_labels(const Study& study, const std::function<void(int done, i
   });
   for (const Job& j : jobs) out.errors.insert(out.errors.end(), j.slot->errors.begin(), j.slot->errors.end());
   return out;
-}
-
-ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
-                        const std::string& stem, const RegistrationOptions& options,
-                        const RegistrationCache* cache) {
-  ScenePairing p;
-  p.stem = stem;
-  const auto& ga = labels.gt_of(a, stem).boxes;
-  const auto& gb = labels.gt_of(b, stem).boxes;
-  p.count_a = static_cast<int>(ga.size());
-  p.count_b = static_cast<int>(gb.size());
-  if (auto fixed = read_fixed_pairs(labels.study, a, b, stem, p.count_a, p.count_b, &p.warnings)) {
-    p.fixed = true;
-    p.pairs = std::move(fixed->pairs);
-    p.excluded_a = std::move(fixed->excluded_a);
-    p.excluded_b = std::move(fixed->excluded_b);
-    return p;
-  }
-  p.registration = register_rocks_cached(cache, ga, gb, options, &p.from_cache);
-  p.pairs = p.registration.pairs;
-  return p;
 }
 
 double SceneIpd::ipd() const { return pairs > 0 ? sum_abs_diff / pairs : std::nan(""); }
@@ -188,58 +167,21 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
   if (t.columns.empty()) throw StudyError(study.root + ": at least two domains are needed to compare");
 
   // Pair rocks once per (domain pair, scene): pairing depends only on GT, never on the model.
-  struct Job {
-    size_t column;
-    std::string stem;
-    ScenePairing result;
-    std::string error;
-  };
-  std::vector<Job> jobs;
-  std::vector<SceneMatch> matches;
-  for (size_t c = 0; c < t.columns.size(); ++c) {
-    const auto& [a, b] = t.columns[c];
-    SceneMatch m = match_scenes(*study.domain(a), *study.domain(b));
-    auto list = [](const std::vector<std::string>& v) {
-      std::string s;
-      for (size_t k = 0; k < std::min<size_t>(3, v.size()); ++k) s += (k ? ", " : "") + v[k];
-      return s + (v.size() > 3 ? ", ..." : "");
-    };
-    if (!m.only_a.empty())
-      t.warnings.push_back(fmt::format("{} scene(s) of '{}' have no counterpart in '{}' and are skipped: {}",
-                                       m.only_a.size(), a, b, list(m.only_a)));
-    if (!m.only_b.empty())
-      t.warnings.push_back(fmt::format("{} scene(s) of '{}' have no counterpart in '{}' and are skipped: {}",
-                                       m.only_b.size(), b, a, list(m.only_b)));
-    for (const auto& stem : m.common) jobs.push_back({c, stem, {}, {}});
-    matches.push_back(std::move(m));
-  }
-  RegistrationOptions reg = options.registration;
-  if (reg.aspect == 1.0) reg.aspect = study.aspect();
-  const auto start = std::chrono::steady_clock::now();
-  std::atomic<int> done{0};
+  PipelineOptions po;
+  po.registration = options.registration;
+  po.threads = options.threads;
+  po.progress = options.progress;
   const RegistrationCache own_cache(options.registration_cache ? std::string() : options.cache_dir);
-  const RegistrationCache& cache = options.registration_cache ? *options.registration_cache : own_cache;
-  parallel_for(jobs.size(), options.threads, [&](size_t k) {
-    auto& j = jobs[k];
-    try {
-      const auto& [a, b] = t.columns[j.column];
-      j.result = pair_scene(labels, a, b, j.stem, reg, &cache);
-    } catch (const std::exception& e) {
-      j.error = e.what();
-    }
-    const int d = ++done;
-    if (options.progress) options.progress(d, static_cast<int>(jobs.size()));
-  });
-  t.registration_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  for (const auto& j : jobs) {
-    if (!j.error.empty()) throw StudyError(j.error);
-    (j.result.fixed ? t.fixed_scenes : t.registrations)++;
-    t.cached_registrations += j.result.from_cache;
-    t.warnings.insert(t.warnings.end(), j.result.warnings.begin(), j.result.warnings.end());
-  }
-
+  po.cache = options.registration_cache ? options.registration_cache : &own_cache;
+  PairedStudy paired = pair_study(labels, t.columns, po);
+  t.registrations = paired.registrations;
+  t.fixed_scenes = paired.fixed_scenes;
+  t.cached_registrations = paired.cached_registrations;
+  t.registration_ms = paired.registration_ms;
+  for (const Problem& p : paired.problems) t.warnings.push_back(p.to_string());
   t.pairings.resize(t.columns.size());
-  for (auto& j : jobs) t.pairings[j.column].push_back(j.result);
+  for (size_t c = 0; c < t.columns.size(); ++c)
+    for (const PipelineScene& s : paired.pairs[c].scenes) t.pairings[c].push_back(s.counted());
 
   std::set<std::string> warned;
   for (const auto& model : t.models) {
@@ -255,12 +197,11 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
                                            (fs::path(study.root) / d / "predictions" / model.name).string()));
       }
       if (!cell.missing_predictions)
-        for (const auto& j : jobs)
-          if (j.column == c)
-            cell.per_scene.push_back(scene_ipd(j.result, labels.gt_of(a, j.stem).boxes,
-                                               labels.predictions_of(a, model.name, j.stem).boxes,
-                                               labels.gt_of(b, j.stem).boxes,
-                                               labels.predictions_of(b, model.name, j.stem).boxes));
+        for (const ScenePairing& p : t.pairings[c])
+          cell.per_scene.push_back(scene_ipd(p, labels.gt_of(a, p.stem).boxes,
+                                             labels.predictions_of(a, model.name, p.stem).boxes,
+                                             labels.gt_of(b, p.stem).boxes,
+                                             labels.predictions_of(b, model.name, p.stem).boxes));
       total_table_cell(cell);
       t.cells.push_back(std::move(cell));
     }

@@ -48,10 +48,10 @@ struct ScenePairing {
   int count_a = 0, count_b = 0;
   RegistrationReport registration;  // meaningful when !fixed
   bool from_cache = false;          // registration read from the on-disk cache
-  std::vector<std::string> warnings;  // e.g. pairs files present in both name orders
 };
 
 class RegistrationCache;
+// One scene as pair_study (study_pipeline.h) pairs it: its fixed pairs, else its registration.
 // `cache` (may be null): registration results on disk (registration_cache.h).
 ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
                         const std::string& stem, const RegistrationOptions& options,

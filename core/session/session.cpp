@@ -4,15 +4,14 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <optional>
 #include <set>
-#include <unordered_set>
 
 #include "core/util/atomic_file.h"
 #include "core/util/parallel.h"
+#include "core/ipd/study_pipeline.h"
 #include "core/registration/registration_cache.h"
 
 namespace fs = std::filesystem;
@@ -95,26 +94,6 @@ Session Session::open(const std::string& root, const SessionOptions& options) {
   return session;
 }
 
-namespace {
-// Stems with a pairs file in pairs/<a>__<b>/ or pairs/<b>__<a>/, from two directory listings instead of two
-// lookups per scene; nullopt when a directory can't be listed (then every scene is looked up).
-std::optional<std::unordered_set<std::string>> stems_with_pairs_files(const Study& st, const std::string& a,
-                                                                      const std::string& b) {
-  std::unordered_set<std::string> out;
-  for (const std::string& dir : {st.pairs_dir(a, b), st.pairs_dir(b, a)}) {
-    std::error_code ec;
-    if (!fs::exists(dir, ec)) {
-      if (ec) return std::nullopt;
-      continue;
-    }
-    for (fs::directory_iterator it(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
-      if (it->path().extension() == ".json") out.insert(it->path().stem().string());
-    if (ec) return std::nullopt;
-  }
-  return out;
-}
-}  // namespace
-
 Session::Session(StudyLabels labels, const RegistrationOptions* registration)
     : Session(std::move(labels), SessionOptions{registration, {}, {}, 0, nullptr, {}}) {}
 
@@ -123,54 +102,34 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
   const StudyLabels& labels_ref = *labels_;
   const Study& st = labels_ref.study;
   pairs_ = ipd::domain_pairs(st, {});
-  RegistrationOptions reg = options.registration ? *options.registration : st.config.registration;
-  if (reg.aspect == 1.0) reg.aspect = st.aspect();
+  PipelineOptions po;
+  po.registration = options.registration ? *options.registration : st.config.registration;
+  po.register_fixed_scenes = true;  // a hand-fixed scene can go back to its automatic pairs
   const RegistrationCache own_cache(options.registration_cache ? std::string() : options.cache_dir);
-  const RegistrationCache& cache = options.registration_cache ? *options.registration_cache : own_cache;
-  int total = 0;
-  for (const auto& [a, b] : pairs_) total += static_cast<int>(match_scenes(*st.domain(a), *st.domain(b)).common.size());
-  std::atomic<int> done{0}, cached{0};
-  for (const auto& domain_pair : pairs_) {
-    const std::string &a = domain_pair.first, &b = domain_pair.second;  // C++17 lambdas can't capture bindings
-    const std::vector<std::string> stems = match_scenes(*st.domain(a), *st.domain(b)).common;
-    std::vector<SceneState> list(stems.size());
-    std::vector<std::string> errors(stems.size());
-    const auto with_pairs_files = stems_with_pairs_files(st, a, b);
-    // Registration is the heavy part of opening a study: every core takes scenes.
-    parallel_for(stems.size(), 0, [&](size_t k) {
+  po.cache = options.registration_cache ? options.registration_cache : &own_cache;
+  if (options.progress)
+    po.progress = [&](int done, int total) {
+      if (done % 64 == 0 || done == total) options.progress("registration", done, total);
+    };
+  PairedStudy paired = pair_study(labels_ref, pairs_, po);
+  for (DomainPairScenes& d : paired.pairs) {
+    std::vector<SceneState> list(d.scenes.size());
+    for (size_t k = 0; k < list.size(); ++k) {
       SceneState& s = list[k];
-      s.stem = stems[k];
-      const auto& ga = labels_ref.gt_of(a, s.stem).boxes;
-      const auto& gb = labels_ref.gt_of(b, s.stem).boxes;
-      s.automatic.stem = s.stem;
-      s.automatic.count_a = static_cast<int>(ga.size());
-      s.automatic.count_b = static_cast<int>(gb.size());
-      bool hit = false;
-      s.automatic.registration = register_rocks_cached(&cache, ga, gb, reg, &hit);
-      s.automatic.from_cache = hit;
-      cached += hit;
-      s.automatic.pairs = s.automatic.registration.pairs;
+      s.automatic = std::move(d.scenes[k].automatic);
+      s.stem = s.automatic.stem;
       s.current.pairs = s.automatic.pairs;
-      try {
-        const bool may_have_file = !with_pairs_files || with_pairs_files->count(s.stem);
-        if (auto fixed = may_have_file ? read_fixed_pairs(st, a, b, s.stem, s.automatic.count_a, s.automatic.count_b)
-                                       : std::nullopt) {
-          s.current = std::move(*fixed);
-          s.edited = s.fixed_on_disk = true;
-        }
-      } catch (const std::exception& e) {
-        errors[k] = e.what();
+      if (d.scenes[k].fixed) {
+        s.current = std::move(*d.scenes[k].fixed);
+        s.edited = s.fixed_on_disk = true;
       }
-      const int d = ++done;
-      if (options.progress && (d % 64 == 0 || d == total)) options.progress("registration", d, total);
-    });
-    for (const auto& e : errors)
-      if (!e.empty()) throw StudyError(e);
+    }
     scenes_.push_back(std::move(list));
     audits_.emplace_back(scenes_.back().size());
     for (size_t k = 0; k < scenes_.back().size(); ++k) reaudit(static_cast<int>(scenes_.size()) - 1, static_cast<int>(k));
   }
-  cached_ = cached;
+  problems_ = std::move(paired.problems);
+  cached_ = paired.cached_registrations;
   if (!st.models.empty()) model_ = st.models.front().name;
   // Default view: the first model trained on the first domain, if any.
   for (const auto& m : st.models)

@@ -17,6 +17,7 @@
 #include "core/session/audit.h"
 #include "core/ipd/ipd.h"
 #include "core/ipd/study_cache.h"
+#include "core/study/problem.h"
 
 namespace ipd {
 
@@ -98,7 +99,9 @@ class Session {
 
   const Study& study() const { return labels_->study; }
   const StudyLabels& labels() const { return *labels_; }
-  int cached_registrations() const { return cached_; }  // scenes whose registration came from the cache
+  int cached_registrations() const { return cached_; }
+  // What the engine found wrong with the study's data while opening it (study_pipeline.h).
+  const std::vector<Problem>& problems() const { return problems_; }  // scenes whose registration came from the cache
   const StudyCacheStats& study_cache_stats() const { return study_cache_stats_; }  // Session::open only
   const std::vector<std::pair<std::string, std::string>>& domain_pairs() const { return pairs_; }
   bool read_only() const { return read_only_; }
@@ -172,6 +175,7 @@ class Session {
   std::vector<std::vector<SceneState>> scenes_;  // per domain pair
   std::vector<std::vector<SceneAudit>> audits_;  // per domain pair, per scene
   int cached_ = 0;
+  std::vector<Problem> problems_;
   StudyCacheStats study_cache_stats_;
   int pair_ = 0;
   bool swapped_ = false;
