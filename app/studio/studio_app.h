@@ -42,6 +42,8 @@ class StudioApp {
   ui::Picture picture(const std::string& domain, const std::string& stem, bool urgent, bool* full);
   void list_browse_dir();
   void export_figure(const ui::ExportRequest& request);  // on the worker, from the current snapshot
+  void note_picture_problem(const DecodedPicture& d);
+  void goto_problem(const Problem& p);
 
   StudioOptions o_;
   StudyWorker worker_;
@@ -52,6 +54,9 @@ class StudioApp {
   ui::StatsPanelState stats_ui_;
   StatsJob stats_;  // intervals, histogram, breakdown, comparison: off the UI thread
   std::shared_ptr<const Snapshot> snap_;
+  // The session's problems and then the pictures that could not be read (found as they are shown).
+  std::vector<Problem> problems_, picture_problems_;
+  std::string pending_scene_;  // a problem's scene, shown once the worker has switched to its domain pair
   long order_version_ = -1;
   std::string order_filter_;
   int order_sort_ = -1;

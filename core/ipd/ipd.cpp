@@ -192,9 +192,7 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
         if (labels.has_predictions(d, model.name)) continue;
         cell.missing_predictions = true;
         if (warned.insert(model.name + "\n" + d).second)
-          t.warnings.push_back(fmt::format("model '{}' has no predictions for domain '{}' (expected {}/): its cells are empty",
-                                           model.name, d,
-                                           (fs::path(study.root) / d / "predictions" / model.name).string()));
+          t.warnings.push_back(missing_predictions_problem(study, model.name, d).to_string());
       }
       if (!cell.missing_predictions)
         for (const ScenePairing& p : t.pairings[c])

@@ -103,6 +103,27 @@ ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const s
   return pair_one(labels, a, b, stem, options, false, true, cache, &ignored).counted();
 }
 
+std::vector<Problem> label_problems(const StudyLabels& labels) {
+  std::vector<Problem> out;
+  auto add = [&](const LabelFile& f, const std::string& domain, const std::string& stem) {
+    for (const LabelError& e : f.errors) out.push_back(label_problem(e, domain, stem));
+  };
+  for (const Domain& d : labels.study.domains) {
+    for (const std::string& stem : d.stems) add(labels.gt_of(d.name, stem), d.name, stem);
+    for (const std::string& m : d.models)
+      for (const std::string& stem : d.stems) add(labels.predictions_of(d.name, m, stem), d.name, stem);
+  }
+  return out;
+}
+
+Problem missing_predictions_problem(const Study& study, const std::string& model, const std::string& domain) {
+  Problem p;
+  p.domain = domain;
+  p.message = fmt::format("model '{}' has no predictions for domain '{}' (expected {}/): its cells are empty", model,
+                          domain, (fs::path(study.root) / domain / "predictions" / model).string());
+  return p;
+}
+
 PairedStudy pair_study(const StudyLabels& labels, const std::vector<std::pair<std::string, std::string>>& pairs,
                        const PipelineOptions& options) {
   const Study& study = labels.study;

@@ -54,6 +54,13 @@ struct PairedStudy {
   double registration_ms = 0;
 };
 
+// Every problem of the study's label and prediction files (malformed lines, unreadable files), in the order
+// the files were read (each domain's GT, then its prediction sets), each with its domain and scene.
+std::vector<Problem> label_problems(const StudyLabels& labels);
+
+// A model without a predictions folder for a domain: its cells for that domain are empty.
+Problem missing_predictions_problem(const Study& study, const std::string& model, const std::string& domain);
+
 // Pairs every scene of every domain pair in `pairs` (domain names of the study). Throws StudyError for a
 // pairs file that can't be used (the first one in domain-pair then scene order).
 PairedStudy pair_study(const StudyLabels& labels, const std::vector<std::pair<std::string, std::string>>& pairs,

@@ -128,7 +128,13 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
     audits_.emplace_back(scenes_.back().size());
     for (size_t k = 0; k < scenes_.back().size(); ++k) reaudit(static_cast<int>(scenes_.size()) - 1, static_cast<int>(k));
   }
-  problems_ = std::move(paired.problems);
+  // Every problem the engine found, in the order the CLI reports them: label files, then scene matching and
+  // pairs files, then prediction sets that are missing.
+  problems_ = label_problems(labels_ref);
+  problems_.insert(problems_.end(), paired.problems.begin(), paired.problems.end());
+  for (const auto& m : st.models)
+    for (const auto& d : st.domains)
+      if (!labels_ref.has_predictions(d.name, m.name)) problems_.push_back(missing_predictions_problem(st, m.name, d.name));
   cached_ = paired.cached_registrations;
   if (!st.models.empty()) model_ = st.models.front().name;
   // Default view: the first model trained on the first domain, if any.

@@ -128,6 +128,8 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
   }
   if (ImGui::BeginMenu("Help")) {
     if (ImGui::MenuItem("Shortcuts", "F1")) ui.show_help = true;
+    if (ImGui::MenuItem("Problems in the data", nullptr, ui.show_problems, v.problems != nullptr))
+      ui.show_problems = !ui.show_problems;
     ImGui::EndMenu();
   }
   if (!v.failed_saves.empty()) {
@@ -156,6 +158,16 @@ void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out) {
       line = root.filename().string() + rest;
     }
     ImGui::TextUnformatted(line.c_str());
+    ImGui::SameLine();
+  }
+  if (v.problems && !v.problems->empty()) {
+    // Never silent: skipped label lines and scenes left out change what the IPD is computed over.
+    ImGui::TextUnformatted("|");
+    ImGui::SameLine();
+    ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.7f, 0.35f, 0.05f, 1));
+    if (ImGui::SmallButton(problems_label(v.problems->size()).c_str())) ui.show_problems = !ui.show_problems;
+    ImGui::PopStyleColor();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", v.problems->front().to_string().c_str());
     ImGui::SameLine();
   }
   if (!v.loading.empty()) {

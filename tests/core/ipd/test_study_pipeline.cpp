@@ -75,5 +75,27 @@ TEST(StudyPipeline, TheSessionReportsWhatTheTableWarnsAbout) {
   EXPECT_EQ(session.scenes()[0].current.pairs, (RockPairs{{0, 1}, {1, 0}}));
 }
 
+TEST(StudyPipeline, TheSessionListsSkippedLinesAndMissingPredictions) {
+  test::TempDir d;
+  write_study(d);
+  // A file name pasted into a label line: the CLI refuses it (unless --skip-bad-lines); the studio skips it,
+  // and its Problems list names the file and line.
+  test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1 s1.png\n0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n");
+  const Session s(load_labels(open_study(d.path())));
+  EXPECT_EQ(s.gt(Side::kB, 0).size(), 2u);  // the bad line is skipped, the others are kept
+  const std::vector<Problem> problems = s.problems();
+  ASSERT_EQ(problems.size(), 3u);
+  EXPECT_EQ(problems[0].to_string(), d / "synth/labels/s1.txt" + ":2: expected 5 columns (class cx cy w h), found 6");
+  EXPECT_EQ(problems[0].file, d / "synth/labels/s1.txt");
+  EXPECT_EQ(problems[0].line, 2);
+  EXPECT_EQ(problems[0].domain, "synth");
+  EXPECT_EQ(problems[0].scene, "s1");
+  EXPECT_EQ(problems[1].to_string(), "1 scene(s) of 'real' have no counterpart in 'synth' and are skipped: only_real");
+  EXPECT_EQ(problems[2].to_string(), "model 'det' has no predictions for domain 'synth' (expected " +
+                                         d / "synth/predictions/det" + "/): its cells are empty");
+  EXPECT_EQ(problems[2].domain, "synth");
+}
+
 }  // namespace
 }  // namespace ipd
