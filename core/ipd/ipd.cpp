@@ -108,6 +108,29 @@ SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, co
                             performance_values(gt_a, pred_a).value, performance_values(gt_b, pred_b).value);
 }
 
+namespace {
+std::string above(double threshold) { return threshold > 0 ? fmt::format(" above {:g}", threshold) : std::string(); }
+}  // namespace
+
+std::string no_predictions_reason(long na, long nb, const std::string& a, const std::string& b, double threshold) {
+  if (na > 0 || nb > 0) return {};
+  return fmt::format("no predictions{} in {} and {}", above(threshold), a, b);
+}
+
+std::string one_side_without_predictions(const std::string& model, const std::string& domain,
+                                         const std::string& other, double threshold) {
+  return fmt::format("model '{}' has no predictions{} in '{}' (its scenes compared with '{}'): every rock there "
+                     "counts as missed, as a detector that found nothing",
+                     model, above(threshold), domain, other);
+}
+
+long count_predictions(const StudyLabels& labels, const std::string& domain, const std::string& model,
+                       const std::vector<ScenePairing>& pairings) {
+  long n = 0;
+  for (const ScenePairing& p : pairings) n += static_cast<long>(labels.predictions_of(domain, model, p.stem).boxes.size());
+  return n;
+}
+
 TableCell make_table_cell(const ModelInfo& model, const std::string& a, const std::string& b) {
   TableCell cell;
   cell.model = model.name;
@@ -201,6 +224,15 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
                                              labels.gt_of(b, p.stem).boxes,
                                              labels.predictions_of(b, model.name, p.stem).boxes));
       total_table_cell(cell);
+      if (!cell.missing_predictions) {
+        const double threshold = study.config.conf_threshold;
+        const long na = count_predictions(labels, a, model.name, t.pairings[c]);
+        const long nb = count_predictions(labels, b, model.name, t.pairings[c]);
+        cell.no_value_reason = no_predictions_reason(na, nb, a, b, threshold);
+        if (!cell.no_value_reason.empty()) cell.ipd = std::nan("");
+        else if (na == 0 || nb == 0)
+          t.warnings.push_back(one_side_without_predictions(model.name, na == 0 ? a : b, na == 0 ? b : a, threshold));
+      }
       t.cells.push_back(std::move(cell));
     }
   }

@@ -50,7 +50,7 @@ void run_save_job(const SaveJob& job, const WriteStepHook& hook) {
   }
 }
 
-double CellTotals::ipd() const { return pairs > 0 ? sum_abs_diff / static_cast<double>(pairs) : std::nan(""); }
+double CellTotals::ipd() const { return pairs > 0 && no_value_reason.empty() ? sum_abs_diff / static_cast<double>(pairs) : std::nan(""); }
 
 Session Session::open(const std::string& root, const RegistrationOptions* registration) {
   SessionOptions o;
@@ -258,6 +258,12 @@ SceneSummary Session::summary(int scene) const {
   }
   const SceneIpd& c = it->second[scene];
   s.ipd = c.ipd();
+  const auto& [a, b] = pairs_[pair_];
+  static const std::vector<Box> kNone;
+  const size_t na = lookup(*shown_predictions_, a, model_, s.stem, kNone).size();
+  const size_t nb = lookup(*shown_predictions_, b, model_, s.stem, kNone).size();
+  s.no_value_reason = no_predictions_reason(static_cast<long>(na), static_cast<long>(nb), a, b, effective_threshold());
+  if (!s.no_value_reason.empty()) s.ipd = std::nan("");
   s.pairs = c.pairs;
   s.unpaired_a = swapped_ ? c.unpaired_b : c.unpaired_a;
   s.unpaired_b = swapped_ ? c.unpaired_a : c.unpaired_b;
@@ -311,9 +317,25 @@ void Session::recompute_performance() {
   rebuild_totals();
 }
 
+std::vector<Problem> Session::problems() const {
+  std::vector<Problem> out = problems_;
+  out.insert(out.end(), threshold_problems_.begin(), threshold_problems_.end());
+  return out;
+}
+
+double Session::effective_threshold() const { return std::max(conf_threshold_, labels_->study.config.conf_threshold); }
+
+long Session::shown_predictions(const std::string& domain, const std::string& model, int pair) const {
+  long n = 0;
+  static const std::vector<Box> kNone;
+  for (const SceneState& s : scenes_[pair]) n += static_cast<long>(lookup(*shown_predictions_, domain, model, s.stem, kNone).size());
+  return n;
+}
+
 void Session::rebuild_totals() {
   totals_.clear();
   contributions_.clear();
+  threshold_problems_.clear();
   for (const auto& m : labels_->study.models) {
     for (size_t p = 0; p < pairs_.size(); ++p) {
       if (!labels_->has_predictions(pairs_[p].first, m.name) || !labels_->has_predictions(pairs_[p].second, m.name))
@@ -327,6 +349,17 @@ void Session::rebuild_totals() {
         t.unpaired_a += list.back().unpaired_a;
         t.unpaired_b += list.back().unpaired_b;
         ++t.scenes;
+      }
+      // The table's rule (compute_cross_table): no predictions on either side is no number; on one, a warning.
+      const auto& [a, b] = pairs_[p];
+      const long na = shown_predictions(a, m.name, static_cast<int>(p)), nb = shown_predictions(b, m.name, static_cast<int>(p));
+      t.no_value_reason = no_predictions_reason(na, nb, a, b, effective_threshold());
+      if (t.no_value_reason.empty() && (na == 0 || nb == 0)) {
+        Problem q;
+        q.domain = na == 0 ? a : b;
+        q.other_domain = na == 0 ? b : a;
+        q.message = one_side_without_predictions(m.name, q.domain, q.other_domain, effective_threshold());
+        threshold_problems_.push_back(std::move(q));
       }
     }
   }

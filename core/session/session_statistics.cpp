@@ -19,6 +19,8 @@ CrossTable session_table(const Session& s) {
       c.missing_predictions = !s.labels().has_predictions(a, m.name) || !s.labels().has_predictions(b, m.name);
       if (!c.missing_predictions) c.per_scene = s.contributions_for(m.name, static_cast<int>(p));
       total_table_cell(c);
+      c.no_value_reason = s.totals_for(m.name, static_cast<int>(p)).no_value_reason;
+      if (!c.no_value_reason.empty()) c.ipd = std::nan("");
       t.cells.push_back(std::move(c));
     }
   }

@@ -27,7 +27,7 @@ void add_confidence_intervals(CrossTable* table, const BootstrapOptions& options
   if (const auto e = options.validate(); !e.empty()) throw std::invalid_argument(e);
   parallel_for(table->cells.size(), threads, [&](size_t k) {
     TableCell& c = table->cells[k];
-    if (c.missing_predictions || c.pairs == 0) return;
+    if (c.missing_predictions || !c.no_value_reason.empty() || c.pairs == 0) return;
     const Interval ci = bootstrap_pooled_mean(scene_sums(c), options, cell_key(c));
     c.ci_low = ci.low;
     c.ci_high = ci.high;
@@ -72,6 +72,8 @@ const TableCell& find_cell(const CrossTable& t, const std::string& model, const 
   if (!c) throw StudyError(fmt::format("no IPD cell for model '{}' and domains '{}' and '{}'", model, x, y));
   if (c->missing_predictions)
     throw StudyError(fmt::format("model '{}' has no predictions for '{}' or '{}'", model, x, y));
+  if (!c->no_value_reason.empty())
+    throw StudyError(fmt::format("model '{}': IPD({}, {}) is not a number: {}", model, x, y, c->no_value_reason));
   return *c;
 }
 
