@@ -70,6 +70,13 @@ TEST(NoPredictions, CompareRefusesACellWithoutANumber) {
   } catch (const StudyError& e) {
     EXPECT_STREQ(e.what(), "model 'det': IPD(real, synth) is not a number: no predictions above 0.95 in real and synth");
   }
+  // Nor is it broken down by rock size (every bin would read 0).
+  try {
+    breakdown_cell(load_labels(open_study(d.path())), *t.cell("det", "real", "synth"), {});
+    FAIL() << "broke down two empty prediction sets";
+  } catch (const StudyError& e) {
+    EXPECT_STREQ(e.what(), "model 'det': IPD(real, synth) is not a number: no predictions above 0.95 in real and synth");
+  }
 }
 
 TEST(NoPredictions, OneSideWithoutPredictionsIsANumberAndAWarning) {
