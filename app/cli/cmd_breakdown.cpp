@@ -50,6 +50,11 @@ Runner add_breakdown_command(CLI::App& app) {
     std::vector<CellBreakdown> out;
     for (const auto& cell : loaded->table.cells) {
       if (cell.missing_predictions || (!cell.involves_training_domain && !args->all_cells)) continue;
+      if (!cell.no_value_reason.empty()) {  // bins of two empty prediction sets would all read 0
+        fmt::print(stderr, "warning: model '{}': IPD({}, {}) is not a number: {}; no breakdown\n", cell.model, cell.a,
+                   cell.b, cell.no_value_reason);
+        continue;
+      }
       out.push_back(breakdown_cell(loaded->labels, cell, bo));
     }
     const std::string ref_note = "bins of the first domain's rock; ";

@@ -69,6 +69,7 @@ Runner add_compare_command(CLI::App& app) {
     co.permutations = args->permutations;
     if (const auto e = co.validate(); !e.empty()) throw CLI::ValidationError(e);
     std::vector<RendererComparison> results;
+    std::string no_value;  // the first cell that is not a number, and why
     for (const auto& m : loaded->table.models) {
       const TableCell* x = loaded->table.cell(m.name, ref, a);
       const TableCell* y = loaded->table.cell(m.name, ref, b);
@@ -77,8 +78,20 @@ Runner add_compare_command(CLI::App& app) {
         fmt::print(stderr, "warning: model '{}' skipped: it lacks predictions for {}, {} or {}\n", m.name, ref, a, b);
         continue;
       }
+      // Two empty prediction sets would compare as "no significant difference": refuse, and say why.
+      const TableCell* empty = !x->no_value_reason.empty() ? x : !y->no_value_reason.empty() ? y : nullptr;
+      if (empty) {
+        const std::string why = fmt::format("model '{}': IPD({}, {}) is not a number: {}", m.name, empty->a, empty->b,
+                                            empty->no_value_reason);
+        if (!so.models.empty()) throw StudyError(why);
+        fmt::print(stderr, "warning: {}; model skipped\n", why);
+        if (no_value.empty()) no_value = why;
+        continue;
+      }
       results.push_back(compare_renderers(loaded->table, m.name, ref, a, b, co));
     }
+    if (results.empty() && !no_value.empty())
+      throw StudyError(fmt::format("{}: nothing to compare: {}", study.root, no_value));
     if (results.empty()) throw StudyError(fmt::format("{}: no model has predictions for {}, {} and {}", study.root, ref, a, b));
     if (args->json) {
       if (results.size() == 1) {

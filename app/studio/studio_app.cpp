@@ -74,6 +74,8 @@ void StudioApp::adopt_snapshot() {
   const bool new_rerun = snap->rerun && (!snap_ || snap->rerun != snap_->rerun);
   snap_ = std::move(snap);
   const Session& s = *snap_->session;
+  problems_ = s.problems();
+  problems_.insert(problems_.end(), picture_problems_.begin(), picture_problems_.end());
   if (first) {
     // Remember the study among the recent ones (written by the saver thread, atomically).
     auto& r = ui_.recent;
@@ -96,6 +98,10 @@ void StudioApp::adopt_snapshot() {
     order_version_ = snap_->version;
   }
   if (other_pair) goto_scene(ui_.order.empty() ? 0 : ui_.order.front());
+  if (other_pair && !pending_scene_.empty()) {
+    if (const int k = s.scene_index(pending_scene_); k >= 0) goto_scene(k);
+    pending_scene_.clear();
+  }
   if (snap_->jump_serial != jump_serial_) {
     jump_serial_ = snap_->jump_serial;
     if (snap_->jump_to_scene >= 0 && snap_->jump_to_scene < static_cast<int>(s.scenes().size()))
@@ -144,7 +150,10 @@ void StudioApp::list_browse_dir() {
 
 void StudioApp::frame() {
   adopt_snapshot();
-  for (auto& d : loader_.take_ready()) textures_.upload(std::move(d));
+  for (auto& d : loader_.take_ready()) {
+    note_picture_problem(d);
+    textures_.upload(std::move(d));
+  }
   for (auto& m : worker_.take_messages()) ui_.status = m;
   ui::UiCommands cmd;
   if (!replay_.empty() && replay_next_ <= replay_.size()) replay_step();
@@ -167,6 +176,7 @@ void StudioApp::frame() {
   if (s) {
     v.session = s;
     v.summaries = &snap_->summaries;
+    v.problems = &problems_;
     stats_.update(snap_, ui::stats_request(*s, stats_ui_));
     v.stats = stats_.result();
     if (snap_->rerun && !s->scenes().empty() && snap_->rerun_pair == s->pair_index() &&
@@ -245,6 +255,7 @@ void StudioApp::frame() {
   ui::draw_status_bar(v, ui_, cmd);
   if (ui_.show_open) list_browse_dir();
   ui::draw_dialogs(v, ui_, cmd);
+  ui::draw_problems_window(v, ui_, cmd);
   if (s)
     if (auto request = ui::draw_export_dialog(export_dialog_, ui::export_view_context(*s, ui_, stats_ui_))) export_figure(*request);
   ImGui::End();
@@ -284,6 +295,7 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
     worker_.submit(command::SetConfThreshold{cmd.conf_threshold});
   }
   if (cmd.goto_scene >= 0 && cmd.goto_scene != ui_.scene) goto_scene(cmd.goto_scene);
+  if (cmd.goto_problem >= 0 && cmd.goto_problem < static_cast<int>(problems_.size())) goto_problem(problems_[cmd.goto_problem]);
   for (const auto& e : cmd.edits) worker_.submit(command::ApplyEdit{ui_.scene, e});
   if (cmd.undo) worker_.submit(command::Undo{});
   if (cmd.redo) worker_.submit(command::Redo{});
@@ -303,6 +315,49 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
   }
   if ((cmd.export_figures || cmd.export_dialog) && !s.scenes().empty())
     ui::open_export_dialog(export_dialog_, ui::export_view_context(s, ui_, stats_ui_));
+}
+
+void StudioApp::note_picture_problem(const DecodedPicture& d) {
+  if (d.error.empty() || d.path.empty()) return;  // read, or a labels-only scene (no picture expected)
+  const auto slash = d.key.find('/');  // keys are "domain/stem"
+  Problem p{d.path, 0, d.key.substr(0, slash), "", slash == std::string::npos ? "" : d.key.substr(slash + 1), d.error};
+  for (const Problem& q : picture_problems_)
+    if (q.file == p.file) return;
+  picture_problems_.push_back(p);
+  problems_.push_back(std::move(p));
+}
+
+void StudioApp::goto_problem(const Problem& p) {
+  if (!snap_ || p.scene.empty()) return;
+  ui_.status = p.to_string();
+  const Session& s = *snap_->session;
+  const auto& pairs = s.domain_pairs();
+  auto has = [&](size_t k) {
+    const auto& [a, b] = pairs[k];
+    const bool domains = p.domain.empty() || a == p.domain || b == p.domain;
+    const bool other = p.other_domain.empty() || a == p.other_domain || b == p.other_domain;
+    return domains && other;
+  };
+  // The domain pair in view when it holds the scene; else the first one that does.
+  if (has(static_cast<size_t>(s.pair_index())) && s.scene_index(p.scene) >= 0) {
+    goto_scene(s.scene_index(p.scene));
+    return;
+  }
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    if (!has(k)) continue;
+    const Domain* a = s.study().domain(pairs[k].first);
+    const Domain* b = s.study().domain(pairs[k].second);
+    if (!std::binary_search(a->stems.begin(), a->stems.end(), p.scene) ||
+        !std::binary_search(b->stems.begin(), b->stems.end(), p.scene))
+      continue;
+    WorkerCommand c{WorkerCommand::Kind::kDomains};
+    c.a = pairs[k].first;
+    c.b = pairs[k].second;
+    pending_scene_ = p.scene;
+    worker_.submit(std::move(c));
+    return;
+  }
+  ui_.status = "scene " + p.scene + " is in no domain pair (it has no counterpart)";
 }
 
 void StudioApp::export_figure(const ui::ExportRequest& request) {
@@ -392,6 +447,12 @@ bool StudioApp::replay_step() {
   else if (a.verb == "undo") cmd.undo = true;
   else if (a.verb == "redo") cmd.redo = true;
   else if (a.verb == "screenshot") screenshot_now_ = a.args[0];
+  else if (a.verb == "problems") ui_.show_problems = true;
+  else if (a.verb == "problem") {
+    const int k = std::atoi(a.args[0].c_str());
+    if (k > static_cast<int>(problems_.size())) fail(fmt::format("no problem {}: the study has {}", k, problems_.size()));
+    else cmd.goto_problem = k - 1;
+  }
   else if (a.verb == "scene") {
     const auto at = std::find(ui_.order.begin(), ui_.order.end(), ui_.scene) - ui_.order.begin();
     if (a.args[0] == "next" && !ui_.order.empty()) cmd.goto_scene = ui_.order[std::min<long>(at + 1, ui_.order.size() - 1)];
@@ -459,6 +520,8 @@ int StudioApp::print_stats() const {
                                p.cached, snap_ ? snap_->summaries.size() * snap_->session->domain_pairs().size() : 0,
                                p.study_cache.state, p.study_cache.files_reused, p.study_cache.files_parsed));
   if (!o_.screenshot.empty()) fmt::print("{}\n", o_.screenshot);
+  // What the Problems window lists, for scripted runs to see (as `ipd table` prints its warnings).
+  for (const Problem& p : problems_) fmt::print(stderr, "warning: {}\n", p.to_string());
   // Scripted runs (--screenshot, --replay) exit 1 on a study that can't be opened: say why on stderr too.
   if (open_failed_) fmt::print(stderr, "error: could not open the study: {}\n", worker_.open_error());
   const std::vector<std::string> problems = open_failed_ ? std::vector<std::string>{} : replay_problems();

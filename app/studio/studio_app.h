@@ -45,6 +45,8 @@ class StudioApp {
   void export_figure(const ui::ExportRequest& request);  // on the worker, from the current snapshot
   // What a finished replay left undone (failed or unsaved edits, failed or unfinished exports), one line each.
   std::vector<std::string> replay_problems() const;
+  void note_picture_problem(const DecodedPicture& d);
+  void goto_problem(const Problem& p);
 
   StudioOptions o_;
   StudyWorker worker_;
@@ -55,6 +57,9 @@ class StudioApp {
   ui::StatsPanelState stats_ui_;
   StatsJob stats_;  // intervals, histogram, breakdown, comparison: off the UI thread
   std::shared_ptr<const Snapshot> snap_;
+  // The session's problems and then the pictures that could not be read (found as they are shown).
+  std::vector<Problem> problems_, picture_problems_;
+  std::string pending_scene_;  // a problem's scene, shown once the worker has switched to its domain pair
   long order_version_ = -1;
   std::string order_filter_;
   int order_sort_ = -1;

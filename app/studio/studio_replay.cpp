@@ -22,7 +22,8 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
       {"unpair", {1, "a left rock number"}}, {"exclude", {1, "a left rock number"}},
       {"undo", {0, "nothing"}},             {"redo", {0, "nothing"}},
       {"rerun", {1, "a registration method"}}, {"export", {1, "[a figure kind] and an output file"}},
-      {"screenshot", {1, "a PNG file"}},
+      {"screenshot", {1, "a PNG file"}},    {"problems", {0, "nothing"}},
+      {"problem", {1, "a row number of the Problems window"}},
   };
   std::vector<ReplayAction> out;
   std::istringstream in(text);
@@ -41,7 +42,7 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
     };
     if (it == verbs.end())
       fail("unknown action '" + a.verb + "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, undo, "
-           "redo, rerun, export or screenshot)");
+           "redo, rerun, export, screenshot, problems or problem)");
     const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
     if (static_cast<int>(a.args.size()) != it->second.first && !export_with_kind)
       fail("'" + a.verb + "' takes " + it->second.second + ", got " + std::to_string(a.args.size()) + " argument(s)");
@@ -51,7 +52,7 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
       if (!parse_integer(w, 1, std::numeric_limits<int>::max(), &v))
         fail("'" + a.verb + "': expected a number >= 1, got '" + quoted_for_message(w) + "'");
     };
-    if (a.verb == "wait" || a.verb == "pair" || a.verb == "unpair" || a.verb == "exclude")
+    if (a.verb == "wait" || a.verb == "problem" || a.verb == "pair" || a.verb == "unpair" || a.verb == "exclude")
       for (const auto& w : a.args) positive(w);
     if (a.verb == "conf") {
       double v = NAN;

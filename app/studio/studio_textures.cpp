@@ -83,6 +83,7 @@ void PictureLoader::run() {
     DecodedPicture d;
     d.key = job.key;
     d.full = true;
+    d.path = job.path;
     std::error_code ec;
     if (job.path.empty()) {
       d.error = "no picture for this scene (labels only)";
@@ -93,7 +94,7 @@ void PictureLoader::run() {
       if (job.urgent && is_jpeg(job.path)) {
         cv::Mat small = cv::imread(job.path, cv::IMREAD_REDUCED_COLOR_4);
         if (!small.empty()) {
-          DecodedPicture p{job.key, {}, small.cols * 4, small.rows * 4, false, {}};
+          DecodedPicture p{job.key, {}, small.cols * 4, small.rows * 4, false, {}, job.path};
           cv::cvtColor(small, small, cv::COLOR_BGR2RGBA);
           p.levels.push_back(small);
           deliver(std::move(p));
@@ -109,7 +110,7 @@ void PictureLoader::run() {
           cv::Mat small;
           cv::resize(bgr, small, cv::Size(bgr.cols / 4, bgr.rows / 4), 0, 0, cv::INTER_NEAREST);
           cv::cvtColor(small, small, cv::COLOR_BGR2RGBA);
-          deliver(DecodedPicture{job.key, {small}, bgr.cols, bgr.rows, false, {}});
+          deliver(DecodedPicture{job.key, {small}, bgr.cols, bgr.rows, false, {}, job.path});
         }
         if (bgr.cols > max_width_) {
           const double k = static_cast<double>(max_width_) / bgr.cols;

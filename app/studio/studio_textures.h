@@ -22,6 +22,7 @@ struct DecodedPicture {
   int width = 0, height = 0;    // of the original file
   bool full = false;            // false: a reduced preview, the full picture follows
   std::string error;
+  std::string path;  // the picture's file; empty for a labels-only scene
 };
 
 class PictureLoader {

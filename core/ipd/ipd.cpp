@@ -2,11 +2,11 @@
 
 #include "core/util/nested_lookup.h"
 #include "core/util/parallel.h"
+#include "core/ipd/study_pipeline.h"
 #include "core/registration/registration_cache.h"
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
@@ -77,29 +77,6 @@ StudyLabels load_labels(const Study& study, const std::function<void(int done, i
   return out;
 }
 
-ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
-                        const std::string& stem, const RegistrationOptions& options,
-                        const RegistrationCache* cache) {
-  ScenePairing p;
-  p.stem = stem;
-  const auto& ga = labels.gt_of(a, stem).boxes;
-  const auto& gb = labels.gt_of(b, stem).boxes;
-  p.count_a = static_cast<int>(ga.size());
-  p.count_b = static_cast<int>(gb.size());
-  FixedPairsRead read = load_fixed_pairs(labels.study, a, b, stem, ga, gb);
-  p.pairs_problems = std::move(read.problems);
-  if (read.pairs) {
-    p.fixed = true;
-    p.pairs = std::move(read.pairs->pairs);
-    p.excluded_a = std::move(read.pairs->excluded_a);
-    p.excluded_b = std::move(read.pairs->excluded_b);
-    return p;
-  }
-  p.registration = register_rocks_cached(cache, ga, gb, options, &p.from_cache);
-  p.pairs = p.registration.pairs;
-  return p;
-}
-
 double SceneIpd::ipd() const { return pairs > 0 ? sum_abs_diff / pairs : std::nan(""); }
 
 SceneIpd scene_contribution(const std::string& stem, const RockPairs& pairs, const std::vector<int>& excluded_a,
@@ -129,6 +106,29 @@ SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, co
                    const std::vector<Box>& gt_b, const std::vector<Box>& pred_b) {
   return scene_contribution(pairing.stem, pairing.pairs, pairing.excluded_a, pairing.excluded_b,
                             performance_values(gt_a, pred_a).value, performance_values(gt_b, pred_b).value);
+}
+
+namespace {
+std::string above(double threshold) { return threshold > 0 ? fmt::format(" above {:g}", threshold) : std::string(); }
+}  // namespace
+
+std::string no_predictions_reason(long na, long nb, const std::string& a, const std::string& b, double threshold) {
+  if (na > 0 || nb > 0) return {};
+  return fmt::format("no predictions{} in {} and {}", above(threshold), a, b);
+}
+
+std::string one_side_without_predictions(const std::string& model, const std::string& domain,
+                                         const std::string& other, double threshold) {
+  return fmt::format("model '{}' has no predictions{} in '{}' (its scenes compared with '{}'): every rock there "
+                     "counts as missed, as a detector that found nothing",
+                     model, above(threshold), domain, other);
+}
+
+long count_predictions(const StudyLabels& labels, const std::string& domain, const std::string& model,
+                       const std::vector<ScenePairing>& pairings) {
+  long n = 0;
+  for (const ScenePairing& p : pairings) n += static_cast<long>(labels.predictions_of(domain, model, p.stem).boxes.size());
+  return n;
 }
 
 TableCell make_table_cell(const ModelInfo& model, const std::string& a, const std::string& b) {
@@ -190,61 +190,24 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
   if (t.columns.empty()) throw StudyError(study.root + ": at least two domains are needed to compare");
 
   // Pair rocks once per (domain pair, scene): pairing depends only on GT, never on the model.
-  struct Job {
-    size_t column;
-    std::string stem;
-    ScenePairing result;
-    std::string error;
-  };
-  std::vector<Job> jobs;
-  std::vector<SceneMatch> matches;
-  for (size_t c = 0; c < t.columns.size(); ++c) {
-    const auto& [a, b] = t.columns[c];
-    SceneMatch m = match_scenes(*study.domain(a), *study.domain(b));
-    auto list = [](const std::vector<std::string>& v) {
-      std::string s;
-      for (size_t k = 0; k < std::min<size_t>(3, v.size()); ++k) s += (k ? ", " : "") + v[k];
-      return s + (v.size() > 3 ? ", ..." : "");
-    };
-    if (!m.only_a.empty())
-      t.warnings.push_back(fmt::format("{} scene(s) of '{}' have no counterpart in '{}' and are skipped: {}",
-                                       m.only_a.size(), a, b, list(m.only_a)));
-    if (!m.only_b.empty())
-      t.warnings.push_back(fmt::format("{} scene(s) of '{}' have no counterpart in '{}' and are skipped: {}",
-                                       m.only_b.size(), b, a, list(m.only_b)));
-    for (const auto& stem : m.common) jobs.push_back({c, stem, {}, {}});
-    matches.push_back(std::move(m));
-  }
-  RegistrationOptions reg = options.registration;
-  if (reg.aspect == 1.0) reg.aspect = study.aspect();
-  const auto start = std::chrono::steady_clock::now();
-  std::atomic<int> done{0};
+  PipelineOptions po;
+  po.registration = options.registration;
+  po.threads = options.threads;
+  po.progress = options.progress;
   const RegistrationCache own_cache(options.registration_cache ? std::string() : options.cache_dir);
-  const RegistrationCache& cache = options.registration_cache ? *options.registration_cache : own_cache;
-  parallel_for(jobs.size(), options.threads, [&](size_t k) {
-    auto& j = jobs[k];
-    try {
-      const auto& [a, b] = t.columns[j.column];
-      j.result = pair_scene(labels, a, b, j.stem, reg, &cache);
-    } catch (const std::exception& e) {
-      j.error = e.what();
-    }
-    const int d = ++done;
-    if (options.progress) options.progress(d, static_cast<int>(jobs.size()));
-  });
-  t.registration_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  for (const auto& j : jobs) {
-    if (!j.error.empty()) throw StudyError(j.error);
-    (j.result.fixed ? t.fixed_scenes : t.registrations)++;
-    t.cached_registrations += j.result.from_cache;
-    for (const PairsProblem& p : j.result.pairs_problems) {
-      t.pairs_problems.push_back(p);
-      if (!p.unusable) t.warnings.push_back(p.to_string());
-    }
-  }
-
+  po.cache = options.registration_cache ? options.registration_cache : &own_cache;
+  PairedStudy paired = pair_study(labels, t.columns, po);
+  t.registrations = paired.registrations;
+  t.fixed_scenes = paired.fixed_scenes;
+  t.cached_registrations = paired.cached_registrations;
+  t.registration_ms = paired.registration_ms;
+  // Unusable hand pairs are errors for the CLI (CrossTable::pairs_problems), not warnings.
+  for (const Problem& p : paired.problems)
+    if (!p.unusable_pairs) t.warnings.push_back(p.to_string());
+  t.pairs_problems = std::move(paired.pairs_problems);
   t.pairings.resize(t.columns.size());
-  for (auto& j : jobs) t.pairings[j.column].push_back(j.result);
+  for (size_t c = 0; c < t.columns.size(); ++c)
+    for (const PipelineScene& s : paired.pairs[c].scenes) t.pairings[c].push_back(s.counted());
 
   std::set<std::string> warned;
   for (const auto& model : t.models) {
@@ -255,18 +218,24 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
         if (labels.has_predictions(d, model.name)) continue;
         cell.missing_predictions = true;
         if (warned.insert(model.name + "\n" + d).second)
-          t.warnings.push_back(fmt::format("model '{}' has no predictions for domain '{}' (expected {}/): its cells are empty",
-                                           model.name, d,
-                                           (fs::path(study.root) / d / "predictions" / model.name).string()));
+          t.warnings.push_back(missing_predictions_problem(study, model.name, d).to_string());
       }
       if (!cell.missing_predictions)
-        for (const auto& j : jobs)
-          if (j.column == c)
-            cell.per_scene.push_back(scene_ipd(j.result, labels.gt_of(a, j.stem).boxes,
-                                               labels.predictions_of(a, model.name, j.stem).boxes,
-                                               labels.gt_of(b, j.stem).boxes,
-                                               labels.predictions_of(b, model.name, j.stem).boxes));
+        for (const ScenePairing& p : t.pairings[c])
+          cell.per_scene.push_back(scene_ipd(p, labels.gt_of(a, p.stem).boxes,
+                                             labels.predictions_of(a, model.name, p.stem).boxes,
+                                             labels.gt_of(b, p.stem).boxes,
+                                             labels.predictions_of(b, model.name, p.stem).boxes));
       total_table_cell(cell);
+      if (!cell.missing_predictions) {
+        const double threshold = study.config.conf_threshold;
+        const long na = count_predictions(labels, a, model.name, t.pairings[c]);
+        const long nb = count_predictions(labels, b, model.name, t.pairings[c]);
+        cell.no_value_reason = no_predictions_reason(na, nb, a, b, threshold);
+        if (!cell.no_value_reason.empty()) cell.ipd = std::nan("");
+        else if (na == 0 || nb == 0)
+          t.warnings.push_back(one_side_without_predictions(model.name, na == 0 ? a : b, na == 0 ? b : a, threshold));
+      }
       t.cells.push_back(std::move(cell));
     }
   }

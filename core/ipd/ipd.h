@@ -54,6 +54,7 @@ struct ScenePairing {
 };
 
 class RegistrationCache;
+// One scene as pair_study (study_pipeline.h) pairs it: its fixed pairs, else its registration.
 // `cache` (may be null): registration results on disk (registration_cache.h).
 ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
                         const std::string& stem, const RegistrationOptions& options,
@@ -89,8 +90,27 @@ struct TableCell {
   int scenes = 0;
   bool involves_training_domain = true;  // false: computed, but shown as "–" like the paper
   bool missing_predictions = false;
+  // Why the cell is not a number although both domains have prediction sets (no_predictions_reason):
+  // "no predictions above 0.98 in real and principled". Shown beside its "–"; empty for a number.
+  std::string no_value_reason;
   std::vector<SceneIpd> per_scene;
 };
+
+// The rule for "no predictions is not a perfect renderer": when neither domain has a prediction left (after
+// the class filter and the confidence threshold) in the scenes compared, every rock's performance value is 0
+// on both sides and IPD 0 would say "identical" about two empty prediction sets, so there is no number. One
+// side without predictions is a number (every rock there missed: a real, if alarming, gap) and a warning.
+// Returns the reason ("no predictions above 0.98 in real and principled", "no predictions in real and
+// principled" without a threshold), or "" when either side has predictions.
+std::string no_predictions_reason(long predictions_a, long predictions_b, const std::string& a, const std::string& b,
+                                  double threshold);
+// The warning when only `domain` has none: "model 'det' has no predictions above 0.98 in 'real' (its scenes
+// compared with 'principled'): every rock there counts as missed, as a detector that found nothing".
+std::string one_side_without_predictions(const std::string& model, const std::string& domain,
+                                         const std::string& other, double threshold);
+// Predictions of `model` left in `domain` over the scenes of `pairings`.
+long count_predictions(const StudyLabels& labels, const std::string& domain, const std::string& model,
+                       const std::vector<ScenePairing>& pairings);
 
 // A cell for `model` on domains (a, b), numbers still empty; total_table_cell fills them from per_scene.
 TableCell make_table_cell(const ModelInfo& model, const std::string& a, const std::string& b);

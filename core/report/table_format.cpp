@@ -46,6 +46,43 @@ std::string cell_text(const TableCell& c, const char* dash) {
   return fmt::format("{:.4f}", c.ipd);
 }
 
+// The distinct reasons of cells that are not a number (TableCell::no_value_reason), in cell order: cell k's
+// footnote is its reason's position + 1.
+std::vector<std::string> footnotes(const CrossTable& t) {
+  std::vector<std::string> out;
+  for (const auto& c : t.cells)
+    if (c.involves_training_domain && !c.no_value_reason.empty() &&
+        std::find(out.begin(), out.end(), c.no_value_reason) == out.end())
+      out.push_back(c.no_value_reason);
+  return out;
+}
+
+int footnote_of(const std::vector<std::string>& notes, const TableCell& c) {
+  if (!c.involves_training_domain || c.no_value_reason.empty()) return 0;
+  return static_cast<int>(std::find(notes.begin(), notes.end(), c.no_value_reason) - notes.begin()) + 1;
+}
+
+// "¹", "²", ... "¹⁰": a footnote mark in text and Markdown.
+std::string superscript(int n) {
+  static const char* const kDigits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  const std::string digits = std::to_string(n);
+  std::string out;
+  for (char ch : digits) out += kDigits[ch - '0'];
+  return out;
+}
+
+// The text of a cell: a number, or "–" with the mark of its footnote when it is not one for a reason.
+std::string marked_cell_text(const TableCell& c, const char* dash, const std::vector<std::string>& notes) {
+  const int k = footnote_of(notes, c);
+  return k > 0 ? dash + superscript(k) : cell_text(c, dash);
+}
+
+std::string footnote_lines(const std::vector<std::string>& notes) {
+  std::string out;
+  for (size_t k = 0; k < notes.size(); ++k) out += superscript(static_cast<int>(k) + 1) + " " + notes[k] + "\n";
+  return out;
+}
+
 bool has_ci(const TableCell& c) { return !std::isnan(c.ci_low) && !std::isnan(c.ci_high); }
 
 // " [0.214, 0.238]" when the cell has an interval and is shown.
@@ -100,11 +137,12 @@ std::string text_table(const CrossTable& t, const TableFormatOptions& o) {
   std::vector<std::string> head = {"train \\ eval (IPD, lower is better)"};
   for (const auto& c : t.columns) head.push_back("|" + column_title(c) + "|");
   grid.push_back(head);
+  const std::vector<std::string> notes = footnotes(t);
   for (size_t r = 0; r < t.models.size(); ++r) {
     std::vector<std::string> row = {row_title(t.models[r])};
     for (size_t c = 0; c < t.columns.size(); ++c) {
       const auto& cell = t.cells[r * t.columns.size() + c];
-      row.push_back(cell_text(cell, "–") + ci_text(cell) + pairs_text(cell, o));
+      row.push_back(marked_cell_text(cell, "–", notes) + ci_text(cell) + pairs_text(cell, o));
     }
     grid.push_back(row);
   }
@@ -125,7 +163,7 @@ std::string text_table(const CrossTable& t, const TableFormatOptions& o) {
     out += '\n';
   }
   if (any_ci(t)) out += ci_caption(o) + "\n";
-  return out;
+  return out + footnote_lines(notes);
 }
 
 nlohmann::json distribution_json(const TableCell& c) {
@@ -160,12 +198,15 @@ std::string latex_table(const CrossTable& t, const TableFormatOptions& o) {
   for (const auto& c : t.columns) out += " & $|$" + latex_escape(c.first) + " $-$ " + latex_escape(c.second) + "$|$";
   out += " \\\\\n";
   out += bt ? "\\midrule\n" : rule;
+  const std::vector<std::string> notes = footnotes(t);
   for (size_t r = 0; r < t.models.size(); ++r) {
     const double best = row_best(t, r);
     out += latex_escape(row_title(t.models[r]));
     for (size_t c = 0; c < nc; ++c) {
       const auto& cell = t.cells[r * nc + c];
-      const std::string s = cell_text(cell, "--");  // an en dash in LaTeX, as the text table's "–"
+      const int note = footnote_of(notes, cell);
+      // an en dash in LaTeX, as the text table's "–"
+      const std::string s = note > 0 ? fmt::format("--$^{{{}}}$", note) : cell_text(cell, "--");
       out += " & " + (cell.involves_training_domain && cell.ipd == best ? "\\textbf{" + s + "}" : s);
       if (o.latex_ci) out += ci_text(cell);
     }
@@ -174,6 +215,8 @@ std::string latex_table(const CrossTable& t, const TableFormatOptions& o) {
   }
   if (bt) out += "\\bottomrule\n";
   out += "\\end{tabular}\n";
+  for (size_t k = 0; k < notes.size(); ++k)
+    out += fmt::format("\\par{{\\footnotesize $^{{{}}}$ {}}}\n", k + 1, latex_escape(notes[k]));
   return out;
 }
 
@@ -330,12 +373,13 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
       return text_table(t, o);
     case TableFormat::kCsv: {
       std::string out =
-          "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se\n";
+          "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,"
+          "reason\n";
       for (const auto& c : t.cells)
         out += csv_row({c.model, c.trained_on, c.a, c.b, number_or_empty(c.ipd), std::to_string(c.pairs),
                         std::to_string(c.unpaired_a), std::to_string(c.unpaired_b), std::to_string(c.scenes),
                         c.involves_training_domain ? "true" : "false", number_or_empty(c.ci_low),
-                        number_or_empty(c.ci_high), number_or_empty(c.se)});
+                        number_or_empty(c.ci_high), number_or_empty(c.se), c.no_value_reason});
       return out;
     }
     case TableFormat::kJson: {
@@ -352,6 +396,7 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
         cell["ci_high"] = number_or_null(c.ci_high);
         cell["se"] = number_or_null(c.se);
         if (c.missing_predictions) cell["missing_predictions"] = true;
+        else if (!c.no_value_reason.empty()) cell["reason"] = c.no_value_reason;
         else cell["scene_ipd"] = distribution_json(c);
         j["cells"].push_back(cell);
       }
@@ -366,12 +411,13 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
       out += "\n|---|";
       for (size_t k = 0; k < nc; ++k) out += "---:|";
       out += "\n";
+      const std::vector<std::string> notes = footnotes(t);
       for (size_t r = 0; r < t.models.size(); ++r) {
         const double best = row_best(t, r);
         out += "| " + row_title(t.models[r]) + " |";
         for (size_t c = 0; c < nc; ++c) {
           const auto& cell = t.cells[r * nc + c];
-          const std::string s = cell_text(cell, "–");
+          const std::string s = marked_cell_text(cell, "–", notes);
           out += (cell.involves_training_domain && cell.ipd == best ? " **" + s + "**" : " " + s) + ci_text(cell) + " |";
         }
         out += "\n";
@@ -379,6 +425,7 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
       out += "\nIPD: mean |performance-value difference| over matched rock pairs; lower is better.";
       if (any_ci(t)) out += " " + ci_caption(o) + ".";
       out += "\n";
+      if (!notes.empty()) out += "\n" + footnote_lines(notes);
       return out;
     }
     case TableFormat::kLatex:

@@ -4,17 +4,16 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fmt/format.h>
 #include <optional>
 #include <set>
-#include <unordered_set>
 
 #include "core/util/atomic_file.h"
 #include "core/util/contained_file.h"
 #include "core/util/parallel.h"
+#include "core/ipd/study_pipeline.h"
 #include "core/registration/registration_cache.h"
 
 namespace fs = std::filesystem;
@@ -107,7 +106,7 @@ void run_save_job(const SaveJob& job, const WriteStepHook& hook) {
   }
 }
 
-double CellTotals::ipd() const { return pairs > 0 ? sum_abs_diff / static_cast<double>(pairs) : std::nan(""); }
+double CellTotals::ipd() const { return pairs > 0 && no_value_reason.empty() ? sum_abs_diff / static_cast<double>(pairs) : std::nan(""); }
 
 Session Session::open(const std::string& root, const RegistrationOptions* registration) {
   SessionOptions o;
@@ -153,28 +152,6 @@ Session Session::open(const std::string& root, const SessionOptions& options) {
   return session;
 }
 
-namespace {
-// Stems with a pairs file in pairs/<a>__<b>/ or pairs/<b>__<a>/, from two directory listings instead of two
-// lookups per scene; nullopt when a directory can't be listed (then every scene is looked up).
-std::optional<std::unordered_set<std::string>> stems_with_pairs_files(const Study& st, const std::string& a,
-                                                                      const std::string& b) {
-  std::unordered_set<std::string> out;
-  for (const std::string& dir : {st.pairs_dir(a, b), st.pairs_dir(b, a)}) {
-    std::error_code ec;
-    // A link is not listed: every scene is then looked up, and the lookup refuses it (fixed_pairs.h).
-    if (fs::is_symlink(fs::path(st.root) / "pairs", ec) || fs::is_symlink(dir, ec)) return std::nullopt;
-    if (!fs::exists(dir, ec)) {
-      if (ec) return std::nullopt;
-      continue;
-    }
-    for (fs::directory_iterator it(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
-      if (it->path().extension() == ".json") out.insert(it->path().stem().string());
-    if (ec) return std::nullopt;
-  }
-  return out;
-}
-}  // namespace
-
 Session::Session(StudyLabels labels, const RegistrationOptions* registration)
     : Session(std::move(labels), SessionOptions{registration, {}, {}, 0, nullptr, {}}) {}
 
@@ -183,59 +160,44 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
   const StudyLabels& labels_ref = *labels_;
   const Study& st = labels_ref.study;
   pairs_ = ipd::domain_pairs(st, {});
-  RegistrationOptions reg = options.registration ? *options.registration : st.config.registration;
-  if (reg.aspect == 1.0) reg.aspect = st.aspect();
+  PipelineOptions po;
+  po.registration = options.registration ? *options.registration : st.config.registration;
+  po.register_fixed_scenes = true;  // a hand-fixed scene can go back to its automatic pairs
   const RegistrationCache own_cache(options.registration_cache ? std::string() : options.cache_dir);
-  const RegistrationCache& cache = options.registration_cache ? *options.registration_cache : own_cache;
-  int total = 0;
-  for (const auto& [a, b] : pairs_) total += static_cast<int>(match_scenes(*st.domain(a), *st.domain(b)).common.size());
-  std::atomic<int> done{0}, cached{0};
-  for (const auto& domain_pair : pairs_) {
-    const std::string &a = domain_pair.first, &b = domain_pair.second;  // C++17 lambdas can't capture bindings
-    const std::vector<std::string> stems = match_scenes(*st.domain(a), *st.domain(b)).common;
-    std::vector<SceneState> list(stems.size());
-    std::vector<std::string> errors(stems.size());
-    const auto with_pairs_files = stems_with_pairs_files(st, a, b);
-    // Registration is the heavy part of opening a study: every core takes scenes.
-    parallel_for(stems.size(), 0, [&](size_t k) {
+  po.cache = options.registration_cache ? options.registration_cache : &own_cache;
+  if (options.progress)
+    po.progress = [&](int done, int total) {
+      if (done % 64 == 0 || done == total) options.progress("registration", done, total);
+    };
+  PairedStudy paired = pair_study(labels_ref, pairs_, po);
+  for (DomainPairScenes& d : paired.pairs) {
+    std::vector<SceneState> list(d.scenes.size());
+    for (size_t k = 0; k < list.size(); ++k) {
       SceneState& s = list[k];
-      s.stem = stems[k];
-      const auto& ga = labels_ref.gt_of(a, s.stem).boxes;
-      const auto& gb = labels_ref.gt_of(b, s.stem).boxes;
-      s.automatic.stem = s.stem;
-      s.automatic.count_a = static_cast<int>(ga.size());
-      s.automatic.count_b = static_cast<int>(gb.size());
-      bool hit = false;
-      s.automatic.registration = register_rocks_cached(&cache, ga, gb, reg, &hit);
-      s.automatic.from_cache = hit;
-      cached += hit;
-      s.automatic.pairs = s.automatic.registration.pairs;
+      s.automatic = std::move(d.scenes[k].automatic);
+      s.stem = s.automatic.stem;
       s.current.pairs = s.automatic.pairs;
-      try {
-        if (!with_pairs_files || with_pairs_files->count(s.stem)) {
-          FixedPairsRead read = load_fixed_pairs(st, a, b, s.stem, ga, gb);
-          s.disk_ab = read.version_ab;
-          s.disk_ba = read.version_ba;
-          s.pairs_unusable = read.unusable();
-          s.pairs_problems = std::move(read.problems);
-          if (read.pairs) {
-            s.current = std::move(*read.pairs);
-            s.edited = s.fixed_on_disk = true;
-          }
-        }
-      } catch (const std::exception& e) {
-        errors[k] = e.what();
+      s.disk_ab = d.scenes[k].version_ab;
+      s.disk_ba = d.scenes[k].version_ba;
+      s.pairs_unusable = d.scenes[k].pairs_unusable;
+      s.pairs_problems = s.automatic.pairs_problems;
+      if (d.scenes[k].fixed) {
+        s.current = std::move(*d.scenes[k].fixed);
+        s.edited = s.fixed_on_disk = true;
       }
-      const int d = ++done;
-      if (options.progress && (d % 64 == 0 || d == total)) options.progress("registration", d, total);
-    });
-    for (const auto& e : errors)
-      if (!e.empty()) throw StudyError(e);
+    }
     scenes_.push_back(std::move(list));
     audits_.emplace_back(scenes_.back().size());
     for (size_t k = 0; k < scenes_.back().size(); ++k) reaudit(static_cast<int>(scenes_.size()) - 1, static_cast<int>(k));
   }
-  cached_ = cached;
+  // Every problem the engine found, in the order the CLI reports them: label files, then scene matching and
+  // pairs files, then prediction sets that are missing.
+  problems_ = label_problems(labels_ref);
+  problems_.insert(problems_.end(), paired.problems.begin(), paired.problems.end());
+  for (const auto& m : st.models)
+    for (const auto& d : st.domains)
+      if (!labels_ref.has_predictions(d.name, m.name)) problems_.push_back(missing_predictions_problem(st, m.name, d.name));
+  cached_ = paired.cached_registrations;
   if (!st.models.empty()) model_ = st.models.front().name;
   // Default view: the first model trained on the first domain, if any.
   for (const auto& m : st.models)
@@ -371,6 +333,12 @@ SceneSummary Session::summary(int scene) const {
   }
   const SceneIpd& c = it->second[scene];
   s.ipd = c.ipd();
+  const auto& [a, b] = pairs_[pair_];
+  static const std::vector<Box> kNone;
+  const size_t na = lookup(*shown_predictions_, a, model_, s.stem, kNone).size();
+  const size_t nb = lookup(*shown_predictions_, b, model_, s.stem, kNone).size();
+  s.no_value_reason = no_predictions_reason(static_cast<long>(na), static_cast<long>(nb), a, b, effective_threshold());
+  if (!s.no_value_reason.empty()) s.ipd = std::nan("");
   s.pairs = c.pairs;
   s.unpaired_a = swapped_ ? c.unpaired_b : c.unpaired_a;
   s.unpaired_b = swapped_ ? c.unpaired_a : c.unpaired_b;
@@ -424,9 +392,25 @@ void Session::recompute_performance() {
   rebuild_totals();
 }
 
+std::vector<Problem> Session::problems() const {
+  std::vector<Problem> out = problems_;
+  out.insert(out.end(), threshold_problems_.begin(), threshold_problems_.end());
+  return out;
+}
+
+double Session::effective_threshold() const { return std::max(conf_threshold_, labels_->study.config.conf_threshold); }
+
+long Session::shown_predictions(const std::string& domain, const std::string& model, int pair) const {
+  long n = 0;
+  static const std::vector<Box> kNone;
+  for (const SceneState& s : scenes_[pair]) n += static_cast<long>(lookup(*shown_predictions_, domain, model, s.stem, kNone).size());
+  return n;
+}
+
 void Session::rebuild_totals() {
   totals_.clear();
   contributions_.clear();
+  threshold_problems_.clear();
   for (const auto& m : labels_->study.models) {
     for (size_t p = 0; p < pairs_.size(); ++p) {
       if (!labels_->has_predictions(pairs_[p].first, m.name) || !labels_->has_predictions(pairs_[p].second, m.name))
@@ -440,6 +424,17 @@ void Session::rebuild_totals() {
         t.unpaired_a += list.back().unpaired_a;
         t.unpaired_b += list.back().unpaired_b;
         ++t.scenes;
+      }
+      // The table's rule (compute_cross_table): no predictions on either side is no number; on one, a warning.
+      const auto& [a, b] = pairs_[p];
+      const long na = shown_predictions(a, m.name, static_cast<int>(p)), nb = shown_predictions(b, m.name, static_cast<int>(p));
+      t.no_value_reason = no_predictions_reason(na, nb, a, b, effective_threshold());
+      if (t.no_value_reason.empty() && (na == 0 || nb == 0)) {
+        Problem q;
+        q.domain = na == 0 ? a : b;
+        q.other_domain = na == 0 ? b : a;
+        q.message = one_side_without_predictions(m.name, q.domain, q.other_domain, effective_threshold());
+        threshold_problems_.push_back(std::move(q));
       }
     }
   }

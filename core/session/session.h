@@ -17,6 +17,7 @@
 #include "core/session/audit.h"
 #include "core/ipd/ipd.h"
 #include "core/ipd/study_cache.h"
+#include "core/study/problem.h"
 
 namespace ipd {
 
@@ -92,6 +93,9 @@ struct SceneSummary {
   bool edited = false;
   int suspects = 0;        // suspect pairs (audit_pairs)
   bool ambiguous = false;  // registration could not decide (RegistrationReport::ambiguous)
+  // Why `ipd` is NaN although the scene has pairs: neither domain has a prediction left in it for the model
+  // (no_predictions_reason, ipd.h). Its rocks still count in the cell, as rocks both domains missed.
+  std::string no_value_reason;
 };
 
 struct SessionOptions {
@@ -112,6 +116,8 @@ struct CellTotals {
   double sum_abs_diff = 0;
   long pairs = 0, unpaired_a = 0, unpaired_b = 0;
   int scenes = 0;
+  // Why the cell is not a number (no_predictions_reason, ipd.h): then ipd() is NaN, whatever the sums.
+  std::string no_value_reason;
   double ipd() const;
 };
 
@@ -126,7 +132,10 @@ class Session {
 
   const Study& study() const { return labels_->study; }
   const StudyLabels& labels() const { return *labels_; }
-  int cached_registrations() const { return cached_; }  // scenes whose registration came from the cache
+  int cached_registrations() const { return cached_; }
+  // What the engine found wrong with the study's data while opening it (study_pipeline.h).
+  // Opening's problems, then those of the current threshold (a domain without predictions for a model).
+  std::vector<Problem> problems() const;  // scenes whose registration came from the cache
   const StudyCacheStats& study_cache_stats() const { return study_cache_stats_; }  // Session::open only
   const std::vector<std::pair<std::string, std::string>>& domain_pairs() const { return pairs_; }
   bool read_only() const { return read_only_; }
@@ -204,6 +213,8 @@ class Session {
   SaveJob job_for(int pair, int scene, const std::string& root) const;
   void recompute_performance();
   void rebuild_totals();
+  long shown_predictions(const std::string& domain, const std::string& model, int pair) const;
+  double effective_threshold() const;
   SceneIpd contribution(const std::string& model, int pair, int scene) const;
   void reaudit(int pair, int scene);
   Side pair_side(Side view_side) const;  // view side -> side of the domain pair
@@ -214,6 +225,7 @@ class Session {
   std::vector<std::vector<SceneState>> scenes_;  // per domain pair
   std::vector<std::vector<SceneAudit>> audits_;  // per domain pair, per scene
   int cached_ = 0;
+  std::vector<Problem> problems_, threshold_problems_;
   StudyCacheStats study_cache_stats_;
   int pair_ = 0;
   bool swapped_ = false;

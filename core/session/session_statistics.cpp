@@ -19,6 +19,8 @@ CrossTable session_table(const Session& s) {
       c.missing_predictions = !s.labels().has_predictions(a, m.name) || !s.labels().has_predictions(b, m.name);
       if (!c.missing_predictions) c.per_scene = s.contributions_for(m.name, static_cast<int>(p));
       total_table_cell(c);
+      c.no_value_reason = s.totals_for(m.name, static_cast<int>(p)).no_value_reason;
+      if (!c.no_value_reason.empty()) c.ipd = std::nan("");
       t.cells.push_back(std::move(c));
     }
   }
@@ -32,7 +34,7 @@ SessionStatistics compute_session_statistics(const Session& s, const SessionStat
   add_confidence_intervals(&out.table, r.bootstrap, r.threads);
   if (r.pair >= 0 && r.pair < static_cast<int>(out.table.columns.size())) {
     const auto& [a, b] = out.table.columns[r.pair];
-    if (const TableCell* cell = out.table.cell(r.model, a, b); cell && !cell->missing_predictions) {
+    if (const TableCell* cell = out.table.cell(r.model, a, b); cell && !cell->missing_predictions && cell->no_value_reason.empty()) {
       for (const auto& sc : cell->per_scene)
         if (sc.pairs > 0) out.scene_ipd.emplace_back(sc.stem, sc.ipd());
       BreakdownOptions bo;

@@ -27,7 +27,7 @@ void add_confidence_intervals(CrossTable* table, const BootstrapOptions& options
   if (const auto e = options.validate(); !e.empty()) throw std::invalid_argument(e);
   parallel_for(table->cells.size(), threads, [&](size_t k) {
     TableCell& c = table->cells[k];
-    if (c.missing_predictions || c.pairs == 0) return;
+    if (c.missing_predictions || !c.no_value_reason.empty() || c.pairs == 0) return;
     const Interval ci = bootstrap_pooled_mean(scene_sums(c), options, cell_key(c));
     c.ci_low = ci.low;
     c.ci_high = ci.high;
@@ -59,6 +59,11 @@ SceneDistribution scene_distribution(const TableCell& cell, int worst) {
 
 namespace {
 
+// A cell without a number (TableCell::no_value_reason) has nothing to compare or break down.
+[[noreturn]] void throw_no_value(const TableCell& c) {
+  throw StudyError(fmt::format("model '{}': IPD({}, {}) is not a number: {}", c.model, c.a, c.b, c.no_value_reason));
+}
+
 // Per ref rock of one scene: |diff| of its counted pair in the cell (ref, other).
 std::map<int, double> diff_by_ref_rock(const SceneIpd& s, bool ref_is_a) {
   std::map<int, double> out;
@@ -72,6 +77,7 @@ const TableCell& find_cell(const CrossTable& t, const std::string& model, const 
   if (!c) throw StudyError(fmt::format("no IPD cell for model '{}' and domains '{}' and '{}'", model, x, y));
   if (c->missing_predictions)
     throw StudyError(fmt::format("model '{}' has no predictions for '{}' or '{}'", model, x, y));
+  if (!c->no_value_reason.empty()) throw_no_value(*c);
   return *c;
 }
 
@@ -181,6 +187,7 @@ std::pair<int, int> domain_image_size(const Study& study, const std::string& dom
 
 CellBreakdown breakdown_cell(const StudyLabels& labels, const TableCell& cell, const BreakdownOptions& options) {
   if (const auto e = options.validate(); !e.empty()) throw std::invalid_argument(e);
+  if (!cell.no_value_reason.empty()) throw_no_value(cell);  // its bins would all read 0
   CellBreakdown out{cell.model, cell.trained_on, cell.a, cell.b, options.by, {}};
   // Every counted pair: its scene, the ref rock's property, |diff|. NaN property: "no detection".
   struct PairValue {

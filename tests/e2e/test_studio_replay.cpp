@@ -2,6 +2,7 @@
 // as the Session API makes them. Run by ctest (StudioReplayEdits, which sets IPD_STUDIO); skipped otherwise.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
@@ -153,6 +154,31 @@ TEST(StudioReplay, FailedSavesAndExportsMakeTheReplayFail) {
             std::string::npos) << err;
   EXPECT_NE(err.find(prefix + d / "blocker/fig.pdf" + ": export failed: "), std::string::npos) << err;
   EXPECT_EQ(err.find("could not open the study"), std::string::npos) << err;
+}
+
+TEST(StudioReplay, ProblemsTheCliReportsArePrintedOnStderr) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd(fmt::format("demo {} --labels-only --scenes 3 --rocks 5", d / "study")).exit_code, 0);
+  // A file name pasted into a label line, and a scene missing in one domain: `ipd table` exits 1 naming the
+  // line; the studio opens the study (the line skipped) and must say so too.
+  const std::string labels = d / "study/real/labels/scene_00001.txt";
+  const std::string text = read_file(labels);
+  const int lines = static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  test::write_text(labels, text + "0 0.5 0.5 0.1 0.1 scene_00001.png\n");
+  fs::remove(d / "study/principled/labels/scene_00003.txt");
+  // The Problems window open, its first row clicked (the bad line's scene), then a screenshot.
+  test::write_text(d / "actions.txt", "problems\nproblem 1\nwait 3\nscreenshot " + d / "problems.png\n");
+  const std::string cmd = fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d / "study",
+                                      d / "actions.txt");
+  EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path()), 0);
+  EXPECT_TRUE(fs::exists(d / "problems.png"));
+  const std::string err = read_file(d / "err.txt");
+  EXPECT_NE(err.find(fmt::format("warning: {}:{}: expected 5 columns (class cx cy w h), found 6\n", labels, lines + 1)),
+            std::string::npos) << err;
+  EXPECT_NE(err.find("warning: 1 scene(s) of 'real' have no counterpart in 'principled' and are skipped: scene_00003\n"),
+            std::string::npos) << err;
 }
 
 }  // namespace

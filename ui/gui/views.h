@@ -58,6 +58,8 @@ struct StudyView {
   bool busy = false;  // the worker is computing
   std::string loading;  // a first look is shown while the study loads: how far it got
   const SessionStatistics* stats = nullptr;  // intervals etc. (stats_panels.h), computed off the UI thread
+  // Every problem found in the study's data (the session's, then pictures that could not be read).
+  const std::vector<Problem>* problems = nullptr;
 };
 
 // The replay of a registration's search (the trace), as a position on its timeline.
@@ -99,6 +101,7 @@ struct UiState {
   float pictures_height = -1;             // height of the pictures pane; -1: fit the pictures' aspect
   float browser_width = -1, stats_width = -1;  // side columns as dragged; -1: from their content
   bool quit_confirmed = false;
+  bool show_problems = false;  // the Problems window
 };
 
 struct UiCommands {
@@ -116,6 +119,7 @@ struct UiCommands {
   std::string keep_mine, keep_theirs;  // a conflict's key: the version the user keeps
   bool quit = false;            // confirmed (or nothing unsaved)
   bool next_suspect = false;    // `N`: the next suspect pair anywhere in the study
+  int goto_problem = -1;        // a row of the Problems window (index into StudyView::problems): its scene
 };
 
 // The scene order of the browser (sorted and filtered as the user asked); sets ui.filter_error.
@@ -134,6 +138,9 @@ float browser_width(const StudyView& v, float min_w, float max_w);
 void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out);  // help, go to scene, open study, quit
+// The Problems window (views_problems.cpp), open while ui.show_problems; "1 problem", "3 problems".
+void draw_problems_window(const StudyView& v, UiState& ui, UiCommands& out);
+std::string problems_label(size_t count);
 void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out);
 float scene_toolbar_width();  // the pictures' toolbar on one line
 void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, const Picture& right, UiCommands& out);

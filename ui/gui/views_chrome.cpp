@@ -128,6 +128,8 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
   }
   if (ImGui::BeginMenu("Help")) {
     if (ImGui::MenuItem("Shortcuts", "F1")) ui.show_help = true;
+    if (ImGui::MenuItem("Problems in the data", nullptr, ui.show_problems, v.problems != nullptr))
+      ui.show_problems = !ui.show_problems;
     ImGui::EndMenu();
   }
   if (!v.failed_saves.empty()) {
@@ -156,6 +158,16 @@ void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out) {
       line = root.filename().string() + rest;
     }
     ImGui::TextUnformatted(line.c_str());
+    ImGui::SameLine();
+  }
+  if (v.problems && !v.problems->empty()) {
+    // Never silent: skipped label lines and scenes left out change what the IPD is computed over.
+    ImGui::TextUnformatted("|");
+    ImGui::SameLine();
+    ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.7f, 0.35f, 0.05f, 1));
+    if (ImGui::SmallButton(problems_label(v.problems->size()).c_str())) ui.show_problems = !ui.show_problems;
+    ImGui::PopStyleColor();
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", v.problems->front().to_string().c_str());
     ImGui::SameLine();
   }
   if (!v.loading.empty()) {
@@ -297,12 +309,16 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
     ImGui::Text("scene %s", m.stem.c_str());
     text_wrapped_at_spaces("IPD " + fmt_ipd(m.ipd) + "  (" + counted(m.pairs, "pair") + ", unpaired " + std::to_string(m.unpaired_a) +
                            " / " + std::to_string(m.unpaired_b) + ")");
+    if (!m.no_value_reason.empty()) text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "no IPD for this scene: " + m.no_value_reason);
     if (m.suspects) ImGui::TextColored({1, 0.55f, 0, 1}, "%s: N jumps to the next one", counted(m.suspects, "suspect pair").c_str());
   }
   const CellTotals t = s.totals();
   ImGui::Separator();
   ImGui::Text("IPD(%s, %s) for %s", s.left_domain().c_str(), s.right_domain().c_str(), s.model().c_str());
-  ImGui::Text("%s over %s in %s", fmt_ipd(t.ipd()).c_str(), counted(t.pairs, "pair").c_str(), counted(t.scenes, "scene").c_str());
+  if (!t.no_value_reason.empty())  // two empty prediction sets are not a perfect match: say why there is no number
+    text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "– (not a number): " + t.no_value_reason);
+  else
+    ImGui::Text("%s over %s in %s", fmt_ipd(t.ipd()).c_str(), counted(t.pairs, "pair").c_str(), counted(t.scenes, "scene").c_str());
   ImGui::Separator();
   ImGui::TextUnformatted("Cross table (lower is better)");
   const auto& pairs = s.domain_pairs();
@@ -350,12 +366,16 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
       for (size_t p = 0; p < pairs.size(); ++p) {
         ImGui::TableNextColumn();
         const bool involves = m.trained_on.empty() || m.trained_on == pairs[p].first || m.trained_on == pairs[p].second;
-        const double val = s.totals_for(m.name, static_cast<int>(p)).ipd();
+        const CellTotals cell = s.totals_for(m.name, static_cast<int>(p));
+        const double val = cell.ipd();
         const bool current = m.name == s.model() && static_cast<int>(p) == s.pair_index();
         if (!involves) ImGui::TextDisabled("-");
+        else if (!cell.no_value_reason.empty()) ImGui::TextColored({1, 0.55f, 0, 1}, "–*");
         else if (current) ImGui::TextColored({1, 0.85f, 0.3f, 1}, "%s", fmt_ipd(val).c_str());
         else ImGui::TextUnformatted(fmt_ipd(val).c_str());
-        if (involves) cell_interval_tooltip(v.stats, m.name, static_cast<int>(p));
+        if (involves && !cell.no_value_reason.empty() && ImGui::IsItemHovered())
+          ImGui::SetTooltip("not a number: %s", cell.no_value_reason.c_str());
+        else if (involves) cell_interval_tooltip(v.stats, m.name, static_cast<int>(p));
       }
     }
     ImGui::EndTable();

@@ -62,7 +62,7 @@ TEST(TableLayout, ThreeDomainsLikeThePaper) {
   EXPECT_EQ(j["cells"][2]["involves_training_domain"], false);
   EXPECT_EQ(j["cells"][0]["pairs"], 1);
   const std::string csv = format_table(t, TableFormat::kCsv);
-  EXPECT_NE(csv.find("det-real,real,real,hapke,0.666667,1,0,0,1,true,,,\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("det-real,real,real,hapke,0.666667,1,0,0,1,true,,,,\n"), std::string::npos) << csv;
 }
 
 TEST(Study, ClearErrorsForUnusableStudies) {

@@ -1,0 +1,197 @@
+#include "core/ipd/study_pipeline.h"
+
+#include "core/study/fixed_pairs.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <fmt/format.h>
+#include <unordered_set>
+
+#include "core/registration/registration_cache.h"
+#include "core/util/parallel.h"
+
+namespace fs = std::filesystem;
+
+namespace ipd {
+
+ScenePairing PipelineScene::counted() const {
+  if (!fixed) return automatic;
+  ScenePairing p;
+  p.stem = automatic.stem;
+  p.count_a = automatic.count_a;
+  p.count_b = automatic.count_b;
+  p.fixed = true;
+  p.pairs = fixed->pairs;
+  p.excluded_a = fixed->excluded_a;
+  p.excluded_b = fixed->excluded_b;
+  p.pairs_problems = automatic.pairs_problems;
+  return p;
+}
+
+namespace {
+
+// Stems with a pairs file in pairs/<a>__<b>/ or pairs/<b>__<a>/, from two directory listings instead of two
+// lookups per scene; nullopt when a directory can't be listed (then every scene is looked up).
+std::optional<std::unordered_set<std::string>> stems_with_pairs_files(const Study& st, const std::string& a,
+                                                                      const std::string& b) {
+  std::unordered_set<std::string> out;
+  for (const std::string& dir : {st.pairs_dir(a, b), st.pairs_dir(b, a)}) {
+    std::error_code ec;
+    // A link is not listed: every scene is then looked up, and the lookup refuses it (fixed_pairs.h).
+    if (fs::is_symlink(fs::path(st.root) / "pairs", ec) || fs::is_symlink(dir, ec)) return std::nullopt;
+    if (!fs::exists(dir, ec)) {
+      if (ec) return std::nullopt;
+      continue;
+    }
+    for (fs::directory_iterator it(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+      if (it->path().extension() == ".json") out.insert(it->path().stem().string());
+    if (ec) return std::nullopt;
+  }
+  return out;
+}
+
+// "a, b, c, ..." : the first three of a list.
+std::string first_three(const std::vector<std::string>& v) {
+  std::string s;
+  for (size_t k = 0; k < std::min<size_t>(3, v.size()); ++k) s += (k ? ", " : "") + v[k];
+  return s + (v.size() > 3 ? ", ..." : "");
+}
+
+Problem no_counterpart(const std::vector<std::string>& only, const std::string& in, const std::string& other) {
+  Problem p;
+  p.domain = in;
+  if (only.size() == 1) p.scene = only.front();
+  p.message = fmt::format("{} scene(s) of '{}' have no counterpart in '{}' and are skipped: {}", only.size(), in,
+                          other, first_three(only));
+  return p;
+}
+
+// One scene: its pairs file (when `may_have_file`), else (or also) its registration. Problems of its pairs
+// files go to `problems`.
+PipelineScene pair_one(const StudyLabels& labels, const std::string& a, const std::string& b, const std::string& stem,
+                       const RegistrationOptions& reg, bool register_fixed, bool may_have_file,
+                       const RegistrationCache* cache, std::vector<Problem>* problems) {
+  PipelineScene s;
+  ScenePairing& p = s.automatic;
+  p.stem = stem;
+  const auto& ga = labels.gt_of(a, stem).boxes;
+  const auto& gb = labels.gt_of(b, stem).boxes;
+  p.count_a = static_cast<int>(ga.size());
+  p.count_b = static_cast<int>(gb.size());
+  if (may_have_file) {
+    FixedPairsRead read = load_fixed_pairs(labels.study, a, b, stem, ga, gb);
+    s.version_ab = read.version_ab;
+    s.version_ba = read.version_ba;
+    s.pairs_unusable = read.unusable();
+    s.fixed = std::move(read.pairs);
+    for (const PairsProblem& w : read.problems) {
+      Problem q;
+      q.file = w.file;
+      q.line = w.line;
+      q.message = w.message;
+      q.unusable_pairs = w.unusable;
+      q.domain = a;
+      q.other_domain = b;
+      q.scene = stem;
+      problems->push_back(std::move(q));
+    }
+    p.pairs_problems = std::move(read.problems);
+  }
+  if (!s.fixed || register_fixed) {
+    p.registration = register_rocks_cached(cache, ga, gb, reg, &p.from_cache);
+    p.pairs = p.registration.pairs;
+  }
+  return s;
+}
+
+}  // namespace
+
+ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
+                        const std::string& stem, const RegistrationOptions& options, const RegistrationCache* cache) {
+  std::vector<Problem> ignored;
+  return pair_one(labels, a, b, stem, options, false, true, cache, &ignored).counted();
+}
+
+std::vector<Problem> label_problems(const StudyLabels& labels) {
+  std::vector<Problem> out;
+  auto add = [&](const LabelFile& f, const std::string& domain, const std::string& stem) {
+    for (const LabelError& e : f.errors) out.push_back(label_problem(e, domain, stem));
+  };
+  for (const Domain& d : labels.study.domains) {
+    for (const std::string& stem : d.stems) add(labels.gt_of(d.name, stem), d.name, stem);
+    for (const std::string& m : d.models)
+      for (const std::string& stem : d.stems) add(labels.predictions_of(d.name, m, stem), d.name, stem);
+  }
+  return out;
+}
+
+Problem missing_predictions_problem(const Study& study, const std::string& model, const std::string& domain) {
+  Problem p;
+  p.domain = domain;
+  p.message = fmt::format("model '{}' has no predictions for domain '{}' (expected {}/): its cells are empty", model,
+                          domain, (fs::path(study.root) / domain / "predictions" / model).string());
+  return p;
+}
+
+PairedStudy pair_study(const StudyLabels& labels, const std::vector<std::pair<std::string, std::string>>& pairs,
+                       const PipelineOptions& options) {
+  const Study& study = labels.study;
+  PairedStudy out;
+  struct Job {
+    size_t pair, scene;
+    const std::string* stem;
+    bool may_have_file;
+    std::vector<Problem> problems;
+    std::string error;
+  };
+  std::vector<Job> jobs;
+  for (size_t c = 0; c < pairs.size(); ++c) {
+    const auto& [a, b] = pairs[c];
+    SceneMatch m = match_scenes(*study.domain(a), *study.domain(b));
+    if (!m.only_a.empty()) out.problems.push_back(no_counterpart(m.only_a, a, b));
+    if (!m.only_b.empty()) out.problems.push_back(no_counterpart(m.only_b, b, a));
+    DomainPairScenes d{a, b, std::vector<PipelineScene>(m.common.size())};
+    for (size_t k = 0; k < m.common.size(); ++k) d.scenes[k].automatic.stem = m.common[k];
+    out.pairs.push_back(std::move(d));
+  }
+  for (size_t c = 0; c < pairs.size(); ++c) {
+    const auto listed = stems_with_pairs_files(study, pairs[c].first, pairs[c].second);
+    const auto& scenes = out.pairs[c].scenes;
+    for (size_t k = 0; k < scenes.size(); ++k) {
+      const std::string& stem = scenes[k].automatic.stem;
+      jobs.push_back({c, k, &stem, !listed || listed->count(stem) > 0, {}, {}});
+    }
+  }
+  RegistrationOptions reg = options.registration;
+  if (reg.aspect == 1.0) reg.aspect = study.aspect();
+  const auto start = std::chrono::steady_clock::now();
+  std::atomic<int> done{0};
+  const int total = static_cast<int>(jobs.size());
+  parallel_for(jobs.size(), options.threads, [&](size_t k) {
+    Job& j = jobs[k];
+    const auto& [a, b] = pairs[j.pair];
+    try {
+      out.pairs[j.pair].scenes[j.scene] = pair_one(labels, a, b, *j.stem, reg, options.register_fixed_scenes,
+                                                   j.may_have_file, options.cache, &j.problems);
+    } catch (const std::exception& e) {
+      j.error = e.what();
+    }
+    const int d = ++done;
+    if (options.progress) options.progress(d, total);
+  });
+  out.registration_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  for (Job& j : jobs) {
+    if (!j.error.empty()) throw StudyError(j.error);
+    const PipelineScene& s = out.pairs[j.pair].scenes[j.scene];
+    out.fixed_scenes += s.fixed.has_value();
+    out.registrations += !s.fixed || options.register_fixed_scenes;
+    out.cached_registrations += s.automatic.from_cache;
+    out.pairs_problems.insert(out.pairs_problems.end(), s.automatic.pairs_problems.begin(), s.automatic.pairs_problems.end());
+    for (Problem& p : j.problems) out.problems.push_back(std::move(p));
+  }
+  return out;
+}
+
+}  // namespace ipd

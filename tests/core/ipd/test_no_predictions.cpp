@@ -1,0 +1,126 @@
+// No predictions is not a perfect renderer: when neither domain has a prediction left after the threshold,
+// a cell has no number (and says why) in the table, its formats, compare and the studio's Session; one side
+// without predictions is a number and a warning.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/report/table_format.h"
+#include "core/session/session.h"
+#include "core/stats/study_statistics.h"
+#include "tests/support/test_support.h"
+
+namespace ipd {
+namespace {
+
+// Two rocks per side (listed in the other order in synth). det's confidences: real 0.9 (rock 0, exact) and
+// 0.4 (rock 1, IoU 1/3); synth 0.8 (synth rock 1 = real rock 0, IoU 1/3).
+void write_study(const test::TempDir& d, const std::string& yaml) {
+  test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+  test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
+  test::write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
+  test::write_text(d / "study.yaml", yaml);
+}
+
+CrossTable table_of(const std::string& root) { return compute_cross_table(load_labels(open_study(root)), {}); }
+
+TEST(NoPredictions, NeitherSideLeftIsNotANumber) {
+  test::TempDir d;
+  write_study(d, "conf_threshold: 0.95\n");
+  CrossTable t = table_of(d.path());
+  ASSERT_EQ(t.cells.size(), 1u);
+  const TableCell& c = t.cells[0];
+  EXPECT_TRUE(std::isnan(c.ipd));  // not 0.0000: every rock's value is 0 on both sides
+  EXPECT_EQ(c.no_value_reason, "no predictions above 0.95 in real and synth");
+  EXPECT_EQ(c.pairs, 2);  // the pairs are still there, only the number is not
+  BootstrapOptions b;
+  b.resamples = 100;
+  add_confidence_intervals(&t, b, 1);
+  EXPECT_TRUE(std::isnan(t.cells[0].ci_low));  // no [0.000, 0.000] either
+  EXPECT_TRUE(t.warnings.empty());
+
+  EXPECT_EQ(format_table(t, TableFormat::kText),
+            "train \\ eval (IPD, lower is better)  |real - synth|\n"
+            "det                                  –¹\n"
+            "¹ no predictions above 0.95 in real and synth\n");
+  const std::string csv = format_table(t, TableFormat::kCsv);
+  EXPECT_EQ(csv.substr(csv.find('\n') + 1), "det,,real,synth,,2,0,0,1,true,,,,no predictions above 0.95 in real and synth\n");
+  const std::string json = format_table(t, TableFormat::kJson);
+  EXPECT_NE(json.find("\"ipd\": null"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"reason\": \"no predictions above 0.95 in real and synth\""), std::string::npos) << json;
+  const std::string latex = format_table(t, TableFormat::kLatex);
+  EXPECT_NE(latex.find("det & --$^{1}$ \\\\"), std::string::npos) << latex;
+  EXPECT_NE(latex.find("\\end{tabular}\n\\par{\\footnotesize $^{1}$ no predictions above 0.95 in real and synth}\n"),
+            std::string::npos) << latex;
+  const std::string md = format_table(t, TableFormat::kMarkdown);
+  EXPECT_NE(md.find("| det | –¹ |"), std::string::npos) << md;
+  EXPECT_NE(md.find("\n¹ no predictions above 0.95 in real and synth\n"), std::string::npos) << md;
+}
+
+TEST(NoPredictions, CompareRefusesACellWithoutANumber) {
+  test::TempDir d;
+  write_study(d, "conf_threshold: 0.95\n");
+  test::write_text(d / "other/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+  test::write_text(d / "other/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.99\n");
+  const CrossTable t = table_of(d.path());
+  try {
+    compare_renderers(t, "det", "real", "synth", "other", {});
+    FAIL() << "compared two empty prediction sets";
+  } catch (const StudyError& e) {
+    EXPECT_STREQ(e.what(), "model 'det': IPD(real, synth) is not a number: no predictions above 0.95 in real and synth");
+  }
+  // Nor is it broken down by rock size (every bin would read 0).
+  try {
+    breakdown_cell(load_labels(open_study(d.path())), *t.cell("det", "real", "synth"), {});
+    FAIL() << "broke down two empty prediction sets";
+  } catch (const StudyError& e) {
+    EXPECT_STREQ(e.what(), "model 'det': IPD(real, synth) is not a number: no predictions above 0.95 in real and synth");
+  }
+}
+
+TEST(NoPredictions, OneSideWithoutPredictionsIsANumberAndAWarning) {
+  test::TempDir d;
+  write_study(d, "conf_threshold: 0.85\n");
+  // Only real's 0.9 is left: real rock 0 -> 1, real rock 1 -> 0, synth 0 and 0: (|1 - 0| + |0 - 0|) / 2.
+  const CrossTable t = table_of(d.path());
+  EXPECT_NEAR(t.cells[0].ipd, 0.5, 1e-12);
+  EXPECT_EQ(t.cells[0].no_value_reason, "");
+  ASSERT_EQ(t.warnings.size(), 1u);
+  EXPECT_EQ(t.warnings[0], "model 'det' has no predictions above 0.85 in 'synth' (its scenes compared with 'real'): "
+                           "every rock there counts as missed, as a detector that found nothing");
+}
+
+TEST(NoPredictions, PredictionsThatMissEveryRockAreANumber) {
+  test::TempDir d;
+  write_study(d, "");
+  // Far from every rock: each performance value is 0, and 0 is the measured IPD (the detector misses alike).
+  test::write_text(d / "real/predictions/det/s1.txt", "0 0.9 0.9 0.05 0.05 0.9\n");
+  test::write_text(d / "synth/predictions/det/s1.txt", "0 0.9 0.1 0.05 0.05 0.9\n");
+  const CrossTable t = table_of(d.path());
+  EXPECT_EQ(t.cells[0].ipd, 0.0);
+  EXPECT_EQ(t.cells[0].no_value_reason, "");
+  EXPECT_TRUE(t.warnings.empty());
+}
+
+TEST(NoPredictions, TheSessionSaysWhyItsCellHasNoNumber) {
+  test::TempDir d;
+  write_study(d, "");
+  Session s(load_labels(open_study(d.path())));
+  EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);  // the tiny study worked by hand (test_ipd.cpp)
+  s.set_conf_threshold(0.95);  // the slider: nothing is left on either side
+  EXPECT_TRUE(std::isnan(s.totals().ipd()));
+  EXPECT_EQ(s.totals().no_value_reason, "no predictions above 0.95 in real and synth");
+  EXPECT_EQ(s.summary(0).no_value_reason, "no predictions above 0.95 in real and synth");
+  EXPECT_TRUE(std::isnan(s.summary(0).ipd));
+  EXPECT_TRUE(s.problems().empty());
+  s.set_conf_threshold(0.85);
+  EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
+  ASSERT_EQ(s.problems().size(), 1u);
+  EXPECT_EQ(s.problems()[0].to_string(), "model 'det' has no predictions above 0.85 in 'synth' (its scenes compared "
+                                         "with 'real'): every rock there counts as missed, as a detector that found nothing");
+  EXPECT_EQ(s.summary(0).no_value_reason, "");
+}
+
+}  // namespace
+}  // namespace ipd

@@ -1,0 +1,101 @@
+// The one study pipeline (study_pipeline.h): the table and the studio's Session pair scenes, read fixed
+// pairs and report problems through it, so they can't disagree.
+#include <gtest/gtest.h>
+
+#include "core/ipd/study_pipeline.h"
+#include "core/session/session.h"
+#include "tests/support/test_support.h"
+
+namespace ipd {
+namespace {
+
+// real and synth share s1 (two rocks, listed in the other order); only_real has no counterpart; s1's hand
+// pairs, written as synth__real [synth 1, real 0], pair real 0 with synth 1 only.
+void write_study(const test::TempDir& d) {
+  test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+  test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "real/labels/only_real.txt", "0 0.5 0.5 0.1 0.1\n");
+  test::write_text(d / "pairs/synth__real/s1.json", R"({"pairs": [[1, 0]]})");
+}
+
+TEST(StudyPipeline, FixedScenesAreRegisteredOnlyWhenAsked) {
+  test::TempDir d;
+  write_study(d);
+  const StudyLabels labels = load_labels(open_study(d.path()));
+  PipelineOptions o;
+  const PairedStudy table = pair_study(labels, {{"real", "synth"}}, o);
+  ASSERT_EQ(table.pairs.size(), 1u);
+  ASSERT_EQ(table.pairs[0].scenes.size(), 1u);
+  const PipelineScene& s = table.pairs[0].scenes[0];
+  EXPECT_EQ(s.automatic.stem, "s1");
+  ASSERT_TRUE(s.fixed.has_value());
+  EXPECT_EQ(s.fixed->pairs, (RockPairs{{0, 1}}));
+  EXPECT_TRUE(s.automatic.pairs.empty());  // the table never needs the registration of a fixed scene
+  EXPECT_EQ(table.registrations, 0);
+  EXPECT_EQ(table.fixed_scenes, 1);
+  const ScenePairing counted = s.counted();
+  EXPECT_TRUE(counted.fixed);
+  EXPECT_EQ(counted.pairs, (RockPairs{{0, 1}}));
+  EXPECT_EQ(counted.count_a, 2);
+  EXPECT_EQ(counted.count_b, 2);
+
+  o.register_fixed_scenes = true;  // the studio: "reset to automatic" needs the registration's pairs
+  const PairedStudy studio = pair_study(labels, {{"real", "synth"}}, o);
+  EXPECT_EQ(studio.pairs[0].scenes[0].automatic.pairs, (RockPairs{{0, 1}, {1, 0}}));
+  EXPECT_EQ(studio.registrations, 1);
+  EXPECT_EQ(studio.fixed_scenes, 1);
+}
+
+TEST(StudyPipeline, TheSessionReportsWhatTheTableWarnsAbout) {
+  test::TempDir d;
+  write_study(d);
+  // Both name orders of s1's pairs file: the first one read counts, the other is ignored with a warning.
+  test::write_text(d / "pairs/real__synth/s1.json", R"({"pairs": [[0, 1], [1, 0]]})");
+  const StudyLabels labels = load_labels(open_study(d.path()));
+  const PairedStudy paired = pair_study(labels, {{"real", "synth"}}, PipelineOptions{});
+  ASSERT_EQ(paired.problems.size(), 2u);
+  const Problem& missing = paired.problems[0];
+  EXPECT_EQ(missing.to_string(), "1 scene(s) of 'real' have no counterpart in 'synth' and are skipped: only_real");
+  EXPECT_EQ(missing.file, "");
+  EXPECT_EQ(missing.domain, "real");
+  EXPECT_EQ(missing.scene, "only_real");
+  const Problem& ignored = paired.problems[1];
+  EXPECT_EQ(ignored.file, d / "pairs/synth__real/s1.json");
+  EXPECT_EQ(ignored.message, "ignored: " + d / "pairs/real__synth/s1.json" +
+                                 " holds this scene's pairs too and is read first; remove one");
+  EXPECT_EQ(ignored.scene, "s1");
+  EXPECT_EQ(ignored.domain, "real");
+  EXPECT_EQ(ignored.other_domain, "synth");
+
+  const Session session(load_labels(open_study(d.path())));
+  ASSERT_EQ(session.problems().size(), 2u);
+  EXPECT_EQ(session.problems()[0].to_string(), missing.to_string());
+  EXPECT_EQ(session.problems()[1].to_string(), ignored.to_string());
+  // The file read first counts in both.
+  EXPECT_EQ(session.scenes()[0].current.pairs, (RockPairs{{0, 1}, {1, 0}}));
+}
+
+TEST(StudyPipeline, TheSessionListsSkippedLinesAndMissingPredictions) {
+  test::TempDir d;
+  write_study(d);
+  // A file name pasted into a label line: the CLI refuses it (unless --skip-bad-lines); the studio skips it,
+  // and its Problems list names the file and line.
+  test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1 s1.png\n0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n");
+  const Session s(load_labels(open_study(d.path())));
+  EXPECT_EQ(s.gt(Side::kB, 0).size(), 2u);  // the bad line is skipped, the others are kept
+  const std::vector<Problem> problems = s.problems();
+  ASSERT_EQ(problems.size(), 3u);
+  EXPECT_EQ(problems[0].to_string(), d / "synth/labels/s1.txt" + ":2: expected 5 columns (class cx cy w h), found 6");
+  EXPECT_EQ(problems[0].file, d / "synth/labels/s1.txt");
+  EXPECT_EQ(problems[0].line, 2);
+  EXPECT_EQ(problems[0].domain, "synth");
+  EXPECT_EQ(problems[0].scene, "s1");
+  EXPECT_EQ(problems[1].to_string(), "1 scene(s) of 'real' have no counterpart in 'synth' and are skipped: only_real");
+  EXPECT_EQ(problems[2].to_string(), "model 'det' has no predictions for domain 'synth' (expected " +
+                                         d / "synth/predictions/det" + "/): its cells are empty");
+  EXPECT_EQ(problems[2].domain, "synth");
+}
+
+}  // namespace
+}  // namespace ipd
