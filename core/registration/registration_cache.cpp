@@ -23,8 +23,9 @@ namespace {
 // d3f1512, 5270185, 1e663dd and 4eeddd8 (entries of format 3 held their predecessors' answers); 5 for flat
 // triples proposing similarities and the second look; 6 for translation votes in centred bins; 7 for the
 // gate's floor, the guarded polish and the soft refinement of a confirmed best; 8 for cpd's confidence; 9 for
-// cpd's rivals under the unmoved camera too.
-constexpr int kFormat = 9;
+// cpd's rivals under the unmoved camera too; 10 for the ambiguity reason (no support, too few pairs, a
+// degenerate or a beaten alignment: confidence 0 or a rival adopted) and the paper's search past an exact fit.
+constexpr int kFormat = 10;
 
 struct Fnv {
   std::uint64_t h;
@@ -176,7 +177,10 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     r.note = j.at("note").get<std::string>();
     r.elapsed_ms = j.at("elapsed_ms").get<double>();
     r.confidence = j.at("confidence").get<double>();
-    r.ambiguous = j.at("ambiguous").get<bool>();
+    const int ambiguity = j.at("ambiguity").get<int>();
+    if (ambiguity < 0 || ambiguity >= kAmbiguityCount) return std::nullopt;
+    r.ambiguity = static_cast<Ambiguity>(ambiguity);
+    r.ambiguous = r.ambiguity != Ambiguity::kNone;
     remember(key, r);
     return r;
   } catch (const std::exception&) {
@@ -203,7 +207,7 @@ bool RegistrationCache::store(const std::string& key, const RegistrationReport& 
   j["note"] = r.note;
   j["elapsed_ms"] = r.elapsed_ms;
   j["confidence"] = std::isfinite(r.confidence) ? r.confidence : 0.0;
-  j["ambiguous"] = r.ambiguous;
+  j["ambiguity"] = static_cast<int>(r.ambiguity);
   const std::string payload = j.dump();
   try {
     write_file_atomically(entry_path(key), payload + "\n" + checksum(payload) + "\n");

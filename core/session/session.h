@@ -64,6 +64,7 @@ struct SceneSummary {
   bool edited = false;
   int suspects = 0;        // suspect pairs (audit_pairs)
   bool ambiguous = false;  // registration could not decide (RegistrationReport::ambiguous)
+  Ambiguity ambiguity = Ambiguity::kNone;  // and why (ambiguity_reason())
 };
 
 struct SessionOptions {
