@@ -42,7 +42,9 @@ double cpd_confidence(const RegistrationFrame& f, Affine2* found, bool* beaten, 
   if (rival > best) {
     *found = own.rival >= unmoved.rival ? own.rival_model : unmoved.rival_model;
     *beaten = true;
-    return confidence_from_scores(rival, best);
+    // Against EM's alignment and the adopted placement's own rivals (a repetitive layout's other shifts).
+    const double others = shifted_placements(&scorer, recorder, f, *found, found->leftCols<2>(), gate, true).rival;
+    return confidence_from_scores(rival, std::max(best, others));
   }
   return confidence_from_scores(best, rival);
 }
@@ -143,9 +145,6 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   }
   out.trials = it;
   out.hypotheses = it;
-  out.trace = recorder.take_trace(fmt::format("{} ({}, {} of {})", to_string(out.stop),
-                                              count_of(it, "EM iteration", "EM iterations"), grouped(out.work),
-                                              count_of(budget, "point evaluation", "point evaluations")));
   out.affine_normalised.leftCols<2>() = lin;
   out.affine_normalised.col(2) = t.transpose();
   if (!out.affine_normalised.allFinite()) {
@@ -154,7 +153,13 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   }
   out.score = std::sqrt(std::max(sigma2, 0.0)) * f.spread;  // final mixture width, fraction of image width
   out.confidence = cpd_confidence(f, &out.affine_normalised, &out.beaten, recorder);
-  if (out.beaten) out.note = "a shifted placement fitted better than EM's alignment: used";
+  if (out.beaten) {
+    out.note = "a shifted placement fitted better than EM's alignment: used";
+    recorder.add_step(TraceStepKind::kPolish, out.affine_normalised, out.score, out.score, true);  // replays end on it
+  }
+  out.trace = recorder.take_trace(fmt::format("{} ({}, {} of {})", to_string(out.stop),
+                                              count_of(it, "EM iteration", "EM iterations"), grouped(out.work),
+                                              count_of(budget, "point evaluation", "point evaluations")));
   out.pairs = pair_by_aligned_iou(f.to_image(out.affine_normalised), boxes_a, boxes_b, o.min_pair_iou);
   out.inliers = static_cast<int>(out.pairs.size());
   return out;

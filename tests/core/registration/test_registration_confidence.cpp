@@ -86,7 +86,7 @@ TEST(RegistrationAmbiguity, PaperOnAMirrorSymmetricLayoutIsAmbiguous) {
   for (std::uint64_t seed = 0; seed < 4; ++seed) {
     const auto r = registered(rocks, rocks, RegistrationMethod::kPaper, seed);
     EXPECT_EQ(r.pairs.size(), 8u) << "seed " << seed;
-    EXPECT_EQ(r.confidence, 0.0) << "seed " << seed;
+    EXPECT_LT(r.confidence, 1e-6) << "seed " << seed;  // 1 - 1e-9 / (1e-9 + the rival's ~1e-16)
     EXPECT_EQ(r.ambiguity, Ambiguity::kRival) << "seed " << seed;
     EXPECT_EQ(r.stop, StopReason::kCannotBeBeaten) << "seed " << seed;  // once the rival is seen
   }
