@@ -52,5 +52,34 @@ TEST(RegistrationCacheRules, StoredPairsMustNameRocksTheSceneHas) {
   EXPECT_FALSE(RegistrationCache(d / "cache").load(key, 7, 6).has_value());
 }
 
+// Every option that can change the answer is part of the key: changing one never reuses another's entry.
+TEST(RegistrationCacheRules, TheKeyCoversEveryOptionThatChangesTheAnswer) {
+  const auto a = seven(0), b = seven(0.02);
+  const RegistrationOptions base;
+  const std::string key = registration_cache_key(a, b, base);
+  const std::vector<std::pair<const char*, void (*)(RegistrationOptions*)>> changes = {
+      {"method", [](RegistrationOptions* o) { o->method = RegistrationMethod::kCpd; }},
+      {"seed", [](RegistrationOptions* o) { o->seed = 1; }},
+      {"max_trials", [](RegistrationOptions* o) { o->max_trials = 999; }},
+      {"time_budget_ms", [](RegistrationOptions* o) { o->time_budget_ms = 5; }},
+      {"aspect", [](RegistrationOptions* o) { o->aspect = 1.6; }},
+      {"pair_gate", [](RegistrationOptions* o) { o->pair_gate = 0.3; }},
+      {"min_scale", [](RegistrationOptions* o) { o->min_scale = 0.6; }},
+      {"max_scale", [](RegistrationOptions* o) { o->max_scale = 1.9; }},
+      {"max_rotation_deg", [](RegistrationOptions* o) { o->max_rotation_deg = 20; }},
+      {"max_anisotropy", [](RegistrationOptions* o) { o->max_anisotropy = 1.5; }},
+      {"inlier_gate", [](RegistrationOptions* o) { o->inlier_gate = 0.01; }},
+      {"min_pair_iou", [](RegistrationOptions* o) { o->min_pair_iou = 0.2; }},
+      {"cpd_iterations", [](RegistrationOptions* o) { o->cpd_iterations = 50; }},
+      {"cpd_outlier_weight", [](RegistrationOptions* o) { o->cpd_outlier_weight = 0.3; }},
+      {"work_budget", [](RegistrationOptions* o) { o->work_budget = 1e5; }},
+  };
+  for (const auto& [name, change] : changes) {
+    RegistrationOptions o = base;
+    change(&o);
+    EXPECT_NE(registration_cache_key(a, b, o), key) << name;
+  }
+}
+
 }  // namespace
 }  // namespace ipd

@@ -11,6 +11,7 @@
 #include "core/util/atomic_file.h"
 #include "core/registration/registration.h"
 #include "core/registration/registration_cache.h"
+#include "core/registration/registration_recorder.h"
 #include "tests/support/test_support.h"
 
 namespace ipd {
@@ -54,8 +55,27 @@ TEST(RegistrationAmbiguity, OneRockAgainstManyIsTooFewPairs) {
     EXPECT_EQ(r.ambiguity, Ambiguity::kFewPairs) << to_string(m);
     EXPECT_EQ(r.confidence, 0.0) << to_string(m);
   }
+  // Two rocks against the 28: two pairs fix no affine either (consensus pairs them with rocks 11 and 24, as
+  // well placed a translation as any).
+  for (auto m : kAll) {
+    const auto r = registered({many[5], many[9]}, many, m);
+    const RockPairs want = m == RegistrationMethod::kConsensus ? RockPairs{{0, 11}, {1, 24}} : RockPairs{{0, 5}, {1, 9}};
+    EXPECT_EQ(r.pairs, want) << to_string(m);
+    EXPECT_EQ(r.ambiguity, Ambiguity::kFewPairs) << to_string(m);
+    EXPECT_EQ(r.confidence, 0.0) << to_string(m);
+  }
   EXPECT_STREQ(ambiguity_reason(Ambiguity::kFewPairs),
                "fewer than 3 rocks are paired: too few to fix an alignment, another fits as well");
+}
+
+// Confidence from the answer's score and the best distinct rival's, higher is better: an answer that scores
+// nothing is no better than any rival (two exact fits of the paper's, distances counted from 1e-9, read 0).
+TEST(RegistrationAmbiguity, ConfidenceFromScores) {
+  EXPECT_EQ(detail::confidence_from_scores(2, 1), 0.5);
+  EXPECT_EQ(detail::confidence_from_scores(2, -INFINITY), 1.0);  // no rival
+  EXPECT_EQ(detail::confidence_from_scores(1, 2), 0.0);          // beaten: clamped
+  EXPECT_EQ(detail::confidence_from_scores(0, 0), 0.0);
+  EXPECT_EQ(detail::confidence_from_scores(0, -INFINITY), 0.0);
 }
 
 // 20 rocks of zero size whose centres align exactly: every centre is an inlier, but no box overlaps another,
