@@ -23,8 +23,8 @@ constexpr double kSingularBelow = 1e-8;
 
 // EM finds one local optimum and scores no rival, so its confidence is measured as the consensus method's:
 // the soft consensus (closeness x box-size agreement, each B rock once) of its alignment against the best of
-// the placements most rock pairs agree on under its linear part, each refined. Before, cpd always reported
-// 1.0, even when it paired 2 of 17 rocks). An alignment that aligns nothing gets 0. A rival that fits better
+// the placements most rock pairs agree on under its linear part, each refined. A constant confidence would
+// read 1.0 even when it paired 2 of 17 rocks. An alignment that aligns nothing gets 0. A rival that fits better
 // replaces EM's answer (`*found`, `*beaten`): an alignment a scored rival beats is never handed out.
 double cpd_confidence(const RegistrationFrame& f, Affine2* found, bool* beaten, const SearchRecorder& recorder) {
   const double gate = std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2);

@@ -23,9 +23,9 @@ namespace {
 // d3f1512, 5270185, 1e663dd and 4eeddd8 (entries of format 3 held their predecessors' answers); 5 for flat
 // triples proposing similarities and the second look; 6 for translation votes in centred bins; 7 for the
 // gate's floor, the guarded polish and the soft refinement of a confirmed best; 8 for cpd's confidence; 9 for
-// cpd's rivals under the unmoved camera too; 10 for the ambiguity reason (no support, too few pairs, a
+// cpd's rivals under the unmoved camera too; 11 for the ambiguity reason (no support, too few pairs, a
 // degenerate or a beaten alignment: confidence 0 or a rival adopted) and the paper's search past an exact fit.
-constexpr int kFormat = 10;
+constexpr int kFormat = 11;
 
 struct Fnv {
   std::uint64_t h;
