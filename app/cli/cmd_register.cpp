@@ -76,6 +76,7 @@ nlohmann::json report_json(const Job& job, const RegistrationReport& r) {
   j["stop"] = ipd::to_string(r.stop);
   j["confidence"] = r.confidence;
   j["ambiguous"] = r.ambiguous;
+  if (r.ambiguous) j["ambiguity"] = ambiguity_reason(r.ambiguity);
   j["work"] = r.work;
   j["work_budget"] = r.work_budget;
   if (!r.note.empty()) j["note"] = r.note;
@@ -254,7 +255,7 @@ Runner add_register_command(CLI::App& app) {
       fmt::print("  work: {} of {} point evaluations (the bound for this many rocks); confidence {:.3f}{}\n",
                  grouped_count(r["work"].get<double>()),
                  grouped_count(r["work_budget"].get<double>()), r["confidence"].get<double>(),
-                 r["ambiguous"].get<bool>() ? std::string("; AMBIGUOUS: ") + kAmbiguousReason : std::string());  // the reason has its own "(e.g. ...)"
+                 r["ambiguous"].get<bool>() ? "; AMBIGUOUS: " + r["ambiguity"].get<std::string>() : std::string());  // the reason may have its own "(e.g. ...)"
       if (r.contains("note")) fmt::print("  note: {}\n", r["note"].get<std::string>());
       const auto& a = r["affine"];
       fmt::print("  affine (real -> synth, normalised): [{} {} {}; {} {} {}]\n", fixed_no_minus_zero(a[0][0].get<double>()),

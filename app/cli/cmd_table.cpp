@@ -55,7 +55,8 @@ Runner add_table_command(CLI::App& app) {
     for (size_t c = 0; c < t.columns.size() && c < t.pairings.size(); ++c)
       for (const ScenePairing& p : t.pairings[c])
         if (!p.fixed && p.registration.ambiguous)
-          ambiguous.push_back(fmt::format("  {} vs {}: {}", t.columns[c].first, t.columns[c].second, p.stem));
+          ambiguous.push_back(fmt::format("  {} vs {}: {}: {}", t.columns[c].first, t.columns[c].second, p.stem,
+                                          ambiguity_reason(p.registration.ambiguity)));
     if (!ambiguous.empty()) {
       notes.push_back(fmt::format("{} scene{}: registration ambiguous (see ipd-studio '?'){}", ambiguous.size(),
                                   ambiguous.size() == 1 ? "" : "s", args->verbose ? ":" : "; --verbose lists them"));

@@ -24,8 +24,9 @@ namespace ipd {
 namespace {
 
 constexpr char kMagic[8] = {'I', 'P', 'D', 'S', 'T', 'U', 'D', 'Y'};
-// Bump when the layout, label parsing or a registration method's results change: 3 for the signature.
-constexpr std::uint32_t kFormat = 3;
+// Bump when the layout, label parsing or a registration method's results change: 3 for the signature; 4: a
+// report keeps why its registration is ambiguous (Ambiguity), not only whether.
+constexpr std::uint32_t kFormat = 4;
 constexpr size_t kHeaderBytes = kParsedStudyHeaderBytes;
 static_assert(kHeaderBytes == sizeof kMagic + 4 + 8 + CacheSigner::kMacBytes);
 
@@ -166,7 +167,7 @@ void write_report(Writer& w, const RegistrationReport& r) {
   w.str(r.note);
   w.pod<double>(r.elapsed_ms);
   w.pod<double>(std::isfinite(r.confidence) ? r.confidence : 0.0);
-  w.pod<std::uint8_t>(r.ambiguous);
+  w.pod<std::uint8_t>(static_cast<std::uint8_t>(r.ambiguity));
 }
 
 RegistrationReport read_report(Reader& rd) {
@@ -193,7 +194,10 @@ RegistrationReport read_report(Reader& rd) {
   r.note = rd.str();
   r.elapsed_ms = rd.pod<double>();
   r.confidence = rd.pod<double>();
-  r.ambiguous = rd.pod<std::uint8_t>() != 0;
+  const int ambiguity = rd.pod<std::uint8_t>();
+  if (ambiguity >= kAmbiguityCount) throw std::runtime_error("bad ambiguity");
+  r.ambiguity = static_cast<Ambiguity>(ambiguity);
+  r.ambiguous = r.ambiguity != Ambiguity::kNone;
   return r;
 }
 

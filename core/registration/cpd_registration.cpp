@@ -17,24 +17,48 @@ namespace ipd::detail {
 
 namespace {
 
+// det / trace^2 of the weighted scatter of A's centres is lambda1 lambda2 / (lambda1 + lambda2)^2: below this
+// the centres' minor axis is under about 1e-4 of their major one, a line up to rounding.
+constexpr double kSingularBelow = 1e-8;
+
 // EM finds one local optimum and scores no rival, so its confidence is measured as the consensus method's:
 // the soft consensus (closeness x box-size agreement, each B rock once) of its alignment against the best of
 // the placements most rock pairs agree on under its linear part, each refined. A constant confidence would
-// read 1.0 even when it paired 2 of 17 rocks. An alignment that a rival beats, or that aligns nothing, gets 0.
-double cpd_confidence(const RegistrationFrame& f, const Affine2& found, const SearchRecorder& recorder) {
+// read 1.0 even when it paired 2 of 17 rocks. An alignment that aligns nothing gets 0. A rival that fits better
+// replaces EM's answer (`*found`, `*beaten`): an alignment a scored rival beats is never handed out.
+double cpd_confidence(const RegistrationFrame& f, Affine2* found, bool* beaten, const SearchRecorder& recorder) {
   const double gate = std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2);
   const Bounds any{1e-3, 1e3, M_PI, 1e6};  // cpd's affine is not held to the consensus bounds
   long anchor = 0;
   ConsensusScorer scorer(f, gate, any, 1, &anchor);
-  const double best = scorer.score(found);
+  const double best = scorer.score(*found);
   // Under cpd's own linear part and under the identity's (the camera unmoved): on a repetitive layout EM can
   // settle on a shrunk or stretched fit while the unmoved one fits as many rocks (a 3 x 3 block in a 5 x 5 grid
   // at 960 x 600 read 0.33 with only its own shifts as rivals).
-  const double rival =
-      std::max(shifted_rival(&scorer, recorder, f, found, found.leftCols<2>(), gate, true),
-               shifted_rival(&scorer, recorder, f, found, f.from_image(identity_affine()).leftCols<2>(), gate, true));
-  if (!(best > 0)) return rival > 0 ? 0.0 : 1.0;
+  const ShiftedPlacements own = shifted_placements(&scorer, recorder, f, *found, found->leftCols<2>(), gate, true);
+  const ShiftedPlacements unmoved =
+      shifted_placements(&scorer, recorder, f, *found, f.from_image(identity_affine()).leftCols<2>(), gate, true);
+  const double rival = std::max(own.rival, unmoved.rival);
+  if (rival > best) {
+    *found = own.rival >= unmoved.rival ? own.rival_model : unmoved.rival_model;
+    *beaten = true;
+    // Against EM's alignment and the adopted placement's own rivals (a repetitive layout's other shifts).
+    const double others = shifted_placements(&scorer, recorder, f, *found, found->leftCols<2>(), gate, true).rival;
+    return confidence_from_scores(rival, std::max(best, others));
+  }
   return confidence_from_scores(best, rival);
+}
+
+// The M-step of rigid CPD with scaling (Myronenko & Song 2010, fig. 2) for when the weighted A centres lie on a
+// line: the affine across the line is then undetermined (pycpd's inverse of a near-singular matrix gave a
+// finite, meaningless affine with entries near 6.5e4 on 12 collinear rocks), a similarity is not.
+Eigen::Matrix2d similarity_step(const Eigen::Matrix2d& a, const Eigen::Matrix2d& yy) {
+  const Eigen::JacobiSVD<Eigen::Matrix2d> svd(a, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix2d c = Eigen::Matrix2d::Identity();
+  c(1, 1) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0 ? -1 : 1;
+  const Eigen::Matrix2d rot = svd.matrixU() * c * svd.matrixV().transpose();
+  const double s = (a.transpose() * rot).trace() / std::max(yy.trace(), 1e-300);
+  return s * rot;
 }
 
 }  // namespace
@@ -93,8 +117,11 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
     const Eigen::MatrixXd xh = x.rowwise() - mu_x, yh = y.rowwise() - mu_y;
     const Eigen::Matrix2d a = xh.transpose() * p.transpose() * yh;
     const Eigen::Matrix2d yy = yh.transpose() * p1.asDiagonal() * yh;
-    if (std::abs(yy.determinant()) < 1e-18) break;
-    const Eigen::Matrix2d b = a * yy.inverse();
+    // Singular relative to the centres' own spread (an absolute bound let rounding noise through).
+    if (!(yy.trace() > 1e-12)) break;  // the weight sits on one centre: nothing to fit
+    const bool on_a_line = !(yy.determinant() > kSingularBelow * yy.trace() * yy.trace());
+    const Eigen::Matrix2d b = on_a_line ? similarity_step(a, yy) : Eigen::Matrix2d(a * yy.inverse());
+    if (!b.allFinite() || !(std::abs(b.determinant()) > 0)) break;
     lin = b;
     t = mu_x - mu_y * b.transpose();
     const double old = sigma2;
@@ -118,9 +145,6 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   }
   out.trials = it;
   out.hypotheses = it;
-  out.trace = recorder.take_trace(fmt::format("{} ({}, {} of {})", to_string(out.stop),
-                                              count_of(it, "EM iteration", "EM iterations"), grouped(out.work),
-                                              count_of(budget, "point evaluation", "point evaluations")));
   out.affine_normalised.leftCols<2>() = lin;
   out.affine_normalised.col(2) = t.transpose();
   if (!out.affine_normalised.allFinite()) {
@@ -128,8 +152,14 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
     out.note = "EM diverged: identity used";
   }
   out.score = std::sqrt(std::max(sigma2, 0.0)) * f.spread;  // final mixture width, fraction of image width
-  out.confidence = cpd_confidence(f, out.affine_normalised, recorder);
-  out.ambiguous = out.confidence < kAmbiguousBelow;
+  out.confidence = cpd_confidence(f, &out.affine_normalised, &out.beaten, recorder);
+  if (out.beaten) {
+    out.note = "a shifted placement fitted better than EM's alignment: used";
+    recorder.add_step(TraceStepKind::kPolish, out.affine_normalised, out.score, out.score, true);  // replays end on it
+  }
+  out.trace = recorder.take_trace(fmt::format("{} ({}, {} of {})", to_string(out.stop),
+                                              count_of(it, "EM iteration", "EM iterations"), grouped(out.work),
+                                              count_of(budget, "point evaluation", "point evaluations")));
   out.pairs = pair_by_aligned_iou(f.to_image(out.affine_normalised), boxes_a, boxes_b, o.min_pair_iou);
   out.inliers = static_cast<int>(out.pairs.size());
   return out;

@@ -35,6 +35,9 @@ struct RandomTripleSampler {
   }
 };
 
+// Mean distances (in units of the layout's spread) below this are exact fits: the affine solve leaves ~1e-17.
+constexpr double kExact = 1e-9;
+
 // Higher is better, so the score is minus the mean nearest-neighbour distance of transformed A to B.
 struct MeanNearestScorer {
   const std::vector<Eigen::Vector2d>& a;
@@ -51,7 +54,11 @@ struct MeanNearestScorer {
   }
   bool worth_refining(double, double) const { return false; }  // the paper does no local optimisation
   void refine(Affine2*, double*) const {}
-  bool cannot_be_beaten(double s) const { return s >= 0.0; }  // every centre lands exactly on one; else all K
+  // Every centre lands exactly on one, and so does a distinct rival's (a symmetric layout): nothing more can
+  // change the answer or its confidence 0. An exact fit alone is no reason to stop: its mirror may fit as
+  // exactly, and only the rest of the K samples can tell (8 mirror-symmetric rocks read confidence 1).
+  bool cannot_be_beaten(double s) const { return s >= -kExact && recorder && recorder->rival_score() >= -kExact; }
+  const SearchRecorder* recorder = nullptr;
 };
 
 }  // namespace
@@ -101,15 +108,16 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   };
   const double spread = f.spread;
   SearchRecorder recorder(f, gate, o.record_trace, [spread](double s) { return -s * spread; }, sample_of);
+  scorer.recorder = &recorder;
   const auto r = run_robust_loop<Affine2, TriplePair>(sampler, estimator, scorer, lo, recorder);
   out.trials = r.trials;
   out.hypotheses = r.hypotheses;
   out.work = r.work;
   out.stop = r.stop;
-  // Scores are mean distances (lower is better): confidence = 1 - best / best distinct rival.
+  // Scores are mean distances (lower is better): confidence = 1 - best / best distinct rival, each distance
+  // counted from kExact so two exact fits (a layout and its mirror, 1e-17 and 0) read 0, not 1.
   if (r.found && std::isfinite(recorder.rival_score()))
-    out.confidence = confidence_from_scores(-recorder.rival_score(), -r.best_score);
-  out.ambiguous = out.confidence < kAmbiguousBelow;
+    out.confidence = confidence_from_scores(kExact - recorder.rival_score(), kExact - r.best_score);
   out.trace = recorder.take_trace(describe_stop(r.stop, r.trials, r.hypotheses, r.work, lo.max_work));
   if (!r.found) {
     out.affine_normalised = f.from_image(identity_affine());

@@ -10,6 +10,7 @@
 #include "core/registration/pairing.h"
 #include "core/geometry/point_grid.h"
 #include "core/registration/registration_frame.h"
+#include "core/registration/registration_recorder.h"
 
 namespace ipd {
 
@@ -66,6 +67,22 @@ std::string methods_help() {
   return s;
 }
 
+const char* ambiguity_reason(Ambiguity a) {
+  switch (a) {
+    case Ambiguity::kNone: return "";
+    case Ambiguity::kRival: return kAmbiguousReason;
+    case Ambiguity::kNoSupport: return "the alignment pairs no rock, so nothing supports it";
+    case Ambiguity::kFewPairs: return "fewer than 3 rocks are paired: too few to fix an alignment, another fits as well";
+    case Ambiguity::kDegenerate:
+      return "the paired rocks lie almost on one line (or the alignment squashes them onto one), so the alignment "
+             "across it is a guess";
+    case Ambiguity::kBeaten:
+      return "the search's own best was beaten by a placement scored after it (that one is used), so the search "
+             "may have missed a better one";
+  }
+  return "";
+}
+
 std::string RegistrationOptions::validate() const {
   if (max_trials < 1) return fmt::format("max_trials must be at least 1, got {}", max_trials);
   if (!(time_budget_ms >= 0) || !std::isfinite(time_budget_ms)) return fmt::format("time_budget_ms must be >= 0, got {}", time_budget_ms);
@@ -113,6 +130,54 @@ RegistrationFrame::RegistrationFrame(const std::vector<Box>& boxes_a, const std:
     b.push_back((iso(bx) - centroid_b) / spread);
     size_b.emplace_back(bx.w / spread, bx.h / aspect / spread);
   }
+}
+
+namespace {
+// Flatter than this (minor over major axis, or smallest over largest singular value) is a line: labelling noise
+// alone decides the alignment across it. A camera misalignment keeps singular values within a factor of 2.
+constexpr double kFlatBelow = 0.02;
+}  // namespace
+
+double flatness(const std::vector<Eigen::Vector2d>& p) {
+  if (p.size() < 2) return 0;
+  Eigen::Vector2d mean(0, 0);
+  for (const auto& q : p) mean += q;
+  mean /= static_cast<double>(p.size());
+  double sxx = 0, sxy = 0, syy = 0;
+  for (const auto& q : p) {
+    const Eigen::Vector2d d = q - mean;
+    sxx += d.x() * d.x(), sxy += d.x() * d.y(), syy += d.y() * d.y();
+  }
+  const double m = 0.5 * (sxx + syy), r = std::hypot(0.5 * (sxx - syy), sxy);
+  if (!(m + r > 0)) return 0;  // every point in one place
+  return std::sqrt(std::max(m - r, 0.0) / (m + r));
+}
+
+Ambiguity judge_answer(const RegistrationFrame& f, const RockPairs& pairs, const Affine2& normalised, bool beaten,
+                       double* confidence) {
+  Ambiguity a = Ambiguity::kNone;
+  if (pairs.empty()) {
+    a = Ambiguity::kNoSupport;
+  } else if (pairs.size() < 3) {
+    a = Ambiguity::kFewPairs;
+  } else {
+    // Singular values of the linear part, q + r and |q - r| (as Bounds computes them), in units of the layout's
+    // spread: the frame is normalised by it.
+    const Eigen::Matrix2d l = normalised.leftCols<2>();
+    const double e = 0.5 * (l(0, 0) + l(1, 1)), g = 0.5 * (l(0, 0) - l(1, 1)), h = 0.5 * (l(1, 0) + l(0, 1)),
+                 k = 0.5 * (l(1, 0) - l(0, 1));
+    const double q = std::hypot(e, k), r = std::hypot(g, h);
+    std::vector<Eigen::Vector2d> paired_a, paired_b;
+    for (const auto& [i, j] : pairs) paired_a.push_back(f.a[i]), paired_b.push_back(f.b[j]);
+    const bool squashed = !(std::abs(q - r) >= kFlatBelow * std::max(1.0, q + r));  // |q - r|: a mirror's too
+    if (squashed || std::min(flatness(paired_a), flatness(paired_b)) < kFlatBelow) a = Ambiguity::kDegenerate;
+  }
+  if (a != Ambiguity::kNone) {
+    *confidence = 0;  // no placement is better than another: nothing pins it
+    return a;
+  }
+  if (beaten) return Ambiguity::kBeaten;
+  return *confidence < kAmbiguousBelow ? Ambiguity::kRival : Ambiguity::kNone;
 }
 
 double work_budget(const RegistrationOptions& o, size_t na, size_t nb) {
@@ -250,7 +315,8 @@ RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<B
   r.stop = out.stop;
   r.note = std::move(out.note);
   r.confidence = out.confidence;
-  r.ambiguous = out.ambiguous;
+  r.ambiguity = detail::judge_answer(frame, r.pairs, frame.from_image(r.affine), out.beaten, &r.confidence);
+  r.ambiguous = r.ambiguity != Ambiguity::kNone;
   r.work = out.work;
   r.work_budget = detail::work_budget(options, a.size(), b.size());
   r.trace = std::move(out.trace);

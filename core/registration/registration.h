@@ -64,9 +64,22 @@ struct RegistrationOptions {
   std::string validate() const;
 };
 
-// Why a registration is flagged ambiguous, worded once for the studio and `ipd register`.
+// Why a registration is flagged ambiguous (kNone: it is not). A number is only as good as the pairs behind it,
+// so an answer that nothing singles out is flagged, never reported with a confidence it has not earned.
+enum class Ambiguity : std::uint8_t {
+  kNone,
+  kRival,       // another alignment fits as well or almost as well (confidence below kAmbiguousBelow)
+  kNoSupport,   // the alignment pairs no rock
+  kFewPairs,    // fewer than 3 rocks paired: too few to fix an affine, any other placement fits as well
+  kDegenerate,  // the paired rocks lie on a line, or the alignment squashes them onto one
+  kBeaten,      // a rival the method scored after its search fitted better; that rival is the answer
+};
+inline constexpr int kAmbiguityCount = 6;  // values of Ambiguity, for the caches' range checks
+
+// The reason a flagged registration is ambiguous, worded once for the studio, `ipd register` and `ipd table`.
 inline constexpr const char* kAmbiguousReason =
     "another alignment fits as well or almost as well (e.g. a small overlap or a repetitive layout)";
+const char* ambiguity_reason(Ambiguity a);  // "" for kNone
 
 struct RegistrationReport {
   RegistrationMethod method = RegistrationMethod::kConsensus;
@@ -80,12 +93,13 @@ struct RegistrationReport {
   std::string note;                    // why a fallback was used, if one was
   double elapsed_ms = 0;
   double work = 0, work_budget = 0;    // point evaluations spent, and the bound they were held to
-  // How sure the pairing is: 1 - (second-best distinct hypothesis' score / best score), in [0, 1]; 1 when
-  // no rival alignment came close. `ambiguous` is set when confidence < 0.2: a second, distinct alignment
-  // scores as well or almost as well as the best (e.g. a small overlap or a repetitive layout; cpd: a shifted
-  // placement it did not converge to may score better, confidence 0); kAmbiguousReason says so.
+  // How much better the answer fits than the best distinct alternative the method evaluated: 1 - (rival's
+  // score / answer's score), in [0, 1]; 1 when no rival came close. 0 when nothing singles the answer out:
+  // no rock paired, fewer than 3 pairs, or a degenerate alignment (see Ambiguity). `ambiguous` is set, and
+  // `ambiguity` says why, when confidence < 0.2 or for any reason Ambiguity lists.
   double confidence = 1.0;
   bool ambiguous = false;
+  Ambiguity ambiguity = Ambiguity::kNone;
   RegistrationTrace trace;             // empty unless options.record_trace
 };
 

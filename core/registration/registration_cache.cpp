@@ -25,8 +25,10 @@ namespace {
 // triples proposing similarities and the second look; 6 for translation votes in centred bins; 7 for the
 // gate's floor, the guarded polish and the soft refinement of a confirmed best; 8 for cpd's confidence; 9 for
 // cpd's rivals under the unmoved camera too; 10 for entries signed with the installation's key (cache_signer.h); 11
-// for the identity given to identical layouts without a search.
-constexpr int kFormat = 11;
+// for the identity given to identical layouts without a search; 12 for the ambiguity reason (no support, too
+// few pairs, a degenerate or a beaten alignment: confidence 0 or a rival adopted) and the paper's search past an
+// exact fit.
+constexpr int kFormat = 12;
 // An entry of 20,000 pairs is under 1 MB; anything much larger was not written by store().
 constexpr size_t kMaxEntryBytes = size_t{16} << 20;
 
@@ -198,7 +200,10 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     r.note = j.at("note").get<std::string>();
     r.elapsed_ms = j.at("elapsed_ms").get<double>();
     r.confidence = j.at("confidence").get<double>();
-    r.ambiguous = j.at("ambiguous").get<bool>();
+    const int ambiguity = j.at("ambiguity").get<int>();
+    if (ambiguity < 0 || ambiguity >= kAmbiguityCount) return std::nullopt;
+    r.ambiguity = static_cast<Ambiguity>(ambiguity);
+    r.ambiguous = r.ambiguity != Ambiguity::kNone;
     remember(key, r);
     return r;
   } catch (const std::exception&) {
@@ -229,7 +234,7 @@ bool RegistrationCache::store(const std::string& key, const RegistrationReport& 
   j["note"] = r.note;
   j["elapsed_ms"] = r.elapsed_ms;
   j["confidence"] = std::isfinite(r.confidence) ? r.confidence : 0.0;
-  j["ambiguous"] = r.ambiguous;
+  j["ambiguity"] = static_cast<int>(r.ambiguity);
   const std::string payload = j.dump();
   // A cache that can't be written only costs time: failures just return false.
   const CacheDir* dir = directory(true);

@@ -34,10 +34,18 @@ struct MethodOutcome {
   StopReason stop = StopReason::kNotRun;
   std::string note;
   double confidence = 1.0;
-  bool ambiguous = false;
+  // The search's own best lost to a rival scored after it (which is then the answer): flagged kBeaten.
+  bool beaten = false;
   double work = 0;           // point evaluations spent (see RegistrationOptions::work_budget)
   RegistrationTrace trace;   // filled when options.record_trace
 };
+
+// Flags what nothing singles out (see Ambiguity) and sets the report's ambiguity; shared by every method so
+// that no method's confidence can vouch for a non-answer.
+Ambiguity judge_answer(const RegistrationFrame& f, const RockPairs& pairs, const Affine2& normalised, bool beaten,
+                       double* confidence);
+// Minor over major axis of a point set's spread (standard deviations): 0 on a line, 1 for a round cloud.
+double flatness(const std::vector<Eigen::Vector2d>& p);
 
 // The work bound of a registration of na against nb rocks: options.work_budget, or when that is 0 one that
 // grows as n log n in the rock count (about a second of work at 5,000 a side).

@@ -6,7 +6,8 @@
 namespace ipd::detail {
 
 double confidence_from_scores(double best, double rival) {
-  if (!(best > 0) || !(rival > 0)) return 1.0;
+  if (!(best > 0)) return 0.0;  // an answer that scores nothing is no better than any rival
+  if (!(rival > 0)) return 1.0;
   return std::clamp(1.0 - rival / best, 0.0, 1.0);
 }
 

@@ -13,7 +13,7 @@
 namespace ipd::detail {
 
 // Confidence from the best and the best distinct rival, both "higher is better" and >= 0:
-// 1 - rival / best in [0, 1]; 1 when there is no rival (or it scored nothing).
+// 1 - rival / best in [0, 1]; 1 when there is no rival (or it scored nothing); 0 when the best scored nothing.
 double confidence_from_scores(double best, double rival);
 
 // Below this confidence a second, different alignment explains the rocks almost as well: ambiguous.

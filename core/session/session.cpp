@@ -327,6 +327,7 @@ SceneSummary Session::summary(int scene) const {
   s.edited = scenes_[pair_][scene].edited;
   s.suspects = audits_[pair_][scene].suspects;
   s.ambiguous = scenes_[pair_][scene].automatic.registration.ambiguous;
+  s.ambiguity = scenes_[pair_][scene].automatic.registration.ambiguity;
   if (it == contributions_.end()) {
     s.ipd = std::nan("");
     return s;

@@ -96,6 +96,7 @@ struct SceneSummary {
   // Why `ipd` is NaN although the scene has pairs: neither domain has a prediction left in it for the model
   // (no_predictions_reason, ipd.h). Its rocks still count in the cell, as rocks both domains missed.
   std::string no_value_reason;
+  Ambiguity ambiguity = Ambiguity::kNone;  // and why (ambiguity_reason())
 };
 
 struct SessionOptions {

@@ -43,7 +43,8 @@ const std::vector<BrowserColumn>& browser_columns() {
       {{"IPD", "0.0000", "the scene's IPD for the model (sorted worst first)",
         num | ImGuiTableColumnFlags_DefaultSort}, kByIpd},
       {{"amb.", "?", "ambiguous registration: another alignment fits as well or almost as well (e.g. a small overlap or a "
-                     "repetitive layout), so the pairs may be wrong; check them", num}, kByAmbiguous},
+                     "repetitive layout), too few rocks are paired or they lie on a line, so the pairs may be wrong; "
+                     "check them", num}, kByAmbiguous},
       {{"susp.", "99", "suspect pairs: paired rocks that the registration does not bring together", num}, kBySuspects},
       {{"ed.", "hand", "pairs fixed by hand", num}, kByEdited},
       {{"pairs", "999", "rock pairs counted in the IPD", num}, kByPairs},
@@ -86,7 +87,7 @@ void draw_scene_cell(SceneSortKey sort_key, const SceneSummary& m, int k, const 
       if (m.ambiguous) {
         ImGui::TextColored({1, 0.8f, 0.3f, 1}, "?");
         if (ImGui::IsItemHovered())
-          ImGui::SetTooltip("ambiguous registration: %s;\ncheck this scene's pairs", kAmbiguousReason);
+          ImGui::SetTooltip("ambiguous registration: %s;\ncheck this scene's pairs", ambiguity_reason(m.ambiguity));
       }
       break;
   }

@@ -64,7 +64,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const int steps = static_cast<int>(r.trace.steps.size());
   text_wrapped_at_spaces(registration_summary(da, db, r));
   if (r.ambiguous)
-    text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1}, std::string("ambiguous: ") + kAmbiguousReason + "; check the pairs");
+    text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1}, std::string("ambiguous: ") + ambiguity_reason(r.ambiguity) + "; check the pairs");
   text_disabled_wrapped_at_spaces(std::string("stopped: ") + to_string(r.stop) + (r.note.empty() ? "" : "; " + r.note));
   ReplayState& rp = ui.replay;
   const float end = static_cast<float>(steps) + 1.0f;  // the steps, then one unit of raw -> aligned motion

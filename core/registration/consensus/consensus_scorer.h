@@ -349,22 +349,31 @@ class ConsensusScorer {
   unsigned epoch_ = 0;
 };
 
-// The best score among the placements most rock pairs agree on under the linear part `linear`
-// (top_translations), other than `best` (0 when none): the rivals a small overlap allows, a patch of rocks that
-// fits in several places. `refine`: each is first fitted to its own rocks, for cpd, which scores no rival of
-// its own (the consensus search has refined its rivals already and scores these as they come).
-inline double shifted_rival(ConsensusScorer* scorer, const SearchRecorder& recorder, const RegistrationFrame& f,
-                            const Affine2& best, const Eigen::Matrix2d& linear, double gate, bool refine) {
-  double rival = 0;
+// The placements most rock pairs agree on under the linear part `linear` (top_translations), scored: the best of
+// those that differ from `best` (the rivals a small overlap allows, a patch of rocks that fits in several
+// places) and the best of those that agree with it (the same alignment, sometimes fitted better than the search
+// left it: least squares cannot refine rocks on a line). Scores 0 and models untouched when there is none.
+// `refine`: each is first fitted to its own rocks, for cpd, which scores no rival of its own (the consensus
+// search has refined its rivals already and scores these as they come).
+struct ShiftedPlacements {
+  double rival = 0, same = 0;
+  Affine2 rival_model = identity_affine(), same_model = identity_affine();
+};
+inline ShiftedPlacements shifted_placements(ConsensusScorer* scorer, const SearchRecorder& recorder,
+                                            const RegistrationFrame& f, const Affine2& best,
+                                            const Eigen::Matrix2d& linear, double gate, bool refine) {
+  ShiftedPlacements out;
   for (const auto& t : top_translations(linear, f.a, f.b, 2 * gate, 4)) {
     Affine2 m;
     m.leftCols<2>() = linear;
     m.col(2) = t;
     double s = scorer->score(m);
     if (refine) scorer->improve(&m, &s);
-    if (!recorder.agree(m, best)) rival = std::max(rival, s);
+    const bool same = recorder.agree(m, best);
+    double& kept = same ? out.same : out.rival;
+    if (s > kept) kept = s, (same ? out.same_model : out.rival_model) = m;
   }
-  return rival;
+  return out;
 }
 
 }  // namespace ipd::detail
