@@ -350,11 +350,8 @@ void StudioApp::goto_problem(const Problem& p) {
     if (!std::binary_search(a->stems.begin(), a->stems.end(), p.scene) ||
         !std::binary_search(b->stems.begin(), b->stems.end(), p.scene))
       continue;
-    WorkerCommand c{WorkerCommand::Kind::kDomains};
-    c.a = pairs[k].first;
-    c.b = pairs[k].second;
     pending_scene_ = p.scene;
-    worker_.submit(std::move(c));
+    worker_.submit(command::SelectDomains{pairs[k].first, pairs[k].second});
     return;
   }
   ui_.status = "scene " + p.scene + " is in no domain pair (it has no counterpart)";

@@ -288,7 +288,7 @@ RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<B
   if (identical_layouts(a, b)) {
     out.affine_normalised = frame.from_image(identity_affine());
     out.pairs = pair_by_aligned_iou(identity_affine(), a, b, options.min_pair_iou);
-    out.inliers = static_cast<int>(out.pairs.size());
+    out.inliers = static_cast<int>(a.size());  // every centre sits on its copy
     out.stop = StopReason::kIdenticalLayouts;
     out.confidence = 1.0;
   } else {

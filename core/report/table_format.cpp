@@ -282,12 +282,14 @@ std::string latex_compact_table(const CrossTable& t, const TableFormatOptions& o
   for (const auto& c : t.columns) out += " & " + compact_column(n, c);
   out += " \\\\\n";
   out += bt ? "\\midrule\n" : "\\hline\n";
+  const std::vector<std::string> notes = footnotes(t);
   for (size_t r = 0; r < t.models.size(); ++r) {
     const double best = row_best(t, r);
     out += n.rows[r];
     for (size_t c = 0; c < nc; ++c) {
       const auto& cell = t.cells[r * nc + c];
-      const std::string s = cell_text(cell, "--");
+      const int note = footnote_of(notes, cell);  // a cell that is not a number says why below
+      const std::string s = note > 0 ? fmt::format("--$^{{{}}}$", note) : cell_text(cell, "--");
       out += " & " + (cell.involves_training_domain && cell.ipd == best ? "\\textbf{" + s + "}" : s);
     }
     out += " \\\\\n";
@@ -313,6 +315,8 @@ std::string latex_compact_table(const CrossTable& t, const TableFormatOptions& o
             "row's best; --: pair not involving the training domain.";
   if (ci) legend += " " + latex_escape(ci_caption(o)) + ".";
   out += "\\par\\smallskip{\\footnotesize " + legend + "\\par}\n";
+  for (size_t k = 0; k < notes.size(); ++k)
+    out += fmt::format("\\par{{\\footnotesize $^{{{}}}$ {}}}\n", k + 1, latex_escape(notes[k]));
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <fmt/format.h>
 #include <random>
@@ -201,8 +202,9 @@ std::optional<std::string> read_file_beneath(const std::string& root, const std:
   if (S_ISDIR(st.st_mode)) throw IoError(shown + ": is a directory, expected a file");
   if (!S_ISREG(st.st_mode)) throw IoError(shown + ": expected a regular file");
   if (static_cast<unsigned long long>(st.st_size) > max_bytes)
-    throw IoError(fmt::format("{}: is {} MB, larger than the {} MB limit for this kind of file", shown,
-                              st.st_size >> 20, max_bytes >> 20));
+    // Rounded up, so a file just over the limit never reads as equal to it (as read_file says it).
+    throw IoError(fmt::format("{}: is {:.1f} MB, larger than the {:g} MB limit for this kind of file", shown,
+                              std::ceil(st.st_size * 10 / 1048576.0) / 10, max_bytes / 1048576.0));
   std::string out;
   char buf[65536];
   for (;;) {

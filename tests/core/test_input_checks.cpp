@@ -206,8 +206,8 @@ TEST(InputChecks, TableCsvQuotesNamesWithCommas) {
   const auto r = test::run_ipd("table --format csv --bootstrap 0 " + d.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out,
-            "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se\n"
-            "\"det,v2\",real,real,synth,0.500000,2,0,0,1,true,,,\n");
+            "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,reason\n"
+            "\"det,v2\",real,real,synth,0.500000,2,0,0,1,true,,,,\n");
   const auto b = test::run_ipd("breakdown --format csv --bootstrap 0 --by region " + d.path());
   ASSERT_EQ(b.exit_code, 0) << b.err;
   EXPECT_NE(b.out.find("\n\"det,v2\",real,real,synth,"), std::string::npos) << b.out;

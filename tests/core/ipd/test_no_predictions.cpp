@@ -49,10 +49,17 @@ TEST(NoPredictions, NeitherSideLeftIsNotANumber) {
   const std::string json = format_table(t, TableFormat::kJson);
   EXPECT_NE(json.find("\"ipd\": null"), std::string::npos) << json;
   EXPECT_NE(json.find("\"reason\": \"no predictions above 0.95 in real and synth\""), std::string::npos) << json;
+  // The one-column layout (rows as letters, legend below) and the wide one both mark the cell and say why.
   const std::string latex = format_table(t, TableFormat::kLatex);
-  EXPECT_NE(latex.find("det & --$^{1}$ \\\\"), std::string::npos) << latex;
-  EXPECT_NE(latex.find("\\end{tabular}\n\\par{\\footnotesize $^{1}$ no predictions above 0.95 in real and synth}\n"),
+  EXPECT_NE(latex.find("M1 & --$^{1}$ \\\\"), std::string::npos) << latex;
+  EXPECT_NE(latex.find("\\par}\n\\par{\\footnotesize $^{1}$ no predictions above 0.95 in real and synth}\n"),
             std::string::npos) << latex;
+  TableFormatOptions wide;
+  wide.latex_wide = true;
+  const std::string latex_wide = format_table(t, TableFormat::kLatex, wide);
+  EXPECT_NE(latex_wide.find("det & --$^{1}$ \\\\"), std::string::npos) << latex_wide;
+  EXPECT_NE(latex_wide.find("\\end{tabular}\n\\par{\\footnotesize $^{1}$ no predictions above 0.95 in real and synth}\n"),
+            std::string::npos) << latex_wide;
   const std::string md = format_table(t, TableFormat::kMarkdown);
   EXPECT_NE(md.find("| det | –¹ |"), std::string::npos) << md;
   EXPECT_NE(md.find("\n¹ no predictions above 0.95 in real and synth\n"), std::string::npos) << md;

@@ -95,7 +95,7 @@ TEST(RegistrationAmbiguity, AlignedCentresThatPairNothingHaveNoSupport) {
   EXPECT_STREQ(ambiguity_reason(Ambiguity::kNone), "");
 }
 
-// 8 rocks mirror-symmetric about x = 0.5, B the same picture: the identity and the mirror both fit exactly.
+// 8 rocks mirror-symmetric about x = 0.5, B the same layout shifted: the shift and the mirror both fit exactly.
 // The paper's method may return either (it allows reflections); it stopped at its first exact fit and read
 // confidence 1.000. Now an exact fit stops the search only once a distinct exact rival is seen: confidence 0.
 TEST(RegistrationAmbiguity, PaperOnAMirrorSymmetricLayoutIsAmbiguous) {
@@ -103,8 +103,12 @@ TEST(RegistrationAmbiguity, PaperOnAMirrorSymmetricLayoutIsAmbiguous) {
   const double spots[4][2] = {{0.2, 0.2}, {0.35, 0.5}, {0.15, 0.75}, {0.4, 0.9}};
   for (int k = 0; k < 4; ++k)
     for (double x : {spots[k][0], 1 - spots[k][0]}) rocks.push_back(box(x, spots[k][1], 0.03 + 0.01 * k, 0.04));
+  // B a little shifted (an identical B gets the identity without a search): the shifted identity and the
+  // shifted mirror both fit exactly.
+  std::vector<Box> moved = rocks;
+  for (Box& b : moved) b.cx += 0.01, b.cy += 0.005;
   for (std::uint64_t seed = 0; seed < 4; ++seed) {
-    const auto r = registered(rocks, rocks, RegistrationMethod::kPaper, seed);
+    const auto r = registered(rocks, moved, RegistrationMethod::kPaper, seed);
     EXPECT_EQ(r.pairs.size(), 8u) << "seed " << seed;
     EXPECT_LT(r.confidence, 1e-6) << "seed " << seed;  // 1 - 1e-9 / (1e-9 + the rival's ~1e-16)
     EXPECT_EQ(r.ambiguity, Ambiguity::kRival) << "seed " << seed;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fmt/format.h>
 
+#include "core/study/fixed_pairs.h"
 #include "core/study/study.h"
 #include "core/study/study_names.h"
 #include "tests/support/test_support.h"
@@ -86,7 +87,7 @@ TEST(StudyNames, PairsFilesLargerThanTheCapAreRefusedUnread) {
   test::write_text(d / "pairs/real__synth/s0.json", std::string(kMaxPairsFileBytes + 1, ' '));
   const Study study = open_study(d.path());
   try {
-    read_fixed_pairs(study, "real", "synth", "s0", 1, 1);
+    read_fixed_pairs(study, "real", "synth", "s0", {test::box(0.5, 0.5, 0.1, 0.1)}, {test::box(0.5, 0.5, 0.1, 0.1)});
     FAIL() << "read";
   } catch (const StudyError& e) {
     EXPECT_EQ(std::string(e.what()), d / "pairs/real__synth/s0.json" +
