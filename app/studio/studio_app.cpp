@@ -535,7 +535,7 @@ std::vector<std::string> StudioApp::replay_problems() const {
   if (const int n = worker_.saver().pending(); n > 0)
     out.push_back(fmt::format("{} edit(s) still being saved when the replay ended", n));
   if (const int n = worker_.unsaved_edits(); n > 0)
-    out.push_back(fmt::format("{} edit(s) only in memory: the study is read-only (save them elsewhere with File > Save edits as)", n));
+    out.push_back(fmt::format("{} edit(s) only in memory: the study is read-only (save them elsewhere with 'save as', below undo and redo)", n));
   {
     std::lock_guard<std::mutex> l(export_failures_->mu);
     out.insert(out.end(), export_failures_->messages.begin(), export_failures_->messages.end());

@@ -262,7 +262,7 @@ void StudyWorker::execute(WorkerCommand& c) {
   auto save = [&](SaveJob job) {
     if (s.read_only()) {
       std::lock_guard<std::mutex> l(mu_);
-      messages_.push_back("read-only study: the edit is kept in memory; use File > Save edits as…");
+      messages_.push_back("read-only study: the edit is kept in memory; save it elsewhere with 'save as', below undo and redo");
       ++unsaved_edits_;
     } else {
       saver_.submit(std::move(job));

@@ -114,7 +114,7 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   if (s.read_only()) {
     // Why matters: a second window on the same study is read-only so that the first one's edits are not lost.
     ImGui::PushTextWrapPos(0);
-    ImGui::TextColored({1, 0.6f, 0.2f, 1}, "read-only%s%s: edits stay in memory (File > Save edits as)",
+    ImGui::TextColored({1, 0.6f, 0.2f, 1}, "read-only%s%s: edits stay in memory ('save as', below undo and redo, writes them elsewhere)",
                        s.read_only_reason().empty() ? "" : ": ", s.read_only_reason().c_str());
     ImGui::PopTextWrapPos();
   }
