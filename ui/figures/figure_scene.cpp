@@ -71,8 +71,16 @@ FigurePicture crop_picture(const cv::Mat& img, const Crop& c, Crop* covered) {
 }
 
 std::string title_of(const SceneFigureInput& in, const SceneNumbers& n) {
+  // Two empty prediction sets are not a perfect match: no number, and why (no_predictions_reason).
+  const std::string none = in.model.empty() ? std::string()
+                                            : no_predictions_reason(static_cast<long>(in.pred_a.size()),
+                                                                    static_cast<long>(in.pred_b.size()), in.a, in.b,
+                                                                    in.conf_threshold);
+  const std::string value = !none.empty()       ? "not a number (" + none + ")"
+                            : std::isnan(n.ipd) ? std::string("n/a")
+                                                : fmt::format("{:.4f}", n.ipd);
   return fmt::format("{}: {} vs {}, model {}, scene IPD {} ({} pair{}){}{}", in.stem, in.a, in.b,
-                     in.model.empty() ? "none" : in.model, std::isnan(n.ipd) ? "n/a" : fmt::format("{:.4f}", n.ipd),
+                     in.model.empty() ? "none" : in.model, value,
                      n.pairs, n.pairs == 1 ? "" : "s",
                      in.conf_threshold > 0 ? fmt::format(", conf \u2265 {:g}", in.conf_threshold) : "",
                      in.pairs_fixed ? ", pairs fixed by hand" : "");

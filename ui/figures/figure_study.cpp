@@ -1,5 +1,6 @@
 #include "ui/figures/figure_study.h"
 
+#include <algorithm>
 #include <fmt/format.h>
 
 #include "ui/figures/figure_charts.h"
@@ -15,6 +16,13 @@ bool is_study_figure_kind(const std::string& kind) {
 namespace {
 
 // The model a one-model figure shows: the request's, else one trained on `domain`, else the first.
+// A figure of a cell that is not a number (no predictions left on either side) would draw two empty
+// prediction sets as a perfect match: refuse it, saying why, as ipd compare and ipd breakdown do.
+void require_number(const TableCell* c) {
+  if (c && !c->no_value_reason.empty())
+    throw StudyError(fmt::format("model '{}': IPD({}, {}) is not a number: {}", c->model, c->a, c->b, c->no_value_reason));
+}
+
 std::string pick_model(const CrossTable& t, const std::string& asked, const std::string& domain) {
   if (!asked.empty()) return asked;
   for (const auto& m : t.models)
@@ -45,11 +53,17 @@ std::string draw_study_figure(DisplayList& fig, const CrossTable& t, const Study
     co.bootstrap = r.bootstrap;
     co.permutations = r.permutations;
     if (const std::string bad = co.validate(); !bad.empty()) throw StudyError(bad);
+    for (const ModelInfo& m : t.models)
+      if (r.models.empty() || std::find(r.models.begin(), r.models.end(), m.name) != r.models.end()) {
+        require_number(t.cell(m.name, ref, a));
+        require_number(t.cell(m.name, ref, b));
+      }
     draw_dot_whisker_chart(fig, compare_chart(t, r.models, ref, a, b, co), o);
     return fmt::format("IPD({0}, {1}) - IPD({0}, {2})", ref, a, b);
   }
   if (r.kind == "distribution") {
     const std::string model = pick_model(t, r.model, st.domains.front().name);
+    for (const auto& [a, b] : t.columns) require_number(t.cell(model, a, b));
     draw_distribution_chart(fig, distribution_chart(t, model, r.worst), o);
     return "Per-scene IPD of " + model;
   }

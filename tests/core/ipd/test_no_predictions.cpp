@@ -8,6 +8,7 @@
 #include "core/report/table_format.h"
 #include "core/session/session.h"
 #include "core/stats/study_statistics.h"
+#include "tests/support/pdf_text.h"
 #include "tests/support/test_support.h"
 
 namespace ipd {
@@ -129,5 +130,27 @@ TEST(NoPredictions, TheSessionSaysWhyItsCellHasNoNumber) {
   EXPECT_EQ(s.summary(0).no_value_reason, "");
 }
 
+}  // namespace
+}  // namespace ipd
+
+namespace ipd {
+namespace {
+// Figures never draw two empty prediction sets as a perfect match: the scene figure's title says there is
+// no number and why, and the study figures of such a cell are refused, as ipd compare is.
+TEST(NoPredictions, FiguresSayThereIsNoNumber) {
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd("demo " + d / "s" + " --labels-only --scenes 2 --rocks 8").exit_code, 0);
+  auto r = test::run_ipd("figure pairs " + d / "s" + " --scene scene_00001 --conf 0.999 --out " + d / "p.pdf");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string words = test::pdf_words(d / "p.pdf");
+  EXPECT_NE(words.find("IPD not a number (no predictions above 0.999 in real and principled)"), std::string::npos)
+      << words;
+  for (const char* kind : {"distribution", "compare"}) {
+    r = test::run_ipd(std::string("figure ") + kind + " " + d / "s" + " --conf 0.999 --out " + d / "f.pdf");
+    EXPECT_EQ(r.exit_code, 1) << kind;
+    EXPECT_NE(r.err.find("': IPD(real, principled) is not a number: no predictions above 0.999 in real and principled"),
+              std::string::npos) << kind << ": " << r.err;
+  }
+}
 }  // namespace
 }  // namespace ipd
