@@ -46,6 +46,14 @@ std::vector<std::vector<int>> nearest_neighbours(const std::vector<Eigen::Vector
   return nn;
 }
 
+namespace {
+// ln Γ(x) without lgamma's write to the global `signgam`: registrations run on many threads at once.
+double log_gamma(double x) {
+  int sign = 0;
+  return ::lgamma_r(x, &sign);
+}
+}  // namespace
+
 // P(X >= k) for X ~ Binomial(n, p), summed in log space.
 double binomial_tail(int n, double p, int k) {
   if (k <= 0) return 1.0;
@@ -53,7 +61,7 @@ double binomial_tail(int n, double p, int k) {
   if (p >= 1) return 1.0;
   double tail = 0;
   for (int x = k; x <= n; ++x)
-    tail += std::exp(std::lgamma(n + 1.0) - std::lgamma(x + 1.0) - std::lgamma(n - x + 1.0) + x * std::log(p) +
+    tail += std::exp(log_gamma(n + 1.0) - log_gamma(x + 1.0) - log_gamma(n - x + 1.0) + x * std::log(p) +
                      (n - x) * std::log1p(-p));
   return std::min(1.0, tail);
 }
