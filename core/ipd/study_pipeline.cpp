@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <set>
 #include <fmt/format.h>
 #include <unordered_set>
 
@@ -147,13 +148,30 @@ PairedStudy pair_study(const StudyLabels& labels, const std::vector<std::pair<st
     std::string error;
   };
   std::vector<Job> jobs;
+  std::set<std::string> reported_missing;  // a domain's missing label file, said once over its domain pairs
   for (size_t c = 0; c < pairs.size(); ++c) {
     const auto& [a, b] = pairs[c];
     SceneMatch m = match_scenes(*study.domain(a), *study.domain(b));
     if (!m.only_a.empty()) out.problems.push_back(no_counterpart(m.only_a, a, b));
     if (!m.only_b.empty()) out.problems.push_back(no_counterpart(m.only_b, b, a));
     DomainPairScenes d{a, b, std::vector<PipelineScene>(m.common.size())};
-    for (size_t k = 0; k < m.common.size(); ++k) d.scenes[k].automatic.stem = m.common[k];
+    for (size_t k = 0; k < m.common.size(); ++k) {
+      d.scenes[k].automatic.stem = m.common[k];
+      // A scene kept by its picture whose label file is gone while its twin has one (a deleted or never
+      // copied file, most likely): it reads as a picture without rocks, so it must not pass unsaid.
+      for (const auto& [mine, other] : {std::pair(a, b), std::pair(b, a)}) {
+        const LabelFile& f = labels.gt_of(mine, m.common[k]);
+        if (f.exists || !labels.gt_of(other, m.common[k]).exists || !reported_missing.insert(f.path).second) continue;
+        Problem q;
+        q.file = f.path;
+        q.domain = mine;
+        q.other_domain = other;
+        q.scene = m.common[k];
+        q.message = fmt::format("no label file, while '{}' has one for this scene: read as a picture without rocks",
+                                other);
+        out.problems.push_back(std::move(q));
+      }
+    }
     out.pairs.push_back(std::move(d));
   }
   for (size_t c = 0; c < pairs.size(); ++c) {

@@ -75,6 +75,25 @@ TEST(StudyPipeline, TheSessionReportsWhatTheTableWarnsAbout) {
   EXPECT_EQ(session.scenes()[0].current.pairs, (RockPairs{{0, 1}, {1, 0}}));
 }
 
+TEST(StudyPipeline, ALabelFileMissingBesideItsTwinsIsAProblem) {
+  test::TempDir d;
+  write_study(d);
+  // s2 has a picture in both domains but GT only in synth: real's s2 reads as a picture without rocks.
+  test::write_text(d / "real/images/s2.png", "");
+  test::write_text(d / "synth/images/s2.png", "");
+  test::write_text(d / "synth/labels/s2.txt", "0 0.3 0.3 0.1 0.1\n");
+  const StudyLabels labels = load_labels(open_study(d.path()));
+  const PairedStudy paired = pair_study(labels, {{"real", "synth"}}, PipelineOptions{});
+  ASSERT_EQ(paired.problems.size(), 2u);  // only_real without a counterpart, then s2
+  const Problem& p = paired.problems[1];
+  EXPECT_EQ(p.to_string(), d / "real/labels/s2.txt" +
+                               ": no label file, while 'synth' has one for this scene: read as a picture without rocks");
+  EXPECT_EQ(p.scene, "s2");
+  EXPECT_EQ(p.domain, "real");
+  const Session session(load_labels(open_study(d.path())));
+  EXPECT_EQ(session.problems().at(1).to_string(), p.to_string());
+}
+
 TEST(StudyPipeline, TheSessionListsSkippedLinesAndMissingPredictions) {
   test::TempDir d;
   write_study(d);
