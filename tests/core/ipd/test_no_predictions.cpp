@@ -121,7 +121,9 @@ TEST(NoPredictions, TheSessionSaysWhyItsCellHasNoNumber) {
   EXPECT_EQ(s.totals().no_value_reason, "no predictions above 0.95 in real and synth");
   EXPECT_EQ(s.summary(0).no_value_reason, "no predictions above 0.95 in real and synth");
   EXPECT_TRUE(std::isnan(s.summary(0).ipd));
-  EXPECT_TRUE(s.problems().empty());
+  ASSERT_EQ(s.problems().size(), 1u);  // the Problems window says why the cell has no number
+  EXPECT_EQ(s.problems()[0].to_string(),
+            "model 'det': IPD(real, synth) is not a number: no predictions above 0.95 in real and synth");
   s.set_conf_threshold(0.85);
   EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
   ASSERT_EQ(s.problems().size(), 1u);
