@@ -74,8 +74,11 @@ Runner add_compare_command(CLI::App& app) {
       const TableCell* x = loaded->table.cell(m.name, ref, a);
       const TableCell* y = loaded->table.cell(m.name, ref, b);
       if (!x || !y || x->missing_predictions || y->missing_predictions) {
-        if (!so.models.empty()) throw StudyError(fmt::format("model '{}' lacks predictions for {}, {} or {}", m.name, ref, a, b));
-        fmt::print(stderr, "warning: model '{}' skipped: it lacks predictions for {}, {} or {}\n", m.name, ref, a, b);
+        std::string lacking;  // the domains without a predictions folder for this model, by name
+        for (const std::string& d : {ref, a, b})
+          if (!loaded->labels.has_predictions(d, m.name)) lacking += (lacking.empty() ? "" : ", ") + d;
+        if (!so.models.empty()) throw StudyError(fmt::format("model '{}' has no predictions for {}", m.name, lacking));
+        fmt::print(stderr, "warning: model '{}' skipped: it has no predictions for {}\n", m.name, lacking);
         continue;
       }
       // Two empty prediction sets would compare as "no significant difference": refuse, and say why.

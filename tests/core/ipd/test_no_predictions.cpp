@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "core/report/table_format.h"
 #include "core/session/session.h"
@@ -153,6 +154,20 @@ TEST(NoPredictions, FiguresSayThereIsNoNumber) {
     EXPECT_NE(r.err.find("': IPD(real, principled) is not a number: no predictions above 0.999 in real and principled"),
               std::string::npos) << kind << ": " << r.err;
   }
+}
+}  // namespace
+}  // namespace ipd
+
+namespace ipd {
+namespace {
+// A model without a predictions folder for one domain: ipd compare names that domain, not all three.
+TEST(NoPredictions, CompareNamesTheDomainWithoutPredictions) {
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd("demo " + d / "s" + " --labels-only --scenes 2 --rocks 8").exit_code, 0);
+  std::filesystem::remove_all(d / "s/hapke/predictions/det-real");
+  const auto r = test::run_ipd("compare " + d / "s" + " --model det-real --ref real --a principled --b hapke");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("model 'det-real' has no predictions for hapke\n"), std::string::npos) << r.err;
 }
 }  // namespace
 }  // namespace ipd
