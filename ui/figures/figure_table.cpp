@@ -120,12 +120,29 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
   out.height_pt = std::ceil(y + m);
 }
 
+namespace {
+// The k-th footnote mark (0-based): ¹ ² ³ ... ⁹, then *.
+std::string superscript(size_t k) {
+  static const char* const kMarks[] = {"\u00b9", "\u00b2", "\u00b3", "\u2074", "\u2075",
+                                       "\u2076", "\u2077", "\u2078", "\u2079"};
+  return k < 9 ? kMarks[k] : "*";
+}
+}  // namespace
+
 TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
   TableFigure fig;
   fig.title = "Instance Performance Difference (lower is better)";
   fig.header.push_back("Train \\ Eval");
   for (const auto& [a, b] : t.columns) fig.header.push_back("|" + a + "\u00a0\u2212 " + b + "|");  // "−" stays with the first name
   const size_t nc = t.columns.size();
+  // Cells that are not a number (no predictions left on either side) are marked and say why in the note, as
+  // the text table's footnotes do.
+  std::vector<std::string> reasons;
+  auto mark_of = [&](const TableCell& c) -> std::string {
+    auto it = std::find(reasons.begin(), reasons.end(), c.no_value_reason);
+    if (it == reasons.end()) it = reasons.insert(reasons.end(), c.no_value_reason);
+    return superscript(static_cast<size_t>(it - reasons.begin()));
+  };
   for (size_t r = 0; r < t.models.size(); ++r) {
     const auto& m = t.models[r];
     std::vector<std::string> row = {m.trained_on.empty() ? m.name : m.name + " (" + m.trained_on + ")"};
@@ -138,9 +155,10 @@ TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
     }
     for (size_t c = 0; c < nc; ++c) {
       const auto& cell = t.cells[r * nc + c];
-      row.push_back(!cell.involves_training_domain ? "\u2013"
-                    : std::isnan(cell.ipd)         ? "n/a"
-                                                   : fmt::format("{:.4f}", cell.ipd));
+      row.push_back(!cell.involves_training_domain    ? "\u2013"
+                    : !cell.no_value_reason.empty() ? "\u2013" + mark_of(cell)
+                    : std::isnan(cell.ipd)          ? "n/a"
+                                                    : fmt::format("{:.4f}", cell.ipd));
       bold[c + 1] = cell.involves_training_domain && cell.ipd == best;
       if (ci && cell.involves_training_domain && std::isfinite(cell.ci_low) && std::isfinite(cell.ci_high))
         sub[c + 1] = fmt::format("[{:.3f},\u2009{:.3f}]", cell.ci_low, cell.ci_high);  // thin space: one word
@@ -157,6 +175,8 @@ TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
     return c.involves_training_domain && std::isfinite(c.ci_low) && std::isfinite(c.ci_high);
   });
   if (ci && brackets) fig.note += fmt::format(" Brackets: {:g}% scene-bootstrap interval.", 100 * level);
+  for (size_t k = 0; k < reasons.size(); ++k)
+    fig.note += fmt::format(" \u2013{}: not a number, {}.", superscript(k), reasons[k]);
   return fig;
 }
 

@@ -9,6 +9,7 @@
 #include "core/report/table_format.h"
 #include "core/session/session.h"
 #include "core/stats/study_statistics.h"
+#include "ui/figures/figure_table.h"
 #include "tests/support/pdf_text.h"
 #include "tests/support/test_support.h"
 
@@ -62,6 +63,11 @@ TEST(NoPredictions, NeitherSideLeftIsNotANumber) {
   EXPECT_NE(latex_wide.find("det & --$^{1}$ \\\\"), std::string::npos) << latex_wide;
   EXPECT_NE(latex_wide.find("\\end{tabular}\n\\par{\\footnotesize $^{1}$ no predictions above 0.95 in real and synth}\n"),
             std::string::npos) << latex_wide;
+  // The table figure marks the cell and says why in its note.
+  const ui::TableFigure fig = ui::table_figure_of(t);
+  EXPECT_EQ(fig.rows.at(0).at(1), "\u2013\u00b9");
+  EXPECT_NE(fig.note.find("\u2013\u00b9: not a number, no predictions above 0.95 in real and synth."), std::string::npos)
+      << fig.note;
   const std::string md = format_table(t, TableFormat::kMarkdown);
   EXPECT_NE(md.find("| det | –¹ |"), std::string::npos) << md;
   EXPECT_NE(md.find("\n¹ no predictions above 0.95 in real and synth\n"), std::string::npos) << md;
