@@ -19,6 +19,9 @@ namespace ipd {
 
 namespace {
 
+// How much of a name a message quotes: enough to recognise it, never the whole of a pasted blob.
+constexpr size_t kShownNameBytes = 60;
+
 const std::set<std::string> kImageExtensions = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".webp"};
 
 std::string lower(std::string s) {
@@ -161,7 +164,7 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
         // The name becomes the default model and part of export file names: it must be one.
         if (const std::string why = file_name_problem(name, kMaxModelNameBytes); !why.empty())
           throw StudyError(fmt::format("{}:{}: model name '{}' {}", file, m.first.Mark().line + 1,
-                                       printable_name(name), why));
+                                       printable_name(name, kShownNameBytes), why));
         if (!m.second.IsMap() && !m.second.IsNull())
           throw StudyError(fmt::format("{}:{}: models.{} must be a mapping like {{trained_on: real}}", file,
                                        m.first.Mark().line + 1, name));
@@ -254,7 +257,8 @@ FileKind kind_of(const fs::path& p) {
 // A folder or file name that the study turns into parts of other file names (study_names.h).
 void check_name(const fs::path& where, const std::string& name, const char* what, size_t max_bytes) {
   if (const std::string why = file_name_problem(name, max_bytes); !why.empty())
-    throw StudyError(fmt::format("{}: {} name '{}' {}", printable_name(where.string()), what, printable_name(name), why));
+    throw StudyError(fmt::format("{}: {} name '{}' {}", printable_name(where.string()), what,
+                                 printable_name(name, kShownNameBytes), why));
 }
 
 // Every entry of a directory; one that can't be read is an error, never an empty directory.

@@ -17,7 +17,12 @@ std::string file_name_problem(const std::string& name, size_t max_bytes) {
   return "";
 }
 
-std::string printable_name(const std::string& name) {
+std::string printable_name(const std::string& name, size_t max_bytes) {
+  if (name.size() > max_bytes) {
+    size_t cut = max_bytes;
+    while (cut > 0 && (static_cast<unsigned char>(name[cut]) & 0xC0) == 0x80) --cut;  // not inside a character
+    return printable_name(name.substr(0, cut)) + "...";
+  }
   std::string out;
   for (const char ch : name) {
     const auto c = static_cast<unsigned char>(ch);

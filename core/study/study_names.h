@@ -20,6 +20,6 @@ constexpr size_t kMaxStemBytes = 250;
 std::string file_name_problem(const std::string& name, size_t max_bytes);
 
 // `name` with control characters shown as \xNN, for messages.
-std::string printable_name(const std::string& name);
+std::string printable_name(const std::string& name, size_t max_bytes = std::string::npos);
 
 }  // namespace ipd
