@@ -64,7 +64,7 @@ TEST(StudyNames, DomainModelAndSceneNamesFromFoldersAreChecked) {
   // Two 200-character domains would make pairs/<A>__<B>/ longer than a file name can be.
   const std::string long_domain(200, 'd');
   test::write_text(d / long_domain + "/labels/s0.txt", "0 0.5 0.5 0.1 0.1\n");
-  EXPECT_EQ(open_error(d.path()), d / long_domain + ": domain name '" + long_domain +
+  EXPECT_EQ(open_error(d.path()), d / long_domain + ": domain name '" + long_domain.substr(0, 60) + "..." +
                                       "' is 200 bytes long; at most 120 fit in the file names it becomes part of");
   fs::remove_all(d / long_domain);
 
@@ -75,7 +75,7 @@ TEST(StudyNames, DomainModelAndSceneNamesFromFoldersAreChecked) {
 
   const std::string long_stem(251, 's');  // "<stem>.txt" fits, "<stem>.json" (its pairs file) would not
   test::write_text(d / "synth/labels/" + long_stem + ".txt", "0 0.5 0.5 0.1 0.1\n");
-  EXPECT_EQ(open_error(d.path()), d / "synth/labels/" + long_stem + ".txt: scene name '" + long_stem +
+  EXPECT_EQ(open_error(d.path()), d / "synth/labels/" + long_stem + ".txt: scene name '" + long_stem.substr(0, 60) + "..." +
                                       "' is 251 bytes long; at most 250 fit in the file names it becomes part of");
   fs::remove(d / "synth/labels/" + long_stem + ".txt");
   EXPECT_EQ(open_error(d.path()), "(opened)");
