@@ -51,4 +51,19 @@ CommandResult run_command(const std::string& command) {
   return r;
 }
 
+std::vector<Box> seven_rocks(double dx) {
+  std::vector<Box> out;
+  const double xs[] = {0.1, 0.35, 0.6, 0.8, 0.2, 0.5, 0.75};
+  const double ys[] = {0.2, 0.15, 0.3, 0.6, 0.7, 0.5, 0.85};
+  for (int k = 0; k < 7; ++k) out.push_back(Box{0, xs[k] + dx, ys[k], 0.04 + 0.005 * k, 0.05, 1.0});
+  return out;
+}
+
+void write_two_rock_study(const TempDir& d) {
+  write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+  write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
+  write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n");
+  write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
+}
+
 }  // namespace ipd::test

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/geometry/geometry.h"
 
@@ -23,6 +24,14 @@ class TempDir {
 };
 
 void write_text(const std::string& path, const std::string& text);
+
+// Seven rocks of distinct sizes spread over the picture, shifted right by `dx`: a registration with one clear
+// answer, for the cache tests.
+std::vector<Box> seven_rocks(double dx);
+
+// A one-scene study of two rocks listed in the other order in `synth` (automatic pairs (0, 1), (1, 0)), with
+// predictions of a model `det` on both sides.
+void write_two_rock_study(const TempDir& d);
 
 struct CommandResult {
   int exit_code = -1;

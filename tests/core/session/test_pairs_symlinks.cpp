@@ -17,12 +17,7 @@ namespace fs = std::filesystem;
 namespace ipd {
 namespace {
 
-void write_study(const test::TempDir& d) {
-  test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
-  test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
-  test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n");
-  test::write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
-}
+void write_study(const test::TempDir& d) { test::write_two_rock_study(d); }
 
 const char* kPairs = "{\"pairs\": [[0, 1]]}\n";
 

@@ -19,13 +19,7 @@ namespace fs = std::filesystem;
 namespace ipd {
 namespace {
 
-// Automatic pairs (0, 1), (1, 0) of two rocks listed in the other order.
-void write_study(const test::TempDir& d) {
-  test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
-  test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
-  test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n");
-  test::write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
-}
+void write_study(const test::TempDir& d) { test::write_two_rock_study(d); }
 
 std::string conflict_message(const std::string& file) {
   return file + ": changed on disk since this window read it (another window or program saved it); not overwritten: "

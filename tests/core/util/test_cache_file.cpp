@@ -29,13 +29,7 @@ pid_t dead_pid() {
   return pid;
 }
 
-std::vector<Box> rocks(double dx) {
-  std::vector<Box> out;
-  const double xs[] = {0.1, 0.35, 0.6, 0.8, 0.2, 0.5, 0.75};
-  const double ys[] = {0.2, 0.15, 0.3, 0.6, 0.7, 0.5, 0.85};
-  for (int k = 0; k < 7; ++k) out.push_back(Box{0, xs[k] + dx, ys[k], 0.04 + 0.005 * k, 0.05, 1.0});
-  return out;
-}
+std::vector<Box> rocks(double dx) { return test::seven_rocks(dx); }
 
 TEST(CacheDir, AnchorIsTheStudyRootBeforeTheLastIpdCache) {
   EXPECT_EQ(cache_anchor("/s/.ipd-cache/registration"), "/s");
