@@ -54,11 +54,13 @@ Runner add_bench_bootstrap(CLI::App* bench) {
       best = std::min(best, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     }
     const double draws = static_cast<double>(args->scenes) * args->cells * args->resamples;
-    fmt::print("{} scenes x {} cells x {} resamples ({:.2g} scene draws), {} threads: {:.0f} ms (best of 3), "
-               "{:.2f} ns per draw\n",
-               args->scenes, args->cells, args->resamples, draws, threads, best, best * 1e6 / draws);
-    fmt::print("cell 0: IPD {:.4f} [{:.4f}, {:.4f}]\n", table.cells[0].per_scene.empty() ? 0.0 : pooled_mean(scene_sums(table.cells[0])),
-               table.cells[0].ci_low, table.cells[0].ci_high);
+    fmt::print(
+        "{} scenes x {} cells x {} resamples ({:.2g} scene draws), {} threads: {:.0f} ms (best of 3), "
+        "{:.2f} ns per draw\n",
+        args->scenes, args->cells, args->resamples, draws, threads, best, best * 1e6 / draws);
+    fmt::print("cell 0: IPD {:.4f} [{:.4f}, {:.4f}]\n",
+               table.cells[0].per_scene.empty() ? 0.0 : pooled_mean(scene_sums(table.cells[0])), table.cells[0].ci_low,
+               table.cells[0].ci_high);
     return kOk;
   };
 }

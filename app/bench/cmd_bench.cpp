@@ -2,6 +2,7 @@
 // real POLAR-Sim label pairs with known misalignments (see app/bench/registration_benchmark.h).
 #include <fmt/format.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,20 +10,19 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <thread>
-#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
+#include <random>
+#include "app/bench/registration_benchmark.h"
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 #include "app/data_files.h"
-#include "core/util/atomic_file.h"
 #include "core/registration/pairing.h"
 #include "core/report/csv.h"
-#include "core/util/parallel.h"
-#include "app/bench/registration_benchmark.h"
 #include "core/session/session.h"
-#include <random>
+#include "core/util/atomic_file.h"
+#include "core/util/parallel.h"
 
 namespace fs = std::filesystem;
 
@@ -69,13 +69,14 @@ void finish_row(const std::vector<double>& terr, Row* row) {
   row->terr_p90 = percentile(terr, 0.9);
 }
 
-Row run_config(const std::vector<RegistrationCase>& cases, const std::string& regime, const Config& c,
-               double aspect) {
+Row run_config(const std::vector<RegistrationCase>& cases, const std::string& regime, const Config& c, double aspect) {
   RegistrationOptions o;
   o.method = c.method;
   o.aspect = aspect;
-  if (c.method == RegistrationMethod::kCpd) o.cpd_iterations = c.budget;
-  else o.max_trials = c.budget;
+  if (c.method == RegistrationMethod::kCpd)
+    o.cpd_iterations = c.budget;
+  else
+    o.max_trials = c.budget;
   Row row;
   row.regime = regime;
   row.method = to_string(c.method);
@@ -121,15 +122,17 @@ void list_failures(const std::vector<RegistrationCase>& cases, const std::string
     if (f1 < 0.8) ++wrong, flagged_wrong += r.ambiguous;
     const Eigen::Matrix2d l = c.truth_affine.leftCols<2>();
     const double deg = std::atan2(l(1, 0) * aspect - l(0, 1) / aspect, l(0, 0) + l(1, 1)) * 180 / M_PI;
-    fmt::print("  {} case {:>3}: {:>2} / {:>2} rocks, {:>2} true pairs, rotation {:>5.1f} deg; F1 {:.3f} (ceiling {:.3f}), "
-               "terr {:.2f}%, confidence {:.2f}{}, {} hypotheses, stopped: {}  [{}]\n",
-               regime, i, c.a.size(), c.b.size(), c.truth.size(), deg, f1, ceiling,
-               100 * transform_error(r.affine, c.truth_affine, c.a, aspect), r.confidence, r.ambiguous ? " AMBIGUOUS" : "",
-               r.hypotheses, to_string(r.stop), c.source);
+    fmt::print(
+        "  {} case {:>3}: {:>2} / {:>2} rocks, {:>2} true pairs, rotation {:>5.1f} deg; F1 {:.3f} (ceiling {:.3f}), "
+        "terr {:.2f}%, confidence {:.2f}{}, {} hypotheses, stopped: {}  [{}]\n",
+        regime, i, c.a.size(), c.b.size(), c.truth.size(), deg, f1, ceiling,
+        100 * transform_error(r.affine, c.truth_affine, c.a, aspect), r.confidence, r.ambiguous ? " AMBIGUOUS" : "",
+        r.hypotheses, to_string(r.stop), c.source);
   }
-  fmt::print("  {}: {} of {} cases below the ceiling ({} flagged ambiguous), {} of them below F1 0.8 ({} flagged); "
-             "{} cases at the ceiling flagged\n",
-             regime, failed, cases.size(), flagged_failed, wrong, flagged_wrong, flagged_ok);
+  fmt::print(
+      "  {}: {} of {} cases below the ceiling ({} flagged ambiguous), {} of them below F1 0.8 ({} flagged); "
+      "{} cases at the ceiling flagged\n",
+      regime, failed, cases.size(), flagged_failed, wrong, flagged_wrong, flagged_ok);
 }
 
 // What no method can beat on these cases: the transform error of least squares on the true pairs (the
@@ -146,7 +149,8 @@ std::vector<Row> bounds_rows(const std::vector<RegistrationCase>& cases, const s
   for (const auto& c : cases) {
     Affine2 ls;
     if (!least_squares_on_truth(c, &ls)) ls = identity_affine();
-    score_case(c, pair_by_aligned_iou(ls, c.a, c.b, RegistrationOptions().min_pair_iou), ls, aspect, &floor, &terr_floor);
+    score_case(c, pair_by_aligned_iou(ls, c.a, c.b, RegistrationOptions().min_pair_iou), ls, aspect, &floor,
+               &terr_floor);
     score_case(c, pairs_under_true_affine(c), c.truth_affine, aspect, &ceiling, &terr_ceiling);
   }
   finish_row(terr_floor, &floor);
@@ -188,8 +192,8 @@ Row run_pycpd(const std::vector<RegistrationCase>& cases, const std::string& reg
     Affine2 m;  // back to normalised image coordinates
     m.leftCols<2>() = si * iso.leftCols<2>() * s;
     m.col(2) = si * iso.col(2);
-    score_case(cases[i], pair_by_aligned_iou(m, cases[i].a, cases[i].b, RegistrationOptions().min_pair_iou), m,
-               aspect, &row, &terr);
+    score_case(cases[i], pair_by_aligned_iou(m, cases[i].a, cases[i].b, RegistrationOptions().min_pair_iou), m, aspect,
+               &row, &terr);
     row.ms_per_pair += o["ms"].get<double>();
     ms.push_back(o["ms"].get<double>());
   }
@@ -254,21 +258,23 @@ void plot(const std::vector<Row>& rows, const std::string& path) {
     cv::rectangle(img, {x0, y0, panel_w - 60, plot_h}, cv::Scalar(0, 0, 0), 1);
     auto px = [&](double ms, double f1) {
       const double lx = std::clamp(std::log10(std::max(ms, 1e-3)), lo, hi);
-      return cv::Point(x0 + static_cast<int>((lx - lo) / (hi - lo) * (panel_w - 60)), y0 + static_cast<int>((1 - f1) * plot_h));
+      return cv::Point(x0 + static_cast<int>((lx - lo) / (hi - lo) * (panel_w - 60)),
+                       y0 + static_cast<int>((1 - f1) * plot_h));
     };
     for (int e = -2; e <= 2; ++e) {
       const cv::Point p = px(std::pow(10, e), 0);
       cv::line(img, {p.x, y0}, {p.x, y0 + plot_h}, cv::Scalar(220, 220, 220));
-      cv::putText(img, fmt::format("{}", std::pow(10.0, e)), {p.x - 12, y0 + plot_h + 20}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
-                  cv::Scalar(0, 0, 0));
+      cv::putText(img, fmt::format("{}", std::pow(10.0, e)), {p.x - 12, y0 + plot_h + 20}, cv::FONT_HERSHEY_SIMPLEX,
+                  0.45, cv::Scalar(0, 0, 0));
     }
     for (int f = 0; f <= 10; f += 2) {
       const cv::Point p = px(1, f / 10.0);
       cv::line(img, {x0, p.y}, {x0 + panel_w - 60, p.y}, cv::Scalar(220, 220, 220));
-      cv::putText(img, fmt::format("{:.1f}", f / 10.0), {x0 - 35, p.y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0));
+      cv::putText(img, fmt::format("{:.1f}", f / 10.0), {x0 - 35, p.y + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                  cv::Scalar(0, 0, 0));
     }
-    cv::putText(img, regime + ": pair F1 vs ms per image pair (log)", {x0, y0 - 15}, cv::FONT_HERSHEY_SIMPLEX,
-                0.6, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    cv::putText(img, regime + ": pair F1 vs ms per image pair (log)", {x0, y0 - 15}, cv::FONT_HERSHEY_SIMPLEX, 0.6,
+                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
     for (int m = 0; m < 4; ++m) {
       std::vector<cv::Point> pts;
       for (const auto& r : rows)
@@ -278,8 +284,8 @@ void plot(const std::vector<Row>& rows, const std::string& path) {
         cv::circle(img, pts[k], 5, colours[m], cv::FILLED, cv::LINE_AA);
         if (k) cv::line(img, pts[k - 1], pts[k], colours[m], 2, cv::LINE_AA);
       }
-      cv::putText(img, names[m], {x0 + 10, y0 + plot_h - 15 - 22 * m},
-                  cv::FONT_HERSHEY_SIMPLEX, 0.6, colours[m], 2, cv::LINE_AA);
+      cv::putText(img, names[m], {x0 + 10, y0 + plot_h - 15 - 22 * m}, cv::FONT_HERSHEY_SIMPLEX, 0.6, colours[m], 2,
+                  cv::LINE_AA);
     }
     ++panel;
   }
@@ -315,25 +321,32 @@ Runner add_bench_edits(CLI::App* bench) {
     size_t rocks = 0;
     for (int k = 0; k < args->edits; ++k) {
       const int scene = rng.below(static_cast<int>(s.scenes().size()));
-      const int nl = static_cast<int>(s.gt(Side::kA, scene).size()), nr = static_cast<int>(s.gt(Side::kB, scene).size());
+      const int nl = static_cast<int>(s.gt(Side::kA, scene).size()),
+                nr = static_cast<int>(s.gt(Side::kB, scene).size());
       if (nl == 0 || nr == 0) continue;
       rocks += nl + nr;
       const int op = rng.below(4);
       const auto e0 = std::chrono::steady_clock::now();
-      if (op == 0) s.apply(scene, Edit::pair(rng.below(nl), rng.below(nr)));
-      else if (op == 1) s.apply(scene, Edit::unpair(Side::kA, rng.below(nl)));
-      else if (op == 2) s.apply(scene, Edit::toggle_exclude(Side::kB, rng.below(nr)));
-      else s.undo();
+      if (op == 0)
+        s.apply(scene, Edit::pair(rng.below(nl), rng.below(nr)));
+      else if (op == 1)
+        s.apply(scene, Edit::unpair(Side::kA, rng.below(nl)));
+      else if (op == 2)
+        s.apply(scene, Edit::toggle_exclude(Side::kB, rng.below(nr)));
+      else
+        s.undo();
       volatile double ipd = s.totals().ipd();  // what the panel shows next frame
       (void)ipd;
       us.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - e0).count());
     }
     std::sort(us.begin(), us.end());
-    fmt::print("{}: opened in {:.1f} ms ({} scenes in view, {} models); {} edits on scenes of {:.1f} rocks on average\n",
-               args->study, open_ms, s.scenes().size(), s.study().models.size(), us.size(),
-               us.empty() ? 0.0 : static_cast<double>(rocks) / us.size());
+    fmt::print(
+        "{}: opened in {:.1f} ms ({} scenes in view, {} models); {} edits on scenes of {:.1f} rocks on average\n",
+        args->study, open_ms, s.scenes().size(), s.study().models.size(), us.size(),
+        us.empty() ? 0.0 : static_cast<double>(rocks) / us.size());
     if (!us.empty())
-      fmt::print("edit_us median={:.1f} p95={:.1f} max={:.1f}\n", us[us.size() / 2], us[us.size() * 95 / 100], us.back());
+      fmt::print("edit_us median={:.1f} p95={:.1f} max={:.1f}\n", us[us.size() / 2], us[us.size() * 95 / 100],
+                 us.back());
     return kOk;
   };
 }
@@ -389,7 +402,8 @@ Runner add_bench_command(CLI::App& app) {
                pairs.size(), root, args->cases, args->seed);
     std::vector<Config> configs;
     if (args->quick) {
-      configs = {{RegistrationMethod::kPaper, 1000}, {RegistrationMethod::kConsensus, 1000}, {RegistrationMethod::kCpd, 100}};
+      configs = {
+          {RegistrationMethod::kPaper, 1000}, {RegistrationMethod::kConsensus, 1000}, {RegistrationMethod::kCpd, 100}};
     } else {
       for (int k : {10, 100, 1000}) configs.push_back({RegistrationMethod::kPaper, k});
       for (int k : {25, 100, 250, 1000, 4000}) configs.push_back({RegistrationMethod::kConsensus, k});
@@ -444,9 +458,9 @@ Runner add_bench_command(CLI::App& app) {
         fmt::print("{:<8} {:<11} {:>7} {:>9.4f} {:>8.4f} {:>7.4f} {:>7.4f} {:>7.4f} {:>10.4f} {:>10.4f} {:>6} {:>6}\n",
                    r.regime, r.method, budget, r.ms_per_pair, r.ms_median, r.f1, r.precision, r.recall,
                    100 * r.terr_median, 100 * r.terr_p90, amb, amb_f1);
-        csv += fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f}\n", csv_field(r.regime), csv_field(r.method),
-                           r.config.budget, r.cases, r.ms_per_pair, r.ms_median, r.f1, r.precision, r.recall,
-                           r.terr_median, r.terr_p90, r.ambiguous);
+        csv += fmt::format("{},{},{},{},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.6f},{:.4f}\n", csv_field(r.regime),
+                           csv_field(r.method), r.config.budget, r.cases, r.ms_per_pair, r.ms_median, r.f1, r.precision,
+                           r.recall, r.terr_median, r.terr_p90, r.ambiguous);
       }
       // The default method's goals, checked in the same run.
       const Row* floor = &tier[0];
@@ -462,10 +476,11 @@ Runner add_bench_command(CLI::App& app) {
         auto verdict = [](bool met) { return met ? "met" : "NOT met"; };
         const double f1_goal = range.name == "small" ? 0.99 : 0.97;
         const double terr_ratio = floor->terr_median > 0 ? deflt->terr_median / floor->terr_median : 0.0;
-        fmt::print("  default: F1 {:.4f} (goal {}: {}), transform error {:.2f}x the floor (goal 1.1x: {}), median {:.3f} "
-                   "ms/pair (goal 0.5: {})",
-                   deflt->f1, f1_goal, verdict(deflt->f1 >= f1_goal), terr_ratio, verdict(terr_ratio <= 1.1),
-                   deflt->ms_median, verdict(deflt->ms_median <= 0.5));
+        fmt::print(
+            "  default: F1 {:.4f} (goal {}: {}), transform error {:.2f}x the floor (goal 1.1x: {}), median {:.3f} "
+            "ms/pair (goal 0.5: {})",
+            deflt->f1, f1_goal, verdict(deflt->f1 >= f1_goal), terr_ratio, verdict(terr_ratio <= 1.1), deflt->ms_median,
+            verdict(deflt->ms_median <= 0.5));
         if (py) {
           const double speedup = py->ms_per_pair / deflt->ms_per_pair;
           fmt::print(", {:.1f}x faster than the pycpd port by mean (goal 10x: {}; {:.1f}x by medians)", speedup,
@@ -493,8 +508,9 @@ Runner add_bench_command(CLI::App& app) {
       });
       const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      fmt::print("\nThroughput: {} image pairs drawn from the cases above, default method, {} threads: {:.1f} ms in all\n",
-                 n, threads, ms);
+      fmt::print(
+          "\nThroughput: {} image pairs drawn from the cases above, default method, {} threads: {:.1f} ms in all\n", n,
+          threads, ms);
     }
     if (!args->csv.empty()) write_file_atomically(args->csv, csv);
     if (!args->plot.empty()) plot(rows, args->plot);

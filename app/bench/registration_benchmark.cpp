@@ -1,9 +1,9 @@
 #include "app/bench/registration_benchmark.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 #include <map>
 #include <numeric>
 #include <regex>
@@ -62,7 +62,9 @@ MisalignmentRange unequal_counts() {
   r.drop_smallest_max = 0.5;
   return r;
 }
-std::vector<MisalignmentRange> benchmark_tiers() { return {small_misalignment(), large_misalignment(), unequal_counts()}; }
+std::vector<MisalignmentRange> benchmark_tiers() {
+  return {small_misalignment(), large_misalignment(), unequal_counts()};
+}
 
 bool least_squares_on_truth(const RegistrationCase& c, Affine2* out) {
   std::vector<Eigen::Vector2d> src, dst;
@@ -96,8 +98,7 @@ LabelPair synthetic_label_pair(int n, std::uint64_t seed) {
   return p;
 }
 
-RegistrationCase make_case(const LabelPair& pair, const MisalignmentRange& r, std::uint64_t seed, double W,
-                           double H) {
+RegistrationCase make_case(const LabelPair& pair, const MisalignmentRange& r, std::uint64_t seed, double W, double H) {
   detail::Rng rng(seed * 7919 + 17);
   auto u = [&](double lo, double hi) { return lo + (hi - lo) * rng.uniform(); };
   auto gauss = [&]() {  // Box-Muller

@@ -2,9 +2,9 @@
 
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cstdio>
-#include <fmt/format.h>
 
 #include <cstdlib>
 
@@ -61,9 +61,12 @@ bool report_unusable_pairs(const std::vector<PairsProblem>& problems, bool skip_
   for (const auto& p : problems) {
     if (!p.unusable) continue;
     ++unusable;
-    if (!skip_bad_lines) fmt::print(stderr, "{}\n", p.to_string());
-    else if (warnings) warnings->push_back(p.to_string());
-    else fmt::print(stderr, "warning: {}\n", p.to_string());
+    if (!skip_bad_lines)
+      fmt::print(stderr, "{}\n", p.to_string());
+    else if (warnings)
+      warnings->push_back(p.to_string());
+    else
+      fmt::print(stderr, "warning: {}\n", p.to_string());
   }
   if (unusable == 0 || skip_bad_lines) return false;
   fmt::print(stderr,

@@ -7,9 +7,9 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
-#include "core/stats/study_statistics.h"
 #include "app/cli/study_options.h"
 #include "core/report/csv.h"
+#include "core/stats/study_statistics.h"
 #include "core/util/json_output.h"
 
 namespace ipd::cli {
@@ -20,7 +20,9 @@ std::string interval_text(const Interval& i) {
   if (!i.has_interval()) return fmt::format("{:.4f}", i.estimate);
   return fmt::format("{:.4f} [{:.3f}, {:.3f}]", i.estimate, i.low, i.high);
 }
-nlohmann::ordered_json number(double v) { return std::isnan(v) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v); }
+nlohmann::ordered_json number(double v) {
+  return std::isnan(v) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v);
+}
 }  // namespace
 
 Runner add_breakdown_command(CLI::App& app) {
@@ -33,9 +35,12 @@ Runner add_breakdown_command(CLI::App& app) {
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("breakdown", "IPD per bin of the reference rock's size, region or confidence");
   add_study_options(cmd, &args->study, true);
-  cmd->add_option("--by", args->by, "size (box area, px²), region (3x3 grid) or confidence (of its best-IoU prediction)")
+  cmd->add_option("--by", args->by,
+                  "size (box area, px²), region (3x3 grid) or confidence (of its best-IoU prediction)")
       ->check(CLI::IsMember({"size", "region", "confidence"}));
-  cmd->add_option("--bins", args->bins, "Quantile bins for size and confidence")->check(CLI::Range(1, 100))->default_val(4);
+  cmd->add_option("--bins", args->bins, "Quantile bins for size and confidence")
+      ->check(CLI::Range(1, 100))
+      ->default_val(4);
   cmd->add_option("--format", args->format, "text, csv, json or markdown")
       ->check(CLI::IsMember({"text", "csv", "json", "markdown"}));
   cmd->add_flag("--all-cells", args->all_cells, "Also the cells that don't involve the model's training domain");
@@ -59,15 +64,24 @@ Runner add_breakdown_command(CLI::App& app) {
     }
     const std::string ref_note = "bins of the first domain's rock; ";
     if (args->format == "json") {
-      nlohmann::ordered_json j = {{"by", args->by}, {"bootstrap", {{"resamples", bo.bootstrap.resamples}, {"level", bo.bootstrap.level}, {"seed", bo.bootstrap.seed}}}};
+      nlohmann::ordered_json j = {
+          {"by", args->by},
+          {"bootstrap",
+           {{"resamples", bo.bootstrap.resamples}, {"level", bo.bootstrap.level}, {"seed", bo.bootstrap.seed}}}};
       j["cells"] = nlohmann::ordered_json::array();
       for (const auto& c : out) {
         nlohmann::ordered_json bins = nlohmann::ordered_json::array();
         for (const auto& b : c.bins)
-          bins.push_back({{"bin", b.label}, {"low", number(b.low)}, {"high", number(b.high)},
-                          {"ipd", number(b.ipd.estimate)}, {"ci_low", number(b.ipd.low)},
-                          {"ci_high", number(b.ipd.high)}, {"pairs", b.pairs}, {"scenes", b.scenes}});
-        j["cells"].push_back({{"model", c.model}, {"trained_on", c.trained_on}, {"a", c.a}, {"b", c.b}, {"bins", bins}});
+          bins.push_back({{"bin", b.label},
+                          {"low", number(b.low)},
+                          {"high", number(b.high)},
+                          {"ipd", number(b.ipd.estimate)},
+                          {"ci_low", number(b.ipd.low)},
+                          {"ci_high", number(b.ipd.high)},
+                          {"pairs", b.pairs},
+                          {"scenes", b.scenes}});
+        j["cells"].push_back(
+            {{"model", c.model}, {"trained_on", c.trained_on}, {"a", c.a}, {"b", c.b}, {"bins", bins}});
       }
       std::cout << dump_json_output(j, 2) << "\n";
     } else if (args->format == "csv") {
@@ -81,7 +95,8 @@ Runner add_breakdown_command(CLI::App& app) {
       const bool md = args->format == "markdown";
       for (const auto& c : out) {
         std::cout << fmt::format("{}{} ({}), |{} - {}|, by {}:\n", md ? "**" : "", c.model, c.trained_on, c.a, c.b,
-                                 args->by) << (md ? "**\n\n| bin | IPD [CI] | pairs | scenes |\n|---|---:|---:|---:|\n" : "");
+                                 args->by)
+                  << (md ? "**\n\n| bin | IPD [CI] | pairs | scenes |\n|---|---:|---:|---:|\n" : "");
         for (const auto& b : c.bins)
           std::cout << (md ? fmt::format("| {} | {} | {} | {} |\n", b.label, interval_text(b.ipd), b.pairs, b.scenes)
                            : fmt::format("  {:<22} {:<26} {:>5} pairs {:>4} scenes\n", b.label, interval_text(b.ipd),

@@ -1,32 +1,42 @@
 // `ipd compare STUDY --ref real --a principled --b hapke`: which renderer is closer to the reference, with a
 // paired scene-bootstrap interval on ΔIPD and a permutation test.
-#include <algorithm>
 #include <fmt/format.h>
+#include <algorithm>
 
 #include <iostream>
 #include <nlohmann/json.hpp>
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
-#include "core/stats/study_statistics.h"
 #include "app/cli/study_options.h"
+#include "core/stats/study_statistics.h"
 #include "core/util/json_output.h"
 
 namespace ipd::cli {
 
 namespace {
-nlohmann::ordered_json number(double v) { return std::isnan(v) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v); }
+nlohmann::ordered_json number(double v) {
+  return std::isnan(v) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v);
+}
 
 nlohmann::ordered_json comparison_json(const RendererComparison& c) {
   const Comparison& r = c.result;
-  return {{"model", c.model},         {"ref", c.ref},
-          {"a", c.a},                 {"b", c.b},
-          {"ipd_a", number(r.ipd_a)}, {"ipd_b", number(r.ipd_b)},
-          {"delta", number(r.delta.estimate)}, {"ci_low", number(r.delta.low)},
-          {"ci_high", number(r.delta.high)},   {"se", number(r.delta.se)},
-          {"p_value", number(r.p_value)},      {"scenes", r.scenes},
-          {"pairs_a", r.pairs_a},              {"pairs_b", r.pairs_b},
-          {"delta_common", number(r.delta_common)}, {"pairs_common", r.pairs_common},
+  return {{"model", c.model},
+          {"ref", c.ref},
+          {"a", c.a},
+          {"b", c.b},
+          {"ipd_a", number(r.ipd_a)},
+          {"ipd_b", number(r.ipd_b)},
+          {"delta", number(r.delta.estimate)},
+          {"ci_low", number(r.delta.low)},
+          {"ci_high", number(r.delta.high)},
+          {"se", number(r.delta.se)},
+          {"p_value", number(r.p_value)},
+          {"scenes", r.scenes},
+          {"pairs_a", r.pairs_a},
+          {"pairs_b", r.pairs_b},
+          {"delta_common", number(r.delta_common)},
+          {"pairs_common", r.pairs_common},
           {"sentence", comparison_sentence(c)}};
 }
 }  // namespace
@@ -39,7 +49,8 @@ Runner add_compare_command(CLI::App& app) {
     bool json = false;
   };
   auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("compare", "Which renderer is closer to the reference: ΔIPD = IPD(ref, a) - IPD(ref, b)");
+  CLI::App* cmd =
+      app.add_subcommand("compare", "Which renderer is closer to the reference: ΔIPD = IPD(ref, a) - IPD(ref, b)");
   add_study_options(cmd, &args->study, true);
   cmd->add_option("--ref", args->ref, "Reference domain (default: the study's first)");
   cmd->add_option("--a", args->a, "First renderer (default: the study's second domain)");
@@ -95,7 +106,8 @@ Runner add_compare_command(CLI::App& app) {
     }
     if (results.empty() && !no_value.empty())
       throw StudyError(fmt::format("{}: nothing to compare: {}", study.root, no_value));
-    if (results.empty()) throw StudyError(fmt::format("{}: no model has predictions for {}, {} and {}", study.root, ref, a, b));
+    if (results.empty())
+      throw StudyError(fmt::format("{}: no model has predictions for {}, {} and {}", study.root, ref, a, b));
     if (args->json) {
       if (results.size() == 1) {
         std::cout << dump_json_output(comparison_json(results[0]), 2) << "\n";
@@ -120,9 +132,10 @@ Runner add_compare_command(CLI::App& app) {
       if (std::none_of(results.begin(), results.end(), tested))
         std::cout << "(intervals and tests need at least 2 scenes)\n";
       else
-        std::cout << fmt::format("({:g}% paired scene-bootstrap interval, {} resamples; sign-flip permutation test, "
-                               "{}; seed {})\n",
-                               100 * co.bootstrap.level, co.bootstrap.resamples, test, co.bootstrap.seed);
+        std::cout << fmt::format(
+            "({:g}% paired scene-bootstrap interval, {} resamples; sign-flip permutation test, "
+            "{}; seed {})\n",
+            100 * co.bootstrap.level, co.bootstrap.resamples, test, co.bootstrap.seed);
     }
     return kOk;
   };

@@ -20,7 +20,8 @@ Runner add_demo_command(CLI::App& app) {
   cmd->add_option("--scenes", args->options.scenes, "Scenes per domain")->check(CLI::Range(1, 10000));
   cmd->add_option("--width", args->options.width, "Picture width")->check(CLI::Range(64, 10000));
   cmd->add_option("--height", args->options.height, "Picture height")->check(CLI::Range(64, 10000));
-  cmd->add_option("--rocks", args->options.max_rocks, "Most rocks per scene (a benchmark setting)")->check(CLI::Range(3, 500));
+  cmd->add_option("--rocks", args->options.max_rocks, "Most rocks per scene (a benchmark setting)")
+      ->check(CLI::Range(3, 500));
   cmd->add_flag("--labels-only", args->options.labels_only,
                 "No pictures: GT from the scene geometry and synthetic predictions (fast; for 10,000-scene studies)");
   return [args]() -> int {

@@ -9,10 +9,10 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
-#include "core/io/label_io.h"
 #include "core/detect/rock_detector.h"
-#include "core/study/study.h"
 #include "core/detect/yolo.h"
+#include "core/io/label_io.h"
+#include "core/study/study.h"
 
 namespace fs = std::filesystem;
 
@@ -61,11 +61,13 @@ Runner add_detect_command(CLI::App& app) {
   cmd->add_option("--classes", args->yolo.classes, "Keep only these classes, e.g. 0,1")->delimiter(',');
   cmd->add_option("--threads", args->threads, "Picture decoding threads (default: all cores)");
   return [args]() -> int {
-    if (args->threads < 0) throw CLI::ValidationError("--threads", fmt::format("must be >= 0 (0: every core), got {}", args->threads));
+    if (args->threads < 0)
+      throw CLI::ValidationError("--threads", fmt::format("must be >= 0 (0: every core), got {}", args->threads));
     if (const std::string bad = args->yolo.validate(); !bad.empty()) throw CLI::ValidationError(bad);
     const bool study_mode = !args->model.empty();
     if (study_mode == !args->out.empty())
-      throw CLI::ValidationError("detect", "give --out PRED_DIR for a directory of pictures, or --model NAME for a study");
+      throw CLI::ValidationError("detect",
+                                 "give --out PRED_DIR for a directory of pictures, or --model NAME for a study");
     if (args->detector == "yolo" && args->onnx.empty())
       throw CLI::ValidationError("detect", "--onnx MODEL.onnx is required (or --detector classical)");
     std::vector<Job> jobs;
@@ -88,7 +90,8 @@ Runner add_detect_command(CLI::App& app) {
                  yolo->classes());
     }
     // Decode ahead in parallel while the network runs on the previous batch.
-    const int threads = std::max(1, args->threads > 0 ? args->threads : static_cast<int>(std::thread::hardware_concurrency()));
+    const int threads =
+        std::max(1, args->threads > 0 ? args->threads : static_cast<int>(std::thread::hardware_concurrency()));
     Progress progress("detecting");
     int failed = 0;
     auto decode = [](const std::string& p) { return cv::imread(p, cv::IMREAD_COLOR); };

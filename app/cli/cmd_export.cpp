@@ -5,9 +5,9 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
-#include "core/util/atomic_file.h"
-#include "core/report/rock_export.h"
 #include "app/cli/study_options.h"
+#include "core/report/rock_export.h"
+#include "core/util/atomic_file.h"
 
 namespace ipd::cli {
 

@@ -8,10 +8,10 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
-#include "ui/figures/figure_export.h"
-#include "core/util/atomic_file.h"
-#include "core/ipd/ipd.h"
 #include "app/cli/figure_cli.h"
+#include "core/ipd/ipd.h"
+#include "core/util/atomic_file.h"
+#include "ui/figures/figure_export.h"
 
 namespace ipd::cli {
 
@@ -114,7 +114,9 @@ Runner add_figure_command(CLI::App& app) {
     add_figure_output_options(cmd, &args->output);
     cmd->callback([which, name] { *which = name; });
   };
-  add("pairs", "Fig. 1: both pictures side by side, GT (yellow, solid, pair numbers) and predictions (blue, dashed, confidence)");
+  add("pairs",
+      "Fig. 1: both pictures side by side, GT (yellow, solid, pair numbers) and predictions (blue, dashed, "
+      "confidence)");
   add("registration", "Fig. 2: GT centres before and after registration, lines between partners");
   const Runner stats = add_figure_stats_commands(fig, which);
   return [args, which, stats]() -> int {

@@ -5,8 +5,8 @@
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 #include "app/cli/figure_cli.h"
-#include "ui/figures/figure_study.h"
 #include "app/cli/study_options.h"
+#include "ui/figures/figure_study.h"
 
 namespace ipd::cli {
 
@@ -56,15 +56,19 @@ Runner add_figure_stats_commands(CLI::App* fig, std::shared_ptr<std::string> whi
     return cmd;
   };
   add("table", "The cross table (Table I) as a figure; --ci adds each cell's interval");
-  CLI::App* cmp = add("compare", "Which renderer is closer to the reference: ΔIPD with its interval per model, p-values");
+  CLI::App* cmp =
+      add("compare", "Which renderer is closer to the reference: ΔIPD with its interval per model, p-values");
   cmp->add_option("--ref", args->ref, "Reference domain (default: the first, usually real)");
   cmp->add_option("--a", args->a, "First renderer (default: the second domain)");
   cmp->add_option("--b", args->b, "Second renderer (default: the third domain)");
-  cmp->add_option("--permutations", args->permutations, "Sign-flip permutations for the p-value")->check(CLI::NonNegativeNumber);
-  CLI::App* dist = add("distribution", "Per-scene IPD of one model for each domain pair (box plots, worst scenes named)");
+  cmp->add_option("--permutations", args->permutations, "Sign-flip permutations for the p-value")
+      ->check(CLI::NonNegativeNumber);
+  CLI::App* dist =
+      add("distribution", "Per-scene IPD of one model for each domain pair (box plots, worst scenes named)");
   dist->add_option("--worst", args->worst, "How many worst scenes to name per domain pair")->check(CLI::Range(0, 20));
   CLI::App* br = add("breakdown", "IPD of one model and domain pair per bin of rock size, region or confidence");
-  br->add_option("--by", args->by, "size, region or confidence")->check(CLI::IsMember({"size", "region", "confidence"}));
+  br->add_option("--by", args->by, "size, region or confidence")
+      ->check(CLI::IsMember({"size", "region", "confidence"}));
   br->add_option("--bins", args->bins, "Quantile bins for size and confidence")->check(CLI::Range(1, 20));
   br->add_option("--a", args->a, "Reference domain (default: the first)");
   br->add_option("--b", args->b, "Other domain (default: the second)");

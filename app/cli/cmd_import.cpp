@@ -14,7 +14,8 @@ Runner add_import_command(CLI::App& app) {
   CLI::App* cmd = imp->add_subcommand("coco", "COCO ground truth (and detection results) to YOLO txt");
   cmd->add_option("ANNOTATIONS", o->annotations, "COCO instances JSON (images, annotations, categories)")->required();
   cmd->add_option("--results", o->results, "COCO detection results JSON [{image_id, category_id, bbox, score}]");
-  cmd->add_option("--images", o->images_dir, "Directory the file_name entries resolve in (linked into images/)")->required();
+  cmd->add_option("--images", o->images_dir, "Directory the file_name entries resolve in (linked into images/)")
+      ->required();
   cmd->add_option("--out", o->out_dir, "The domain directory to fill, e.g. STUDY/real")->required();
   cmd->add_option("--model", o->model, "Prediction set name for --results (default coco-results)");
   cmd->add_flag("--skip-bad-lines", o->skip_bad_entries, "Warn about malformed entries and skip them");

@@ -8,10 +8,10 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
+#include "app/cli/study_options.h"
 #include "core/stats/detection_metrics.h"
 #include "core/stats/image_metrics.h"
 #include "core/stats/study_statistics.h"
-#include "app/cli/study_options.h"
 #include "core/util/json_output.h"
 
 namespace ipd::cli {
@@ -62,23 +62,31 @@ Runner add_metrics_command(CLI::App& app) {
     for (const auto& m : study.models) {
       if (!so.models.empty() && std::find(so.models.begin(), so.models.end(), m.name) == so.models.end()) continue;
       for (const auto& d : study.domains) {
-        if (!so.domains.empty() && std::find(so.domains.begin(), so.domains.end(), d.name) == so.domains.end()) continue;
+        if (!so.domains.empty() && std::find(so.domains.begin(), so.domains.end(), d.name) == so.domains.end())
+          continue;
         if (!labels.has_predictions(d.name, m.name)) continue;
         std::vector<DetectionImage> images;
         for (const auto& stem : d.stems)
           images.push_back({labels.gt_of(d.name, stem).boxes, labels.predictions_of(d.name, m.name, stem).boxes});
         const DetectionMetrics r = detection_metrics(images, threshold);
-        j["metrics"].push_back({{"model", m.name}, {"domain", d.name}, {"ap50", number(r.ap50)},
-                                {"ap50_95", number(r.ap50_95)}, {"precision", number(r.precision)},
-                                {"recall", number(r.recall)}, {"f1", number(r.f1)}, {"gt", r.gt},
+        j["metrics"].push_back({{"model", m.name},
+                                {"domain", d.name},
+                                {"ap50", number(r.ap50)},
+                                {"ap50_95", number(r.ap50_95)},
+                                {"precision", number(r.precision)},
+                                {"recall", number(r.recall)},
+                                {"f1", number(r.f1)},
+                                {"gt", r.gt},
                                 {"detections", r.detections}});
         text += fmt::format("{:<24} {:<12} {:>7} {:>9} {:>9} {:>7} {:>7} {:>6} {:>6}\n", m.name, d.name,
                             fixed(r.ap50, 4), fixed(r.ap50_95, 4), fixed(r.precision, 4), fixed(r.recall, 4),
                             fixed(r.f1, 4), r.gt, r.detections);
       }
     }
-    text += fmt::format("(AP: pycocotools' rules over every detection in the files; precision/recall/F1 at "
-                        "confidence >= {:g} and IoU 0.5)\n", threshold);
+    text += fmt::format(
+        "(AP: pycocotools' rules over every detection in the files; precision/recall/F1 at "
+        "confidence >= {:g} and IoU 0.5)\n",
+        threshold);
     if (args->images) {
       auto loaded = load_study_table(so, false);
       if (!loaded) return kBadInput;
@@ -117,16 +125,23 @@ Runner add_metrics_command(CLI::App& app) {
           rho.push_back({{"model", m.name}, {"rho", number(r)}, {"scenes", x.size()}});
           rho_text += fmt::format("{}{} {}", rho_text.empty() ? "" : ", ", m.name, fixed(r, 2));
         }
-        j["images"].push_back({{"a", a}, {"b", b}, {"scenes", px.size()}, {"ssim", number(ssim_ci.estimate)},
-                               {"ssim_ci_low", number(ssim_ci.low)}, {"ssim_ci_high", number(ssim_ci.high)},
-                               {"psnr", number(psnr_ci.estimate)}, {"psnr_ci_low", number(psnr_ci.low)},
-                               {"psnr_ci_high", number(psnr_ci.high)}, {"spearman", rho}});
+        j["images"].push_back({{"a", a},
+                               {"b", b},
+                               {"scenes", px.size()},
+                               {"ssim", number(ssim_ci.estimate)},
+                               {"ssim_ci_low", number(ssim_ci.low)},
+                               {"ssim_ci_high", number(ssim_ci.high)},
+                               {"psnr", number(psnr_ci.estimate)},
+                               {"psnr_ci_low", number(psnr_ci.low)},
+                               {"psnr_ci_high", number(psnr_ci.high)},
+                               {"spearman", rho}});
         text += fmt::format("{:<26} {:>6} {:<26} {:<26} {}\n", a + " - " + b, px.size(), with_ci(ssim_ci, 3),
                             with_ci(psnr_ci, 2), rho_text.empty() ? "n/a" : rho_text);
       }
-      text += fmt::format("(SSIM: Gaussian σ = 1.5, 11 taps, grey levels, over the overlap after warping B onto A "
-                          "with the registration affine; {:g}% scene-bootstrap intervals)\n",
-                          100 * loaded->bootstrap.level);
+      text += fmt::format(
+          "(SSIM: Gaussian σ = 1.5, 11 taps, grey levels, over the overlap after warping B onto A "
+          "with the registration affine; {:g}% scene-bootstrap intervals)\n",
+          100 * loaded->bootstrap.level);
     }
     std::cout << (args->json ? dump_json_output(j, 2) + "\n" : text);
     return kOk;

@@ -13,10 +13,10 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
+#include "core/registration/registration.h"
 #include "core/util/atomic_file.h"
 #include "core/util/json_output.h"
 #include "core/util/parallel.h"
-#include "core/registration/registration.h"
 
 namespace ipd::cli {
 
@@ -50,7 +50,8 @@ struct SearchCount {
 };
 
 std::vector<SearchCount> search_counts(RegistrationMethod method) {
-  if (method == RegistrationMethod::kCpd) return {{"em_iterations", "EM iteration", "EM iterations", &RegistrationReport::trials}};
+  if (method == RegistrationMethod::kCpd)
+    return {{"em_iterations", "EM iteration", "EM iterations", &RegistrationReport::trials}};
   return {{"trials", "trial", "trials", &RegistrationReport::trials},
           {"hypotheses", "hypothesis", "hypotheses", &RegistrationReport::hypotheses}};
 }
@@ -91,8 +92,8 @@ void run_job(Job* job, const RegistrationOptions& opt, int cls, bool skip_bad_li
     if (!f->exists) job->errors.push_back({f->path, 0, "no such label file"});
     job->errors.insert(job->errors.end(), f->errors.begin(), f->errors.end());
   }
-  const bool file_problem = std::any_of(job->errors.begin(), job->errors.end(),
-                                        [](const LabelError& e) { return e.malformed_lines() == 0; });
+  const bool file_problem =
+      std::any_of(job->errors.begin(), job->errors.end(), [](const LabelError& e) { return e.malformed_lines() == 0; });
   if (!job->errors.empty() && (!skip_bad_lines || file_problem)) return;
   keep_class(&a, cls);
   keep_class(&b, cls);
@@ -174,7 +175,8 @@ Runner add_register_command(CLI::App& app) {
       ->check(CLI::IsMember(method_names()));
   cmd->add_option("--seed", args->seed, "Random seed (results are deterministic for a seed)")->check(seed_validator());
   cmd->add_option("--class", args->cls, "Only boxes of this class (default: all)");
-  // Each method's own search budget, as `ipd bench registration` treats budgets (Cli.RegisterTrialsIsEachMethodsBudget).
+  // Each method's own search budget, as `ipd bench registration` treats budgets
+  // (Cli.RegisterTrialsIsEachMethodsBudget).
   cmd->add_option("--trials", args->trials,
                   "Search budget: paper: K samples (default 1000); consensus: hypothesis cap (default 1000); cpd: EM "
                   "iterations (default 100)");
@@ -182,7 +184,8 @@ Runner add_register_command(CLI::App& app) {
   cmd->add_option("--image-size", args->image_size, "W,H of the pictures, so angles are measured in pixels")
       ->delimiter(',')
       ->expected(2);
-  cmd->add_option("--max-rotation", args->max_rotation, "consensus: largest plausible rotation in degrees (default 30)");
+  cmd->add_option("--max-rotation", args->max_rotation,
+                  "consensus: largest plausible rotation in degrees (default 30)");
   cmd->add_option("--max-anisotropy", args->max_anisotropy,
                   "consensus: largest ratio of the affine's two scales (default 2)");
   cmd->add_option("--threads", args->threads, "Worker threads for --list (default: all cores)");
@@ -196,7 +199,8 @@ Runner add_register_command(CLI::App& app) {
     RegistrationOptions opt;
     parse_method(args->method, &opt.method);
     opt.seed = args->seed;
-    if (cmd->count("--trials") > 0) (opt.method == RegistrationMethod::kCpd ? opt.cpd_iterations : opt.max_trials) = args->trials;
+    if (cmd->count("--trials") > 0)
+      (opt.method == RegistrationMethod::kCpd ? opt.cpd_iterations : opt.max_trials) = args->trials;
     opt.time_budget_ms = args->budget_ms;
     if (cmd->count("--max-rotation") > 0) opt.max_rotation_deg = args->max_rotation;
     if (cmd->count("--max-anisotropy") > 0) opt.max_anisotropy = args->max_anisotropy;
@@ -204,21 +208,25 @@ Runner add_register_command(CLI::App& app) {
     const std::string bad = opt.validate();
     if (!bad.empty()) throw CLI::ValidationError("register", bad);
     std::vector<Job> jobs;
-    if (list_mode) jobs = read_list(args->list);
-    else jobs.push_back({args->real, args->synth, 0, {}, {}});
-    parallel_for(jobs.size(), args->threads, [&](size_t k) { run_job(&jobs[k], opt, args->cls, args->skip_bad_lines); });
+    if (list_mode)
+      jobs = read_list(args->list);
+    else
+      jobs.push_back({args->real, args->synth, 0, {}, {}});
+    parallel_for(jobs.size(), args->threads,
+                 [&](size_t k) { run_job(&jobs[k], opt, args->cls, args->skip_bad_lines); });
     int failed = 0, reported = 0;
     for (const auto& job : jobs) {
       // JSON holds only UTF-8: a path in another encoding is this pair's error, named, not the whole output's.
       if (args->json && (!is_utf8(job.real) || !is_utf8(job.synth))) {
-        const std::string why = fmt::format("{}: the name is not UTF-8 text, which JSON output cannot hold; rename "
-                                            "it (the text report takes it as it is)",
-                                            escape_non_utf8(is_utf8(job.real) ? job.synth : job.real));
+        const std::string why = fmt::format(
+            "{}: the name is not UTF-8 text, which JSON output cannot hold; rename "
+            "it (the text report takes it as it is)",
+            escape_non_utf8(is_utf8(job.real) ? job.synth : job.real));
         fmt::print(stderr, "error: {}\n", why);
         ++failed;
         if (list_mode)
-          std::cout << dump_json_output(nlohmann::json{{"real", escape_non_utf8(job.real)},
-                                                       {"synth", escape_non_utf8(job.synth)}, {"error", why}})
+          std::cout << dump_json_output(nlohmann::json{
+                           {"real", escape_non_utf8(job.real)}, {"synth", escape_non_utf8(job.synth)}, {"error", why}})
                     << "\n";
         continue;
       }
@@ -253,15 +261,16 @@ Runner add_register_command(CLI::App& app) {
                  method == "paper" ? "mutual nearest neighbour" : "aligned-box IoU (one-to-one)");
       // The budget is the same for every method: 10^6 + 300 n log2 n point evaluations for n rocks in all.
       fmt::print("  work: {} of {} point evaluations (the bound for this many rocks); confidence {:.3f}{}\n",
-                 grouped_count(r["work"].get<double>()),
-                 grouped_count(r["work_budget"].get<double>()), r["confidence"].get<double>(),
-                 r["ambiguous"].get<bool>() ? "; AMBIGUOUS: " + r["ambiguity"].get<std::string>() : std::string());  // the reason may have its own "(e.g. ...)"
+                 grouped_count(r["work"].get<double>()), grouped_count(r["work_budget"].get<double>()),
+                 r["confidence"].get<double>(),
+                 r["ambiguous"].get<bool>() ? "; AMBIGUOUS: " + r["ambiguity"].get<std::string>()
+                                            : std::string());  // the reason may have its own "(e.g. ...)"
       if (r.contains("note")) fmt::print("  note: {}\n", r["note"].get<std::string>());
       const auto& a = r["affine"];
-      fmt::print("  affine (real -> synth, normalised): [{} {} {}; {} {} {}]\n", fixed_no_minus_zero(a[0][0].get<double>()),
-                 fixed_no_minus_zero(a[0][1].get<double>()), fixed_no_minus_zero(a[0][2].get<double>()),
-                 fixed_no_minus_zero(a[1][0].get<double>()), fixed_no_minus_zero(a[1][1].get<double>()),
-                 fixed_no_minus_zero(a[1][2].get<double>()));
+      fmt::print("  affine (real -> synth, normalised): [{} {} {}; {} {} {}]\n",
+                 fixed_no_minus_zero(a[0][0].get<double>()), fixed_no_minus_zero(a[0][1].get<double>()),
+                 fixed_no_minus_zero(a[0][2].get<double>()), fixed_no_minus_zero(a[1][0].get<double>()),
+                 fixed_no_minus_zero(a[1][1].get<double>()), fixed_no_minus_zero(a[1][2].get<double>()));
       fmt::print("  pairs (1-based real:synth):");
       for (const auto& p : r["pairs"]) fmt::print(" {}:{}", p[0].get<int>() + 1, p[1].get<int>() + 1);
       fmt::print("\n");
@@ -269,8 +278,9 @@ Runner add_register_command(CLI::App& app) {
     // Angles and the rotation bound are measured in pixels: without the picture's size a wide picture's
     // alignment reads differently from ipd-studio's and ipd table's, which take it from study.yaml.
     if (reported > 0 && args->image_size.empty())
-      fmt::print(stderr, "note: pictures taken as square (aspect 1); --image-size W,H measures angles in pixels, "
-                         "as ipd table and ipd-studio do with study.yaml's image size\n");
+      fmt::print(stderr,
+                 "note: pictures taken as square (aspect 1); --image-size W,H measures angles in pixels, "
+                 "as ipd table and ipd-studio do with study.yaml's image size\n");
     return failed ? kBadInput : kOk;
   };
 }

@@ -5,9 +5,9 @@
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
-#include "core/util/atomic_file.h"
-#include "core/report/table_format.h"
 #include "app/cli/study_options.h"
+#include "core/report/table_format.h"
+#include "core/util/atomic_file.h"
 
 namespace ipd::cli {
 
@@ -48,8 +48,10 @@ Runner add_table_command(CLI::App& app) {
     // itself; beside the machine-readable formats, on stderr.
     std::vector<std::string> notes;
     if (loaded->conf_threshold > 0)
-      notes.push_back(fmt::format("Predictions with confidence below {:g} dropped (--conf, else study.yaml's "
-                                  "conf_threshold).", loaded->conf_threshold));
+      notes.push_back(
+          fmt::format("Predictions with confidence below {:g} dropped (--conf, else study.yaml's "
+                      "conf_threshold).",
+                      loaded->conf_threshold));
     std::vector<std::string> ambiguous;
     const CrossTable& t = loaded->table;
     for (size_t c = 0; c < t.columns.size() && c < t.pairings.size(); ++c)
@@ -66,16 +68,22 @@ Runner add_table_command(CLI::App& app) {
       // Whether the table fits where it is meant to go, at 10 pt type (never by shrinking it).
       const double w = latex_table_width_pt(loaded->table, fo);
       if (!fo.latex_wide && w > kIeeeColumnPt)
-        notes.push_back(fmt::format("the LaTeX table is about {:.0f} pt wide, more than one IEEE column ({:g} pt at 10 pt "
-                                    "type): only a table* across both columns fits it (--latex-wide spells the names out "
-                                    "for that)", w, kIeeeColumnPt));
+        notes.push_back(
+            fmt::format("the LaTeX table is about {:.0f} pt wide, more than one IEEE column ({:g} pt at 10 pt "
+                        "type): only a table* across both columns fits it (--latex-wide spells the names out "
+                        "for that)",
+                        w, kIeeeColumnPt));
       else if (fo.latex_wide && w > kIeeeTextWidthPt)
-        notes.push_back(fmt::format("the LaTeX table is about {:.0f} pt wide, more than both IEEE columns ({:g} pt): "
-                                    "drop --latex-wide for the compact layout", w, kIeeeTextWidthPt));
+        notes.push_back(
+            fmt::format("the LaTeX table is about {:.0f} pt wide, more than both IEEE columns ({:g} pt): "
+                        "drop --latex-wide for the compact layout",
+                        w, kIeeeTextWidthPt));
     }
     for (const std::string& n : notes) {
-      if (format == TableFormat::kText) text += n + "\n";
-      else fmt::print(stderr, "note: {}\n", n);
+      if (format == TableFormat::kText)
+        text += n + "\n";
+      else
+        fmt::print(stderr, "note: {}\n", n);
     }
     if (args->out.empty()) {
       std::cout << text;

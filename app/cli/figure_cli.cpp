@@ -4,18 +4,18 @@
 
 #include <filesystem>
 
-#include "ui/canvas/canvas_cairo.h"
 #include "app/cli/cli_common.h"
-#include "ui/figures/figure_export.h"
-#include "core/util/atomic_file.h"
 #include "app/cli/offscreen_renderer.h"
+#include "core/util/atomic_file.h"
+#include "ui/canvas/canvas_cairo.h"
+#include "ui/figures/figure_export.h"
 
 namespace ipd::cli {
 
 void add_figure_output_options(CLI::App* cmd, FigureOutputArgs* a) {
   cmd->add_option("--out", a->out, "File to write (atomically): .pdf, .svg or .png")->required();
-  auto* column =
-      cmd->add_option("--column", a->column, "single (3.5 in) or double (7.16 in)")->check(CLI::IsMember({"single", "double"}));
+  auto* column = cmd->add_option("--column", a->column, "single (3.5 in) or double (7.16 in)")
+                     ->check(CLI::IsMember({"single", "double"}));
   cmd->add_option("--width-in", a->width_in, "Width in inches (instead of --column)")->excludes(column);
   cmd->add_option("--font-pt", a->font_pt, "Font size in points (default 8; at least 6)");
   cmd->add_option("--dpi", a->dpi, "PNG resolution (default 300: a single column is 1050 px wide)");
@@ -62,8 +62,9 @@ int figure_options(const FigureOutputArgs& a, ui::FigureOptions* out) {
 void write_figure(const ui::DisplayList& fig, const ui::FontMetrics& metrics, const ui::FigureOptions& o,
                   const std::string& path, const std::string& title) {
   const ui::FigureFormat format = *ui::figure_format_of(path);
-  const std::string bytes = format == ui::FigureFormat::kPng ? figure::render_png(fig, metrics, o.dpi)
-                                                             : ui::render_figure_file(fig, metrics, format, o.dpi, title);
+  const std::string bytes = format == ui::FigureFormat::kPng
+                                ? figure::render_png(fig, metrics, o.dpi)
+                                : ui::render_figure_file(fig, metrics, format, o.dpi, title);
   write_file_atomically(path, bytes);
   fmt::print("{}\n", path);
 }

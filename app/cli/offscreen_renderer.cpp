@@ -153,8 +153,8 @@ std::string render_png(const ui::DisplayList& fig, const ui::FontMetrics& metric
   for (const auto& t : fig.texts()) largest = std::max(largest, t.box.height()), all_text += t.text;
   OffscreenRenderer r(w, h, static_cast<float>(largest) * px_per_pt, metrics.file(), metrics.bold_file(), all_text);
   const cv::Mat bgr = r.render([&](const std::function<ImDrawList*()>& more) {
-    ui::ImGuiCanvas canvas(more(), {0, 0}, px_per_pt, [&](const cv::Mat& img) { return r.upload(img, w); }, &metrics,
-                           r.bold_font(), more);
+    ui::ImGuiCanvas canvas(
+        more(), {0, 0}, px_per_pt, [&](const cv::Mat& img) { return r.upload(img, w); }, &metrics, r.bold_font(), more);
     fig.replay(canvas);
   });
   std::vector<uchar> png;

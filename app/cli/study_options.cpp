@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include "app/cli/cli_common.h"
-#include "core/registration/registration_cache.h"
 #include "core/ipd/study_cache.h"
+#include "core/registration/registration_cache.h"
 #include "core/stats/study_statistics.h"
 
 namespace ipd::cli {
@@ -30,8 +30,9 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
   cmd->add_option("STUDY", o->study, "Study directory")->required();
   cmd->add_option("--model", o->models, "Only these models (repeat or comma-separate)")->delimiter(',');
   cmd->add_option("--domains", o->domains, "Only these domains, e.g. real,principled")->delimiter(',');
-  cmd->add_option("--method", o->method,
-                  "Registration method (default from study.yaml, else " + method_names().front() + "):\n" + methods_help())
+  cmd->add_option(
+         "--method", o->method,
+         "Registration method (default from study.yaml, else " + method_names().front() + "):\n" + methods_help())
       ->check(CLI::IsMember(method_names()));
   // -1 stands for "not given": typed, it is as out of range as -5 (which used to mean "study.yaml's seed").
   cmd->add_option("--seed", o->seed, "Registration and bootstrap seed (default from study.yaml, else 0)")

@@ -17,15 +17,15 @@ struct StudyOptions {
   std::string study;
   std::vector<std::string> models, domains;
   std::string method;
-  long long seed = -1;          // registration and bootstrap seed; -1: study.yaml's, else 0
-  double conf = -1;             // --conf X: prediction threshold (as the GUI slider); -1: study.yaml's
-  int bootstrap = 2000;         // resamples; 0 = off
-  double level = 0.95;          // --ci LEVEL
-  bool ci_given = false;        // --ci appeared (LaTeX prints intervals)
-  std::string ci_text;          // --ci's text as parsed (level holds its value)
+  long long seed = -1;    // registration and bootstrap seed; -1: study.yaml's, else 0
+  double conf = -1;       // --conf X: prediction threshold (as the GUI slider); -1: study.yaml's
+  int bootstrap = 2000;   // resamples; 0 = off
+  double level = 0.95;    // --ci LEVEL
+  bool ci_given = false;  // --ci appeared (LaTeX prints intervals)
+  std::string ci_text;    // --ci's text as parsed (level holds its value)
   int threads = 0;
   bool skip_bad_lines = false;
-  bool no_cache = false;        // --no-cache: register every scene again
+  bool no_cache = false;  // --no-cache: register every scene again
 
   BootstrapOptions bootstrap_options() const;
   // Empty when every value is in range (or the "not given" value), else "--option: what is wrong": a value

@@ -7,8 +7,7 @@
 namespace ipd::studio {
 
 void FrameStats::mark(double* slot) {
-  if (*slot < 0)
-    *slot = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started_).count();
+  if (*slot < 0) *slot = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started_).count();
 }
 
 std::string FrameStats::summary(const char* name, std::vector<double> v) {

@@ -201,8 +201,8 @@ void StudioApp::frame() {
     const float f = p.total > 0 ? float(p.done) / p.total : 0.0f;
     const std::string label = p.total > 0 ? fmt::format("{} / {} {}", p.done, p.total, p.stage) : p.stage;
     ImGui::ProgressBar(f, {std::min(600.0f, ImGui::GetContentRegionAvail().x), 0}, label.c_str());
-    ImGui::Text("%s, %.1f s%s", p.stage == "registration" ? "registering rocks (cached results are read back)" : "reading",
-                p.elapsed_s,
+    ImGui::Text("%s, %.1f s%s",
+                p.stage == "registration" ? "registering rocks (cached results are read back)" : "reading", p.elapsed_s,
                 p.eta_s >= 0 ? fmt::format(", about {:.0f} s left", std::ceil(p.eta_s)).c_str() : "");
     ImGui::Dummy({0, std::max(0.0f, h * 0.65f - 3 * ImGui::GetTextLineHeightWithSpacing())});
   } else {
@@ -215,7 +215,8 @@ void StudioApp::frame() {
       order_desc_ = ui_.sort_descending;
       ui_.order = ui::browser_order(snap_->summaries, ui_);
     }
-    if (o_.cycle_scenes > 0 && counted_ > 0 && !changing_ && ++since_change_ >= o_.cycle_scenes && ui_.order.size() > 1) {
+    if (o_.cycle_scenes > 0 && counted_ > 0 && !changing_ && ++since_change_ >= o_.cycle_scenes &&
+        ui_.order.size() > 1) {
       const auto at = std::find(ui_.order.begin(), ui_.order.end(), ui_.scene) - ui_.order.begin();
       cmd.goto_scene = ui_.order[(at + o_.cycle_step) % ui_.order.size()];
       change_started_ = std::chrono::steady_clock::now();
@@ -247,7 +248,9 @@ void StudioApp::frame() {
         worker_.submit(std::move(c));
       }
     }
-    ui::draw_main_columns(v, ui_, left, right, h, [&] { ui::draw_stats_panels(v, v.stats, stats_.computing(), stats_ui_, ui_, cmd); }, cmd);
+    ui::draw_main_columns(
+        v, ui_, left, right, h, [&] { ui::draw_stats_panels(v, v.stats, stats_.computing(), stats_ui_, ui_, cmd); },
+        cmd);
   }
   // The status bar sits on the window's last line, whatever the panels above took.
   ImGui::SetCursorPosY(ImGui::GetWindowHeight() - ImGui::GetFrameHeightWithSpacing());
@@ -257,7 +260,8 @@ void StudioApp::frame() {
   ui::draw_dialogs(v, ui_, cmd);
   ui::draw_problems_window(v, ui_, cmd);
   if (s)
-    if (auto request = ui::draw_export_dialog(export_dialog_, ui::export_view_context(*s, ui_, stats_ui_))) export_figure(*request);
+    if (auto request = ui::draw_export_dialog(export_dialog_, ui::export_view_context(*s, ui_, stats_ui_)))
+      export_figure(*request);
   ImGui::End();
   apply(cmd);
   textures_.end_frame();
@@ -295,7 +299,8 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
     worker_.submit(command::SetConfThreshold{cmd.conf_threshold});
   }
   if (cmd.goto_scene >= 0 && cmd.goto_scene != ui_.scene) goto_scene(cmd.goto_scene);
-  if (cmd.goto_problem >= 0 && cmd.goto_problem < static_cast<int>(problems_.size())) goto_problem(problems_[cmd.goto_problem]);
+  if (cmd.goto_problem >= 0 && cmd.goto_problem < static_cast<int>(problems_.size()))
+    goto_problem(problems_[cmd.goto_problem]);
   for (const auto& e : cmd.edits) worker_.submit(command::ApplyEdit{ui_.scene, e});
   if (cmd.undo) worker_.submit(command::Undo{});
   if (cmd.redo) worker_.submit(command::Redo{});
@@ -319,7 +324,7 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
 
 void StudioApp::note_picture_problem(const DecodedPicture& d) {
   if (d.error.empty() || d.path.empty()) return;  // read, or a labels-only scene (no picture expected)
-  const auto slash = d.key.find('/');  // keys are "domain/stem"
+  const auto slash = d.key.find('/');             // keys are "domain/stem"
   Problem p{d.path, 0, d.key.substr(0, slash), "", slash == std::string::npos ? "" : d.key.substr(slash + 1), d.error};
   for (const Problem& q : picture_problems_)
     if (q.file == p.file) return;
@@ -437,24 +442,36 @@ bool StudioApp::replay_step() {
     }
     return n - 1;
   };
-  if (a.verb == "wait") replay_wait_ = std::atoi(a.args[0].c_str());
-  else if (a.verb == "conf") cmd.conf_threshold = std::strtof(a.args[0].c_str(), nullptr);
-  else if (a.verb == "model") cmd.model = a.args[0];
-  else if (a.verb == "domains") cmd.left_domain = a.args[0], cmd.right_domain = a.args[1];
-  else if (a.verb == "undo") cmd.undo = true;
-  else if (a.verb == "redo") cmd.redo = true;
-  else if (a.verb == "screenshot") screenshot_now_ = a.args[0];
-  else if (a.verb == "problems") ui_.show_problems = true;
+  if (a.verb == "wait")
+    replay_wait_ = std::atoi(a.args[0].c_str());
+  else if (a.verb == "conf")
+    cmd.conf_threshold = std::strtof(a.args[0].c_str(), nullptr);
+  else if (a.verb == "model")
+    cmd.model = a.args[0];
+  else if (a.verb == "domains")
+    cmd.left_domain = a.args[0], cmd.right_domain = a.args[1];
+  else if (a.verb == "undo")
+    cmd.undo = true;
+  else if (a.verb == "redo")
+    cmd.redo = true;
+  else if (a.verb == "screenshot")
+    screenshot_now_ = a.args[0];
+  else if (a.verb == "problems")
+    ui_.show_problems = true;
   else if (a.verb == "problem") {
     const int k = std::atoi(a.args[0].c_str());
-    if (k > static_cast<int>(problems_.size())) fail(fmt::format("no problem {}: the study has {}", k, problems_.size()));
-    else cmd.goto_problem = k - 1;
-  }
-  else if (a.verb == "scene") {
+    if (k > static_cast<int>(problems_.size()))
+      fail(fmt::format("no problem {}: the study has {}", k, problems_.size()));
+    else
+      cmd.goto_problem = k - 1;
+  } else if (a.verb == "scene") {
     const auto at = std::find(ui_.order.begin(), ui_.order.end(), ui_.scene) - ui_.order.begin();
-    if (a.args[0] == "next" && !ui_.order.empty()) cmd.goto_scene = ui_.order[std::min<long>(at + 1, ui_.order.size() - 1)];
-    else if (a.args[0] == "prev" && !ui_.order.empty()) cmd.goto_scene = ui_.order[std::max<long>(at - 1, 0)];
-    else if ((cmd.goto_scene = s.scene_index(a.args[0])) < 0) fail("no scene '" + a.args[0] + "' in this domain pair");
+    if (a.args[0] == "next" && !ui_.order.empty())
+      cmd.goto_scene = ui_.order[std::min<long>(at + 1, ui_.order.size() - 1)];
+    else if (a.args[0] == "prev" && !ui_.order.empty())
+      cmd.goto_scene = ui_.order[std::max<long>(at - 1, 0)];
+    else if ((cmd.goto_scene = s.scene_index(a.args[0])) < 0)
+      fail("no scene '" + a.args[0] + "' in this domain pair");
   } else if (a.verb == "pair") {
     const int l = rock(a.args[0], Side::kA), r = l < 0 ? -1 : rock(a.args[1], Side::kB);
     if (l >= 0 && r >= 0) cmd.edits.push_back(Edit::pair(l, r));
@@ -530,17 +547,21 @@ std::vector<std::string> StudioApp::replay_problems() const {
   std::vector<std::string> out;
   if (replay_.empty() || replay_failed_) return out;
   if (replay_next_ <= replay_.size())
-    out.push_back(fmt::format("stopped before line {} (the window was closed)", replay_[std::min(replay_next_, replay_.size() - 1)].line));
+    out.push_back(fmt::format("stopped before line {} (the window was closed)",
+                              replay_[std::min(replay_next_, replay_.size() - 1)].line));
   for (const auto& why : worker_.saver().failures()) out.push_back("edit not saved: " + why);
   if (const int n = worker_.saver().pending(); n > 0)
     out.push_back(fmt::format("{} edit(s) still being saved when the replay ended", n));
   if (const int n = worker_.unsaved_edits(); n > 0)
-    out.push_back(fmt::format("{} edit(s) only in memory: the study is read-only (save them elsewhere with 'save as', below undo and redo)", n));
+    out.push_back(fmt::format(
+        "{} edit(s) only in memory: the study is read-only (save them elsewhere with 'save as', below undo and redo)",
+        n));
   {
     std::lock_guard<std::mutex> l(export_failures_->mu);
     out.insert(out.end(), export_failures_->messages.begin(), export_failures_->messages.end());
   }
-  if (const int n = *exports_running_; n > 0) out.push_back(fmt::format("{} export(s) still running when the replay ended", n));
+  if (const int n = *exports_running_; n > 0)
+    out.push_back(fmt::format("{} export(s) still running when the replay ended", n));
   return out;
 }
 

@@ -9,18 +9,17 @@
 #include <string>
 #include <vector>
 
-#include "ui/gui/export_dialog.h"
 #include "app/studio/frame_stats.h"
-#include "ui/gui/stats_panels.h"
 #include "app/studio/studio_options.h"
 #include "app/studio/studio_replay.h"
 #include "app/studio/studio_stats.h"
 #include "app/studio/studio_textures.h"
 #include "app/studio/studio_worker.h"
+#include "ui/gui/export_dialog.h"
+#include "ui/gui/stats_panels.h"
 #include "ui/gui/views.h"
 
 namespace ipd::studio {
-
 
 class StudioApp {
  public:

@@ -8,14 +8,14 @@
 namespace ipd::studio {
 
 struct StudioOptions {
-  std::string study;        // empty: the demo study
-  std::string exe_dir;      // where the `ipd` tool is (exports)
-  std::string screenshot;   // render `frames` frames, save the window, exit
+  std::string study;       // empty: the demo study
+  std::string exe_dir;     // where the `ipd` tool is (exports)
+  std::string screenshot;  // render `frames` frames, save the window, exit
   int frames = 60;
   bool frame_stats = false;
-  int cycle_scenes = 0;     // with --screenshot: next scene every N frames (after the last one is drawn)
-  int cycle_step = 1;       // scenes to move per cycle (1: prefetched neighbour; more: a far jump)
-  std::string replay;       // --replay FILE
+  int cycle_scenes = 0;  // with --screenshot: next scene every N frames (after the last one is drawn)
+  int cycle_step = 1;    // scenes to move per cycle (1: prefetched neighbour; more: a far jump)
+  std::string replay;    // --replay FILE
   std::size_t texture_budget_mb = 512;
   int width = 1600, height = 900;  // the window
 

@@ -16,13 +16,20 @@ namespace ipd::studio {
 std::vector<ReplayAction> parse_replay(const std::string& text, const std::string& file) {
   // verb -> (argument count, what they are)
   static const std::map<std::string, std::pair<int, const char*>> verbs = {
-      {"wait", {1, "a frame count"}},       {"conf", {1, "a threshold in [0, 1]"}},
-      {"model", {1, "a model name"}},       {"domains", {2, "two domain names"}},
-      {"scene", {1, "next, prev or a scene name"}}, {"pair", {2, "two rock numbers (left, right)"}},
-      {"unpair", {1, "a left rock number"}}, {"exclude", {1, "a left rock number"}},
-      {"undo", {0, "nothing"}},             {"redo", {0, "nothing"}},
-      {"rerun", {1, "a registration method"}}, {"export", {1, "[a figure kind] and an output file"}},
-      {"screenshot", {1, "a PNG file"}},    {"problems", {0, "nothing"}},
+      {"wait", {1, "a frame count"}},
+      {"conf", {1, "a threshold in [0, 1]"}},
+      {"model", {1, "a model name"}},
+      {"domains", {2, "two domain names"}},
+      {"scene", {1, "next, prev or a scene name"}},
+      {"pair", {2, "two rock numbers (left, right)"}},
+      {"unpair", {1, "a left rock number"}},
+      {"exclude", {1, "a left rock number"}},
+      {"undo", {0, "nothing"}},
+      {"redo", {0, "nothing"}},
+      {"rerun", {1, "a registration method"}},
+      {"export", {1, "[a figure kind] and an output file"}},
+      {"screenshot", {1, "a PNG file"}},
+      {"problems", {0, "nothing"}},
       {"problem", {1, "a row number of the Problems window"}},
   };
   std::vector<ReplayAction> out;
@@ -37,11 +44,10 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
     if (!(words >> a.verb)) continue;
     for (std::string w; words >> w;) a.args.push_back(w);
     const auto it = verbs.find(a.verb);
-    auto fail = [&](const std::string& why) {
-      throw std::runtime_error(file + ":" + std::to_string(n) + ": " + why);
-    };
+    auto fail = [&](const std::string& why) { throw std::runtime_error(file + ":" + std::to_string(n) + ": " + why); };
     if (it == verbs.end())
-      fail("unknown action '" + a.verb + "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, undo, "
+      fail("unknown action '" + a.verb +
+           "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, undo, "
            "redo, rerun, export, screenshot, problems or problem)");
     const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
     if (static_cast<int>(a.args.size()) != it->second.first && !export_with_kind)
@@ -62,12 +68,14 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
     RegistrationMethod method;
     if (a.verb == "rerun" && !parse_method(a.args[0], &method))
       fail("'rerun': expected " + method_choices() + ", got '" + a.args[0] + "'");
-    static const std::vector<std::string> kinds = {"pairs", "registration", "table", "compare", "distribution",
-                                                   "breakdown", "breakdown-size", "breakdown-region",
-                                                   "breakdown-confidence"};
+    static const std::vector<std::string> kinds = {"pairs",          "registration",     "table",
+                                                   "compare",        "distribution",     "breakdown",
+                                                   "breakdown-size", "breakdown-region", "breakdown-confidence"};
     if (export_with_kind && std::find(kinds.begin(), kinds.end(), a.args[0]) == kinds.end())
-      fail("'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
-           "breakdown-size, breakdown-region or breakdown-confidence), got '" + a.args[0] + "'");
+      fail(
+          "'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
+          "breakdown-size, breakdown-region or breakdown-confidence), got '" +
+          a.args[0] + "'");
     out.push_back(std::move(a));
   }
   return out;

@@ -60,8 +60,9 @@ void Saver::keep_mine(const std::string& path) {
 
 void Saver::keep_theirs(const std::string& path) {
   std::lock_guard<std::mutex> l(mu_);
-  conflicts_.erase(std::remove_if(conflicts_.begin(), conflicts_.end(), [&](const auto& c) { return c.job.path == path; }),
-                   conflicts_.end());
+  conflicts_.erase(
+      std::remove_if(conflicts_.begin(), conflicts_.end(), [&](const auto& c) { return c.job.path == path; }),
+      conflicts_.end());
   failed_.erase(std::remove_if(failed_.begin(), failed_.end(), [&](const auto& f) { return f.first.path == path; }),
                 failed_.end());
 }
@@ -116,11 +117,12 @@ void Saver::run() {
     std::lock_guard<std::mutex> l(mu_);
     busy_ = 0;
     // The newest attempt for a file decides whether it is still failed (or in conflict).
-    failed_.erase(std::remove_if(failed_.begin(), failed_.end(), [&](const auto& f) { return f.first.path == job.path; }),
-                  failed_.end());
-    conflicts_.erase(std::remove_if(conflicts_.begin(), conflicts_.end(),
-                                    [&](const auto& c) { return c.job.path == job.path; }),
-                     conflicts_.end());
+    failed_.erase(
+        std::remove_if(failed_.begin(), failed_.end(), [&](const auto& f) { return f.first.path == job.path; }),
+        failed_.end());
+    conflicts_.erase(
+        std::remove_if(conflicts_.begin(), conflicts_.end(), [&](const auto& c) { return c.job.path == job.path; }),
+        conflicts_.end());
     if (conflict) conflicts_.push_back(std::move(*conflict));
     if (!error.empty()) failed_.emplace_back(std::move(job), error);
     if (queue_.empty()) idle_cv_.notify_all();

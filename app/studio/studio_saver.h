@@ -29,7 +29,7 @@ class Saver {
   Saver();
   ~Saver();  // finishes every queued job first: nothing is lost on a normal exit
   void submit(SaveJob job);
-  void retry_failed();  // queues every failed job again
+  void retry_failed();                        // queues every failed job again
   std::vector<std::string> failures() const;  // "path: why" of jobs that failed and were not redone
   int pending() const;
   void wait_idle();

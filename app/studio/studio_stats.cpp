@@ -27,12 +27,12 @@ void StatsJob::update(const std::shared_ptr<const Snapshot>& snap, const Session
   to_release_.push_back(std::move(running_session_));
   running_session_ = snap->session;
   running_request_ = request;
-  running_ = std::async(std::launch::async, [session = snap->session, request,
-                                              garbage = std::exchange(to_release_, {})]() mutable {
-    yield_to_the_view();
-    garbage.clear();  // here, not on the UI thread
-    return std::make_shared<const SessionStatistics>(compute_session_statistics(*session, request));
-  });
+  running_ = std::async(
+      std::launch::async, [session = snap->session, request, garbage = std::exchange(to_release_, {})]() mutable {
+        yield_to_the_view();
+        garbage.clear();  // here, not on the UI thread
+        return std::make_shared<const SessionStatistics>(compute_session_statistics(*session, request));
+      });
 }
 
 }  // namespace ipd::studio

@@ -7,8 +7,8 @@
 #include <memory>
 #include <vector>
 
-#include "core/session/session_statistics.h"
 #include "app/studio/studio_worker.h"
+#include "core/session/session_statistics.h"
 
 namespace ipd::studio {
 

@@ -48,9 +48,12 @@ PictureLoader::~PictureLoader() {
 void PictureLoader::request(const std::string& key, const std::string& path, bool urgent) {
   {
     std::lock_guard<std::mutex> l(mu_);
-    queue_.erase(std::remove_if(queue_.begin(), queue_.end(), [&](const Job& q) { return q.key == key; }), queue_.end());
-    if (urgent) queue_.push_front({key, path, true});
-    else queue_.push_back({key, path, false});
+    queue_.erase(std::remove_if(queue_.begin(), queue_.end(), [&](const Job& q) { return q.key == key; }),
+                 queue_.end());
+    if (urgent)
+      queue_.push_front({key, path, true});
+    else
+      queue_.push_back({key, path, false});
   }
   cv_.notify_one();
 }

@@ -25,13 +25,14 @@ namespace {
 
 void load_font(const std::string& exe_dir) {
   // A font from assets/ if one was put there, else Debian's DejaVu (fonts-dejavu-core), else ImGui's own.
-  for (const std::string& p : {find_data_file("fonts/DejaVuSans.ttf", IPD_ASSETS_DIR),
-                               exe_dir + "/../../assets/fonts/DejaVuSans.ttf",
-                               std::string("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")}) {
+  for (const std::string& p :
+       {find_data_file("fonts/DejaVuSans.ttf", IPD_ASSETS_DIR), exe_dir + "/../../assets/fonts/DejaVuSans.ttf",
+        std::string("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")}) {
     std::error_code ec;
     // Latin-1 plus the typography core labels use: Δ, thin space and dashes (U+2009..2027: en dash in
     // ranges), minus, ≤ ≥. ImGui's default ranges stop at U+00FF and draw the rest as '?'.
-    static const ImWchar kRanges[] = {0x0020, 0x00FF, 0x0394, 0x0394, 0x2009, 0x2027, 0x2212, 0x2212, 0x2264, 0x2265, 0};
+    static const ImWchar kRanges[] = {0x0020, 0x00FF, 0x0394, 0x0394, 0x2009, 0x2027,
+                                      0x2212, 0x2212, 0x2264, 0x2265, 0};
     if (fs::exists(p, ec) && ImGui::GetIO().Fonts->AddFontFromFileTTF(p.c_str(), 15.0f, nullptr, kRanges)) return;
   }
   ImGui::GetIO().Fonts->AddFontDefault();

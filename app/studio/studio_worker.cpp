@@ -9,8 +9,8 @@
 #include <filesystem>
 
 #include "core/demo/demo_study.h"
-#include "core/registration/registration_cache.h"
 #include "core/ipd/study_cache.h"
+#include "core/registration/registration_cache.h"
 
 namespace fs = std::filesystem;
 
@@ -104,8 +104,10 @@ void StudyWorker::run() {
         cv_.wait_for(l, std::chrono::milliseconds(250));
         std::vector<std::shared_ptr<const Snapshot>> unused;
         for (auto it = retired_.begin(); it != retired_.end();)
-          if (it->use_count() == 1) unused.push_back(std::move(*it)), it = retired_.erase(it);
-          else ++it;
+          if (it->use_count() == 1)
+            unused.push_back(std::move(*it)), it = retired_.erase(it);
+          else
+            ++it;
         l.unlock();
         unused.clear();  // destroyed outside the lock
         l.lock();
@@ -119,8 +121,10 @@ void StudyWorker::run() {
       execute(c);
     } catch (const std::exception& e) {
       std::lock_guard<std::mutex> l(mu_);
-      if (std::holds_alternative<command::OpenStudy>(c)) open_error_ = e.what();
-      else messages_.push_back(std::string("error: ") + e.what());
+      if (std::holds_alternative<command::OpenStudy>(c))
+        open_error_ = e.what();
+      else
+        messages_.push_back(std::string("error: ") + e.what());
     }
     std::lock_guard<std::mutex> l(mu_);
     busy_ = false;
@@ -167,18 +171,20 @@ void StudyWorker::open(const command::OpenStudy& c) {
   }
   const auto start = std::chrono::steady_clock::now();
   if (c.demo && !fs::exists(fs::path(c.dir) / "study.yaml")) {
-    { std::lock_guard<std::mutex> l(mu_); progress_.stage = "generating the demo study"; }
+    {
+      std::lock_guard<std::mutex> l(mu_);
+      progress_.stage = "generating the demo study";
+    }
     write_demo_study(c.dir);
   }
   // One writer per study: the lock is held while the study is open; without it the window is read-only.
   std::string held_by;
   lock_.reset();  // (reopening the same study must not find its own lock)
   std::unique_ptr<StudyLock> lock = StudyLock::try_acquire(c.dir, &held_by);
-  const std::string lock_reason =
-      lock ? std::string()
-           : held_by.rfind("pid ", 0) == 0 || held_by == "another program"
-                 ? "another window holds this study (" + held_by + ")"
-                 : "the study's lock can't be taken: " + held_by;
+  const std::string lock_reason = lock ? std::string()
+                                  : held_by.rfind("pid ", 0) == 0 || held_by == "another program"
+                                      ? "another window holds this study (" + held_by + ")"
+                                      : "the study's lock can't be taken: " + held_by;
   SessionOptions o;
   o.cache_dir = registration_cache_dir(c.dir);
   o.progress = [&](const char* stage, int done, int total) {
@@ -262,7 +268,8 @@ void StudyWorker::execute(WorkerCommand& c) {
   auto save = [&](SaveJob job) {
     if (s.read_only()) {
       std::lock_guard<std::mutex> l(mu_);
-      messages_.push_back("read-only study: the edit is kept in memory; save it elsewhere with 'save as', below undo and redo");
+      messages_.push_back(
+          "read-only study: the edit is kept in memory; save it elsewhere with 'save as', below undo and redo");
       ++unsaved_edits_;
     } else {
       saver_.submit(std::move(job));
@@ -274,41 +281,42 @@ void StudyWorker::execute(WorkerCommand& c) {
   };
   // Each command says whether it changed the session (and publishes itself when it did not change it).
   int jump = -1;
-  const bool changed = std::visit(
-      Visitor{
-          [&](const command::OpenStudy&) { return false; },
-          [&](const command::ApplyEdit& e) {
-            if (e.scene >= 0 && e.scene < static_cast<int>(s.scenes().size())) save(s.apply(e.scene, e.edit));
-            return true;
-          },
-          [&](const command::Undo&) {
-            if (auto job = s.undo()) save(std::move(*job)), jump = std::max(0, s.last_edited_scene());
-            return true;
-          },
-          [&](const command::Redo&) {
-            if (auto job = s.redo()) save(std::move(*job)), jump = std::max(0, s.last_edited_scene());
-            return true;
-          },
-          [&](const command::SelectDomains& d) { return s.select_domains(d.left, d.right), true; },
-          [&](const command::SelectModel& m) { return s.select(s.pair_index(), m.model), true; },
-          [&](const command::SetConfThreshold& t) { return s.set_conf_threshold(t.threshold), true; },
-          [&](const command::RerunRegistration& r) { return rerun(s, r), false; },
-          [&](const command::SaveAllTo& d) {
-            for (auto& job : s.save_all_to(d.dir)) saver_.submit(std::move(job));
-            {
-              std::lock_guard<std::mutex> l(mu_);
-              unsaved_edits_ = 0;
-            }
-            say("edited pairs written under " + d.dir + "/pairs/");
-            return false;
-          },
-          [&](const command::ReloadScene& r) { return s.reload_scene(r.pair, r.stem), true; },
-          [&](const command::ExportFigure& x) {
-            say(x.job ? x.job() : std::string("export failed: nothing to export"));
-            return false;
-          },
-      },
-      c);
+  const bool changed =
+      std::visit(Visitor{
+                     [&](const command::OpenStudy&) { return false; },
+                     [&](const command::ApplyEdit& e) {
+                       if (e.scene >= 0 && e.scene < static_cast<int>(s.scenes().size()))
+                         save(s.apply(e.scene, e.edit));
+                       return true;
+                     },
+                     [&](const command::Undo&) {
+                       if (auto job = s.undo()) save(std::move(*job)), jump = std::max(0, s.last_edited_scene());
+                       return true;
+                     },
+                     [&](const command::Redo&) {
+                       if (auto job = s.redo()) save(std::move(*job)), jump = std::max(0, s.last_edited_scene());
+                       return true;
+                     },
+                     [&](const command::SelectDomains& d) { return s.select_domains(d.left, d.right), true; },
+                     [&](const command::SelectModel& m) { return s.select(s.pair_index(), m.model), true; },
+                     [&](const command::SetConfThreshold& t) { return s.set_conf_threshold(t.threshold), true; },
+                     [&](const command::RerunRegistration& r) { return rerun(s, r), false; },
+                     [&](const command::SaveAllTo& d) {
+                       for (auto& job : s.save_all_to(d.dir)) saver_.submit(std::move(job));
+                       {
+                         std::lock_guard<std::mutex> l(mu_);
+                         unsaved_edits_ = 0;
+                       }
+                       say("edited pairs written under " + d.dir + "/pairs/");
+                       return false;
+                     },
+                     [&](const command::ReloadScene& r) { return s.reload_scene(r.pair, r.stem), true; },
+                     [&](const command::ExportFigure& x) {
+                       say(x.job ? x.job() : std::string("export failed: nothing to export"));
+                       return false;
+                     },
+                 },
+                 c);
   if (changed) publish(true, jump);
 }
 

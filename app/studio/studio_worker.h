@@ -14,9 +14,9 @@
 #include <variant>
 #include <vector>
 
+#include "app/studio/studio_saver.h"
 #include "core/session/session.h"
 #include "core/session/study_lock.h"
-#include "app/studio/studio_saver.h"
 
 namespace ipd::studio {
 
@@ -38,10 +38,10 @@ struct Snapshot {
 
 struct OpenProgress {
   bool opening = false;
-  std::string stage;    // "labels", "registration"
+  std::string stage;  // "labels", "registration"
   int done = 0, total = 0;
   double elapsed_s = 0, eta_s = -1;  // time left, -1 when unknown
-  int cached = 0;       // registrations read from the cache
+  int cached = 0;                    // registrations read from the cache
   // The snapshot published so far shows the study's first scenes (a first look) while the rest loads.
   bool first_look = false;
   StudyCacheStats study_cache;  // of the last open

@@ -1,16 +1,16 @@
 #include "core/demo/demo_study.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
-#include "core/util/atomic_file.h"
-#include "core/io/label_io.h"
 #include "core/detect/rock_detector.h"
+#include "core/io/label_io.h"
+#include "core/util/atomic_file.h"
 
 namespace fs = std::filesystem;
 
@@ -22,7 +22,9 @@ namespace {
 struct DemoRng {
   std::mt19937_64 g;
   explicit DemoRng(std::uint64_t seed) : g(seed) {}
-  double uniform(double lo, double hi) { return lo + (hi - lo) * (static_cast<double>(g() >> 11) / 9007199254740992.0); }
+  double uniform(double lo, double hi) {
+    return lo + (hi - lo) * (static_cast<double>(g() >> 11) / 9007199254740992.0);
+  }
   int below(int n) { return static_cast<int>(g() % static_cast<std::uint64_t>(n)); }
 };
 
@@ -60,8 +62,8 @@ Scene make_scene(DemoRng& rng, int w, int h, int min_rocks, int max_rocks) {
     Rock r;
     for (int attempt = 0; attempt < 50; ++attempt) {
       const double size = shrink * std::min(w, h) * std::exp(rng.uniform(std::log(0.025), std::log(0.08)));
-      r = {rng.uniform(0.06, 0.94) * w, rng.uniform(0.08, 0.92) * h, size, size * rng.uniform(0.55, 0.9),
-           rng.uniform(-30, 30), rng.uniform(1.1, 1.6)};
+      r = {rng.uniform(0.06, 0.94) * w,   rng.uniform(0.08, 0.92) * h, size,
+           size * rng.uniform(0.55, 0.9), rng.uniform(-30, 30),        rng.uniform(1.1, 1.6)};
       bool clear = true;
       for (const auto& o : s.rocks)
         if (std::hypot(o.x - r.x, o.y - r.y) < 1.3 * (o.rx + r.rx)) clear = false;
@@ -88,8 +90,7 @@ cv::Matx23d camera_offset(int scene_index, int w, int h) {
   return {c, -s, cx - c * cx + s * cy + tx, s, c, cy - s * cx - c * cy + ty};
 }
 
-cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& cam, int w, int h,
-               std::vector<Box>* gt) {
+cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& cam, int w, int h, std::vector<Box>* gt) {
   // Ground: two octaves of smoothed noise, the same field for every domain of a scene.
   cv::RNG tex(scene.texture_seed);
   cv::Mat coarse(h / 16 + 1, w / 16 + 1, CV_32F), fine(h / 4 + 1, w / 4 + 1, CV_32F);
@@ -112,12 +113,13 @@ cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& ca
     // Shadow first, cast away from the sun; drawn only in the patch it can cover.
     const cv::Point2d sc(r.x - 0.7 * r.rx * light.x, r.y - 0.7 * r.rx * light.y);
     const int reach = static_cast<int>(std::ceil(r.rx * 1.15)) + 3;
-    const cv::Rect patch = cv::Rect(static_cast<int>(sc.x) - reach, static_cast<int>(sc.y) - reach, 2 * reach + 1,
-                                    2 * reach + 1) & cv::Rect(0, 0, w, h);
+    const cv::Rect patch =
+        cv::Rect(static_cast<int>(sc.x) - reach, static_cast<int>(sc.y) - reach, 2 * reach + 1, 2 * reach + 1) &
+        cv::Rect(0, 0, w, h);
     if (patch.area() > 0) {
       cv::Mat shadow = cv::Mat::zeros(patch.size(), CV_8U);
-      cv::ellipse(shadow, sc - cv::Point2d(patch.x, patch.y), cv::Size2d(r.rx * 1.15, r.ry * 1.05), r.angle_deg, 0,
-                  360, 255, cv::FILLED, cv::LINE_AA);
+      cv::ellipse(shadow, sc - cv::Point2d(patch.x, patch.y), cv::Size2d(r.rx * 1.15, r.ry * 1.05), r.angle_deg, 0, 360,
+                  255, cv::FILLED, cv::LINE_AA);
       cv::Mat sh_f;
       shadow.convertTo(sh_f, CV_32F, 1.0 / 255);
       cv::Mat roi = img(patch);
@@ -125,8 +127,10 @@ cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& ca
     }
     // The rock: a shaded half-ellipsoid.
     const double ca = std::cos(r.angle_deg * M_PI / 180), sa = std::sin(r.angle_deg * M_PI / 180);
-    const int x0 = std::max(0, static_cast<int>(r.x - r.rx - 2)), x1 = std::min(w - 1, static_cast<int>(r.x + r.rx + 2));
-    const int y0 = std::max(0, static_cast<int>(r.y - r.rx - 2)), y1 = std::min(h - 1, static_cast<int>(r.y + r.rx + 2));
+    const int x0 = std::max(0, static_cast<int>(r.x - r.rx - 2)),
+              x1 = std::min(w - 1, static_cast<int>(r.x + r.rx + 2));
+    const int y0 = std::max(0, static_cast<int>(r.y - r.rx - 2)),
+              y1 = std::min(h - 1, static_cast<int>(r.y + r.rx + 2));
     int bx0 = w, by0 = h, bx1 = -1, by1 = -1;
     for (int y = y0; y <= y1; ++y) {
       float* row = img.ptr<float>(y);
@@ -139,7 +143,8 @@ cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& ca
         // normal in image axes
         const double nx = ca * u - sa * v, ny = sa * u + ca * v;
         const double lambert = std::max(0.0, 0.75 * (nx * light.x + ny * light.y) + 0.55 * nz);
-        row[x] = static_cast<float>(look.ground * r.albedo * (look.shade_ambient + (1.2 - look.shade_ambient) * lambert));
+        row[x] =
+            static_cast<float>(look.ground * r.albedo * (look.shade_ambient + (1.2 - look.shade_ambient) * lambert));
         bx0 = std::min(bx0, x), bx1 = std::max(bx1, x), by0 = std::min(by0, y), by1 = std::max(by1, y);
       }
     }
@@ -230,7 +235,8 @@ std::vector<Box> synthetic_predictions(DemoRng& rng, const std::vector<Box>& gt,
     p.conf = rng.uniform(0.3, 0.99);
     out.push_back(p);
   }
-  if (rng.uniform(0, 1) < 0.3) out.push_back(Box{0, rng.uniform(0.1, 0.9), rng.uniform(0.1, 0.9), 0.03, 0.03, rng.uniform(0.05, 0.5)});
+  if (rng.uniform(0, 1) < 0.3)
+    out.push_back(Box{0, rng.uniform(0.1, 0.9), rng.uniform(0.1, 0.9), 0.03, 0.03, rng.uniform(0.05, 0.5)});
   return out;
 }
 
@@ -254,8 +260,9 @@ void write_labels_only_study(const std::string& dir, const DemoStudyOptions& o) 
                      synthetic_predictions(rng, gt, m == d), LabelKind::kPrediction);
     }
   }
-  std::string yaml = "# Generated by `ipd demo --labels-only`: a synthetic labels-only study (no pictures).\n"
-                     "domains: [real, principled, hapke]\n";
+  std::string yaml =
+      "# Generated by `ipd demo --labels-only`: a synthetic labels-only study (no pictures).\n"
+      "domains: [real, principled, hapke]\n";
   yaml += fmt::format("image_size: [{}, {}]\nrock_class: 0\nmodels:\n", o.width, o.height);
   for (size_t m = 0; m < n_looks; ++m) yaml += fmt::format("  det-{0}: {{trained_on: {0}}}\n", kLooks[m].name);
   yaml += "registration: {method: consensus, seed: 0}\n";

@@ -1,8 +1,8 @@
 #include "core/detect/rock_detector.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
 namespace ipd {
@@ -20,8 +20,10 @@ std::vector<Box> detect_rocks(const cv::Mat& bgr, const RockDetectorParams& p) {
   std::vector<Box> out;
   if (bgr.empty()) return out;
   cv::Mat grey, small_bg, bg, diff, mask;
-  if (bgr.channels() == 3) cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
-  else grey = bgr;
+  if (bgr.channels() == 3)
+    cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  else
+    grey = bgr;
   cv::GaussianBlur(grey, grey, cv::Size(3, 3), 0);
   // Median background at half resolution: same result for smooth ground, a quarter of the cost.
   cv::resize(grey, small_bg, cv::Size(), 0.5, 0.5, cv::INTER_AREA);

@@ -12,10 +12,10 @@
 namespace ipd {
 
 struct RockDetectorParams {
-  double threshold = 28;      // grey-level difference to the local background
-  int background_kernel = 101; // odd; the median filter that estimates the ground
-  int min_area = 30;          // pixels; smaller blobs are noise
-  int close_kernel = 5;       // joins a rock's lit and dark halves
+  double threshold = 28;        // grey-level difference to the local background
+  int background_kernel = 101;  // odd; the median filter that estimates the ground
+  int min_area = 30;            // pixels; smaller blobs are noise
+  int close_kernel = 5;         // joins a rock's lit and dark halves
   std::string validate() const;
 };
 

@@ -1,9 +1,9 @@
 #include "core/detect/yolo.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 #include <numeric>
 #include <opencv2/dnn.hpp>
 #include <opencv2/imgproc.hpp>
@@ -34,8 +34,10 @@ Letterbox letterbox_for(int w, int h, int imgsz) {
 
 cv::Mat apply_letterbox(const cv::Mat& bgr, const Letterbox& lb, int imgsz) {
   cv::Mat resized;
-  if (bgr.cols != lb.width || bgr.rows != lb.height) cv::resize(bgr, resized, cv::Size(lb.width, lb.height), 0, 0, cv::INTER_LINEAR);
-  else resized = bgr;
+  if (bgr.cols != lb.width || bgr.rows != lb.height)
+    cv::resize(bgr, resized, cv::Size(lb.width, lb.height), 0, 0, cv::INTER_LINEAR);
+  else
+    resized = bgr;
   cv::Mat out(imgsz, imgsz, CV_8UC3, cv::Scalar(114, 114, 114));
   resized.copyTo(out(cv::Rect(lb.left, lb.top, lb.width, lb.height)));
   return out;
@@ -131,8 +133,8 @@ YoloDetector::YoloDetector(const std::string& path, const YoloOptions& options)
   for (int d = 0; d < out.dims; ++d) shape += (d ? ", " : "") + std::to_string(out.size[d]);
   shape += "]";
   if (out.dims != 3 || out.size[0] != 1)
-    throw ModelError(fmt::format("{}: output {} is not a YOLO head (expected YOLOv5 [1, N, 5+nc] or YOLOv8 [1, 4+nc, N])",
-                                 path, shape));
+    throw ModelError(fmt::format(
+        "{}: output {} is not a YOLO head (expected YOLOv5 [1, N, 5+nc] or YOLOv8 [1, 4+nc, N])", path, shape));
   const int a = out.size[1], b = out.size[2];
   // Real exports are told apart by their anchor counts (YOLOv5: 3 per cell of the 8/16/32-stride grids,
   // 25200 at 640; YOLOv8: one per cell, 8400); other shapes by which side is the long one.
@@ -151,8 +153,8 @@ YoloDetector::YoloDetector(const std::string& path, const YoloOptions& options)
     head_ = YoloHead::kV8;  // YOLOv8 exports: no objectness, channels first
     classes_ = a - 4;
   } else {
-    throw ModelError(fmt::format("{}: output {} is not a YOLO head (expected YOLOv5 [1, N, 5+nc] or YOLOv8 [1, 4+nc, N])",
-                                 path, shape));
+    throw ModelError(fmt::format(
+        "{}: output {} is not a YOLO head (expected YOLOv5 [1, N, 5+nc] or YOLOv8 [1, 4+nc, N])", path, shape));
   }
 }
 

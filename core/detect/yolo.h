@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "core/util/errors.h"
 #include "core/geometry/geometry.h"
+#include "core/util/errors.h"
 
 namespace ipd {
 
@@ -26,8 +26,8 @@ struct YoloOptions {
 
 // Where the picture sits inside the square network input.
 struct Letterbox {
-  double scale = 1;     // input pixels per picture pixel
-  int left = 0, top = 0;  // padding
+  double scale = 1;           // input pixels per picture pixel
+  int left = 0, top = 0;      // padding
   int width = 0, height = 0;  // of the resized picture
 };
 Letterbox letterbox_for(int image_w, int image_h, int imgsz);

@@ -47,9 +47,7 @@ inline Affine2 identity_affine() {
   m << 1, 0, 0, 0, 1, 0;
   return m;
 }
-inline Eigen::Vector2d apply(const Affine2& m, const Eigen::Vector2d& p) {
-  return m.leftCols<2>() * p + m.col(2);
-}
+inline Eigen::Vector2d apply(const Affine2& m, const Eigen::Vector2d& p) { return m.leftCols<2>() * p + m.col(2); }
 // b ∘ a: first a, then b.
 Affine2 compose(const Affine2& b, const Affine2& a);
 // Inverse; returns false when the linear part is singular.

@@ -17,7 +17,7 @@ struct LabelRect {
 bool overlaps(const LabelRect& a, const LabelRect& b);  // interiors intersect
 
 struct LabelRequest {
-  LabelRect target;             // what the label names (a point is an empty rect)
+  LabelRect target;              // what the label names (a point is an empty rect)
   double width = 0, height = 0;  // the text's box
   // Among exclusive labels a reader must tell which target each names (e.g. confidences of overlapping
   // boxes of one colour): the label keeps `exclusive_clearance` from every other exclusive target, and a
@@ -33,30 +33,40 @@ struct LabelRequest {
   double keep_off_clearance = 0;
 };
 
-enum class LabelPosition { kAbove, kBelow, kInsideTopLeft, kInsideTopRight, kInsideBottomLeft, kInsideBottomRight,
-                           kLeft, kRight, kLeader, kLeftOut };
+enum class LabelPosition {
+  kAbove,
+  kBelow,
+  kInsideTopLeft,
+  kInsideTopRight,
+  kInsideBottomLeft,
+  kInsideBottomRight,
+  kLeft,
+  kRight,
+  kLeader,
+  kLeftOut
+};
 
 struct PlacedLabel {
   LabelPosition position = LabelPosition::kLeftOut;
-  LabelRect box;              // where the text goes (meaningless when left out)
+  LabelRect box;                                                      // where the text goes (meaningless when left out)
   double leader_x0 = 0, leader_y0 = 0, leader_x1 = 0, leader_y1 = 0;  // kLeader: target edge -> label
   bool shown() const { return position != LabelPosition::kLeftOut; }
 };
 
 struct LabelPlacementOptions {
-  LabelRect bounds;               // labels stay inside
-  std::vector<LabelRect> taken;   // already occupied (titles, captions, legends)
-  double gap = 1;                 // clearance between a label and its target and between labels
-  double max_leader = 3;          // the farthest a leader goes, in label heights
-  double exclusive_clearance = 1; // see LabelRequest::exclusive (more than gap: nearer its own target)
+  LabelRect bounds;                // labels stay inside
+  std::vector<LabelRect> taken;    // already occupied (titles, captions, legends)
+  double gap = 1;                  // clearance between a label and its target and between labels
+  double max_leader = 3;           // the farthest a leader goes, in label heights
+  double exclusive_clearance = 1;  // see LabelRequest::exclusive (more than gap: nearer its own target)
   // Validates: bounds non-empty, gap >= 0, max_leader >= 0; throws std::invalid_argument otherwise.
   void validate() const;
 };
 
 struct LabelPlacement {
   std::vector<PlacedLabel> labels;  // one per request, same order
-  int left_out = 0;            // every label left out, exclusive ones included
-  int left_out_exclusive = 0;  // exclusive labels left out
+  int left_out = 0;                 // every label left out, exclusive ones included
+  int left_out_exclusive = 0;       // exclusive labels left out
   int with_leader = 0;
 };
 

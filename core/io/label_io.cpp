@@ -1,10 +1,10 @@
 #include "core/io/label_io.h"
 
+#include <fmt/format.h>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fmt/format.h>
 #include <string_view>
 
 #include "core/util/atomic_file.h"
@@ -36,8 +36,10 @@ void split_fields(std::string_view line, std::vector<std::string>* out) {
     const size_t start = k;
     while (k < line.size() && !space(line[k])) ++k;
     if (k > start) {
-      if (out->size() < 8) out->emplace_back(line.substr(start, k - start));
-      else out->push_back({});  // only the count matters beyond a box line's columns
+      if (out->size() < 8)
+        out->emplace_back(line.substr(start, k - start));
+      else
+        out->push_back({});  // only the count matters beyond a box line's columns
     }
   }
 }
@@ -105,8 +107,10 @@ LabelFile parse_labels(const std::string& text, const std::string& file_name, co
     Box b;
     const std::string why = parse_box(fields, options, &b);
     if (!why.empty()) {
-      if (static_cast<int>(out.errors.size()) < kMaxListedErrors) out.errors.push_back({file_name, line_no, why});
-      else ++unlisted;
+      if (static_cast<int>(out.errors.size()) < kMaxListedErrors)
+        out.errors.push_back({file_name, line_no, why});
+      else
+        ++unlisted;
       continue;
     }
     out.boxes.push_back(b);

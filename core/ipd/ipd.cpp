@@ -1,15 +1,15 @@
 #include "core/ipd/ipd.h"
 
-#include "core/util/nested_lookup.h"
-#include "core/util/parallel.h"
 #include "core/ipd/study_pipeline.h"
 #include "core/registration/registration_cache.h"
+#include "core/util/nested_lookup.h"
+#include "core/util/parallel.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 #include <set>
 
 namespace fs = std::filesystem;
@@ -117,17 +117,19 @@ std::string no_predictions_reason(long na, long nb, const std::string& a, const 
   return fmt::format("no predictions{} in {} and {}", above(threshold), a, b);
 }
 
-std::string one_side_without_predictions(const std::string& model, const std::string& domain,
-                                         const std::string& other, double threshold) {
-  return fmt::format("model '{}' has no predictions{} in '{}' (its scenes compared with '{}'): every rock there "
-                     "counts as missed, as a detector that found nothing",
-                     model, above(threshold), domain, other);
+std::string one_side_without_predictions(const std::string& model, const std::string& domain, const std::string& other,
+                                         double threshold) {
+  return fmt::format(
+      "model '{}' has no predictions{} in '{}' (its scenes compared with '{}'): every rock there "
+      "counts as missed, as a detector that found nothing",
+      model, above(threshold), domain, other);
 }
 
 long count_predictions(const StudyLabels& labels, const std::string& domain, const std::string& model,
                        const std::vector<ScenePairing>& pairings) {
   long n = 0;
-  for (const ScenePairing& p : pairings) n += static_cast<long>(labels.predictions_of(domain, model, p.stem).boxes.size());
+  for (const ScenePairing& p : pairings)
+    n += static_cast<long>(labels.predictions_of(domain, model, p.stem).boxes.size());
   return n;
 }
 
@@ -164,8 +166,7 @@ std::vector<std::pair<std::string, std::string>> domain_pairs(const Study& study
                                                               const std::vector<std::string>& domains) {
   std::vector<std::string> chosen;
   for (const auto& d : study.domains)
-    if (domains.empty() || std::find(domains.begin(), domains.end(), d.name) != domains.end())
-      chosen.push_back(d.name);
+    if (domains.empty() || std::find(domains.begin(), domains.end(), d.name) != domains.end()) chosen.push_back(d.name);
   std::vector<std::pair<std::string, std::string>> out;
   for (size_t i = 0; i < chosen.size(); ++i)
     for (size_t j = i + 1; j < chosen.size(); ++j) out.emplace_back(chosen[i], chosen[j]);
@@ -178,7 +179,8 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
     if (!study.domain(d)) throw StudyError(fmt::format("{}: no domain '{}' in this study", study.root, d));
   CrossTable t;
   for (const auto& m : study.models)
-    if (options.models.empty() || std::count(options.models.begin(), options.models.end(), m.name)) t.models.push_back(m);
+    if (options.models.empty() || std::count(options.models.begin(), options.models.end(), m.name))
+      t.models.push_back(m);
   for (const auto& want : options.models) {
     if (std::none_of(t.models.begin(), t.models.end(), [&](const auto& m) { return m.name == want; }))
       throw StudyError(fmt::format("{}: no model '{}' (no <domain>/predictions/{}/ directory and not in study.yaml)",
@@ -222,17 +224,17 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
       }
       if (!cell.missing_predictions)
         for (const ScenePairing& p : t.pairings[c])
-          cell.per_scene.push_back(scene_ipd(p, labels.gt_of(a, p.stem).boxes,
-                                             labels.predictions_of(a, model.name, p.stem).boxes,
-                                             labels.gt_of(b, p.stem).boxes,
-                                             labels.predictions_of(b, model.name, p.stem).boxes));
+          cell.per_scene.push_back(
+              scene_ipd(p, labels.gt_of(a, p.stem).boxes, labels.predictions_of(a, model.name, p.stem).boxes,
+                        labels.gt_of(b, p.stem).boxes, labels.predictions_of(b, model.name, p.stem).boxes));
       total_table_cell(cell);
       if (!cell.missing_predictions) {
         const double threshold = study.config.conf_threshold;
         const long na = count_predictions(labels, a, model.name, t.pairings[c]);
         const long nb = count_predictions(labels, b, model.name, t.pairings[c]);
         cell.no_value_reason = no_predictions_reason(na, nb, a, b, threshold);
-        if (!cell.no_value_reason.empty()) cell.ipd = std::nan("");
+        if (!cell.no_value_reason.empty())
+          cell.ipd = std::nan("");
         else if (na == 0 || nb == 0)
           t.warnings.push_back(one_side_without_predictions(model.name, na == 0 ? a : b, na == 0 ? b : a, threshold));
       }

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "core/io/label_io.h"
-#include "core/util/nested_lookup.h"
 #include "core/registration/registration.h"
 #include "core/study/study.h"
+#include "core/util/nested_lookup.h"
 
 namespace ipd {
 
@@ -56,9 +56,8 @@ struct ScenePairing {
 class RegistrationCache;
 // One scene as pair_study (study_pipeline.h) pairs it: its fixed pairs, else its registration.
 // `cache` (may be null): registration results on disk (registration_cache.h).
-ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
-                        const std::string& stem, const RegistrationOptions& options,
-                        const RegistrationCache* cache = nullptr);
+ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b, const std::string& stem,
+                        const RegistrationOptions& options, const RegistrationCache* cache = nullptr);
 
 // One image pair's contribution for one model.
 struct SceneIpd {
@@ -106,8 +105,8 @@ std::string no_predictions_reason(long predictions_a, long predictions_b, const 
                                   double threshold);
 // The warning when only `domain` has none: "model 'det' has no predictions above 0.98 in 'real' (its scenes
 // compared with 'principled'): every rock there counts as missed, as a detector that found nothing".
-std::string one_side_without_predictions(const std::string& model, const std::string& domain,
-                                         const std::string& other, double threshold);
+std::string one_side_without_predictions(const std::string& model, const std::string& domain, const std::string& other,
+                                         double threshold);
 // Predictions of `model` left in `domain` over the scenes of `pairings`.
 long count_predictions(const StudyLabels& labels, const std::string& domain, const std::string& model,
                        const std::vector<ScenePairing>& pairings);

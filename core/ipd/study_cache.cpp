@@ -5,11 +5,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fmt/format.h>
 #include <mutex>
 #include <string_view>
 #include <type_traits>
@@ -343,27 +343,27 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
   Contents& c = *contents_;
   c.filters_match = c.rock_class == study.config.rock_class && c.conf_threshold == study.config.conf_threshold;
   std::atomic<int> reused{0}, parsed{0};
-  StudyLabels labels = ipd::load_labels(
-      study, progress,
-      [&](const std::string& domain, const std::string& model, const std::string& stem, const std::string& path,
-          LabelFile* out) {
-        const std::string key = entry_key(domain, model, stem);
-        const FileStamp now = stamp_of(path);
-        {
-          std::lock_guard<std::mutex> l(c.mu);
-          c.stamps[key] = now;
-        }
-        // Entries are only read here, each by one job: no lock needed to take one.
-        const auto it = c.filters_match ? c.labels.find(key) : c.labels.end();
-        if (it == c.labels.end() || !(it->second.stamp == now) || it->second.file.path != path) {
-          ++parsed;
-          return false;
-        }
-        *out = std::move(it->second.file);
-        it->second.stamp.size = -2;  // taken: a second use would find it empty
-        ++reused;
-        return true;
-      });
+  StudyLabels labels =
+      ipd::load_labels(study, progress,
+                       [&](const std::string& domain, const std::string& model, const std::string& stem,
+                           const std::string& path, LabelFile* out) {
+                         const std::string key = entry_key(domain, model, stem);
+                         const FileStamp now = stamp_of(path);
+                         {
+                           std::lock_guard<std::mutex> l(c.mu);
+                           c.stamps[key] = now;
+                         }
+                         // Entries are only read here, each by one job: no lock needed to take one.
+                         const auto it = c.filters_match ? c.labels.find(key) : c.labels.end();
+                         if (it == c.labels.end() || !(it->second.stamp == now) || it->second.file.path != path) {
+                           ++parsed;
+                           return false;
+                         }
+                         *out = std::move(it->second.file);
+                         it->second.stamp.size = -2;  // taken: a second use would find it empty
+                         ++reused;
+                         return true;
+                       });
   stats_.files_reused = reused;
   stats_.files_parsed = parsed;
   return labels;

@@ -42,8 +42,7 @@ struct FileStamp {
   std::uint64_t inode = 0;
   bool exists = false;
   bool operator==(const FileStamp& o) const {
-    return size == o.size && mtime_ns == o.mtime_ns && ctime_ns == o.ctime_ns && inode == o.inode &&
-           exists == o.exists;
+    return size == o.size && mtime_ns == o.mtime_ns && ctime_ns == o.ctime_ns && inode == o.inode && exists == o.exists;
   }
 };
 // The stamp of `path` now (exists = false when there is nothing there or it can't be examined).
@@ -75,7 +74,8 @@ class StudyCache {
   // its entry writes to save(): one signed file written once instead of one file per registration.
   void hand_registrations_to(RegistrationCache& registration);
   // Rewrites the file (atomically) when `labels` (from load_labels above) differ from what was read or
-  // `registration` served entries the file did not hold; it keeps registration.entries_to_keep(). A cache that can't be written only costs time: failures are ignored.
+  // `registration` served entries the file did not hold; it keeps registration.entries_to_keep(). A cache that can't be
+  // written only costs time: failures are ignored.
   void save(const StudyLabels& labels, const RegistrationCache& registration);
 
   const StudyCacheStats& stats() const { return stats_; }

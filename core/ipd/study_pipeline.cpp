@@ -2,12 +2,12 @@
 
 #include "core/study/fixed_pairs.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <set>
-#include <fmt/format.h>
 #include <unordered_set>
 
 #include "core/registration/registration_cache.h"
@@ -64,8 +64,8 @@ Problem no_counterpart(const std::vector<std::string>& only, const std::string& 
   Problem p;
   p.domain = in;
   if (only.size() == 1) p.scene = only.front();
-  p.message = fmt::format("{} scene(s) of '{}' have no counterpart in '{}' and are skipped: {}", only.size(), in,
-                          other, first_three(only));
+  p.message = fmt::format("{} scene(s) of '{}' have no counterpart in '{}' and are skipped: {}", only.size(), in, other,
+                          first_three(only));
   return p;
 }
 
@@ -109,8 +109,8 @@ PipelineScene pair_one(const StudyLabels& labels, const std::string& a, const st
 
 }  // namespace
 
-ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
-                        const std::string& stem, const RegistrationOptions& options, const RegistrationCache* cache) {
+ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b, const std::string& stem,
+                        const RegistrationOptions& options, const RegistrationCache* cache) {
   std::vector<Problem> ignored;
   return pair_one(labels, a, b, stem, options, false, true, cache, &ignored).counted();
 }
@@ -167,8 +167,8 @@ PairedStudy pair_study(const StudyLabels& labels, const std::vector<std::pair<st
         q.domain = mine;
         q.other_domain = other;
         q.scene = m.common[k];
-        q.message = fmt::format("no label file, while '{}' has one for this scene: read as a picture without rocks",
-                                other);
+        q.message =
+            fmt::format("no label file, while '{}' has one for this scene: read as a picture without rocks", other);
         out.problems.push_back(std::move(q));
       }
     }
@@ -206,7 +206,8 @@ PairedStudy pair_study(const StudyLabels& labels, const std::vector<std::pair<st
     out.fixed_scenes += s.fixed.has_value();
     out.registrations += !s.fixed || options.register_fixed_scenes;
     out.cached_registrations += s.automatic.from_cache;
-    out.pairs_problems.insert(out.pairs_problems.end(), s.automatic.pairs_problems.begin(), s.automatic.pairs_problems.end());
+    out.pairs_problems.insert(out.pairs_problems.end(), s.automatic.pairs_problems.begin(),
+                              s.automatic.pairs_problems.end());
     for (Problem& p : j.problems) out.problems.push_back(std::move(p));
   }
   return out;

@@ -22,7 +22,7 @@ struct PipelineOptions {
   RegistrationOptions registration;
   // Also register scenes that have fixed pairs: the studio shows (and can go back to) their automatic pairs.
   bool register_fixed_scenes = false;
-  int threads = 0;  // 0: hardware concurrency; the result does not depend on it
+  int threads = 0;                           // 0: hardware concurrency; the result does not depend on it
   const RegistrationCache* cache = nullptr;  // may be null: register every scene
   // Called from worker threads after each scene, with scenes done so far over all domain pairs.
   std::function<void(int done, int total)> progress;
@@ -33,8 +33,8 @@ struct PipelineScene {
   // The registration's pairs (registration meaningful unless the scene has fixed pairs and
   // register_fixed_scenes was off); never fixed.
   ScenePairing automatic;
-  std::optional<FixedPairs> fixed;  // the pairs file's, when there is one and it can be used
-  bool pairs_unusable = false;      // a pairs file whose stored rocks are gone: registration counts
+  std::optional<FixedPairs> fixed;     // the pairs file's, when there is one and it can be used
+  bool pairs_unusable = false;         // a pairs file whose stored rocks are gone: registration counts
   DiskVersion version_ab, version_ba;  // the pairs files as read (a save checks nobody changed them since)
 
   // What counts for the IPD: the fixed pairs when there are some, else the automatic ones.

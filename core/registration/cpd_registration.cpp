@@ -2,14 +2,14 @@
 // Gaussian mixture centred on the transformed A centres explains B's centres plus a uniform outlier term;
 // EM alternates soft correspondences and a closed-form affine. Rocks are then paired like the consensus
 // method (IoU of the aligned boxes, optimal assignment), so the two differ only in the alignment.
+#include <fmt/format.h>
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
-#include "core/registration/pairing.h"
 #include "core/geometry/point_grid.h"
 #include "core/registration/consensus/consensus_scorer.h"
+#include "core/registration/pairing.h"
 #include "core/registration/registration_frame.h"
 #include "core/registration/registration_recorder.h"
 
@@ -63,8 +63,8 @@ Eigen::Matrix2d similarity_step(const Eigen::Matrix2d& a, const Eigen::Matrix2d&
 
 }  // namespace
 
-MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
-                           const std::vector<Box>& boxes_b, const RegistrationOptions& o) {
+MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
+                           const RegistrationOptions& o) {
   MethodOutcome out;
   out.affine_normalised = f.from_image(identity_affine());
   const int m = static_cast<int>(f.a.size()), n = static_cast<int>(f.b.size());
@@ -91,8 +91,8 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   const double budget = work_budget(o, f.a.size(), f.b.size()), per_step = static_cast<double>(m) * n;
   const int allowed = static_cast<int>(std::clamp(std::floor(budget / per_step), 1.0, 1e9));
   // Trace: one step per EM iteration; inliers within the consensus gate (0.3 of B's rock spacing).
-  SearchRecorder recorder(f, std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2), o.record_trace,
-                          [](double s) { return s; }, nullptr);
+  SearchRecorder recorder(
+      f, std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2), o.record_trace, [](double s) { return s; }, nullptr);
   double best_sigma = INFINITY;
   for (; it < o.cpd_iterations; ++it) {
     if (it >= allowed) {

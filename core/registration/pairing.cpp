@@ -82,8 +82,10 @@ RockPairs max_weight_assignment(const std::vector<double>& weights, int rows, in
   for (int j = 1; j <= m; ++j) {
     const int i = p[j];
     if (i < 1 || weight(i - 1, j - 1) <= min_weight) continue;
-    if (transposed) pairs.emplace_back(j - 1, i - 1);
-    else pairs.emplace_back(i - 1, j - 1);
+    if (transposed)
+      pairs.emplace_back(j - 1, i - 1);
+    else
+      pairs.emplace_back(i - 1, j - 1);
   }
   std::sort(pairs.begin(), pairs.end());
   return pairs;
@@ -242,8 +244,8 @@ RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, 
         const Edge& e = edges[by_root[q].second];
         local.push_back({local_a[e.i], local_b[e.j], e.w});
       }
-      for (const auto& [r, c] : sparse_max_weight_assignment(local, static_cast<int>(rows.size()),
-                                                             static_cast<int>(cols.size()), min_iou))
+      for (const auto& [r, c] :
+           sparse_max_weight_assignment(local, static_cast<int>(rows.size()), static_cast<int>(cols.size()), min_iou))
         pairs.emplace_back(rows[r], cols[c]);
       lo = hi;
       continue;
@@ -253,7 +255,8 @@ RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, 
       const Edge& e = edges[by_root[q].second];
       w[local_a[e.i] * cols.size() + local_b[e.j]] = e.w;
     }
-    for (const auto& [r, c] : max_weight_assignment(w, static_cast<int>(rows.size()), static_cast<int>(cols.size()), min_iou))
+    for (const auto& [r, c] :
+         max_weight_assignment(w, static_cast<int>(rows.size()), static_cast<int>(cols.size()), min_iou))
       pairs.emplace_back(rows[r], cols[c]);
     lo = hi;
   }

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "core/geometry/affine_estimator.h"
-#include "core/registration/pairing.h"
 #include "core/geometry/point_grid.h"
+#include "core/registration/pairing.h"
 #include "core/registration/registration_frame.h"
 #include "core/registration/registration_recorder.h"
 
@@ -21,8 +21,10 @@ struct RandomTripleSampler {
 
   static void pick3(Rng& rng, int n, int out[3]) {
     out[0] = rng.below(n);
-    do out[1] = rng.below(n); while (out[1] == out[0]);
-    do out[2] = rng.below(n); while (out[2] == out[0] || out[2] == out[1]);
+    do out[1] = rng.below(n);
+    while (out[1] == out[0]);
+    do out[2] = rng.below(n);
+    while (out[2] == out[0] || out[2] == out[1]);
   }
   bool next(TriplePair* s) {
     pick3(rng, static_cast<int>(a.size()), ia);
@@ -107,7 +109,8 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
     }
   };
   const double spread = f.spread;
-  SearchRecorder recorder(f, gate, o.record_trace, [spread](double s) { return -s * spread; }, sample_of);
+  SearchRecorder recorder(
+      f, gate, o.record_trace, [spread](double s) { return -s * spread; }, sample_of);
   scorer.recorder = &recorder;
   const auto r = run_robust_loop<Affine2, TriplePair>(sampler, estimator, scorer, lo, recorder);
   out.trials = r.trials;

@@ -1,14 +1,14 @@
 #include "core/registration/registration.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fmt/format.h>
 #include <stdexcept>
 #include <tuple>
 
-#include "core/registration/pairing.h"
 #include "core/geometry/point_grid.h"
+#include "core/registration/pairing.h"
 #include "core/registration/registration_frame.h"
 #include "core/registration/registration_recorder.h"
 
@@ -69,10 +69,14 @@ std::string methods_help() {
 
 const char* ambiguity_reason(Ambiguity a) {
   switch (a) {
-    case Ambiguity::kNone: return "";
-    case Ambiguity::kRival: return kAmbiguousReason;
-    case Ambiguity::kNoSupport: return "the alignment pairs no rock, so nothing supports it";
-    case Ambiguity::kFewPairs: return "fewer than 3 rocks are paired: too few to fix an alignment, another fits as well";
+    case Ambiguity::kNone:
+      return "";
+    case Ambiguity::kRival:
+      return kAmbiguousReason;
+    case Ambiguity::kNoSupport:
+      return "the alignment pairs no rock, so nothing supports it";
+    case Ambiguity::kFewPairs:
+      return "fewer than 3 rocks are paired: too few to fix an alignment, another fits as well";
     case Ambiguity::kDegenerate:
       return "the paired rocks lie almost on one line (or the alignment squashes them onto one), so the alignment "
              "across it is a guess";
@@ -85,7 +89,8 @@ const char* ambiguity_reason(Ambiguity a) {
 
 std::string RegistrationOptions::validate() const {
   if (max_trials < 1) return fmt::format("max_trials must be at least 1, got {}", max_trials);
-  if (!(time_budget_ms >= 0) || !std::isfinite(time_budget_ms)) return fmt::format("time_budget_ms must be >= 0, got {}", time_budget_ms);
+  if (!(time_budget_ms >= 0) || !std::isfinite(time_budget_ms))
+    return fmt::format("time_budget_ms must be >= 0, got {}", time_budget_ms);
   if (!(aspect > 0) || !std::isfinite(aspect)) return fmt::format("aspect must be a positive number, got {}", aspect);
   if (!(pair_gate > 0) || !std::isfinite(pair_gate)) return fmt::format("pair_gate must be > 0, got {}", pair_gate);
   if (!(min_scale > 0) || !(max_scale >= min_scale) || !std::isfinite(max_scale))
@@ -94,8 +99,10 @@ std::string RegistrationOptions::validate() const {
     return fmt::format("max_rotation_deg must be in (0, 180], got {}", max_rotation_deg);
   if (!(max_anisotropy >= 1) || !std::isfinite(max_anisotropy))
     return fmt::format("max_anisotropy must be a number >= 1, got {}", max_anisotropy);
-  if (!(inlier_gate >= 0) || !std::isfinite(inlier_gate)) return fmt::format("inlier_gate must be >= 0 (0: automatic), got {}", inlier_gate);
-  if (!(min_pair_iou >= 0 && min_pair_iou < 1)) return fmt::format("min_pair_iou must be in [0, 1), got {}", min_pair_iou);
+  if (!(inlier_gate >= 0) || !std::isfinite(inlier_gate))
+    return fmt::format("inlier_gate must be >= 0 (0: automatic), got {}", inlier_gate);
+  if (!(min_pair_iou >= 0 && min_pair_iou < 1))
+    return fmt::format("min_pair_iou must be in [0, 1), got {}", min_pair_iou);
   if (!(work_budget >= 0) || !std::isfinite(work_budget))
     return fmt::format("work_budget must be >= 0 (0: automatic), got {}", work_budget);
   if (cpd_iterations < 1) return fmt::format("cpd_iterations must be at least 1, got {}", cpd_iterations);
@@ -227,12 +234,14 @@ std::string describe_stop(StopReason stop, int trials, int hypotheses, double wo
   const std::string tried = count_of(hypotheses, "hypothesis", "hypotheses");
   switch (stop) {
     case StopReason::kWorkBudget:
-      return fmt::format("{} ({} of {}; {}, {})", s, grouped(work), count_of(budget, "point evaluation", "point evaluations"),
-                         samples, tried);
+      return fmt::format("{} ({} of {}; {}, {})", s, grouped(work),
+                         count_of(budget, "point evaluation", "point evaluations"), samples, tried);
     case StopReason::kNotRun:
     case StopReason::kTooFewPoints:
-    case StopReason::kIdenticalLayouts: return s;
-    default: return fmt::format("{} ({}, {}, {})", s, samples, tried, count_of(work, "point evaluation", "point evaluations"));
+    case StopReason::kIdenticalLayouts:
+      return s;
+    default:
+      return fmt::format("{} ({}, {}, {})", s, samples, tried, count_of(work, "point evaluation", "point evaluations"));
   }
 }
 
@@ -246,14 +255,16 @@ Affine2 image_to_normalised(const Eigen::Vector2d& centroid, double aspect, doub
 }  // namespace
 
 Affine2 RegistrationFrame::to_image(const Affine2& m) const {
-  Affine2 to_a = image_to_normalised(centroid_a, aspect, spread), to_b = image_to_normalised(centroid_b, aspect, spread);
+  Affine2 to_a = image_to_normalised(centroid_a, aspect, spread),
+          to_b = image_to_normalised(centroid_b, aspect, spread);
   Affine2 from_b;
   invert(to_b, &from_b);
   return compose(from_b, compose(m, to_a));
 }
 
 Affine2 RegistrationFrame::from_image(const Affine2& m) const {
-  Affine2 to_a = image_to_normalised(centroid_a, aspect, spread), to_b = image_to_normalised(centroid_b, aspect, spread);
+  Affine2 to_a = image_to_normalised(centroid_a, aspect, spread),
+          to_b = image_to_normalised(centroid_b, aspect, spread);
   Affine2 from_a;
   invert(to_a, &from_a);
   return compose(to_b, compose(m, from_a));
@@ -293,9 +304,15 @@ RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<B
     out.confidence = 1.0;
   } else {
     switch (options.method) {
-      case RegistrationMethod::kPaper: out = detail::register_paper(frame, options); break;
-      case RegistrationMethod::kConsensus: out = detail::register_consensus(frame, a, b, options); break;
-      case RegistrationMethod::kCpd: out = detail::register_cpd(frame, a, b, options); break;
+      case RegistrationMethod::kPaper:
+        out = detail::register_paper(frame, options);
+        break;
+      case RegistrationMethod::kConsensus:
+        out = detail::register_consensus(frame, a, b, options);
+        break;
+      case RegistrationMethod::kCpd:
+        out = detail::register_cpd(frame, a, b, options);
+        break;
     }
   }
   RegistrationReport r;

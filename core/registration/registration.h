@@ -38,24 +38,24 @@ using RockPairs = std::vector<std::pair<int, int>>;  // (index in A, index in B)
 struct RegistrationOptions {
   RegistrationMethod method = RegistrationMethod::kConsensus;
   std::uint64_t seed = 0;
-  int max_trials = 1000;        // paper: K samples (each tried in all 6 orders); consensus: hypotheses cap
-  double time_budget_ms = 0;    // 0: none
-  double aspect = 1.0;          // image width / height: distances and angles are measured in pixels
+  int max_trials = 1000;      // paper: K samples (each tried in all 6 orders); consensus: hypotheses cap
+  double time_budget_ms = 0;  // 0: none
+  double aspect = 1.0;        // image width / height: distances and angles are measured in pixels
   // paper: rocks are paired as mutual nearest neighbours closer than this fraction of the centres' RMS
   // spread (scale-free; 0.2 is about 5% of the image width for rocks spread over the picture)
   double pair_gate = 0.2;
   // consensus: plausible affines only
   double min_scale = 0.5, max_scale = 2.0;  // singular values of the linear part
-  double max_rotation_deg = 30.0;  // a camera misalignment, not an arbitrary rotation
+  double max_rotation_deg = 30.0;           // a camera misalignment, not an arbitrary rotation
   // consensus: largest ratio of the linear part's singular values (one axis stretched this much more than the
   // other). Wrong alignments of a small overlap are often strongly stretched (2.3-5x on the large tier's
   // failures), a camera misalignment is not.
   double max_anisotropy = 2.0;
-  double inlier_gate = 0;       // consensus, fraction of image width; 0: from the rock spacing
-  double min_pair_iou = 0.1;    // consensus, cpd: aligned boxes overlapping less than this stay unpaired
-  int cpd_iterations = 100;     // cpd: EM iterations
+  double inlier_gate = 0;     // consensus, fraction of image width; 0: from the rock spacing
+  double min_pair_iou = 0.1;  // consensus, cpd: aligned boxes overlapping less than this stay unpaired
+  int cpd_iterations = 100;   // cpd: EM iterations
   double cpd_outlier_weight = 0.2;
-  bool record_trace = false;    // fill RegistrationReport::trace (ipd-studio's replay); off in batch runs
+  bool record_trace = false;  // fill RegistrationReport::trace (ipd-studio's replay); off in batch runs
   // Bound on the work per pair, in point evaluations (one mapped rock scored, or one A-B term of an EM
   // step); 0: automatic, growing as n log n in the rock count, so 5,000 rocks a side stop within seconds.
   double work_budget = 0;
@@ -90,9 +90,9 @@ struct RegistrationReport {
   int inliers = 0;                     // A centres within the gate of a B centre after alignment
   double score = 0;                    // paper: mean nearest-neighbour distance; consensus: soft inlier count
   StopReason stop = StopReason::kNotRun;
-  std::string note;                    // why a fallback was used, if one was
+  std::string note;  // why a fallback was used, if one was
   double elapsed_ms = 0;
-  double work = 0, work_budget = 0;    // point evaluations spent, and the bound they were held to
+  double work = 0, work_budget = 0;  // point evaluations spent, and the bound they were held to
   // How much better the answer fits than the best distinct alternative the method evaluated: 1 - (rival's
   // score / answer's score), in [0, 1]; 1 when no rival came close. 0 when nothing singles the answer out:
   // no rock paired, fewer than 3 pairs, or a degenerate alignment (see Ambiguity). `ambiguous` is set, and
@@ -100,7 +100,7 @@ struct RegistrationReport {
   double confidence = 1.0;
   bool ambiguous = false;
   Ambiguity ambiguity = Ambiguity::kNone;
-  RegistrationTrace trace;             // empty unless options.record_trace
+  RegistrationTrace trace;  // empty unless options.record_trace
 };
 
 // Registers A's GT boxes onto B's and pairs the rocks. Throws std::invalid_argument for bad options.

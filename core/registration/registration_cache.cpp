@@ -2,12 +2,12 @@
 
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "core/util/cache_file.h"
@@ -39,7 +39,9 @@ struct Fnv {
     for (size_t k = 0; k < n; ++k) h = (h ^ c[k]) * 0x100000001b3ull;
   }
   template <typename T>
-  void value(const T& v) { bytes(&v, sizeof v); }
+  void value(const T& v) {
+    bytes(&v, sizeof v);
+  }
 };
 
 template <typename F>
@@ -117,8 +119,7 @@ void RegistrationCache::remember(const std::string& key, const RegistrationRepor
   memory_->served.emplace(key, report);
 }
 
-std::string registration_cache_key(const std::vector<Box>& a, const std::vector<Box>& b,
-                                   const RegistrationOptions& o) {
+std::string registration_cache_key(const std::vector<Box>& a, const std::vector<Box>& b, const RegistrationOptions& o) {
   Fnv h1{0xcbf29ce484222325ull}, h2{0x84222325cbf29ce4ull};
   feed(h1, a, b, o);
   feed(h2, a, b, o);
@@ -169,7 +170,9 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     // installation did not write (copied with a study, written by hand or by another build) doesn't verify.
     const size_t nl = text->find('\n');
     if (nl == std::string::npos || text->size() != nl + 1 + 64 + 1 ||
-        text->compare(nl + 1, 64, CacheSigner::instance().mac_hex(kRegistrationEntrySignature, std::string_view(*text).substr(0, nl))) != 0)
+        text->compare(
+            nl + 1, 64,
+            CacheSigner::instance().mac_hex(kRegistrationEntrySignature, std::string_view(*text).substr(0, nl))) != 0)
       return unusable();
     const json j = json::parse(text->substr(0, nl));
     if (j.at("key").get<std::string>() != key || j.at("format").get<int>() != kFormat) return unusable();
@@ -238,7 +241,9 @@ bool RegistrationCache::store(const std::string& key, const RegistrationReport& 
   const std::string payload = j.dump();
   // A cache that can't be written only costs time: failures just return false.
   const CacheDir* dir = directory(true);
-  return dir && dir->write(entry_name(key), payload + "\n" + CacheSigner::instance().mac_hex(kRegistrationEntrySignature, payload) + "\n");
+  return dir &&
+         dir->write(entry_name(key),
+                    payload + "\n" + CacheSigner::instance().mac_hex(kRegistrationEntrySignature, payload) + "\n");
 }
 
 RegistrationReport register_rocks_cached(const RegistrationCache* cache, const std::vector<Box>& a,

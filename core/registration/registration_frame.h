@@ -12,7 +12,7 @@
 namespace ipd::detail {
 
 struct RegistrationFrame {
-  std::vector<Eigen::Vector2d> a, b;          // normalised centres
+  std::vector<Eigen::Vector2d> a, b;            // normalised centres
   std::vector<Eigen::Vector2d> size_a, size_b;  // box (w, h) in the same units
   Eigen::Vector2d centroid_a{0, 0}, centroid_b{0, 0};
   double aspect = 1.0;
@@ -36,8 +36,8 @@ struct MethodOutcome {
   double confidence = 1.0;
   // The search's own best lost to a rival scored after it (which is then the answer): flagged kBeaten.
   bool beaten = false;
-  double work = 0;           // point evaluations spent (see RegistrationOptions::work_budget)
-  RegistrationTrace trace;   // filled when options.record_trace
+  double work = 0;          // point evaluations spent (see RegistrationOptions::work_budget)
+  RegistrationTrace trace;  // filled when options.record_trace
 };
 
 // Flags what nothing singles out (see Ambiguity) and sets the report's ambiguity; shared by every method so
@@ -64,8 +64,8 @@ std::string grouped(double n);  // 89700 -> "89,700"
 MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o);
 MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
                                  const std::vector<Box>& boxes_b, const RegistrationOptions& o);
-MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
-                           const std::vector<Box>& boxes_b, const RegistrationOptions& o);
+MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
+                           const RegistrationOptions& o);
 
 // A small deterministic generator (the standard distributions differ between library versions).
 class Rng {

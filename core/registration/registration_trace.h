@@ -26,9 +26,9 @@ struct TraceStep {
 
 struct RegistrationTrace {
   std::vector<TraceStep> steps;
-  int max_steps = 5000;    // recording stops here (truncated = true); the search itself goes on
+  int max_steps = 5000;  // recording stops here (truncated = true); the search itself goes on
   bool truncated = false;
-  std::string stop;        // why the search stopped, in words
+  std::string stop;  // why the search stopped, in words
 
   // Appends unless full; returns false (and sets truncated) when the cap is reached.
   bool add(TraceStep step) {

@@ -13,8 +13,8 @@
 //              after each model is scored (and refined if worth it); NoObserver costs nothing.
 #pragma once
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 #include <type_traits>
@@ -23,21 +23,37 @@
 namespace ipd {
 
 enum class StopReason {
-  kNotRun, kTooFewPoints, kMaxTrials, kExhausted, kConverged, kCannotBeBeaten, kTimeBudget, kWorkBudget,
+  kNotRun,
+  kTooFewPoints,
+  kMaxTrials,
+  kExhausted,
+  kConverged,
+  kCannotBeBeaten,
+  kTimeBudget,
+  kWorkBudget,
   kIdenticalLayouts  // both sides hold exactly the same boxes: the identity, without a search
 };
 
 inline const char* to_string(StopReason r) {
   switch (r) {
-    case StopReason::kNotRun: return "not run";
-    case StopReason::kTooFewPoints: return "too few points for a minimal sample";
-    case StopReason::kMaxTrials: return "reached the trial limit";
-    case StopReason::kExhausted: return "tried every hypothesis";
-    case StopReason::kConverged: return "converged";
-    case StopReason::kCannotBeBeaten: return "best score cannot be beaten";
-    case StopReason::kTimeBudget: return "time budget spent";
-    case StopReason::kWorkBudget: return "work budget spent";
-    case StopReason::kIdenticalLayouts: return "identical layouts (no search needed)";
+    case StopReason::kNotRun:
+      return "not run";
+    case StopReason::kTooFewPoints:
+      return "too few points for a minimal sample";
+    case StopReason::kMaxTrials:
+      return "reached the trial limit";
+    case StopReason::kExhausted:
+      return "tried every hypothesis";
+    case StopReason::kConverged:
+      return "converged";
+    case StopReason::kCannotBeBeaten:
+      return "best score cannot be beaten";
+    case StopReason::kTimeBudget:
+      return "time budget spent";
+    case StopReason::kWorkBudget:
+      return "work budget spent";
+    case StopReason::kIdenticalLayouts:
+      return "identical layouts (no search needed)";
   }
   return "?";
 }

@@ -1,13 +1,13 @@
 #include "core/report/rock_export.h"
 
-#include <cmath>
 #include <fmt/format.h>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "core/report/csv.h"
 #include "core/session/audit.h"
 #include "core/stats/image_metrics.h"
 #include "core/stats/study_statistics.h"
-#include "core/report/csv.h"
 #include "core/util/json_output.h"
 
 namespace ipd {
@@ -75,9 +75,9 @@ std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& tabl
 }
 
 namespace {
-const char* const kColumns[] = {"model", "trained_on", "a",     "b",    "scene", "index_a", "index_b",
-                                "perf_a", "perf_b",    "diff",  "cx_a", "cy_a",  "w_a",     "h_a",
-                                "cx_b",   "cy_b",      "w_b",   "h_b",  "residual_px", "source"};
+const char* const kColumns[] = {"model",  "trained_on", "a",    "b",    "scene",       "index_a", "index_b",
+                                "perf_a", "perf_b",     "diff", "cx_a", "cy_a",        "w_a",     "h_a",
+                                "cx_b",   "cy_b",       "w_b",  "h_b",  "residual_px", "source"};
 
 std::string num(double v) { return std::isnan(v) ? std::string() : fmt::format("{:.12g}", v); }
 std::string field(const std::string& s) { return csv_field(s); }
@@ -93,9 +93,9 @@ std::string rock_rows_csv(const std::vector<RockRow>& rows) {
       return has ? fmt::format("{},{},{},{}", num(x.cx), num(x.cy), num(x.w), num(x.h)) : std::string(",,,");
     };
     out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", field(r.model), field(r.trained_on), field(r.a),
-                       field(r.b), field(r.scene), a ? std::to_string(r.index_a) : "", b ? std::to_string(r.index_b) : "",
-                       num(r.perf_a), num(r.perf_b), num(r.diff), box(a, r.box_a), box(b, r.box_b), num(r.residual_px),
-                       r.source);
+                       field(r.b), field(r.scene), a ? std::to_string(r.index_a) : "",
+                       b ? std::to_string(r.index_b) : "", num(r.perf_a), num(r.perf_b), num(r.diff), box(a, r.box_a),
+                       box(b, r.box_b), num(r.residual_px), r.source);
   }
   return out;
 }
@@ -106,14 +106,26 @@ std::string rock_rows_json(const std::vector<RockRow>& rows) {
   for (const auto& r : rows) {
     const bool a = r.index_a >= 0, b = r.index_b >= 0;
     const double nan = std::nan("");
-    out.push_back({
-        {"model", r.model}, {"trained_on", r.trained_on}, {"a", r.a}, {"b", r.b}, {"scene", r.scene},
-        {"index_a", a ? nlohmann::ordered_json(r.index_a) : nlohmann::ordered_json(nullptr)},
-        {"index_b", b ? nlohmann::ordered_json(r.index_b) : nlohmann::ordered_json(nullptr)}, {"perf_a", n(r.perf_a)},
-        {"perf_b", n(r.perf_b)}, {"diff", n(r.diff)}, {"cx_a", n(a ? r.box_a.cx : nan)},
-        {"cy_a", n(a ? r.box_a.cy : nan)}, {"w_a", n(a ? r.box_a.w : nan)}, {"h_a", n(a ? r.box_a.h : nan)},
-        {"cx_b", n(b ? r.box_b.cx : nan)}, {"cy_b", n(b ? r.box_b.cy : nan)}, {"w_b", n(b ? r.box_b.w : nan)},
-        {"h_b", n(b ? r.box_b.h : nan)}, {"residual_px", n(r.residual_px)}, {"source", r.source}});
+    out.push_back({{"model", r.model},
+                   {"trained_on", r.trained_on},
+                   {"a", r.a},
+                   {"b", r.b},
+                   {"scene", r.scene},
+                   {"index_a", a ? nlohmann::ordered_json(r.index_a) : nlohmann::ordered_json(nullptr)},
+                   {"index_b", b ? nlohmann::ordered_json(r.index_b) : nlohmann::ordered_json(nullptr)},
+                   {"perf_a", n(r.perf_a)},
+                   {"perf_b", n(r.perf_b)},
+                   {"diff", n(r.diff)},
+                   {"cx_a", n(a ? r.box_a.cx : nan)},
+                   {"cy_a", n(a ? r.box_a.cy : nan)},
+                   {"w_a", n(a ? r.box_a.w : nan)},
+                   {"h_a", n(a ? r.box_a.h : nan)},
+                   {"cx_b", n(b ? r.box_b.cx : nan)},
+                   {"cy_b", n(b ? r.box_b.cy : nan)},
+                   {"w_b", n(b ? r.box_b.w : nan)},
+                   {"h_b", n(b ? r.box_b.h : nan)},
+                   {"residual_px", n(r.residual_px)},
+                   {"source", r.source}});
   }
   return dump_json_output(out, 1) + "\n";
 }

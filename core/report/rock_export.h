@@ -15,10 +15,10 @@ struct RockRow {
   std::string model, trained_on, a, b, scene;
   int index_a = -1, index_b = -1;  // 0-based rock indices; -1: no rock on that side (an unpaired row)
   double perf_a = std::numeric_limits<double>::quiet_NaN(), perf_b = std::numeric_limits<double>::quiet_NaN();
-  double diff = std::numeric_limits<double>::quiet_NaN();  // |perf_a - perf_b|, NaN on unpaired rows
-  Box box_a, box_b;                // normalised centre and size, as in the label files
+  double diff = std::numeric_limits<double>::quiet_NaN();         // |perf_a - perf_b|, NaN on unpaired rows
+  Box box_a, box_b;                                               // normalised centre and size, as in the label files
   double residual_px = std::numeric_limits<double>::quiet_NaN();  // |affine(centre a) - centre b| in B's pixels
-  std::string source;              // "auto" (registration) or "hand" (pairs/<A>__<B>/<stem>.json)
+  std::string source;  // "auto" (registration) or "hand" (pairs/<A>__<B>/<stem>.json)
 };
 
 struct RockExportOptions {

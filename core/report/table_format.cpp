@@ -1,19 +1,20 @@
 #include "core/report/table_format.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "core/stats/study_statistics.h"
 #include "core/report/csv.h"
+#include "core/stats/study_statistics.h"
 #include "core/util/json_output.h"
 
 namespace ipd {
 
 std::string no_interval_reason(const TableCell& cell) {
   if (!cell.involves_training_domain || std::isnan(cell.ipd)) return {};
-  const auto scenes = std::count_if(cell.per_scene.begin(), cell.per_scene.end(), [](const SceneIpd& s) { return s.pairs > 0; });
+  const auto scenes =
+      std::count_if(cell.per_scene.begin(), cell.per_scene.end(), [](const SceneIpd& s) { return s.pairs > 0; });
   if (scenes >= 2) return {};
   return fmt::format("{} scene{}: no interval", scenes, scenes == 1 ? "" : "s");
 }
@@ -123,11 +124,16 @@ double row_best(const CrossTable& t, size_t row) {
 std::string latex_escape(const std::string& s) {
   std::string o;
   for (char ch : s) {
-    if (ch == '\\') o += "\\textbackslash{}";
-    else if (ch == '~') o += "\\textasciitilde{}";
-    else if (ch == '^') o += "\\textasciicircum{}";
-    else if (ch == '_' || ch == '&' || ch == '%' || ch == '#' || ch == '$' || ch == '{' || ch == '}') o += std::string("\\") + ch;
-    else o += ch;
+    if (ch == '\\')
+      o += "\\textbackslash{}";
+    else if (ch == '~')
+      o += "\\textasciitilde{}";
+    else if (ch == '^')
+      o += "\\textasciicircum{}";
+    else if (ch == '_' || ch == '&' || ch == '%' || ch == '#' || ch == '$' || ch == '{' || ch == '}')
+      o += std::string("\\") + ch;
+    else
+      o += ch;
   }
   return o;
 }
@@ -170,8 +176,12 @@ nlohmann::json distribution_json(const TableCell& c) {
   const SceneDistribution d = scene_distribution(c);
   nlohmann::json worst = nlohmann::json::array();
   for (const auto& [stem, v] : d.worst) worst.push_back({{"scene", stem}, {"ipd", v}});
-  return {{"scenes", d.scenes},        {"min", number_or_null(d.min)}, {"q1", number_or_null(d.q1)},
-          {"median", number_or_null(d.median)}, {"q3", number_or_null(d.q3)}, {"max", number_or_null(d.max)},
+  return {{"scenes", d.scenes},
+          {"min", number_or_null(d.min)},
+          {"q1", number_or_null(d.q1)},
+          {"median", number_or_null(d.median)},
+          {"q3", number_or_null(d.q3)},
+          {"max", number_or_null(d.max)},
           {"worst", worst}};
 }
 
@@ -191,7 +201,8 @@ std::string latex_table(const CrossTable& t, const TableFormatOptions& o) {
     out += "\\begin{tabular}{|c|";
     for (size_t k = 0; k < nc; ++k) out += "c|";
     out += "}\n\\hline\n";
-    out += fmt::format(" & \\multicolumn{{{}}}{{c|}}{{$\\downarrow$ Instance Performance Difference (IPD)}} \\\\\n\\hline\n", nc);
+    out += fmt::format(
+        " & \\multicolumn{{{}}}{{c|}}{{$\\downarrow$ Instance Performance Difference (IPD)}} \\\\\n\\hline\n", nc);
   }
   out += "Train\\textbackslash Eval";
   // Single bars: the paper's \| prints a double bar (a norm), not an absolute value.
@@ -308,11 +319,13 @@ std::string latex_compact_table(const CrossTable& t, const TableFormatOptions& o
   for (size_t r = 0; r < t.models.size(); ++r) {
     legend += (r ? (n.rows_by_domain ? ", " : "; ") : "") + n.rows[r] + (n.rows_by_domain ? " (" : ": ") +
               latex_escape(t.models[r].name);
-    if (!n.rows_by_domain && !t.models[r].trained_on.empty()) legend += " (trained on " + latex_escape(t.models[r].trained_on) + ")";
+    if (!n.rows_by_domain && !t.models[r].trained_on.empty())
+      legend += " (trained on " + latex_escape(t.models[r].trained_on) + ")";
     legend += n.rows_by_domain ? ")" : "";
   }
-  legend += ". IPD: mean $|$performance-value difference$|$ over matched rock pairs, lower is better; bold: the "
-            "row's best; --: pair not involving the training domain.";
+  legend +=
+      ". IPD: mean $|$performance-value difference$|$ over matched rock pairs, lower is better; bold: the "
+      "row's best; --: pair not involving the training domain.";
   if (ci) legend += " " + latex_escape(ci_caption(o)) + ".";
   out += "\\par\\smallskip{\\footnotesize " + legend + "\\par}\n";
   for (size_t k = 0; k < notes.size(); ++k)
@@ -325,14 +338,22 @@ std::string latex_compact_table(const CrossTable& t, const TableFormatOptions& o
 double cm_width(const std::string& s, bool bold) {
   double w = 0;
   for (unsigned char ch : s) {
-    if (ch >= '0' && ch <= '9') w += bold ? 5.75 : 5.0;
-    else if (ch == '.' || ch == ',' || ch == '[' || ch == ']' || ch == '|' || ch == ':' || ch == ';') w += 2.78;
-    else if (ch == ' ') w += 3.33;
-    else if (ch == '(' || ch == ')') w += 3.89;
-    else if (ch == '-') w += 3.33;
-    else if (ch >= 'A' && ch <= 'Z') w += bold ? 8.3 : 7.3;
-    else if ((ch & 0xC0) == 0x80) continue;  // UTF-8 continuation
-    else w += bold ? 5.6 : 4.9;  // lower case and the rest, on average
+    if (ch >= '0' && ch <= '9')
+      w += bold ? 5.75 : 5.0;
+    else if (ch == '.' || ch == ',' || ch == '[' || ch == ']' || ch == '|' || ch == ':' || ch == ';')
+      w += 2.78;
+    else if (ch == ' ')
+      w += 3.33;
+    else if (ch == '(' || ch == ')')
+      w += 3.89;
+    else if (ch == '-')
+      w += 3.33;
+    else if (ch >= 'A' && ch <= 'Z')
+      w += bold ? 8.3 : 7.3;
+    else if ((ch & 0xC0) == 0x80)
+      continue;  // UTF-8 continuation
+    else
+      w += bold ? 5.6 : 4.9;  // lower case and the rest, on average
   }
   return w;
 }
@@ -364,7 +385,8 @@ double latex_table_width_pt(const CrossTable& t, const TableFormatOptions& o) {
   double total = o.booktabs ? -sep : (nc + 2) * rule;  // booktabs' @{} drops the outer padding
   for (double v : w) total += v + sep;
   // The spanning "IPD" header widens the value columns when it is the wider.
-  const double header = o.latex_wide ? cm_width("Instance Performance Difference (IPD)", false) + 10 : cm_width("IPD", false) + 10;
+  const double header =
+      o.latex_wide ? cm_width("Instance Performance Difference (IPD)", false) + 10 : cm_width("IPD", false) + 10;
   double values = 0;
   for (size_t c = 1; c <= nc; ++c) values += w[c] + sep;
   return total + std::max(0.0, header + sep - values);
@@ -390,18 +412,25 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
       nlohmann::json j;
       j["cells"] = nlohmann::json::array();
       for (const auto& c : t.cells) {
-        nlohmann::json cell = {{"model", c.model},           {"trained_on", c.trained_on},
-                               {"a", c.a},                   {"b", c.b},
-                               {"pairs", c.pairs},           {"unpaired_a", c.unpaired_a},
-                               {"unpaired_b", c.unpaired_b}, {"scenes", c.scenes},
+        nlohmann::json cell = {{"model", c.model},
+                               {"trained_on", c.trained_on},
+                               {"a", c.a},
+                               {"b", c.b},
+                               {"pairs", c.pairs},
+                               {"unpaired_a", c.unpaired_a},
+                               {"unpaired_b", c.unpaired_b},
+                               {"scenes", c.scenes},
                                {"involves_training_domain", c.involves_training_domain}};
         cell["ipd"] = number_or_null(c.ipd);
         cell["ci_low"] = number_or_null(c.ci_low);
         cell["ci_high"] = number_or_null(c.ci_high);
         cell["se"] = number_or_null(c.se);
-        if (c.missing_predictions) cell["missing_predictions"] = true;
-        else if (!c.no_value_reason.empty()) cell["reason"] = c.no_value_reason;
-        else cell["scene_ipd"] = distribution_json(c);
+        if (c.missing_predictions)
+          cell["missing_predictions"] = true;
+        else if (!c.no_value_reason.empty())
+          cell["reason"] = c.no_value_reason;
+        else
+          cell["scene_ipd"] = distribution_json(c);
         j["cells"].push_back(cell);
       }
       j["bootstrap"] = {{"resamples", o.resamples}, {"level", o.level}, {"seed", o.seed}};
@@ -422,7 +451,8 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
         for (size_t c = 0; c < nc; ++c) {
           const auto& cell = t.cells[r * nc + c];
           const std::string s = marked_cell_text(cell, "–", notes);
-          out += (cell.involves_training_domain && cell.ipd == best ? " **" + s + "**" : " " + s) + ci_text(cell) + " |";
+          out +=
+              (cell.involves_training_domain && cell.ipd == best ? " **" + s + "**" : " " + s) + ci_text(cell) + " |";
         }
         out += "\n";
       }

@@ -1,8 +1,8 @@
 #include "core/session/audit.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <stdexcept>
 
 namespace ipd {
@@ -37,7 +37,8 @@ SceneAudit audit_pairs(const std::vector<Box>& a, const std::vector<Box>& b, con
   std::vector<double> residuals, sizes;
   for (const auto& [i, j] : pairs) {
     if (i < 0 || i >= static_cast<int>(a.size()) || j < 0 || j >= static_cast<int>(b.size()))
-      throw std::invalid_argument(fmt::format("audit: pair ({}, {}) outside {} and {} rocks", i, j, a.size(), b.size()));
+      throw std::invalid_argument(
+          fmt::format("audit: pair ({}, {}) outside {} and {} rocks", i, j, a.size(), b.size()));
     PairAudit p;
     p.a = i;
     p.b = j;
@@ -51,8 +52,8 @@ SceneAudit audit_pairs(const std::vector<Box>& a, const std::vector<Box>& b, con
     out.pairs.push_back(p);
   }
   out.typical_residual_px = median(residuals);
-  out.suspect_residual_px = std::max(o.residual_factor * out.typical_residual_px,
-                                     o.min_residual_rock_fraction * median(sizes));
+  out.suspect_residual_px =
+      std::max(o.residual_factor * out.typical_residual_px, o.min_residual_rock_fraction * median(sizes));
   for (auto& p : out.pairs) {
     std::vector<const char*> why;
     if (p.residual_px > out.suspect_residual_px) why.push_back("residual");

@@ -22,18 +22,18 @@ struct AuditOptions {
 };
 
 struct PairAudit {
-  int a = -1, b = -1;         // rock indices (as in the pairs given)
-  double residual_px = 0;     // |affine(centre of a) - centre of b|, in pixels
-  double aligned_iou = 0;     // IoU of a's box moved by the affine with b's box
-  double size_ratio = 1;      // sqrt(area of the aligned a box / area of b's box)
+  int a = -1, b = -1;      // rock indices (as in the pairs given)
+  double residual_px = 0;  // |affine(centre of a) - centre of b|, in pixels
+  double aligned_iou = 0;  // IoU of a's box moved by the affine with b's box
+  double size_ratio = 1;   // sqrt(area of the aligned a box / area of b's box)
   bool suspect = false;
-  std::string why;            // "residual", "size", "no overlap" (comma-separated), empty when not suspect
+  std::string why;  // "residual", "size", "no overlap" (comma-separated), empty when not suspect
 };
 
 struct SceneAudit {
-  std::vector<PairAudit> pairs;       // in the order of the pairs given
-  double typical_residual_px = 0;     // median residual
-  double suspect_residual_px = 0;     // the threshold that was used
+  std::vector<PairAudit> pairs;    // in the order of the pairs given
+  double typical_residual_px = 0;  // median residual
+  double suspect_residual_px = 0;  // the threshold that was used
   int suspects = 0;
 };
 

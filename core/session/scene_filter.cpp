@@ -13,9 +13,12 @@ SceneFilter SceneFilter::parse(const std::string& text) {
   std::istringstream in(text);
   for (std::string w; in >> w;) {
     Term t;
-    if (w == "suspect") t.kind = Term::Kind::kSuspect;
-    else if (w == "edited") t.kind = Term::Kind::kEdited;
-    else if (w == "ambiguous") t.kind = Term::Kind::kAmbiguous;
+    if (w == "suspect")
+      t.kind = Term::Kind::kSuspect;
+    else if (w == "edited")
+      t.kind = Term::Kind::kEdited;
+    else if (w == "ambiguous")
+      t.kind = Term::Kind::kAmbiguous;
     else if (w.rfind("ipd", 0) == 0 && w.size() > 3 && (w[3] == '<' || w[3] == '>' || w[3] == '=')) {
       t.kind = Term::Kind::kIpd;
       const size_t len = (w.size() > 4 && w[4] == '=') ? 2 : 1;

@@ -3,18 +3,18 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 #include <optional>
 #include <set>
 
+#include "core/ipd/study_pipeline.h"
+#include "core/registration/registration_cache.h"
 #include "core/util/atomic_file.h"
 #include "core/util/contained_file.h"
 #include "core/util/parallel.h"
-#include "core/ipd/study_pipeline.h"
-#include "core/registration/registration_cache.h"
 
 namespace fs = std::filesystem;
 
@@ -35,7 +35,8 @@ void remove_durably(const std::string& path) {
 
 // `path` below `root`, as the relative name contained_file.h walks.
 std::string relative_to(const std::string& root_in, const std::string& path) {
-  const std::string root = root_in.size() > 1 && root_in.back() == '/' ? root_in.substr(0, root_in.size() - 1) : root_in;
+  const std::string root =
+      root_in.size() > 1 && root_in.back() == '/' ? root_in.substr(0, root_in.size() - 1) : root_in;
   if (path.size() <= root.size() + 1 || path.compare(0, root.size(), root) != 0 || path[root.size()] != '/')
     throw IoError(fmt::format("{}: is not inside {}; not saved", path, root));
   return path.substr(root.size() + 1);
@@ -106,7 +107,9 @@ void run_save_job(const SaveJob& job, const WriteStepHook& hook) {
   }
 }
 
-double CellTotals::ipd() const { return pairs > 0 && no_value_reason.empty() ? sum_abs_diff / static_cast<double>(pairs) : std::nan(""); }
+double CellTotals::ipd() const {
+  return pairs > 0 && no_value_reason.empty() ? sum_abs_diff / static_cast<double>(pairs) : std::nan("");
+}
 
 Session Session::open(const std::string& root, const RegistrationOptions* registration) {
   SessionOptions o;
@@ -122,8 +125,7 @@ void keep_first_scenes(Study* study, size_t n) {
   for (const auto& d : study->domains) all.insert(d.stems.begin(), d.stems.end());
   if (all.size() <= n) return;
   const std::string last = *std::next(all.begin(), static_cast<long>(n) - 1);
-  for (auto& d : study->domains)
-    d.stems.erase(std::upper_bound(d.stems.begin(), d.stems.end(), last), d.stems.end());
+  for (auto& d : study->domains) d.stems.erase(std::upper_bound(d.stems.begin(), d.stems.end(), last), d.stems.end());
 }
 }  // namespace
 
@@ -188,7 +190,8 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
     }
     scenes_.push_back(std::move(list));
     audits_.emplace_back(scenes_.back().size());
-    for (size_t k = 0; k < scenes_.back().size(); ++k) reaudit(static_cast<int>(scenes_.size()) - 1, static_cast<int>(k));
+    for (size_t k = 0; k < scenes_.back().size(); ++k)
+      reaudit(static_cast<int>(scenes_.size()) - 1, static_cast<int>(k));
   }
   // Every problem the engine found, in the order the CLI reports them: label files, then scene matching and
   // pairs files, then prediction sets that are missing.
@@ -196,7 +199,8 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
   problems_.insert(problems_.end(), paired.problems.begin(), paired.problems.end());
   for (const auto& m : st.models)
     for (const auto& d : st.domains)
-      if (!labels_ref.has_predictions(d.name, m.name)) problems_.push_back(missing_predictions_problem(st, m.name, d.name));
+      if (!labels_ref.has_predictions(d.name, m.name))
+        problems_.push_back(missing_predictions_problem(st, m.name, d.name));
   cached_ = paired.cached_registrations;
   if (!st.models.empty()) model_ = st.models.front().name;
   // Default view: the first model trained on the first domain, if any.
@@ -208,7 +212,8 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
   const fs::path pairs_dir = fs::path(st.root) / "pairs";
   // (the study's root and pairs/ must be writable for edits to be saved)
   std::error_code ec;
-  if (::access(st.root.c_str(), W_OK) != 0) set_read_only("the study folder is not writable");
+  if (::access(st.root.c_str(), W_OK) != 0)
+    set_read_only("the study folder is not writable");
   else if (fs::exists(pairs_dir, ec) && ::access(pairs_dir.c_str(), W_OK) != 0)
     set_read_only("the study's pairs/ folder is not writable");
   recompute_performance();
@@ -404,7 +409,8 @@ double Session::effective_threshold() const { return std::max(conf_threshold_, l
 long Session::shown_predictions(const std::string& domain, const std::string& model, int pair) const {
   long n = 0;
   static const std::vector<Box> kNone;
-  for (const SceneState& s : scenes_[pair]) n += static_cast<long>(lookup(*shown_predictions_, domain, model, s.stem, kNone).size());
+  for (const SceneState& s : scenes_[pair])
+    n += static_cast<long>(lookup(*shown_predictions_, domain, model, s.stem, kNone).size());
   return n;
 }
 
@@ -428,7 +434,8 @@ void Session::rebuild_totals() {
       }
       // The table's rule (compute_cross_table): no predictions on either side is no number; on one, a warning.
       const auto& [a, b] = pairs_[p];
-      const long na = shown_predictions(a, m.name, static_cast<int>(p)), nb = shown_predictions(b, m.name, static_cast<int>(p));
+      const long na = shown_predictions(a, m.name, static_cast<int>(p)),
+                 nb = shown_predictions(b, m.name, static_cast<int>(p));
       t.no_value_reason = no_predictions_reason(na, nb, a, b, effective_threshold());
       if (!t.no_value_reason.empty()) {  // listed too: the Problems window says why a cell has no number
         Problem q;
@@ -459,7 +466,8 @@ SaveJob Session::job_for(int pair, int scene, const std::string& root) const {
   job.root = root;
   job.path = (fs::path(root) / fixed_pairs_relative_path(a, b, s.stem)).string();
   job.also_remove.push_back((fs::path(root) / fixed_pairs_relative_path(b, a, s.stem)).string());
-  if (s.edited) job.contents = fixed_pairs_json(s.current, labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes);
+  if (s.edited)
+    job.contents = fixed_pairs_json(s.current, labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes);
   if (root == labels_->study.root) job.expected = {s.disk_ab, s.disk_ba};
   job.pair = pair;
   job.stem = s.stem;
@@ -517,8 +525,10 @@ SaveJob Session::apply(int scene, Edit e) {
       break;
     case Edit::Kind::kToggleExclude: {
       auto& list = side == Side::kA ? next.excluded_a : next.excluded_b;
-      if (std::find(list.begin(), list.end(), e.a) != list.end()) drop(list, e.a);
-      else list.push_back(e.a);
+      if (std::find(list.begin(), list.end(), e.a) != list.end())
+        drop(list, e.a);
+      else
+        list.push_back(e.a);
       std::sort(list.begin(), list.end());
       break;
     }
@@ -569,8 +579,8 @@ void Session::reload_scene(int pair, const std::string& stem) {
   if (it == list.end()) return;
   const int scene = static_cast<int>(it - list.begin());
   const auto& [a, b] = pairs_[pair];
-  FixedPairsRead read = load_fixed_pairs(labels_->study, a, b, stem, labels_->gt_of(a, stem).boxes,
-                                         labels_->gt_of(b, stem).boxes);
+  FixedPairsRead read =
+      load_fixed_pairs(labels_->study, a, b, stem, labels_->gt_of(a, stem).boxes, labels_->gt_of(b, stem).boxes);
   SceneState& s = scenes_[pair][scene];
   FixedPairs next;
   next.pairs = s.automatic.pairs;

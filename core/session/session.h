@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include "core/util/atomic_file.h"
-#include "core/session/audit.h"
 #include "core/ipd/ipd.h"
 #include "core/ipd/study_cache.h"
+#include "core/session/audit.h"
 #include "core/study/problem.h"
+#include "core/util/atomic_file.h"
 
 namespace ipd {
 
@@ -25,9 +25,9 @@ enum class Side { kA, kB };
 
 struct Edit {
   enum class Kind { kPair, kUnpair, kToggleExclude, kResetToAutomatic, kReplacePairs } kind;
-  int a = -1, b = -1;   // kPair: both; kUnpair / kToggleExclude: the rock on `side`
+  int a = -1, b = -1;  // kPair: both; kUnpair / kToggleExclude: the rock on `side`
   Side side = Side::kA;
-  RockPairs pairs;      // kReplacePairs: (left, right) pairs, e.g. from re-running registration
+  RockPairs pairs;  // kReplacePairs: (left, right) pairs, e.g. from re-running registration
 
   static Edit pair(int left, int right) { return {Kind::kPair, left, right, Side::kA, {}}; }
   static Edit unpair(Side side, int rock) { return {Kind::kUnpair, rock, -1, side, {}}; }
@@ -39,7 +39,7 @@ struct Edit {
 // A file to write (atomically) or remove, so that `ipd table` sees what the session shows.
 struct SaveJob {
   std::string path;
-  std::optional<std::string> contents;  // nullopt: remove the file (back to automatic pairing)
+  std::optional<std::string> contents;   // nullopt: remove the file (back to automatic pairing)
   std::vector<std::string> also_remove;  // the same scene's file under the other name order
   // The study (or the folder chosen to save into) the paths are in: no symbolic link below it is written
   // through or deleted through (contained_file.h). Empty: a path the user gave, written as given.
@@ -47,7 +47,7 @@ struct SaveJob {
   // What this window last read or wrote at `path` and at each of `also_remove` (same order): the save is
   // refused with SaveConflict when the disk holds anything else. Empty: not checked.
   std::vector<DiskVersion> expected;
-  int pair = -1;     // the domain pair (Session::domain_pairs()) and scene stem, for the conflict dialog
+  int pair = -1;  // the domain pair (Session::domain_pairs()) and scene stem, for the conflict dialog
   std::string stem;
 };
 

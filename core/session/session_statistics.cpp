@@ -34,7 +34,8 @@ SessionStatistics compute_session_statistics(const Session& s, const SessionStat
   add_confidence_intervals(&out.table, r.bootstrap, r.threads);
   if (r.pair >= 0 && r.pair < static_cast<int>(out.table.columns.size())) {
     const auto& [a, b] = out.table.columns[r.pair];
-    if (const TableCell* cell = out.table.cell(r.model, a, b); cell && !cell->missing_predictions && cell->no_value_reason.empty()) {
+    if (const TableCell* cell = out.table.cell(r.model, a, b);
+        cell && !cell->missing_predictions && cell->no_value_reason.empty()) {
       for (const auto& sc : cell->per_scene)
         if (sc.pairs > 0) out.scene_ipd.emplace_back(sc.stem, sc.ipd());
       BreakdownOptions bo;

@@ -5,10 +5,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <fmt/format.h>
 
 namespace ipd {
 
@@ -72,8 +72,8 @@ std::unique_ptr<StudyLock> StudyLock::try_acquire(const std::string& root, std::
     return nullptr;
   }
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-    *held_by = errno == EWOULDBLOCK ? holder_of(fd) : fmt::format("{}/.ipd-cache/lock: cannot lock: {}", root,
-                                                                  std::strerror(errno));
+    *held_by = errno == EWOULDBLOCK ? holder_of(fd)
+                                    : fmt::format("{}/.ipd-cache/lock: cannot lock: {}", root, std::strerror(errno));
     ::close(fd);
     return nullptr;
   }
@@ -81,7 +81,8 @@ std::unique_ptr<StudyLock> StudyLock::try_acquire(const std::string& root, std::
   if (::gethostname(host, sizeof host - 1) != 0) std::strcpy(host, "this machine");
   const std::string text = fmt::format("pid {} on {}\n", ::getpid(), host);
   // Only for the message another window shows: a failure here leaves the lock held all the same.
-  const bool noted = ::ftruncate(fd, 0) == 0 && ::pwrite(fd, text.data(), text.size(), 0) == static_cast<ssize_t>(text.size());
+  const bool noted =
+      ::ftruncate(fd, 0) == 0 && ::pwrite(fd, text.data(), text.size(), 0) == static_cast<ssize_t>(text.size());
   (void)noted;
   return std::unique_ptr<StudyLock>(new StudyLock(fd));
 }

@@ -73,7 +73,7 @@ double average_precision(const std::vector<DetectionImage>& images, double iou_t
   for (size_t k = nd; k-- > 1;) precision[k - 1] = std::max(precision[k - 1], precision[k]);
   double sum = 0;
   for (int r = 0; r <= 100; ++r) {
-    const double at = r == 100 ? 1.0 : r * 0.01;  // np.linspace(0, 1, 101)
+    const double at = r == 100 ? 1.0 : r * 0.01;                                           // np.linspace(0, 1, 101)
     const size_t k = std::lower_bound(recall.begin(), recall.end(), at) - recall.begin();  // searchsorted left
     sum += k < nd ? precision[k] : 0.0;
   }
@@ -107,8 +107,10 @@ DetectionMetrics detection_metrics(const std::vector<DetectionImage>& images, do
   }
   if (m.detections > 0) m.precision = static_cast<double>(m.true_positives) / m.detections;
   if (m.gt > 0) m.recall = static_cast<double>(m.true_positives) / m.gt;
-  if (m.true_positives > 0) m.f1 = 2 * m.precision * m.recall / (m.precision + m.recall);
-  else if (m.gt > 0 || m.detections > 0) m.f1 = 0;
+  if (m.true_positives > 0)
+    m.f1 = 2 * m.precision * m.recall / (m.precision + m.recall);
+  else if (m.gt > 0 || m.detections > 0)
+    m.f1 = 0;
   return m;
 }
 

@@ -1,7 +1,7 @@
 #include "core/stats/image_metrics.h"
 
-#include <cmath>
 #include <fmt/format.h>
+#include <cmath>
 #include <limits>
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>

@@ -1,8 +1,8 @@
 #include "core/stats/statistics.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <numeric>
 #include <stdexcept>
 
@@ -72,7 +72,8 @@ void FixedIndexSource::draw(std::uint32_t bound, std::vector<std::uint32_t>* out
   if (next_ >= draws_.size()) throw std::logic_error("FixedIndexSource: no draws left");
   const auto& d = draws_[next_++];
   if (d.size() != out->size())
-    throw std::logic_error(fmt::format("FixedIndexSource: draw {} has {} values, {} wanted", next_, d.size(), out->size()));
+    throw std::logic_error(
+        fmt::format("FixedIndexSource: draw {} has {} values, {} wanted", next_, d.size(), out->size()));
   for (auto v : d)
     if (v >= bound) throw std::logic_error(fmt::format("FixedIndexSource: value {} >= bound {}", v, bound));
   *out = d;
@@ -80,7 +81,8 @@ void FixedIndexSource::draw(std::uint32_t bound, std::vector<std::uint32_t>* out
 
 std::string BootstrapOptions::validate() const {
   if (resamples < 0) return fmt::format("the number of bootstrap resamples must be >= 0, not {}", resamples);
-  if (!(level > 0 && level < 1)) return fmt::format("the interval level must be between 0 and 1 (e.g. 0.95), not {}", level);
+  if (!(level > 0 && level < 1))
+    return fmt::format("the interval level must be between 0 and 1 (e.g. 0.95), not {}", level);
   return {};
 }
 
@@ -275,11 +277,11 @@ class EverySignPattern : public IndexSource {
 };
 }  // namespace
 
-Comparison compare_paired(const std::vector<PairedScene>& scenes, const CompareOptions& options,
-                          std::string_view key) {
+Comparison compare_paired(const std::vector<PairedScene>& scenes, const CompareOptions& options, std::string_view key) {
   SeededIndexSource resample(options.bootstrap.seed, std::string(key) + "/bootstrap");
   const size_t n = scenes.size();
-  if (options.permutations > 0 && n < 31 && (std::uint64_t{1} << n) <= static_cast<std::uint64_t>(options.permutations)) {
+  if (options.permutations > 0 && n < 31 &&
+      (std::uint64_t{1} << n) <= static_cast<std::uint64_t>(options.permutations)) {
     // Few scenes: enumerate all 2^n swaps instead of sampling them, so p is exact and no seed changes it.
     CompareOptions all = options;
     all.permutations = static_cast<int>(std::uint64_t{1} << n);

@@ -121,8 +121,7 @@ Comparison compare_paired(const std::vector<PairedScene>& scenes, const CompareO
                           IndexSource& resample_draws, IndexSource& permutation_draws);
 // Same, with seeded sources derived from (options.bootstrap.seed, key). When 2^scenes <= permutations the
 // permutation test enumerates every swap pattern instead (exact_p; p = #{|Δ*| >= |Δ|} / 2^scenes).
-Comparison compare_paired(const std::vector<PairedScene>& scenes, const CompareOptions& options,
-                          std::string_view key);
+Comparison compare_paired(const std::vector<PairedScene>& scenes, const CompareOptions& options, std::string_view key);
 
 // Spearman's rank correlation (ties get their average rank, then Pearson on ranks); NaN when fewer than
 // two points, different lengths, or a constant variable.

@@ -1,8 +1,8 @@
 #include "core/stats/study_statistics.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
 
@@ -126,8 +126,8 @@ std::string comparison_sentence(const RendererComparison& c, double alpha) {
   const Comparison& r = c.result;
   const auto num = minus_number;
   if (std::isnan(r.delta.estimate))
-    return fmt::format("no comparison of {} and {} against {} for {}: one of them has no rock pairs ({} {})", c.a,
-                       c.b, c.ref, c.model, r.scenes, r.scenes == 1 ? "scene" : "scenes");
+    return fmt::format("no comparison of {} and {} against {} for {}: one of them has no rock pairs ({} {})", c.a, c.b,
+                       c.ref, c.model, r.scenes, r.scenes == 1 ? "scene" : "scenes");
   if (r.scenes < 2)
     return fmt::format("cannot tell whether {} or {} is closer to {} for {}: ΔIPD = {}, {} scene: no interval, no test",
                        c.a, c.b, c.ref, c.model, num(r.delta.estimate, 4), r.scenes);
@@ -152,18 +152,25 @@ std::string comparison_sentence(const RendererComparison& c, double alpha) {
 // Breakdowns
 
 bool parse_breakdown_by(const std::string& name, BreakdownBy* out) {
-  if (name == "size") *out = BreakdownBy::kSize;
-  else if (name == "region") *out = BreakdownBy::kRegion;
-  else if (name == "confidence") *out = BreakdownBy::kConfidence;
-  else return false;
+  if (name == "size")
+    *out = BreakdownBy::kSize;
+  else if (name == "region")
+    *out = BreakdownBy::kRegion;
+  else if (name == "confidence")
+    *out = BreakdownBy::kConfidence;
+  else
+    return false;
   return true;
 }
 
 const char* to_string(BreakdownBy by) {
   switch (by) {
-    case BreakdownBy::kSize: return "size";
-    case BreakdownBy::kRegion: return "region";
-    case BreakdownBy::kConfidence: return "confidence";
+    case BreakdownBy::kSize:
+      return "size";
+    case BreakdownBy::kRegion:
+      return "region";
+    case BreakdownBy::kConfidence:
+      return "confidence";
   }
   return "?";
 }
@@ -208,7 +215,9 @@ CellBreakdown breakdown_cell(const StudyLabels& labels, const TableCell& cell, c
       const Box& box = gt[i];
       double v = 0;
       switch (options.by) {
-        case BreakdownBy::kSize: v = box.area() * pixel_area; break;
+        case BreakdownBy::kSize:
+          v = box.area() * pixel_area;
+          break;
         case BreakdownBy::kRegion:
           v = std::clamp(static_cast<int>(std::floor(box.cy * 3)), 0, 2) * 3 +
               std::clamp(static_cast<int>(std::floor(box.cx * 3)), 0, 2);
@@ -228,7 +237,8 @@ CellBreakdown breakdown_cell(const StudyLabels& labels, const TableCell& cell, c
   int nbins = 0;
   if (options.by == BreakdownBy::kRegion) {
     nbins = 9;
-    static const char* kRegions[] = {"top-left", "top", "top-right", "left", "centre", "right", "bottom-left", "bottom", "bottom-right"};
+    static const char* kRegions[] = {"top-left", "top",         "top-right", "left",        "centre",
+                                     "right",    "bottom-left", "bottom",    "bottom-right"};
     for (int k = 0; k < 9; ++k) out.bins.push_back({kRegions[k], double(k), double(k), {}, 0, 0});
   } else {
     nbins = options.bins;
@@ -240,7 +250,7 @@ CellBreakdown breakdown_cell(const StudyLabels& labels, const TableCell& cell, c
       b.high = k == nbins - 1 ? hi : edges[k];
       // A range takes an en dash (print typography; a hyphen reads as a minus next to numbers).
       b.label = options.by == BreakdownBy::kSize ? fmt::format("{:.0f}\u2013{:.0f} px²", b.low, b.high)
-                                                  : fmt::format("{:.2f}\u2013{:.2f}", b.low, b.high);
+                                                 : fmt::format("{:.2f}\u2013{:.2f}", b.low, b.high);
       out.bins.push_back(b);
     }
     if (options.by == BreakdownBy::kConfidence) out.bins.push_back({"no detection", kNaN, kNaN, {}, 0, 0});

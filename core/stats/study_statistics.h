@@ -26,7 +26,7 @@ void add_confidence_intervals(CrossTable* table, const BootstrapOptions& options
 struct SceneDistribution {
   int scenes = 0;
   double min = 0, q1 = 0, median = 0, q3 = 0, max = 0;  // NaN when scenes == 0
-  std::vector<std::pair<std::string, double>> worst;     // (stem, IPD), highest first
+  std::vector<std::pair<std::string, double>> worst;    // (stem, IPD), highest first
 };
 SceneDistribution scene_distribution(const TableCell& cell, int worst = 5);
 
@@ -61,7 +61,7 @@ struct BreakdownOptions {
 };
 
 struct BreakdownBin {
-  std::string label;      // e.g. "120-450 px²", "top-left", "0.31-0.58", "no detection"
+  std::string label;         // e.g. "120-450 px²", "top-left", "0.31-0.58", "no detection"
   double low = 0, high = 0;  // the bin's range of the property (region: the row-major cell number twice)
   Interval ipd;
   long pairs = 0;

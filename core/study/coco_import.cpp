@@ -1,16 +1,16 @@
 #include "core/study/coco_import.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 #include <map>
 #include <nlohmann/json.hpp>
 
+#include "core/study/study.h"
 #include "core/util/atomic_file.h"
 #include "core/util/json_input.h"
 #include "core/util/number_text.h"
-#include "core/study/study.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -33,7 +33,8 @@ struct Image {
 
 // A COCO [x, y, w, h] box in pixels to a normalised YOLO box; empty string when fine, else what's wrong.
 std::string to_box(const json& bbox, const Image& img, Box* out) {
-  if (!bbox.is_array() || bbox.size() != 4 || !std::all_of(bbox.begin(), bbox.end(), [](const json& v) { return v.is_number(); }))
+  if (!bbox.is_array() || bbox.size() != 4 ||
+      !std::all_of(bbox.begin(), bbox.end(), [](const json& v) { return v.is_number(); }))
     return fmt::format("expected bbox [x, y, w, h] of numbers, found {}", describe_json(bbox));
   const double x = bbox[0], y = bbox[1], w = bbox[2], h = bbox[3];
   if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(w) || !std::isfinite(h) || w <= 0 || h <= 0)
@@ -57,17 +58,19 @@ std::vector<std::string> name_collisions(const std::map<long, Image>& images, co
   auto quoted = [](const std::string& s) { return describe_json(nlohmann::json(s)); };
   for (const auto& [id, img] : images) {
     if (img.stem.empty() || img.stem == "." || img.stem == "..") {
-      out.push_back(fmt::format("{}: images[{}] {}: no file name to write its labels under", file, img.index,
-                                quoted(img.file)));
+      out.push_back(
+          fmt::format("{}: images[{}] {}: no file name to write its labels under", file, img.index, quoted(img.file)));
     } else if (img.stem == "classes") {
-      out.push_back(fmt::format("{}: images[{}] {} would write labels/classes.txt, which holds the class names; "
-                                "rename the image", file, img.index, quoted(img.file)));
+      out.push_back(
+          fmt::format("{}: images[{}] {} would write labels/classes.txt, which holds the class names; "
+                      "rename the image",
+                      file, img.index, quoted(img.file)));
     } else if (const auto [it, fresh] = by_stem.emplace(img.stem, &img); !fresh) {
       const Image& other = *it->second;
-      out.push_back(fmt::format("{}: images[{}] {} and images[{}] {} would both write labels/{}.txt; give the images "
-                                "distinct names (or import each folder into a domain of its own)",
-                                file, other.index, quoted(other.file), img.index, quoted(img.file),
-                                quoted_for_message(img.stem)));
+      out.push_back(fmt::format(
+          "{}: images[{}] {} and images[{}] {} would both write labels/{}.txt; give the images "
+          "distinct names (or import each folder into a domain of its own)",
+          file, other.index, quoted(other.file), img.index, quoted(img.file), quoted_for_message(img.stem)));
     }
   }
   return out;
@@ -101,7 +104,8 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   std::map<long, size_t> category_at;  // id -> its index in "categories"
   for (const auto& c : gt["categories"]) {
     if (!c.is_object() || !c.contains("id") || !c["id"].is_number_integer())
-      throw StudyError(fmt::format("{}: every category needs an integer \"id\", found {}", o.annotations, describe_json(c)));
+      throw StudyError(
+          fmt::format("{}: every category needs an integer \"id\", found {}", o.annotations, describe_json(c)));
     if (c.contains("name") && !c["name"].is_string())
       throw StudyError(fmt::format("{}: category {}: \"name\" must be a string, found {}", o.annotations,
                                    c["id"].get<long>(), describe_json(c["name"])));
@@ -110,9 +114,10 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
     // `rock_class: 0` would select another category), and which name it has would be a guess.
     const auto [first, fresh] = category_at.emplace(cats.back().first, cats.size() - 1);
     if (!fresh)
-      throw StudyError(fmt::format("{}: categories[{}]: category id {} appears twice (also categories[{}]); every "
-                                   "category needs its own id, since YOLO class numbers follow the ids",
-                                   o.annotations, cats.size() - 1, cats.back().first, first->second));
+      throw StudyError(
+          fmt::format("{}: categories[{}]: category id {} appears twice (also categories[{}]); every "
+                      "category needs its own id, since YOLO class numbers follow the ids",
+                      o.annotations, cats.size() - 1, cats.back().first, first->second));
   }
   std::sort(cats.begin(), cats.end());
   for (size_t k = 0; k < cats.size(); ++k) {
@@ -126,7 +131,8 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
     if (!im.is_object() || !im.contains("id") || !im["id"].is_number_integer() || !im.contains("file_name") ||
         !im["file_name"].is_string() || !im.contains("width") || !im.contains("height") || !im["width"].is_number() ||
         !im["height"].is_number() || !(im["width"].get<double>() > 0) || !(im["height"].get<double>() > 0)) {
-      r.errors.push_back({o.annotations, 0, where + ": expected {id, file_name, width > 0, height > 0}, found " + describe_json(im)});
+      r.errors.push_back(
+          {o.annotations, 0, where + ": expected {id, file_name, width > 0, height > 0}, found " + describe_json(im)});
       continue;
     }
     Image img;
@@ -146,12 +152,15 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
     }
     const auto im = images.find(a["image_id"].get<long>());
     if (im == images.end()) {
-      r.errors.push_back({file, 0, fmt::format("{}: image_id {} is not among the images", where, a["image_id"].get<long>())});
+      r.errors.push_back(
+          {file, 0, fmt::format("{}: image_id {} is not among the images", where, a["image_id"].get<long>())});
       return;
     }
     const auto cls = class_of.find(a["category_id"].get<long>());
     if (cls == class_of.end()) {
-      r.errors.push_back({file, 0, fmt::format("{}: category_id {} is not among the categories", where, a["category_id"].get<long>())});
+      r.errors.push_back(
+          {file, 0,
+           fmt::format("{}: category_id {} is not among the categories", where, a["category_id"].get<long>())});
       return;
     }
     Box b;
@@ -162,8 +171,11 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
       return;
     }
     if (prediction) {
-      if (!a.contains("score") || !a["score"].is_number() || !(a["score"].get<double>() >= 0 && a["score"].get<double>() <= 1)) {
-        r.errors.push_back({file, 0, where + ": expected a score in [0, 1], found " + (a.contains("score") ? describe_json(a["score"]) : "none")});
+      if (!a.contains("score") || !a["score"].is_number() ||
+          !(a["score"].get<double>() >= 0 && a["score"].get<double>() <= 1)) {
+        r.errors.push_back({file, 0,
+                            where + ": expected a score in [0, 1], found " +
+                                (a.contains("score") ? describe_json(a["score"]) : "none")});
         return;
       }
       b.conf = a["score"];
@@ -178,7 +190,8 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   for (const auto& a : gt["annotations"]) add(a, o.annotations, fmt::format("annotations[{}]", k++), false);
   if (!o.results.empty()) {
     const json res = parse_json_file(o.results, "a JSON list of detections [{image_id, category_id, bbox, score}]");
-    if (!res.is_array()) throw StudyError(o.results + ": expected a JSON list of detections [{image_id, category_id, bbox, score}]");
+    if (!res.is_array())
+      throw StudyError(o.results + ": expected a JSON list of detections [{image_id, category_id, bbox, score}]");
     k = 0;
     for (const auto& a : res) add(a, o.results, fmt::format("[{}]", k++), true);
   }
@@ -189,7 +202,8 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   for (const auto& [id, img] : images) {
     write_labels((out / "labels" / (img.stem + ".txt")).string(), img.gt, LabelKind::kGroundTruth);
     if (!o.results.empty())
-      write_labels((out / "predictions" / o.model / (img.stem + ".txt")).string(), img.predictions, LabelKind::kPrediction);
+      write_labels((out / "predictions" / o.model / (img.stem + ".txt")).string(), img.predictions,
+                   LabelKind::kPrediction);
     const fs::path src = fs::absolute(fs::path(o.images_dir) / img.file);
     std::error_code ec;
     if (!o.images_dir.empty() && fs::exists(src, ec)) {

@@ -1,9 +1,9 @@
 #include "core/study/fixed_pairs.h"
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <climits>
 #include <filesystem>
-#include <fmt/format.h>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -74,11 +74,10 @@ std::map<int, StoredBox> parse_rocks(const nlohmann::json& j, const char* key, c
     const bool numbers = r.is_array() && r.size() == 5 &&
                          std::all_of(r.begin() + 1, r.end(), [](const auto& v) { return v.is_number(); });
     if (!numbers || !as_index(r[0], &idx))
-      throw StudyError(fmt::format("{}: \"{}\" holds {}, expected [rock index, cx, cy, w, h]", file, key,
-                                   describe_json(r)));
+      throw StudyError(
+          fmt::format("{}: \"{}\" holds {}, expected [rock index, cx, cy, w, h]", file, key, describe_json(r)));
     const StoredBox box{r[1].get<double>(), r[2].get<double>(), r[3].get<double>(), r[4].get<double>()};
-    if (!out.emplace(idx, box).second)
-      throw StudyError(fmt::format("{}: \"{}\" gives rock {} twice", file, key, idx));
+    if (!out.emplace(idx, box).second) throw StudyError(fmt::format("{}: \"{}\" gives rock {} twice", file, key, idx));
   }
   return out;
 }
@@ -94,8 +93,10 @@ void bind_side(SideInFile* side, const std::set<int>& referenced, const char* ke
     if (it == side->stored->end())
       throw StudyError(fmt::format("{}: rock {} of '{}' is paired or excluded but has no box in \"{}\"", file, i,
                                    side->domain, key));
-    if (i < static_cast<int>(gt.size()) && it->second.matches(gt[i])) claimed[i] = 1;
-    else unplaced.push_back(i);
+    if (i < static_cast<int>(gt.size()) && it->second.matches(gt[i]))
+      claimed[i] = 1;
+    else
+      unplaced.push_back(i);
   }
   for (const int i : unplaced) {
     const StoredBox& want = side->stored->at(i);
@@ -133,14 +134,16 @@ std::string lost_list(const SideInFile& s) {
 }
 
 // The problems binding found: one line per file.
-std::optional<PairsProblem> binding_problem(const SideInFile& first, const SideInFile& second, const std::string& file) {
+std::optional<PairsProblem> binding_problem(const SideInFile& first, const SideInFile& second,
+                                            const std::string& file) {
   if (!first.lost.empty() || !second.lost.empty()) {
     std::string what;
     for (const SideInFile* s : {&first, &second})
       if (!s->lost.empty()) what += (what.empty() ? "" : "; ") + lost_list(*s);
     return PairsProblem{file, 0,
                         "hand pairs not used (registration counts instead): a stored rock is no longer in its "
-                        "label file: " + what,
+                        "label file: " +
+                            what,
                         true};
   }
   if (first.moved.empty() && second.moved.empty()) return std::nullopt;
@@ -169,7 +172,8 @@ RockPairs parse_pair_list(const nlohmann::json& j, const std::string& file, size
   for (const auto& p : j) {
     ++k;
     if (!p.is_array() || p.size() != 2 || !p[0].is_number_integer() || !p[1].is_number_integer())
-      throw StudyError(fmt::format("{}: pair {} must be two integer rock indices, found {}", file, k, describe_json(p)));
+      throw StudyError(
+          fmt::format("{}: pair {} must be two integer rock indices, found {}", file, k, describe_json(p)));
     int x = -1, y = -1;
     if (!as_index(p[0], &x) || !as_index(p[1], &y))
       throw StudyError(fmt::format("{}: pair {} [{}, {}] is out of range: the images have {} and {} rocks", file, k,
@@ -188,7 +192,8 @@ std::vector<int> parse_excluded(const nlohmann::json& j, const char* key, const 
   for (const auto& v : j[key]) {
     int x = -1;
     if (!as_index(v, &x))
-      throw StudyError(fmt::format("{}: \"{}\" holds {}, expected a rock index below {}", file, key, describe_json(v), n));
+      throw StudyError(
+          fmt::format("{}: \"{}\" holds {}, expected a rock index below {}", file, key, describe_json(v), n));
     out.push_back(x);
   }
   return out;
@@ -201,10 +206,11 @@ void check_unbound_ranges(const ParsedFile& f, const std::string& file) {
   for (const auto& [x, y] : f.pairs) {
     ++k;
     if ((!f.first.stored && x >= n1) || (!f.second.stored && y >= n2))
-      throw StudyError(fmt::format("{}: pair {} [{}, {}] is out of range: the images have {} and {} rocks", file, k,
-                                   x, y, n1, n2));
+      throw StudyError(
+          fmt::format("{}: pair {} [{}, {}] is out of range: the images have {} and {} rocks", file, k, x, y, n1, n2));
   }
-  for (const auto& [side, key, n] : {std::make_tuple(&f.first, "excluded_a", n1), std::make_tuple(&f.second, "excluded_b", n2)}) {
+  for (const auto& [side, key, n] :
+       {std::make_tuple(&f.first, "excluded_a", n1), std::make_tuple(&f.second, "excluded_b", n2)}) {
     if (side->stored) continue;
     for (const int x : side->excluded)
       if (x >= n) throw StudyError(fmt::format("{}: \"{}\" holds {}, expected a rock index below {}", file, key, x, n));
@@ -264,8 +270,8 @@ std::optional<FixedPairs> parse_fixed_pairs(const std::string& text, const std::
 
 }  // namespace
 
-FixedPairsRead load_fixed_pairs(const Study& study, const std::string& a, const std::string& b,
-                                const std::string& stem, const std::vector<Box>& gt_a, const std::vector<Box>& gt_b) {
+FixedPairsRead load_fixed_pairs(const Study& study, const std::string& a, const std::string& b, const std::string& stem,
+                                const std::vector<Box>& gt_a, const std::vector<Box>& gt_b) {
   FixedPairsRead out;
   std::string found_path;
   bool found = false;
@@ -282,9 +288,9 @@ FixedPairsRead load_fixed_pairs(const Study& study, const std::string& a, const 
     if (!text) continue;
     if (found) {
       // Both orders exist (e.g. a save interrupted before it removed the old name): the first one counts.
-      out.problems.push_back({shown, 0,
-                              fmt::format("ignored: {} holds this scene's pairs too and is read first; remove one",
-                                          found_path)});
+      out.problems.push_back(
+          {shown, 0,
+           fmt::format("ignored: {} holds this scene's pairs too and is read first; remove one", found_path)});
       break;
     }
     SideInFile sa{a, study.label_path(a, stem), &gt_a, {}, {}, {}, {}};
@@ -311,7 +317,8 @@ std::optional<FixedPairs> read_fixed_pairs(const Study& study, const std::string
 std::string fixed_pairs_json(const FixedPairs& fp, const std::vector<Box>& gt_a, const std::vector<Box>& gt_b) {
   nlohmann::json j;
   j["pairs"] = nlohmann::json::array();
-  std::set<int> rocks_a(fp.excluded_a.begin(), fp.excluded_a.end()), rocks_b(fp.excluded_b.begin(), fp.excluded_b.end());
+  std::set<int> rocks_a(fp.excluded_a.begin(), fp.excluded_a.end()),
+      rocks_b(fp.excluded_b.begin(), fp.excluded_b.end());
   for (const auto& [x, y] : fp.pairs) {
     j["pairs"].push_back({x, y});
     rocks_a.insert(x);

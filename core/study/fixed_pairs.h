@@ -56,9 +56,9 @@ DiskVersion version_of(const std::optional<std::string>& contents);
 
 // One scene's pairs files, as read.
 struct FixedPairsRead {
-  std::optional<FixedPairs> pairs;      // nullopt: no file, or unusable (see problems)
-  std::vector<PairsProblem> problems;   // in file order: rocks found again, unusable, both name orders
-  DiskVersion version_ab, version_ba;   // pairs/<a>__<b>/<stem>.json and pairs/<b>__<a>/<stem>.json
+  std::optional<FixedPairs> pairs;     // nullopt: no file, or unusable (see problems)
+  std::vector<PairsProblem> problems;  // in file order: rocks found again, unusable, both name orders
+  DiskVersion version_ab, version_ba;  // pairs/<a>__<b>/<stem>.json and pairs/<b>__<a>/<stem>.json
   bool unusable() const;
 };
 
@@ -66,8 +66,8 @@ struct FixedPairsRead {
 // to `gt_a`/`gt_b` by box. Throws StudyError naming the file for bad JSON, unknown keys, indices out of
 // range (in files without boxes), a rock paired twice, a paired rock without a stored box, a symbolic link
 // on the way, or an unreadable file. When both exist, A__B counts and a problem names B__A.
-FixedPairsRead load_fixed_pairs(const Study& study, const std::string& a, const std::string& b,
-                                const std::string& stem, const std::vector<Box>& gt_a, const std::vector<Box>& gt_b);
+FixedPairsRead load_fixed_pairs(const Study& study, const std::string& a, const std::string& b, const std::string& stem,
+                                const std::vector<Box>& gt_a, const std::vector<Box>& gt_b);
 
 // load_fixed_pairs for callers without a problem list: unusable pairs are a StudyError, other problems go
 // to `warnings` (as "FILE: message").

@@ -11,11 +11,11 @@
 namespace ipd {
 
 struct Problem {
-  std::string file;    // the file at fault; empty when the problem is not one file's (a missing scene)
-  int line = 0;        // 1-based line in `file`; 0 when it concerns the whole file
-  std::string domain;  // the domain the file or scene belongs to; empty when none
+  std::string file;          // the file at fault; empty when the problem is not one file's (a missing scene)
+  int line = 0;              // 1-based line in `file`; 0 when it concerns the whole file
+  std::string domain;        // the domain the file or scene belongs to; empty when none
   std::string other_domain;  // with `domain`, the domain pair it concerns (a pairs file); else empty
-  std::string scene;   // the scene's stem, so a viewer can go to it; empty when not one scene's
+  std::string scene;         // the scene's stem, so a viewer can go to it; empty when not one scene's
   std::string message;
   // A pairs file whose hand pairs can't be used (a stored rock is gone): registration counts instead, and
   // `ipd table` stops unless --skip-bad-lines.

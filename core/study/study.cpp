@@ -2,10 +2,10 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 #include <set>
 
 #include "core/study/study_names.h"
@@ -67,14 +67,16 @@ std::string parse_model_settings(const YAML::Node& settings, const std::string& 
       throw StudyError(fmt::format("{}:{}: unknown setting '{}.{}' (expected trained_on)", file, line, where,
                                    key.size() > 40 ? key.substr(0, 37) + "..." : key));
     if (kv.second.IsNull())
-      throw StudyError(fmt::format("{}:{}: {}.trained_on is empty (null); expected the name of the domain the "
-                                   "model was trained on (leave the setting out when it is unknown)",
-                                   file, line, where));
+      throw StudyError(
+          fmt::format("{}:{}: {}.trained_on is empty (null); expected the name of the domain the "
+                      "model was trained on (leave the setting out when it is unknown)",
+                      file, line, where));
     trained_on = yaml_get<std::string>(kv.second, file, "trained_on");
     if (trained_on.empty())
-      throw StudyError(fmt::format("{}:{}: {}.trained_on is an empty name; expected the name of the domain the "
-                                   "model was trained on (leave the setting out when it is unknown)",
-                                   file, line, where));
+      throw StudyError(
+          fmt::format("{}:{}: {}.trained_on is an empty name; expected the name of the domain the "
+                      "model was trained on (leave the setting out when it is unknown)",
+                      file, line, where));
   }
   return trained_on;
 }
@@ -113,8 +115,10 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
       const bool marker = line.rfind("---", 0) == 0 && (line.size() == 3 || line[3] == ' ' || line[3] == '\t');
       const bool end_marker = line.rfind("...", 0) == 0 && (line.size() == 3 || line[3] == ' ' || line[3] == '\t');
       if (first_end == text.size()) {
-        if ((marker && content) || end_marker) first_end = pos;
-        else if (!blank && !marker && line[0] != '%') content = true;
+        if ((marker && content) || end_marker)
+          first_end = pos;
+        else if (!blank && !marker && line[0] != '%')
+          content = true;
       } else if (!blank && !marker && !end_marker) {
         throw StudyError(fmt::format("{}:{}: a second YAML document; expected one mapping of settings", file, line_no));
       }
@@ -195,9 +199,10 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
         } else if (k == "gate") {
           c.registration.pair_gate = yaml_get<double>(r.second, file, "registration.gate");
           if (!(c.registration.pair_gate > 0) || !std::isfinite(c.registration.pair_gate))
-            throw StudyError(fmt::format("{}:{}: registration.gate must be a number > 0 (a fraction of the rocks' "
-                                         "spread; default 0.2), got {}",
-                                         file, r.first.Mark().line + 1, r.second.Scalar()));
+            throw StudyError(
+                fmt::format("{}:{}: registration.gate must be a number > 0 (a fraction of the rocks' "
+                            "spread; default 0.2), got {}",
+                            file, r.first.Mark().line + 1, r.second.Scalar()));
         } else {
           throw StudyError(fmt::format("{}:{}: unknown registration setting '{}' (expected method, seed, trials, gate)",
                                        file, r.first.Mark().line + 1, k));
@@ -210,9 +215,10 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
       const std::string bad = c.registration.validate();
       if (!bad.empty()) throw StudyError(fmt::format("{}:{}: {}", file, line, bad));
     } else {
-      throw StudyError(fmt::format(
-          "{}:{}: unknown setting '{}' (expected rock_class, conf_threshold, image_size, domains, models, registration)",
-          file, line, key));
+      throw StudyError(
+          fmt::format("{}:{}: unknown setting '{}' (expected rock_class, conf_threshold, image_size, domains, models, "
+                      "registration)",
+                      file, line, key));
     }
   }
   return c;
@@ -282,17 +288,18 @@ std::set<std::string> label_stems(const fs::path& dir) {
     if (p.extension() == ".txt") {
       check_name(p, p.stem().string(), "scene", kMaxStemBytes);
       stems.insert(p.stem().string());
-    }
-    else if (lower(p.extension().string()) == ".txt") refused.push_back(p);
+    } else if (lower(p.extension().string()) == ".txt")
+      refused.push_back(p);
   }
   if (refused.empty()) return stems;
   std::sort(refused.begin(), refused.end());
   const fs::path& p = refused.front();
   const std::string stem = p.stem().string();
   if (stems.count(stem))
-    throw StudyError(fmt::format("{}: {}.txt holds this scene's boxes too, and only lower-case .txt files are read; "
-                                 "remove or merge one of them",
-                                 p.string(), stem));
+    throw StudyError(
+        fmt::format("{}: {}.txt holds this scene's boxes too, and only lower-case .txt files are read; "
+                    "remove or merge one of them",
+                    p.string(), stem));
   throw StudyError(fmt::format("{}: only lower-case .txt label files are read; rename it to {}.txt", p.string(), stem));
 }
 
@@ -362,17 +369,16 @@ Study open_study(const std::string& root_in) {
     throw StudyError(root_in + ": no domains found (expected subdirectories like real/labels/ with YOLO label files)");
   for (const auto& want : s.config.domain_order)
     if (std::find(names.begin(), names.end(), want) == names.end())
-      throw StudyError(fmt::format("{}: study.yaml lists domain '{}' but there is no {}/labels/ directory",
-                                   root_in, want, want));
+      throw StudyError(
+          fmt::format("{}: study.yaml lists domain '{}' but there is no {}/labels/ directory", root_in, want, want));
   // Configured order first, then "real", then alphabetical.
   auto rank = [&](const std::string& n) {
     const auto p = std::find(s.config.domain_order.begin(), s.config.domain_order.end(), n);
     if (p != s.config.domain_order.end()) return static_cast<int>(p - s.config.domain_order.begin());
     return n == "real" ? 1000 : 2000;
   };
-  std::sort(names.begin(), names.end(), [&](const auto& x, const auto& y) {
-    return std::make_pair(rank(x), x) < std::make_pair(rank(y), y);
-  });
+  std::sort(names.begin(), names.end(),
+            [&](const auto& x, const auto& y) { return std::make_pair(rank(x), x) < std::make_pair(rank(y), y); });
   std::set<std::string> all_models;
   for (const auto& name : names) s.domains.push_back(scan_domain(root, name, &all_models));
   for (const auto& [m, dom] : s.config.trained_on) {
@@ -398,9 +404,10 @@ Study open_study(const std::string& root_in) {
 void require_utf8_names(const Study& s) {
   auto check = [](const std::string& name, const std::string& path) {
     if (!is_utf8(name))
-      throw StudyError(fmt::format("{}: the name is not UTF-8 text, which JSON output cannot hold; rename it (text "
-                                   "and CSV output take it as it is)",
-                                   escape_non_utf8(path)));
+      throw StudyError(
+          fmt::format("{}: the name is not UTF-8 text, which JSON output cannot hold; rename it (text "
+                      "and CSV output take it as it is)",
+                      escape_non_utf8(path)));
   };
   for (const auto& d : s.domains) {
     check(d.name, d.dir);

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "core/util/errors.h"
 #include "core/io/label_io.h"
 #include "core/registration/registration.h"
 #include "core/study/fixed_pairs.h"
+#include "core/util/errors.h"
 
 namespace ipd {
 
@@ -26,10 +26,10 @@ struct ModelInfo {
 };
 
 struct StudyConfig {
-  int rock_class = -1;         // -1: every class counts
-  double conf_threshold = 0;   // predictions below this are dropped
-  int image_width = 0, image_height = 0;  // for labels-only studies; 0 when unknown
-  std::vector<std::string> domain_order;  // optional preferred order
+  int rock_class = -1;                            // -1: every class counts
+  double conf_threshold = 0;                      // predictions below this are dropped
+  int image_width = 0, image_height = 0;          // for labels-only studies; 0 when unknown
+  std::vector<std::string> domain_order;          // optional preferred order
   std::map<std::string, std::string> trained_on;  // model -> domain
   RegistrationOptions registration;
 };
@@ -55,7 +55,7 @@ struct Study {
   std::string label_path(const std::string& domain, const std::string& stem) const;
   std::string prediction_path(const std::string& domain, const std::string& model, const std::string& stem) const;
   std::string pairs_dir(const std::string& a, const std::string& b) const;  // in the A__B order given
-  double aspect() const;  // image width / height for registration
+  double aspect() const;                                                    // image width / height for registration
 };
 
 // Scans a study directory; throws StudyError when it is missing, unreadable or has no domains.

@@ -5,11 +5,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fmt/format.h>
 #include <random>
 
 namespace fs = std::filesystem;
@@ -22,12 +22,18 @@ std::string errno_text(int err) { return std::strerror(err); }
 
 const char* kind_name(fs::file_type t) {
   switch (t) {
-    case fs::file_type::fifo: return "a FIFO";
-    case fs::file_type::socket: return "a socket";
-    case fs::file_type::character: return "a character device";
-    case fs::file_type::block: return "a block device";
-    case fs::file_type::directory: return "a directory";
-    default: return "not a regular file";
+    case fs::file_type::fifo:
+      return "a FIFO";
+    case fs::file_type::socket:
+      return "a socket";
+    case fs::file_type::character:
+      return "a character device";
+    case fs::file_type::block:
+      return "a block device";
+    case fs::file_type::directory:
+      return "a directory";
+    default:
+      return "not a regular file";
   }
 }
 
@@ -65,8 +71,7 @@ void write_file_atomically(const std::string& path, const std::string& contents,
     if (ec) throw IoError(path + ": cannot create directory " + target.parent_path().string() + ": " + ec.message());
   }
   std::random_device rd;
-  const std::string tmp =
-      target.string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(rd() & 0xffff);
+  const std::string tmp = target.string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(rd() & 0xffff);
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw IoError(path + ": cannot write: " + errno_text(errno));
   size_t done = 0;
@@ -111,8 +116,8 @@ FileKind file_kind(const std::string& path) {
   const fs::file_status st = fs::status(path, ec);
   if (st.type() == fs::file_type::not_found) {
     std::error_code ignored;
-    throw IoError(fmt::format("{}: is a dangling symbolic link (to {})", path,
-                              fs::read_symlink(path, ignored).string()));
+    throw IoError(
+        fmt::format("{}: is a dangling symbolic link (to {})", path, fs::read_symlink(path, ignored).string()));
   }
   if (ec) throw IoError(fmt::format("{}: cannot examine: {}", path, ec.message()));
   if (st.type() == fs::file_type::regular) return FileKind::kRegular;
@@ -122,13 +127,16 @@ FileKind file_kind(const std::string& path) {
 
 std::string read_file(const std::string& path, size_t max_bytes) {
   switch (file_kind(path)) {
-    case FileKind::kMissing: throw IoError(path + ": no such file");
-    case FileKind::kDirectory: throw IoError(path + ": is a directory, expected a file");
+    case FileKind::kMissing:
+      throw IoError(path + ": no such file");
+    case FileKind::kDirectory:
+      throw IoError(path + ": is a directory, expected a file");
     case FileKind::kOther: {
       std::error_code ec;
       throw IoError(fmt::format("{}: is {}, expected a regular file", path, kind_name(fs::status(path, ec).type())));
     }
-    case FileKind::kRegular: break;
+    case FileKind::kRegular:
+      break;
   }
   // O_NONBLOCK: should the file be swapped for a FIFO after the check, open() must not hang on it.
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
@@ -172,7 +180,8 @@ bool is_stale_temp_name(const std::string& name) {
   if (at == std::string::npos) return false;
   const std::string rest = name.substr(at + 5);  // <pid>-<n>
   const size_t dash = rest.find('-');
-  if (dash == std::string::npos || dash == 0 || rest.find_first_not_of("0123456789-") != std::string::npos) return false;
+  if (dash == std::string::npos || dash == 0 || rest.find_first_not_of("0123456789-") != std::string::npos)
+    return false;
   const long pid = std::strtol(rest.substr(0, dash).c_str(), nullptr, 10);
   return pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;  // the writer is gone
 }

@@ -5,12 +5,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fmt/format.h>
 #include <mutex>
 #include <set>
 #include <vector>
@@ -189,7 +189,8 @@ bool CacheDir::write(const std::string& rel, const std::string& contents,
   const std::string shown = (fs::path(path_) / rel).string();
   struct stat st {};
   if (::fstatat(dir.fd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && !S_ISREG(st.st_mode)) {
-    warn_cache_entry_once(shown, S_ISLNK(st.st_mode) ? "is a symbolic link; not used" : "is not a regular file; not used");
+    warn_cache_entry_once(shown,
+                          S_ISLNK(st.st_mode) ? "is a symbolic link; not used" : "is not a regular file; not used");
     return false;
   }
   const std::string tmp = fmt::format("{}.tmp-{}-{}", name, ::getpid(), temp_counter++);

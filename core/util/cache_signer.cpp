@@ -8,12 +8,12 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fmt/format.h>
 #include <stdexcept>
 
 #ifndef IPD_VERSION
@@ -74,15 +74,22 @@ bool read_key(const std::string& path, std::string* key) {
   }
   struct stat st {};
   std::string why;
-  if (::fstat(fd, &st) != 0) why = std::strerror(errno);
-  else if (!S_ISREG(st.st_mode)) why = "not a regular file";
-  else if (st.st_uid != ::geteuid()) why = "owned by another user";
-  else if ((st.st_mode & 077) != 0) why = fmt::format("readable or writable by others (mode {:o}, expected 600)", st.st_mode & 0777);
-  else if (st.st_size != static_cast<off_t>(kKeyBytes)) why = fmt::format("{} bytes, expected {}", st.st_size, kKeyBytes);
+  if (::fstat(fd, &st) != 0)
+    why = std::strerror(errno);
+  else if (!S_ISREG(st.st_mode))
+    why = "not a regular file";
+  else if (st.st_uid != ::geteuid())
+    why = "owned by another user";
+  else if ((st.st_mode & 077) != 0)
+    why = fmt::format("readable or writable by others (mode {:o}, expected 600)", st.st_mode & 0777);
+  else if (st.st_size != static_cast<off_t>(kKeyBytes))
+    why = fmt::format("{} bytes, expected {}", st.st_size, kKeyBytes);
   key->assign(kKeyBytes, '\0');
   if (why.empty() && ::read(fd, key->data(), kKeyBytes) != static_cast<ssize_t>(kKeyBytes)) why = "short read";
   ::close(fd);
-  if (!why.empty()) throw std::runtime_error(fmt::format("{}: cannot be used as the cache key: {}; remove it to make a new one", path, why));
+  if (!why.empty())
+    throw std::runtime_error(
+        fmt::format("{}: cannot be used as the cache key: {}; remove it to make a new one", path, why));
   return true;
 }
 
@@ -91,7 +98,8 @@ bool read_key(const std::string& path, std::string* key) {
 void create_key(const std::string& path) {
   std::error_code ec;
   fs::create_directories(fs::path(path).parent_path(), ec);
-  const std::string tmp = fmt::format("{}.tmp-{}-{}", path, ::getpid(), static_cast<unsigned>(random_bytes(2)[0]) & 0xff);
+  const std::string tmp =
+      fmt::format("{}.tmp-{}-{}", path, ::getpid(), static_cast<unsigned>(random_bytes(2)[0]) & 0xff);
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
   if (fd < 0) throw std::runtime_error(fmt::format("{}: cannot create: {}", path, std::strerror(errno)));
   const std::string key = random_bytes(kKeyBytes);
@@ -140,8 +148,7 @@ CacheSigner::CacheSigner(const std::string& key_path) {
 const CacheSigner& CacheSigner::instance() {
   static const CacheSigner signer = [] {
     CacheSigner s(user_key_path());
-    if (!s.persistent())
-      std::fprintf(stderr, "%s; caches written now serve this run only\n", s.problem().c_str());
+    if (!s.persistent()) std::fprintf(stderr, "%s; caches written now serve this run only\n", s.problem().c_str());
     return s;
   }();
   return signer;

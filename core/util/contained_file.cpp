@@ -4,10 +4,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fmt/format.h>
 #include <random>
 #include <vector>
 
@@ -37,8 +37,8 @@ class Fd {
 };
 
 std::string link_refused(const std::string& path, const char* action) {
-  return fmt::format("{}: is a symbolic link; {} through it is refused (links inside a study are never followed)",
-                     path, action);
+  return fmt::format("{}: is a symbolic link; {} through it is refused (links inside a study are never followed)", path,
+                     action);
 }
 
 // The folder names of `relative` and its file name; "." "..", empty parts and NUL bytes are refused, so the
@@ -183,8 +183,7 @@ void check_beneath(const std::string& root, const std::string& relative) {
     throw IoError(link_refused(shown, "saving"));
 }
 
-std::optional<std::string> read_file_beneath(const std::string& root, const std::string& relative,
-                                             size_t max_bytes) {
+std::optional<std::string> read_file_beneath(const std::string& root, const std::string& relative, size_t max_bytes) {
   const std::vector<std::string> parts = split_relative(root, relative);
   std::string shown;
   const Fd dir = open_folders(root, parts, false, "reading", &shown);

@@ -18,9 +18,12 @@ size_t too_deep_at(const std::string& text, int limit) {
   for (size_t k = 0; k < text.size(); ++k) {
     const char c = text[k];
     if (in_string) {
-      if (escaped) escaped = false;
-      else if (c == '\\') escaped = true;
-      else if (c == '"') in_string = false;
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
     } else if (c == '"') {
       in_string = true;
     } else if (c == '[' || c == '{') {
@@ -52,9 +55,10 @@ nlohmann::json parse_json_input(const std::string& text, const std::string& file
     } else if (event == Event::key && !keys.empty()) {
       const std::string& key = parsed.get_ref<const std::string&>();
       if (!keys.back().insert(key).second)
-        throw StudyError(fmt::format("{}: duplicate key {} in one object (a JSON reader keeps only one of them); "
-                                     "expected {}",
-                                     file, describe_json(parsed), expected));
+        throw StudyError(
+            fmt::format("{}: duplicate key {} in one object (a JSON reader keeps only one of them); "
+                        "expected {}",
+                        file, describe_json(parsed), expected));
     }
     return true;
   };

@@ -37,9 +37,10 @@ template <typename Json>
 std::string dump_checked(const Json& j, int indent) {
   std::string bad;
   if (first_non_utf8(j, &bad))
-    throw StudyError(fmt::format("cannot write JSON: '{}' is not UTF-8 text, and JSON holds only UTF-8; rename the "
-                                 "file or directory it comes from (text and CSV output take it as it is)",
-                                 escape_non_utf8(bad.size() > 80 ? bad.substr(0, 77) + "..." : bad)));
+    throw StudyError(
+        fmt::format("cannot write JSON: '{}' is not UTF-8 text, and JSON holds only UTF-8; rename the "
+                    "file or directory it comes from (text and CSV output take it as it is)",
+                    escape_non_utf8(bad.size() > 80 ? bad.substr(0, 77) + "..." : bad)));
   return j.dump(indent);
 }
 

@@ -1,9 +1,9 @@
 #include "core/util/number_text.h"
 
+#include <fmt/format.h>
 #include <cerrno>
 #include <clocale>
 #include <cstdlib>
-#include <fmt/format.h>
 
 #include "core/util/utf8.h"
 

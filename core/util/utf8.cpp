@@ -13,10 +13,14 @@ size_t utf8_sequence(std::string_view s, size_t k) {
   if (c < 0x80) return 1;
   size_t n = 0;
   unsigned min = 0, cp = 0;
-  if ((c & 0xE0) == 0xC0) n = 2, cp = c & 0x1F, min = 0x80;
-  else if ((c & 0xF0) == 0xE0) n = 3, cp = c & 0x0F, min = 0x800;
-  else if ((c & 0xF8) == 0xF0) n = 4, cp = c & 0x07, min = 0x10000;
-  else return 0;
+  if ((c & 0xE0) == 0xC0)
+    n = 2, cp = c & 0x1F, min = 0x80;
+  else if ((c & 0xF0) == 0xE0)
+    n = 3, cp = c & 0x0F, min = 0x800;
+  else if ((c & 0xF8) == 0xF0)
+    n = 4, cp = c & 0x07, min = 0x10000;
+  else
+    return 0;
   if (k + n > s.size()) return 0;
   for (size_t i = 1; i < n; ++i) {
     if ((byte(k + i) & 0xC0) != 0x80) return 0;

@@ -92,7 +92,8 @@ TEST(InputChecks, LabelFilesInAnotherCaseAreRefusedByName) {
   // Two pictures of one scene: which one is shown depended on the directory's order.
   test::write_text(d / "real/images/s1.png", "");
   test::write_text(d / "real/images/s1.jpg", "");
-  EXPECT_EQ(open_error(d.path()), d / "real/images/s1.png" + ": s1.jpg is a picture of this scene too; keep one of them");
+  EXPECT_EQ(open_error(d.path()),
+            d / "real/images/s1.png" + ": s1.jpg is a picture of this scene too; keep one of them");
   fs::remove(d / "real/images/s1.jpg");
   EXPECT_EQ(open_error(d.path()), "no error");
   // classes.txt (written by ipd import coco) is not a scene.
@@ -116,8 +117,9 @@ TEST(InputChecks, DuplicateJsonKeysAreAnErrorNamingFileAndKey) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message("{\"pairs\": [[0, 1]], \"pairs\": [[1, 0]]}"),
-            "p.json: duplicate key \"pairs\" in one object (a JSON reader keeps only one of them); expected " + expected);
+  EXPECT_EQ(
+      message("{\"pairs\": [[0, 1]], \"pairs\": [[1, 0]]}"),
+      "p.json: duplicate key \"pairs\" in one object (a JSON reader keeps only one of them); expected " + expected);
   EXPECT_EQ(message("{\"a\": {\"x\": 1, \"y\": 2, \"x\": 3}}"),
             "p.json: duplicate key \"x\" in one object (a JSON reader keeps only one of them); expected " + expected);
   // The same key in different objects is fine.
@@ -137,11 +139,11 @@ TEST(InputChecks, DuplicateJsonKeysAreAnErrorNamingFileAndKey) {
 
 TEST(InputChecks, Utf8IsCheckedStrictly) {
   EXPECT_TRUE(is_utf8("Ger\xC3\xB6lle \xE2\x80\x93 \xF0\x9F\xAA\xA8"));
-  EXPECT_FALSE(is_utf8("Ger\xF6lle"));            // Latin-1
-  EXPECT_FALSE(is_utf8("\xC0\xAF"));              // overlong '/'
-  EXPECT_FALSE(is_utf8("\xED\xA0\x80"));          // a surrogate
-  EXPECT_FALSE(is_utf8("\xF4\x90\x80\x80"));      // above U+10FFFF
-  EXPECT_FALSE(is_utf8("\xE2\x80"));              // cut short
+  EXPECT_FALSE(is_utf8("Ger\xF6lle"));        // Latin-1
+  EXPECT_FALSE(is_utf8("\xC0\xAF"));          // overlong '/'
+  EXPECT_FALSE(is_utf8("\xED\xA0\x80"));      // a surrogate
+  EXPECT_FALSE(is_utf8("\xF4\x90\x80\x80"));  // above U+10FFFF
+  EXPECT_FALSE(is_utf8("\xE2\x80"));          // cut short
   EXPECT_EQ(escape_non_utf8("Ger\xF6lle\xC3\xB6\n"), "Ger\\xF6lle\xC3\xB6\\x0A");
 }
 
@@ -159,7 +161,8 @@ TEST(InputChecks, NamesThatAreNotUtf8AreRefusedInJsonNamingTheFile) {
   const std::string message = "error: " + d / "real/labels/Ger\\xF6lle.txt" +
                               ": the name is not UTF-8 text, which JSON output cannot hold; rename it (text and CSV "
                               "output take it as it is)\n";
-  for (const std::string command : {"table --bootstrap 0 --format json", "export rocks --format json", "breakdown --bootstrap 0 --format json"}) {
+  for (const std::string command :
+       {"table --bootstrap 0 --format json", "export rocks --format json", "breakdown --bootstrap 0 --format json"}) {
     const auto r = test::run_ipd(command + " " + d.path());
     EXPECT_EQ(r.exit_code, 1) << command;
     EXPECT_EQ(r.err, message) << command;
@@ -168,8 +171,8 @@ TEST(InputChecks, NamesThatAreNotUtf8AreRefusedInJsonNamingTheFile) {
   EXPECT_EQ(test::run_ipd("table " + d.path() + " --bootstrap 0").exit_code, 0);
   EXPECT_EQ(test::run_ipd("export rocks --format csv " + d.path()).exit_code, 0);
   // ipd register --json: the path itself is the name.
-  const auto r = test::run_ipd("register --json " + d / "real/labels/" + latin1 + ".txt " + d / "synth/labels/" +
-                               latin1 + ".txt");
+  const auto r =
+      test::run_ipd("register --json " + d / "real/labels/" + latin1 + ".txt " + d / "synth/labels/" + latin1 + ".txt");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "error: " + d / "real/labels/Ger\\xF6lle.txt" +
                        ": the name is not UTF-8 text, which JSON output cannot hold; rename it (the text report takes "
@@ -205,9 +208,10 @@ TEST(InputChecks, TableCsvQuotesNamesWithCommas) {
   test::write_text(d / "study.yaml", "models: {'det,v2': {trained_on: real}}\n");
   const auto r = test::run_ipd("table --format csv --bootstrap 0 " + d.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.out,
-            "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,reason\n"
-            "\"det,v2\",real,real,synth,0.500000,2,0,0,1,true,,,,\n");
+  EXPECT_EQ(
+      r.out,
+      "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,reason\n"
+      "\"det,v2\",real,real,synth,0.500000,2,0,0,1,true,,,,\n");
   const auto b = test::run_ipd("breakdown --format csv --bootstrap 0 --by region " + d.path());
   ASSERT_EQ(b.exit_code, 0) << b.err;
   EXPECT_NE(b.out.find("\n\"det,v2\",real,real,synth,"), std::string::npos) << b.out;
@@ -268,9 +272,11 @@ TEST(InputChecks, StudyYamlRegistrationNumbersAreChecked) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message("registration:\n  seed: -1\n"), "study.yaml:2: registration.seed must be a whole number >= 0, got -1");
-  EXPECT_EQ(message("registration:\n  gate: 0\n"),
-            "study.yaml:2: registration.gate must be a number > 0 (a fraction of the rocks' spread; default 0.2), got 0");
+  EXPECT_EQ(message("registration:\n  seed: -1\n"),
+            "study.yaml:2: registration.seed must be a whole number >= 0, got -1");
+  EXPECT_EQ(
+      message("registration:\n  gate: 0\n"),
+      "study.yaml:2: registration.gate must be a number > 0 (a fraction of the rocks' spread; default 0.2), got 0");
   EXPECT_EQ(message("registration:\n  gate: .inf\n"),
             "study.yaml:2: registration.gate must be a number > 0 (a fraction of the rocks' spread; default 0.2), got "
             ".inf");
@@ -298,8 +304,9 @@ std::string coco(const std::string& images, const std::string& categories = "[{\
 // classes.png lost its labels to the class names; exit 0 both times.
 TEST(InputChecks, CocoImagesWhoseLabelsWouldCollideAreRefusedByName) {
   test::TempDir d;
-  test::write_text(d / "ann.json", coco("[{\"id\": 1, \"file_name\": \"cam1/0001.png\", \"width\": 100, \"height\": 100},"
-                                        " {\"id\": 2, \"file_name\": \"cam2/0001.png\", \"width\": 100, \"height\": 100}]"));
+  test::write_text(d / "ann.json",
+                   coco("[{\"id\": 1, \"file_name\": \"cam1/0001.png\", \"width\": 100, \"height\": 100},"
+                        " {\"id\": 2, \"file_name\": \"cam2/0001.png\", \"width\": 100, \"height\": 100}]"));
   const std::string collision = d / "ann.json" +
                                 ": images[0] \"cam1/0001.png\" and images[1] \"cam2/0001.png\" would both write "
                                 "labels/0001.txt; give the images distinct names (or import each folder into a "
@@ -326,8 +333,9 @@ TEST(InputChecks, CocoImagesWhoseLabelsWouldCollideAreRefusedByName) {
   EXPECT_FALSE(r.written);
 
   // Distinct names import as before.
-  test::write_text(d / "ann.json", coco("[{\"id\": 1, \"file_name\": \"cam1/0001.png\", \"width\": 100, \"height\": 100},"
-                                        " {\"id\": 2, \"file_name\": \"cam2/0002.png\", \"width\": 100, \"height\": 100}]"));
+  test::write_text(d / "ann.json",
+                   coco("[{\"id\": 1, \"file_name\": \"cam1/0001.png\", \"width\": 100, \"height\": 100},"
+                        " {\"id\": 2, \"file_name\": \"cam2/0002.png\", \"width\": 100, \"height\": 100}]"));
   r = import_coco(coco_options(d));
   EXPECT_TRUE(r.collisions.empty());
   EXPECT_TRUE(r.written);
@@ -360,9 +368,10 @@ TEST(InputChecks, CocoSkippedEntriesAreWarningsAndTheImportSaysItWrote) {
 // `rock_class: 0` dropped them all.
 TEST(InputChecks, CocoDuplicateCategoryIdIsAnError) {
   test::TempDir d;
-  test::write_text(d / "ann.json",
-                   coco("[{\"id\": 1, \"file_name\": \"a.png\", \"width\": 100, \"height\": 100}]",
-                        "[{\"id\": 3, \"name\": \"rock\"}, {\"id\": 7, \"name\": \"shadow\"}, {\"id\": 3, \"name\": \"stone\"}]"));
+  test::write_text(
+      d / "ann.json",
+      coco("[{\"id\": 1, \"file_name\": \"a.png\", \"width\": 100, \"height\": 100}]",
+           "[{\"id\": 3, \"name\": \"rock\"}, {\"id\": 7, \"name\": \"shadow\"}, {\"id\": 3, \"name\": \"stone\"}]"));
   try {
     import_coco(coco_options(d));
     ADD_FAILURE() << "accepted";

@@ -6,20 +6,20 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <random>
 #include <set>
-#include <fmt/format.h>
 #include <stdexcept>
 #include <thread>
-#include <chrono>
 
-#include "core/util/atomic_file.h"
 #include "core/ipd/ipd.h"
 #include "core/registration/pairing.h"
+#include "core/util/atomic_file.h"
 #include "core/util/parallel.h"
 #include "tests/support/test_support.h"
 
@@ -65,8 +65,10 @@ TEST(Reliability, DanglingOrLoopingLabelLinksAreErrorsNotEmptyImages) {
     write_tiny_study(d);
     const std::string label = d / "real/labels/s1.txt";
     fs::remove(label);
-    if (loop) fs::create_symlink("s1.txt", label);
-    else fs::create_symlink(d / "nowhere.txt", label);
+    if (loop)
+      fs::create_symlink("s1.txt", label);
+    else
+      fs::create_symlink(d / "nowhere.txt", label);
     const auto r = run_ipd_limited("table " + d.path());
     EXPECT_EQ(r.exit_code, 1) << r.out;
     EXPECT_TRUE(contains(r.err, label + ": ")) << r.err;
@@ -101,7 +103,8 @@ TEST(Reliability, DanglingStudyYamlPairsFileOrLoopingDirectoriesAreErrors) {
     fs::create_symlink("loop", d / "synth/predictions/loop");
     const auto r = run_ipd_limited("table " + d.path());
     EXPECT_EQ(r.exit_code, 1) << r.out;
-    EXPECT_EQ(r.err, "error: " + d / "synth/predictions/loop" + ": cannot examine: Too many levels of symbolic links\n");
+    EXPECT_EQ(r.err,
+              "error: " + d / "synth/predictions/loop" + ": cannot examine: Too many levels of symbolic links\n");
   }
   {  // nor is a labels directory: the domain would vanish
     test::TempDir d;
@@ -157,8 +160,10 @@ TEST(Reliability, PairsJsonIndicesAreRangeCheckedAndEveryErrorNamesTheFile) {
       {"{\"pairs\": [[0, 1]], \"excluded_a\": [18446744073709551615]}",
        ": \"excluded_a\" holds 18446744073709551615, expected a rock index below 2"},
       {"{\"pairs\": [[1e309, 0]]}", ": invalid JSON: "},
-      {"{\"pairs\": [[0, 1]], \"exclude_a\": [0]}", ": unknown key \"exclude_a\" (expected pairs, excluded_a, excluded_b, rocks_a, rocks_b)"},
-      {"{\"pairs\": [[0, \"" + std::string(100000, '7') + "\"]]}", ": pair 1 must be two integer rock indices, found [0,\"777"},
+      {"{\"pairs\": [[0, 1]], \"exclude_a\": [0]}",
+       ": unknown key \"exclude_a\" (expected pairs, excluded_a, excluded_b, rocks_a, rocks_b)"},
+      {"{\"pairs\": [[0, \"" + std::string(100000, '7') + "\"]]}",
+       ": pair 1 must be two integer rock indices, found [0,\"777"},
   };
   for (const auto& [json, message] : cases) {
     test::write_text(file, json);
@@ -192,15 +197,18 @@ TEST(Reliability, OutputThroughASymlinkReplacesTheTarget) {
 
 // --- defect 8: BOM, huge tokens, millions of bad lines
 TEST(Reliability, ByteOrderMarkIsAccepted) {
-  const LabelFile f = parse_labels("\xEF\xBB\xBF" "0 0.5 0.5 0.1 0.1\n", "bom.txt", {});
+  const LabelFile f = parse_labels(
+      "\xEF\xBB\xBF"
+      "0 0.5 0.5 0.1 0.1\n",
+      "bom.txt", {});
   EXPECT_TRUE(f.errors.empty()) << (f.errors.empty() ? "" : f.errors[0].to_string());
   EXPECT_EQ(f.boxes.size(), 1u);
 }
 
 TEST(Reliability, LongTokensAreShortenedInMessages) {
   const std::string huge(1 << 20, '9');
-  for (const std::string& line : {"0 0.5 0.5 0." + huge + "x 0.1", "0 0.5 0.5 " + huge + " 0.1", "0 0.5 0.5 -0." + huge + " 0.1",
-                                  "0 0.5 0.5 1e" + huge + " 0.1"}) {
+  for (const std::string& line : {"0 0.5 0.5 0." + huge + "x 0.1", "0 0.5 0.5 " + huge + " 0.1",
+                                  "0 0.5 0.5 -0." + huge + " 0.1", "0 0.5 0.5 1e" + huge + " 0.1"}) {
     const LabelFile f = parse_labels(line + "\n", "a.txt", {});
     ASSERT_EQ(f.errors.size(), 1u);
     EXPECT_LT(f.errors[0].to_string().size(), 120u) << f.errors[0].to_string().substr(0, 200);
@@ -251,8 +259,8 @@ TEST(Reliability, DuplicateKeysAndExtraDocumentsInStudyYaml) {
 TEST(Reliability, PairsInBothNameOrdersWarnAndTheFirstCounts) {
   test::TempDir d;
   write_tiny_study(d);
-  test::write_text(d / "pairs/real__synth/s1.json", "{\"pairs\": [[0, 1]]}");   // IPD 2/3
-  test::write_text(d / "pairs/synth__real/s1.json", "{\"pairs\": [[0, 0]]}");   // would be IPD 1/3
+  test::write_text(d / "pairs/real__synth/s1.json", "{\"pairs\": [[0, 1]]}");  // IPD 2/3
+  test::write_text(d / "pairs/synth__real/s1.json", "{\"pairs\": [[0, 0]]}");  // would be IPD 1/3
   const CrossTable t = compute_cross_table(load_labels(open_study(d.path())), {});
   EXPECT_NEAR(t.cells[0].ipd, 2.0 / 3, 1e-12);
   ASSERT_EQ(t.warnings.size(), 1u);

@@ -4,9 +4,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <cstdlib>
 #include <filesystem>
-#include <fmt/format.h>
 
 #include "core/session/study_lock.h"
 #include "core/util/atomic_file.h"
@@ -26,8 +26,8 @@ TEST(StudioReplay, ASecondWindowOpensReadOnlyNamingTheHolderAndSavesNothing) {
   const auto first_window = StudyLock::try_acquire(d / "study", &why);
   ASSERT_TRUE(first_window) << why;
   test::write_text(d / "actions.txt", "scene scene_00002\npair 2 3\n");
-  const std::string cmd = fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d / "study",
-                                      d / "actions.txt");
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d / "study", d / "actions.txt");
   std::system(fmt::format("xvfb-run -a -s '-screen 0 1280x800x24' sh -c '{}' >{} 2>&1", cmd, d / "log.txt").c_str());
   char host[256] = {};
   ::gethostname(host, sizeof host - 1);

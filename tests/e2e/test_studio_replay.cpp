@@ -2,13 +2,13 @@
 // as the Session API makes them. Run by ctest (StudioReplayEdits, which sets IPD_STUDIO); skipped otherwise.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
-#include <fmt/format.h>
 
-#include "core/util/atomic_file.h"
 #include "core/session/session.h"
+#include "core/util/atomic_file.h"
 #include "tests/support/pdf_text.h"
 #include "tests/support/test_support.h"
 
@@ -50,10 +50,14 @@ TEST(StudioReplay, EditsReachThePairsFiles) {
                    "scene scene_00003\n"
                    "pair 1 1\n"
                    "undo\n"
-                   "export " + d / "fig.pdf\n"
-                   "export table " + d / "table.pdf\n"
-                   "export breakdown-confidence " + d / "breakdown.svg\n"
-                   "screenshot " + d / "shot.png\n");
+                   "export " +
+                       d / "fig.pdf\n"
+                           "export table " +
+                       d / "table.pdf\n"
+                           "export breakdown-confidence " +
+                       d / "breakdown.svg\n"
+                           "screenshot " +
+                       d / "shot.png\n");
   // The same edits through the Session API, opened before the GUI writes anything.
   Session s = Session::open(d / "study");
   const std::string cmd =
@@ -92,7 +96,8 @@ TEST(StudioReplay, BadActionsNameTheFileAndLine) {
   // A number is the whole word: "5\0" (a zero-filled block) is not 5, and it must fit the studio's int.
   test::write_text(d / "actions.txt", std::string("wait 5\0\n", 8));
   EXPECT_EQ(run(cmd), 2);
-  EXPECT_EQ(read_file(d / "log.txt"), "error: " + d / "actions.txt" + ":1: 'wait': expected a number >= 1, got '5\\x00'\n");
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" + ":1: 'wait': expected a number >= 1, got '5\\x00'\n");
   test::write_text(d / "actions.txt", "wait 1\nwait 99999999999\n");
   EXPECT_EQ(run(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
@@ -118,7 +123,8 @@ TEST(StudioReplay, AStudyThatCannotBeOpenedSaysWhyOnStderr) {
   // Contains, not equals: Xvfb and the GL driver may add their own lines to stderr.
   const std::string err = read_file(d / "err.txt");
   EXPECT_NE(err.find("error: could not open the study: " + d / "missing" + ": no such study directory\n"),
-            std::string::npos) << err;
+            std::string::npos)
+      << err;
 }
 
 // Scripted runs must end and say what went wrong: a replay on a study that can't be opened used to wait
@@ -133,7 +139,8 @@ TEST(StudioReplay, AReplayOnAStudyThatCannotBeOpenedExits1) {
   EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path()), 1);
   const std::string err = read_file(d / "err.txt");
   EXPECT_NE(err.find("error: could not open the study: " + d / "missing" + ": no such study directory\n"),
-            std::string::npos) << err;
+            std::string::npos)
+      << err;
 }
 
 // An edit that could not be saved and an export that could not be written fail the run, each named.
@@ -145,13 +152,14 @@ TEST(StudioReplay, FailedSavesAndExportsMakeTheReplayFail) {
   test::write_text(d / "study/pairs", "a file where the pairs folder should be\n");
   test::write_text(d / "blocker", "a file where the figure's folder should be\n");
   test::write_text(d / "actions.txt", "scene scene_00002\nunpair 1\nexport " + d / "blocker/fig.pdf" + "\n");
-  const std::string cmd =
-      fmt::format("XDG_CACHE_HOME={} timeout 120 {} {} --replay {}", d / "cache", studio, d / "study", d / "actions.txt");
+  const std::string cmd = fmt::format("XDG_CACHE_HOME={} timeout 120 {} {} --replay {}", d / "cache", studio,
+                                      d / "study", d / "actions.txt");
   EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path()), 1);
   const std::string err = read_file(d / "err.txt");
   const std::string prefix = "error: replay " + d / "actions.txt" + ": ";
   EXPECT_NE(err.find(prefix + "edit not saved: " + d / "study/pairs" + ": is a file, expected a folder\n"),
-            std::string::npos) << err;
+            std::string::npos)
+      << err;
   EXPECT_NE(err.find(prefix + d / "blocker/fig.pdf" + ": export failed: "), std::string::npos) << err;
   EXPECT_EQ(err.find("could not open the study"), std::string::npos) << err;
 }
@@ -170,15 +178,18 @@ TEST(StudioReplay, ProblemsTheCliReportsArePrintedOnStderr) {
   fs::remove(d / "study/principled/labels/scene_00003.txt");
   // The Problems window open, its first row clicked (the bad line's scene), then a screenshot.
   test::write_text(d / "actions.txt", "problems\nproblem 1\nwait 3\nscreenshot " + d / "problems.png\n");
-  const std::string cmd = fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d / "study",
-                                      d / "actions.txt");
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d / "study", d / "actions.txt");
   EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path()), 0);
   EXPECT_TRUE(fs::exists(d / "problems.png"));
   const std::string err = read_file(d / "err.txt");
   EXPECT_NE(err.find(fmt::format("warning: {}:{}: expected 5 columns (class cx cy w h), found 6\n", labels, lines + 1)),
-            std::string::npos) << err;
-  EXPECT_NE(err.find("warning: 1 scene(s) of 'real' have no counterpart in 'principled' and are skipped: scene_00003\n"),
-            std::string::npos) << err;
+            std::string::npos)
+      << err;
+  EXPECT_NE(
+      err.find("warning: 1 scene(s) of 'real' have no counterpart in 'principled' and are skipped: scene_00003\n"),
+      std::string::npos)
+      << err;
 }
 
 }  // namespace

@@ -1,10 +1,10 @@
 // Fuzzes `ipd import coco`: the input is the COCO annotations JSON, optionally followed by a line
 // "----results----" and a detection-results JSON. Entry problems go to the report (each naming its file);
 // structural ones are StudyError/IoError naming the file; anything else escaping is a bug.
-#include "tests/fuzz/fuzz_support.h"
-#include "core/util/atomic_file.h"
 #include "core/study/coco_import.h"
 #include "core/study/study.h"
+#include "core/util/atomic_file.h"
+#include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
@@ -26,7 +26,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     const ipd::CocoImportReport r = ipd::import_coco(o);
     for (const ipd::LabelError& e : r.errors) {
-      if (e.file != o.annotations && e.file != o.results) ipd_fuzz::fail("a report error names another file", e.to_string());
+      if (e.file != o.annotations && e.file != o.results)
+        ipd_fuzz::fail("a report error names another file", e.to_string());
       ipd_fuzz::check_message(e.to_string(), e.file);
     }
     for (const std::string& c : r.collisions) ipd_fuzz::check_message(c, o.annotations);

@@ -1,8 +1,8 @@
 // Fuzzes the YOLO label parser (ground truth and predictions), in memory and through a file.
 #include <cmath>
 
-#include "tests/fuzz/fuzz_support.h"
 #include "core/io/label_io.h"
+#include "tests/fuzz/fuzz_support.h"
 
 namespace {
 
@@ -21,7 +21,8 @@ void check(const ipd::LabelFile& f, const std::string& name, size_t lines, const
     if (!(b.w > 0 && b.h > 0) || b.cls < 0) fail("a kept box has w <= 0, h <= 0 or a negative class", name);
   }
   for (const ipd::LabelError& e : f.errors) {
-    if (e.file != name || e.line < 0 || e.line > static_cast<int>(lines)) fail("error with a wrong file or line", e.to_string());
+    if (e.file != name || e.line < 0 || e.line > static_cast<int>(lines))
+      fail("error with a wrong file or line", e.to_string());
     ipd_fuzz::check_message(e.to_string(), name);
   }
 }

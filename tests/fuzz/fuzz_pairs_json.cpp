@@ -3,9 +3,9 @@
 // errors are StudyErrors naming the file.
 #include <set>
 
-#include "tests/fuzz/fuzz_support.h"
-#include "core/util/atomic_file.h"
 #include "core/study/study.h"
+#include "core/util/atomic_file.h"
+#include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::filesystem::path root = ipd_fuzz::scratch_dir() / "study";
@@ -21,8 +21,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::vector<ipd::Box> gt_a = rocks(kCountA), gt_b = rocks(kCountB);
   // Odd-sized inputs go in the other name order, so the swapped reading is fuzzed too.
   const bool swapped = size % 2 == 1;
-  const std::filesystem::path file = std::filesystem::path(swapped ? study.pairs_dir("synth", "real")
-                                                                   : study.pairs_dir("real", "synth")) / "scene.json";
+  const std::filesystem::path file =
+      std::filesystem::path(swapped ? study.pairs_dir("synth", "real") : study.pairs_dir("real", "synth")) /
+      "scene.json";
   std::error_code ec;
   std::filesystem::remove_all(root / "pairs", ec);
   ipd_fuzz::write_bytes(file, data, size);
@@ -31,7 +32,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (!fp) ipd_fuzz::fail("the pairs file was not found", file.string());
     std::set<int> used_a, used_b;
     for (const auto& [a, b] : fp->pairs) {
-      if (a < 0 || a >= kCountA || b < 0 || b >= kCountB) ipd_fuzz::fail("an accepted pair is out of range", file.string());
+      if (a < 0 || a >= kCountA || b < 0 || b >= kCountB)
+        ipd_fuzz::fail("an accepted pair is out of range", file.string());
       if (!used_a.insert(a).second || !used_b.insert(b).second) ipd_fuzz::fail("a rock is paired twice", file.string());
     }
     for (int a : fp->excluded_a)

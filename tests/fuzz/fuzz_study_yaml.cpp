@@ -1,7 +1,7 @@
 // Fuzzes study.yaml parsing: every problem must be a StudyError naming the file; anything else that
 // escapes (a yaml-cpp exception, a crash) is a bug.
-#include "tests/fuzz/fuzz_support.h"
 #include "core/study/study.h"
+#include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

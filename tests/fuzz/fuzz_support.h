@@ -18,7 +18,8 @@ namespace ipd_fuzz {
 constexpr size_t kMaxMessage = 1000;
 
 [[noreturn]] inline void fail(const char* what, const std::string& message) {
-  std::fprintf(stderr, "fuzz invariant broken: %s: %.400s%s\n", what, message.c_str(), message.size() > 400 ? "..." : "");
+  std::fprintf(stderr, "fuzz invariant broken: %s: %.400s%s\n", what, message.c_str(),
+               message.size() > 400 ? "..." : "");
   std::abort();
 }
 
@@ -32,8 +33,8 @@ inline void check_message(const std::string& message, const std::string& file) {
 inline const std::filesystem::path& scratch_dir() {
   static const std::filesystem::path dir = [] {
     const char* tmp = std::getenv("TMPDIR");
-    std::filesystem::path d = std::filesystem::path(tmp && *tmp ? tmp : "/tmp") /
-                              ("ipd-fuzz-" + std::to_string(::getpid()));
+    std::filesystem::path d =
+        std::filesystem::path(tmp && *tmp ? tmp : "/tmp") / ("ipd-fuzz-" + std::to_string(::getpid()));
     std::filesystem::create_directories(d);
     std::atexit([] {
       std::error_code ec;

@@ -45,7 +45,8 @@ std::vector<std::string> overlapping(const PdfText& t) {
   for (size_t i = 0; i < t.words.size(); ++i)
     for (size_t j = 0; j < i; ++j) {
       const Word &a = t.words[i], &b = t.words[j];
-      if (a.x0 + e < b.x1 && b.x0 + e < a.x1 && a.y0 + e < b.y1 && b.y0 + e < a.y1) out.push_back(a.text + " / " + b.text);
+      if (a.x0 + e < b.x1 && b.x0 + e < a.x1 && a.y0 + e < b.y1 && b.y0 + e < a.y1)
+        out.push_back(a.text + " / " + b.text);
     }
   return out;
 }

@@ -37,7 +37,8 @@ void write_stats_study(const std::string& root, StatsStudyVariant variant) {
         const double w = 0.02 + 0.1 * rocks.next(), h = w * (0.7 + 0.4 * rocks.next());
         const double conf = 0.3 + 0.65 * rocks.next();
         // the same rock, labelled again in another domain: centre off by up to 0.2% of the picture
-        const double jx = source == 0 ? 0 : 0.004 * (jitter.next() - 0.5), jy = source == 0 ? 0 : 0.004 * (jitter.next() - 0.5);
+        const double jx = source == 0 ? 0 : 0.004 * (jitter.next() - 0.5),
+                     jy = source == 0 ? 0 : 0.004 * (jitter.next() - 0.5);
         gt += fmt::format("0 {:.6f} {:.6f} {:.6f} {:.6f}\n", cx + jx, cy + jy, w, h);
         if (source == 0 && k % 7 == 3) continue;  // real misses some rocks entirely
         double shift = source == 0 ? 0.1 : source == 1 ? 0.15 + 0.1 * jitter.next() : (w < 0.06 ? 0.6 : 0.2);

@@ -8,9 +8,9 @@
 namespace ipd::test {
 
 enum class StatsStudyVariant {
-  kDistinct,            // three different domains
-  kHapkeIsPrincipled,   // hapke's files are principled's (b is a)
-  kPrincipledIsReal,    // principled's files are real's (a equals the reference)
+  kDistinct,           // three different domains
+  kHapkeIsPrincipled,  // hapke's files are principled's (b is a)
+  kPrincipledIsReal,   // principled's files are real's (a equals the reference)
 };
 
 void write_stats_study(const std::string& root, StatsStudyVariant variant);

@@ -14,14 +14,32 @@ namespace ipd::ui {
 PtRect text_box(Pt at, Anchor anchor, double w, double h) {
   double x = at.x, y = at.y;
   switch (anchor) {
-    case Anchor::kTop: case Anchor::kCentre: case Anchor::kBottom: x -= w / 2; break;
-    case Anchor::kTopRight: case Anchor::kRight: case Anchor::kBottomRight: x -= w; break;
-    default: break;
+    case Anchor::kTop:
+    case Anchor::kCentre:
+    case Anchor::kBottom:
+      x -= w / 2;
+      break;
+    case Anchor::kTopRight:
+    case Anchor::kRight:
+    case Anchor::kBottomRight:
+      x -= w;
+      break;
+    default:
+      break;
   }
   switch (anchor) {
-    case Anchor::kLeft: case Anchor::kCentre: case Anchor::kRight: y -= h / 2; break;
-    case Anchor::kBottomLeft: case Anchor::kBottom: case Anchor::kBottomRight: y -= h; break;
-    default: break;
+    case Anchor::kLeft:
+    case Anchor::kCentre:
+    case Anchor::kRight:
+      y -= h / 2;
+      break;
+    case Anchor::kBottomLeft:
+    case Anchor::kBottom:
+    case Anchor::kBottomRight:
+      y -= h;
+      break;
+    default:
+      break;
   }
   return {x, y, x + w, y + h};
 }
@@ -75,8 +93,7 @@ struct FontMetrics::Impl {
 
 FontMetrics::FontMetrics(const std::string& font_file) : impl_(std::make_unique<Impl>()), file_(font_file) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(font_file, ec))
-    throw std::runtime_error(font_file + ": no such font file");
+  if (!std::filesystem::is_regular_file(font_file, ec)) throw std::runtime_error(font_file + ": no such font file");
   impl_->regular = load_face(font_file, false);
   // DejaVuSans.ttf -> DejaVuSans-Bold.ttf when it exists; otherwise an emboldened regular face.
   std::filesystem::path p(font_file);
@@ -136,8 +153,12 @@ Item make_item(Op op, std::vector<Pt> points = {}, PtRect r = {}, Colour colour 
 }
 }  // namespace
 
-void DisplayList::rect(const PtRect& r, Colour stroke, double w) { items_.push_back(make_item<Item>(Op::kRect, {}, r, stroke, w)); }
-void DisplayList::fill_rect(const PtRect& r, Colour fill) { items_.push_back(make_item<Item>(Op::kFillRect, {}, r, fill)); }
+void DisplayList::rect(const PtRect& r, Colour stroke, double w) {
+  items_.push_back(make_item<Item>(Op::kRect, {}, r, stroke, w));
+}
+void DisplayList::fill_rect(const PtRect& r, Colour fill) {
+  items_.push_back(make_item<Item>(Op::kFillRect, {}, r, fill));
+}
 void DisplayList::line(Pt a, Pt b, Colour colour, double w) {
   items_.push_back(make_item<Item>(Op::kLine, {a, b}, {}, colour, w));
 }
@@ -169,16 +190,36 @@ void DisplayList::pop_clip() { items_.push_back(make_item<Item>(Op::kPopClip)); 
 void DisplayList::replay(Canvas& out) const {
   for (const Item& it : items_) {
     switch (it.op) {
-      case Op::kRect: out.rect(it.r, it.colour, it.width); break;
-      case Op::kFillRect: out.fill_rect(it.r, it.colour); break;
-      case Op::kLine: out.line(it.points[0], it.points[1], it.colour, it.width); break;
-      case Op::kPolyline: out.polyline(it.points, it.colour, it.width, it.closed); break;
-      case Op::kCircle: out.circle(it.points[0], it.r.x0, it.colour, it.width); break;
-      case Op::kFillCircle: out.fill_circle(it.points[0], it.r.x0, it.colour); break;
-      case Op::kText: out.text(it.points[0], it.anchor, it.style, it.s); break;
-      case Op::kImage: out.image(it.picture, it.r); break;
-      case Op::kPushClip: out.push_clip(it.r); break;
-      case Op::kPopClip: out.pop_clip(); break;
+      case Op::kRect:
+        out.rect(it.r, it.colour, it.width);
+        break;
+      case Op::kFillRect:
+        out.fill_rect(it.r, it.colour);
+        break;
+      case Op::kLine:
+        out.line(it.points[0], it.points[1], it.colour, it.width);
+        break;
+      case Op::kPolyline:
+        out.polyline(it.points, it.colour, it.width, it.closed);
+        break;
+      case Op::kCircle:
+        out.circle(it.points[0], it.r.x0, it.colour, it.width);
+        break;
+      case Op::kFillCircle:
+        out.fill_circle(it.points[0], it.r.x0, it.colour);
+        break;
+      case Op::kText:
+        out.text(it.points[0], it.anchor, it.style, it.s);
+        break;
+      case Op::kImage:
+        out.image(it.picture, it.r);
+        break;
+      case Op::kPushClip:
+        out.push_clip(it.r);
+        break;
+      case Op::kPopClip:
+        out.pop_clip();
+        break;
     }
   }
 }

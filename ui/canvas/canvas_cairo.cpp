@@ -158,7 +158,8 @@ std::string render_figure_file(const DisplayList& fig, const FontMetrics& metric
     return bytes;
   }
   const double scale = dpi / 72.0;
-  const int w = static_cast<int>(std::lround(fig.width_pt * scale)), h = static_cast<int>(std::ceil(fig.height_pt * scale));
+  const int w = static_cast<int>(std::lround(fig.width_pt * scale)),
+            h = static_cast<int>(std::ceil(fig.height_pt * scale));
   cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
   check(cairo_surface_status(surface), "PNG surface");
   cairo_t* cr = cairo_create(surface);

@@ -18,7 +18,7 @@ const char* to_string(FigureFormat f);
 
 // The bytes of the figure's file; `dpi` matters for PNG only (width = width_pt / 72 * dpi pixels).
 // `title` goes into the PDF's metadata.
-std::string render_figure_file(const DisplayList& figure, const FontMetrics& metrics, FigureFormat format,
-                               double dpi, const std::string& title = {});
+std::string render_figure_file(const DisplayList& figure, const FontMetrics& metrics, FigureFormat format, double dpi,
+                               const std::string& title = {});
 
 }  // namespace ipd::ui

@@ -35,11 +35,20 @@ std::string xml_escape(const std::string& s) {
   std::string o;
   for (char c : s) {
     switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
+      case '&':
+        o += "&amp;";
+        break;
+      case '<':
+        o += "&lt;";
+        break;
+      case '>':
+        o += "&gt;";
+        break;
+      case '"':
+        o += "&quot;";
+        break;
+      default:
+        o += c;
     }
   }
   return o;
@@ -71,7 +80,8 @@ class SvgCanvas : public Canvas {
     body_ += fmt::format("<{} points=\"{}\" fill=\"none\"{}/>\n", closed ? "polygon" : "polyline", p, stroke(c, w));
   }
   void circle(Pt c, double r, Colour col, double w) override {
-    body_ += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"none\"{}/>\n", c.x, c.y, r, stroke(col, w));
+    body_ += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"none\"{}/>\n", c.x, c.y, r,
+                         stroke(col, w));
   }
   void fill_circle(Pt c, double r, Colour col) override {
     body_ += fmt::format("<circle cx=\"{:.2f}\" cy=\"{:.2f}\" r=\"{:.2f}\" fill=\"{}\"{}/>\n", c.x, c.y, r, colour(col),
@@ -126,15 +136,17 @@ std::string render_svg(const DisplayList& fig, const FontMetrics& metrics) {
   // figure uses (a few kB, not the whole face).
   std::string style;
   auto face = [&](const std::string& file, const std::set<char32_t>& chars, const char* weight) {
-    style += "@font-face { font-family: 'IpdFigure'; src: url(data:font/ttf;base64," + base64(subset_font(file, chars)) +
-             ") format('truetype'); font-weight: " + weight + "; }\n";
+    style += "@font-face { font-family: 'IpdFigure'; src: url(data:font/ttf;base64," +
+             base64(subset_font(file, chars)) + ") format('truetype'); font-weight: " + weight + "; }\n";
   };
   if (!svg.regular_chars_.empty()) face(metrics.file(), svg.regular_chars_, "normal");
-  if (!svg.bold_chars_.empty()) face(metrics.bold_file().empty() ? metrics.file() : metrics.bold_file(), svg.bold_chars_, "bold");
+  if (!svg.bold_chars_.empty())
+    face(metrics.bold_file().empty() ? metrics.file() : metrics.bold_file(), svg.bold_chars_, "bold");
   return fmt::format(
       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
-      "width=\"{0:.2f}pt\" height=\"{1:.2f}pt\" viewBox=\"0 0 {0:.2f} {1:.2f}\" font-family=\"IpdFigure, 'DejaVu Sans', "
+      "width=\"{0:.2f}pt\" height=\"{1:.2f}pt\" viewBox=\"0 0 {0:.2f} {1:.2f}\" font-family=\"IpdFigure, 'DejaVu "
+      "Sans', "
       "sans-serif\">\n<style>\n{2}</style>\n<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n{3}</svg>\n",
       fig.width_pt, fig.height_pt, style, svg.body_);
 }

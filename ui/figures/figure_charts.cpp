@@ -22,7 +22,8 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
       break;
     }
   std::vector<double> t;
-  for (long k = long(std::floor(lo / step + 1e-9)); k * step <= hi + step * 1e-9; ++k) t.push_back(k == 0 ? 0.0 : k * step);
+  for (long k = long(std::floor(lo / step + 1e-9)); k * step <= hi + step * 1e-9; ++k)
+    t.push_back(k == 0 ? 0.0 : k * step);
   return t;
 }
 
@@ -136,7 +137,8 @@ void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& ch, const F
   const double lw_labels = label_width(out, body, labels, W);
   double lw_notes = 0;
   for (const auto& n : notes) lw_notes = std::max(lw_notes, out.measure(note, n).x);
-  Axis ax{kMargin + lw_labels + 0.6 * F, W - kMargin - lw_notes - (lw_notes > 0 ? 0.6 * F : 0.3 * F), axis_lo, hi + pad};
+  Axis ax{kMargin + lw_labels + 0.6 * F, W - kMargin - lw_notes - (lw_notes > 0 ? 0.6 * F : 0.3 * F), axis_lo,
+          hi + pad};
   const double line = out.measure(body, "Ag").y;
   const double row_h = std::max(line * 1.5, line * most_lines(out, body, labels, lw_labels) + 0.3 * F);
   const double top = y, bottom = y + row_h * ch.rows.size();
@@ -160,7 +162,8 @@ void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& ch, const F
   // A footnote 0.4 font sizes below the axis; none: the page ends at the axis label (the 4 pt margin).
   y = bottom + axis_h;
   if (!ch.footnote.empty())
-    y += 0.4 * F + draw_wrapped(out, {kMargin, y + 0.4 * F}, style(secondary_pt(F), kGrey), ch.footnote, W - 2 * kMargin);
+    y += 0.4 * F +
+         draw_wrapped(out, {kMargin, y + 0.4 * F}, style(secondary_pt(F), kGrey), ch.footnote, W - 2 * kMargin);
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);
 }
@@ -220,7 +223,8 @@ void draw_distribution_chart(DisplayList& out, const DistributionChart& ch, cons
   }
   y = bottom + axis_h;
   if (!ch.footnote.empty())
-    y += 0.4 * F + draw_wrapped(out, {kMargin, y + 0.4 * F}, style(secondary_pt(F), kGrey), ch.footnote, W - 2 * kMargin);
+    y += 0.4 * F +
+         draw_wrapped(out, {kMargin, y + 0.4 * F}, style(secondary_pt(F), kGrey), ch.footnote, W - 2 * kMargin);
   y += draw_footnote(out, {kMargin, y}, W - 2 * kMargin, F, left_out, wider_hint(o.width_in));
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);

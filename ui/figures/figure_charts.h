@@ -12,14 +12,14 @@
 namespace ipd::ui {
 
 struct ChartRow {
-  std::string label;  // left of the row
+  std::string label;                       // left of the row
   double estimate = 0, low = 0, high = 0;  // low/high NaN: no whisker
-  std::string note;   // right of the row (p-value, pairs)
+  std::string note;                        // right of the row (p-value, pairs)
 };
 struct DotWhiskerChart {
   std::string title, axis_label, footnote;
   std::vector<ChartRow> rows;
-  bool zero_line = false;  // a reference line at 0 (ΔIPD)
+  bool zero_line = false;     // a reference line at 0 (ΔIPD)
   bool non_negative = false;  // the values cannot be negative (IPD): the axis starts at 0
 };
 void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& chart, const FigureOptions& options);

@@ -70,9 +70,15 @@ double draw_legend(Canvas& c, Pt at, double width, const TextStyle& st, const st
         c.rect(box, it.colour, lw * 1.3);
         c.line({box.x0, box.y0}, {box.x1, box.y1}, it.colour, lw * 1.3);
         break;
-      case Swatch::kDot: c.fill_circle({x + sw / 2, cy}, h * 0.2, it.colour); break;
-      case Swatch::kRing: c.circle({x + sw / 2, cy}, h * 0.3, it.colour, lw * 1.3); break;
-      case Swatch::kLine: c.line({x, cy}, {x + sw, cy}, it.colour, lw * 1.5); break;
+      case Swatch::kDot:
+        c.fill_circle({x + sw / 2, cy}, h * 0.2, it.colour);
+        break;
+      case Swatch::kRing:
+        c.circle({x + sw / 2, cy}, h * 0.3, it.colour, lw * 1.3);
+        break;
+      case Swatch::kLine:
+        c.line({x, cy}, {x + sw, cy}, it.colour, lw * 1.5);
+        break;
     }
     c.text({x + sw + pad, y}, Anchor::kTopLeft, st, it.text);
     x += w + item_gap;
@@ -85,7 +91,8 @@ LabelPlacement place_figure_labels(Canvas& c, const std::vector<Label>& labels, 
   std::vector<LabelRequest> req;
   for (const Label& l : labels) {
     const Pt m = c.measure(l.style, l.text);
-    LabelRequest r{{l.target.x0, l.target.y0, l.target.x1, l.target.y1}, m.x + 2 * kLabelPad, m.y, l.exclusive, l.group};
+    LabelRequest r{
+        {l.target.x0, l.target.y0, l.target.x1, l.target.y1}, m.x + 2 * kLabelPad, m.y, l.exclusive, l.group};
     for (const PtRect& k : l.keep_off) r.keep_off.push_back({k.x0, k.y0, k.x1, k.y1});
     r.keep_off_clearance = l.keep_off_clearance;
     req.push_back(std::move(r));

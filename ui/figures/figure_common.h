@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "ui/canvas/canvas.h"
 #include "core/geometry/label_placer.h"
+#include "ui/canvas/canvas.h"
 
 namespace ipd::ui::fig {
 
@@ -53,7 +53,7 @@ struct Label {
   bool exclusive = false;  // must read as its own target's among the exclusive ones (LabelRequest::exclusive)
   int group = 0;           // LabelRequest::group
   std::vector<PtRect> keep_off = {};  // LabelRequest::keep_off, in points
-  double keep_off_clearance = 0;  // LabelRequest::keep_off_clearance
+  double keep_off_clearance = 0;      // LabelRequest::keep_off_clearance
 };
 // Places labels inside `bounds` avoiding each other and `taken`; draws them (on a dark backdrop, leaders
 // in the label's colour) and returns how many were left out; `placement` (optional): where each went.

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "ui/figures/figure_study.h"
-#include "core/util/atomic_file.h"
 #include "core/io/label_io.h"
 #include "core/session/session_statistics.h"
+#include "core/util/atomic_file.h"
+#include "ui/figures/figure_study.h"
 
 namespace ipd::ui {
 
@@ -61,7 +61,8 @@ std::string study_figure_file(const Session& session, const ExportRequest& r, Fi
   sr.bootstrap.seed = session.study().config.registration.seed;  // as `ipd table` without --seed
   CrossTable table = session_table(session);
   add_confidence_intervals(&table, sr.bootstrap, 1);
-  const StudyLabels labels = r.kind == "breakdown" ? thresholded_labels(session) : StudyLabels{session.study(), {}, {}, {}};
+  const StudyLabels labels =
+      r.kind == "breakdown" ? thresholded_labels(session) : StudyLabels{session.study(), {}, {}, {}};
   const FontMetrics metrics(r.options.font_file.empty() ? default_font_file() : r.options.font_file);
   DisplayList fig(metrics);
   const std::string title = draw_study_figure(fig, table, labels, sr, r.options);

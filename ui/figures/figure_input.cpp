@@ -104,9 +104,12 @@ void load_pictures(SceneFigureInput& in, const Study& study) {
 }
 
 void draw_scene_figure(DisplayList& out, const std::string& kind, const SceneFigureInput& in, const FigureOptions& o) {
-  if (kind == "pairs") draw_pairs_figure(out, in, o);
-  else if (kind == "registration") draw_registration_figure(out, in, o);
-  else throw std::invalid_argument("unknown scene figure kind '" + kind + "' (expected pairs or registration)");
+  if (kind == "pairs")
+    draw_pairs_figure(out, in, o);
+  else if (kind == "registration")
+    draw_registration_figure(out, in, o);
+  else
+    throw std::invalid_argument("unknown scene figure kind '" + kind + "' (expected pairs or registration)");
 }
 
 }  // namespace ipd::ui

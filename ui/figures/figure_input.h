@@ -5,9 +5,9 @@
 
 #include <string>
 
-#include "ui/figures/figure_scene.h"
 #include "core/ipd/ipd.h"
 #include "core/session/session.h"
+#include "ui/figures/figure_scene.h"
 
 namespace ipd::ui {
 

@@ -19,18 +19,25 @@ std::vector<std::string> split(const std::string& s, char sep) {
 }  // namespace
 
 bool FigureLayers::operator==(const FigureLayers& o) const {
-  return gt == o.gt && pred == o.pred && conf == o.conf && indices == o.indices && pairs == o.pairs && legend == o.legend;
+  return gt == o.gt && pred == o.pred && conf == o.conf && indices == o.indices && pairs == o.pairs &&
+         legend == o.legend;
 }
 
 FigureLayers parse_layers(const std::string& list) {
   FigureLayers l{false, false, false, false, false, false};
   for (const std::string& name : split(list, ',')) {
-    if (name == "gt") l.gt = true;
-    else if (name == "pred") l.pred = true;
-    else if (name == "conf") l.conf = true;
-    else if (name == "indices") l.indices = true;
-    else if (name == "pairs") l.pairs = true;
-    else if (name == "legend") l.legend = true;
+    if (name == "gt")
+      l.gt = true;
+    else if (name == "pred")
+      l.pred = true;
+    else if (name == "conf")
+      l.conf = true;
+    else if (name == "indices")
+      l.indices = true;
+    else if (name == "pairs")
+      l.pairs = true;
+    else if (name == "legend")
+      l.legend = true;
     else
       throw std::invalid_argument(fmt::format(
           "--layers: unknown layer '{}' (accepted: gt, pred, conf, indices, pairs, legend, comma-separated)", name));
@@ -58,7 +65,8 @@ FigureLayers default_layers(double width_in) {
 
 Crop parse_crop(const std::string& text) {
   const auto parts = split(text, ',');
-  const std::string usage = "--crop: expected X0,Y0,X1,Y1 normalised to 0..1 with X0 < X1 and Y0 < Y1, found '" + text + "'";
+  const std::string usage =
+      "--crop: expected X0,Y0,X1,Y1 normalised to 0..1 with X0 < X1 and Y0 < Y1, found '" + text + "'";
   if (parts.size() != 4) throw std::invalid_argument(usage);
   double v[4];
   for (int i = 0; i < 4; ++i) {
@@ -78,7 +86,8 @@ void FigureOptions::validate() const {
   if (!(width_in >= 1 && width_in <= 40))
     throw std::invalid_argument(fmt::format("--width-in: {} is not a figure width (1 to 40 inches)", width_in));
   if (!(font_pt >= kMinTextPt && font_pt <= 72))
-    throw std::invalid_argument(fmt::format("--font-pt: {} is outside 6..72 (nothing smaller than 6 pt on the page)", font_pt));
+    throw std::invalid_argument(
+        fmt::format("--font-pt: {} is outside 6..72 (nothing smaller than 6 pt on the page)", font_pt));
   if (!(dpi >= 30 && dpi <= 2400)) throw std::invalid_argument(fmt::format("--dpi: {} is outside 30..2400", dpi));
   if (!(crop.x0 >= 0 && crop.x0 < crop.x1 && crop.x1 <= 1 && crop.y0 >= 0 && crop.y0 < crop.y1 && crop.y1 <= 1))
     throw std::invalid_argument("--crop: the region must satisfy 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1");

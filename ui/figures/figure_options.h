@@ -39,8 +39,8 @@ struct FigureOptions {
   double dpi = 300;  // PNG only
   FigureLayers layers = default_layers(kSingleColumnIn);
   Crop crop;
-  std::string font_file;  // empty: default_font_file()
-  bool ci = false;        // table: confidence intervals
+  std::string font_file;    // empty: default_font_file()
+  bool ci = false;          // table: confidence intervals
   std::string by = "size";  // breakdown: size|region|confidence
   double width_pt() const { return width_in * 72.0; }
   // Throws std::invalid_argument with a sentence naming the bad value.

@@ -7,9 +7,9 @@
 #include <functional>
 #include <set>
 
-#include "ui/figures/figure_common.h"
-#include "core/session/audit.h"
 #include "core/ipd/ipd.h"
+#include "core/session/audit.h"
+#include "ui/figures/figure_common.h"
 
 namespace ipd::ui {
 
@@ -72,16 +72,15 @@ FigurePicture crop_picture(const cv::Mat& img, const Crop& c, Crop* covered) {
 
 std::string title_of(const SceneFigureInput& in, const SceneNumbers& n) {
   // Two empty prediction sets are not a perfect match: no number, and why (no_predictions_reason).
-  const std::string none = in.model.empty() ? std::string()
-                                            : no_predictions_reason(static_cast<long>(in.pred_a.size()),
-                                                                    static_cast<long>(in.pred_b.size()), in.a, in.b,
-                                                                    in.conf_threshold);
+  const std::string none =
+      in.model.empty() ? std::string()
+                       : no_predictions_reason(static_cast<long>(in.pred_a.size()), static_cast<long>(in.pred_b.size()),
+                                               in.a, in.b, in.conf_threshold);
   const std::string value = !none.empty()       ? "not a number (" + none + ")"
                             : std::isnan(n.ipd) ? std::string("n/a")
                                                 : fmt::format("{:.4f}", n.ipd);
   return fmt::format("{}: {} vs {}, model {}, scene IPD {} ({} pair{}){}{}", in.stem, in.a, in.b,
-                     in.model.empty() ? "none" : in.model, value,
-                     n.pairs, n.pairs == 1 ? "" : "s",
+                     in.model.empty() ? "none" : in.model, value, n.pairs, n.pairs == 1 ? "" : "s",
                      in.conf_threshold > 0 ? fmt::format(", conf \u2265 {:g}", in.conf_threshold) : "",
                      in.pairs_fixed ? ", pairs fixed by hand" : "");
 }
@@ -165,7 +164,9 @@ SideLabels side_labels(const PanelMap& m, const std::vector<Box>& gt, const std:
       if (!m.box(gt[k], r)) continue;
       const int pair = L.pairs ? number[k] : 0;
       if (pair > 0 && unnumbered.count(pair)) continue;
-      const std::string text = !L.pairs ? std::to_string(k + 1) : pair > 0 ? std::to_string(pair) : "x" + std::to_string(k + 1);
+      const std::string text = !L.pairs   ? std::to_string(k + 1)
+                               : pair > 0 ? std::to_string(pair)
+                                          : "x" + std::to_string(k + 1);
       out.labels.push_back({text, style(o.font_pt, (!L.pairs || pair > 0) ? kGtC : kGtUnpairedC), r, true, 0});
       out.pair.push_back(pair);
     }
@@ -220,7 +221,7 @@ struct PairsLeftOut {
 struct TwoPanelLabels {
   SideLabels side[2];
   LabelPlacement placed[2];
-  std::set<int> unnumbered;  // pairs in view on both panels, numbered on neither
+  std::set<int> unnumbered;        // pairs in view on both panels, numbered on neither
   int left_out_other[2] = {0, 0};  // labels not shown that number no pair in view on both panels
 };
 TwoPanelLabels place_on_both(Canvas& c, const std::function<SideLabels(int, const std::set<int>&)>& make,
@@ -250,8 +251,8 @@ TwoPanelLabels place_on_both(Canvas& c, const std::function<SideLabels(int, cons
 
 // Fig. 1's labels on both sides, drawn on their backdrops.
 PairsLeftOut draw_pair_labels(Canvas& c, const PanelMap& left, const PanelMap& right, const SceneFigureInput& in,
-                              const std::vector<int>& num_a, const std::vector<int>& num_b,
-                              const PtRect& notice_a, const PtRect& notice_b, const FigureOptions& o) {
+                              const std::vector<int>& num_a, const std::vector<int>& num_b, const PtRect& notice_a,
+                              const PtRect& notice_b, const FigureOptions& o) {
   const auto taken = [](const PtRect& n) { return n.width() > 0 ? std::vector<PtRect>{n} : std::vector<PtRect>{}; };
   const PtRect bounds[2] = {left.panel, right.panel};
   const std::vector<PtRect> obstacles[2] = {taken(notice_a), taken(notice_b)};
@@ -275,9 +276,10 @@ PairsLeftOut draw_pair_labels(Canvas& c, const PanelMap& left, const PanelMap& r
 
 // "N pairs unnumbered: ..." for both scene figures.
 std::string unnumbered_note(int n, const FigureOptions& o) {
-  return fmt::format("{} pair{} unnumbered: no room for {} number on both pictures (to show {}: --crop, fewer "
-                     "--layers or {})",
-                     n, n == 1 ? "" : "s", n == 1 ? "its" : "their", n == 1 ? "it" : "them", wider_hint(o.width_in));
+  return fmt::format(
+      "{} pair{} unnumbered: no room for {} number on both pictures (to show {}: --crop, fewer "
+      "--layers or {})",
+      n, n == 1 ? "" : "s", n == 1 ? "its" : "their", n == 1 ? "it" : "them", wider_hint(o.width_in));
 }
 
 double draw_title(Canvas& c, const std::string& title, const FigureOptions& o) {
@@ -310,7 +312,8 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
   if (o.layers.legend) {
     std::vector<LegendItem> items;
     if (o.layers.gt)
-      items.push_back({Swatch::kBox, kGtC, o.layers.indices && o.layers.pairs ? "GT rock (pair number)" : "GT rock", kDarkHalo});
+      items.push_back(
+          {Swatch::kBox, kGtC, o.layers.indices && o.layers.pairs ? "GT rock (pair number)" : "GT rock", kDarkHalo});
     // Only when the figure shows one: a legend entry for nothing on the page reads as a rendering error.
     const auto unpaired = [](const std::vector<int>& nums) { return std::count(nums.begin(), nums.end(), 0) > 0; };
     if (o.layers.gt && o.layers.pairs && (unpaired(num_a) || unpaired(num_b)))
@@ -318,7 +321,8 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
     if (o.layers.gt && (!in.excluded_a.empty() || !in.excluded_b.empty()))
       items.push_back({Swatch::kStruckBox, kGtC, "excluded from the IPD (by hand)", kDarkHalo});
     if (o.layers.pred)
-      items.push_back({Swatch::kDashedBox, kPredC, o.layers.conf ? "prediction (confidence)" : "prediction", kLightHalo});
+      items.push_back(
+          {Swatch::kDashedBox, kPredC, o.layers.conf ? "prediction (confidence)" : "prediction", kLightHalo});
     y += draw_legend(out, {kMargin, y}, W - 2 * kMargin, style(F, kInk), items);
   }
   // Footnotes 0.2 font sizes below the legend; none: the page ends at the legend (the same 4 pt margin).
@@ -344,10 +348,9 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
   o.validate();
   const double W = o.width_pt(), F = o.font_pt;
   const double gap = std::max(4.0, 0.5 * F);
-  const std::string title =
-      fmt::format("{}: GT box centres of {} and {}, {} ({} pair{})", in.stem, in.a, in.b,
-                  in.pairs_fixed ? "pairs fixed by hand" : "registration: " + in.method, in.pairs.size(),
-                  in.pairs.size() == 1 ? "" : "s");
+  const std::string title = fmt::format("{}: GT box centres of {} and {}, {} ({} pair{})", in.stem, in.a, in.b,
+                                        in.pairs_fixed ? "pairs fixed by hand" : "registration: " + in.method,
+                                        in.pairs.size(), in.pairs.size() == 1 ? "" : "s");
   double y = draw_title(out, title, o) + 0.3 * F;
   const double pw = (W - 2 * kMargin - gap) / 2, ph = pw / aspect_of(in, o.crop);
   const TextStyle caption = style(F, kInk, true);
@@ -434,7 +437,8 @@ void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, cons
     note_gap = 0;
   }
   if (left_out > 0)
-    y += note_gap + draw_footnote(out, {kMargin, y + note_gap}, W - 2 * kMargin, F, left_out, "--crop or " + wider_hint(o.width_in));
+    y += note_gap + draw_footnote(out, {kMargin, y + note_gap}, W - 2 * kMargin, F, left_out,
+                                  "--crop or " + wider_hint(o.width_in));
   out.width_pt = W;
   out.height_pt = std::ceil(y + kMargin);
 }

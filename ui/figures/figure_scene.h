@@ -6,25 +6,25 @@
 #include <string>
 #include <vector>
 
-#include "ui/canvas/canvas.h"
-#include "ui/figures/figure_options.h"
 #include "core/geometry/geometry.h"
 #include "core/registration/registration.h"
+#include "ui/canvas/canvas.h"
+#include "ui/figures/figure_options.h"
 
 namespace ipd::ui {
 
 struct SceneFigureInput {
-  std::string stem, a, b, model;            // left domain a, right domain b
-  double conf_threshold = 0;                // predictions below it are already dropped; shown in the title
+  std::string stem, a, b, model;  // left domain a, right domain b
+  double conf_threshold = 0;      // predictions below it are already dropped; shown in the title
   std::vector<Box> gt_a, gt_b, pred_a, pred_b;
-  RockPairs pairs;                          // (index in a, index in b), in pair-number order
+  RockPairs pairs;  // (index in a, index in b), in pair-number order
   std::vector<int> excluded_a, excluded_b;
-  bool pairs_fixed = false;                 // by hand (file or GUI edit) rather than registration
-  Affine2 affine = identity_affine();       // a -> b, for Fig. 2
-  std::string method;                       // registration method, for Fig. 2's title
-  cv::Mat picture_a, picture_b;             // BGR, empty when there is none
-  std::string problem_a, problem_b;         // why a picture is missing
-  int image_w = 1936, image_h = 1216;       // aspect when there is no picture
+  bool pairs_fixed = false;            // by hand (file or GUI edit) rather than registration
+  Affine2 affine = identity_affine();  // a -> b, for Fig. 2
+  std::string method;                  // registration method, for Fig. 2's title
+  cv::Mat picture_a, picture_b;        // BGR, empty when there is none
+  std::string problem_a, problem_b;    // why a picture is missing
+  int image_w = 1936, image_h = 1216;  // aspect when there is no picture
 };
 
 // The scene's IPD and number of pairs for the title, from the input's boxes and pairs.

@@ -25,9 +25,10 @@ DotWhiskerChart compare_chart(const CrossTable& table, const std::vector<std::st
                               const std::string& a, const std::string& b, const CompareOptions& options) {
   DotWhiskerChart ch;
   const int pct = int(std::lround(options.bootstrap.level * 100));
-  ch.title = fmt::format("\u0394IPD = IPD({0}, {1}) \u2212 IPD({0}, {2}) per model, {3}% scene-bootstrap interval; "
-                         "below 0: {1} is closer to {0}",
-                         ref, a, b, pct);
+  ch.title = fmt::format(
+      "\u0394IPD = IPD({0}, {1}) \u2212 IPD({0}, {2}) per model, {3}% scene-bootstrap interval; "
+      "below 0: {1} is closer to {0}",
+      ref, a, b, pct);
   ch.axis_label = fmt::format("\u0394IPD ({} vs {})", a, b);
   ch.zero_line = true;
   std::vector<std::string> skipped;
@@ -36,11 +37,11 @@ DotWhiskerChart compare_chart(const CrossTable& table, const std::vector<std::st
     if (!models.empty() && std::find(models.begin(), models.end(), m.name) == models.end()) continue;
     try {
       const RendererComparison c = compare_renderers(table, m.name, ref, a, b, options);
-      ch.rows.push_back({model_label(m.name, m.trained_on), c.result.delta.estimate, c.result.delta.low,
-                         c.result.delta.high,
-                         c.result.scenes < 2
-                             ? fmt::format("{}, {} scene: no test", signed_text(c.result.delta.estimate), c.result.scenes)
-                             : fmt::format("{}, {}", signed_text(c.result.delta.estimate), p_text(c.result.p_value))});
+      ch.rows.push_back(
+          {model_label(m.name, m.trained_on), c.result.delta.estimate, c.result.delta.low, c.result.delta.high,
+           c.result.scenes < 2
+               ? fmt::format("{}, {} scene: no test", signed_text(c.result.delta.estimate), c.result.scenes)
+               : fmt::format("{}, {}", signed_text(c.result.delta.estimate), p_text(c.result.p_value))});
       (c.result.exact_p ? exact_rows : random_rows) += 1;
       min_scenes = min_scenes == 0 ? c.result.scenes : std::min(min_scenes, c.result.scenes);
       max_scenes = std::max(max_scenes, c.result.scenes);
@@ -50,24 +51,29 @@ DotWhiskerChart compare_chart(const CrossTable& table, const std::vector<std::st
   }
   // Say what the p-values are: with few scenes every swap pattern is counted (exact, and p cannot go below
   // 2 / 2^scenes); otherwise `permutations` random ones.
-  const std::string n = min_scenes == max_scenes ? fmt::format("{}", max_scenes)
-                                                 : fmt::format("{}\u2013{}", min_scenes, max_scenes);
+  const std::string n =
+      min_scenes == max_scenes ? fmt::format("{}", max_scenes) : fmt::format("{}\u2013{}", min_scenes, max_scenes);
   if (max_scenes < 2)  // no row has an interval: the title promises none
     ch.title = fmt::format("\u0394IPD = IPD({0}, {1}) \u2212 IPD({0}, {2}) per model; below 0: {1} is closer to {0}",
                            ref, a, b);
   if (max_scenes < 2)
-    ch.footnote = fmt::format("{} scene present in all three domains: no interval, no test (they need at least 2).",
-                              max_scenes);
+    ch.footnote =
+        fmt::format("{} scene present in all three domains: no interval, no test (they need at least 2).", max_scenes);
   else if (random_rows == 0 && exact_rows > 0)
-    ch.footnote = fmt::format("Sign-flip permutation test, exact (every swap pattern) over the {} scenes present in "
-                              "all three domains.", n);
+    ch.footnote = fmt::format(
+        "Sign-flip permutation test, exact (every swap pattern) over the {} scenes present in "
+        "all three domains.",
+        n);
   else if (exact_rows == 0)
-    ch.footnote = fmt::format("Sign-flip permutation test ({} permutations) over the {} scenes present in all three "
-                              "domains.", options.permutations, n);
+    ch.footnote = fmt::format(
+        "Sign-flip permutation test ({} permutations) over the {} scenes present in all three "
+        "domains.",
+        options.permutations, n);
   else
-    ch.footnote = fmt::format("Sign-flip permutation test over the {} scenes present in all three domains: exact "
-                              "where 2^scenes \u2264 {}, else {} random permutations.", n, options.permutations,
-                              options.permutations);
+    ch.footnote = fmt::format(
+        "Sign-flip permutation test over the {} scenes present in all three domains: exact "
+        "where 2^scenes \u2264 {}, else {} random permutations.",
+        n, options.permutations, options.permutations);
   if (!skipped.empty()) {
     std::string names;
     for (const auto& s : skipped) names += (names.empty() ? "" : ", ") + s;
@@ -81,8 +87,9 @@ DistributionChart distribution_chart(const CrossTable& table, const std::string&
   const ModelInfo* info = nullptr;
   for (const auto& m : table.models)
     if (m.name == model) info = &m;
-  ch.title = fmt::format("Per-scene IPD of {} for each domain pair (box: quartiles, whiskers: range; worst scenes named)",
-                         info ? model_label(info->name, info->trained_on) : model);
+  ch.title =
+      fmt::format("Per-scene IPD of {} for each domain pair (box: quartiles, whiskers: range; worst scenes named)",
+                  info ? model_label(info->name, info->trained_on) : model);
   ch.axis_label = "scene IPD";
   for (const TableCell& cell : table.cells) {
     if (cell.model != model) continue;
@@ -102,7 +109,9 @@ DistributionChart distribution_chart(const CrossTable& table, const std::string&
 DotWhiskerChart breakdown_chart(const CellBreakdown& b, double level) {
   DotWhiskerChart ch;
   const int pct = int(std::lround(level * 100));
-  const char* by = b.by == BreakdownBy::kSize ? "size" : b.by == BreakdownBy::kRegion ? "image region" : "detection confidence";
+  const char* by = b.by == BreakdownBy::kSize     ? "size"
+                   : b.by == BreakdownBy::kRegion ? "image region"
+                                                  : "detection confidence";
   ch.title = fmt::format("IPD({}, {}) of {} by {} of the {} rock, {}% scene-bootstrap interval", b.a, b.b,
                          model_label(b.model, b.trained_on), by, b.a, pct);
   ch.axis_label = "IPD";

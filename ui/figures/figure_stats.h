@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "ui/figures/figure_charts.h"
 #include "core/stats/study_statistics.h"
+#include "ui/figures/figure_charts.h"
 
 namespace ipd::ui {
 

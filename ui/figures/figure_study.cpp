@@ -1,7 +1,7 @@
 #include "ui/figures/figure_study.h"
 
-#include <algorithm>
 #include <fmt/format.h>
+#include <algorithm>
 
 #include "ui/figures/figure_charts.h"
 #include "ui/figures/figure_stats.h"
@@ -20,7 +20,8 @@ namespace {
 // prediction sets as a perfect match: refuse it, saying why, as ipd compare and ipd breakdown do.
 void require_number(const TableCell* c) {
   if (c && !c->no_value_reason.empty())
-    throw StudyError(fmt::format("model '{}': IPD({}, {}) is not a number: {}", c->model, c->a, c->b, c->no_value_reason));
+    throw StudyError(
+        fmt::format("model '{}': IPD({}, {}) is not a number: {}", c->model, c->a, c->b, c->no_value_reason));
 }
 
 std::string pick_model(const CrossTable& t, const std::string& asked, const std::string& domain) {
@@ -75,7 +76,8 @@ std::string draw_study_figure(DisplayList& fig, const CrossTable& t, const Study
   const TableCell* cell = t.cell(model, a, b);
   if (!cell) throw StudyError(fmt::format("{}: no IPD({}, {}) for model {} in this study", st.root, a, b, model));
   BreakdownOptions bo;
-  if (!parse_breakdown_by(o.by, &bo.by)) throw std::invalid_argument("--by: expected size, region or confidence, found '" + o.by + "'");
+  if (!parse_breakdown_by(o.by, &bo.by))
+    throw std::invalid_argument("--by: expected size, region or confidence, found '" + o.by + "'");
   bo.bins = r.bins;
   bo.bootstrap = r.bootstrap;
   if (const std::string bad = bo.validate(); !bad.empty()) throw StudyError(bad);

@@ -6,23 +6,23 @@
 #include <string>
 #include <vector>
 
+#include "core/stats/study_statistics.h"
 #include "ui/canvas/canvas.h"
 #include "ui/figures/figure_options.h"
-#include "core/stats/study_statistics.h"
 
 namespace ipd::ui {
 
 bool is_study_figure_kind(const std::string& kind);  // table | compare | distribution | breakdown
 
 struct StudyFigureRequest {
-  std::string kind;             // table | compare | distribution | breakdown
-  std::string model;            // distribution, breakdown: the model whose predictions count
-  std::string ref, a, b;        // compare: reference and the two renderers; breakdown: the cell (a, b)
+  std::string kind;                 // table | compare | distribution | breakdown
+  std::string model;                // distribution, breakdown: the model whose predictions count
+  std::string ref, a, b;            // compare: reference and the two renderers; breakdown: the cell (a, b)
   std::vector<std::string> models;  // compare: only these rows (empty: every model)
-  BootstrapOptions bootstrap;   // the intervals' resamples, level and seed (the table's cells carry them)
-  int permutations = 2000;      // compare
-  int worst = 2;                // distribution: scenes named per domain pair
-  int bins = 4;                 // breakdown by size or confidence
+  BootstrapOptions bootstrap;       // the intervals' resamples, level and seed (the table's cells carry them)
+  int permutations = 2000;          // compare
+  int worst = 2;                    // distribution: scenes named per domain pair
+  int bins = 4;                     // breakdown by size or confidence
 };
 
 // Draws the figure into `out` (options.ci: the table's intervals; options.by: the breakdown's property) and

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "ui/figures/figure_common.h"
-#include "core/ipd/ipd.h"
 #include <fmt/format.h>
+#include "core/ipd/ipd.h"
+#include "ui/figures/figure_common.h"
 
 #include "core/report/table_format.h"
 
@@ -63,7 +63,9 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
       });
     double sum_lo = 0, sum_hi = 0;
     for (size_t c = 0; c < cols; ++c) sum_lo += lo[c], sum_hi += hi[c];
-    const double k = sum_hi <= avail ? 1.0 : sum_hi > sum_lo ? std::max(0.0, (avail - sum_lo) / (sum_hi - sum_lo)) : 0.0;
+    const double k = sum_hi <= avail   ? 1.0
+                     : sum_hi > sum_lo ? std::max(0.0, (avail - sum_lo) / (sum_hi - sum_lo))
+                                       : 0.0;
     for (size_t c = 0; c < cols; ++c) w[c] = lo[c] + k * (hi[c] - lo[c]);
     if (sum_lo <= avail || F <= floor_pt) break;
   }
@@ -133,7 +135,8 @@ TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
   TableFigure fig;
   fig.title = "Instance Performance Difference (lower is better)";
   fig.header.push_back("Train \\ Eval");
-  for (const auto& [a, b] : t.columns) fig.header.push_back("|" + a + "\u00a0\u2212 " + b + "|");  // "−" stays with the first name
+  for (const auto& [a, b] : t.columns)
+    fig.header.push_back("|" + a + "\u00a0\u2212 " + b + "|");  // "−" stays with the first name
   const size_t nc = t.columns.size();
   // Cells that are not a number (no predictions left on either side) are marked and say why in the note, as
   // the text table's footnotes do.
@@ -155,7 +158,7 @@ TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
     }
     for (size_t c = 0; c < nc; ++c) {
       const auto& cell = t.cells[r * nc + c];
-      row.push_back(!cell.involves_training_domain    ? "\u2013"
+      row.push_back(!cell.involves_training_domain  ? "\u2013"
                     : !cell.no_value_reason.empty() ? "\u2013" + mark_of(cell)
                     : std::isnan(cell.ipd)          ? "n/a"
                                                     : fmt::format("{:.4f}", cell.ipd));
@@ -169,7 +172,8 @@ TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
     fig.rows.push_back(row);
     fig.bold.push_back(bold);
   }
-  fig.note = "Rows: detector and its training domain. \u2013: pair not involving the training domain; bold: the row's best.";
+  fig.note =
+      "Rows: detector and its training domain. \u2013: pair not involving the training domain; bold: the row's best.";
   // Only when some cell has brackets (a one-scene study has none: its cells say "1 scene: no interval").
   const bool brackets = std::any_of(t.cells.begin(), t.cells.end(), [](const TableCell& c) {
     return c.involves_training_domain && std::isfinite(c.ci_low) && std::isfinite(c.ci_high);

@@ -13,7 +13,7 @@ struct TableFigure {
   std::string title;
   std::vector<std::string> header;
   std::vector<std::vector<std::string>> rows;
-  std::vector<std::vector<char>> bold;  // per cell (rows x header), the row's best
+  std::vector<std::vector<char>> bold;        // per cell (rows x header), the row's best
   std::vector<std::vector<std::string>> sub;  // optional second line per cell (a confidence interval)
   std::string note;
 };

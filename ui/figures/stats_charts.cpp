@@ -58,8 +58,7 @@ HistogramChart layout_histogram(Canvas& c, const TextStyle& st, const HistogramI
   ch.plot = {area.x0 + std::max(gutter, 0.5 * widest_edge), area.y0 + top_pad, area.x1 - 0.5 * widest_edge,
              area.y0 + top_pad + plot_h};
   const double axis_top = counts.back();
-  for (double v : counts)
-    ch.count_axis.push_back({v, ch.plot.y1 - ch.plot.height() * v / axis_top, tick_text(v, 1)});
+  for (double v : counts) ch.count_axis.push_back({v, ch.plot.y1 - ch.plot.height() * v / axis_top, tick_text(v, 1)});
   if (n == 0) return ch;
   const double slot = ch.plot.width() / n;
   // Room between bars for the outline of one of them; a lone bar no wider than a few characters.
@@ -74,8 +73,8 @@ HistogramChart layout_histogram(Canvas& c, const TextStyle& st, const HistogramI
     // A non-empty bin always shows (and can be hovered): at least 2 pt, however many scenes the tallest has.
     const double h = b.count > 0 ? std::max(2.0, ch.plot.height() * b.count / axis_top) : 0.0;
     const bool lone = !std::isnan(in.lone_value) && b.count > 0 && in.lone_value >= b.lo && in.lone_value <= b.hi;
-    const double cx = lone ? std::clamp(ch.plot.x0 + (in.lone_value - in.start) / in.width * slot, ch.plot.x0 + 0.5 * bar_w,
-                                        ch.plot.x1 - 0.5 * bar_w)
+    const double cx = lone ? std::clamp(ch.plot.x0 + (in.lone_value - in.start) / in.width * slot,
+                                        ch.plot.x0 + 0.5 * bar_w, ch.plot.x1 - 0.5 * bar_w)
                            : 0.5 * (b.slot.x0 + b.slot.x1);
     b.bar = {cx - 0.5 * bar_w, ch.plot.y1 - h, cx + 0.5 * bar_w, ch.plot.y1};
     const bool last = k + 1 == n;
@@ -84,7 +83,8 @@ HistogramChart layout_histogram(Canvas& c, const TextStyle& st, const HistogramI
   }
   size_t every = 1;
   while (every < n && slot * every < widest_edge * 1.3) ++every;
-  for (size_t k = 0; k <= n; k += every) ch.edge_axis.push_back({in.start + k * in.width, ch.plot.x0 + k * slot, edges[k]});
+  for (size_t k = 0; k <= n; k += every)
+    ch.edge_axis.push_back({in.start + k * in.width, ch.plot.x0 + k * slot, edges[k]});
   return ch;
 }
 
@@ -107,7 +107,10 @@ void draw_histogram(Canvas& c, const TextStyle& st, const HistogramChart& ch, co
   const double o = ch.outline_gap + 0.5 * ch.outline_width;
   for (const HistogramBar& b : ch.bars)
     if (b.current)
-      c.polyline({{b.bar.x0 - o, b.bar.y1}, {b.bar.x0 - o, b.bar.y0 - o}, {b.bar.x1 + o, b.bar.y0 - o}, {b.bar.x1 + o, b.bar.y1}},
+      c.polyline({{b.bar.x0 - o, b.bar.y1},
+                  {b.bar.x0 - o, b.bar.y0 - o},
+                  {b.bar.x1 + o, b.bar.y0 - o},
+                  {b.bar.x1 + o, b.bar.y1}},
                  col.current, ch.outline_width, false);
 }
 
@@ -134,7 +137,8 @@ ValueBarsChart layout_value_bars(Canvas& c, const TextStyle& st, const std::vect
   for (int target = 5; target >= 1; --target) {
     ticks = nice_ticks(0, top, target);
     const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : 1;
-    if (ticks.back() < top * (1 - 1e-9)) ticks.push_back(ticks.size() * step);  // the axis ends on a tick past every bar
+    if (ticks.back() < top * (1 - 1e-9))
+      ticks.push_back(ticks.size() * step);  // the axis ends on a tick past every bar
     double widest = 0;
     for (double t : ticks) widest = std::max(widest, c.measure(st, tick_text(t, step)).x);
     half_last = 0.5 * c.measure(st, tick_text(ticks.back(), step)).x;

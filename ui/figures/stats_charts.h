@@ -38,7 +38,7 @@ struct HistogramChart {
 struct HistogramInput {
   double start = 0, width = 0;  // bin k covers [start + k width, start + (k+1) width)
   std::vector<int> counts;
-  double current = 0;           // the current scene's value (NaN: none)
+  double current = 0;                // the current scene's value (NaN: none)
   double lone_value = std::nan("");  // all values equal: the bar holding it is centred at it, not its bin
 };
 HistogramChart layout_histogram(Canvas& c, const TextStyle& text, const HistogramInput& in, const PtRect& area);
@@ -56,9 +56,9 @@ struct ValueBarRow {
 struct ValueBarsChart {
   PtRect plot;  // bars start at plot.x0; the axis runs along plot.y1
   struct Row {
-    PtRect band;        // the whole row (label and bar: what hovering hits)
-    Pt label_at;        // right end of the label, vertically centred
-    PtRect bar;         // empty when the value is NaN
+    PtRect band;                            // the whole row (label and bar: what hovering hits)
+    Pt label_at;                            // right end of the label, vertically centred
+    PtRect bar;                             // empty when the value is NaN
     double whisker_x0 = 0, whisker_x1 = 0;  // equal: no whisker
   };
   std::vector<Row> rows;

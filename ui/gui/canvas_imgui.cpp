@@ -16,8 +16,13 @@ constexpr size_t kPolylineChunk = 4096;  // points per piece of a long polyline:
 
 ImGuiCanvas::ImGuiCanvas(ImDrawList* dl, ImVec2 origin, float px_per_pt, Upload upload, const FontMetrics* metrics,
                          ImFont* bold, MoreLists more)
-    : dl_(dl), more_(std::move(more)), origin_(origin), scale_(px_per_pt), upload_(std::move(upload)),
-      metrics_(metrics), bold_(bold) {}
+    : dl_(dl),
+      more_(std::move(more)),
+      origin_(origin),
+      scale_(px_per_pt),
+      upload_(std::move(upload)),
+      metrics_(metrics),
+      bold_(bold) {}
 
 void ImGuiCanvas::reserve(size_t vertices) {
   if (!more_ || dl_->_VtxCurrentIdx + vertices < kMaxListVertices) return;

@@ -96,7 +96,7 @@ std::optional<ExportRequest> draw_export_dialog(ExportDialogState& st, const Exp
   std::optional<ExportRequest> out;
   if (st.open && !ImGui::IsPopupOpen("Export figure")) ImGui::OpenPopup("Export figure");
   if (!ImGui::BeginPopupModal("Export figure", &st.open, ImGuiWindowFlags_AlwaysAutoResize)) return out;
-  static const char* kinds[] = {"pairs (Fig. 1)", "registration (Fig. 2)", "table (Table I)",
+  static const char* kinds[] = {"pairs (Fig. 1)",      "registration (Fig. 2)",        "table (Table I)",
                                 "compare (renderers)", "distribution (per-scene IPD)", "breakdown"};
   static const char* formats[] = {"PDF", "SVG", "PNG (300 dpi)"};
   static const char* exts[] = {".pdf", ".svg", ".png"};
@@ -130,9 +130,11 @@ std::optional<ExportRequest> draw_export_dialog(ExportDialogState& st, const Exp
   } else if (st.kind == 2) {
     ImGui::Checkbox("95% intervals under each cell", &st.ci);
   } else if (st.kind == 3) {
-    if (ctx.ref.empty()) ImGui::TextDisabled("compares the first domain's two others (pick them in the compare panel)");
-    else ImGui::TextDisabled("IPD(%s, %s) - IPD(%s, %s) per model (the compare panel's choice)", ctx.ref.c_str(),
-                             ctx.a.c_str(), ctx.ref.c_str(), ctx.b.c_str());
+    if (ctx.ref.empty())
+      ImGui::TextDisabled("compares the first domain's two others (pick them in the compare panel)");
+    else
+      ImGui::TextDisabled("IPD(%s, %s) - IPD(%s, %s) per model (the compare panel's choice)", ctx.ref.c_str(),
+                          ctx.a.c_str(), ctx.ref.c_str(), ctx.b.c_str());
   } else if (st.kind == 4) {
     ImGui::TextDisabled("model %s, every domain pair", ctx.model.c_str());
   } else {

@@ -14,12 +14,12 @@
 namespace ipd::ui {
 
 struct ExportDialogState {
-  bool open = false;     // the popup should be shown (set to open it)
-  int kind = 0;          // index into kFigureKinds
-  int by = 0;            // breakdown: 0 size, 1 region, 2 confidence
-  bool ci = true;        // table: each cell's interval
-  int format = 0;        // 0 pdf, 1 svg, 2 png
-  int column = 0;        // 0 single, 1 double
+  bool open = false;                                       // the popup should be shown (set to open it)
+  int kind = 0;                                            // index into kFigureKinds
+  int by = 0;                                              // breakdown: 0 size, 1 region, 2 confidence
+  bool ci = true;                                          // table: each cell's interval
+  int format = 0;                                          // 0 pdf, 1 svg, 2 png
+  int column = 0;                                          // 0 single, 1 double
   bool layers[6] = {true, true, false, true, true, true};  // gt, pred, conf, indices, pairs, legend
   bool crop_to_view = true;
   float font_pt = 8;

@@ -62,8 +62,8 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
     for (size_t k = 0; k < in.predictions->size(); ++k) {
       const Box& b = (*in.predictions)[k];
       const ImVec2 q0 = pl.to_screen(b.x0(), b.y0()), q1 = pl.to_screen(b.x1(), b.y1());
-      const bool best = in.gt && std::find(in.best_prediction.begin(), in.best_prediction.end(), int(k)) !=
-                                     in.best_prediction.end();
+      const bool best =
+          in.gt && std::find(in.best_prediction.begin(), in.best_prediction.end(), int(k)) != in.best_prediction.end();
       dl->AddRect(q0, q1, best ? kRed : IM_COL32(235, 40, 40, 140), 0, 0, best ? 2 * thick : thick);
       if (layers.confidences && q1.x - q0.x >= in.min_box_px_for_confidence) confidences.push_back({q0, q1, b.conf});
     }
@@ -88,8 +88,10 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
       if (excluded) dl->AddLine(q0, q1, colour, thick);
       if (layers.indices) {
         // Partners share their pair's number; an unpaired rock shows its own 1-based index after an "x".
-        if (number > 0) std::snprintf(buf, sizeof buf, "%d", number);
-        else std::snprintf(buf, sizeof buf, "x%zu", k + 1);
+        if (number > 0)
+          std::snprintf(buf, sizeof buf, "%d", number);
+        else
+          std::snprintf(buf, sizeof buf, "x%zu", k + 1);
         const float size = ImGui::GetFontSize() * ts;
         // Above the box; a box at the picture's top edge gets its number just inside, never cut by the edge.
         const float top = std::max(a0.y, pl.origin.y);
@@ -118,7 +120,8 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
       break;
     }
   }
-  if (!in.caption.empty()) text_with_backdrop(dl, {a0.x + 6, a0.y + 4}, IM_COL32(255, 255, 255, 255), in.caption.c_str(), 1.1f * ts);
+  if (!in.caption.empty())
+    text_with_backdrop(dl, {a0.x + 6, a0.y + 4}, IM_COL32(255, 255, 255, 255), in.caption.c_str(), 1.1f * ts);
   dl->PopClipRect();
   return hovered;
 }

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "core/session/audit.h"
 #include "core/geometry/geometry.h"
 #include "core/registration/registration.h"
+#include "core/session/audit.h"
 
 namespace ipd::ui {
 
@@ -19,8 +19,8 @@ constexpr ImU32 kRed = IM_COL32(235, 40, 40, 255);
 constexpr ImU32 kGreyUnpaired = IM_COL32(160, 160, 160, 255);
 constexpr ImU32 kHighlight = IM_COL32(255, 230, 40, 255);
 constexpr ImU32 kSelected = IM_COL32(60, 200, 255, 255);
-constexpr ImU32 kSuspect = IM_COL32(255, 140, 0, 255);   // audit: a pair that looks wrong
-constexpr ImU32 kTriple = IM_COL32(80, 255, 120, 255);   // replay: the hypothesis' sample rocks
+constexpr ImU32 kSuspect = IM_COL32(255, 140, 0, 255);  // audit: a pair that looks wrong
+constexpr ImU32 kTriple = IM_COL32(80, 255, 120, 255);  // replay: the hypothesis' sample rocks
 
 // Zoom about the picture centre and pan in picture-normalised units; shared by both sides when synced.
 struct CanvasView {
@@ -33,17 +33,17 @@ struct SideLayers {
 };
 
 struct SideInput {
-  ImTextureID texture = nullptr;        // null: draw a placeholder
-  int image_w = 0, image_h = 0;         // for the aspect ratio (placeholder too)
-  std::string placeholder;              // why there is no picture
+  ImTextureID texture = nullptr;  // null: draw a placeholder
+  int image_w = 0, image_h = 0;   // for the aspect ratio (placeholder too)
+  std::string placeholder;        // why there is no picture
   const std::vector<Box>* gt = nullptr;
   const std::vector<Box>* predictions = nullptr;
-  std::vector<int> best_prediction;     // per GT rock, its best-IoU prediction (-1 none)
-  std::vector<int> number;              // per GT rock: its pair's number (> 0) or 0 when unpaired
-  std::vector<char> excluded;           // per GT rock
-  int highlight = -1, selected = -1;    // GT rocks to emphasise
-  std::vector<char> suspect;            // per GT rock: its pair is suspect (drawn in kSuspect)
-  std::vector<int> sample;              // GT rocks of the replayed hypothesis' sample (drawn in kTriple)
+  std::vector<int> best_prediction;   // per GT rock, its best-IoU prediction (-1 none)
+  std::vector<int> number;            // per GT rock: its pair's number (> 0) or 0 when unpaired
+  std::vector<char> excluded;         // per GT rock
+  int highlight = -1, selected = -1;  // GT rocks to emphasise
+  std::vector<char> suspect;          // per GT rock: its pair is suspect (drawn in kSuspect)
+  std::vector<int> sample;            // GT rocks of the replayed hypothesis' sample (drawn in kTriple)
   std::string caption;
   bool fill_background = true;  // the GUI paints its background once, with the GL clear
   // Confidences of predicted boxes narrower than this on screen are left out (they would overlap and

@@ -1,14 +1,14 @@
 #include "ui/gui/stats_panels.h"
 #include "ui/gui/studio_layout.h"
 
-#include <algorithm>
-#include <cmath>
 #include <fmt/format.h>
 #include <imgui.h>
+#include <algorithm>
+#include <cmath>
 
-#include "ui/gui/canvas_imgui.h"
 #include "core/report/table_format.h"
 #include "ui/figures/stats_charts.h"
+#include "ui/gui/canvas_imgui.h"
 
 namespace ipd::ui {
 
@@ -61,11 +61,12 @@ HistogramBins histogram_bins(const std::vector<double>& values, int bins) {
   const double lo = *std::min_element(values.begin(), values.end());
   const double hi = *std::max_element(values.begin(), values.end());
   h.width = round_step(std::max(hi, 1e-9) / bins);
-  if (lo == hi) {  // one value: three bins around it, its bar drawn at the value
+  if (lo == hi) {                        // one value: three bins around it, its bar drawn at the value
     if (h.width < 1e-6) h.width = 0.01;  // every IPD 0: a readable axis, not bins of 1e-9
     h.start = std::max(0.0, std::floor(lo / h.width) * h.width - h.width);  // an IPD is never negative
     h.counts.assign(3, 0);
-    h.counts[std::clamp(static_cast<int>(std::floor((lo - h.start) / h.width + 1e-9)), 0, 2)] = static_cast<int>(values.size());
+    h.counts[std::clamp(static_cast<int>(std::floor((lo - h.start) / h.width + 1e-9)), 0, 2)] =
+        static_cast<int>(values.size());
     h.lone_value = lo;
     return h;
   }
@@ -135,7 +136,8 @@ void draw_compare(const StudyView& v, const SessionStatistics* stats, StatsPanel
   const ImFont* font = ImGui::GetFont();
   auto has_glyph = [font](char32_t g) { return font->FindGlyphNoFallback(static_cast<ImWchar>(g)) != nullptr; };
   text_wrapped_at_spaces(spell_missing_glyphs(compare_delta_line(r), has_glyph));
-  text_wrapped_at_spaces(spell_missing_glyphs(comparison_sentence(c), has_glyph));  // never "-0.|0799", never "delta" | "IPD"
+  text_wrapped_at_spaces(
+      spell_missing_glyphs(comparison_sentence(c), has_glyph));  // never "-0.|0799", never "delta" | "IPD"
 }
 
 // The charts draw on the figure canvas in window pixels, text at the GUI font's size.
@@ -146,8 +148,13 @@ Colour colour_of(ImU32 c) {
 }
 
 ChartColours gui_colours() {
-  return {colour_of(kBar), colour_of(kBarHot), colour_of(kCurrent), rgb(150, 150, 150), colour_of(kWhisker),
-          colour_of(ImGui::GetColorU32(ImGuiCol_TextDisabled)), colour_of(ImGui::GetColorU32(ImGuiCol_Text))};
+  return {colour_of(kBar),
+          colour_of(kBarHot),
+          colour_of(kCurrent),
+          rgb(150, 150, 150),
+          colour_of(kWhisker),
+          colour_of(ImGui::GetColorU32(ImGuiCol_TextDisabled)),
+          colour_of(ImGui::GetColorU32(ImGuiCol_Text))};
 }
 
 void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPanelState& st, UiState& ui) {
@@ -167,7 +174,8 @@ void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPan
   }
   const float line = ImGui::GetTextLineHeight();
   // Never zero-sized (ImGui asserts on an empty button), however narrow the panel.
-  const ImVec2 p0 = ImGui::GetCursorScreenPos(), size{std::max(8 * line, ImGui::GetContentRegionAvail().x), 70 + 2 * line};
+  const ImVec2 p0 = ImGui::GetCursorScreenPos(),
+               size{std::max(8 * line, ImGui::GetContentRegionAvail().x), 70 + 2 * line};
   const bool clicked = ImGui::InvisibleButton("histogram", size);
   ImGuiCanvas canvas(ImGui::GetWindowDrawList(), p0, 1, {});
   const TextStyle text = gui_text();
@@ -177,15 +185,16 @@ void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPan
     const ImVec2 m = ImGui::GetMousePos();
     for (size_t k = 0; k < chart.bars.size(); ++k) {
       const PtRect& s = chart.bars[k].slot;
-      if (m.x - p0.x >= s.x0 && m.x - p0.x < s.x1 && m.y - p0.y >= s.y0 && m.y - p0.y <= s.y1) hot = static_cast<int>(k);
+      if (m.x - p0.x >= s.x0 && m.x - p0.x < s.x1 && m.y - p0.y >= s.y0 && m.y - p0.y <= s.y1)
+        hot = static_cast<int>(k);
     }
   }
   draw_histogram(canvas, text, chart, gui_colours(), hot);
   if (hot >= 0) {
     const HistogramBar& b = chart.bars[hot];
     const bool last = hot + 1 == static_cast<int>(chart.bars.size());
-    ImGui::SetTooltip("%s with IPD in [%g, %g%s\nclick: show them in the scene list", counted(b.count, "scene").c_str(), b.lo, b.hi,
-                      last ? "]" : ")");
+    ImGui::SetTooltip("%s with IPD in [%g, %g%s\nclick: show them in the scene list", counted(b.count, "scene").c_str(),
+                      b.lo, b.hi, last ? "]" : ")");
     const std::string filter = fmt::format("ipd>={:g} ipd{}{:g}", b.lo, last ? "<=" : "<", b.hi);
     if (clicked && filter.size() < sizeof ui.filter) std::snprintf(ui.filter, sizeof ui.filter, "%s", filter.c_str());
   }
@@ -217,8 +226,9 @@ void draw_size_breakdown(const SessionStatistics* stats) {
   draw_value_bars(canvas, text, chart, rows, gui_colours(), hot);
   if (hot >= 0) {
     const BreakdownBin& bin = b.bins[hot];
-    ImGui::SetTooltip("%s: IPD %s\n%s in %s", bin.label.c_str(), interval(bin.ipd.estimate, bin.ipd.low, bin.ipd.high).c_str(),
-                      counted(bin.pairs, "pair").c_str(), counted(bin.scenes, "scene").c_str());
+    ImGui::SetTooltip("%s: IPD %s\n%s in %s", bin.label.c_str(),
+                      interval(bin.ipd.estimate, bin.ipd.low, bin.ipd.high).c_str(), counted(bin.pairs, "pair").c_str(),
+                      counted(bin.scenes, "scene").c_str());
   }
 }
 
@@ -233,8 +243,9 @@ void draw_stats_panels(const StudyView& v, const SessionStatistics* stats, bool 
     const TableCell* c = stats->table.cell(v.session->model(), a, b);
     if (c) ImGui::Text("IPD %s", cell_interval(*c).c_str());
     const bool has_ci = c && !std::isnan(c->ci_low);
-    const std::string ci = fmt::format("{}{}", has_ci || !c ? fmt::format("{:g}% CI", 100 * stats->request.bootstrap.level) : "",
-                                       computing ? ", updating..." : "");
+    const std::string ci =
+        fmt::format("{}{}", has_ci || !c ? fmt::format("{:g}% CI", 100 * stats->request.bootstrap.level) : "",
+                    computing ? ", updating..." : "");
     same_line_if_fits(ImGui::CalcTextSize(ci.c_str()).x);
     ImGui::TextDisabled("%s", ci.c_str());
   } else {

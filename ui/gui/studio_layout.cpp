@@ -38,8 +38,9 @@ bool is_relation(const std::string& w) { return w == "=" || w == "<" || w == ">"
 // A whole count such as "8" or "1,000" (not "0.97", not "8," that ends a clause): it counts the word after it.
 bool is_count(const std::string& w) {
   return !w.empty() && std::isdigit(static_cast<unsigned char>(w.front())) &&
-         std::isdigit(static_cast<unsigned char>(w.back())) &&
-         std::all_of(w.begin(), w.end(), [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)) || ch == ','; });
+         std::isdigit(static_cast<unsigned char>(w.back())) && std::all_of(w.begin(), w.end(), [](char ch) {
+           return std::isdigit(static_cast<unsigned char>(ch)) || ch == ',';
+         });
 }
 bool starts_with_letter(const std::string& w) { return !w.empty() && std::isalpha(static_cast<unsigned char>(w[0])); }
 }  // namespace
@@ -78,9 +79,9 @@ std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
       // A label and its number stay together: "p = 0.031", "p < 0.0001" never break around the sign; so do a
       // count and the word it counts: "8 scenes", "1,000 trials"; and "delta IPD", ΔIPD spelled in ASCII, is one
       // symbol.
-      const bool glue = !words.empty() && (is_relation(word) || after_relation ||
-                                           (after_count && starts_with_letter(word)) ||
-                                           (after_delta && word.rfind("IPD", 0) == 0));
+      const bool glue =
+          !words.empty() && (is_relation(word) || after_relation || (after_count && starts_with_letter(word)) ||
+                             (after_delta && word.rfind("IPD", 0) == 0));
       after_relation = is_relation(word);
       after_count = is_count(word);
       after_delta = word == "delta";

@@ -10,10 +10,10 @@
 namespace ipd::ui {
 
 struct TableMetrics {
-  float line = 0;                    // text line height
+  float line = 0;  // text line height
   float cell_pad_x = 0, cell_pad_y = 0;
-  float border = 1;                  // a border line
-  float scrollbar = 0;               // the horizontal scrollbar's height
+  float border = 1;     // a border line
+  float scrollbar = 0;  // the horizontal scrollbar's height
 };
 struct TableSize {
   float width = 0, height = 0;

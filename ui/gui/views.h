@@ -50,13 +50,13 @@ struct StudyView {
   std::vector<std::string> failed_saves;
   // Saves refused because someone else changed the file (the conflict dialog shows the first).
   struct Conflict {
-    std::string key;      // the save's file (UiCommands::keep_mine / keep_theirs)
-    std::string message;  // "FILE: changed on disk since ..."
+    std::string key;           // the save's file (UiCommands::keep_mine / keep_theirs)
+    std::string message;       // "FILE: changed on disk since ..."
     std::string mine, theirs;  // both versions, summarised ("3 pairs, 1 excluded rock: {...}")
   };
   std::vector<Conflict> conflicts;
-  bool busy = false;  // the worker is computing
-  std::string loading;  // a first look is shown while the study loads: how far it got
+  bool busy = false;                         // the worker is computing
+  std::string loading;                       // a first look is shown while the study loads: how far it got
   const SessionStatistics* stats = nullptr;  // intervals etc. (stats_panels.h), computed off the UI thread
   // Every problem found in the study's data (the session's, then pictures that could not be read).
   const std::vector<Problem>* problems = nullptr;
@@ -65,8 +65,8 @@ struct StudyView {
 // The replay of a registration's search (the trace), as a position on its timeline.
 struct ReplayState {
   bool playing = false;
-  float position = 0;   // 0 .. steps (hypotheses/iterations) + 1 (the final raw -> aligned motion)
-  float speed = 20;     // steps per second
+  float position = 0;  // 0 .. steps (hypotheses/iterations) + 1 (the final raw -> aligned motion)
+  float speed = 20;    // steps per second
 };
 
 // What the scene list sorts by (UiState::sort_column); each of its columns sorts by one of these.
@@ -80,8 +80,8 @@ struct UiState {
   SideLayers layers;
   int selected_left = -1, selected_right = -1;  // a click on one side waits for one on the other
   int hover_left = -1, hover_right = -1;
-  int sort_column = kByIpd;                      // browser: a SceneSortKey
-  bool sort_descending = true;                   // worst first: the audit order
+  int sort_column = kByIpd;     // browser: a SceneSortKey
+  bool sort_descending = true;  // worst first: the audit order
   char filter[128] = "";
   ReplayState replay;
   int rerun_method = 0, rerun_seed = 0;  // rerun_method: index into registration_methods()
@@ -94,11 +94,11 @@ struct UiState {
   // Chrome: menus and dialogs.
   bool show_help = false, show_goto = false, show_open = false, show_quit = false;
   char goto_text[128] = "";
-  std::string browse_dir;                 // the Open study… browser's directory
-  std::vector<std::string> browse_dirs;   // its subdirectories (listed by the app when browse_dir changes)
-  bool browse_is_study = false;           // browse_dir has a study.yaml or domain folders
-  std::vector<std::string> recent;        // recent studies, newest first
-  float pictures_height = -1;             // height of the pictures pane; -1: fit the pictures' aspect
+  std::string browse_dir;                      // the Open study… browser's directory
+  std::vector<std::string> browse_dirs;        // its subdirectories (listed by the app when browse_dir changes)
+  bool browse_is_study = false;                // browse_dir has a study.yaml or domain folders
+  std::vector<std::string> recent;             // recent studies, newest first
+  float pictures_height = -1;                  // height of the pictures pane; -1: fit the pictures' aspect
   float browser_width = -1, stats_width = -1;  // side columns as dragged; -1: from their content
   bool quit_confirmed = false;
   bool show_problems = false;  // the Problems window
@@ -117,9 +117,9 @@ struct UiCommands {
   std::string open_study;       // File > Open study… / Recent
   bool retry_saves = false;
   std::string keep_mine, keep_theirs;  // a conflict's key: the version the user keeps
-  bool quit = false;            // confirmed (or nothing unsaved)
-  bool next_suspect = false;    // `N`: the next suspect pair anywhere in the study
-  int goto_problem = -1;        // a row of the Problems window (index into StudyView::problems): its scene
+  bool quit = false;                   // confirmed (or nothing unsaved)
+  bool next_suspect = false;           // `N`: the next suspect pair anywhere in the study
+  int goto_problem = -1;               // a row of the Problems window (index into StudyView::problems): its scene
 };
 
 // The scene order of the browser (sorted and filtered as the user asked); sets ui.filter_error.

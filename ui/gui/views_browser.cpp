@@ -18,17 +18,25 @@ std::vector<int> browser_order(const std::vector<SceneSummary>& sums, UiState& u
   auto key = [&](int k) -> double {
     const auto& m = sums[k];
     switch (ui.sort_column) {
-      case kByIpd: return std::isnan(m.ipd) ? -1.0 : m.ipd;
-      case kByPairs: return m.pairs;
-      case kByUnpaired: return m.unpaired_a + m.unpaired_b;
-      case kBySuspects: return m.suspects;
-      case kByEdited: return m.edited;
-      case kByAmbiguous: return m.ambiguous;
-      default: return 0;
+      case kByIpd:
+        return std::isnan(m.ipd) ? -1.0 : m.ipd;
+      case kByPairs:
+        return m.pairs;
+      case kByUnpaired:
+        return m.unpaired_a + m.unpaired_b;
+      case kBySuspects:
+        return m.suspects;
+      case kByEdited:
+        return m.edited;
+      case kByAmbiguous:
+        return m.ambiguous;
+      default:
+        return 0;
     }
   };
   std::stable_sort(order.begin(), order.end(), [&](int x, int y) {
-    if (ui.sort_column == kByStem) return ui.sort_descending ? sums[x].stem > sums[y].stem : sums[x].stem < sums[y].stem;
+    if (ui.sort_column == kByStem)
+      return ui.sort_descending ? sums[x].stem > sums[y].stem : sums[x].stem < sums[y].stem;
     return ui.sort_descending ? key(x) > key(y) : key(x) < key(y);
   });
   return order;
@@ -40,11 +48,14 @@ const std::vector<BrowserColumn>& browser_columns() {
   // list (700 px window) shows name, IPD, amb. and susp. without scrolling sideways.
   static const std::vector<BrowserColumn> columns = {
       {{"scene", nullptr, nullptr, ImGuiTableColumnFlags_WidthStretch}, kByStem},
-      {{"IPD", "0.0000", "the scene's IPD for the model (sorted worst first)",
-        num | ImGuiTableColumnFlags_DefaultSort}, kByIpd},
-      {{"amb.", "?", "ambiguous registration: another alignment fits as well or almost as well (e.g. a small overlap or a "
-                     "repetitive layout), too few rocks are paired or they lie on a line, so the pairs may be wrong; "
-                     "check them", num}, kByAmbiguous},
+      {{"IPD", "0.0000", "the scene's IPD for the model (sorted worst first)", num | ImGuiTableColumnFlags_DefaultSort},
+       kByIpd},
+      {{"amb.", "?",
+        "ambiguous registration: another alignment fits as well or almost as well (e.g. a small overlap or a "
+        "repetitive layout), too few rocks are paired or they lie on a line, so the pairs may be wrong; "
+        "check them",
+        num},
+       kByAmbiguous},
       {{"susp.", "99", "suspect pairs: paired rocks that the registration does not bring together", num}, kBySuspects},
       {{"ed.", "hand", "pairs fixed by hand", num}, kByEdited},
       {{"pairs", "999", "rock pairs counted in the IPD", num}, kByPairs},
@@ -74,9 +85,15 @@ void draw_scene_cell(SceneSortKey sort_key, const SceneSummary& m, int k, const 
         ImGui::SetTooltip("%s", m.stem.c_str());
       ImGui::PopID();
       break;
-    case kByIpd: ImGui::TextUnformatted(fmt_ipd(m.ipd).c_str()); break;
-    case kByPairs: ImGui::Text("%d", m.pairs); break;
-    case kByUnpaired: ImGui::Text("%d/%d", m.unpaired_a, m.unpaired_b); break;
+    case kByIpd:
+      ImGui::TextUnformatted(fmt_ipd(m.ipd).c_str());
+      break;
+    case kByPairs:
+      ImGui::Text("%d", m.pairs);
+      break;
+    case kByUnpaired:
+      ImGui::Text("%d/%d", m.unpaired_a, m.unpaired_b);
+      break;
     case kBySuspects:
       if (m.suspects > 0) ImGui::TextColored({1, 0.55f, 0, 1}, "%d", m.suspects);
       break;
@@ -114,7 +131,8 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   if (s.read_only()) {
     // Why matters: a second window on the same study is read-only so that the first one's edits are not lost.
     ImGui::PushTextWrapPos(0);
-    ImGui::TextColored({1, 0.6f, 0.2f, 1}, "read-only%s%s: edits stay in memory ('save as', below undo and redo, writes them elsewhere)",
+    ImGui::TextColored({1, 0.6f, 0.2f, 1},
+                       "read-only%s%s: edits stay in memory ('save as', below undo and redo, writes them elsewhere)",
                        s.read_only_reason().empty() ? "" : ": ", s.read_only_reason().c_str());
     ImGui::PopTextWrapPos();
   }
@@ -132,10 +150,11 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   if (!right.empty() && right != s.left_domain()) out.left_domain = s.left_domain(), out.right_domain = right;
   if (st.models.empty()) {
     ImGui::TextColored({1, 0.8f, 0.3f, 1}, "No predictions in this study.");
-    ImGui::TextWrapped("IPD needs a detector's boxes. Make them with\n  ipd detect %s --onnx best.onnx --model yolo\n"
-                       "(or --detector classical), or put YOLO txt files under <domain>/predictions/<model>/, "
-                       "then reopen the study (File > Recent).",
-                       st.root.c_str());
+    ImGui::TextWrapped(
+        "IPD needs a detector's boxes. Make them with\n  ipd detect %s --onnx best.onnx --model yolo\n"
+        "(or --detector classical), or put YOLO txt files under <domain>/predictions/<model>/, "
+        "then reopen the study (File > Recent).",
+        st.root.c_str());
   } else if (ImGui::BeginCombo("model", s.model().c_str())) {
     for (const auto& m : st.models) {
       const std::string label = m.trained_on.empty() ? m.name : m.name + " (" + m.trained_on + ")";

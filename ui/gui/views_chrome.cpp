@@ -1,15 +1,15 @@
 // Around the panels: menu bar, status bar, shortcuts and their help, Go to scene, Open study (a directory
 // browser drawn in ImGui), the quit warning, and the IPD panel.
 #include <algorithm>
-#include <string>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <string>
 
 #include "ui/gui/stats_panels.h"
-#include "ui/gui/table_layout.h"
 #include "ui/gui/studio_layout.h"
+#include "ui/gui/table_layout.h"
 #include "ui/gui/views.h"
 
 namespace ipd::ui {
@@ -43,14 +43,17 @@ namespace {
 void wrapped_lines(const std::string& text, const ImVec4* colour) {
   const float width = std::max(40.0f, ImGui::GetContentRegionAvail().x);
   if (colour) ImGui::PushStyleColor(ImGuiCol_Text, *colour);
-  for (const std::string& line : wrap_at_spaces(text, width, [](const std::string& t) { return ImGui::CalcTextSize(t.c_str()).x; }))
+  for (const std::string& line :
+       wrap_at_spaces(text, width, [](const std::string& t) { return ImGui::CalcTextSize(t.c_str()).x; }))
     ImGui::TextUnformatted(line.c_str());
   if (colour) ImGui::PopStyleColor();
 }
 }  // namespace
 
 void text_wrapped_at_spaces(const std::string& text) { wrapped_lines(text, nullptr); }
-void text_disabled_wrapped_at_spaces(const std::string& text) { wrapped_lines(text, &ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]); }
+void text_disabled_wrapped_at_spaces(const std::string& text) {
+  wrapped_lines(text, &ImGui::GetStyle().Colors[ImGuiCol_TextDisabled]);
+}
 void text_coloured_wrapped_at_spaces(const ImVec4& colour, const std::string& text) { wrapped_lines(text, &colour); }
 
 float button_width(const char* label) { return ImGui::CalcTextSize(label).x + 2 * ImGui::GetStyle().FramePadding.x; }
@@ -61,7 +64,6 @@ void same_line_if_fits(float width) {
 }
 
 namespace {
-
 
 bool pressed(int key) { return ImGui::IsKeyPressed(key, true); }
 
@@ -136,8 +138,8 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
     // A banner on the always-visible menu bar: hand edits that are not on disk must not go unnoticed.
     ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.75f, 0.1f, 0.1f, 1));
     ImGui::PushStyleColor(ImGuiCol_ButtonHovered, ImVec4(0.9f, 0.2f, 0.2f, 1));
-    const std::string banner = std::to_string(v.failed_saves.size()) +
-                               " hand edit(s) NOT SAVED: " + v.failed_saves.front() + "  [Retry]";
+    const std::string banner =
+        std::to_string(v.failed_saves.size()) + " hand edit(s) NOT SAVED: " + v.failed_saves.front() + "  [Retry]";
     if (ImGui::Button(banner.c_str())) out.retry_saves = true;
     ImGui::PopStyleColor(2);
   }
@@ -151,8 +153,7 @@ void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out) {
     const std::string rest = "  |  " + counted(s.scenes().size(), "scene") + "  |  " + s.left_domain() + " vs " +
                              s.right_domain() + "  |  " + (s.model().empty() ? "no predictions" : s.model());
     std::string line = s.study().root + rest;
-    if (ImGui::CalcTextSize(line.c_str()).x > ImGui::GetContentRegionAvail().x)
-    {
+    if (ImGui::CalcTextSize(line.c_str()).x > ImGui::GetContentRegionAvail().x) {
       std::filesystem::path root(s.study().root);
       if (root.filename().empty()) root = root.parent_path();  // "…/study/"
       line = root.filename().string() + rest;
@@ -182,13 +183,16 @@ void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out) {
     ImGui::SameLine();
   }
   if (!v.failed_saves.empty()) {
-    ImGui::TextColored({1, 0.35f, 0.3f, 1}, "|  %zu save(s) FAILED: %s", v.failed_saves.size(), v.failed_saves.front().c_str());
+    ImGui::TextColored({1, 0.35f, 0.3f, 1}, "|  %zu save(s) FAILED: %s", v.failed_saves.size(),
+                       v.failed_saves.front().c_str());
     ImGui::SameLine();
     if (ImGui::SmallButton("Retry")) out.retry_saves = true;
     ImGui::SameLine();
   }
-  if (!ui.status.empty()) ImGui::TextUnformatted(("|  " + ui.status).c_str());
-  else ImGui::NewLine();
+  if (!ui.status.empty())
+    ImGui::TextUnformatted(("|  " + ui.status).c_str());
+  else
+    ImGui::NewLine();
 }
 
 namespace {
@@ -241,8 +245,8 @@ void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out) {
   if (ui.show_goto) ImGui::OpenPopup("Go to scene");
   if (ImGui::BeginPopupModal("Go to scene", &ui.show_goto, ImGuiWindowFlags_AlwaysAutoResize)) {
     if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
-    const bool enter = ImGui::InputTextWithHint("##goto", "scene name (or part of it)", ui.goto_text, sizeof ui.goto_text,
-                                                ImGuiInputTextFlags_EnterReturnsTrue);
+    const bool enter = ImGui::InputTextWithHint("##goto", "scene name (or part of it)", ui.goto_text,
+                                                sizeof ui.goto_text, ImGuiInputTextFlags_EnterReturnsTrue);
     int first = -1, shown = 0;
     if (v.session && ui.goto_text[0]) {
       const auto& scenes = v.session->scenes();
@@ -289,8 +293,9 @@ void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out) {
   }
   if (ImGui::BeginPopupModal("Unsaved edits", &ui.show_quit, ImGuiWindowFlags_AlwaysAutoResize)) {
     if (v.pending_saves > 0) ImGui::Text("%d edit(s) are still being written.", v.pending_saves);
-    if (!v.failed_saves.empty()) ImGui::TextColored({1, 0.4f, 0.3f, 1}, "%zu save(s) failed: %s", v.failed_saves.size(),
-                                                    v.failed_saves.front().c_str());
+    if (!v.failed_saves.empty())
+      ImGui::TextColored({1, 0.4f, 0.3f, 1}, "%zu save(s) failed: %s", v.failed_saves.size(),
+                         v.failed_saves.front().c_str());
     if (v.session && v.session->read_only())
       ImGui::TextWrapped("This study is read-only: hand edits live only in memory until saved elsewhere.");
     if (!v.failed_saves.empty() && ImGui::Button("Retry saves")) out.retry_saves = true;
@@ -307,10 +312,12 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
   if (!s.scenes().empty()) {
     const SceneSummary& m = (*v.summaries)[ui.scene];
     ImGui::Text("scene %s", m.stem.c_str());
-    text_wrapped_at_spaces("IPD " + fmt_ipd(m.ipd) + "  (" + counted(m.pairs, "pair") + ", unpaired " + std::to_string(m.unpaired_a) +
-                           " / " + std::to_string(m.unpaired_b) + ")");
-    if (!m.no_value_reason.empty()) text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "no IPD for this scene: " + m.no_value_reason);
-    if (m.suspects) ImGui::TextColored({1, 0.55f, 0, 1}, "%s: N jumps to the next one", counted(m.suspects, "suspect pair").c_str());
+    text_wrapped_at_spaces("IPD " + fmt_ipd(m.ipd) + "  (" + counted(m.pairs, "pair") + ", unpaired " +
+                           std::to_string(m.unpaired_a) + " / " + std::to_string(m.unpaired_b) + ")");
+    if (!m.no_value_reason.empty())
+      text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "no IPD for this scene: " + m.no_value_reason);
+    if (m.suspects)
+      ImGui::TextColored({1, 0.55f, 0, 1}, "%s: N jumps to the next one", counted(m.suspects, "suspect pair").c_str());
   }
   const CellTotals t = s.totals();
   ImGui::Separator();
@@ -318,7 +325,8 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
   if (!t.no_value_reason.empty())  // two empty prediction sets are not a perfect match: say why there is no number
     text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "– (not a number): " + t.no_value_reason);
   else
-    ImGui::Text("%s over %s in %s", fmt_ipd(t.ipd()).c_str(), counted(t.pairs, "pair").c_str(), counted(t.scenes, "scene").c_str());
+    ImGui::Text("%s over %s in %s", fmt_ipd(t.ipd()).c_str(), counted(t.pairs, "pair").c_str(),
+                counted(t.scenes, "scene").c_str());
   ImGui::Separator();
   ImGui::TextUnformatted("Cross table (lower is better)");
   const auto& pairs = s.domain_pairs();
@@ -336,9 +344,9 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
     widths[p + 1] = std::max({ImGui::CalcTextSize(headers[p].first.c_str()).x,
                               ImGui::CalcTextSize(headers[p].second.c_str()).x, ImGui::CalcTextSize("0.0000").x});
   const ImGuiStyle& style = ImGui::GetStyle();
-  const TableSize size = cross_table_size(
-      widths, static_cast<int>(s.study().models.size()) + 2, ImGui::GetContentRegionAvail().x,
-      {ImGui::GetTextLineHeight(), style.CellPadding.x, style.CellPadding.y, 1, style.ScrollbarSize});
+  const TableSize size =
+      cross_table_size(widths, static_cast<int>(s.study().models.size()) + 2, ImGui::GetContentRegionAvail().x,
+                       {ImGui::GetTextLineHeight(), style.CellPadding.x, style.CellPadding.y, 1, style.ScrollbarSize});
   if (ImGui::BeginTable("cross", static_cast<int>(pairs.size()) + 1,
                         ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit |
                             (size.scroll_x ? ImGuiTableFlags_ScrollX : ImGuiTableFlags_None),
@@ -369,13 +377,18 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
         const CellTotals cell = s.totals_for(m.name, static_cast<int>(p));
         const double val = cell.ipd();
         const bool current = m.name == s.model() && static_cast<int>(p) == s.pair_index();
-        if (!involves) ImGui::TextDisabled("-");
-        else if (!cell.no_value_reason.empty()) ImGui::TextColored({1, 0.55f, 0, 1}, "–*");
-        else if (current) ImGui::TextColored({1, 0.85f, 0.3f, 1}, "%s", fmt_ipd(val).c_str());
-        else ImGui::TextUnformatted(fmt_ipd(val).c_str());
+        if (!involves)
+          ImGui::TextDisabled("-");
+        else if (!cell.no_value_reason.empty())
+          ImGui::TextColored({1, 0.55f, 0, 1}, "–*");
+        else if (current)
+          ImGui::TextColored({1, 0.85f, 0.3f, 1}, "%s", fmt_ipd(val).c_str());
+        else
+          ImGui::TextUnformatted(fmt_ipd(val).c_str());
         if (involves && !cell.no_value_reason.empty() && ImGui::IsItemHovered())
           ImGui::SetTooltip("not a number: %s", cell.no_value_reason.c_str());
-        else if (involves) cell_interval_tooltip(v.stats, m.name, static_cast<int>(p));
+        else if (involves)
+          cell_interval_tooltip(v.stats, m.name, static_cast<int>(p));
       }
     }
     ImGui::EndTable();

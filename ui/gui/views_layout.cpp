@@ -17,7 +17,8 @@ float column_splitter(const char* id, float height, float width) {
   if (hot) ImGui::SetMouseCursor(ImGuiMouseCursor_ResizeEW);
   const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
   const float x = 0.5f * (a.x + b.x);
-  ImGui::GetWindowDrawList()->AddLine({x, a.y}, {x, b.y}, ImGui::GetColorU32(hot ? ImGuiCol_SeparatorActive : ImGuiCol_Separator));
+  ImGui::GetWindowDrawList()->AddLine({x, a.y}, {x, b.y},
+                                      ImGui::GetColorU32(hot ? ImGuiCol_SeparatorActive : ImGuiCol_Separator));
   return ImGui::IsItemActive() ? ImGui::GetIO().MouseDelta.x : 0.0f;
 }
 

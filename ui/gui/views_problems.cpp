@@ -22,9 +22,12 @@ void draw_problems_window(const StudyView& v, UiState& ui, UiCommands& out) {
     return;
   }
   if (v.problems->empty()) ImGui::TextDisabled("None found.");
-  ImGui::TextDisabled("Malformed label lines are skipped (their rocks are in no IPD); cells without a number say why. Click a row to see its scene.");
-  if (ImGui::BeginTable("problems", 2, ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV |
-                                           ImGuiTableFlags_ScrollY | ImGuiTableFlags_Resizable)) {
+  ImGui::TextDisabled(
+      "Malformed label lines are skipped (their rocks are in no IPD); cells without a number say why. Click a row to "
+      "see its scene.");
+  if (ImGui::BeginTable("problems", 2,
+                        ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_ScrollY |
+                            ImGuiTableFlags_Resizable)) {
     ImGui::TableSetupScrollFreeze(0, 1);
     ImGui::TableSetupColumn("scene", ImGuiTableColumnFlags_WidthFixed, ImGui::CalcTextSize("scene_00000").x);
     ImGui::TableSetupColumn("problem (file:line: what is wrong)");

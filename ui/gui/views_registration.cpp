@@ -13,10 +13,14 @@ namespace {
 
 const char* kind_name(TraceStepKind k) {
   switch (k) {
-    case TraceStepKind::kHypothesis: return "hypothesis";
-    case TraceStepKind::kRefinement: return "refinement";
-    case TraceStepKind::kIteration: return "EM iteration";
-    case TraceStepKind::kPolish: return "final fit";  // the polished, searched or least-squares fit that goes out
+    case TraceStepKind::kHypothesis:
+      return "hypothesis";
+    case TraceStepKind::kRefinement:
+      return "refinement";
+    case TraceStepKind::kIteration:
+      return "EM iteration";
+    case TraceStepKind::kPolish:
+      return "final fit";  // the polished, searched or least-squares fit that goes out
   }
   return "";
 }
@@ -25,11 +29,12 @@ const char* kind_name(TraceStepKind k) {
 
 std::string registration_summary(const std::string& a, const std::string& b, const RegistrationReport& r) {
   // cpd has no trials or hypotheses: one EM iteration per "trial".
-  const std::string searched = r.method == RegistrationMethod::kCpd
-                                   ? counted(r.trials, "EM iteration")
-                                   : counted(r.trials, "trial") + ", " + counted(r.hypotheses, "hypothesis", "hypotheses");
-  return a + " -> " + b + ": " + to_string(r.method) + ", " + searched + ", " + counted(r.inliers, "inlier") + ", score " +
-         fixed(r.score, 4) + ", confidence " + fixed(r.confidence, 2);
+  const std::string searched =
+      r.method == RegistrationMethod::kCpd
+          ? counted(r.trials, "EM iteration")
+          : counted(r.trials, "trial") + ", " + counted(r.hypotheses, "hypothesis", "hypotheses");
+  return a + " -> " + b + ": " + to_string(r.method) + ", " + searched + ", " + counted(r.inliers, "inlier") +
+         ", score " + fixed(r.score, 4) + ", confidence " + fixed(r.confidence, 2);
 }
 
 std::string replay_step_line(const TraceStep& step, int k, int steps) {
@@ -64,7 +69,8 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const int steps = static_cast<int>(r.trace.steps.size());
   text_wrapped_at_spaces(registration_summary(da, db, r));
   if (r.ambiguous)
-    text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1}, std::string("ambiguous: ") + ambiguity_reason(r.ambiguity) + "; check the pairs");
+    text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1},
+                                    std::string("ambiguous: ") + ambiguity_reason(r.ambiguity) + "; check the pairs");
   text_disabled_wrapped_at_spaces(std::string("stopped: ") + to_string(r.stop) + (r.note.empty() ? "" : "; " + r.note));
   ReplayState& rp = ui.replay;
   const float end = static_cast<float>(steps) + 1.0f;  // the steps, then one unit of raw -> aligned motion
@@ -74,9 +80,12 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   }
   // The scrubber names the same step as the line under it ("step K of N"), K = replay_step() + 1.
   const int shown = rp.position < steps ? replay_step(r, rp.position) : -1;
-  const std::string scrub_label = steps == 0 ? "%.2f" : shown >= 0 ? "step " + thousands(shown + 1) + " of " + thousands(steps) : "final motion";
+  const std::string scrub_label = steps == 0   ? "%.2f"
+                                  : shown >= 0 ? "step " + thousands(shown + 1) + " of " + thousands(steps)
+                                               : "final motion";
   ImGui::SameLine();
-  ImGui::SetNextItemWidth(std::max(80.0f, std::min(ImGui::GetContentRegionAvail().x * 0.5f, ImGui::CalcTextSize("step 5,000 of 5,000").x + 24)));
+  ImGui::SetNextItemWidth(std::max(
+      80.0f, std::min(ImGui::GetContentRegionAvail().x * 0.5f, ImGui::CalcTextSize("step 5,000 of 5,000").x + 24)));
   if (ImGui::SliderFloat("##scrub", &rp.position, 0.0f, end, scrub_label.c_str())) rp.playing = false;
   same_line_if_fits(90 + ImGui::CalcTextSize("steps/s").x + ImGui::GetStyle().ItemInnerSpacing.x);
   ImGui::SetNextItemWidth(90);
@@ -106,7 +115,8 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
     out.rerun_registration = true;
   }
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s\n(the method of the registration shown; pick another to re-run with it)", methods[displayed].description);
+    ImGui::SetTooltip("%s\n(the method of the registration shown; pick another to re-run with it)",
+                      methods[displayed].description);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
   ImGui::InputInt("seed", &ui.rerun_seed, 0);
@@ -133,8 +143,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
     ImGui::TextDisabled(v.rerun ? "no search recorded for this method" : "recording the search...");
   else
     ImGui::TextDisabled("final affine: raw -> aligned");
-  if (r.trace.truncated)
-    text_disabled_wrapped_at_spaces(trace_cap_note(steps, r.hypotheses));
+  if (r.trace.truncated) text_disabled_wrapped_at_spaces(trace_cap_note(steps, r.hypotheses));
 
   // Canvas: B's centres (pink rings) fixed, A's moved by the current affine, in B's frame; the score curve
   // as a strip under it, full width (a column beside it left both too narrow and cut its caption).
@@ -151,7 +160,8 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const auto& ga = s.labels().gt_of(da, sc.stem).boxes;
   const auto& gb = s.labels().gt_of(db, sc.stem).boxes;
   const RegistrationCanvas canvas = registration_canvas(p0, size, ImGui::GetTextLineHeight());
-  const Placement pl = place(canvas.box_min, canvas.box_size, s.study().config.image_width, s.study().config.image_height, CanvasView{});
+  const Placement pl =
+      place(canvas.box_min, canvas.box_size, s.study().config.image_width, s.study().config.image_height, CanvasView{});
   // A hypothesis can throw A's centres far off the picture: everything is drawn inside the plot's own rect,
   // never over the text above it or the legend and curve below.
   dl->PushClipRect(canvas.plot_min, canvas.plot_max, true);
@@ -213,7 +223,8 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
     text_disabled_wrapped_at_spaces("best score so far: " + counted(news, "improvement") + " over " +
                                     counted(steps, "step") + "; " + r.trace.stop);
     const ImVec2 c0 = ImGui::GetCursorScreenPos();
-    const ImVec2 csz{avail.x - 4, std::max(30.0f, std::min(curve_h, ImGui::GetContentRegionAvail().y - 8))};  // a margin like the other sides
+    const ImVec2 csz{avail.x - 4, std::max(30.0f, std::min(curve_h, ImGui::GetContentRegionAvail().y -
+                                                                        8))};  // a margin like the other sides
     ImGui::PlotLines("##best", best.data(), steps, 0, nullptr, FLT_MAX, FLT_MAX, csz);
     const float x = c0.x + csz.x * std::clamp(rp.position / steps, 0.0f, 1.0f);
     dl->AddLine({x, c0.y}, {x, c0.y + csz.y}, kHighlight, 1.5f);

@@ -1,7 +1,7 @@
 // The scene in view: both pictures with their boxes (suspect pairs in orange, joined across the panes), the
 // replayed hypothesis' sample, zoom at the cursor, and the pair table of the audit.
-#include <algorithm>
 #include <fmt/format.h>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -72,7 +72,8 @@ float scene_toolbar_width() {
   const ImGuiStyle& st = ImGui::GetStyle();
   const float box = ImGui::GetFrameHeight() + st.ItemInnerSpacing.x;
   float w = -st.ItemSpacing.x;
-  for (const char* c : {"GT", "predictions", "numbers", "confidence", "sync zoom"}) w += box + ImGui::CalcTextSize(c).x + st.ItemSpacing.x;
+  for (const char* c : {"GT", "predictions", "numbers", "confidence", "sync zoom"})
+    w += box + ImGui::CalcTextSize(c).x + st.ItemSpacing.x;
   for (const char* b : {"unpair (U)", "exclude (X)", "reset to automatic"}) w += button_width(b) + st.ItemSpacing.x;
   return w;
 }
@@ -200,7 +201,8 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
       if (hit >= 0) {
         const auto& pv_self = s.performance(side, ui.scene).value;
         ImGui::BeginTooltip();
-        ImGui::Text("%s rock %d: IoU %.3f", in.caption.c_str(), hit + 1, hit < (int)pv_self.size() ? pv_self[hit] : 0.0);
+        ImGui::Text("%s rock %d: IoU %.3f", in.caption.c_str(), hit + 1,
+                    hit < (int)pv_self.size() ? pv_self[hit] : 0.0);
         for (const auto& [l, r] : s.view_pairs(ui.scene)) {
           if ((k == 0 ? l : r) != hit) continue;
           const int other = k == 0 ? r : l;
@@ -212,7 +214,8 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
           for (const auto& p : s.audit(ui.scene).pairs) {
             const int pl = s.swapped() ? p.b : p.a, pr = s.swapped() ? p.a : p.b;
             if (pl != l || pr != r) continue;
-            ImGui::Text("residual %.1f px, aligned IoU %.2f, size ratio %.2f", p.residual_px, p.aligned_iou, p.size_ratio);
+            ImGui::Text("residual %.1f px, aligned IoU %.2f, size ratio %.2f", p.residual_px, p.aligned_iou,
+                        p.size_ratio);
             if (p.suspect) ImGui::TextColored({1, 0.55f, 0, 1}, "suspect: %s", p.why.c_str());
           }
         }
@@ -254,7 +257,11 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
   const SceneAudit& audit = s.audit(ui.scene);
   std::vector<Row> rows;
   for (const auto& [l, r] : s.view_pairs(ui.scene)) {
-    Row row{l, r, l < (int)pl.size() ? pl[l] : 0.0, r < (int)pr.size() ? pr[r] : 0.0, nullptr,
+    Row row{l,
+            r,
+            l < (int)pl.size() ? pl[l] : 0.0,
+            r < (int)pr.size() ? pr[r] : 0.0,
+            nullptr,
             s.excluded(Side::kA, ui.scene, l) || s.excluded(Side::kB, ui.scene, r)};
     for (const auto& p : audit.pairs)
       if ((s.swapped() ? p.b : p.a) == l && (s.swapped() ? p.a : p.b) == r) row.audit = &p;
@@ -269,14 +276,16 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
     return std::abs(x.a - x.b) > std::abs(y.a - y.b);
   });
   const long excluded_rows = std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.excluded; });
-  text_wrapped_at_spaces(counted(long(rows.size()) - excluded_rows, "pair") + " counted (" + std::to_string(excluded_rows) +
-                         " excluded), " + std::to_string(audit.suspects) + " suspect; typical residual " +
-                         fixed(audit.typical_residual_px, 1) + " px");
-  const float table_h = std::max(60.0f, ImGui::GetContentRegionAvail().y - 2.4f * ImGui::GetTextLineHeightWithSpacing());
+  text_wrapped_at_spaces(counted(long(rows.size()) - excluded_rows, "pair") + " counted (" +
+                         std::to_string(excluded_rows) + " excluded), " + std::to_string(audit.suspects) +
+                         " suspect; typical residual " + fixed(audit.typical_residual_px, 1) + " px");
+  const float table_h =
+      std::max(60.0f, ImGui::GetContentRegionAvail().y - 2.4f * ImGui::GetTextLineHeightWithSpacing());
   // ScrollX: a pane narrower than the columns scrolls instead of cutting the last ones off.
-  if (ImGui::BeginTable("pairs", 7, ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX |
-                                        ImGuiTableFlags_BordersInnerV,
-                        ImVec2(0, table_h))) {
+  if (ImGui::BeginTable(
+          "pairs", 7,
+          ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX | ImGuiTableFlags_BordersInnerV,
+          ImVec2(0, table_h))) {
     ImGui::TableSetupScrollFreeze(1, 1);  // the pair stays in view when the table scrolls sideways
     const std::string partner = "its partner in " + s.right_domain();
     const std::string iou_l = "IoU of the left rock (" + s.left_domain() + ") with its best prediction";
@@ -343,8 +352,9 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
     for (size_t i = 0; i < gt.size(); ++i)
       if (!paired[i]) ++(s.excluded(side, ui.scene, static_cast<int>(i)) ? excluded : n);
     char header[128];
-    std::snprintf(header, sizeof header, "unpaired %s: %d%s###unp%d", (k == 0 ? s.left_domain() : s.right_domain()).c_str(),
-                  n, excluded > 0 ? fmt::format(" (+{} excluded)", excluded).c_str() : "", k);
+    std::snprintf(header, sizeof header, "unpaired %s: %d%s###unp%d",
+                  (k == 0 ? s.left_domain() : s.right_domain()).c_str(), n,
+                  excluded > 0 ? fmt::format(" (+{} excluded)", excluded).c_str() : "", k);
     if (n + excluded > 0 && ImGui::CollapsingHeader(header)) {
       for (size_t i = 0; i < gt.size(); ++i) {
         if (paired[i]) continue;

@@ -7,8 +7,8 @@
 // onto a few rocks earns nothing; a new best is refined by least squares on its inliers (LO-RANSAC); the
 // search stops once the consensus cannot reasonably be beaten. Rocks are then paired by an optimal (Hungarian)
 // assignment on the IoU of the aligned boxes.
-#include <Eigen/Dense>
 #include <fmt/format.h>
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -16,11 +16,11 @@
 #include <numeric>
 
 #include "core/geometry/affine_estimator.h"
-#include "core/registration/pairing.h"
 #include "core/geometry/point_grid.h"
 #include "core/registration/consensus/consensus_scorer.h"
 #include "core/registration/consensus/consensus_search.h"
 #include "core/registration/consensus/consensus_second_look.h"
+#include "core/registration/pairing.h"
 #include "core/registration/registration_frame.h"
 #include "core/registration/registration_recorder.h"
 
@@ -59,8 +59,12 @@ class GuidedSampler {
   // `first`: hypotheses proposed before any other (the coarse pass of a large set).
   GuidedSampler(const RegistrationFrame& f, const Bounds& bounds, double gate, std::uint64_t seed, bool record,
                 const std::vector<Affine2>& first)
-      : f_(f), bounds_(bounds), gate2_(gate * gate), min_det_(bounds.min_scale * bounds.min_scale),
-        max_det_(bounds.max_scale * bounds.max_scale), record_(record) {
+      : f_(f),
+        bounds_(bounds),
+        gate2_(gate * gate),
+        min_det_(bounds.min_scale * bounds.min_scale),
+        max_det_(bounds.max_scale * bounds.max_scale),
+        record_(record) {
     // 1. identity in image coordinates
     queue_ = first;
     queue_.push_back(f.from_image(identity_affine()));
@@ -71,7 +75,9 @@ class GuidedSampler {
     small_ = f.a.size() <= 16 && f.b.size() <= 16;
     nn_a_ = nearest_neighbours(f.a, small_ ? kNeighboursA + 2 : kNeighboursA);
     // A side that few rocks are left on (the rest out of view): every one of them may be a neighbour.
-    nn_b_ = nearest_neighbours(f.b, f.b.size() <= 12 ? static_cast<int>(f.b.size()) : small_ ? kNeighboursB + 3 : kNeighboursB);
+    nn_b_ = nearest_neighbours(f.b, f.b.size() <= 12 ? static_cast<int>(f.b.size())
+                                    : small_         ? kNeighboursB + 3
+                                                     : kNeighboursB);
     stars_a_.resize(f.a.size());
     stars_b_.resize(f.b.size());
     order_a_.resize(f.a.size());
@@ -221,11 +227,16 @@ class GuidedSampler {
           if (!m.allFinite() || !bounds_.plausible(m.leftCols<2>())) continue;
         }
         const int support = ni.size() >= 4 ? local_support(m, i, j, u1, u2) : 2;
-        if (support >= 2) pending_.push_back(m);
-        else if (support == 1) deferred_.emplace_back(i, m);
-        else if (small_) unsupported_.emplace_back(i, m);
+        if (support >= 2)
+          pending_.push_back(m);
+        else if (support == 1)
+          deferred_.emplace_back(i, m);
+        else if (small_)
+          unsupported_.emplace_back(i, m);
         if (record_ && (support >= 1 || small_))
-          (support >= 2 ? pending_samples_ : support == 1 ? deferred_samples_ : unsupported_samples_)
+          (support >= 2   ? pending_samples_
+           : support == 1 ? deferred_samples_
+                          : unsupported_samples_)
               .push_back({i, ni[u1], ni[u2], j, nj[x1], nj[x2]});
       }
     std::reverse(pending_.begin(), pending_.end());  // pop_back hands them out in generation order
@@ -346,9 +357,11 @@ void second_look(const RegistrationFrame& f, const std::vector<Box>& boxes_a, co
   out->work += edges.work;
   std::vector<Affine2> pool{out->affine_normalised};
   for (const auto& m : edges.candidates)
-    if (std::none_of(pool.begin(), pool.end(), [&](const Affine2& p) { return recorder->agree(p, m); })) pool.push_back(m);
+    if (std::none_of(pool.begin(), pool.end(), [&](const Affine2& p) { return recorder->agree(p, m); }))
+      pool.push_back(m);
   std::vector<Judgement> judged;
-  for (const auto& m : pool) judged.push_back(judge_candidate(f, boxes_a, boxes_b, m, scorer->score(m), o.min_pair_iou));
+  for (const auto& m : pool)
+    judged.push_back(judge_candidate(f, boxes_a, boxes_b, m, scorer->score(m), o.min_pair_iou));
   size_t best = 0;
   for (size_t k = 1; k < pool.size(); ++k)
     if (judged[k].total > judged[best].total) best = k;
@@ -417,7 +430,8 @@ Affine2 final_fit(const RegistrationFrame& f, const std::vector<Box>& boxes_a, c
   std::vector<Eigen::Vector2d> src, dst;
   scorer->inlier_pairs(searched, gate * gate, &src, &dst);
   Affine2 least_squares;
-  if (src.size() >= 3 && affine_least_squares(src, dst, &least_squares) && bounds.plausible(least_squares.leftCols<2>()))
+  if (src.size() >= 3 && affine_least_squares(src, dst, &least_squares) &&
+      bounds.plausible(least_squares.leftCols<2>()))
     fits.push_back(least_squares);
   Affine2 out = polished;
   double best_total = -INFINITY;
@@ -442,7 +456,8 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
   double gate = o.inlier_gate / f.spread;
   if (!(gate > 0)) {
     const double spacing = median_nn_distance(f.b);
-    gate = std::max(std::clamp(0.3 * spacing, 0.02, 0.2), std::min(kMinGateOfWidth / f.spread, kMaxFloorOfSpacing * spacing));
+    gate = std::max(std::clamp(0.3 * spacing, 0.02, 0.2),
+                    std::min(kMinGateOfWidth / f.spread, kMaxFloorOfSpacing * spacing));
   }
   out.affine_normalised = f.from_image(identity_affine());
   if (!f.a.empty() && !f.b.empty()) {
@@ -459,7 +474,8 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
       sa->assign(sampler.sample.begin(), sampler.sample.begin() + 3);
       sb->assign(sampler.sample.begin() + 3, sampler.sample.end());
     };
-    SearchRecorder recorder(f, gate, o.record_trace, [](double s) { return s; }, sample_of);
+    SearchRecorder recorder(
+        f, gate, o.record_trace, [](double s) { return s; }, sample_of);
     const auto r = run_robust_loop<Affine2, Affine2>(sampler, estimator, scorer, lo, recorder);
     out.trials = r.trials;
     out.hypotheses = r.hypotheses;
@@ -471,7 +487,8 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
       // The search stops as soon as its best can't be beaten, often before a rival is scored. Shifted
       // placements are the rivals a small overlap allows (a patch of rocks that fits in several places), so
       // the translations most rock pairs agree on under the best's linear part are scored too.
-      const ShiftedPlacements shifted = shifted_placements(&scorer, recorder, f, r.best, r.best.leftCols<2>(), gate, false);
+      const ShiftedPlacements shifted =
+          shifted_placements(&scorer, recorder, f, r.best, r.best.leftCols<2>(), gate, false);
       double answer = r.best_score, rival = std::max(recorder.rival_score(), shifted.rival);
       // Never hand out an alignment a placement we scored beats (a 7 x 7 grid and the same grid one column on
       // stopped at the identity, 42 of 49 rocks, while the shift fits all). When the search's own alignment,

@@ -11,10 +11,10 @@
 
 #include "core/geometry/affine_estimator.h"
 #include "core/geometry/point_grid.h"
-#include "core/registration/robust_loop.h"
 #include "core/registration/consensus/consensus_search.h"
 #include "core/registration/registration_frame.h"
 #include "core/registration/registration_recorder.h"
+#include "core/registration/robust_loop.h"
 
 namespace ipd::detail {
 
@@ -62,8 +62,14 @@ class ConsensusScorer {
   // `anchor` points at the sampler's id of the rock pair the current hypothesis grew from.
   ConsensusScorer(const RegistrationFrame& f, double gate, const Bounds& bounds, int hypothesis_budget,
                   const long* anchor)
-      : a_(f.a), size_a_(f.size_a), grid_(f.b), gate2_(gate * gate), bounds_(bounds), anchor_(anchor),
-        best_(f.b.size(), 0.0), stamp_(f.b.size(), 0) {
+      : a_(f.a),
+        size_a_(f.size_a),
+        grid_(f.b),
+        gate2_(gate * gate),
+        bounds_(bounds),
+        anchor_(anchor),
+        best_(f.b.size(), 0.0),
+        stamp_(f.b.size(), 0) {
     const auto& b = f.b;
     for (const auto& s : f.size_b) {
       log_w_b_.push_back(std::log(std::max(s.x(), 1e-300)));
@@ -159,8 +165,9 @@ class ConsensusScorer {
       best_model_ = *m;
       has_best_ = true;
       best_count_ = count_inliers(*m);
-      beyond_chance_ = best_count_ >= 6 &&
-                       binomial_tail(static_cast<int>(a_.size()) - 3, chance_, best_count_ - 3) * budget_ < kChanceLevel;
+      beyond_chance_ =
+          best_count_ >= 6 &&
+          binomial_tail(static_cast<int>(a_.size()) - 3, chance_, best_count_ - 3) * budget_ < kChanceLevel;
       if (std::find(best_anchors_.begin(), best_anchors_.end(), *anchor_) == best_anchors_.end())
         best_anchors_.push_back(*anchor_);
     }
@@ -209,8 +216,7 @@ class ConsensusScorer {
   }
 
   // Mutually nearest (A, B) pairs within the gate after m.
-  void inlier_pairs(const Affine2& m, double g2, std::vector<Eigen::Vector2d>* src,
-                    std::vector<Eigen::Vector2d>* dst) {
+  void inlier_pairs(const Affine2& m, double g2, std::vector<Eigen::Vector2d>* src, std::vector<Eigen::Vector2d>* dst) {
     src->clear();
     dst->clear();
     claim_.assign(grid_.size(), {-1, INFINITY});
@@ -242,7 +248,8 @@ class ConsensusScorer {
       w.resize(src.size());
       for (size_t k = 0; k < src.size(); ++k) w[k] = 1.0 / (1.0 + (apply(*m, src[k]) - dst[k]).squaredNorm() / c2);
       Affine2 cand;
-      if (src.size() < 3 || !affine_weighted_least_squares(src, dst, w, &cand) || !bounds_.plausible(cand.leftCols<2>()))
+      if (src.size() < 3 || !affine_weighted_least_squares(src, dst, w, &cand) ||
+          !bounds_.plausible(cand.leftCols<2>()))
         break;
       *m = cand;
     }

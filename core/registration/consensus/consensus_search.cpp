@@ -105,9 +105,8 @@ std::vector<Eigen::Vector2d> top_translations(const Eigen::Matrix2d& lin, const 
     bins.back().sum += t;
   }
   const size_t n = std::min(top, bins.size());
-  std::partial_sort(bins.begin(), bins.begin() + n, bins.end(), [](const Bin& x, const Bin& y) {
-    return x.count != y.count ? x.count > y.count : x.key < y.key;
-  });
+  std::partial_sort(bins.begin(), bins.begin() + n, bins.end(),
+                    [](const Bin& x, const Bin& y) { return x.count != y.count ? x.count > y.count : x.key < y.key; });
   std::vector<Eigen::Vector2d> out;
   for (size_t k = 0; k < n && bins[k].count >= 2; ++k) out.push_back(bins[k].sum / bins[k].count);
   return out;

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/geometry/geometry.h"
-#include "core/registration/registration.h"
 #include "core/registration/consensus/consensus_scorer.h"
+#include "core/registration/registration.h"
 #include "core/registration/registration_frame.h"
 
 namespace ipd::detail {

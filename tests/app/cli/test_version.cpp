@@ -12,8 +12,7 @@ namespace {
 
 TEST(Version, IsTheProjectVersionAsMajorMinorPatch) {
   EXPECT_STREQ(ipd::version(), IPD_PROJECT_VERSION);
-  EXPECT_TRUE(std::regex_match(std::string(ipd::version()), std::regex("[0-9]+\\.[0-9]+\\.[0-9]+")))
-      << ipd::version();
+  EXPECT_TRUE(std::regex_match(std::string(ipd::version()), std::regex("[0-9]+\\.[0-9]+\\.[0-9]+"))) << ipd::version();
 }
 
 TEST(Cli, VersionPrintsIpdAndTheProjectVersion) {

@@ -20,7 +20,8 @@ namespace {
 // Waits until the worker has run everything queued and the saver has written it (a minute at most).
 void wait_done(StudyWorker& w) {
   const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(1);
-  while (!w.idle() && std::chrono::steady_clock::now() < until) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  while (!w.idle() && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   ASSERT_TRUE(w.idle()) << "the worker is still busy after a minute";
   w.saver().wait_idle();
 }

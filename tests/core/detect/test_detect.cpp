@@ -7,9 +7,9 @@
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/detect/yolo.h"
 #include "core/study/coco_import.h"
 #include "core/study/study.h"
-#include "core/detect/yolo.h"
 #include "tests/support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -22,8 +22,8 @@ bool have_python_onnx() { return std::system("/usr/bin/python3 -c 'import onnx' 
 std::string make_model(const test::TempDir& d, const std::string& name, const std::string& layout,
                        const std::string& rows, int imgsz = 640) {
   const std::string path = d / name;
-  const std::string cmd = std::string("/usr/bin/python3 ") + IPD_TESTS_DIR + "/support/make_onnx_model.py " + path + " " +
-                          std::to_string(imgsz) + " " + layout + " '" + rows + "'";
+  const std::string cmd = std::string("/usr/bin/python3 ") + IPD_TESTS_DIR + "/support/make_onnx_model.py " + path +
+                          " " + std::to_string(imgsz) + " " + layout + " '" + rows + "'";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   return path;
 }
@@ -83,7 +83,8 @@ TEST(Yolo, DecodesThresholdsNmsAndClassesThroughTheLetterbox) {
 TEST(Yolo, Yolov8HeadIsRecognisedAndDecoded) {
   REQUIRE_ONNX();
   test::TempDir d;
-  const std::string model = make_model(d, "v8.onnx", "v8", "[[320, 320, 64, 64, 0.1, 0.9, 0.2], [50, 50, 10, 10, 0.1, 0.1, 0.1]]");
+  const std::string model =
+      make_model(d, "v8.onnx", "v8", "[[320, 320, 64, 64, 0.1, 0.9, 0.2], [50, 50, 10, 10, 0.1, 0.1, 0.1]]");
   YoloDetector det(model, {});
   EXPECT_EQ(det.head(), YoloHead::kV8);
   EXPECT_EQ(det.classes(), 3);
@@ -193,10 +194,12 @@ TEST(CocoImport, EveryBadEntryIsReportedAndNothingWritten) {
   o.out_dir = d / "out";
   const CocoImportReport r = import_coco(o);
   ASSERT_EQ(r.errors.size(), 4u);
-  EXPECT_EQ(r.errors[0].to_string(), d / "ann.json" + ": annotations[0]: expected bbox with w > 0 and h > 0, found [50,25,0,10]");
+  EXPECT_EQ(r.errors[0].to_string(),
+            d / "ann.json" + ": annotations[0]: expected bbox with w > 0 and h > 0, found [50,25,0,10]");
   EXPECT_EQ(r.errors[1].to_string(), d / "ann.json" + ": annotations[1]: image_id 9 is not among the images");
   EXPECT_EQ(r.errors[2].to_string(), d / "ann.json" + ": annotations[2]: category_id 4 is not among the categories");
-  EXPECT_EQ(r.errors[3].to_string(), d / "ann.json" + ": annotations[3]: expected bbox inside the 200x100 image, found [190,25,30,10]");
+  EXPECT_EQ(r.errors[3].to_string(),
+            d / "ann.json" + ": annotations[3]: expected bbox inside the 200x100 image, found [190,25,30,10]");
   EXPECT_FALSE(r.written);
   EXPECT_FALSE(fs::exists(d / "out"));
   o.skip_bad_entries = true;

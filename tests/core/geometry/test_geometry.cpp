@@ -22,11 +22,11 @@ TEST(Iou, HandComputedValues) {
 }
 
 TEST(Iou, EdgeCasesGiveZeroNotNan) {
-  EXPECT_EQ(iou(box(0.2, 0.2, 0.1, 0.1), box(0.8, 0.8, 0.1, 0.1)), 0.0);  // disjoint
-  EXPECT_EQ(iou(box(0.2, 0.2, 0.2, 0.2), box(0.4, 0.2, 0.2, 0.2)), 0.0);  // touching edges
-  EXPECT_EQ(iou(box(0.5, 0.5, 0.0, 0.2), box(0.5, 0.5, 0.2, 0.2)), 0.0);  // zero width
+  EXPECT_EQ(iou(box(0.2, 0.2, 0.1, 0.1), box(0.8, 0.8, 0.1, 0.1)), 0.0);   // disjoint
+  EXPECT_EQ(iou(box(0.2, 0.2, 0.2, 0.2), box(0.4, 0.2, 0.2, 0.2)), 0.0);   // touching edges
+  EXPECT_EQ(iou(box(0.5, 0.5, 0.0, 0.2), box(0.5, 0.5, 0.2, 0.2)), 0.0);   // zero width
   EXPECT_EQ(iou(box(0.5, 0.5, -0.1, 0.2), box(0.5, 0.5, 0.2, 0.2)), 0.0);  // negative width
-  EXPECT_EQ(iou(box(0.5, 0.5, 0.0, 0.0), box(0.5, 0.5, 0.0, 0.0)), 0.0);  // two points
+  EXPECT_EQ(iou(box(0.5, 0.5, 0.0, 0.0), box(0.5, 0.5, 0.0, 0.0)), 0.0);   // two points
   const double nan = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(iou(box(nan, 0.5, 0.1, 0.1), box(0.5, 0.5, 0.1, 0.1)), 0.0);
   EXPECT_EQ(iou(box(0.5, 0.5, INFINITY, 0.1), box(0.5, 0.5, 0.1, 0.1)), 0.0);

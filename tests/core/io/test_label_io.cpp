@@ -151,7 +151,8 @@ TEST(LabelIo, GarbageNeverCrashesAndEveryLineIsAccountedFor) {
     for (int l = 0; l < lines; ++l) {
       if (g() % 2) {
         text += "0 0.5 0.5 0.1 0.1";  // a valid line, then mutate a few characters
-        for (int m = static_cast<int>(g() % 4); m > 0; --m) text[text.size() - 1 - g() % 17] = alphabet[g() % alphabet.size()];
+        for (int m = static_cast<int>(g() % 4); m > 0; --m)
+          text[text.size() - 1 - g() % 17] = alphabet[g() % alphabet.size()];
       } else {
         for (int c = static_cast<int>(g() % 40); c > 0; --c) text += alphabet[g() % alphabet.size()];
       }

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "core/ipd/ipd.h"
-#include "core/util/atomic_file.h"
 #include "core/report/table_format.h"
+#include "core/util/atomic_file.h"
 #include "tests/support/test_support.h"
 
 namespace ipd {

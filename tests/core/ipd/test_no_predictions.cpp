@@ -9,9 +9,9 @@
 #include "core/report/table_format.h"
 #include "core/session/session.h"
 #include "core/stats/study_statistics.h"
-#include "ui/figures/figure_table.h"
 #include "tests/support/pdf_text.h"
 #include "tests/support/test_support.h"
+#include "ui/figures/figure_table.h"
 
 namespace ipd {
 namespace {
@@ -48,7 +48,8 @@ TEST(NoPredictions, NeitherSideLeftIsNotANumber) {
             "det                                  –¹\n"
             "¹ no predictions above 0.95 in real and synth\n");
   const std::string csv = format_table(t, TableFormat::kCsv);
-  EXPECT_EQ(csv.substr(csv.find('\n') + 1), "det,,real,synth,,2,0,0,1,true,,,,no predictions above 0.95 in real and synth\n");
+  EXPECT_EQ(csv.substr(csv.find('\n') + 1),
+            "det,,real,synth,,2,0,0,1,true,,,,no predictions above 0.95 in real and synth\n");
   const std::string json = format_table(t, TableFormat::kJson);
   EXPECT_NE(json.find("\"ipd\": null"), std::string::npos) << json;
   EXPECT_NE(json.find("\"reason\": \"no predictions above 0.95 in real and synth\""), std::string::npos) << json;
@@ -56,17 +57,21 @@ TEST(NoPredictions, NeitherSideLeftIsNotANumber) {
   const std::string latex = format_table(t, TableFormat::kLatex);
   EXPECT_NE(latex.find("M1 & --$^{1}$ \\\\"), std::string::npos) << latex;
   EXPECT_NE(latex.find("\\par}\n\\par{\\footnotesize $^{1}$ no predictions above 0.95 in real and synth}\n"),
-            std::string::npos) << latex;
+            std::string::npos)
+      << latex;
   TableFormatOptions wide;
   wide.latex_wide = true;
   const std::string latex_wide = format_table(t, TableFormat::kLatex, wide);
   EXPECT_NE(latex_wide.find("det & --$^{1}$ \\\\"), std::string::npos) << latex_wide;
-  EXPECT_NE(latex_wide.find("\\end{tabular}\n\\par{\\footnotesize $^{1}$ no predictions above 0.95 in real and synth}\n"),
-            std::string::npos) << latex_wide;
+  EXPECT_NE(
+      latex_wide.find("\\end{tabular}\n\\par{\\footnotesize $^{1}$ no predictions above 0.95 in real and synth}\n"),
+      std::string::npos)
+      << latex_wide;
   // The table figure marks the cell and says why in its note.
   const ui::TableFigure fig = ui::table_figure_of(t);
   EXPECT_EQ(fig.rows.at(0).at(1), "\u2013\u00b9");
-  EXPECT_NE(fig.note.find("\u2013\u00b9: not a number, no predictions above 0.95 in real and synth."), std::string::npos)
+  EXPECT_NE(fig.note.find("\u2013\u00b9: not a number, no predictions above 0.95 in real and synth."),
+            std::string::npos)
       << fig.note;
   const std::string md = format_table(t, TableFormat::kMarkdown);
   EXPECT_NE(md.find("| det | –¹ |"), std::string::npos) << md;
@@ -83,14 +88,16 @@ TEST(NoPredictions, CompareRefusesACellWithoutANumber) {
     compare_renderers(t, "det", "real", "synth", "other", {});
     FAIL() << "compared two empty prediction sets";
   } catch (const StudyError& e) {
-    EXPECT_STREQ(e.what(), "model 'det': IPD(real, synth) is not a number: no predictions above 0.95 in real and synth");
+    EXPECT_STREQ(e.what(),
+                 "model 'det': IPD(real, synth) is not a number: no predictions above 0.95 in real and synth");
   }
   // Nor is it broken down by rock size (every bin would read 0).
   try {
     breakdown_cell(load_labels(open_study(d.path())), *t.cell("det", "real", "synth"), {});
     FAIL() << "broke down two empty prediction sets";
   } catch (const StudyError& e) {
-    EXPECT_STREQ(e.what(), "model 'det': IPD(real, synth) is not a number: no predictions above 0.95 in real and synth");
+    EXPECT_STREQ(e.what(),
+                 "model 'det': IPD(real, synth) is not a number: no predictions above 0.95 in real and synth");
   }
 }
 
@@ -102,8 +109,9 @@ TEST(NoPredictions, OneSideWithoutPredictionsIsANumberAndAWarning) {
   EXPECT_NEAR(t.cells[0].ipd, 0.5, 1e-12);
   EXPECT_EQ(t.cells[0].no_value_reason, "");
   ASSERT_EQ(t.warnings.size(), 1u);
-  EXPECT_EQ(t.warnings[0], "model 'det' has no predictions above 0.85 in 'synth' (its scenes compared with 'real'): "
-                           "every rock there counts as missed, as a detector that found nothing");
+  EXPECT_EQ(t.warnings[0],
+            "model 'det' has no predictions above 0.85 in 'synth' (its scenes compared with 'real'): "
+            "every rock there counts as missed, as a detector that found nothing");
 }
 
 TEST(NoPredictions, PredictionsThatMissEveryRockAreANumber) {
@@ -123,7 +131,7 @@ TEST(NoPredictions, TheSessionSaysWhyItsCellHasNoNumber) {
   write_study(d, "");
   Session s(load_labels(open_study(d.path())));
   EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);  // the tiny study worked by hand (test_ipd.cpp)
-  s.set_conf_threshold(0.95);  // the slider: nothing is left on either side
+  s.set_conf_threshold(0.95);                 // the slider: nothing is left on either side
   EXPECT_TRUE(std::isnan(s.totals().ipd()));
   EXPECT_EQ(s.totals().no_value_reason, "no predictions above 0.95 in real and synth");
   EXPECT_EQ(s.summary(0).no_value_reason, "no predictions above 0.95 in real and synth");
@@ -134,8 +142,9 @@ TEST(NoPredictions, TheSessionSaysWhyItsCellHasNoNumber) {
   s.set_conf_threshold(0.85);
   EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
   ASSERT_EQ(s.problems().size(), 1u);
-  EXPECT_EQ(s.problems()[0].to_string(), "model 'det' has no predictions above 0.85 in 'synth' (its scenes compared "
-                                         "with 'real'): every rock there counts as missed, as a detector that found nothing");
+  EXPECT_EQ(s.problems()[0].to_string(),
+            "model 'det' has no predictions above 0.85 in 'synth' (its scenes compared "
+            "with 'real'): every rock there counts as missed, as a detector that found nothing");
   EXPECT_EQ(s.summary(0).no_value_reason, "");
 }
 
@@ -158,7 +167,8 @@ TEST(NoPredictions, FiguresSayThereIsNoNumber) {
     r = test::run_ipd(std::string("figure ") + kind + " " + d / "s" + " --conf 0.999 --out " + d / "f.pdf");
     EXPECT_EQ(r.exit_code, 1) << kind;
     EXPECT_NE(r.err.find("': IPD(real, principled) is not a number: no predictions above 0.999 in real and principled"),
-              std::string::npos) << kind << ": " << r.err;
+              std::string::npos)
+        << kind << ": " << r.err;
   }
 }
 }  // namespace

@@ -1,15 +1,15 @@
 // The parsed-study cache (study_cache.h): reopening reuses unchanged label files and registrations, and a
 // truncated, corrupt or stale cache is never trusted: the study reads exactly as without a cache.
-#include <gtest/gtest.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <sys/stat.h>
 
-#include <filesystem>
 #include <fmt/format.h>
+#include <filesystem>
 
-#include "core/util/atomic_file.h"
-#include "core/session/session.h"
 #include "core/ipd/study_cache.h"
+#include "core/session/session.h"
+#include "core/util/atomic_file.h"
 #include "core/util/cache_signer.h"
 #include "tests/support/test_support.h"
 

@@ -86,8 +86,9 @@ TEST(StudyPipeline, ALabelFileMissingBesideItsTwinsIsAProblem) {
   const PairedStudy paired = pair_study(labels, {{"real", "synth"}}, PipelineOptions{});
   ASSERT_EQ(paired.problems.size(), 2u);  // only_real without a counterpart, then s2
   const Problem& p = paired.problems[1];
-  EXPECT_EQ(p.to_string(), d / "real/labels/s2.txt" +
-                               ": no label file, while 'synth' has one for this scene: read as a picture without rocks");
+  EXPECT_EQ(p.to_string(),
+            d / "real/labels/s2.txt" +
+                ": no label file, while 'synth' has one for this scene: read as a picture without rocks");
   EXPECT_EQ(p.scene, "s2");
   EXPECT_EQ(p.domain, "real");
   const Session session(load_labels(open_study(d.path())));

@@ -39,7 +39,8 @@ TEST(Pairing, ALoneOverlapBelowTheMinimumIsNoPair) {
 // so 0.092 of the width). Eight rocks, B the same but rock 3 moved 0.12 to the right: the identity fits the
 // other seven exactly and rock 3 is left unpaired (twice the gate would pair it), nor is it an inlier.
 TEST(Pairing, ThePaperPairsWithinTheGateOfTheSpread) {
-  const double spots[8][2] = {{0.1, 0.1}, {0.5, 0.15}, {0.9, 0.1}, {0.2, 0.5}, {0.75, 0.55}, {0.1, 0.9}, {0.5, 0.85}, {0.9, 0.9}};
+  const double spots[8][2] = {{0.1, 0.1},   {0.5, 0.15}, {0.9, 0.1},  {0.2, 0.5},
+                              {0.75, 0.55}, {0.1, 0.9},  {0.5, 0.85}, {0.9, 0.9}};
   std::vector<Box> a;
   for (const auto& s : spots) a.push_back(box(s[0], s[1], 0.04, 0.04));
   std::vector<Box> b = a;

@@ -6,10 +6,10 @@
 #include <random>
 
 #include "core/geometry/affine_estimator.h"
-#include "core/registration/pairing.h"
 #include "core/geometry/point_grid.h"
-#include "core/registration/registration.h"
 #include "core/registration/consensus/consensus_search.h"  // core/src: internal
+#include "core/registration/pairing.h"
+#include "core/registration/registration.h"
 
 namespace ipd {
 namespace {
@@ -286,7 +286,8 @@ TEST(RegistrationMethods, IdenticalLayoutsGetTheIdentityWithoutASearch) {
   const auto perm = shuffled(40, 9);
   std::vector<Box> b;
   for (int k : perm) b.push_back(a[k]);
-  for (const RegistrationMethod m : {RegistrationMethod::kConsensus, RegistrationMethod::kPaper, RegistrationMethod::kCpd}) {
+  for (const RegistrationMethod m :
+       {RegistrationMethod::kConsensus, RegistrationMethod::kPaper, RegistrationMethod::kCpd}) {
     SCOPED_TRACE(to_string(m));
     RegistrationOptions o;
     o.method = m;

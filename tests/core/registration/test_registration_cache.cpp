@@ -2,15 +2,15 @@
 // boxes and options, and shared by `ipd table` (compute_cross_table) and the session.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <fmt/format.h>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "core/util/atomic_file.h"
 #include "core/ipd/ipd.h"
 #include "core/registration/registration_cache.h"
 #include "core/session/session.h"
+#include "core/util/atomic_file.h"
 #include "core/util/cache_signer.h"
 #include "tests/support/test_support.h"
 
@@ -93,7 +93,6 @@ TEST(RegistrationCache, TableAndSessionShareItAndAgree) {
   EXPECT_DOUBLE_EQ(s.totals().ipd(), cold.cells[0].ipd);
 }
 
-
 TEST(RegistrationCache, ForgedOrForeignEntriesAreIgnoredRecomputedAndOverwritten) {
   test::TempDir d;
   const RegistrationCache cache(d / "cache");
@@ -106,13 +105,14 @@ TEST(RegistrationCache, ForgedOrForeignEntriesAreIgnoredRecomputedAndOverwritten
   j["pairs"] = {{0, 6}};  // a well-formed entry that would change every IPD using it
   const std::string forged = j.dump();
   // Signed by this installation it would be served: the signature is the only thing that stops it.
-  write_file_atomically(path, forged + "\n" + CacheSigner::instance().mac_hex(kRegistrationEntrySignature, forged) + "\n");
+  write_file_atomically(path,
+                        forged + "\n" + CacheSigner::instance().mac_hex(kRegistrationEntrySignature, forged) + "\n");
   ASSERT_TRUE(cache.load(key, 7, 7).has_value());
   EXPECT_EQ(cache.load(key, 7, 7)->pairs, (RockPairs{{0, 6}}));
   // Signed by another installation (a study copied with its cache), or carrying the old unkeyed checksum:
   // ignored, recomputed and overwritten with an entry this installation trusts.
-  for (const std::string& sig : {CacheSigner(d / "other/key").mac_hex(kRegistrationEntrySignature, forged),
-                                 std::string("0123456789abcdef")}) {
+  for (const std::string& sig :
+       {CacheSigner(d / "other/key").mac_hex(kRegistrationEntrySignature, forged), std::string("0123456789abcdef")}) {
     write_file_atomically(path, forged + "\n" + sig + "\n");
     EXPECT_FALSE(cache.load(key, 7, 7).has_value());
     bool hit = true;
@@ -156,8 +156,9 @@ TEST(RegistrationCache, ForeignCachesChangeNothingInTheTable) {
     nlohmann::json j = nlohmann::json::parse(text.substr(0, text.find('\n')));
     j["pairs"] = nlohmann::json::array();
     const std::string payload = j.dump();
-    write_file_atomically(p.string(), payload + "\n" +
-                                          CacheSigner(d / "theirs/ipd-studio/key").mac_hex(kRegistrationEntrySignature, payload) + "\n");
+    write_file_atomically(
+        p.string(),
+        payload + "\n" + CacheSigner(d / "theirs/ipd-studio/key").mac_hex(kRegistrationEntrySignature, payload) + "\n");
   }
   EXPECT_NE(table_as("theirs"), fresh);  // under the key that signed them, the forgeries count
   // Their run also left a parsed-study file holding the forged registrations, signed with their key.

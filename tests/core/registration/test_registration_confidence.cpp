@@ -3,15 +3,15 @@
 // better is the answer.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <fmt/format.h>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "core/util/atomic_file.h"
 #include "core/registration/registration.h"
 #include "core/registration/registration_cache.h"
 #include "core/registration/registration_recorder.h"
+#include "core/util/atomic_file.h"
 #include "tests/support/test_support.h"
 
 namespace ipd {
@@ -59,7 +59,8 @@ TEST(RegistrationAmbiguity, OneRockAgainstManyIsTooFewPairs) {
   // well placed a translation as any).
   for (auto m : kAll) {
     const auto r = registered({many[5], many[9]}, many, m);
-    const RockPairs want = m == RegistrationMethod::kConsensus ? RockPairs{{0, 11}, {1, 24}} : RockPairs{{0, 5}, {1, 9}};
+    const RockPairs want =
+        m == RegistrationMethod::kConsensus ? RockPairs{{0, 11}, {1, 24}} : RockPairs{{0, 5}, {1, 9}};
     EXPECT_EQ(r.pairs, want) << to_string(m);
     EXPECT_EQ(r.ambiguity, Ambiguity::kFewPairs) << to_string(m);
     EXPECT_EQ(r.confidence, 0.0) << to_string(m);
@@ -191,7 +192,8 @@ TEST(Cli, RegisterNamesWhyARegistrationIsAmbiguous) {
   const auto many = scattered(3, 28);
   std::string all;
   for (const Box& b : many) all += fmt::format("0 {:.4f} {:.4f} {:.4f} {:.4f}\n", b.cx, b.cy, b.w, b.h);
-  test::write_text(d / "one.txt", fmt::format("0 {:.4f} {:.4f} {:.4f} {:.4f}\n", many[5].cx, many[5].cy, many[5].w, many[5].h));
+  test::write_text(d / "one.txt",
+                   fmt::format("0 {:.4f} {:.4f} {:.4f} {:.4f}\n", many[5].cx, many[5].cy, many[5].w, many[5].h));
   test::write_text(d / "many.txt", all);
   const auto r = test::run_ipd("register " + d / "one.txt " + d / "many.txt");
   ASSERT_EQ(r.exit_code, 0) << r.err;

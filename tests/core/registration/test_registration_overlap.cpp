@@ -7,8 +7,8 @@
 #include <cmath>
 #include <random>
 
-#include "core/util/parallel.h"
 #include "core/registration/registration.h"
+#include "core/util/parallel.h"
 
 namespace ipd {
 namespace {
@@ -119,12 +119,11 @@ TEST(SmallOverlap, TheSecondLookIsInTheReportAndTheTrace) {
   const RegistrationReport r = register_rocks(s.a, s.b, o);
   EXPECT_EQ(r.note.rfind("second look: ", 0), 0u) << r.note;
   const auto& steps = r.trace.steps;
-  const auto polish = std::find_if(steps.begin(), steps.end(),
-                                   [](const TraceStep& t) { return t.kind == TraceStepKind::kPolish; });
+  const auto polish =
+      std::find_if(steps.begin(), steps.end(), [](const TraceStep& t) { return t.kind == TraceStepKind::kPolish; });
   ASSERT_NE(polish, steps.end());
-  const long judged = std::count_if(polish, steps.end(), [](const TraceStep& t) {
-    return t.kind == TraceStepKind::kRefinement;
-  });
+  const long judged =
+      std::count_if(polish, steps.end(), [](const TraceStep& t) { return t.kind == TraceStepKind::kRefinement; });
   EXPECT_GE(judged, 1);
   EXPECT_NE(r.note.find(fmt::format("{} candidates judged", judged)), std::string::npos) << r.note;
   EXPECT_EQ(r.pairs, s.truth);

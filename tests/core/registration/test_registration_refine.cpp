@@ -7,8 +7,8 @@
 #include <random>
 
 #include "core/geometry/affine_estimator.h"
-#include "core/registration/registration.h"
 #include "core/registration/consensus/consensus_scorer.h"  // core/src: internal
+#include "core/registration/registration.h"
 #include "core/registration/registration_frame.h"
 #include "tests/support/test_support.h"
 
@@ -79,7 +79,10 @@ struct ScorerSetup {
   long anchor = 0;
   detail::ConsensusScorer scorer;
   ScorerSetup(std::vector<Box> boxes_a, std::vector<Box> boxes_b, double gate_of_spread)
-      : a(std::move(boxes_a)), b(std::move(boxes_b)), frame(a, b, 1.0), gate(gate_of_spread),
+      : a(std::move(boxes_a)),
+        b(std::move(boxes_b)),
+        frame(a, b, 1.0),
+        gate(gate_of_spread),
         scorer(frame, gate, detail::Bounds{0.4, 2.5, 45 * M_PI / 180, 2.0}, 1000, &anchor) {}
 };
 

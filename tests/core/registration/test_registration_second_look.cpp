@@ -17,7 +17,9 @@ using test::box;
 TEST(SimilarityLeastSquares, RecoversRotationScaleAndShiftFromTwoOrMorePoints) {
   // 1.2 x rotation by 30 degrees, then (0.5, -0.25): [c -s; s c] with c = 1.2 cos 30, s = 1.2 sin 30.
   const double c = 1.2 * std::cos(M_PI / 6), s = 1.2 * std::sin(M_PI / 6);
-  auto map = [&](const Eigen::Vector2d& p) { return Eigen::Vector2d(c * p.x() - s * p.y() + 0.5, s * p.x() + c * p.y() - 0.25); };
+  auto map = [&](const Eigen::Vector2d& p) {
+    return Eigen::Vector2d(c * p.x() - s * p.y() + 0.5, s * p.x() + c * p.y() - 0.25);
+  };
   const Eigen::Vector2d src[4] = {{0, 0}, {1, 0}, {0.5, 0.5}, {2, 1}};
   Eigen::Vector2d dst[4];
   for (int k = 0; k < 4; ++k) dst[k] = map(src[k]);

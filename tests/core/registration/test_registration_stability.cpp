@@ -8,8 +8,8 @@
 #include <numeric>
 #include <random>
 
-#include "core/registration/registration.h"
 #include "app/bench/registration_benchmark.h"
+#include "core/registration/registration.h"
 
 namespace ipd {
 namespace {
@@ -119,8 +119,8 @@ TEST(RegistrationStability, DefinedResultsForDegenerateInputs) {
   std::vector<Box> dup = c.a;
   dup.insert(dup.end(), c.a.begin(), c.a.begin() + 5);  // five rocks labelled twice
   const std::vector<std::pair<std::vector<Box>, std::vector<Box>>> inputs = {
-      {{}, {}}, {{one}, {}}, {{}, {one}}, {{one}, {one}}, {{one, line[3]}, {one, line[3]}},
-      {same, same}, {line, line}, {same, line}, {dup, c.b}, {c.a, dup}};
+      {{}, {}},     {{one}, {}},  {{}, {one}},  {{one}, {one}}, {{one, line[3]}, {one, line[3]}},
+      {same, same}, {line, line}, {same, line}, {dup, c.b},     {c.a, dup}};
   for (auto method : kAllMethods) {
     for (size_t k = 0; k < inputs.size(); ++k) {
       RegistrationOptions o;

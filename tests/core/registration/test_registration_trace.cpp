@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
-#include "ui/gui/studio_layout.h"
 #include "core/registration/registration.h"
+#include "ui/gui/studio_layout.h"
 
 namespace ipd {
 namespace {
@@ -80,12 +80,14 @@ TEST(RegistrationTrace, PaperRecordsEveryHypothesisWithItsTriples) {
   }
   EXPECT_GE(bests, 1);
   EXPECT_NEAR(best, r.score, 1e-12);
-  const auto last = std::find_if(r.trace.steps.rbegin(), r.trace.steps.rend(), [](const auto& x) { return x.new_best; });
+  const auto last =
+      std::find_if(r.trace.steps.rbegin(), r.trace.steps.rend(), [](const auto& x) { return x.new_best; });
   EXPECT_TRUE(last->b_from_a.isApprox(r.affine, 1e-12));
   // 1,182 hypotheses here: counts print with thousands separators (ui::thousands formats the same way).
   EXPECT_GE(r.hypotheses, 1000);
-  EXPECT_EQ(r.trace.stop.rfind("reached the trial limit (200 samples, " + ui::thousands(r.hypotheses) + " hypotheses, ", 0),
-            0u)
+  EXPECT_EQ(
+      r.trace.stop.rfind("reached the trial limit (200 samples, " + ui::thousands(r.hypotheses) + " hypotheses, ", 0),
+      0u)
       << r.trace.stop;
 }
 
@@ -111,7 +113,8 @@ TEST(RegistrationTrace, ConsensusRecordsHypothesesRefinementsAndPolish) {
       ASSERT_EQ(st[k].a_sample.size(), 3u);
       ASSERT_EQ(st[k].b_sample.size(), 3u);
       for (int j = 0; j < 3; ++j) {
-        const Eigen::Vector2d d = apply(st[k].b_from_a, s.a[st[k].a_sample[j]].centre()) - s.b[st[k].b_sample[j]].centre();
+        const Eigen::Vector2d d =
+            apply(st[k].b_from_a, s.a[st[k].a_sample[j]].centre()) - s.b[st[k].b_sample[j]].centre();
         if (st[k].kind == TraceStepKind::kHypothesis) {
           ASSERT_LT(d.norm(), 1e-9);
         }
@@ -205,8 +208,8 @@ TEST(RegistrationConfidence, CpdMeasuresItsConfidenceAgainstRivalPlacements) {
   o.aspect = 1.0;
 
   std::vector<Box> a, b;
-  const double spots[12][2] = {{0.12, 0.2}, {0.3, 0.75}, {0.45, 0.3}, {0.6, 0.85}, {0.8, 0.15}, {0.2, 0.5},
-                               {0.7, 0.5}, {0.9, 0.7}, {0.35, 0.1}, {0.55, 0.6}, {0.15, 0.85}, {0.85, 0.4}};
+  const double spots[12][2] = {{0.12, 0.2}, {0.3, 0.75}, {0.45, 0.3}, {0.6, 0.85}, {0.8, 0.15},  {0.2, 0.5},
+                               {0.7, 0.5},  {0.9, 0.7},  {0.35, 0.1}, {0.55, 0.6}, {0.15, 0.85}, {0.85, 0.4}};
   for (int k = 0; k < 12; ++k) {
     Box r;
     r.cx = spots[k][0], r.cy = spots[k][1], r.w = 0.03 + 0.004 * k, r.h = 0.05 - 0.002 * k;
@@ -273,9 +276,9 @@ TEST(RegistrationMethods, OneTableForNamesParsingAndMessages) {
 TEST(RobustLoop, ComputeNumTrialsAsColmap) {
   // log(1 - 0.99) / log(1 - 0.5^3) = 34.49 -> 35
   EXPECT_EQ(compute_num_trials(5, 10, 3, 0.99, 1000), 35);
-  EXPECT_EQ(compute_num_trials(10, 10, 3, 0.99, 1000), 1);    // every point an inlier
-  EXPECT_EQ(compute_num_trials(0, 10, 3, 0.99, 1000), 1000);  // none: the cap
-  EXPECT_EQ(compute_num_trials(1, 100, 3, 0.99, 1000), 1000); // 4.6 million: the cap
+  EXPECT_EQ(compute_num_trials(10, 10, 3, 0.99, 1000), 1);     // every point an inlier
+  EXPECT_EQ(compute_num_trials(0, 10, 3, 0.99, 1000), 1000);   // none: the cap
+  EXPECT_EQ(compute_num_trials(1, 100, 3, 0.99, 1000), 1000);  // 4.6 million: the cap
   EXPECT_EQ(compute_num_trials(5, 10, 3, 1.0, 1000), 1000);
   // log(0.05) / log(1 - 0.8^2) = 2.93 -> 3
   EXPECT_EQ(compute_num_trials(8, 10, 2, 0.95, 1000), 3);

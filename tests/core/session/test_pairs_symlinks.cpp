@@ -22,8 +22,7 @@ void write_study(const test::TempDir& d) { test::write_two_rock_study(d); }
 const char* kPairs = "{\"pairs\": [[0, 1]]}\n";
 
 std::string refused(const std::string& path, const char* action) {
-  return path + ": is a symbolic link; " + action +
-         " through it is refused (links inside a study are never followed)";
+  return path + ": is a symbolic link; " + action + " through it is refused (links inside a study are never followed)";
 }
 
 std::string error_of(const std::function<void()>& f) {
@@ -170,9 +169,9 @@ TEST(PairsSymlinks, StaleTempFilesAreTidiedOnlyInRealFolders) {
   test::write_text(d / ("pairs/real__synth/" + dead), "{");
   test::write_text(x / dead, "someone else's");
   fs::create_symlink(x.path(), d / "pairs/synth__real");
-  EXPECT_THROW(Session::open(d.path()), StudyError);  // the link refuses the study ...
+  EXPECT_THROW(Session::open(d.path()), StudyError);            // the link refuses the study ...
   EXPECT_FALSE(fs::exists(d / ("pairs/real__synth/" + dead)));  // ... after its own leftovers were tidied
-  EXPECT_TRUE(fs::exists(x / dead));  // but nothing behind the link
+  EXPECT_TRUE(fs::exists(x / dead));                            // but nothing behind the link
 }
 
 }  // namespace

@@ -22,8 +22,9 @@ namespace {
 void write_study(const test::TempDir& d) { test::write_two_rock_study(d); }
 
 std::string conflict_message(const std::string& file) {
-  return file + ": changed on disk since this window read it (another window or program saved it); not overwritten: "
-                "keep one version";
+  return file +
+         ": changed on disk since this window read it (another window or program saved it); not overwritten: "
+         "keep one version";
 }
 
 TEST(SaveConflict, ASecondWindowsSaveDoesNotOverwriteTheFirstOnesEdit) {

@@ -43,7 +43,7 @@ TEST(SaveOrder, AFailedWriteKeepsTheOtherNameOrderFile) {
   test::write_text(d / "pairs/real__synth", "in the way");
   EXPECT_THROW(run_save_job(job), IoError);
   EXPECT_TRUE(fs::exists(d / "pairs/synth__real/s1.json"));
-  fs::remove(d / "pairs/real__synth");  // (a file where a pairs folder belongs is itself an error to read)
+  fs::remove(d / "pairs/real__synth");               // (a file where a pairs folder belongs is itself an error to read)
   EXPECT_NEAR(ipd_on_disk(d.path()), kHand, 1e-12);  // not the automatic 1/2
 }
 

@@ -6,10 +6,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <cmath>
 #include <filesystem>
 #include <functional>
-#include <fmt/format.h>
 #include <random>
 
 #include "core/session/session.h"
@@ -147,8 +147,11 @@ TEST(Session, IncrementalTotalsMatchAFullRecompute) {
   for (int step = 0; step < 40; ++step) {
     const int scene = static_cast<int>(g() % 3);
     const int kind = static_cast<int>(g() % 4);
-    Edit e{static_cast<Edit::Kind>(kind), static_cast<int>(g() % 8), static_cast<int>(g() % 8),
-           g() % 2 ? Side::kA : Side::kB, {}};
+    Edit e{static_cast<Edit::Kind>(kind),
+           static_cast<int>(g() % 8),
+           static_cast<int>(g() % 8),
+           g() % 2 ? Side::kA : Side::kB,
+           {}};
     run_save_job(s.apply(scene, e));
     if (step % 7 == 3) run_save_job(*s.undo());
   }

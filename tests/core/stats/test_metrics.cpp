@@ -6,9 +6,9 @@
 #include <map>
 #include <opencv2/core.hpp>
 
+#include "core/report/rock_export.h"
 #include "core/stats/detection_metrics.h"
 #include "core/stats/image_metrics.h"
-#include "core/report/rock_export.h"
 #include "core/stats/study_statistics.h"
 #include "tests/support/stats_study.h"
 #include "tests/support/test_support.h"

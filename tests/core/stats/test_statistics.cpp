@@ -1,17 +1,17 @@
 // Bootstrap intervals, the paired comparison and breakdowns: values worked out by hand.
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <regex>
 #include <fmt/format.h>
+#include <cmath>
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "core/demo/demo_study.h"
-#include "core/stats/statistics.h"
 #include "core/session/session_statistics.h"
+#include "core/stats/statistics.h"
 #include "core/stats/study_statistics.h"
-#include "tests/support/stats_study.h"
 #include "tests/support/figure_test_study.h"
+#include "tests/support/stats_study.h"
 #include "tests/support/test_support.h"
 
 namespace ipd {
@@ -71,8 +71,9 @@ TEST(Statistics, OneSceneWithPairsHasNoIntervalAndNoTest) {
   EXPECT_EQ(c.scenes, 1);
   RendererComparison rc;
   rc.model = "det", rc.ref = "real", rc.a = "a", rc.b = "b", rc.result = c;
-  EXPECT_EQ(comparison_sentence(rc),
-            "cannot tell whether a or b is closer to real for det: \u0394IPD = \u22120.4000, 1 scene: no interval, no test");
+  EXPECT_EQ(
+      comparison_sentence(rc),
+      "cannot tell whether a or b is closer to real for det: \u0394IPD = \u22120.4000, 1 scene: no interval, no test");
 }
 
 TEST(Statistics, SeededDrawsDependOnSeedAndKeyOnly) {
@@ -390,7 +391,8 @@ TEST(StatsCli, OneSceneSaysNoIntervalAndNoTest) {
   const auto compare = test::run_ipd("compare " + d.path());
   ASSERT_EQ(compare.exit_code, 0) << compare.err;
   EXPECT_NE(compare.out.find("cannot tell whether principled or hapke is closer to real for det-real: \u0394IPD = "),
-            std::string::npos) << compare.out;
+            std::string::npos)
+      << compare.out;
   EXPECT_NE(compare.out.find(", 1 scene: no interval, no test\n"), std::string::npos) << compare.out;
   EXPECT_EQ(compare.out.find("significant"), std::string::npos) << compare.out;
   EXPECT_EQ(compare.out.find("= -"), std::string::npos) << compare.out;  // one minus sign: U+2212

@@ -72,8 +72,9 @@ TEST(FixedPairsBinding, AnInsertedRowShiftsNoPair) {
   EXPECT_EQ(t.cells[0].unpaired_a, 1);
   EXPECT_EQ(t.cells[0].unpaired_b, 2);
   ASSERT_EQ(t.pairs_problems.size(), 1u);
-  EXPECT_EQ(t.pairs_problems[0].message,
-            "1 hand-paired rock(s) changed rows in their label files and were found again by their boxes: synth 1 -> 2");
+  EXPECT_EQ(
+      t.pairs_problems[0].message,
+      "1 hand-paired rock(s) changed rows in their label files and were found again by their boxes: synth 1 -> 2");
 }
 
 TEST(FixedPairsBinding, ExcludedRocksAndTheOtherNameOrderAreBoundToo) {
@@ -113,7 +114,8 @@ TEST(FixedPairsBinding, ARemovedRockMakesTheScenesHandPairsUnusable) {
   EXPECT_TRUE(t.pairs_problems[0].unusable);
   const std::string message =
       "hand pairs not used (registration counts instead): a stored rock is no longer in its label file: rock 1 "
-      "(0.2 0.2 0.1 0.1) of 'synth' (" + d / "synth/labels/s1.txt" + ")";
+      "(0.2 0.2 0.1 0.1) of 'synth' (" +
+      d / "synth/labels/s1.txt" + ")";
   EXPECT_EQ(t.pairs_problems[0].message, message);
   EXPECT_TRUE(t.warnings.empty());  // an error, not a warning: the CLI decides
   // Callers without a problem list get the error itself.
@@ -134,7 +136,8 @@ TEST(FixedPairsBinding, TheCliExitsOneNamingTheFileUnlessSkipBadLines) {
   test::write_text(f, kHandPairs);
   const std::string line = f +
                            ": hand pairs not used (registration counts instead): a stored rock is no longer in its "
-                           "label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" + d / "synth/labels/s1.txt" + ")";
+                           "label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" +
+                           d / "synth/labels/s1.txt" + ")";
   const auto strict = test::run_ipd("table --no-cache --bootstrap 0 " + d.path());
   EXPECT_EQ(strict.exit_code, 1) << strict.err;
   EXPECT_NE(strict.err.find(line + "\n"), std::string::npos) << strict.err;
@@ -156,8 +159,9 @@ TEST(FixedPairsBinding, AFigureOfTheSceneSaysSoToo) {
   const std::string out = d / "fig.svg";
   const auto strict = test::run_ipd("figure registration " + d.path() + " --scene s1 --out " + out);
   EXPECT_EQ(strict.exit_code, 1) << strict.err;
-  EXPECT_NE(strict.err.find(f + ": hand pairs not used (registration counts instead): a stored rock is no longer in "
-                                "its label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" +
+  EXPECT_NE(strict.err.find(f +
+                            ": hand pairs not used (registration counts instead): a stored rock is no longer in "
+                            "its label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" +
                             d / "synth/labels/s1.txt" + ") (pass --skip-bad-lines to draw registration's pairs)\n"),
             std::string::npos)
       << strict.err;

@@ -105,7 +105,8 @@ TEST(Study, ClearErrorsForUnusableStudies) {
     return std::string("no error");
   };
   EXPECT_EQ(message("[a, b]: 1\n"), d / "study.yaml" + ":1: expected a setting name, found a list");
-  EXPECT_EQ(message("models: {m: [1, 2]}\n"), d / "study.yaml" + ":1: models.m must be a mapping like {trained_on: real}");
+  EXPECT_EQ(message("models: {m: [1, 2]}\n"),
+            d / "study.yaml" + ":1: models.m must be a mapping like {trained_on: real}");
   EXPECT_EQ(message("rock_class: [0\n"), d / "study.yaml" + ":2: invalid YAML: end of sequence flow not found");
 }
 
@@ -189,9 +190,11 @@ TEST(Cli, ExitCodesAndMessages) {
   r = test::run_ipd("table " + d.path() + " --out " + d / "table.txt");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find(d / "real/labels/s.txt" + ":1: expected 5 columns (class cx cy w h), found 4"),
-            std::string::npos) << r.err;
+            std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find(d / "real/labels/s.txt" + ":2: expected a number for cy in column 3, found 'x'"),
-            std::string::npos) << r.err;
+            std::string::npos)
+      << r.err;
   EXPECT_FALSE(std::filesystem::exists(d / "table.txt"));  // no half-written output
   r = test::run_ipd("table " + d.path() + " --skip-bad-lines --out " + d / "table.txt");
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -203,7 +206,8 @@ void write_register_pair(const test::TempDir& d) {
   test::write_text(d / "r.txt", "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.05 0.05\n0 0.4 0.8 0.05 0.05\n0 0.8 0.8 0.05 0.05\n");
   test::write_text(d / "s.txt", "0 0.81 0.81 0.05 0.05\n0 0.21 0.21 0.05 0.05\n0 0.41 0.81 0.05 0.05\n");
   // r.txt with one box a hair wider: the same centres, but not an identical layout, so it is searched.
-  test::write_text(d / "r2.txt", "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.05 0.05\n0 0.4 0.8 0.05 0.05\n0 0.8 0.8 0.05 0.051\n");
+  test::write_text(d / "r2.txt",
+                   "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.05 0.05\n0 0.4 0.8 0.05 0.05\n0 0.8 0.8 0.05 0.051\n");
 }
 
 TEST(Cli, RegisterPrintsOneJsonObjectPerLine) {
@@ -242,8 +246,9 @@ TEST(Cli, RegisterJsonNamesItsCountsAsTheTextDoes) {
   auto j = nlohmann::json::parse(r.out);
   std::string keys;
   for (const auto& [key, value] : j.items()) keys += key + " ";
-  EXPECT_EQ(keys, "affine ambiguous confidence elapsed_ms em_iterations inliers method pairs real score stop synth work "
-                  "work_budget ");
+  EXPECT_EQ(keys,
+            "affine ambiguous confidence elapsed_ms em_iterations inliers method pairs real score stop synth work "
+            "work_budget ");
   EXPECT_EQ(j["em_iterations"], 6);
   r = test::run_ipd("register " + d / "r.txt " + d / "s.txt --method cpd");
   EXPECT_NE(r.out.find("  method cpd: 6 EM iterations, score 0.00000; stopped: "), std::string::npos) << r.out;
@@ -267,15 +272,17 @@ TEST(Cli, RegisterSaysAmbiguousWithoutNestedParentheses) {
   for (int y = 0; y < 5; ++y)
     for (int x = 0; x < 5; ++x) {
       a += fmt::format("0 {:.2f} {:.2f} 0.04 0.04\n", 0.1 + 0.2 * x, 0.1 + 0.2 * y);
-      if (x >= 1 && x <= 3 && y >= 1 && y <= 3) b += fmt::format("0 {:.2f} {:.2f} 0.04 0.04\n", 0.11 + 0.2 * x, 0.1 + 0.2 * y);
+      if (x >= 1 && x <= 3 && y >= 1 && y <= 3)
+        b += fmt::format("0 {:.2f} {:.2f} 0.04 0.04\n", 0.11 + 0.2 * x, 0.1 + 0.2 * y);
     }
   test::write_text(d / "a.txt", a);
   test::write_text(d / "b.txt", b);
   const auto r = test::run_ipd("register " + d / "a.txt " + d / "b.txt");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("; AMBIGUOUS: another alignment fits as well or almost as well (e.g. a small overlap or a repetitive "
-                       "layout)\n"),
-            std::string::npos)
+  EXPECT_NE(
+      r.out.find("; AMBIGUOUS: another alignment fits as well or almost as well (e.g. a small overlap or a repetitive "
+                 "layout)\n"),
+      std::string::npos)
       << r.out;
   EXPECT_EQ(r.out.find("))"), std::string::npos) << r.out;
 }
@@ -285,8 +292,9 @@ TEST(Cli, RegisterSaysAmbiguousWithoutNestedParentheses) {
 TEST(Cli, RegisterTrialsIsEachMethodsBudget) {
   test::TempDir d;
   write_register_pair(d);
-  EXPECT_NE(test::run_ipd("register --help").out.find("Search budget: paper: K samples (default 1000); consensus: "
-                                                      "hypothesis cap (default 1000); cpd: EM iterations (default 100)"),
+  EXPECT_NE(test::run_ipd("register --help")
+                .out.find("Search budget: paper: K samples (default 1000); consensus: "
+                          "hypothesis cap (default 1000); cpd: EM iterations (default 100)"),
             std::string::npos);
   auto j = nlohmann::json::parse(test::run_ipd("register " + d / "s.txt " + d / "r.txt --method cpd --json").out);
   EXPECT_EQ(j["em_iterations"], 12);  // converges within the default 100
@@ -296,7 +304,8 @@ TEST(Cli, RegisterTrialsIsEachMethodsBudget) {
   j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["em_iterations"], 7);
   EXPECT_EQ(j["stop"], "reached the trial limit");
-  j = nlohmann::json::parse(test::run_ipd("register " + d / "r.txt " + d / "s.txt --method paper --trials 5 --json").out);
+  j = nlohmann::json::parse(
+      test::run_ipd("register " + d / "r.txt " + d / "s.txt --method paper --trials 5 --json").out);
   EXPECT_EQ(j["trials"], 5);
   EXPECT_EQ(j["hypotheses"], 30);  // each sample in all 6 orders
   for (const char* method : {"cpd", "paper", "consensus"}) {
@@ -314,11 +323,13 @@ TEST(Cli, RegisterListPrintsWhatItsHelpSays) {
   write_register_pair(d);
   test::write_text(d / "list.tsv", d / "s.txt" + "\t" + d / "r.txt" + "\n# a comment\n\n" + d / "r.txt" + "\t" +
                                        d / "none.txt" + "\n" + d / "r.txt" + "\t" + d / "s.txt" + "\n");
-  EXPECT_NE(test::run_ipd("register --help").out.find(
-                "TSV file of real_path<TAB>synth_path lines (blank and # lines skipped); prints one report per pair, "
-                "in the file's order: text, or with --json one JSON object per line (a pair that fails: {real, "
-                "synth, error})"),
-            std::string::npos);
+  EXPECT_NE(
+      test::run_ipd("register --help")
+          .out.find(
+              "TSV file of real_path<TAB>synth_path lines (blank and # lines skipped); prints one report per pair, "
+              "in the file's order: text, or with --json one JSON object per line (a pair that fails: {real, "
+              "synth, error})"),
+      std::string::npos);
   auto r = test::run_ipd("register --list " + d / "list.tsv");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err.find(d / "none.txt: no such label file\n"), 0u) << r.err;
@@ -334,8 +345,9 @@ TEST(Cli, RegisterListPrintsWhatItsHelpSays) {
   for (std::string line; std::getline(lines, line);) objects.push_back(nlohmann::json::parse(line));
   ASSERT_EQ(objects.size(), 3u) << r.out;
   EXPECT_EQ(objects[0]["real"], d / "s.txt");
-  EXPECT_EQ(objects[1], nlohmann::json({{"real", d / "r.txt"}, {"synth", d / "none.txt"},
-                                        {"error", d / "none.txt: no such label file"}}));
+  EXPECT_EQ(objects[1],
+            nlohmann::json(
+                {{"real", d / "r.txt"}, {"synth", d / "none.txt"}, {"error", d / "none.txt: no such label file"}}));
   EXPECT_EQ(objects[2]["real"], d / "r.txt");
   EXPECT_EQ(objects[2]["pairs"], nlohmann::json::parse("[[0,1],[2,2],[3,0]]"));
 }
@@ -347,23 +359,33 @@ TEST(Cli, RegisterTextSaysWhatEachCountCounts) {
   write_register_pair(d);
   auto r = test::run_ipd("register " + d / "r.txt " + d / "r.txt");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("  method consensus: 0 trials, 0 hypotheses, score 0.00000; stopped: identical layouts (no search needed)\n"),
-            std::string::npos) << r.out;
+  EXPECT_NE(
+      r.out.find(
+          "  method consensus: 0 trials, 0 hypotheses, score 0.00000; stopped: identical layouts (no search needed)\n"),
+      std::string::npos)
+      << r.out;
   r = test::run_ipd("register " + d / "r.txt " + d / "r2.txt");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("  method consensus: 1 trial, 1 hypothesis, score 3.99843; stopped: "), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\n  4 centres within the gate; 4 pairs by aligned-box IoU (one-to-one)\n"), std::string::npos) << r.out;
-  EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(\n  work: 4 of \d{1,3}(,\d{3})+ point evaluations \(the bound for this many rocks\); confidence)"))) << r.out;
+  EXPECT_NE(r.out.find("  method consensus: 1 trial, 1 hypothesis, score 3.99843; stopped: "), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\n  4 centres within the gate; 4 pairs by aligned-box IoU (one-to-one)\n"), std::string::npos)
+      << r.out;
+  EXPECT_TRUE(std::regex_search(
+      r.out,
+      std::regex(R"(\n  work: 4 of \d{1,3}(,\d{3})+ point evaluations \(the bound for this many rocks\); confidence)")))
+      << r.out;
   EXPECT_NE(r.out.find("[1.00000 0.00000 0.00000; 0.00000 1.00000 0.00000]"), std::string::npos) << r.out;
   // Without --image-size it says what it assumed (ipd-studio and ipd table take the size from study.yaml).
   EXPECT_NE(r.err.find("note: pictures taken as square (aspect 1); --image-size W,H measures angles in pixels"),
-            std::string::npos) << r.err;
+            std::string::npos)
+      << r.err;
   EXPECT_EQ(test::run_ipd("register " + d / "r.txt " + d / "r.txt --image-size 960,600").err.find("note: pictures"),
             std::string::npos);
   r = test::run_ipd("register " + d / "r.txt " + d / "s.txt --method paper");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("  method paper: 1,000 trials, 6,000 hypotheses, "), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\n  3 centres within the gate; 3 pairs by mutual nearest neighbour\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n  3 centres within the gate; 3 pairs by mutual nearest neighbour\n"), std::string::npos)
+      << r.out;
   EXPECT_EQ(r.out.find("e+"), std::string::npos) << r.out;
 }
 
@@ -372,21 +394,25 @@ TEST(Cli, RegisterTextSaysWhatEachCountCounts) {
 TEST(Cli, TableNamesTheThresholdAndTheAmbiguousRegistrations) {
   test::TempDir d;
   test::write_text(d / "study.yaml", "domains: [real, synth]\nmodels: {det: {trained_on: real}}\n");
-  test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.05 0.05\n0 0.4 0.8 0.05 0.05\n0 0.8 0.8 0.05 0.05\n");
+  test::write_text(d / "real/labels/s1.txt",
+                   "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.05 0.05\n0 0.4 0.8 0.05 0.05\n0 0.8 0.8 0.05 0.05\n");
   test::write_text(d / "synth/labels/s1.txt", "0 0.81 0.81 0.05 0.05\n0 0.21 0.21 0.05 0.05\n0 0.41 0.81 0.05 0.05\n");
   test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.05 0.05 0.9\n");
   test::write_text(d / "synth/predictions/det/s1.txt", "0 0.81 0.81 0.05 0.05 0.4\n");
   auto r = test::run_ipd("table " + d.path() + " --method paper --bootstrap 0 --conf 0.3");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("\nPredictions with confidence below 0.3 dropped (--conf, else study.yaml's conf_threshold).\n"),
-            std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("\n1 scene: registration ambiguous (see ipd-studio '?'); --verbose lists them\n"), std::string::npos)
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("\n1 scene: registration ambiguous (see ipd-studio '?'); --verbose lists them\n"),
+            std::string::npos)
       << r.out;
   r = test::run_ipd("table " + d.path() + " --method paper --bootstrap 0 --verbose");
   EXPECT_EQ(r.out.find("Predictions with confidence below"), std::string::npos) << r.out;  // none dropped
-  EXPECT_NE(r.out.find("\n1 scene: registration ambiguous (see ipd-studio '?'):\n  real vs synth: s1: another alignment "
-                       "fits as well or almost as well (e.g. a small overlap or a repetitive layout)\n"),
-            std::string::npos)
+  EXPECT_NE(
+      r.out.find("\n1 scene: registration ambiguous (see ipd-studio '?'):\n  real vs synth: s1: another alignment "
+                 "fits as well or almost as well (e.g. a small overlap or a repetitive layout)\n"),
+      std::string::npos)
       << r.out;
   r = test::run_ipd("table " + d.path() + " --method paper --bootstrap 0 --format csv");  // CSV stays CSV
   EXPECT_EQ(r.out.find("ambiguous"), std::string::npos) << r.out;

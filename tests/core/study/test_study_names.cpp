@@ -3,8 +3,8 @@
 // or scene whose name can't be a file name part is refused naming where it came from.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <fmt/format.h>
+#include <filesystem>
 
 #include "core/study/fixed_pairs.h"
 #include "core/study/study.h"
@@ -48,9 +48,9 @@ TEST(StudyNames, WhatCanBePartOfAFileName) {
 TEST(StudyNames, StudyYamlModelThatIsAPathIsRefusedWithFileAndLine) {
   test::TempDir d;
   minimal_study(d);
-  test::write_text(d / "study.yaml", "rock_class: 0\nmodels:\n  det: {trained_on: real}\n  ../../x: {trained_on: real}\n");
-  EXPECT_EQ(open_error(d.path()),
-            d / "study.yaml" + ":4: model name '../../x' contains a path separator '/'");
+  test::write_text(d / "study.yaml",
+                   "rock_class: 0\nmodels:\n  det: {trained_on: real}\n  ../../x: {trained_on: real}\n");
+  EXPECT_EQ(open_error(d.path()), d / "study.yaml" + ":4: model name '../../x' contains a path separator '/'");
   test::write_text(d / "study.yaml", "models:\n  \"..\": {}\n");
   EXPECT_EQ(open_error(d.path()), d / "study.yaml" + ":2: model name '..' is '..', which names a folder, not a file");
   test::write_text(d / "study.yaml", "models:\n  \"a\\x07b\": {}\n");
@@ -69,13 +69,14 @@ TEST(StudyNames, DomainModelAndSceneNamesFromFoldersAreChecked) {
   fs::remove_all(d / long_domain);
 
   fs::create_directories(d / "real/predictions/det\nx");
-  EXPECT_EQ(open_error(d.path()), d / "real/predictions/det\\x0ax" +
-                                      ": model name 'det\\x0ax' contains a control character (byte 0x0a)");
+  EXPECT_EQ(open_error(d.path()),
+            d / "real/predictions/det\\x0ax" + ": model name 'det\\x0ax' contains a control character (byte 0x0a)");
   fs::remove_all(d / "real/predictions");
 
   const std::string long_stem(251, 's');  // "<stem>.txt" fits, "<stem>.json" (its pairs file) would not
   test::write_text(d / "synth/labels/" + long_stem + ".txt", "0 0.5 0.5 0.1 0.1\n");
-  EXPECT_EQ(open_error(d.path()), d / "synth/labels/" + long_stem + ".txt: scene name '" + long_stem.substr(0, 60) + "..." +
+  EXPECT_EQ(open_error(d.path()), d / "synth/labels/" + long_stem + ".txt: scene name '" + long_stem.substr(0, 60) +
+                                      "..." +
                                       "' is 251 bytes long; at most 250 fit in the file names it becomes part of");
   fs::remove(d / "synth/labels/" + long_stem + ".txt");
   EXPECT_EQ(open_error(d.path()), "(opened)");
@@ -90,8 +91,8 @@ TEST(StudyNames, PairsFilesLargerThanTheCapAreRefusedUnread) {
     read_fixed_pairs(study, "real", "synth", "s0", {test::box(0.5, 0.5, 0.1, 0.1)}, {test::box(0.5, 0.5, 0.1, 0.1)});
     FAIL() << "read";
   } catch (const StudyError& e) {
-    EXPECT_EQ(std::string(e.what()), d / "pairs/real__synth/s0.json" +
-                                         ": is 8.1 MB, larger than the 8 MB limit for this kind of file");
+    EXPECT_EQ(std::string(e.what()),
+              d / "pairs/real__synth/s0.json" + ": is 8.1 MB, larger than the 8 MB limit for this kind of file");
   }
 }
 

@@ -6,8 +6,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <filesystem>
 #include <fmt/format.h>
+#include <filesystem>
 
 #include "core/ipd/study_cache.h"
 #include "core/registration/registration_cache.h"
@@ -162,7 +162,7 @@ TEST(CacheDir, TempFilesOfKilledWritersAreRemoved) {
   const Study study = open_study(d / "study");
   StudyCache cache(parsed_study_cache_path(study.root), study.root);
   EXPECT_FALSE(fs::exists(d / "study/.ipd-cache/" + dead));
-  EXPECT_TRUE(fs::exists(d / "study/.ipd-cache/" + alive));  // its writer still runs
+  EXPECT_TRUE(fs::exists(d / "study/.ipd-cache/" + alive));           // its writer still runs
   EXPECT_FALSE(fs::is_symlink(d / "study/.ipd-cache/" + dead_link));  // the link itself goes ...
   EXPECT_EQ(read_file(d / "outside"), "precious\n");                  // ... never its target
 }
@@ -180,21 +180,24 @@ TEST(CacheSigner, KeyIsCreatedPrivateAndSignsOnlyForItsOwner) {
   EXPECT_EQ(signer.mac_hex("registration entry", "payload").size(), 64u);
   EXPECT_TRUE(signer.verify("registration entry", "payload", mac));
   EXPECT_FALSE(signer.verify("registration entry", "payloaD", mac));
-  EXPECT_FALSE(signer.verify("parsed study 3", "payload", mac));       // another cache's kind
-  EXPECT_FALSE(signer.verify("registration entr", "ypayload", mac));    // the kind/data boundary counts
+  EXPECT_FALSE(signer.verify("parsed study 3", "payload", mac));      // another cache's kind
+  EXPECT_FALSE(signer.verify("registration entr", "ypayload", mac));  // the kind/data boundary counts
   EXPECT_EQ(CacheSigner(d / "cache/ipd-studio/key").mac("registration entry", "payload"), mac);  // same key
-  EXPECT_NE(CacheSigner(d / "other/key").mac("registration entry", "payload"), mac);  // another installation
-  EXPECT_EQ(std::distance(fs::directory_iterator(d / "cache/ipd-studio"), fs::directory_iterator()), 1);  // no temp left
+  EXPECT_NE(CacheSigner(d / "other/key").mac("registration entry", "payload"), mac);             // another installation
+  EXPECT_EQ(std::distance(fs::directory_iterator(d / "cache/ipd-studio"), fs::directory_iterator()),
+            1);  // no temp left
 }
 
 TEST(CacheSigner, AKeyOthersCanReadIsNotTrusted) {
   test::TempDir d;
   { const CacheSigner make(d / "key"); }
-  fs::permissions(d / "key", fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
+  fs::permissions(d / "key",
+                  fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
   const CacheSigner shared(d / "key");
   EXPECT_FALSE(shared.persistent());
-  EXPECT_EQ(shared.problem(), d / "key" + ": cannot be used as the cache key: readable or writable by others (mode 644, "
-                                          "expected 600); remove it to make a new one");
+  EXPECT_EQ(shared.problem(), d / "key" +
+                                  ": cannot be used as the cache key: readable or writable by others (mode 644, "
+                                  "expected 600); remove it to make a new one");
   test::write_text(d / "short", "0123");
   fs::permissions(d / "short", fs::perms::owner_read | fs::perms::owner_write);
   EXPECT_EQ(CacheSigner(d / "short").problem(),

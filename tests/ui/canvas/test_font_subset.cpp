@@ -2,10 +2,10 @@
 // text lays out exactly as measured when the figure was drawn).
 #include <gtest/gtest.h>
 
-#include "ui/canvas/canvas.h"
-#include "ui/canvas/font_subset.h"
 #include "core/util/atomic_file.h"
 #include "tests/support/test_support.h"
+#include "ui/canvas/canvas.h"
+#include "ui/canvas/font_subset.h"
 
 namespace ipd {
 namespace {

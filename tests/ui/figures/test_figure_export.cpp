@@ -5,12 +5,12 @@
 
 #include <filesystem>
 
-#include "ui/figures/figure_export.h"
-#include "ui/gui/export_dialog.h"
 #include "core/session/session.h"
 #include "tests/support/pdf_text.h"
 #include "tests/support/stats_study.h"
 #include "tests/support/test_support.h"
+#include "ui/figures/figure_export.h"
+#include "ui/gui/export_dialog.h"
 
 namespace fs = std::filesystem;
 
@@ -61,7 +61,10 @@ TEST(FigureExport, GuiAndCliGiveTheSameStudyFigures) {
   // The threshold is part of the view: without it the table and the confidence bins are other figures.
   ASSERT_EQ(test::run_ipd("figure table --ci 0.95 " + d.path() + " --out " + d / "all.pdf").exit_code, 0);
   EXPECT_NE(test::pdf_words(d / "all.pdf"), test::pdf_words(d / "gui_tablesize.pdf"));
-  ASSERT_EQ(test::run_ipd("figure breakdown --by confidence --a real --b hapke " + d.path() + " --out " + d / "allc.pdf").exit_code, 0);
+  ASSERT_EQ(
+      test::run_ipd("figure breakdown --by confidence --a real --b hapke " + d.path() + " --out " + d / "allc.pdf")
+          .exit_code,
+      0);
   EXPECT_NE(test::pdf_words(d / "allc.pdf"), test::pdf_words(d / "gui_breakdownconfidence.pdf"));
 }
 

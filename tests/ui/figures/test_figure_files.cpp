@@ -9,14 +9,14 @@
 #include <opencv2/imgproc.hpp>
 #include <regex>
 
-#include "ui/gui/export_dialog.h"
-#include "ui/figures/figure_export.h"
-#include "tests/support/figure_test_study.h"
-#include "core/util/atomic_file.h"
 #include "core/demo/demo_study.h"
 #include "core/session/session.h"
+#include "core/util/atomic_file.h"
+#include "tests/support/figure_test_study.h"
 #include "tests/support/pdf_text.h"
 #include "tests/support/test_support.h"
+#include "ui/figures/figure_export.h"
+#include "ui/gui/export_dialog.h"
 
 namespace fs = std::filesystem;
 
@@ -61,7 +61,8 @@ TEST(FigureFiles, FontsAreEmbeddedAndChosenWithFont) {
   ASSERT_EQ(test::run_ipd("figure table " + d.path() + " --out " + d / "sans.pdf").exit_code, 0);
   const std::string serif = "/usr/share/fonts/truetype/dejavu/DejaVuSerif.ttf";
   ASSERT_EQ(test::run_ipd("figure table " + d.path() + " --font " + serif + " --out " + d / "serif.pdf").exit_code, 0);
-  for (const auto& [file, family] : {std::pair<std::string, std::string>{"sans.pdf", "DejaVuSans"}, {"serif.pdf", "DejaVuSerif"}}) {
+  for (const auto& [file, family] :
+       {std::pair<std::string, std::string>{"sans.pdf", "DejaVuSans"}, {"serif.pdf", "DejaVuSerif"}}) {
     const auto r = test::run_command("pdffonts '" + d / file + "'");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     // Regular and bold (the row's best), each "+FAMILY... TrueType WinAnsi yes yes yes".
@@ -75,13 +76,16 @@ TEST(FigureFiles, PicturesGoInAtTheirOwnResolutionCutToTheCrop) {
   test::TempDir d;
   test::write_figure_study(d, true);  // 640 x 400 pictures
   const std::string out = d / "crop.pdf";
-  ASSERT_EQ(test::run_ipd("figure pairs " + d.path() + " --crop 0.25,0.25,0.75,0.75 --column double --out " + out).exit_code, 0);
+  ASSERT_EQ(
+      test::run_ipd("figure pairs " + d.path() + " --crop 0.25,0.25,0.75,0.75 --column double --out " + out).exit_code,
+      0);
   const auto r = test::run_command("pdfimages -list '" + out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // Two images of 320 x 200 pixels: the crop's own pixels, neither resampled nor padded.
   const std::regex image(R"re(\n\s+1\s+\d+\s+image\s+(\d+)\s+(\d+))re");
   int images = 0;
-  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), image); it != std::sregex_iterator(); ++it, ++images) {
+  for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), image); it != std::sregex_iterator();
+       ++it, ++images) {
     EXPECT_EQ((*it)[1], "320");
     EXPECT_EQ((*it)[2], "200");
   }
@@ -184,7 +188,8 @@ TEST(FigureFiles, EveryKindKeepsTheSameMarginFreeOfText) {
     for (const std::string column : {"single", "double"}) {
       const std::string out = d / (kind + "_" + column + ".pdf");
       const std::string layers = kind == "pairs" ? " --layers gt,pred,conf,indices,pairs,legend" : "";
-      const auto r = test::run_ipd("figure " + kind + " " + d.path() + " --column " + column + layers + " --out " + out);
+      const auto r =
+          test::run_ipd("figure " + kind + " " + d.path() + " --column " + column + layers + " --out " + out);
       ASSERT_EQ(r.exit_code, 0) << kind << " " << column << ": " << r.err;
       const PdfText t = pdf_text(out);
       ASSERT_FALSE(t.words.empty()) << kind << " " << column;
@@ -193,7 +198,8 @@ TEST(FigureFiles, EveryKindKeepsTheSameMarginFreeOfText) {
         EXPECT_GE(w.x0, margin - hair) << kind << " " << column << ": '" << w.text << "' in the left margin";
         EXPECT_LE(w.x1, t.width - margin + hair) << kind << " " << column << ": '" << w.text << "' in the right margin";
         EXPECT_GE(w.y0, margin - hair) << kind << " " << column << ": '" << w.text << "' in the top margin";
-        EXPECT_LE(w.y1, t.height - margin + hair) << kind << " " << column << ": '" << w.text << "' in the bottom margin";
+        EXPECT_LE(w.y1, t.height - margin + hair)
+            << kind << " " << column << ": '" << w.text << "' in the bottom margin";
         left = std::min(left, w.x0);
         top = std::min(top, w.y0);
       }
@@ -207,9 +213,10 @@ TEST(FigureFiles, EveryKindKeepsTheSameMarginFreeOfText) {
       double right = 0, bottom = 0;
       for (const Word& w : t.words) right = std::max(right, w.x1), bottom = std::max(bottom, w.y1);
       const std::string at = kind + " " + column + ": blank ";
-      for (const auto& [side, blank] :
-           {std::pair<const char*, double>{"left", ink.left}, {"top", ink.top},
-            {"right", std::min(ink.right, t.width - right)}, {"bottom", std::min(ink.bottom, t.height - bottom)}}) {
+      for (const auto& [side, blank] : {std::pair<const char*, double>{"left", ink.left},
+                                        {"top", ink.top},
+                                        {"right", std::min(ink.right, t.width - right)},
+                                        {"bottom", std::min(ink.bottom, t.height - bottom)}}) {
         EXPECT_GE(blank, margin - 0.3) << at << side << " " << blank << " pt";
         EXPECT_LE(blank, margin + 1.3) << at << side << " " << blank << " pt";
       }
@@ -223,14 +230,18 @@ TEST(FigureFiles, ConfidenceLabelsThatCannotBeOwnedAreLeftOutAndCounted) {
   test::write_figure_study(d, false);
   test::write_text(d / "real/predictions/det/s1.txt", "0 0.30 0.40 0.30 0.35 0.87\n0 0.30 0.40 0.06 0.06 0.55\n");
   const std::string out = d / "nested.pdf";
-  const auto r = test::run_ipd("figure pairs " + d.path() + " --column double --layers gt,pred,conf,indices,pairs,legend --out " + out);
+  const auto r = test::run_ipd("figure pairs " + d.path() +
+                               " --column double --layers gt,pred,conf,indices,pairs,legend --out " + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const PdfText t = pdf_text(out);
   EXPECT_TRUE(has_word(t, "0.87")) << t.all();
   EXPECT_TRUE(has_word(t, "0.93")) << t.all();
   EXPECT_FALSE(has_word(t, "0.55")) << t.all();
-  EXPECT_NE(t.all().find("1 confidence label left out: no free spot clearly beside its own box (try --crop or a larger --width-in)"),
-            std::string::npos) << t.all();
+  EXPECT_NE(
+      t.all().find(
+          "1 confidence label left out: no free spot clearly beside its own box (try --crop or a larger --width-in)"),
+      std::string::npos)
+      << t.all();
   EXPECT_EQ(t.all().find("labels left out: no room"), std::string::npos) << t.all();
 }
 
@@ -242,7 +253,8 @@ TEST(FigureFiles, SvgIsXmlWithASizeAndTextAsText) {
   const auto r = test::run_command(
       "python3 -c \"import sys, xml.etree.ElementTree as E; r = E.parse(sys.argv[1]).getroot(); "
       "n = '{http://www.w3.org/2000/svg}'; print(r.get('width'), r.get('height'), "
-      "' '.join(t.text for t in r.iter(n + 'text')))\" '" + out + "'");
+      "' '.join(t.text for t in r.iter(n + 'text')))\" '" +
+      out + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.substr(0, 9), "252.00pt ");
   EXPECT_NE(r.out.find("scene IPD 0.2182"), std::string::npos) << r.out;
@@ -268,7 +280,9 @@ TEST(FigureFiles, PngWidthIsInchesTimesDpi) {
   EXPECT_EQ(cv::imread(d / "a.png").cols, 1050);  // 3.5 in x 300 dpi
   ASSERT_EQ(test::run_ipd("figure table " + d.path() + " --width-in 2 --dpi 100 --out " + d / "b.png").exit_code, 0);
   EXPECT_EQ(cv::imread(d / "b.png").cols, 200);
-  ASSERT_EQ(test::run_ipd("figure registration " + d.path() + " --column double --dpi 150 --out " + d / "c.png").exit_code, 0);
+  ASSERT_EQ(
+      test::run_ipd("figure registration " + d.path() + " --column double --dpi 150 --out " + d / "c.png").exit_code,
+      0);
   EXPECT_EQ(cv::imread(d / "c.png").cols, 1074);  // 7.16 in x 150 dpi
 }
 

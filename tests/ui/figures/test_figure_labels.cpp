@@ -3,28 +3,26 @@
 // a registration number is nearer its own marker than any other. Impossible ones are left out and counted.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/format.h>
 
-#include "ui/figures/figure_input.h"
-#include "ui/figures/figure_scene.h"
-#include "core/session/audit.h"
 #include "core/demo/demo_study.h"
+#include "core/session/audit.h"
 #include "core/study/study.h"
 #include "tests/support/test_support.h"
+#include "ui/figures/figure_input.h"
+#include "ui/figures/figure_scene.h"
 
 namespace ipd {
 namespace {
 
-bool over(const ui::PtRect& a, const ui::PtRect& b) {
-  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
-}
+bool over(const ui::PtRect& a, const ui::PtRect& b) { return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1; }
 
 // Normalised box -> page rectangle in a panel showing the whole picture.
 ui::PtRect on_page(const ui::PtRect& panel, const Box& b) {
-  return {panel.x0 + b.x0() * panel.width(), panel.y0 + b.y0() * panel.height(),
-          panel.x0 + b.x1() * panel.width(), panel.y0 + b.y1() * panel.height()};
+  return {panel.x0 + b.x0() * panel.width(), panel.y0 + b.y0() * panel.height(), panel.x0 + b.x1() * panel.width(),
+          panel.y0 + b.y1() * panel.height()};
 }
 
 std::vector<ui::DisplayList::TextItem> texts_named(const ui::DisplayList& fig, const std::string& s) {
@@ -89,7 +87,8 @@ TEST(FigureLabels, ARockNumberNeverSitsOnAnotherRocksBox) {
         EXPECT_FALSE(over(t[0].box, on_page(l.left, in.gt_a[k]))) << name << " on " << k + 1;
       }
   }
-  EXPECT_TRUE(contains(fig, "1 rock number left out: no free spot clear of the other rocks' boxes (try --crop or --column double)"));
+  EXPECT_TRUE(contains(
+      fig, "1 rock number left out: no free spot clear of the other rocks' boxes (try --crop or --column double)"));
 }
 
 // Registration figure, single column (panel 120 pt, dot 0.88 pt, ring 2.46 pt): an unpaired rock's dot
@@ -151,8 +150,7 @@ TEST(FigureLabels, EveryLabelOfADenseSceneIsOwned) {
   write_demo_study(d.path(), demo);
   const StudyLabels labels = load_labels(open_study(d.path()));
   const std::string stem = labels.gt.begin()->second.begin()->first;
-  const ui::SceneFigureInput in =
-      ui::scene_input_from_study(labels, "real", "principled", "det-real", stem, 0, {});
+  const ui::SceneFigureInput in = ui::scene_input_from_study(labels, "real", "principled", "det-real", stem, 0, {});
   ui::FigureOptions o;
   o.width_in = ui::kDoubleColumnIn;
   o.layers = ui::parse_layers("gt,pred,conf,indices,pairs,legend");
@@ -186,8 +184,8 @@ TEST(FigureLabels, EveryLabelOfADenseSceneIsOwned) {
       }
       for (size_t k = 0; k < gt.size(); ++k) {
         if (std::find(owners.begin(), owners.end(), k) != owners.end()) continue;
-        EXPECT_FALSE(over(t.box, on_page(panel, gt[k]))) << (conf ? "confidence " : "number ") << t.text
-                                                          << " lies on GT box " << k + 1 << " (side " << side << ")";
+        EXPECT_FALSE(over(t.box, on_page(panel, gt[k])))
+            << (conf ? "confidence " : "number ") << t.text << " lies on GT box " << k + 1 << " (side " << side << ")";
       }
     }
   }

@@ -4,10 +4,10 @@
 // and deuteranopia, a no-picture notice that covers no label, footnotes that suggest what helps.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fmt/format.h>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -53,11 +53,13 @@ TEST(FigurePrint, EveryTextIsAtLeast7PtAtTheDefaults) {
         const PdfText t = figure(d, kind + " " + d.path() + " --column " + column + e, kind + column + ".pdf");
         ASSERT_FALSE(t.words.empty()) << kind << " " << column << e;
         for (const Word& w : t.words)
-          EXPECT_GE(size_pt(w), 7 - 0.01) << kind << " " << column << e << ": '" << w.text << "' " << size_pt(w) << " pt";
+          EXPECT_GE(size_pt(w), 7 - 0.01)
+              << kind << " " << column << e << ": '" << w.text << "' " << size_pt(w) << " pt";
       }
     }
   // Smaller only when asked: --font-pt 6 gives 6 pt footnotes.
-  const PdfText t = figure(d, "pairs " + d.path() + " --font-pt 6 --layers gt,pred,conf,indices,pairs,legend", "small.pdf");
+  const PdfText t =
+      figure(d, "pairs " + d.path() + " --font-pt 6 --layers gt,pred,conf,indices,pairs,legend", "small.pdf");
   double smallest = 99;
   for (const Word& w : t.words) smallest = std::min(smallest, size_pt(w));
   EXPECT_NEAR(smallest, 6, 0.01);
@@ -83,8 +85,9 @@ ShownNumbers shown_numbers(const PdfText& t, const std::string& a) {
   std::smatch m;
   const std::string all = t.all();
   if (std::regex_search(all, m, std::regex("\\((\\d+) pairs?\\)"))) s.pairs = std::stoi(m[1]);
-  if (std::regex_search(all, m, std::regex("(\\d+) pairs? unnumbered: no room for (its|their) number on both pictures "
-                                           "\\(to show (it|them): --crop, fewer --layers or ")))
+  if (std::regex_search(all, m,
+                        std::regex("(\\d+) pairs? unnumbered: no room for (its|their) number on both pictures "
+                                   "\\(to show (it|them): --crop, fewer --layers or ")))
     s.unnumbered = std::stoi(m[1]);
   return s;
 }
@@ -92,21 +95,21 @@ ShownNumbers shown_numbers(const PdfText& t, const std::string& a) {
 void expect_pairs_on_both_sides(const test::TempDir& d, const std::string& scene_args, const std::string& a,
                                 int min_numbered) {
   for (const std::string kind : {"pairs", "registration"})
-  for (const std::string column : {"single", "double"})
-    for (const std::string layers : {"", " --layers gt,pred,conf,indices,pairs,legend"}) {
-      const std::string at = kind + " " + column + layers;
-      const PdfText t = figure(d, kind + " " + d.path() + scene_args + " --column " + column + layers, "p.pdf");
-      const ShownNumbers s = shown_numbers(t, kind == "pairs" ? a : "before");
-      ASSERT_GT(s.pairs, 0) << at << ": " << t.all();
-      EXPECT_EQ(s.left, s.right) << at << ": a pair's number on one picture only";
-      // Each pair once per side; the unnumbered ones are counted in the footnote.
-      EXPECT_EQ(std::set<int>(s.left.begin(), s.left.end()).size(), s.left.size()) << at;
-      EXPECT_EQ(int(s.left.size()) + s.unnumbered, s.pairs) << at << ": " << t.all();
-      EXPECT_GE(int(s.left.size()), min_numbered) << at;
-      if (column == "double") {
-        EXPECT_EQ(t.all().find("--column double"), std::string::npos) << at << ": " << t.all();
+    for (const std::string column : {"single", "double"})
+      for (const std::string layers : {"", " --layers gt,pred,conf,indices,pairs,legend"}) {
+        const std::string at = kind + " " + column + layers;
+        const PdfText t = figure(d, kind + " " + d.path() + scene_args + " --column " + column + layers, "p.pdf");
+        const ShownNumbers s = shown_numbers(t, kind == "pairs" ? a : "before");
+        ASSERT_GT(s.pairs, 0) << at << ": " << t.all();
+        EXPECT_EQ(s.left, s.right) << at << ": a pair's number on one picture only";
+        // Each pair once per side; the unnumbered ones are counted in the footnote.
+        EXPECT_EQ(std::set<int>(s.left.begin(), s.left.end()).size(), s.left.size()) << at;
+        EXPECT_EQ(int(s.left.size()) + s.unnumbered, s.pairs) << at << ": " << t.all();
+        EXPECT_GE(int(s.left.size()), min_numbered) << at;
+        if (column == "double") {
+          EXPECT_EQ(t.all().find("--column double"), std::string::npos) << at << ": " << t.all();
+        }
       }
-    }
 }
 
 // The 60-rock 1936 x 1216 labels-only study: before, 89 numbers were dropped independently on each side
@@ -139,7 +142,8 @@ TEST(FigurePrint, APairsNumberShowsOnBothPicturesOrNeitherOnAPolarSimLayout) {
   test::TempDir d;
   test::write_text(d / "study.yaml",
                    "domains: [real, synth]\nimage_size: [1936, 1216]\nmodels: {det: {trained_on: real}}\n");
-  const std::pair<const char*, const char*> sides[] = {{"real", "04_B_on_350_R_1024.txt"}, {"synth", "04_B_on_30_R_1024.txt"}};
+  const std::pair<const char*, const char*> sides[] = {{"real", "04_B_on_350_R_1024.txt"},
+                                                       {"synth", "04_B_on_30_R_1024.txt"}};
   for (const auto& [domain, file] : sides) {
     std::ifstream in(root / file);
     std::string labels, predictions;
@@ -165,8 +169,8 @@ TEST(FigurePrint, TheNoPictureNoticeCoversNoLabel) {
   demo.labels_only = true;
   write_demo_study(d.path(), demo);
   for (const std::string column : {"single", "double"}) {
-    const PdfText t = figure(d, "pairs " + d.path() + " --column " + column + " --layers gt,pred,conf,indices,pairs,legend",
-                             "n.pdf");
+    const PdfText t =
+        figure(d, "pairs " + d.path() + " --column " + column + " --layers gt,pred,conf,indices,pairs,legend", "n.pdf");
     int notices = 0;
     for (const Word& n : t.words) {
       if (n.text != "picture") continue;
@@ -200,7 +204,10 @@ TEST(FigurePrint, FootnotesSuggestOnlyWhatHelps) {
 // Machado et al. (2009) deuteranopia, severity 1, applied to linear RGB.
 cv::Mat deuteranopia(const cv::Mat& bgr) {
   cv::Mat out = bgr.clone();
-  const auto lin = [](double v) { v /= 255; return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4); };
+  const auto lin = [](double v) {
+    v /= 255;
+    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+  };
   const auto srgb = [](double v) {
     v = std::clamp(v, 0.0, 1.0);
     return 255 * (v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055);
@@ -234,7 +241,8 @@ EdgeContrast edge_contrast(const cv::Mat& g, double x_pt, double y0_pt, double y
   std::vector<int> terrain, diff;
   const int ex = int(std::lround(x_pt * px));
   for (int y = int(y0_pt * px); y < int(y1_pt * px); ++y)
-    for (int x = ex + outside * int(4 * px); x != ex + outside * int(7 * px); x += outside) terrain.push_back(g.at<uchar>(y, x));
+    for (int x = ex + outside * int(4 * px); x != ex + outside * int(7 * px); x += outside)
+      terrain.push_back(g.at<uchar>(y, x));
   std::nth_element(terrain.begin(), terrain.begin() + terrain.size() / 2, terrain.end());
   const int t = terrain[terrain.size() / 2];
   int on = 0, n = 0;
@@ -263,7 +271,8 @@ TEST(FigurePrint, BoxesSurviveGreyscaleAndDeuteranopia) {
   const ui::SceneFigureInput in = ui::scene_input_from_study(labels, "real", "synth", "det", "s1", 0, {});
   for (const std::string layer : {"gt", "pred"}) {
     const std::string pdf = d / (layer + ".pdf");
-    ASSERT_EQ(test::run_ipd("figure pairs " + d.path() + " --scene s1 --layers " + layer + " --out " + pdf).exit_code, 0);
+    ASSERT_EQ(test::run_ipd("figure pairs " + d.path() + " --scene s1 --layers " + layer + " --out " + pdf).exit_code,
+              0);
     ASSERT_EQ(test::run_command("pdftoppm -r 288 -png -singlefile '" + pdf + "' '" + pdf + "'").exit_code, 0);
     const cv::Mat img = cv::imread(pdf + ".png", cv::IMREAD_COLOR);
     ASSERT_FALSE(img.empty());

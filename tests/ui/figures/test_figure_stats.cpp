@@ -4,12 +4,12 @@
 
 #include <regex>
 
+#include "core/demo/demo_study.h"
+#include "tests/support/figure_test_study.h"
+#include "tests/support/pdf_text.h"
+#include "tests/support/test_support.h"
 #include "ui/figures/figure_charts.h"
 #include "ui/figures/figure_export.h"
-#include "core/demo/demo_study.h"
-#include "tests/support/pdf_text.h"
-#include "tests/support/figure_test_study.h"
-#include "tests/support/test_support.h"
 
 namespace ipd {
 namespace {
@@ -35,14 +35,16 @@ using test::pdf_words;
 TEST(FigureStats, CompareShowsTheDeltaAndItsTest) {
   test::TempDir d;
   write_three_domain_study(d);
-  const auto r = test::run_ipd("figure compare " + d.path() + " --bootstrap 200 --permutations 200 --out " + d / "c.pdf");
+  const auto r =
+      test::run_ipd("figure compare " + d.path() + " --bootstrap 200 --permutations 200 --out " + d / "c.pdf");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string text = pdf_words(d / "c.pdf");
   EXPECT_NE(text.find("IPD(real, s1) \u2212 IPD(real, s2)"), std::string::npos) << text;
   EXPECT_NE(text.find("det (real) \u22120.267, p = "), std::string::npos) << text;
   // 2 scenes: all 2^2 swap patterns fit in 200, so the p-value is exact and the footnote must say so.
   EXPECT_NE(text.find("test, exact (every swap pattern) over the 2 scenes"), std::string::npos) << text;
-  const auto few = test::run_ipd("figure compare " + d.path() + " --bootstrap 200 --permutations 3 --out " + d / "c3.pdf");
+  const auto few =
+      test::run_ipd("figure compare " + d.path() + " --bootstrap 200 --permutations 3 --out " + d / "c3.pdf");
   ASSERT_EQ(few.exit_code, 0) << few.err;
   EXPECT_NE(pdf_words(d / "c3.pdf").find("test (3 permutations) over the 2 scenes"), std::string::npos)
       << pdf_words(d / "c3.pdf");
@@ -77,8 +79,8 @@ TEST(FigureStats, CiParsesTheSameWayInEveryOrder) {
   test::TempDir d;
   write_three_domain_study(d);
   const std::string s = d.path(), out = " --bootstrap 100 --out " + d / "t.pdf";
-  for (const std::string& args : {"--ci " + s + out, s + " --ci" + out, "--ci 0.9 " + s + out, "--ci=0.9 " + s + out,
-                                 s + out + " --ci"}) {
+  for (const std::string& args :
+       {"--ci " + s + out, s + " --ci" + out, "--ci 0.9 " + s + out, "--ci=0.9 " + s + out, s + out + " --ci"}) {
     const auto r = test::run_ipd("figure table " + args);
     ASSERT_EQ(r.exit_code, 0) << args << ": " << r.err;
     EXPECT_NE(pdf_words(d / "t.pdf").find("0.4000 [0.400, 0.400]"), std::string::npos) << args;
@@ -115,7 +117,8 @@ TEST(FigureStats, OneSceneFiguresSayNoIntervalNoTest) {
   text = pdf_words(d / "c.pdf");
   EXPECT_NE(text.find("1 scene: no test"), std::string::npos) << text;
   EXPECT_NE(text.find("1 scene present in all three domains: no interval, no test (they need at least 2)."),
-            std::string::npos) << text;
+            std::string::npos)
+      << text;
   EXPECT_EQ(text.find("p = "), std::string::npos) << text;
   EXPECT_EQ(text.find("scene-bootstrap"), std::string::npos) << text;  // the title promises no interval
 }

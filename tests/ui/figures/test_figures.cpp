@@ -8,11 +8,11 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "core/demo/demo_study.h"
+#include "tests/support/figure_test_study.h"
+#include "tests/support/test_support.h"
 #include "ui/canvas/canvas_cairo.h"
 #include "ui/figures/figure_input.h"
-#include "tests/support/figure_test_study.h"
-#include "core/demo/demo_study.h"
-#include "tests/support/test_support.h"
 
 namespace fs = std::filesystem;
 
@@ -67,7 +67,8 @@ TEST(Figures, BoxesStandWhereTheLabelsSay) {
   test::write_figure_study(d, false);  // grey placeholders: only boxes carry colour
   const std::string out = d / "pairs.png";
   const double dpi = 288;  // 4 px per point
-  const auto r = test::run_ipd("figure pairs " + d.path() + " --scene s1 --layers gt,pred,pairs --dpi 288 --out " + out);
+  const auto r =
+      test::run_ipd("figure pairs " + d.path() + " --scene s1 --layers gt,pred,pairs --dpi 288 --out " + out);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const cv::Mat img = cv::imread(out, cv::IMREAD_COLOR);
   ASSERT_FALSE(img.empty());
@@ -164,8 +165,9 @@ TEST(Figures, ClearMessagesAndNoFileOnError) {
   // Bad option values are usage errors (2) naming what is accepted.
   r = test::run_ipd("figure pairs " + d.path() + " --layers gt,boxes --out " + d / "x.pdf");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, "error: --layers: unknown layer 'boxes' (accepted: gt, pred, conf, indices, pairs, legend, "
-                   "comma-separated)\n");
+  EXPECT_EQ(r.err,
+            "error: --layers: unknown layer 'boxes' (accepted: gt, pred, conf, indices, pairs, legend, "
+            "comma-separated)\n");
   r = test::run_ipd("figure pairs " + d.path() + " --crop 0.5,0,0.2,1 --out " + d / "x.pdf");
   EXPECT_EQ(r.exit_code, 2);
   r = test::run_ipd("figure pairs " + d.path() + " --font-pt 5 --out " + d / "x.pdf");

@@ -24,7 +24,9 @@ struct Recorder : Canvas {
   void rect(const PtRect& r, Colour c, double w) override { ops.push_back({"rect", r, {}, c, w, ""}); }
   void fill_rect(const PtRect& r, Colour c) override { ops.push_back({"fill", r, {}, c, 0, ""}); }
   void line(Pt a, Pt b, Colour c, double w) override { ops.push_back({"line", {}, {a, b}, c, w, ""}); }
-  void polyline(const std::vector<Pt>& p, Colour c, double w, bool) override { ops.push_back({"polyline", {}, p, c, w, ""}); }
+  void polyline(const std::vector<Pt>& p, Colour c, double w, bool) override {
+    ops.push_back({"polyline", {}, p, c, w, ""});
+  }
   void circle(Pt, double, Colour, double) override {}
   void fill_circle(Pt, double, Colour) override {}
   void text(Pt at, Anchor a, const TextStyle& st, const std::string& s) override {
@@ -37,7 +39,8 @@ struct Recorder : Canvas {
   Pt measure(const TextStyle&, const std::string& s) override { return {6.0 * s.size(), 10}; }
 };
 
-const ChartColours kColours{rgb(1, 0, 0), rgb(2, 0, 0), rgb(3, 0, 0), rgb(4, 0, 0), rgb(5, 0, 0), rgb(6, 0, 0), rgb(7, 0, 0)};
+const ChartColours kColours{rgb(1, 0, 0), rgb(2, 0, 0), rgb(3, 0, 0), rgb(4, 0, 0),
+                            rgb(5, 0, 0), rgb(6, 0, 0), rgb(7, 0, 0)};
 bool same(Colour a, Colour b) { return a.r == b.r && a.g == b.g && a.b == b.b && a.a == b.a; }
 
 void expect_rect(const PtRect& r, double x0, double y0, double x1, double y1) {
@@ -160,7 +163,8 @@ TEST(StatsCharts, ALoneValuesBarSitsAtTheValue) {
   {
     Recorder z;
     //   labels "0.00".."0.03" (24 pt, half 12), gutter 12: plot x 12 .. 288; the bar (30 pt) from the axis.
-    const HistogramChart zc = layout_histogram(z, {}, {zero.start, zero.width, zero.counts, 0.0, zero.lone_value}, {0, 0, 300, 100});
+    const HistogramChart zc =
+        layout_histogram(z, {}, {zero.start, zero.width, zero.counts, 0.0, zero.lone_value}, {0, 0, 300, 100});
     expect_rect(zc.bars[0].bar, 12, 5, 42, 86);
   }
   Recorder c;
@@ -220,7 +224,8 @@ TEST(StatsCharts, CrossTableIsAsTallAsItsRows) {
 // The studio's cross-table header splits |a - b| after the minus, so the second row does not start with a
 // dash (it read "real" over "- principled", like a list).
 TEST(StatsCharts, CrossTableHeaderSplitsAfterTheMinus) {
-  EXPECT_EQ(cross_table_header("real", "principled"), std::make_pair(std::string("|real -"), std::string("principled|")));
+  EXPECT_EQ(cross_table_header("real", "principled"),
+            std::make_pair(std::string("|real -"), std::string("principled|")));
 }
 
 }  // namespace

@@ -52,7 +52,8 @@ TEST(ImGuiCanvasLists, ManyBoxesSplitOverListsOfAtMost64kVertices) {
   const int per_box = f.lists[0]->VtxBuffer.Size;
   ASSERT_EQ(per_box, 8);
   c.push_clip({10, 10, 500, 400});
-  for (int i = 1; i < 30000; ++i) c.rect({10.0 + i % 400, 10.0 + i / 100, 14.0 + i % 400, 14.0 + i / 100}, rgb(0, 0, 0), 1);
+  for (int i = 1; i < 30000; ++i)
+    c.rect({10.0 + i % 400, 10.0 + i / 100, 14.0 + i % 400, 14.0 + i / 100}, rgb(0, 0, 0), 1);
   c.pop_clip();
   // 30,000 x 8 = 240,000 vertices: 4 lists at the least.
   ASSERT_GE(f.lists.size(), 4u);

@@ -177,14 +177,16 @@ TEST(RegistrationWords, SingularCountsPlainNumbersOneStepNumber) {
   st.kind = TraceStepKind::kHypothesis;
   st.score = 0.5, st.best_score = 0.75, st.inliers_a = {3};
   // k = 349 is the 350th step: the scrubber reads "step 350 of 5,000" too.
-  EXPECT_EQ(replay_step_line(st, 349, 5000), "step 350 of 5,000 (hypothesis): score 0.5000, best so far 0.7500, 1 inlier");
+  EXPECT_EQ(replay_step_line(st, 349, 5000),
+            "step 350 of 5,000 (hypothesis): score 0.5000, best so far 0.7500, 1 inlier");
   // Consensus' last step is the fit that goes out, judged among the polished, the searched and plain least
   // squares (or the second look's pick): "polish" would name only the first of them.
   st.kind = TraceStepKind::kPolish, st.score = st.best_score = 16.89719, st.inliers_a.assign(17, 0);
   EXPECT_EQ(replay_step_line(st, 3, 4), "step 4 of 4 (final fit): score 16.8972, best so far 16.8972, 17 inliers");
-  EXPECT_EQ(trace_cap_note(5000, 5982),
-            "the replay holds the first 5,000 steps of 5,982 hypotheses tried (the recording stops at 5,000; the search "
-            "went on)");
+  EXPECT_EQ(
+      trace_cap_note(5000, 5982),
+      "the replay holds the first 5,000 steps of 5,982 hypotheses tried (the recording stops at 5,000; the search "
+      "went on)");
 }
 
 TEST(RegistrationCanvas, PlotClipStopsAboveTheLegendAndHoldsThePictureBox) {
