@@ -93,22 +93,18 @@ CocoImportReport import_coco(const CocoImportOptions& o) {
 }
 
 namespace {
-CocoImportReport import_coco_checked(const CocoImportOptions& o) {
-  CocoImportReport r;
-  const json gt = parse_json_file(o.annotations, "a COCO object {\"images\": [...], \"annotations\": [...], ...}");
-  for (const char* key : {"images", "annotations", "categories"})
-    if (!gt.is_object() || !gt.contains(key) || !gt[key].is_array())
-      throw StudyError(fmt::format("{}: expected a COCO object with an \"{}\" array", o.annotations, key));
-  std::map<long, int> class_of;  // category id -> YOLO class
+
+// The "categories" array: YOLO class k is the k-th category by id, named by its "name" (or its id).
+void read_categories(const json& gt, const std::string& file, std::map<long, int>* class_of,
+                     std::vector<std::string>* classes) {
   std::vector<std::pair<long, std::string>> cats;
   std::map<long, size_t> category_at;  // id -> its index in "categories"
   for (const auto& c : gt["categories"]) {
     if (!c.is_object() || !c.contains("id") || !c["id"].is_number_integer())
-      throw StudyError(
-          fmt::format("{}: every category needs an integer \"id\", found {}", o.annotations, describe_json(c)));
+      throw StudyError(fmt::format("{}: every category needs an integer \"id\", found {}", file, describe_json(c)));
     if (c.contains("name") && !c["name"].is_string())
-      throw StudyError(fmt::format("{}: category {}: \"name\" must be a string, found {}", o.annotations,
-                                   c["id"].get<long>(), describe_json(c["name"])));
+      throw StudyError(fmt::format("{}: category {}: \"name\" must be a string, found {}", file, c["id"].get<long>(),
+                                   describe_json(c["name"])));
     cats.emplace_back(c["id"].get<long>(), c.value("name", std::to_string(c["id"].get<long>())));
     // YOLO class k is the k-th category by id: an id given twice would shift every class after it (so
     // `rock_class: 0` would select another category), and which name it has would be a guess.
@@ -117,13 +113,17 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
       throw StudyError(
           fmt::format("{}: categories[{}]: category id {} appears twice (also categories[{}]); every "
                       "category needs its own id, since YOLO class numbers follow the ids",
-                      o.annotations, cats.size() - 1, cats.back().first, first->second));
+                      file, cats.size() - 1, cats.back().first, first->second));
   }
   std::sort(cats.begin(), cats.end());
   for (size_t k = 0; k < cats.size(); ++k) {
-    class_of[cats[k].first] = static_cast<int>(k);
-    r.classes.push_back(cats[k].second);
+    (*class_of)[cats[k].first] = static_cast<int>(k);
+    classes->push_back(cats[k].second);
   }
+}
+
+// The "images" array by id; a malformed or repeated entry is an error of the report, not of the import.
+std::map<long, Image> read_images(const json& gt, const std::string& file, std::vector<LabelError>* errors) {
   std::map<long, Image> images;
   size_t k = 0;
   for (const auto& im : gt["images"]) {
@@ -131,8 +131,8 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
     if (!im.is_object() || !im.contains("id") || !im["id"].is_number_integer() || !im.contains("file_name") ||
         !im["file_name"].is_string() || !im.contains("width") || !im.contains("height") || !im["width"].is_number() ||
         !im["height"].is_number() || !(im["width"].get<double>() > 0) || !(im["height"].get<double>() > 0)) {
-      r.errors.push_back(
-          {o.annotations, 0, where + ": expected {id, file_name, width > 0, height > 0}, found " + describe_json(im)});
+      errors->push_back(
+          {file, 0, where + ": expected {id, file_name, width > 0, height > 0}, found " + describe_json(im)});
       continue;
     }
     Image img;
@@ -142,23 +142,34 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
     img.w = im["width"];
     img.h = im["height"];
     if (!images.emplace(im["id"].get<long>(), img).second)
-      r.errors.push_back({o.annotations, 0, fmt::format("{}: image id {} appears twice", where, im["id"].get<long>())});
+      errors->push_back({file, 0, fmt::format("{}: image id {} appears twice", where, im["id"].get<long>())});
   }
-  auto add = [&](const json& a, const std::string& file, const std::string& where, bool prediction) {
+  return images;
+}
+
+// Where imported boxes go: each image's GT or predictions, counted in the report.
+struct BoxSink {
+  std::map<long, Image>* images;
+  const std::map<long, int>* class_of;
+  CocoImportReport* report;
+
+  // One annotation (GT) or detection (prediction, with a score) of `file`; a bad one is a report error.
+  void add(const json& a, const std::string& file, const std::string& where, bool prediction) const {
+    auto& errors = report->errors;
     if (!a.is_object() || !a.contains("image_id") || !a["image_id"].is_number_integer() || !a.contains("category_id") ||
         !a["category_id"].is_number_integer()) {
-      r.errors.push_back({file, 0, where + ": expected image_id and category_id integers, found " + describe_json(a)});
+      errors.push_back({file, 0, where + ": expected image_id and category_id integers, found " + describe_json(a)});
       return;
     }
-    const auto im = images.find(a["image_id"].get<long>());
-    if (im == images.end()) {
-      r.errors.push_back(
+    const auto im = images->find(a["image_id"].get<long>());
+    if (im == images->end()) {
+      errors.push_back(
           {file, 0, fmt::format("{}: image_id {} is not among the images", where, a["image_id"].get<long>())});
       return;
     }
-    const auto cls = class_of.find(a["category_id"].get<long>());
-    if (cls == class_of.end()) {
-      r.errors.push_back(
+    const auto cls = class_of->find(a["category_id"].get<long>());
+    if (cls == class_of->end()) {
+      errors.push_back(
           {file, 0,
            fmt::format("{}: category_id {} is not among the categories", where, a["category_id"].get<long>())});
       return;
@@ -167,37 +178,29 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
     b.cls = cls->second;
     const std::string why = to_box(a.contains("bbox") ? a["bbox"] : json(), im->second, &b);
     if (!why.empty()) {
-      r.errors.push_back({file, 0, where + ": " + why});
+      errors.push_back({file, 0, where + ": " + why});
       return;
     }
-    if (prediction) {
-      if (!a.contains("score") || !a["score"].is_number() ||
-          !(a["score"].get<double>() >= 0 && a["score"].get<double>() <= 1)) {
-        r.errors.push_back({file, 0,
-                            where + ": expected a score in [0, 1], found " +
-                                (a.contains("score") ? describe_json(a["score"]) : "none")});
-        return;
-      }
-      b.conf = a["score"];
-      im->second.predictions.push_back(b);
-      ++r.detections;
-    } else {
+    if (!prediction) {
       im->second.gt.push_back(b);
-      ++r.boxes;
+      ++report->boxes;
+      return;
     }
-  };
-  k = 0;
-  for (const auto& a : gt["annotations"]) add(a, o.annotations, fmt::format("annotations[{}]", k++), false);
-  if (!o.results.empty()) {
-    const json res = parse_json_file(o.results, "a JSON list of detections [{image_id, category_id, bbox, score}]");
-    if (!res.is_array())
-      throw StudyError(o.results + ": expected a JSON list of detections [{image_id, category_id, bbox, score}]");
-    k = 0;
-    for (const auto& a : res) add(a, o.results, fmt::format("[{}]", k++), true);
+    if (!a.contains("score") || !a["score"].is_number() ||
+        !(a["score"].get<double>() >= 0 && a["score"].get<double>() <= 1)) {
+      errors.push_back({file, 0,
+                        where + ": expected a score in [0, 1], found " +
+                            (a.contains("score") ? describe_json(a["score"]) : "none")});
+      return;
+    }
+    b.conf = a["score"];
+    im->second.predictions.push_back(b);
+    ++report->detections;
   }
-  r.images = static_cast<int>(images.size());
-  r.collisions = name_collisions(images, o.annotations);
-  if (!r.collisions.empty() || (!r.errors.empty() && !o.skip_bad_entries)) return r;
+};
+
+// The study's label files, class names and picture links (links to the pictures the user named, never copies).
+void write_study(const CocoImportOptions& o, const std::map<long, Image>& images, CocoImportReport* r) {
   const fs::path out(o.out_dir);
   for (const auto& [id, img] : images) {
     write_labels((out / "labels" / (img.stem + ".txt")).string(), img.gt, LabelKind::kGroundTruth);
@@ -211,13 +214,38 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
       fs::create_directories(dst.parent_path(), ec);
       fs::remove(dst, ec);
       fs::create_symlink(src, dst, ec);
-      if (!ec) ++r.linked_images;
+      if (!ec) ++r->linked_images;
     }
   }
   std::string names;
-  for (const auto& c : r.classes) names += c + "\n";
+  for (const auto& c : r->classes) names += c + "\n";
   write_file_atomically((out / "labels" / "classes.txt").string(), names);
-  r.written = true;
+  r->written = true;
+}
+
+CocoImportReport import_coco_checked(const CocoImportOptions& o) {
+  CocoImportReport r;
+  const json gt = parse_json_file(o.annotations, "a COCO object {\"images\": [...], \"annotations\": [...], ...}");
+  for (const char* key : {"images", "annotations", "categories"})
+    if (!gt.is_object() || !gt.contains(key) || !gt[key].is_array())
+      throw StudyError(fmt::format("{}: expected a COCO object with an \"{}\" array", o.annotations, key));
+  std::map<long, int> class_of;  // category id -> YOLO class
+  read_categories(gt, o.annotations, &class_of, &r.classes);
+  std::map<long, Image> images = read_images(gt, o.annotations, &r.errors);
+  const BoxSink sink{&images, &class_of, &r};
+  size_t k = 0;
+  for (const auto& a : gt["annotations"]) sink.add(a, o.annotations, fmt::format("annotations[{}]", k++), false);
+  if (!o.results.empty()) {
+    const json res = parse_json_file(o.results, "a JSON list of detections [{image_id, category_id, bbox, score}]");
+    if (!res.is_array())
+      throw StudyError(o.results + ": expected a JSON list of detections [{image_id, category_id, bbox, score}]");
+    k = 0;
+    for (const auto& a : res) sink.add(a, o.results, fmt::format("[{}]", k++), true);
+  }
+  r.images = static_cast<int>(images.size());
+  r.collisions = name_collisions(images, o.annotations);
+  if (!r.collisions.empty() || (!r.errors.empty() && !o.skip_bad_entries)) return r;
+  write_study(o, images, &r);
   return r;
 }
 
