@@ -90,77 +90,64 @@ cv::Matx23d camera_offset(int scene_index, int w, int h) {
   return {c, -s, cx - c * cx + s * cy + tx, s, c, cy - s * cx - c * cy + ty};
 }
 
-cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& cam, int w, int h, std::vector<Box>* gt) {
-  // Ground: two octaves of smoothed noise, the same field for every domain of a scene.
-  cv::RNG tex(scene.texture_seed);
+// Ground: two octaves of smoothed noise, the same field for every domain of a scene (drawn from `tex` first).
+cv::Mat ground(const DomainLook& look, int w, int h, cv::RNG& tex) {
   cv::Mat coarse(h / 16 + 1, w / 16 + 1, CV_32F), fine(h / 4 + 1, w / 4 + 1, CV_32F);
   tex.fill(coarse, cv::RNG::NORMAL, 0, 1);
   tex.fill(fine, cv::RNG::NORMAL, 0, 1);
   cv::resize(coarse, coarse, cv::Size(w, h), 0, 0, cv::INTER_CUBIC);
   cv::resize(fine, fine, cv::Size(w, h), 0, 0, cv::INTER_LINEAR);
-  cv::Mat img = look.ground + look.ground_contrast * (0.7 * coarse + 0.3 * fine);
-  const double sun = scene.sun_deg * M_PI / 180.0;
-  const cv::Point2d light(std::cos(sun), std::sin(sun));
-  gt->clear();
-  for (const auto& r0 : scene.rocks) {
-    Rock r = r0;
-    if (look.camera_offset) {
-      r.x = cam(0, 0) * r0.x + cam(0, 1) * r0.y + cam(0, 2);
-      r.y = cam(1, 0) * r0.x + cam(1, 1) * r0.y + cam(1, 2);
-      r.rx *= 1.015;
-      r.ry *= 1.015;
+  return look.ground + look.ground_contrast * (0.7 * coarse + 0.3 * fine);
+}
+
+// A rock's shadow, cast away from the sun; drawn only in the patch it can cover.
+void draw_shadow(const Rock& r, const DomainLook& look, const cv::Point2d& light, cv::Mat& img) {
+  const int w = img.cols, h = img.rows;
+  const cv::Point2d sc(r.x - 0.7 * r.rx * light.x, r.y - 0.7 * r.rx * light.y);
+  const int reach = static_cast<int>(std::ceil(r.rx * 1.15)) + 3;
+  const cv::Rect patch =
+      cv::Rect(static_cast<int>(sc.x) - reach, static_cast<int>(sc.y) - reach, 2 * reach + 1, 2 * reach + 1) &
+      cv::Rect(0, 0, w, h);
+  if (patch.area() <= 0) return;
+  cv::Mat shadow = cv::Mat::zeros(patch.size(), CV_8U);
+  cv::ellipse(shadow, sc - cv::Point2d(patch.x, patch.y), cv::Size2d(r.rx * 1.15, r.ry * 1.05), r.angle_deg, 0, 360,
+              255, cv::FILLED, cv::LINE_AA);
+  cv::Mat sh_f;
+  shadow.convertTo(sh_f, CV_32F, 1.0 / 255);
+  cv::Mat roi = img(patch);
+  roi = roi.mul(1.0 - (1.0 - look.shadow_factor) * sh_f);
+}
+
+// The rock as a shaded half-ellipsoid; returns the pixels it covers (empty when outside the frame).
+cv::Rect draw_rock(const Rock& r, const DomainLook& look, const cv::Point2d& light, cv::Mat& img) {
+  const int w = img.cols, h = img.rows;
+  const double ca = std::cos(r.angle_deg * M_PI / 180), sa = std::sin(r.angle_deg * M_PI / 180);
+  const int x0 = std::max(0, static_cast<int>(r.x - r.rx - 2)), x1 = std::min(w - 1, static_cast<int>(r.x + r.rx + 2));
+  const int y0 = std::max(0, static_cast<int>(r.y - r.rx - 2)), y1 = std::min(h - 1, static_cast<int>(r.y + r.rx + 2));
+  int bx0 = w, by0 = h, bx1 = -1, by1 = -1;
+  for (int y = y0; y <= y1; ++y) {
+    float* row = img.ptr<float>(y);
+    for (int x = x0; x <= x1; ++x) {
+      const double dx = x - r.x, dy = y - r.y;
+      const double u = (ca * dx + sa * dy) / r.rx, v = (-sa * dx + ca * dy) / r.ry;
+      const double q = u * u + v * v;
+      if (q > 1) continue;
+      const double nz = std::sqrt(1 - q);
+      // normal in image axes
+      const double nx = ca * u - sa * v, ny = sa * u + ca * v;
+      const double lambert = std::max(0.0, 0.75 * (nx * light.x + ny * light.y) + 0.55 * nz);
+      row[x] = static_cast<float>(look.ground * r.albedo * (look.shade_ambient + (1.2 - look.shade_ambient) * lambert));
+      bx0 = std::min(bx0, x), bx1 = std::max(bx1, x), by0 = std::min(by0, y), by1 = std::max(by1, y);
     }
-    // Shadow first, cast away from the sun; drawn only in the patch it can cover.
-    const cv::Point2d sc(r.x - 0.7 * r.rx * light.x, r.y - 0.7 * r.rx * light.y);
-    const int reach = static_cast<int>(std::ceil(r.rx * 1.15)) + 3;
-    const cv::Rect patch =
-        cv::Rect(static_cast<int>(sc.x) - reach, static_cast<int>(sc.y) - reach, 2 * reach + 1, 2 * reach + 1) &
-        cv::Rect(0, 0, w, h);
-    if (patch.area() > 0) {
-      cv::Mat shadow = cv::Mat::zeros(patch.size(), CV_8U);
-      cv::ellipse(shadow, sc - cv::Point2d(patch.x, patch.y), cv::Size2d(r.rx * 1.15, r.ry * 1.05), r.angle_deg, 0, 360,
-                  255, cv::FILLED, cv::LINE_AA);
-      cv::Mat sh_f;
-      shadow.convertTo(sh_f, CV_32F, 1.0 / 255);
-      cv::Mat roi = img(patch);
-      roi = roi.mul(1.0 - (1.0 - look.shadow_factor) * sh_f);
-    }
-    // The rock: a shaded half-ellipsoid.
-    const double ca = std::cos(r.angle_deg * M_PI / 180), sa = std::sin(r.angle_deg * M_PI / 180);
-    const int x0 = std::max(0, static_cast<int>(r.x - r.rx - 2)),
-              x1 = std::min(w - 1, static_cast<int>(r.x + r.rx + 2));
-    const int y0 = std::max(0, static_cast<int>(r.y - r.rx - 2)),
-              y1 = std::min(h - 1, static_cast<int>(r.y + r.rx + 2));
-    int bx0 = w, by0 = h, bx1 = -1, by1 = -1;
-    for (int y = y0; y <= y1; ++y) {
-      float* row = img.ptr<float>(y);
-      for (int x = x0; x <= x1; ++x) {
-        const double dx = x - r.x, dy = y - r.y;
-        const double u = (ca * dx + sa * dy) / r.rx, v = (-sa * dx + ca * dy) / r.ry;
-        const double q = u * u + v * v;
-        if (q > 1) continue;
-        const double nz = std::sqrt(1 - q);
-        // normal in image axes
-        const double nx = ca * u - sa * v, ny = sa * u + ca * v;
-        const double lambert = std::max(0.0, 0.75 * (nx * light.x + ny * light.y) + 0.55 * nz);
-        row[x] =
-            static_cast<float>(look.ground * r.albedo * (look.shade_ambient + (1.2 - look.shade_ambient) * lambert));
-        bx0 = std::min(bx0, x), bx1 = std::max(bx1, x), by0 = std::min(by0, y), by1 = std::max(by1, y);
-      }
-    }
-    if (bx1 < bx0) continue;  // outside the frame
-    const bool hidden = look.wall_shadow && in_wall_shadow(scene, r.x, r.y);
-    if (hidden) continue;  // hand labellers can't see rocks in the wall's shadow
-    const double cw = bx1 - bx0 + 1, ch = by1 - by0 + 1;
-    if (cw < 4 || ch < 4) continue;
-    Box b;
-    b.cls = 0;
-    b.cx = (bx0 + 0.5 * cw) / w;
-    b.cy = (by0 + 0.5 * ch) / h;
-    b.w = cw / w;
-    b.h = ch / h;
-    gt->push_back(b);
   }
+  if (bx1 < bx0) return {};
+  return {bx0, by0, bx1 - bx0 + 1, by1 - by0 + 1};
+}
+
+// The camera's finish: the wall's shadow, blur, sensor noise (drawn from `tex` after the ground), 8 bits and a
+// faint warm tint, as lunar-analogue photos have.
+cv::Mat finish(const Scene& scene, const DomainLook& look, cv::Mat img, cv::RNG& tex) {
+  const int w = img.cols, h = img.rows;
   if (look.wall_shadow) {
     for (int y = 0; y < h; ++y) {
       float* row = img.ptr<float>(y);
@@ -176,9 +163,39 @@ cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& ca
   img.convertTo(out8, CV_8U);
   cv::Mat bgr;
   cv::cvtColor(out8, bgr, cv::COLOR_GRAY2BGR);
-  // A faint warm tint, as lunar-analogue photos have.
   bgr.forEach<cv::Vec3b>([](cv::Vec3b& p, const int*) { p[2] = cv::saturate_cast<uchar>(p[2] * 1.04 + 2); });
   return bgr;
+}
+
+cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& cam, int w, int h, std::vector<Box>* gt) {
+  cv::RNG tex(scene.texture_seed);
+  cv::Mat img = ground(look, w, h, tex);
+  const double sun = scene.sun_deg * M_PI / 180.0;
+  const cv::Point2d light(std::cos(sun), std::sin(sun));
+  gt->clear();
+  for (const auto& r0 : scene.rocks) {
+    Rock r = r0;
+    if (look.camera_offset) {
+      r.x = cam(0, 0) * r0.x + cam(0, 1) * r0.y + cam(0, 2);
+      r.y = cam(1, 0) * r0.x + cam(1, 1) * r0.y + cam(1, 2);
+      r.rx *= 1.015;
+      r.ry *= 1.015;
+    }
+    draw_shadow(r, look, light, img);
+    const cv::Rect covered = draw_rock(r, look, light, img);
+    if (covered.empty()) continue;                                      // outside the frame
+    if (look.wall_shadow && in_wall_shadow(scene, r.x, r.y)) continue;  // labellers can't see rocks in it
+    const double cw = covered.width, ch = covered.height;
+    if (cw < 4 || ch < 4) continue;
+    Box b;
+    b.cls = 0;
+    b.cx = (covered.x + 0.5 * cw) / w;
+    b.cy = (covered.y + 0.5 * ch) / h;
+    b.w = cw / w;
+    b.h = ch / h;
+    gt->push_back(b);
+  }
+  return finish(scene, look, img, tex);
 }
 
 void write_png(const std::string& path, const cv::Mat& img) {
