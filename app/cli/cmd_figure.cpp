@@ -9,6 +9,7 @@
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 #include "app/cli/figure_cli.h"
+#include "core/io/label_io.h"
 #include "core/ipd/ipd.h"
 #include "core/util/atomic_file.h"
 #include "ui/figures/figure_export.h"
@@ -29,6 +30,15 @@ struct Chosen {
   StudyLabels labels;
   std::string a, b, model, stem;
 };
+
+// The labels with `model`'s predictions below `conf` left out, as the figure draws them.
+StudyLabels confident_labels(const StudyLabels& labels, const std::string& model, double conf) {
+  StudyLabels out = labels;
+  for (auto& [domain, models] : out.predictions)
+    if (const auto m = models.find(model); m != models.end())
+      for (auto& [stem, file] : m->second) keep_confident(&file, conf);
+  return out;
+}
 
 Chosen resolve(const Args& args, bool needs_scene) {
   Chosen f{load_labels(open_study(args.study)), {}, {}, {}, {}};
@@ -61,11 +71,15 @@ Chosen resolve(const Args& args, bool needs_scene) {
     opt.models = {f.model};
     opt.registration = st.config.registration;
     opt.registration.aspect = st.aspect();
-    const CrossTable t = compute_cross_table(f.labels, opt);
+    // Chosen among the predictions the figure draws: --conf above the study's threshold hides some, and the
+    // scene that contributes most can change with them.
+    const bool raised = args.conf > st.config.conf_threshold;
+    const CrossTable t = compute_cross_table(raised ? confident_labels(f.labels, f.model, args.conf) : f.labels, opt);
     double worst = -1;
     for (const auto& s : t.cells.front().per_scene)
       if (s.sum_abs_diff > worst) worst = s.sum_abs_diff, f.stem = s.stem;
-    fmt::print(stderr, "scene {}: it contributes most to IPD({}, {}) for {}\n", f.stem, f.a, f.b, f.model);
+    fmt::print(stderr, "scene {}: it contributes most to IPD({}, {}) for {}{}\n", f.stem, f.a, f.b, f.model,
+               raised ? fmt::format(" at conf \u2265 {:g}", args.conf) : "");
   }
   if (f.stem.empty()) f.stem = match.common.front();
   // The scene's hand pairs as `ipd table` judges them: moved rocks are a warning, unusable pairs an error

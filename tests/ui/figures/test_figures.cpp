@@ -207,5 +207,22 @@ TEST(Figures, DefaultSceneIsTheLargestContribution) {
   EXPECT_EQ(r.err, "scene s1: it contributes most to IPD(real, synth) for det\n");
 }
 
+TEST(Figures, DefaultSceneIsChosenAtTheFiguresConfidence) {
+  test::TempDir d;
+  test::write_figure_study(d, false);
+  // s0 agrees at every threshold up to 0.3 (diff 0); above it, its real detection is hidden: perf 0 vs 1, a
+  // larger contribution than s1's |0.6 - 0.818| = 0.218.
+  test::write_text(d / "real/labels/s0.txt", "0 0.5 0.5 0.2 0.2\n");
+  test::write_text(d / "synth/labels/s0.txt", "0 0.5 0.5 0.2 0.2\n");
+  test::write_text(d / "real/predictions/det/s0.txt", "0 0.5 0.5 0.2 0.2 0.3\n");
+  test::write_text(d / "synth/predictions/det/s0.txt", "0 0.5 0.5 0.2 0.2 0.9\n");
+  auto r = test::run_ipd("figure pairs " + d.path() + " --dpi 72 --out " + d / "p.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "scene s1: it contributes most to IPD(real, synth) for det\n");
+  r = test::run_ipd("figure pairs " + d.path() + " --conf 0.5 --dpi 72 --out " + d / "p.png");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "scene s0: it contributes most to IPD(real, synth) for det at conf \u2265 0.5\n");
+}
+
 }  // namespace
 }  // namespace ipd
