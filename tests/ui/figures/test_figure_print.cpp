@@ -301,5 +301,94 @@ TEST(FigurePrint, BoxesSurviveGreyscaleAndDeuteranopia) {
   }
 }
 
+// The marks of a figure as drawn: filled circles (dots), stroked circles (rings) and lines, in points.
+class MarkRecorder : public ui::Canvas {
+ public:
+  struct Mark {
+    ui::Pt a, b;  // a circle's centre (b unused) or a line's ends
+    double radius = 0;
+    ui::Colour colour;
+  };
+  std::vector<Mark> dots, rings, lines;
+  void rect(const ui::PtRect&, ui::Colour, double) override {}
+  void fill_rect(const ui::PtRect&, ui::Colour) override {}
+  void line(ui::Pt a, ui::Pt b, ui::Colour c, double) override { lines.push_back({a, b, 0, c}); }
+  void polyline(const std::vector<ui::Pt>&, ui::Colour, double, bool) override {}
+  void circle(ui::Pt c, double r, ui::Colour col, double) override { rings.push_back({c, {}, r, col}); }
+  void fill_circle(ui::Pt c, double r, ui::Colour col) override { dots.push_back({c, {}, r, col}); }
+  void text(ui::Pt, ui::Anchor, const ui::TextStyle&, const std::string&) override {}
+  void image(const ui::FigurePicture&, const ui::PtRect&) override {}
+  void push_clip(const ui::PtRect&) override {}
+  void pop_clip() override {}
+  ui::Pt measure(const ui::TextStyle&, const std::string&) override { return {}; }
+};
+
+// The largest grey-level distance from the panel's grey 248 over the pixels of a short segment (page points,
+// 288 dpi): a stroke anywhere on it counts, anti-aliased or not.
+int ink_on(const cv::Mat& g, ui::Pt from, ui::Pt to) {
+  int best = 0;
+  for (int k = 0; k <= 16; ++k) {
+    const double x = (from.x + (to.x - from.x) * k / 16) * 4, y = (from.y + (to.y - from.y) * k / 16) * 4;
+    best = std::max(best, std::abs(int(g.at<uchar>(int(std::lround(y)), int(std::lround(x)))) - 248));
+  }
+  return best;
+}
+
+// The registration figure has no picture under its marks: blue dots (rocks of A), pink rings (rocks of B)
+// and green pair lines on a light grey panel. Each must stay visible printed in grey and seen with
+// deuteranopia: 60 grey levels or more from the panel (pink, the lightest, is about 88 in grey and 78 with
+// deuteranopia; a pastel or yellow would be 10 to 30).
+TEST(FigurePrint, RegistrationMarksSurviveGreyscaleAndDeuteranopia) {
+  test::TempDir d;
+  test::write_text(d / "study.yaml",
+                   "domains: [real, synth]\nimage_size: [640, 400]\nmodels: {det: {trained_on: real}}\n");
+  // Three rocks, the synthetic twin's 0.08 to the right: in the "before" panel each pair line is longer than
+  // a ring's radius, so its middle is clear of both marks.
+  test::write_text(d / "real/labels/s1.txt", "0 0.20 0.30 0.05 0.05\n0 0.60 0.50 0.05 0.05\n0 0.40 0.75 0.05 0.05\n");
+  test::write_text(d / "synth/labels/s1.txt", "0 0.28 0.30 0.05 0.05\n0 0.68 0.50 0.05 0.05\n0 0.48 0.75 0.05 0.05\n");
+  const std::string pdf = d / "reg.pdf";
+  const auto r = test::run_ipd("figure registration " + d.path() + " --scene s1 --layers gt,pairs --out " + pdf);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(test::run_command("pdftoppm -r 288 -png -singlefile '" + pdf + "' '" + pdf + "'").exit_code, 0);
+  const cv::Mat img = cv::imread(pdf + ".png", cv::IMREAD_COLOR);
+  ASSERT_FALSE(img.empty());
+
+  const Study study = open_study(d.path());
+  const StudyLabels labels = load_labels(study);
+  RegistrationOptions reg = study.config.registration;
+  reg.aspect = study.aspect();
+  const ui::SceneFigureInput in = ui::scene_input_from_study(labels, "real", "synth", "det", "s1", 0, reg);
+  ASSERT_EQ(in.pairs.size(), 3u);
+  ui::FigureOptions o;
+  o.layers = ui::parse_layers("gt,pairs");
+  const ui::FontMetrics metrics(ui::default_font_file());
+  ui::DisplayList fig(metrics);
+  ui::draw_registration_figure(fig, in, o);
+  MarkRecorder marks;
+  fig.replay(marks);
+  ASSERT_EQ(marks.dots.size(), 6u);   // three rocks of A per panel
+  ASSERT_EQ(marks.rings.size(), 6u);  // three rocks of B per panel
+  // The "before" panel is drawn first: its first three dots, rings and green lines (each line twice: a white
+  // halo, then the line).
+  std::vector<MarkRecorder::Mark> green;
+  for (const auto& l : marks.lines)
+    if (l.colour.g > l.colour.r + 50) green.push_back(l);
+  ASSERT_GE(green.size(), 3u);
+  for (const bool cvd : {false, true}) {
+    const cv::Mat g = grey(cvd ? deuteranopia(img) : img);
+    const std::string seen = cvd ? "deuteranopia" : "grey";
+    for (int k = 0; k < 3; ++k) {
+      const auto& dot = marks.dots[k];
+      EXPECT_GE(ink_on(g, dot.a, dot.a), 60) << "dot " << k << ", " << seen;
+      // A ring's top, where no pair line passes (the lines run to the right).
+      const auto& ring = marks.rings[k];
+      const ui::Pt top{ring.a.x, ring.a.y - ring.radius};
+      EXPECT_GE(ink_on(g, {top.x, top.y - 0.4}, {top.x, top.y + 0.4}), 60) << "ring " << k << ", " << seen;
+      const ui::Pt mid{(green[k].a.x + green[k].b.x) / 2, (green[k].a.y + green[k].b.y) / 2};
+      EXPECT_GE(ink_on(g, {mid.x, mid.y - 0.3}, {mid.x, mid.y + 0.3}), 60) << "line " << k << ", " << seen;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ipd
