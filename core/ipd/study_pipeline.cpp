@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <unordered_set>
 
@@ -60,14 +61,45 @@ std::string first_three(const std::vector<std::string>& v) {
   return s + (v.size() > 3 ? ", ..." : "");
 }
 
-Problem no_counterpart(const std::vector<std::string>& only, const std::string& in, const std::string& other) {
+// Scenes of the domains `in` that `other` lacks. One problem for all of them: a scene missing from one
+// domain would otherwise be listed once for each domain pair it misses.
+Problem no_counterpart(const std::vector<std::string>& only, const std::vector<std::string>& in,
+                       const std::string& other) {
   Problem p;
-  p.domain = in;
+  p.domain = in.front();
   if (only.size() == 1) p.scene = only.front();
-  p.message = fmt::format("{} scene(s) of '{}' have no counterpart in '{}' and are skipped: {}", only.size(), in, other,
-                          first_three(only));
+  std::string names;
+  for (size_t k = 0; k < in.size(); ++k)
+    names += fmt::format("{}'{}'", k == 0 ? "" : k + 1 == in.size() ? " and " : ", ", in[k]);
+  p.message = fmt::format("{} scene(s) of {} have no counterpart in '{}' and are skipped: {}", only.size(), names,
+                          other, first_three(only));
   return p;
 }
+
+// Collects the scenes without a counterpart over the domain pairs, merging the same scenes missing from the
+// same domain into the problem that first named them.
+class MissingScenes {
+ public:
+  void add(const std::vector<std::string>& only, const std::string& in, const std::string& other,
+           std::vector<Problem>* problems) {
+    if (only.empty()) return;
+    std::string key = other;
+    for (const auto& s : only) key += "\n" + s;
+    const auto [it, fresh] = seen_.try_emplace(key, Seen{problems->size(), {}});
+    it->second.in.push_back(in);
+    if (fresh)
+      problems->push_back(no_counterpart(only, it->second.in, other));
+    else
+      (*problems)[it->second.at] = no_counterpart(only, it->second.in, other);
+  }
+
+ private:
+  struct Seen {
+    size_t at;                    // index of its problem
+    std::vector<std::string> in;  // the domains that have these scenes
+  };
+  std::map<std::string, Seen> seen_;
+};
 
 // One scene: its pairs file (when `may_have_file`), else (or also) its registration. Problems of its pairs
 // files go to `problems`.
@@ -149,11 +181,12 @@ PairedStudy pair_study(const StudyLabels& labels, const std::vector<std::pair<st
   };
   std::vector<Job> jobs;
   std::set<std::string> reported_missing;  // a domain's missing label file, said once over its domain pairs
+  MissingScenes missing;
   for (size_t c = 0; c < pairs.size(); ++c) {
     const auto& [a, b] = pairs[c];
     SceneMatch m = match_scenes(*study.domain(a), *study.domain(b));
-    if (!m.only_a.empty()) out.problems.push_back(no_counterpart(m.only_a, a, b));
-    if (!m.only_b.empty()) out.problems.push_back(no_counterpart(m.only_b, b, a));
+    missing.add(m.only_a, a, b, &out.problems);
+    missing.add(m.only_b, b, a, &out.problems);
     DomainPairScenes d{a, b, std::vector<PipelineScene>(m.common.size())};
     for (size_t k = 0; k < m.common.size(); ++k) {
       d.scenes[k].automatic.stem = m.common[k];

@@ -2,12 +2,16 @@
 // pairs and report problems through it, so they can't disagree.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "core/ipd/study_pipeline.h"
 #include "core/session/session.h"
 #include "tests/support/test_support.h"
 
 namespace ipd {
 namespace {
+
+namespace fs = std::filesystem;
 
 // real and synth share s1 (two rocks, listed in the other order); only_real has no counterpart; s1's hand
 // pairs, written as synth__real [synth 1, real 0], pair real 0 with synth 1 only.
@@ -44,6 +48,36 @@ TEST(StudyPipeline, FixedScenesAreRegisteredOnlyWhenAsked) {
   EXPECT_EQ(studio.pairs[0].scenes[0].automatic.pairs, (RockPairs{{0, 1}, {1, 0}}));
   EXPECT_EQ(studio.registrations, 1);
   EXPECT_EQ(studio.fixed_scenes, 1);
+}
+
+// A scene that one of three domains lacks misses two domain pairs: it is one problem naming both domains
+// that have it, not one per pair; a scene only one domain has is its own problem.
+TEST(StudyPipeline, AMissingSceneIsOneProblemOverItsDomainPairs) {
+  test::TempDir d;
+  test::write_text(d / "study.yaml", "domains: [real, principled, hapke]\n");
+  for (const std::string dom : {"real", "principled", "hapke"})
+    test::write_text(d / (dom + "/labels/s1.txt"), "0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "real/labels/s2.txt", "0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "principled/labels/s2.txt", "0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "real/labels/s3.txt", "0 0.2 0.2 0.1 0.1\n");
+  const StudyLabels labels = load_labels(open_study(d.path()));
+  const PairedStudy paired =
+      pair_study(labels, {{"real", "principled"}, {"real", "hapke"}, {"principled", "hapke"}}, PipelineOptions{});
+  std::vector<std::string> said;
+  for (const Problem& p : paired.problems) said.push_back(p.to_string());
+  EXPECT_EQ(said, (std::vector<std::string>{
+                      "1 scene(s) of 'real' have no counterpart in 'principled' and are skipped: s3",
+                      "2 scene(s) of 'real' have no counterpart in 'hapke' and are skipped: s2, s3",
+                      "1 scene(s) of 'principled' have no counterpart in 'hapke' and are skipped: s2",
+                  }));
+  // Without s3 the same scene is missing from hapke for both domains that have it: one problem.
+  fs::remove(d / "real/labels/s3.txt");
+  const PairedStudy again = pair_study(load_labels(open_study(d.path())),
+                                       {{"real", "principled"}, {"real", "hapke"}, {"principled", "hapke"}}, {});
+  ASSERT_EQ(again.problems.size(), 1u);
+  EXPECT_EQ(again.problems[0].to_string(),
+            "1 scene(s) of 'real' and 'principled' have no counterpart in 'hapke' and are skipped: s2");
+  EXPECT_EQ(again.problems[0].scene, "s2");
 }
 
 TEST(StudyPipeline, TheSessionReportsWhatTheTableWarnsAbout) {
