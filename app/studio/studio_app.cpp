@@ -1,5 +1,7 @@
 #include "app/studio/studio_app.h"
 
+#include "app/studio/studio_gl_textures.h"
+
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -56,7 +58,7 @@ std::vector<std::string> read_recent() {
 
 }  // namespace
 
-StudioApp::StudioApp(StudioOptions o) : o_(std::move(o)), textures_(o_.texture_budget_mb << 20) {
+StudioApp::StudioApp(StudioOptions o) : o_(std::move(o)), textures_(gl_textures(), o_.texture_budget_mb << 20) {
   if (!o_.replay.empty()) replay_ = parse_replay(read_file(o_.replay), o_.replay);
   const bool demo = o_.study.empty();
   if (demo) o_.study = (cache_home() / "demo-study").string();

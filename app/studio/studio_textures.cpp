@@ -1,136 +1,10 @@
 #include "app/studio/studio_textures.h"
 
-#define GL_GLEXT_PROTOTYPES
-#include <GL/gl.h>
-
-#include <algorithm>
-#include <filesystem>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
-
 namespace ipd::studio {
-
-namespace {
-
-bool is_jpeg(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-  return ext == ".jpg" || ext == ".jpeg";
-}
-
-std::vector<cv::Mat> mip_chain(const cv::Mat& bgr) {
-  std::vector<cv::Mat> levels(1);
-  cv::cvtColor(bgr, levels[0], cv::COLOR_BGR2RGBA);
-  while (levels.back().cols > 1 || levels.back().rows > 1) {
-    cv::Mat next;
-    const cv::Mat& prev = levels.back();
-    cv::resize(prev, next, cv::Size(std::max(1, prev.cols / 2), std::max(1, prev.rows / 2)), 0, 0, cv::INTER_AREA);
-    levels.push_back(next);
-  }
-  return levels;
-}
-
-}  // namespace
-
-PictureLoader::PictureLoader(int threads, int max_width) : max_width_(max_width) {
-  for (int k = 0; k < threads; ++k) threads_.emplace_back([this] { run(); });
-}
-
-PictureLoader::~PictureLoader() {
-  {
-    std::lock_guard<std::mutex> l(mu_);
-    stop_ = true;
-  }
-  cv_.notify_all();
-  for (auto& t : threads_) t.join();
-}
-
-void PictureLoader::request(const std::string& key, const std::string& path, bool urgent) {
-  {
-    std::lock_guard<std::mutex> l(mu_);
-    queue_.erase(std::remove_if(queue_.begin(), queue_.end(), [&](const Job& q) { return q.key == key; }),
-                 queue_.end());
-    if (urgent)
-      queue_.push_front({key, path, true});
-    else
-      queue_.push_back({key, path, false});
-  }
-  cv_.notify_one();
-}
-
-std::vector<DecodedPicture> PictureLoader::take_ready() {
-  std::lock_guard<std::mutex> l(mu_);
-  return std::exchange(ready_, {});
-}
-
-bool PictureLoader::idle() {
-  std::lock_guard<std::mutex> l(mu_);
-  return queue_.empty() && !busy_ && ready_.empty();
-}
-
-void PictureLoader::run() {
-  while (true) {
-    Job job;
-    {
-      std::unique_lock<std::mutex> l(mu_);
-      cv_.wait(l, [&] { return stop_ || !queue_.empty(); });
-      if (stop_) return;
-      job = queue_.front();
-      queue_.pop_front();
-      ++busy_;
-    }
-    auto deliver = [&](DecodedPicture d) {
-      std::lock_guard<std::mutex> l(mu_);
-      ready_.push_back(std::move(d));
-    };
-    DecodedPicture d;
-    d.key = job.key;
-    d.full = true;
-    d.path = job.path;
-    std::error_code ec;
-    if (job.path.empty()) {
-      d.error = "no picture for this scene (labels only)";
-    } else if (!std::filesystem::exists(job.path, ec)) {
-      d.error = "missing picture: " + job.path;
-    } else {
-      // JPEG decodes at 1/4 scale directly (DCT scaling); other formats are reduced after decoding.
-      if (job.urgent && is_jpeg(job.path)) {
-        cv::Mat small = cv::imread(job.path, cv::IMREAD_REDUCED_COLOR_4);
-        if (!small.empty()) {
-          DecodedPicture p{job.key, {}, small.cols * 4, small.rows * 4, false, {}, job.path};
-          cv::cvtColor(small, small, cv::COLOR_BGR2RGBA);
-          p.levels.push_back(small);
-          deliver(std::move(p));
-        }
-      }
-      cv::Mat bgr = cv::imread(job.path, cv::IMREAD_COLOR);
-      if (bgr.empty()) {
-        d.error = "cannot decode " + job.path;
-      } else {
-        d.width = bgr.cols;
-        d.height = bgr.rows;
-        if (job.urgent && !is_jpeg(job.path)) {
-          cv::Mat small;
-          cv::resize(bgr, small, cv::Size(bgr.cols / 4, bgr.rows / 4), 0, 0, cv::INTER_NEAREST);
-          cv::cvtColor(small, small, cv::COLOR_BGR2RGBA);
-          deliver(DecodedPicture{job.key, {small}, bgr.cols, bgr.rows, false, {}, job.path});
-        }
-        if (bgr.cols > max_width_) {
-          const double k = static_cast<double>(max_width_) / bgr.cols;
-          cv::resize(bgr, bgr, cv::Size(), k, k, cv::INTER_AREA);
-        }
-        d.levels = mip_chain(bgr);
-      }
-    }
-    deliver(std::move(d));
-    std::lock_guard<std::mutex> l(mu_);
-    --busy_;
-  }
-}
 
 TextureCache::~TextureCache() {
   for (auto& [k, e] : entries_)
-    if (e.id) glDeleteTextures(1, &e.id);
+    if (e.id) backend_->destroy(e.id);
 }
 
 TextureRef TextureCache::get(const std::string& key, const std::string& path, bool urgent, PictureLoader& loader) {
@@ -166,7 +40,7 @@ void TextureCache::upload(DecodedPicture&& d) {
   Entry& e = it->second;
   if (e.full && !d.full) return;  // a preview arriving after the full picture
   if (e.id) {
-    glDeleteTextures(1, &e.id);
+    backend_->destroy(e.id);
     bytes_ -= e.bytes;
     e.id = 0;
     e.bytes = 0;
@@ -176,20 +50,9 @@ void TextureCache::upload(DecodedPicture&& d) {
   e.full = d.full;
   e.error = d.error;
   if (d.levels.empty()) return;
-  glGenTextures(1, &e.id);
-  glBindTexture(GL_TEXTURE_2D, e.id);
-  // Mipmaps: pictures are mostly shown smaller than they are; sampling a reduced level is smoother and
-  // much cheaper for a software rasteriser. The levels were built on the decoder thread.
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, d.levels.size() > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, static_cast<int>(d.levels.size()) - 1);
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-  for (size_t level = 0; level < d.levels.size(); ++level) {
-    const cv::Mat& m = d.levels[level];
-    glTexImage2D(GL_TEXTURE_2D, static_cast<int>(level), GL_RGBA, m.cols, m.rows, 0, GL_RGBA, GL_UNSIGNED_BYTE, m.data);
-    e.bytes += m.total() * 4;
-  }
+  e.id = backend_->create(d.levels);
+  if (!e.id) return;
+  for (const cv::Mat& m : d.levels) e.bytes += m.total() * 4;
   bytes_ += e.bytes;
 }
 
@@ -200,7 +63,7 @@ void TextureCache::end_frame() {
     auto it = entries_.find(key);
     if (it->second.used_frame == frame_) break;
     lru_.pop_back();
-    if (it->second.id) glDeleteTextures(1, &it->second.id);
+    if (it->second.id) backend_->destroy(it->second.id);
     bytes_ -= it->second.bytes;
     entries_.erase(it);
   }

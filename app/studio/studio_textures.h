@@ -1,53 +1,26 @@
-// Pictures for ipd-studio: decoded off the UI thread (a reduced version first, then the full one with its
-// mipmap chain built on the decoder thread, so the UI thread only copies levels into textures), and kept
-// in a texture cache bounded by bytes, least recently used out first.
+// The studio's texture cache: textures by key, bounded by bytes, least recently used out first. The cache's
+// rules (what to request, what to keep, what to evict) are GL-free and tested; a TextureBackend makes and
+// frees the textures themselves (OpenGL in ipd-studio, studio_gl_textures.cpp).
 #pragma once
 
-#include <condition_variable>
+#include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <list>
 #include <map>
-#include <mutex>
-#include <opencv2/core.hpp>
+#include <memory>
 #include <string>
-#include <thread>
 #include <vector>
+
+#include "app/studio/picture_loader.h"
 
 namespace ipd::studio {
 
-struct DecodedPicture {
-  std::string key;
-  std::vector<cv::Mat> levels;  // RGBA, level 0 first; empty when it could not be read
-  int width = 0, height = 0;    // of the original file
-  bool full = false;            // false: a reduced preview, the full picture follows
-  std::string error;
-  std::string path;  // the picture's file; empty for a labels-only scene
-};
-
-class PictureLoader {
+// Makes a texture from a mipmap chain (RGBA, level 0 first) and frees one: 0 is "no texture".
+class TextureBackend {
  public:
-  explicit PictureLoader(int threads = 2, int max_width = 2048);
-  ~PictureLoader();
-  // Urgent requests go first and get a reduced preview; a key already queued moves to the front.
-  void request(const std::string& key, const std::string& path, bool urgent);
-  std::vector<DecodedPicture> take_ready();
-  bool idle();
-
- private:
-  void run();
-  int max_width_;
-  std::mutex mu_;
-  std::condition_variable cv_;
-  struct Job {
-    std::string key, path;
-    bool urgent;
-  };
-  std::deque<Job> queue_;
-  std::vector<DecodedPicture> ready_;
-  bool stop_ = false;
-  int busy_ = 0;
-  std::vector<std::thread> threads_;
+  virtual ~TextureBackend() = default;
+  virtual unsigned create(const std::vector<cv::Mat>& levels) = 0;
+  virtual void destroy(unsigned id) = 0;
 };
 
 // What the view draws: a texture id (0: none yet) and why there is none.
@@ -58,11 +31,14 @@ struct TextureRef {
   std::string placeholder;
 };
 
-// GL textures by key, bounded by bytes (LRU). Call only from the GL thread.
+// Textures by key, bounded by bytes (LRU). Call only from the thread that owns the backend's context.
 class TextureCache {
  public:
-  explicit TextureCache(std::size_t budget_bytes = std::size_t(512) << 20) : budget_(budget_bytes) {}
+  explicit TextureCache(std::unique_ptr<TextureBackend> backend, std::size_t budget_bytes = std::size_t(512) << 20)
+      : backend_(std::move(backend)), budget_(budget_bytes) {}
   ~TextureCache();
+  TextureCache(const TextureCache&) = delete;
+  TextureCache& operator=(const TextureCache&) = delete;
   // The texture for `key`, requesting it from `loader` when absent (path empty: labels-only scene).
   TextureRef get(const std::string& key, const std::string& path, bool urgent, PictureLoader& loader);
   void upload(DecodedPicture&& d);  // from PictureLoader::take_ready()
@@ -79,6 +55,7 @@ class TextureCache {
     std::size_t bytes = 0;
     std::list<std::string>::iterator lru;
   };
+  std::unique_ptr<TextureBackend> backend_;
   std::map<std::string, Entry> entries_;
   std::list<std::string> lru_;  // most recent first
   std::size_t budget_, bytes_ = 0;
