@@ -84,8 +84,99 @@ std::string parse_model_settings(const YAML::Node& settings, const std::string& 
 }  // namespace
 
 namespace {
-StudyConfig parse_study_config_nodes(const std::string& text, const std::string& file);
+
+// Where the first YAML document of `text` ends. Documents are split here, not by YAML::LoadAll: yaml-cpp 0.7's
+// LoadAll loops without end, eating memory, on some malformed multi-document inputs (a 123-byte study.yaml
+// found by fuzz_study_yaml took > 16 GB). A `---` after the first document's content starts a second one;
+// Load() alone would silently ignore it, so content after it is an error.
+size_t first_document_end(const std::string& text, const std::string& file) {
+  size_t first_end = text.size();
+  bool content = false;
+  int line_no = 0;
+  for (size_t pos = 0; pos < text.size();) {
+    const size_t eol = std::min(text.find('\n', pos), text.size());
+    std::string line = text.substr(pos, eol - pos);
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const size_t first = line.find_first_not_of(" \t");
+    const bool blank = first == std::string::npos || line[first] == '#';
+    const bool marker = line.rfind("---", 0) == 0 && (line.size() == 3 || line[3] == ' ' || line[3] == '\t');
+    const bool end_marker = line.rfind("...", 0) == 0 && (line.size() == 3 || line[3] == ' ' || line[3] == '\t');
+    if (first_end == text.size()) {
+      if ((marker && content) || end_marker)
+        first_end = pos;
+      else if (!blank && !marker && line[0] != '%')
+        content = true;
+    } else if (!blank && !marker && !end_marker) {
+      throw StudyError(fmt::format("{}:{}: a second YAML document; expected one mapping of settings", file, line_no));
+    }
+    pos = eol + 1;
+  }
+  return first_end;
 }
+
+// `models:` - each model's name (a file name: it becomes part of export file names) and settings.
+void parse_models(const YAML::Node& v, const std::string& file, int line, StudyConfig* c) {
+  if (!v.IsMap()) throw StudyError(fmt::format("{}:{}: models must map a model name to its settings", file, line));
+  check_unique_keys(v, file, "models.");
+  for (const auto& m : v) {
+    const std::string name = m.first.as<std::string>();
+    // The name becomes the default model and part of export file names: it must be one.
+    if (const std::string why = file_name_problem(name, kMaxModelNameBytes); !why.empty())
+      throw StudyError(fmt::format("{}:{}: model name '{}' {}", file, m.first.Mark().line + 1,
+                                   printable_name(name, kShownNameBytes), why));
+    if (!m.second.IsMap() && !m.second.IsNull())
+      throw StudyError(fmt::format("{}:{}: models.{} must be a mapping like {{trained_on: real}}", file,
+                                   m.first.Mark().line + 1, name));
+    c->trained_on[name] = parse_model_settings(m.second, file, name);
+  }
+}
+
+// `registration:` - method, seed, trials (the method's search budget) and gate, validated together.
+void parse_registration(const YAML::Node& v, const std::string& file, int line, StudyConfig* c) {
+  if (!v.IsMap()) throw StudyError(fmt::format("{}:{}: registration must be a mapping", file, line));
+  check_unique_keys(v, file, "registration.");
+  int trials = 0;  // 0: not given
+  for (const auto& r : v) {
+    const std::string k = r.first.as<std::string>();
+    if (k == "method") {
+      const std::string name = yaml_get<std::string>(r.second, file, "registration.method");
+      if (!parse_method(name, &c->registration.method))
+        throw StudyError(fmt::format("{}:{}: unknown registration method '{}' (expected {})", file,
+                                     r.first.Mark().line + 1, name, method_choices()));
+    } else if (k == "seed") {
+      // yaml-cpp reads "-1" as 2^64 - 1 for an unsigned type: a negative seed is an error, not a seed.
+      if (r.second.IsScalar() && r.second.Scalar().rfind('-', 0) == 0)
+        throw StudyError(fmt::format("{}:{}: registration.seed must be a whole number >= 0, got {}", file,
+                                     r.first.Mark().line + 1, r.second.Scalar()));
+      c->registration.seed = yaml_get<std::uint64_t>(r.second, file, "registration.seed");
+    } else if (k == "trials") {
+      trials = yaml_get<int>(r.second, file, "registration.trials");
+      if (trials < 1)
+        throw StudyError(fmt::format("{}:{}: registration.trials must be at least 1, got {}", file,
+                                     r.first.Mark().line + 1, trials));
+    } else if (k == "gate") {
+      c->registration.pair_gate = yaml_get<double>(r.second, file, "registration.gate");
+      if (!(c->registration.pair_gate > 0) || !std::isfinite(c->registration.pair_gate))
+        throw StudyError(
+            fmt::format("{}:{}: registration.gate must be a number > 0 (a fraction of the rocks' "
+                        "spread; default 0.2), got {}",
+                        file, r.first.Mark().line + 1, r.second.Scalar()));
+    } else {
+      throw StudyError(fmt::format("{}:{}: unknown registration setting '{}' (expected method, seed, trials, gate)",
+                                   file, r.first.Mark().line + 1, k));
+    }
+  }
+  // trials is the configured method's search budget, as ipd register's --trials: cpd's EM iterations.
+  if (trials > 0)
+    (c->registration.method == RegistrationMethod::kCpd ? c->registration.cpd_iterations : c->registration.max_trials) =
+        trials;
+  const std::string bad = c->registration.validate();
+  if (!bad.empty()) throw StudyError(fmt::format("{}:{}: {}", file, line, bad));
+}
+
+StudyConfig parse_study_config_nodes(const std::string& text, const std::string& file);
+}  // namespace
 
 StudyConfig parse_study_config(const std::string& text, const std::string& file) {
   try {
@@ -98,33 +189,7 @@ StudyConfig parse_study_config(const std::string& text, const std::string& file)
 namespace {
 StudyConfig parse_study_config_nodes(const std::string& text, const std::string& file) {
   StudyConfig c;
-  // Documents are split here, not by YAML::LoadAll: yaml-cpp 0.7's LoadAll loops without end, eating memory,
-  // on some malformed multi-document inputs (a 123-byte study.yaml found by fuzz_study_yaml took > 16 GB).
-  // A `---` after the first document's content starts a second one; Load() alone would silently ignore it.
-  size_t first_end = text.size();
-  {
-    bool content = false;
-    int line_no = 0;
-    for (size_t pos = 0; pos < text.size();) {
-      const size_t eol = std::min(text.find('\n', pos), text.size());
-      std::string line = text.substr(pos, eol - pos);
-      ++line_no;
-      if (!line.empty() && line.back() == '\r') line.pop_back();
-      const size_t first = line.find_first_not_of(" \t");
-      const bool blank = first == std::string::npos || line[first] == '#';
-      const bool marker = line.rfind("---", 0) == 0 && (line.size() == 3 || line[3] == ' ' || line[3] == '\t');
-      const bool end_marker = line.rfind("...", 0) == 0 && (line.size() == 3 || line[3] == ' ' || line[3] == '\t');
-      if (first_end == text.size()) {
-        if ((marker && content) || end_marker)
-          first_end = pos;
-        else if (!blank && !marker && line[0] != '%')
-          content = true;
-      } else if (!blank && !marker && !end_marker) {
-        throw StudyError(fmt::format("{}:{}: a second YAML document; expected one mapping of settings", file, line_no));
-      }
-      pos = eol + 1;
-    }
-  }
+  const size_t first_end = first_document_end(text, file);
   std::vector<YAML::Node> documents;
   try {
     documents.push_back(YAML::Load(text.substr(0, first_end)));
@@ -161,59 +226,9 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
     } else if (key == "domains") {
       c.domain_order = yaml_get<std::vector<std::string>>(v, file, "domains");
     } else if (key == "models") {
-      if (!v.IsMap()) throw StudyError(fmt::format("{}:{}: models must map a model name to its settings", file, line));
-      check_unique_keys(v, file, "models.");
-      for (const auto& m : v) {
-        const std::string name = m.first.as<std::string>();
-        // The name becomes the default model and part of export file names: it must be one.
-        if (const std::string why = file_name_problem(name, kMaxModelNameBytes); !why.empty())
-          throw StudyError(fmt::format("{}:{}: model name '{}' {}", file, m.first.Mark().line + 1,
-                                       printable_name(name, kShownNameBytes), why));
-        if (!m.second.IsMap() && !m.second.IsNull())
-          throw StudyError(fmt::format("{}:{}: models.{} must be a mapping like {{trained_on: real}}", file,
-                                       m.first.Mark().line + 1, name));
-        c.trained_on[name] = parse_model_settings(m.second, file, name);
-      }
+      parse_models(v, file, line, &c);
     } else if (key == "registration") {
-      if (!v.IsMap()) throw StudyError(fmt::format("{}:{}: registration must be a mapping", file, line));
-      check_unique_keys(v, file, "registration.");
-      int trials = 0;  // 0: not given
-      for (const auto& r : v) {
-        const std::string k = r.first.as<std::string>();
-        if (k == "method") {
-          const std::string name = yaml_get<std::string>(r.second, file, "registration.method");
-          if (!parse_method(name, &c.registration.method))
-            throw StudyError(fmt::format("{}:{}: unknown registration method '{}' (expected {})", file,
-                                         r.first.Mark().line + 1, name, method_choices()));
-        } else if (k == "seed") {
-          // yaml-cpp reads "-1" as 2^64 - 1 for an unsigned type: a negative seed is an error, not a seed.
-          if (r.second.IsScalar() && r.second.Scalar().rfind('-', 0) == 0)
-            throw StudyError(fmt::format("{}:{}: registration.seed must be a whole number >= 0, got {}", file,
-                                         r.first.Mark().line + 1, r.second.Scalar()));
-          c.registration.seed = yaml_get<std::uint64_t>(r.second, file, "registration.seed");
-        } else if (k == "trials") {
-          trials = yaml_get<int>(r.second, file, "registration.trials");
-          if (trials < 1)
-            throw StudyError(fmt::format("{}:{}: registration.trials must be at least 1, got {}", file,
-                                         r.first.Mark().line + 1, trials));
-        } else if (k == "gate") {
-          c.registration.pair_gate = yaml_get<double>(r.second, file, "registration.gate");
-          if (!(c.registration.pair_gate > 0) || !std::isfinite(c.registration.pair_gate))
-            throw StudyError(
-                fmt::format("{}:{}: registration.gate must be a number > 0 (a fraction of the rocks' "
-                            "spread; default 0.2), got {}",
-                            file, r.first.Mark().line + 1, r.second.Scalar()));
-        } else {
-          throw StudyError(fmt::format("{}:{}: unknown registration setting '{}' (expected method, seed, trials, gate)",
-                                       file, r.first.Mark().line + 1, k));
-        }
-      }
-      // trials is the configured method's search budget, as ipd register's --trials: cpd's EM iterations.
-      if (trials > 0)
-        (c.registration.method == RegistrationMethod::kCpd ? c.registration.cpd_iterations
-                                                           : c.registration.max_trials) = trials;
-      const std::string bad = c.registration.validate();
-      if (!bad.empty()) throw StudyError(fmt::format("{}:{}: {}", file, line, bad));
+      parse_registration(v, file, line, &c);
     } else {
       throw StudyError(
           fmt::format("{}:{}: unknown setting '{}' (expected rock_class, conf_threshold, image_size, domains, models, "
