@@ -13,6 +13,8 @@
 #include "core/detect/yolo.h"
 #include "core/io/label_io.h"
 #include "core/study/study.h"
+#include "core/study/study_names.h"
+#include "core/util/contained_file.h"
 
 namespace fs = std::filesystem;
 
@@ -20,8 +22,11 @@ namespace ipd::cli {
 
 namespace {
 
+// One picture to detect on and where its predictions go: `out` in pictures mode; in study mode `relative`
+// below the study `root`, written without following a link (a study is untrusted: `real/predictions ->
+// /elsewhere` must not make the tool write there).
 struct Job {
-  std::string picture, out;
+  std::string picture, out, root, relative;
 };
 
 std::vector<Job> jobs_for_dir(const fs::path& images, const fs::path& out) {
@@ -32,21 +37,97 @@ std::vector<Job> jobs_for_dir(const fs::path& images, const fs::path& out) {
     std::string ext = e.path().extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
     if (e.is_regular_file() && kExt.count(ext))
-      jobs.push_back({e.path().string(), (out / (e.path().stem().string() + ".txt")).string()});
+      jobs.push_back({e.path().string(), (out / (e.path().stem().string() + ".txt")).string(), {}, {}});
   }
   if (ec) throw StudyError(images.string() + ": cannot read the directory: " + ec.message());
   std::sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) { return a.picture < b.picture; });
   return jobs;
 }
 
+struct Args {
+  std::string input, onnx, out, model, detector = "yolo";
+  YoloOptions yolo;
+  int threads = 0;
+};
+
+void check_args(const Args& args) {
+  if (args.threads < 0)
+    throw CLI::ValidationError("--threads", fmt::format("must be >= 0 (0: every core), got {}", args.threads));
+  if (const std::string bad = args.yolo.validate(); !bad.empty()) throw CLI::ValidationError(bad);
+  if (args.model.empty() == args.out.empty())
+    throw CLI::ValidationError("detect",
+                               "give --out PRED_DIR for a directory of pictures, or --model NAME for a study");
+  if (!args.model.empty())
+    if (const std::string why = file_name_problem(args.model, kMaxModelNameBytes); !why.empty())
+      throw CLI::ValidationError("--model", fmt::format("'{}' {}", args.model, why));
+  if (args.detector == "yolo" && args.onnx.empty())
+    throw CLI::ValidationError("detect", "--onnx MODEL.onnx is required (or --detector classical)");
+}
+
+std::vector<Job> collect_jobs(const Args& args) {
+  std::vector<Job> jobs;
+  if (args.model.empty()) {
+    if (!fs::is_directory(args.input)) throw StudyError(args.input + ": no such directory of pictures");
+    jobs = jobs_for_dir(args.input, args.out);
+    if (jobs.empty()) throw StudyError(args.input + ": no pictures (png, jpg, tif, bmp, webp) in this directory");
+    return jobs;
+  }
+  const Study st = open_study(args.input);
+  for (const auto& d : st.domains) {
+    const fs::path relative = fs::path(d.name) / "predictions" / args.model;
+    for (Job j : jobs_for_dir(fs::path(d.dir) / "images", fs::path(d.dir) / "predictions" / args.model)) {
+      j.root = st.root;
+      j.relative = (relative / fs::path(j.out).filename()).string();
+      jobs.push_back(std::move(j));
+    }
+  }
+  if (jobs.empty()) throw StudyError(args.input + ": no pictures in any <domain>/images/ directory");
+  // Refused before the first file is written: a study is filled for every domain or not at all.
+  for (const Job& j : jobs) check_beneath(j.root, j.relative);
+  return jobs;
+}
+
+// Runs the detector on every job, decoding the next batch in parallel while it works; the number of
+// pictures that could not be decoded.
+int detect_all(const std::vector<Job>& jobs, YoloDetector* yolo, int threads) {
+  Progress progress("detecting");
+  int failed = 0;
+  auto decode = [](const std::string& p) { return cv::imread(p, cv::IMREAD_COLOR); };
+  std::vector<std::future<cv::Mat>> batch;
+  size_t next = 0;
+  auto fill = [&] {
+    batch.clear();
+    for (int k = 0; k < threads && next + k < jobs.size(); ++k)
+      batch.push_back(std::async(std::launch::async, decode, jobs[next + k].picture));
+  };
+  fill();
+  while (next < jobs.size()) {
+    std::vector<cv::Mat> pictures;
+    for (auto& f : batch) pictures.push_back(f.get());
+    const size_t start = next;
+    next += pictures.size();
+    fill();
+    for (size_t k = 0; k < pictures.size(); ++k) {
+      const Job& job = jobs[start + k];
+      if (pictures[k].empty()) {
+        fmt::print(stderr, "{}: cannot decode the picture; skipped\n", job.picture);
+        ++failed;
+        continue;
+      }
+      const std::vector<Box> boxes = yolo ? yolo->detect(pictures[k]) : detect_rocks(pictures[k], RockDetectorParams{});
+      if (job.root.empty())
+        write_labels(job.out, boxes, LabelKind::kPrediction);
+      else
+        write_file_beneath(job.root, job.relative, labels_text(boxes, LabelKind::kPrediction));
+      progress.update(static_cast<int>(start + k + 1), static_cast<int>(jobs.size()));
+    }
+  }
+  return failed;
+}
+
 }  // namespace
 
 Runner add_detect_command(CLI::App& app) {
-  struct Args {
-    std::string input, onnx, out, model, detector = "yolo";
-    YoloOptions yolo;
-    int threads = 0;
-  };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("detect", "Run a YOLOv5 ONNX export (or the classical detector) on pictures");
   cmd->add_option("INPUT", args->input, "A directory of pictures, or a study (with --model)")->required();
@@ -61,66 +142,17 @@ Runner add_detect_command(CLI::App& app) {
   cmd->add_option("--classes", args->yolo.classes, "Keep only these classes, e.g. 0,1")->delimiter(',');
   cmd->add_option("--threads", args->threads, "Picture decoding threads (default: all cores)");
   return [args]() -> int {
-    if (args->threads < 0)
-      throw CLI::ValidationError("--threads", fmt::format("must be >= 0 (0: every core), got {}", args->threads));
-    if (const std::string bad = args->yolo.validate(); !bad.empty()) throw CLI::ValidationError(bad);
-    const bool study_mode = !args->model.empty();
-    if (study_mode == !args->out.empty())
-      throw CLI::ValidationError("detect",
-                                 "give --out PRED_DIR for a directory of pictures, or --model NAME for a study");
-    if (args->detector == "yolo" && args->onnx.empty())
-      throw CLI::ValidationError("detect", "--onnx MODEL.onnx is required (or --detector classical)");
-    std::vector<Job> jobs;
-    if (study_mode) {
-      const Study st = open_study(args->input);
-      for (const auto& d : st.domains) {
-        const auto more = jobs_for_dir(fs::path(d.dir) / "images", fs::path(d.dir) / "predictions" / args->model);
-        jobs.insert(jobs.end(), more.begin(), more.end());
-      }
-      if (jobs.empty()) throw StudyError(args->input + ": no pictures in any <domain>/images/ directory");
-    } else {
-      if (!fs::is_directory(args->input)) throw StudyError(args->input + ": no such directory of pictures");
-      jobs = jobs_for_dir(args->input, args->out);
-      if (jobs.empty()) throw StudyError(args->input + ": no pictures (png, jpg, tif, bmp, webp) in this directory");
-    }
+    check_args(*args);
+    const std::vector<Job> jobs = collect_jobs(*args);
     std::unique_ptr<YoloDetector> yolo;
     if (args->detector == "yolo") {
       yolo = std::make_unique<YoloDetector>(args->onnx, args->yolo);  // loaded once, layout checked
       fmt::print(stderr, "{}: {} head, {} classes\n", args->onnx, yolo->head() == YoloHead::kV5 ? "YOLOv5" : "YOLOv8",
                  yolo->classes());
     }
-    // Decode ahead in parallel while the network runs on the previous batch.
     const int threads =
         std::max(1, args->threads > 0 ? args->threads : static_cast<int>(std::thread::hardware_concurrency()));
-    Progress progress("detecting");
-    int failed = 0;
-    auto decode = [](const std::string& p) { return cv::imread(p, cv::IMREAD_COLOR); };
-    std::vector<std::future<cv::Mat>> batch;
-    size_t next = 0;
-    auto fill = [&] {
-      batch.clear();
-      for (int k = 0; k < threads && next + k < jobs.size(); ++k)
-        batch.push_back(std::async(std::launch::async, decode, jobs[next + k].picture));
-    };
-    fill();
-    while (next < jobs.size()) {
-      std::vector<cv::Mat> pictures;
-      for (auto& f : batch) pictures.push_back(f.get());
-      const size_t start = next;
-      next += pictures.size();
-      fill();
-      for (size_t k = 0; k < pictures.size(); ++k) {
-        const Job& job = jobs[start + k];
-        if (pictures[k].empty()) {
-          fmt::print(stderr, "{}: cannot decode the picture; skipped\n", job.picture);
-          ++failed;
-          continue;
-        }
-        std::vector<Box> boxes = yolo ? yolo->detect(pictures[k]) : detect_rocks(pictures[k], RockDetectorParams{});
-        write_labels(job.out, boxes, LabelKind::kPrediction);
-        progress.update(static_cast<int>(start + k + 1), static_cast<int>(jobs.size()));
-      }
-    }
+    const int failed = detect_all(jobs, yolo.get(), threads);
     fmt::print("{} pictures, predictions written{}\n", jobs.size() - failed,
                failed ? fmt::format(", {} could not be decoded", failed) : "");
     return failed ? kBadInput : kOk;

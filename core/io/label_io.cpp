@@ -168,14 +168,18 @@ void keep_confident(LabelFile* file, double threshold) {
   file->line_of_box.resize(k);
 }
 
-void write_labels(const std::string& path, const std::vector<Box>& boxes, LabelKind kind) {
+std::string labels_text(const std::vector<Box>& boxes, LabelKind kind) {
   std::string text;
   for (const auto& b : boxes) {
     text += fmt::format("{} {:.6f} {:.6f} {:.6f} {:.6f}", b.cls, b.cx, b.cy, b.w, b.h);
     if (kind == LabelKind::kPrediction) text += fmt::format(" {:.4f}", b.conf);
     text += '\n';
   }
-  write_file_atomically(path, text);
+  return text;
+}
+
+void write_labels(const std::string& path, const std::vector<Box>& boxes, LabelKind kind) {
+  write_file_atomically(path, labels_text(boxes, kind));
 }
 
 }  // namespace ipd

@@ -51,7 +51,9 @@ void keep_class(LabelFile* file, int cls);
 // Drops predictions below a confidence threshold.
 void keep_confident(LabelFile* file, double threshold);
 
-// Writes boxes as YOLO txt (with confidence for predictions), atomically.
+// Boxes as YOLO txt lines (with confidence for predictions).
+std::string labels_text(const std::vector<Box>& boxes, LabelKind kind);
+// Writes labels_text(boxes, kind) to `path`, atomically.
 void write_labels(const std::string& path, const std::vector<Box>& boxes, LabelKind kind);
 
 }  // namespace ipd

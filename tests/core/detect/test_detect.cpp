@@ -147,6 +147,36 @@ TEST(Yolo, CliFillsEveryDomainOfAStudyAndWritesEmptyFiles) {
   EXPECT_EQ(r.exit_code, 2);  // no --onnx
 }
 
+// A study is untrusted: `real/predictions` linked to a folder elsewhere must not make `ipd detect STUDY
+// --model` write there. Refused before anything is written, in every domain; a model name must be a file name.
+TEST(Detect, AStudysLinkedPredictionsFolderIsNotWrittenThrough) {
+  test::TempDir d;
+  for (const std::string dom : {"real", "synth"}) {
+    test::write_text(d / ("study/" + dom + "/labels/a.txt"), "0 0.5 0.5 0.1 0.1\n");
+    fs::create_directories(d / ("study/" + dom + "/images"));
+    cv::imwrite(d / ("study/" + dom + "/images/a.png"), cv::Mat(200, 300, CV_8UC3, cv::Scalar(9, 9, 9)));
+  }
+  fs::create_directories(d / "elsewhere");
+  fs::create_directory_symlink(d / "elsewhere", d / "study/real/predictions");
+  auto r = test::run_ipd("detect " + d / "study" + " --detector classical --model classical");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: " + d / "study/real/predictions" +
+                       ": is a symbolic link; saving through it is refused (links inside a study are never "
+                       "followed)\n");
+  EXPECT_FALSE(fs::exists(d / "elsewhere/classical"));
+  EXPECT_FALSE(fs::exists(d / "study/synth/predictions/classical/a.txt"));  // all domains or none
+  // Without the link both domains are filled.
+  fs::remove(d / "study/real/predictions");
+  r = test::run_ipd("detect " + d / "study" + " --detector classical --model classical");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(d / "study/real/predictions/classical/a.txt"));
+  EXPECT_TRUE(fs::exists(d / "study/synth/predictions/classical/a.txt"));
+  r = test::run_ipd("detect " + d / "study" + " --detector classical --model ../up");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--model"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(d / "study/real/up"));
+}
+
 TEST(CocoImport, GroundTruthAndResultsToTheStudyLayout) {
   test::TempDir d;
   test::write_text(d / "ann.json", R"({
