@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "core/util/atomic_file.h"
+#include "ui/gui/pane_zoom.h"
 
 #include <nlohmann/json.hpp>
 
@@ -123,6 +124,10 @@ void StudioApp::goto_scene(int scene) {
   ui_.selected_left = ui_.selected_right = -1;
   ui_.replay = ui::ReplayState{};
   ui_.rerun_discarded = false;
+  // A zoom fitted to one scene's rocks points at nothing in particular in the next one.
+  const auto rule = ui_.keep_zoom_across_scenes ? ui::ZoomOnSceneChange::kKeep : ui::ZoomOnSceneChange::kReset;
+  ui_.left_view = ui::view_after_scene_change(ui_.left_view, rule);
+  ui_.right_view = ui::view_after_scene_change(ui_.right_view, rule);
 }
 
 ui::Picture StudioApp::picture(const std::string& domain, const std::string& stem, bool urgent, bool* full) {
@@ -450,8 +455,12 @@ bool StudioApp::replay_step() {
     cmd.conf_threshold = std::strtof(a.args[0].c_str(), nullptr);
   else if (a.verb == "model")
     cmd.model = a.args[0];
+  else if (a.verb == "domains" && (!s.study().domain(a.args[0]) || !s.study().domain(a.args[1])))
+    fail(fmt::format("'domains': the study has no domain '{}'", s.study().domain(a.args[0]) ? a.args[1] : a.args[0]));
   else if (a.verb == "domains")
     cmd.left_domain = a.args[0], cmd.right_domain = a.args[1];
+  else if (a.verb == "focus")
+    ui_.focus = a.args[0] == "on";
   else if (a.verb == "undo")
     cmd.undo = true;
   else if (a.verb == "redo")
