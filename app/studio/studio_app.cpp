@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "core/util/atomic_file.h"
+#include "ui/gui/scene_change.h"
 
 #include <nlohmann/json.hpp>
 
@@ -101,7 +102,7 @@ void StudioApp::adopt_snapshot() {
   }
   if (other_pair) goto_scene(ui_.order.empty() ? 0 : ui_.order.front());
   if (other_pair && !pending_scene_.empty()) {
-    if (const int k = s.scene_index(pending_scene_); k >= 0) goto_scene(k);
+    if (const int k = s.scene_index(pending_scene_); k >= 0) goto_scene(k), ui_.status = pending_status_;
     pending_scene_.clear();
   }
   if (snap_->jump_serial != jump_serial_) {
@@ -118,12 +119,7 @@ void StudioApp::adopt_snapshot() {
   }
 }
 
-void StudioApp::goto_scene(int scene) {
-  ui_.scene = scene;
-  ui_.selected_left = ui_.selected_right = -1;
-  ui_.replay = ui::ReplayState{};
-  ui_.rerun_discarded = false;
-}
+void StudioApp::goto_scene(int scene) { ui::enter_scene(ui_, scene); }
 
 ui::Picture StudioApp::picture(const std::string& domain, const std::string& stem, bool urgent, bool* full) {
   const Domain* d = snap_->session->study().domain(domain);
@@ -336,7 +332,6 @@ void StudioApp::note_picture_problem(const DecodedPicture& d) {
 
 void StudioApp::goto_problem(const Problem& p) {
   if (!snap_ || p.scene.empty()) return;
-  ui_.status = p.to_string();
   const Session& s = *snap_->session;
   const auto& pairs = s.domain_pairs();
   auto has = [&](size_t k) {
@@ -348,6 +343,7 @@ void StudioApp::goto_problem(const Problem& p) {
   // The domain pair in view when it holds the scene; else the first one that does.
   if (has(static_cast<size_t>(s.pair_index())) && s.scene_index(p.scene) >= 0) {
     goto_scene(s.scene_index(p.scene));
+    ui_.status = p.to_string();  // after the scene change, which clears the status line
     return;
   }
   for (size_t k = 0; k < pairs.size(); ++k) {
@@ -358,6 +354,7 @@ void StudioApp::goto_problem(const Problem& p) {
         !std::binary_search(b->stems.begin(), b->stems.end(), p.scene))
       continue;
     pending_scene_ = p.scene;
+    pending_status_ = p.to_string();
     worker_.submit(command::SelectDomains{pairs[k].first, pairs[k].second});
     return;
   }
@@ -450,8 +447,12 @@ bool StudioApp::replay_step() {
     cmd.conf_threshold = std::strtof(a.args[0].c_str(), nullptr);
   else if (a.verb == "model")
     cmd.model = a.args[0];
+  else if (a.verb == "domains" && (!s.study().domain(a.args[0]) || !s.study().domain(a.args[1])))
+    fail(fmt::format("'domains': the study has no domain '{}'", s.study().domain(a.args[0]) ? a.args[1] : a.args[0]));
   else if (a.verb == "domains")
     cmd.left_domain = a.args[0], cmd.right_domain = a.args[1];
+  else if (a.verb == "focus")
+    ui_.focus = a.args[0] == "on";
   else if (a.verb == "undo")
     cmd.undo = true;
   else if (a.verb == "redo")

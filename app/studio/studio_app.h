@@ -58,7 +58,8 @@ class StudioApp {
   std::shared_ptr<const Snapshot> snap_;
   // The session's problems and then the pictures that could not be read (found as they are shown).
   std::vector<Problem> problems_, picture_problems_;
-  std::string pending_scene_;  // a problem's scene, shown once the worker has switched to its domain pair
+  std::string pending_scene_;   // a problem's scene, shown once the worker has switched to its domain pair
+  std::string pending_status_;  // and the problem, on the status line then
   long order_version_ = -1;
   std::string order_filter_;
   int order_sort_ = -1;

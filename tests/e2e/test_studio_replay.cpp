@@ -111,6 +111,29 @@ TEST(StudioReplay, BadActionsNameTheFileAndLine) {
   EXPECT_EQ(run(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" + ":2: 'rerun': expected consensus, paper or cpd, got 'ransac'\n");
+  // One domain against itself has no gap: the replay says so instead of keeping the domains on screen.
+  test::write_text(d / "actions.txt", "domains real real\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" + ":1: 'domains': expected two different domains, got 'real' twice\n");
+  test::write_text(d / "actions.txt", "focus yes\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"), "error: " + d / "actions.txt" + ":1: 'focus': expected on or off, got 'yes'\n");
+}
+
+TEST(StudioReplay, DomainsTheStudyLacksFailTheReplay) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd(fmt::format("demo {} --labels-only --scenes 2 --rocks 8", d / "study")).exit_code, 0);
+  test::write_text(d / "actions.txt", "focus on\nscreenshot " + d / "focus.png\n" + "domains real synthetic\n");
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d / "study", d / "actions.txt");
+  EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">{} 2>&1", d / "log.txt"), d.path()), 1);
+  EXPECT_TRUE(fs::exists(d / "focus.png"));
+  EXPECT_NE(read_file(d / "log.txt").find(d / "actions.txt" + ":3: 'domains': the study has no domain 'synthetic'\n"),
+            std::string::npos)
+      << read_file(d / "log.txt");
 }
 
 TEST(StudioReplay, AStudyThatCannotBeOpenedSaysWhyOnStderr) {
@@ -186,9 +209,9 @@ TEST(StudioReplay, ProblemsTheCliReportsArePrintedOnStderr) {
   EXPECT_NE(err.find(fmt::format("warning: {}:{}: expected 5 columns (class cx cy w h), found 6\n", labels, lines + 1)),
             std::string::npos)
       << err;
-  EXPECT_NE(
-      err.find("warning: 1 scene(s) of 'real' have no counterpart in 'principled' and are skipped: scene_00003\n"),
-      std::string::npos)
+  EXPECT_NE(err.find("warning: 1 scene(s) of 'real' and 'hapke' have no counterpart in 'principled' and are skipped: "
+                     "scene_00003\n"),
+            std::string::npos)
       << err;
 }
 

@@ -1,7 +1,10 @@
 #include "ui/gui/scene_canvas.h"
 
+#include "ui/gui/rock_numbers.h"
+
 #include <algorithm>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 namespace ipd::ui {
@@ -58,6 +61,12 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
   };
   std::vector<Pending> confidences;
   std::vector<ImVec4> number_rects;  // x0, y0, x1, y1
+  struct Number {
+    RockNumberTag tag;
+    std::string text;
+    ImU32 colour;
+  };
+  std::vector<Number> numbers;
   if (layers.predictions && in.predictions) {
     for (size_t k = 0; k < in.predictions->size(); ++k) {
       const Box& b = (*in.predictions)[k];
@@ -88,20 +97,27 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
       if (excluded) dl->AddLine(q0, q1, colour, thick);
       if (layers.indices) {
         // Partners share their pair's number; an unpaired rock shows its own 1-based index after an "x".
-        if (number > 0)
-          std::snprintf(buf, sizeof buf, "%d", number);
-        else
-          std::snprintf(buf, sizeof buf, "x%zu", k + 1);
-        const float size = ImGui::GetFontSize() * ts;
-        // Above the box; a box at the picture's top edge gets its number just inside, never cut by the edge.
-        const float top = std::max(a0.y, pl.origin.y);
-        const float above = q0.y - size - 1;
-        const ImVec2 at{q0.x, above < top && q1.y > top ? top : above};
-        const ImVec2 ext = ImGui::GetFont()->CalcTextSizeA(size, FLT_MAX, 0.0f, buf);
-        number_rects.push_back({at.x - 1, at.y, at.x + ext.x + 1, at.y + ext.y});
-        text_with_backdrop(dl, at, colour, buf, ts);
+        std::string text = number > 0 ? std::to_string(number) : "x" + std::to_string(k + 1);
+        const ImVec2 ext = ImGui::GetFont()->CalcTextSizeA(ImGui::GetFontSize() * ts, FLT_MAX, 0.0f, text.c_str());
+        // Rocks wholly outside the pane (zoomed in) need no number and would only slow the placer down.
+        if (q1.x >= a0.x && q0.x <= a1.x && q1.y >= a0.y && q0.y <= a1.y)
+          numbers.push_back({{{q0.x, q0.y, q1.x, q1.y}, ext.x + 2, ext.y}, std::move(text), colour});
       }
     }
+  }
+  // The figures' placer: no number under another, none over a rock while a free spot exists.
+  std::vector<RockNumberTag> tags;
+  for (const Number& n : numbers) tags.push_back(n.tag);
+  const LabelPlacement placed = asz.x > 0 && asz.y > 0 ? place_rock_numbers(tags, {a0.x, a0.y, a1.x, a1.y})
+                                                       : LabelPlacement{std::vector<PlacedLabel>(tags.size())};
+  for (size_t i = 0; i < numbers.size(); ++i) {
+    const PlacedLabel& l = placed.labels[i];
+    if (!l.shown()) continue;
+    if (l.position == LabelPosition::kLeader)
+      dl->AddLine({float(l.leader_x0), float(l.leader_y0)}, {float(l.leader_x1), float(l.leader_y1)}, numbers[i].colour,
+                  thick);
+    number_rects.push_back({float(l.box.x0), float(l.box.y0), float(l.box.x1), float(l.box.y1)});
+    text_with_backdrop(dl, {float(l.box.x0) + 1, float(l.box.y0)}, numbers[i].colour, numbers[i].text.c_str(), ts);
   }
   // Below the box's left corner, else right of its bottom, else above its right end; with no free spot the
   // label is left out rather than drawn under or over a rock number.

@@ -55,6 +55,16 @@ SessionStatisticsRequest stats_request(const Session& s, const StatsPanelState& 
   return r;
 }
 
+std::string empty_histogram_text(const std::vector<SceneSummary>& summaries) {
+  const SceneSummary* paired = nullptr;
+  for (const SceneSummary& m : summaries)
+    if (m.pairs > 0 && (!paired || (paired->no_value_reason.empty() && !m.no_value_reason.empty()))) paired = &m;
+  if (!paired) return "no scene with pairs";
+  // Pairs but no value: "no scene with pairs" would send the user looking at the registration.
+  if (!paired->no_value_reason.empty()) return "no per-scene IPD: " + paired->no_value_reason;
+  return "no scene with an IPD";
+}
+
 HistogramBins histogram_bins(const std::vector<double>& values, int bins) {
   HistogramBins h;
   if (values.empty() || bins < 1) return h;
@@ -160,7 +170,7 @@ ChartColours gui_colours() {
 void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPanelState& st, UiState& ui) {
   text_wrapped_at_spaces("Per-scene IPD, " + v.session->model() + " (click a bar: those scenes)");
   if (!stats || stats->scene_ipd.empty()) {
-    ImGui::TextDisabled("no scene with pairs");
+    text_wrapped_at_spaces(stats && v.summaries ? empty_histogram_text(*v.summaries) : "no scene with pairs");
     return;
   }
   std::vector<double> values;

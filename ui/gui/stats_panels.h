@@ -42,4 +42,8 @@ struct HistogramBins {
 };
 HistogramBins histogram_bins(const std::vector<double>& values, int bins);
 
+// Why the per-scene IPD histogram has no bar, from the scene list's summaries: no scene has pairs, or scenes
+// have pairs but no IPD (SceneSummary::no_value_reason, e.g. no predictions left above the threshold).
+std::string empty_histogram_text(const std::vector<SceneSummary>& summaries);
+
 }  // namespace ipd::ui

@@ -33,6 +33,14 @@ StudioColumns studio_columns(float width, float browser_pref, float stats_pref, 
   return c;
 }
 
+StudioColumns focus_columns(float width, float splitter) {
+  StudioColumns c;
+  c.left = c.right = kFocusStrip;
+  c.centre = std::max(0.0f, width - 2 * kFocusStrip - 2 * splitter);
+  c.tabbed_centre = c.centre < kTabbedCentreBelow;
+  return c;
+}
+
 namespace {
 bool is_relation(const std::string& w) { return w == "=" || w == "<" || w == ">" || w == "<=" || w == ">="; }
 // A whole count such as "8" or "1,000" (not "0.97", not "8," that ends a clause): it counts the word after it.

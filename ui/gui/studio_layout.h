@@ -25,6 +25,11 @@ struct StudioColumns {
 // `width`: the window's content width; `splitter`: the width of each draggable gap between columns.
 StudioColumns studio_columns(float width, float browser_pref, float stats_pref, float splitter);
 
+// The focus view (key `Z`, View > Focus pictures): the browser and the statistics collapse to strips of
+// kFocusStrip (a button each to bring them back) so the two pictures fill the centre column.
+constexpr float kFocusStrip = 28;
+StudioColumns focus_columns(float width, float splitter);
+
 // `text` broken into lines no wider than `width` (as `measure` says), at spaces only: a word, number
 // included, is never split, nor a label from its number ("p = 0.031") or a count from the word it counts
 // ("8 scenes"), nor "delta IPD" (ΔIPD in ASCII); a word (or such a group) wider than `width` gets a line of

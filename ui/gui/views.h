@@ -101,7 +101,9 @@ struct UiState {
   float pictures_height = -1;                  // height of the pictures pane; -1: fit the pictures' aspect
   float browser_width = -1, stats_width = -1;  // side columns as dragged; -1: from their content
   bool quit_confirmed = false;
-  bool show_problems = false;  // the Problems window
+  bool show_problems = false;            // the Problems window
+  bool focus = false;                    // focus view: the pictures fill the window, the side columns are strips (Z)
+  bool keep_zoom_across_scenes = false;  // else a scene change fits both pictures again
 };
 
 struct UiCommands {

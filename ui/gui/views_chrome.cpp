@@ -93,6 +93,7 @@ const std::vector<std::pair<const char*, const char*>>& shortcut_list() {
       {"wheel", "zoom at the cursor"},
       {"drag", "pan (both pictures when sync zoom is on)"},
       {"F", "fit the picture to its pane"},
+      {"Z", "focus view: the pictures fill the window (again: the panels come back)"},
       {"1", "1:1 (one picture pixel per screen pixel)"},
       {"Space", "play / pause the registration replay"},
       {"F1 or ?", "this list"},
@@ -124,6 +125,8 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
     ImGui::MenuItem("Confidences", nullptr, &ui.layers.confidences);
     ImGui::MenuItem("Sync zoom", nullptr, &ui.sync_views);
     if (ImGui::MenuItem("Fit pictures", "F")) ui.left_view = ui.right_view = CanvasView{};
+    ImGui::MenuItem("Focus pictures", "Z", &ui.focus);
+    ImGui::MenuItem("Keep zoom across scenes", nullptr, &ui.keep_zoom_across_scenes);
     if (ImGui::MenuItem("Go to scene...", "Ctrl+G")) ui.show_goto = true;
     if (ImGui::MenuItem("Next suspect pair", "N")) out.next_suspect = true;
     ImGui::EndMenu();
@@ -430,6 +433,7 @@ void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out) {
   if ((pressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow)) || pressed('K')) && !order.empty())
     out.goto_scene = order[std::max(at - 1, 0)];
   if (pressed('N')) out.next_suspect = true;
+  if (pressed('Z')) ui.focus = !ui.focus;
   if (pressed(ImGui::GetKeyIndex(ImGuiKey_Space))) {
     ui.replay.playing = !ui.replay.playing;
   }

@@ -74,10 +74,33 @@ void draw_centre(const StudyView& v, UiState& ui, const Picture& left, const Pic
   ImGui::EndChild();
 }
 
+// A collapsed side column of the focus view: one button that brings the panels back.
+void focus_strip(const char* id, float height, UiState& ui) {
+  ImGui::BeginChild(id, {kFocusStrip, height}, false, ImGuiWindowFlags_NoScrollbar);
+  if (ImGui::Button(id[0] == 'l' ? ">##strip" : "<##strip", {-1, 0})) ui.focus = false;
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("show the scene list and the statistics again (Z)");
+  ImGui::EndChild();
+}
+
+// The focus view: the two pictures take the whole centre column, the panels are strips at its sides.
+void draw_focus_columns(const StudyView& v, UiState& ui, const Picture& left, const Picture& right, float h,
+                        UiCommands& out) {
+  const float gap = 8;
+  const StudioColumns c = focus_columns(ImGui::GetContentRegionAvail().x, gap);
+  focus_strip("left_strip", h - 8, ui);
+  ImGui::SameLine(0, gap);
+  ImGui::BeginChild("pictures", {c.centre, h - 8}, false, ImGuiWindowFlags_NoScrollWithMouse);
+  draw_side_by_side(v, ui, left, right, out);
+  ImGui::EndChild();
+  ImGui::SameLine(0, gap);
+  focus_strip("right_strip", h - 8, ui);
+}
+
 }  // namespace
 
 void draw_main_columns(const StudyView& v, UiState& ui, const Picture& left, const Picture& right, float h,
                        const std::function<void()>& draw_stats, UiCommands& out) {
+  if (ui.focus) return draw_focus_columns(v, ui, left, right, h, out);
   const float gap = 8;
   const float width = ImGui::GetContentRegionAvail().x;
   const float browser_pref = ui.browser_width > 0 ? ui.browser_width : browser_width(v, 300, 500);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "ui/gui/pane_zoom.h"
 #include "ui/gui/studio_layout.h"
 #include "ui/gui/views.h"
 
@@ -25,6 +26,16 @@ std::vector<int> replay_sample(const StudyView& v, const UiState& ui, Side side)
   const TraceStep& st = v.rerun->trace.steps[k];
   const bool side_is_a = (side == Side::kA) != v.session->swapped();
   return side_is_a ? st.a_sample : st.b_sample;
+}
+
+// From the picture of view side k (0 left) to its partner's, through the scene's registration affine
+// (which maps A onto B), so sync zoom keeps a rock's partner under the cursor, not the same pixel.
+PaneAffine towards_partner(const Session& s, const UiState& ui, int k) {
+  const Affine2& m = s.scenes()[ui.scene].automatic.registration.affine;
+  PaneAffine a;
+  for (int i = 0; i < 6; ++i) a.m[i] = m(i / 3, i % 3);
+  const bool from_a = (k == 0) != s.swapped();
+  return from_a ? a : a.inverse();
 }
 
 // Zoom by `factor` keeping the picture point under `mouse` where it is.
@@ -197,7 +208,9 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
           ui.selected_left = ui.selected_right = -1;
         }
       }
-      if (ui.sync_views) (k == 0 ? ui.right_view : ui.left_view) = view;
+      if (ui.sync_views)
+        (k == 0 ? ui.right_view : ui.left_view) = partner_view(view, {mouse.x - p0.x, mouse.y - p0.y}, size, in.image_w,
+                                                               in.image_h, towards_partner(s, ui, k));
       if (hit >= 0) {
         const auto& pv_self = s.performance(side, ui.scene).value;
         ImGui::BeginTooltip();

@@ -243,5 +243,21 @@ TEST(BrowserColumns, IpdRightAfterTheNameAndEachHeaderSortsByItsOwnValue) {
   }
 }
 
+TEST(EmptyHistogram, SaysWhyThereIsNoBar) {
+  SceneSummary none;  // no pairs at all
+  EXPECT_EQ(empty_histogram_text({none, none}), "no scene with pairs");
+  // Pairs, but at the threshold neither domain has a prediction left: that, not "no scene with pairs".
+  SceneSummary paired;
+  paired.pairs = 12;
+  paired.ipd = std::nan("");
+  paired.no_value_reason = "no predictions above 0.98 in real and principled";
+  EXPECT_EQ(empty_histogram_text({none, paired}), "no per-scene IPD: no predictions above 0.98 in real and principled");
+  SceneSummary plain;
+  plain.pairs = 3;
+  EXPECT_EQ(empty_histogram_text({plain, paired}),
+            "no per-scene IPD: no predictions above 0.98 in real and principled");
+  EXPECT_EQ(empty_histogram_text({plain}), "no scene with an IPD");
+}
+
 }  // namespace
 }  // namespace ipd::ui

@@ -1,0 +1,12 @@
+// What the views forget when another scene comes into view (GL-free, so tests check it without a window):
+// the selection, the replay, the zoom (unless the user keeps it) and the status line, whose messages are
+// about the scene or study they were posted in.
+#pragma once
+
+#include "ui/gui/views.h"
+
+namespace ipd::ui {
+
+void enter_scene(UiState& ui, int scene);
+
+}  // namespace ipd::ui
