@@ -94,11 +94,12 @@ Runner add_metrics_command(CLI::App& app) {
       j["images"] = nlohmann::ordered_json::array();
       text += fmt::format("\n{:<26} {:>6} {:<26} {:<26} {}\n", "domain pair", "scenes", "SSIM [CI]", "PSNR dB [CI]",
                           "Spearman(SSIM, scene IPD)");
+      std::vector<std::string> problems;
+      const StudyPixelMetrics all = pixel_metrics_all_columns(loaded->labels, t, so.threads, &problems);
+      for (const auto& p : problems) fmt::print(stderr, "warning: {}\n", p);
       for (size_t c = 0; c < t.columns.size(); ++c) {
         const auto& [a, b] = t.columns[c];
-        std::vector<std::string> problems;
-        const auto px = pixel_metrics(loaded->labels, t, c, so.threads, &problems);
-        for (const auto& p : problems) fmt::print(stderr, "warning: {}\n", p);
+        const auto& px = all.columns[c];
         std::vector<double> ssims, psnrs;
         for (const auto& s : px) {
           ssims.push_back(s.ssim);

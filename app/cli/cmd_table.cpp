@@ -29,11 +29,13 @@ Runner add_table_command(CLI::App& app) {
   cmd->add_option("--out", args->out, "Write the table to this file (atomically) instead of stdout");
   cmd->add_flag("--verbose", args->verbose, "List the scenes whose registration was ambiguous");
   return [args]() -> int {
-    auto loaded = load_study_table(args->study, true);
-    if (!loaded) return kBadInput;
-    if (args->format == "json") require_utf8_names(loaded->labels.study);
     TableFormat format = TableFormat::kText;
     parse_table_format(args->format, &format);
+    // CSV and JSON list every cell's value; the other formats print "–" where no chosen model trained.
+    const bool every_cell = format == TableFormat::kCsv || format == TableFormat::kJson;
+    auto loaded = load_study_table(args->study, true, !every_cell);
+    if (!loaded) return kBadInput;
+    if (args->format == "json") require_utf8_names(loaded->labels.study);
     TableFormatOptions fo;
     fo.latex_ci = args->study.ci_given;
     fo.booktabs = args->booktabs;

@@ -66,7 +66,7 @@ Study open_study_with_conf(const StudyOptions& o) {
   return study;
 }
 
-std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals) {
+std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, bool shown_cells_only) {
   const Study study = open_study_with_conf(o);
   // The GUI's parsed-study cache (study_cache.h): unchanged label files and registrations are read back.
   StudyCache parsed(o.no_cache ? std::string() : parsed_study_cache_path(study.root), study.root);
@@ -83,6 +83,7 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   if (o.seed >= 0) opt.registration.seed = static_cast<std::uint64_t>(o.seed);
   opt.cache_dir = registration.dir();
   opt.registration_cache = &registration;
+  opt.shown_cells_only = shown_cells_only;
   Progress progress("registering");
   opt.progress = [&](int d, int t) { progress.update(d, t); };
   out.table = compute_cross_table(out.labels, opt);

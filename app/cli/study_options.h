@@ -44,7 +44,8 @@ struct LoadedStudy {
   double conf_threshold = 0;
   BootstrapOptions bootstrap;  // as used: the seed is --seed, else the study's registration seed
 };
-std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals);
+// shown_cells_only: TableOptions::shown_cells_only (for a table that prints "–" where no model trained).
+std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, bool shown_cells_only = false);
 
 // Opens the study and applies --conf (for commands that read labels themselves).
 Study open_study_with_conf(const StudyOptions& o);

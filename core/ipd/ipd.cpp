@@ -198,7 +198,18 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
   po.progress = options.progress;
   const RegistrationCache own_cache(options.registration_cache ? std::string() : options.cache_dir);
   po.cache = options.registration_cache ? options.registration_cache : &own_cache;
-  PairedStudy paired = pair_study(labels, t.columns, po);
+  // A column is shown when some chosen model's training domain is in it (or the model names none).
+  std::vector<bool> shown(t.columns.size(), true);
+  std::vector<std::pair<std::string, std::string>> to_pair;
+  for (size_t c = 0; c < t.columns.size(); ++c) {
+    if (options.shown_cells_only) {
+      const auto& [a, b] = t.columns[c];
+      shown[c] = std::any_of(t.models.begin(), t.models.end(),
+                             [&](const ModelInfo& m) { return make_table_cell(m, a, b).involves_training_domain; });
+    }
+    if (shown[c]) to_pair.push_back(t.columns[c]);
+  }
+  PairedStudy paired = pair_study(labels, to_pair, po);
   t.registrations = paired.registrations;
   t.fixed_scenes = paired.fixed_scenes;
   t.cached_registrations = paired.cached_registrations;
@@ -208,14 +219,20 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
     if (!p.unusable_pairs) t.warnings.push_back(p.to_string());
   t.pairs_problems = std::move(paired.pairs_problems);
   t.pairings.resize(t.columns.size());
-  for (size_t c = 0; c < t.columns.size(); ++c)
-    for (const PipelineScene& s : paired.pairs[c].scenes) t.pairings[c].push_back(s.counted());
+  for (size_t c = 0, k = 0; c < t.columns.size(); ++c)
+    if (shown[c])
+      for (const PipelineScene& s : paired.pairs[k++].scenes) t.pairings[c].push_back(s.counted());
 
   std::set<std::string> warned;
   for (const auto& model : t.models) {
     for (size_t c = 0; c < t.columns.size(); ++c) {
       const auto& [a, b] = t.columns[c];
       TableCell cell = make_table_cell(model, a, b);
+      if (!shown[c]) {  // never registered: no scenes, no value
+        total_table_cell(cell);
+        t.cells.push_back(std::move(cell));
+        continue;
+      }
       for (const auto& d : {a, b}) {
         if (labels.has_predictions(d, model.name)) continue;
         cell.missing_predictions = true;

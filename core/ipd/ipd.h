@@ -140,6 +140,10 @@ struct TableOptions {
   std::function<void(int done, int total)> progress;
   std::string cache_dir;  // registration cache (registration_cache_dir()); empty: register every scene
   const RegistrationCache* registration_cache = nullptr;  // used instead of one in cache_dir when set
+  // Register only the domain pairs where some chosen model's cell is shown (its training domain is in the pair):
+  // the text, Markdown and LaTeX tables print "–" for the others, so registering them is wasted work. The
+  // hidden columns' cells then have no scenes and no value (CSV and JSON print every cell: leave this off).
+  bool shown_cells_only = false;
 };
 
 // The domain pairs (i < j in study order) of the chosen domains.

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/geometry/point_grid.h"
 #include "core/registration/consensus/consensus_scorer.h"
@@ -20,6 +21,12 @@ namespace {
 // det / trace^2 of the weighted scatter of A's centres is lambda1 lambda2 / (lambda1 + lambda2)^2: below this
 // the centres' minor axis is under about 1e-4 of their major one, a line up to rounding.
 constexpr double kSingularBelow = 1e-8;
+
+// EM keeps one soft correspondence per (A, B) rock pair in memory (8 bytes each, plus a step's temporaries of
+// the same size): 16 million pairs (4,000 x 4,000 rocks) is 128 MB for the weights, a few times that with the
+// temporaries; 20,000 x 20,000 would be 3.2 GB for that matrix alone. Consensus pairs over sparse candidate edges and
+// takes layouts that large.
+constexpr double kCpdMaxPairs = 16e6;
 
 // EM finds one local optimum and scores no rival, so its confidence is measured as the consensus method's:
 // the soft consensus (closeness x box-size agreement, each B rock once) of its alignment against the best of
@@ -73,6 +80,11 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
     out.note = "a side has no rocks: nothing to register";
     return out;
   }
+  if (static_cast<double>(m) * n > kCpdMaxPairs)
+    throw std::invalid_argument(fmt::format(
+        "--method cpd: {} x {} rocks is {:.0f} rock pairs, over cpd's limit of {:.0f} (it holds a weight for every "
+        "pair in memory); --method consensus registers layouts this large",
+        m, n, static_cast<double>(m) * n, kCpdMaxPairs));
   Eigen::MatrixXd x(n, 2), y(m, 2);
   for (int k = 0; k < n; ++k) x.row(k) = f.b[k].transpose();
   for (int k = 0; k < m; ++k) y.row(k) = f.a[k].transpose();

@@ -1,11 +1,14 @@
 #include "core/stats/image_metrics.h"
 
 #include <fmt/format.h>
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "core/geometry/affine_estimator.h"
@@ -107,6 +110,72 @@ Affine2 scene_b_from_a(const ScenePairing& p, const std::vector<Box>& ga, const 
   Affine2 m = identity_affine();
   if (src.size() >= 3 && !affine_least_squares_trimmed(src, dst, &m)) m = identity_affine();
   return m;
+}
+
+namespace {
+
+ScenePixelMetrics compare_pictures(const cv::Mat& ga, const cv::Mat& gb, const ScenePairing& p,
+                                   const Affine2& b_from_a) {
+  const AlignedPictures al = align_pictures(ga, gb, b_from_a);
+  ScenePixelMetrics r;
+  r.stem = p.stem;
+  r.overlap = static_cast<double>(cv::countNonZero(al.overlap)) / al.overlap.total();
+  r.ssim = ssim(al.a, al.b_on_a, al.overlap);
+  r.psnr = psnr(al.a, al.b_on_a, al.overlap);
+  return r;
+}
+
+}  // namespace
+
+StudyPixelMetrics pixel_metrics_all_columns(const StudyLabels& labels, const CrossTable& table, int threads,
+                                            std::vector<std::string>* problems) {
+  // Every (column, scene) by stem, so a scene's pictures are decoded once for all its domain pairs.
+  std::map<std::string, std::vector<std::pair<size_t, size_t>>> by_stem;
+  for (size_t c = 0; c < table.columns.size() && c < table.pairings.size(); ++c)
+    for (size_t k = 0; k < table.pairings[c].size(); ++k) by_stem[table.pairings[c][k].stem].emplace_back(c, k);
+  std::vector<const std::pair<const std::string, std::vector<std::pair<size_t, size_t>>>*> stems;
+  for (const auto& e : by_stem) stems.push_back(&e);
+  StudyPixelMetrics out;
+  std::vector<std::vector<std::optional<ScenePixelMetrics>>> results(table.pairings.size());
+  for (size_t c = 0; c < table.pairings.size(); ++c) results[c].resize(table.pairings[c].size());
+  std::vector<std::vector<std::string>> scene_problems(stems.size());
+  std::atomic<int> decoded{0};
+  parallel_for(stems.size(), threads, [&](size_t s) {
+    const std::string& stem = stems[s]->first;
+    std::map<std::string, cv::Mat> grey;  // domain -> its picture of this scene, decoded at first use
+    auto picture = [&](const std::string& domain) -> const cv::Mat* {
+      auto it = grey.find(domain);
+      if (it == grey.end()) {
+        const Domain* d = labels.study.domain(domain);
+        const auto im = d->images.find(stem);
+        cv::Mat m;
+        if (im != d->images.end()) {
+          m = cv::imread(im->second, cv::IMREAD_GRAYSCALE);
+          ++decoded;
+          if (m.empty()) scene_problems[s].push_back(fmt::format("{}: can't read the picture", im->second));
+        }
+        it = grey.emplace(domain, m).first;
+      }
+      return it->second.empty() ? nullptr : &it->second;
+    };
+    for (const auto& [c, k] : stems[s]->second) {
+      const auto& [a, b] = table.columns[c];
+      const cv::Mat* ga = picture(a);
+      const cv::Mat* gb = ga ? picture(b) : nullptr;
+      if (!ga || !gb) continue;
+      const ScenePairing& p = table.pairings[c][k];
+      const ScenePixelMetrics r =
+          compare_pictures(*ga, *gb, p, scene_b_from_a(p, labels.gt_of(a, stem).boxes, labels.gt_of(b, stem).boxes));
+      if (!std::isnan(r.ssim)) results[c][k] = r;
+    }
+  });
+  for (const auto& v : scene_problems) problems->insert(problems->end(), v.begin(), v.end());
+  out.pictures_decoded = decoded;
+  out.columns.resize(results.size());
+  for (size_t c = 0; c < results.size(); ++c)
+    for (const auto& r : results[c])
+      if (r) out.columns[c].push_back(*r);
+  return out;
 }
 
 std::vector<ScenePixelMetrics> pixel_metrics(const StudyLabels& labels, const CrossTable& table, size_t column,

@@ -42,4 +42,13 @@ struct ScenePixelMetrics {
 std::vector<ScenePixelMetrics> pixel_metrics(const StudyLabels& labels, const CrossTable& table, size_t column,
                                              int threads, std::vector<std::string>* problems);
 
+struct StudyPixelMetrics {
+  std::vector<std::vector<ScenePixelMetrics>> columns;  // as pixel_metrics, one per column of the table
+  int pictures_decoded = 0;                             // each picture once, whatever the number of domain pairs
+};
+// Every column's pixel_metrics, each scene's pictures decoded once for all the domain pairs they are in (a
+// scene at a time, so memory stays at one scene's pictures per thread). An unreadable picture is one problem.
+StudyPixelMetrics pixel_metrics_all_columns(const StudyLabels& labels, const CrossTable& table, int threads,
+                                            std::vector<std::string>* problems);
+
 }  // namespace ipd

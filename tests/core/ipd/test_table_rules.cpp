@@ -64,5 +64,27 @@ TEST(TableRules, TheRowsLowestIpdIsBold) {
   EXPECT_NE(latex.find("\\textbf{0.1667}"), std::string::npos) << latex;
 }
 
+// A table that prints "–" where no chosen model trained never registers those domain pairs: trained on real,
+// synth vs other is dashed, so 2 of the 3 domain pairs (one scene each) are registered; the shown cells keep
+// their values and the text is the same as when every pair is registered.
+TEST(TableRules, OnlyTheShownDomainPairsAreRegistered) {
+  test::TempDir d;
+  write_study(d, "domains: [real, synth, other]\nmodels: {det: {trained_on: real}}\n");
+  const StudyLabels labels = load_labels(open_study(d.path()));
+  const CrossTable all = compute_cross_table(labels, {});
+  EXPECT_EQ(all.registrations, 3);
+  TableOptions o;
+  o.shown_cells_only = true;
+  const CrossTable shown = compute_cross_table(labels, o);
+  EXPECT_EQ(shown.registrations, 2);
+  EXPECT_NEAR(cell(shown, "real", "synth").ipd, 0.5, 1e-12);
+  EXPECT_NEAR(cell(shown, "real", "other").ipd, 1.0 / 6, 1e-12);
+  EXPECT_EQ(cell(shown, "synth", "other").scenes, 0);
+  EXPECT_EQ(format_table(shown, TableFormat::kText), format_table(all, TableFormat::kText));
+  // A model without a training domain shows every cell: every pair is registered.
+  test::write_text(d / "study.yaml", "domains: [real, synth, other]\n");
+  EXPECT_EQ(compute_cross_table(load_labels(open_study(d.path())), o).registrations, 3);
+}
+
 }  // namespace
 }  // namespace ipd

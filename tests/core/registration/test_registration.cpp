@@ -371,5 +371,26 @@ TEST(RegistrationOptions, ValidateNamesTheProblem) {
   EXPECT_THROW(register_rocks({}, {}, o), std::invalid_argument);
 }
 
+// cpd holds a weight for every (A, B) rock pair: past 16 million pairs it refuses with the sizes, the limit and
+// the method that takes such layouts, before allocating (20,000 x 20,000 would need 3.2 GB for the weights).
+TEST(RegistrationMethods, CpdRefusesLayoutsOverItsPairLimitAndNamesTheAlternative) {
+  std::vector<Box> a(4001), b(4001);
+  for (int k = 0; k < 4001; ++k) {
+    a[k].cx = (k % 64 + 0.5) / 64, a[k].cy = (k / 64 + 0.5) / 64, a[k].w = a[k].h = 0.01;
+    b[k] = a[k];
+    b[k].cx += 0.1 / 64;
+  }
+  RegistrationOptions o;
+  o.method = RegistrationMethod::kCpd;
+  try {
+    register_rocks(a, b, o);
+    ADD_FAILURE() << "4,001 x 4,001 rocks registered with cpd";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "--method cpd: 4001 x 4001 rocks is 16008001 rock pairs, over cpd's limit of 16000000 (it holds a "
+                 "weight for every pair in memory); --method consensus registers layouts this large");
+  }
+}
+
 }  // namespace
 }  // namespace ipd

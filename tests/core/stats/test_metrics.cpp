@@ -6,6 +6,7 @@
 #include <map>
 #include <opencv2/core.hpp>
 
+#include "core/demo/demo_study.h"
 #include "core/report/rock_export.h"
 #include "core/stats/detection_metrics.h"
 #include "core/stats/image_metrics.h"
@@ -134,6 +135,36 @@ TEST(Metrics, ExportRowsReproduceTheTable) {
             "model,trained_on,a,b,scene,index_a,index_b,perf_a,perf_b,diff,cx_a,cy_a,w_a,h_a,cx_b,cy_b,w_b,h_b,"
             "residual_px,source");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), static_cast<long>(rows.size()) + 1);
+}
+
+// `metrics --images` over three domains: each of the 2 scenes' 3 pictures is decoded once (6), not once per
+// domain pair it is in (12), and every column's numbers are those of comparing that pair on its own.
+TEST(Metrics, EachPictureIsDecodedOnceForAllItsDomainPairs) {
+  test::TempDir d;
+  DemoStudyOptions demo;
+  demo.scenes = 2;
+  demo.width = 96;
+  demo.height = 64;
+  write_demo_study(d.path(), demo);
+  const StudyLabels labels = load_labels(open_study(d.path()));
+  ASSERT_EQ(labels.study.domains.size(), 3u);
+  const CrossTable t = compute_cross_table(labels, {});
+  ASSERT_EQ(t.columns.size(), 3u);
+  std::vector<std::string> problems;
+  const StudyPixelMetrics all = pixel_metrics_all_columns(labels, t, 2, &problems);
+  EXPECT_TRUE(problems.empty());
+  EXPECT_EQ(all.pictures_decoded, 6);
+  ASSERT_EQ(all.columns.size(), 3u);
+  for (size_t c = 0; c < 3; ++c) {
+    const auto one = pixel_metrics(labels, t, c, 1, &problems);
+    ASSERT_EQ(all.columns[c].size(), 2u);
+    ASSERT_EQ(one.size(), 2u);
+    for (size_t k = 0; k < 2; ++k) {
+      EXPECT_EQ(all.columns[c][k].stem, one[k].stem);
+      EXPECT_EQ(all.columns[c][k].ssim, one[k].ssim);
+      EXPECT_EQ(all.columns[c][k].psnr, one[k].psnr);
+    }
+  }
 }
 
 }  // namespace
