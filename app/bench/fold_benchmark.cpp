@@ -74,7 +74,7 @@ void print_fold_report(const std::vector<LabelPair>& pairs, const std::vector<Mi
       "side.\nceiling = the true camera with the method's pairing rule; gap = ceiling - F1. strict = against truth "
       "one-to-one by IoU > {} of the untouched files (independent of the pairing rule).\n\n",
       cases, kStrictTruthIou);
-  fmt::print("{:<5} {:<11} {:<10} {:<8} {:>6} {:>7} {:>8} {:>7} {:>8} {:>9} {:>8} {:>7}\n", "fold", "side", "terrains",
+  fmt::print("{:<5} {:<11} {:<15} {:<8} {:>6} {:>7} {:>8} {:>7} {:>8} {:>9} {:>8} {:>7}\n", "fold", "side", "terrains",
              "tier", "cases", "F1", "ceiling", "gap", "strict", "s.ceiling", "s.gap", "ms med");
   std::vector<BandCounts> bands(tiers.size()), ceiling_bands(tiers.size());
   std::vector<double> worst_gap(tiers.size(), 0.0), worst_ms(tiers.size(), 0.0);
@@ -87,7 +87,7 @@ void print_fold_report(const std::vector<LabelPair>& pairs, const std::vector<Mi
       terrains.erase(std::unique(terrains.begin(), terrains.end()), terrains.end());
       for (size_t t = 0; t < tiers.size(); ++t) {
         const auto s = score_fold(make_cases(subset, tiers[t], cases, seed, W, H), aspect, W, H);
-        fmt::print("{:<5} {:<11} {:<10} {:<8} {:>6} {:>7.4f} {:>8.4f} {:>7.4f} {:>8.4f} {:>9.4f} {:>8.4f} {:>7.3f}\n",
+        fmt::print("{:<5} {:<11} {:<15} {:<8} {:>6} {:>7.4f} {:>8.4f} {:>7.4f} {:>8.4f} {:>9.4f} {:>8.4f} {:>7.3f}\n",
                    fold.name, validation ? "validation" : "tuning", terrain_list(terrains), tiers[t].name, s.cases,
                    s.f1, s.ceiling, s.ceiling - s.f1, s.strict_f1, s.strict_ceiling, s.strict_ceiling - s.strict_f1,
                    s.ms_median);
