@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include <random>
+#include "app/bench/fold_benchmark.h"
 #include "app/bench/registration_benchmark.h"
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
@@ -356,7 +357,7 @@ Runner add_bench_command(CLI::App& app) {
     std::string data = "../shared/data/polar-sim", csv, plot;
     int cases = 300;
     std::uint64_t seed = 1;
-    bool quick = false, pycpd = false, failures = false, scaling_only = false;
+    bool quick = false, pycpd = false, failures = false, scaling_only = false, folds = false;
     std::vector<std::string> tiers, methods;
     std::string pycpd_script = find_data_file("pycpd_reference.py", IPD_APP_DIR);
   };
@@ -381,6 +382,8 @@ Runner add_bench_command(CLI::App& app) {
   cmd->add_option("--methods", args->methods, "Only these methods (consensus, paper, cpd)")
       ->delimiter(',')
       ->check(CLI::IsMember(method_names()));
+  cmd->add_flag("--folds", args->folds,
+                "Only the fold table: tuning against held-out terrains, gaps to the ceiling, size bands");
   cmd->add_flag("--scaling-only", args->scaling_only, "Only the time against the rock count");
   cmd->add_flag("--failures", args->failures, "List the default method's cases below F1 1 (for analysis)");
   cmd->add_flag("--pycpd", args->pycpd, "Also run the Python baseline (numpy port of pycpd; needs python3-numpy)");
@@ -398,6 +401,20 @@ Runner add_bench_command(CLI::App& app) {
     const auto pairs = polar_sim_label_pairs(root);
     if (pairs.empty()) throw StudyError(root + ": no label pairs of one view at different sun azimuths");
     const double W = 1936, H = 1216, aspect = W / H;
+    if (args->folds) {
+      auto tiers = benchmark_tiers();
+      if (!args->tiers.empty())
+        tiers.erase(std::remove_if(tiers.begin(), tiers.end(),
+                                   [&](const MisalignmentRange& r) {
+                                     return std::find(args->tiers.begin(), args->tiers.end(), r.name) ==
+                                            args->tiers.end();
+                                   }),
+                    tiers.end());
+      fmt::print("{} label pairs (same view, different sun) from {}; 1 thread; seed {}\n", pairs.size(), root,
+                 args->seed);
+      print_fold_report(pairs, tiers, args->cases, args->seed, W, H);
+      return kOk;
+    }
     fmt::print("{} label pairs (same view, different sun) from {}; {} cases per range; 1 thread; seed {}\n",
                pairs.size(), root, args->cases, args->seed);
     std::vector<Config> configs;
@@ -436,14 +453,9 @@ Runner add_bench_command(CLI::App& app) {
                "budget", "ms/pair", "ms med", "F1", "prec", "recall", "terr med%", "terr p90%", "amb%", "ambF1");
     for (const auto& range : tiers) {
       // Cases with at least three true pairs (fewer leave nothing to register), drawn from successive seeds.
-      std::vector<RegistrationCase> cases;
+      std::vector<RegistrationCase> cases = make_cases(pairs, range, args->cases, args->seed, W, H);
       double rocks_a = 0, rocks_b = 0, true_pairs = 0;
-      for (int k = 0; static_cast<int>(cases.size()) < args->cases && k < 20 * args->cases; ++k) {
-        auto c = make_case(pairs[(k * 7919u) % pairs.size()], range, args->seed * 100003 + k, W, H);
-        if (c.truth.size() < 3) continue;
-        rocks_a += c.a.size(), rocks_b += c.b.size(), true_pairs += c.truth.size();
-        cases.push_back(std::move(c));
-      }
+      for (const auto& c : cases) rocks_a += c.a.size(), rocks_b += c.b.size(), true_pairs += c.truth.size();
       const double n = static_cast<double>(cases.size());
       fmt::print("{}: {} cases, rocks per side {:.1f} / {:.1f}, true pairs {:.1f}\n", range.name, cases.size(),
                  rocks_a / n, rocks_b / n, true_pairs / n);

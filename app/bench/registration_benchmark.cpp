@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -47,10 +48,19 @@ std::vector<LabelPair> polar_sim_label_pairs(const std::string& root, int min_tr
         p.b = fb.boxes;
         // The same rule the methods pair by, applied with the exact (identity) camera.
         p.truth = pair_by_aligned_iou(identity_affine(), p.a, p.b, RegistrationOptions().min_pair_iou);
+        p.strict_truth = pair_by_aligned_iou(identity_affine(), p.a, p.b, kStrictTruthIou);
         if (static_cast<int>(p.truth.size()) >= min_true_pairs) out.push_back(std::move(p));
       }
   }
   return out;
+}
+
+int terrain_of(const std::string& file) {
+  const std::string base = fs::path(file).filename().string();
+  size_t digits = 0;
+  while (digits < base.size() && digits < 4 && std::isdigit(static_cast<unsigned char>(base[digits]))) ++digits;
+  if (digits == 0 || digits >= base.size() || base[digits] != '_') return -1;
+  return std::stoi(base.substr(0, digits));
 }
 
 MisalignmentRange small_misalignment() { return {"small", 5, 0.9, 1.1, 0.05, 0.05, 0.10, 0.002}; }
@@ -169,8 +179,22 @@ RegistrationCase make_case(const LabelPair& pair, const MisalignmentRange& r, st
   // B was moved, so the truth affine maps (original) A onto it as well: A and B share the original frame.
   for (const auto& [i, j] : pair.truth)
     if (new_a[i] >= 0 && new_b[j] >= 0) out.truth.emplace_back(new_a[i], new_b[j]);
+  for (const auto& [i, j] : pair.strict_truth)
+    if (new_a[i] >= 0 && new_b[j] >= 0) out.strict_truth.emplace_back(new_a[i], new_b[j]);
   std::sort(out.truth.begin(), out.truth.end());
+  std::sort(out.strict_truth.begin(), out.strict_truth.end());
   return out;
+}
+
+std::vector<RegistrationCase> make_cases(const std::vector<LabelPair>& pairs, const MisalignmentRange& range, int count,
+                                         std::uint64_t seed, double W, double H) {
+  std::vector<RegistrationCase> cases;
+  if (pairs.empty()) return cases;
+  for (int k = 0; static_cast<int>(cases.size()) < count && k < 20 * count; ++k) {
+    auto c = make_case(pairs[(k * 7919u) % pairs.size()], range, seed * 100003 + k, W, H);
+    if (c.truth.size() >= 3) cases.push_back(std::move(c));
+  }
+  return cases;
 }
 
 PairScore score_pairs(const RockPairs& found, const RockPairs& truth) {
@@ -185,6 +209,29 @@ PairScore score_pairs(const RockPairs& found, const RockPairs& truth) {
   s.recall = t.empty() ? 1.0 : tp / static_cast<double>(t.size());
   s.f1 = (s.precision + s.recall) > 0 ? 2 * s.precision * s.recall / (s.precision + s.recall) : 0.0;
   return s;
+}
+
+int size_band(const Box& b, double W, double H) {
+  const double px = std::sqrt(std::max(0.0, b.w * W) * std::max(0.0, b.h * H));
+  return px < 30 ? 0 : px <= 70 ? 1 : 2;
+}
+
+const char* size_band_name(int band) {
+  static const char* const names[kSizeBands] = {"< 30 px", "30-70 px", "> 70 px"};
+  return band >= 0 && band < kSizeBands ? names[band] : "?";
+}
+
+void count_by_size_band(const RockPairs& found, const RockPairs& truth, const std::vector<Box>& a, double W, double H,
+                        BandCounts* out) {
+  RockPairs f = found, t = truth;
+  std::sort(f.begin(), f.end());
+  std::sort(t.begin(), t.end());
+  for (const auto& [i, j] : f) out->found[size_band(a[i], W, H)] += 1;
+  for (const auto& [i, j] : t) {
+    const int band = size_band(a[i], W, H);
+    out->truth[band] += 1;
+    if (std::binary_search(f.begin(), f.end(), std::make_pair(i, j))) out->common[band] += 1;
+  }
 }
 
 double transform_error(const Affine2& found, const Affine2& truth, const std::vector<Box>& a, double aspect) {

@@ -19,7 +19,14 @@ struct LabelPair {
   std::string file_a, file_b;
   std::vector<Box> a, b;  // rock class only
   RockPairs truth;        // IoU assignment of the untouched files
+  // Truth that no method's pairing rule defines: one-to-one by IoU > kStrictTruthIou of the untouched files,
+  // so a looser rule cannot raise its own score by pairing what merely touches.
+  RockPairs strict_truth;
 };
+inline constexpr double kStrictTruthIou = 0.3;
+
+// The terrain number of a POLAR-Sim label file ("05_A_off_30_L_1024.txt" -> 5); -1 when the name has none.
+int terrain_of(const std::string& file);
 
 // Pairs of files of one view (terrain, camera, light, left/right) at different sun azimuths, one exposure
 // each; only pairs with at least `min_true_pairs` true pairs. Sorted by file names.
@@ -45,12 +52,18 @@ struct RegistrationCase {
   std::vector<Box> a, b;
   Affine2 truth_affine;  // normalised A -> normalised B
   RockPairs truth;
+  RockPairs strict_truth;  // LabelPair::strict_truth of the kept rocks
   std::string source;
 };
 
 // Deterministic for (pair, range, seed). Pixel geometry of 1936 x 1216 (POLAR) for angles and shifts.
 RegistrationCase make_case(const LabelPair& pair, const MisalignmentRange& range, std::uint64_t seed,
                            double image_w = 1936, double image_h = 1216);
+
+// `count` cases of `range` with at least three true pairs (fewer leave nothing to register), drawn in turn
+// from `pairs` with successive seeds (at most 20 * count tries).
+std::vector<RegistrationCase> make_cases(const std::vector<LabelPair>& pairs, const MisalignmentRange& range, int count,
+                                         std::uint64_t seed, double image_w, double image_h);
 
 // The floor of transform error: the least-squares affine on the true pairs' centres (image coordinates);
 // false when there are fewer than three true pairs or they are degenerate.
@@ -66,6 +79,18 @@ struct PairScore {
   double precision = 0, recall = 0, f1 = 0;
 };
 PairScore score_pairs(const RockPairs& found, const RockPairs& truth);
+
+// Size bands of a rock, by the geometric mean of its box's sides in pixels: < 30, 30-70, > 70. A few pixels of
+// label noise cost a small box much more IoU than a large one, so pairing is scored per band.
+inline constexpr int kSizeBands = 3;
+int size_band(const Box& b, double image_w, double image_h);
+const char* size_band_name(int band);
+// Per band of side A's rock: pairs found, true pairs and pairs both found and true (added to).
+struct BandCounts {
+  double found[kSizeBands] = {}, truth[kSizeBands] = {}, common[kSizeBands] = {};
+};
+void count_by_size_band(const RockPairs& found, const RockPairs& truth, const std::vector<Box>& a, double image_w,
+                        double image_h, BandCounts* out);
 
 // Median over A's rocks of the distance between where the found and the true affine put them, as a
 // fraction of the image width (pixels / width).
