@@ -112,6 +112,16 @@ const char* axis_name(PairAxis axis) {
   return "?";
 }
 
+bool parse_pair_axis(const std::string& word, PairAxis* axis) {
+  static const std::pair<const char*, PairAxis> kWords[] = {{"perf-a", PairAxis::kPerfA}, {"perf-b", PairAxis::kPerfB},
+                                                            {"diff", PairAxis::kAbsDiff}, {"size", PairAxis::kSize},
+                                                            {"x", PairAxis::kX},          {"y", PairAxis::kY},
+                                                            {"conf-a", PairAxis::kConfA}, {"conf-b", PairAxis::kConfB}};
+  for (const auto& [w, a] : kWords)
+    if (word == w) return *axis = a, true;
+  return false;
+}
+
 std::vector<int> gallery_order(const std::vector<RockPairPoint>& points) {
   std::vector<int> order(points.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);

@@ -32,6 +32,10 @@ enum class PairAxis { kPerfA, kPerfB, kAbsDiff, kSize, kX, kY, kConfA, kConfB };
 double axis_value(const RockPairPoint& p, PairAxis axis);
 const char* axis_name(PairAxis axis);  // "perf A", "perf B", "|diff|", "size (px)", "x", "y", "conf A", "conf B"
 
+// The axis names of scripts (ipd-studio --replay): perf-a, perf-b, diff, size, x, y, conf-a, conf-b.
+bool parse_pair_axis(const std::string& word, PairAxis* axis);
+inline constexpr const char* kPairAxisWords = "perf-a, perf-b, diff, size, x, y, conf-a or conf-b";
+
 // Indices of `points` in the gallery's order: largest |diff| first; ties by scene, then left rock, then right
 // rock, so the order never depends on how the points were gathered.
 std::vector<int> gallery_order(const std::vector<RockPairPoint>& points);

@@ -101,7 +101,14 @@ struct UiState {
   float pictures_height = -1;                  // height of the pictures pane; -1: fit the pictures' aspect
   float browser_width = -1, stats_width = -1;  // side columns as dragged; -1: from their content
   bool quit_confirmed = false;
-  bool show_problems = false;  // the Problems window
+  bool show_problems = false;   // the Problems window
+  bool show_rock_view = false;  // the linked rock view and gallery (rock_view.h)
+  // The rock view's drag box as a filter of the scene list: the scenes (ascending) it holds pairs in, for the
+  // domain pair and model it was drawn on (another one clears it); empty: no selection.
+  std::vector<int> selection_scenes;
+  std::string selection_label;  // "selection: 37 pairs in 12 scenes"
+  int selection_pair = -1;
+  std::string selection_model;
 };
 
 struct UiCommands {
@@ -120,6 +127,8 @@ struct UiCommands {
   bool quit = false;                   // confirmed (or nothing unsaved)
   bool next_suspect = false;           // `N`: the next suspect pair anywhere in the study
   int goto_problem = -1;               // a row of the Problems window (index into StudyView::problems): its scene
+  // A pair of the rock view: its scene, with the pair (view indices) selected and in view.
+  int goto_pair_scene = -1, goto_pair_left = -1, goto_pair_right = -1;
 };
 
 // The scene order of the browser (sorted and filtered as the user asked); sets ui.filter_error.

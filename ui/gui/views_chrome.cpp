@@ -126,6 +126,7 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
     if (ImGui::MenuItem("Fit pictures", "F")) ui.left_view = ui.right_view = CanvasView{};
     if (ImGui::MenuItem("Go to scene...", "Ctrl+G")) ui.show_goto = true;
     if (ImGui::MenuItem("Next suspect pair", "N")) out.next_suspect = true;
+    ImGui::MenuItem("Rock pairs (scatter, gallery)", nullptr, &ui.show_rock_view);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Help")) {
