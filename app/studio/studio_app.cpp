@@ -257,6 +257,7 @@ void StudioApp::frame() {
   if (ui_.show_open) list_browse_dir();
   ui::draw_dialogs(v, ui_, cmd);
   ui::draw_problems_window(v, ui_, cmd);
+  if (s) ui::draw_rock_view(v, rock_view_, ui_, cmd);
   if (s)
     if (auto request = ui::draw_export_dialog(export_dialog_, ui::export_view_context(*s, ui_, stats_ui_)))
       export_figure(*request);
@@ -299,6 +300,7 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
   if (cmd.goto_scene >= 0 && cmd.goto_scene != ui_.scene) goto_scene(cmd.goto_scene);
   if (cmd.goto_problem >= 0 && cmd.goto_problem < static_cast<int>(problems_.size()))
     goto_problem(problems_[cmd.goto_problem]);
+  if (cmd.goto_pair_scene >= 0) goto_pair(cmd.goto_pair_scene, cmd.goto_pair_left, cmd.goto_pair_right);
   for (const auto& e : cmd.edits) worker_.submit(command::ApplyEdit{ui_.scene, e});
   if (cmd.undo) worker_.submit(command::Undo{});
   if (cmd.redo) worker_.submit(command::Redo{});
@@ -381,6 +383,48 @@ void StudioApp::export_figure(const ui::ExportRequest& request) {
   };
   ui_.status = "exporting " + request.path + " ...";
   worker_.submit(std::move(c));
+}
+
+void StudioApp::goto_pair(int scene, int left, int right) {
+  const Session& s = *snap_->session;
+  if (scene < 0 || scene >= static_cast<int>(s.scenes().size())) return;
+  if (scene != ui_.scene) goto_scene(scene);
+  ui_.selected_left = left;
+  const Box& bl = s.gt(Side::kA, scene)[left];
+  const Box& br = s.gt(Side::kB, scene)[right];
+  ui_.left_view = {std::max(ui_.left_view.zoom, 3.0f), {float(bl.cx - 0.5), float(bl.cy - 0.5)}};
+  ui_.right_view = {ui_.left_view.zoom, {float(br.cx - 0.5), float(br.cy - 0.5)}};
+  ui_.status = fmt::format("pair {} | {} in {}", left + 1, right + 1, s.scenes()[scene].stem);
+}
+
+void StudioApp::replay_rock_axes(const std::string& x, const std::string& y) {
+  PairAxis ax, ay;  // both checked by parse_replay
+  parse_pair_axis(x, &ax);
+  parse_pair_axis(y, &ay);
+  ui_.show_rock_view = true;
+  rock_view_.x_axis = static_cast<int>(ax);
+  rock_view_.y_axis = static_cast<int>(ay);
+}
+
+void StudioApp::replay_select(double x0, double y0, double x1, double y1) {
+  const Session& s = *snap_->session;
+  ui::refresh_rock_points(s, ui_, rock_view_);
+  const auto ax = static_cast<PairAxis>(rock_view_.x_axis), ay = static_cast<PairAxis>(rock_view_.y_axis);
+  rock_view_.has_box = true;
+  rock_view_.box_x = rock_view_.x_axis, rock_view_.box_y = rock_view_.y_axis;
+  rock_view_.bx0 = x0, rock_view_.by0 = y0, rock_view_.bx1 = x1, rock_view_.by1 = y1;
+  ui::apply_pair_selection(s, select_in_box(rock_view_.points, ax, ay, x0, y0, x1, y1), ui_);
+}
+
+std::string StudioApp::write_scene_list(const std::string& file) const {
+  std::string text = ui_.selection_label + "\n";
+  for (const int k : ui_.order) text += snap_->session->scenes()[k].stem + "\n";
+  try {
+    write_file_atomically(file, text);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
 }
 
 void StudioApp::next_suspect() {
@@ -487,6 +531,13 @@ bool StudioApp::replay_step() {
     for (size_t k = 0; k < methods.size(); ++k)
       if (a.args[0] == methods[k].name) ui_.rerun_method = static_cast<int>(k);
     cmd.rerun_registration = true;
+  } else if (a.verb == "rocks") {
+    replay_rock_axes(a.args[0], a.args[1]);
+  } else if (a.verb == "select") {
+    replay_select(std::strtod(a.args[0].c_str(), nullptr), std::strtod(a.args[1].c_str(), nullptr),
+                  std::strtod(a.args[2].c_str(), nullptr), std::strtod(a.args[3].c_str(), nullptr));
+  } else if (a.verb == "list") {
+    if (const std::string e = write_scene_list(a.args[0]); !e.empty()) fail(e);
   } else if (a.verb == "export" && !s.scenes().empty()) {
     // The dialog's request with its defaults (single column, the view's layers and zoom) for the kind.
     ui::ExportDialogState d;

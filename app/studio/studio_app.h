@@ -16,6 +16,7 @@
 #include "app/studio/studio_textures.h"
 #include "app/studio/studio_worker.h"
 #include "ui/gui/export_dialog.h"
+#include "ui/gui/rock_view.h"
 #include "ui/gui/stats_panels.h"
 #include "ui/gui/views.h"
 
@@ -46,6 +47,11 @@ class StudioApp {
   std::vector<std::string> replay_problems() const;
   void note_picture_problem(const DecodedPicture& d);
   void goto_problem(const Problem& p);
+  void goto_pair(int scene, int left, int right);
+  // Replay verbs of the rock view (studio_replay.h): its axes, a drag box, the scene list written out.
+  void replay_rock_axes(const std::string& x, const std::string& y);
+  void replay_select(double x0, double y0, double x1, double y1);
+  std::string write_scene_list(const std::string& file) const;  // the rock view's click: the pair selected, in view
 
   StudioOptions o_;
   StudyWorker worker_;
@@ -54,6 +60,7 @@ class StudioApp {
   ui::UiState ui_;
   ui::ExportDialogState export_dialog_;
   ui::StatsPanelState stats_ui_;
+  ui::RockViewState rock_view_;
   StatsJob stats_;  // intervals, histogram, breakdown, comparison: off the UI thread
   std::shared_ptr<const Snapshot> snap_;
   // The session's problems and then the pictures that could not be read (found as they are shown).

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/registration/registration.h"
+#include "core/session/rock_pair_points.h"
 #include "core/util/number_text.h"
 
 namespace ipd::studio {
@@ -32,6 +33,9 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
       {"problems", {0, "nothing"}},
       {"problem", {1, "a row number of the Problems window"}},
       {"focus", {1, "on or off"}},
+      {"rocks", {2, "two axis names (x, y)"}},
+      {"select", {4, "a box's corners x0 y0 x1 y1 on the rock view's axes"}},
+      {"list", {1, "a text file"}},
   };
   std::vector<ReplayAction> out;
   std::istringstream in(text);
@@ -49,7 +53,7 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
     if (it == verbs.end())
       fail("unknown action '" + a.verb +
            "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, undo, "
-           "redo, rerun, export, screenshot, problems, problem or focus)");
+           "redo, rerun, export, screenshot, problems, problem, focus, rocks, select or list)");
     const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
     if (static_cast<int>(a.args.size()) != it->second.first && !export_with_kind)
       fail("'" + a.verb + "' takes " + it->second.second + ", got " + std::to_string(a.args.size()) + " argument(s)");
@@ -71,6 +75,16 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
       if (!parse_decimal(a.args[0], &v) || !(v >= 0 && v <= 1))
         fail("'conf': expected a threshold in [0, 1], got '" + quoted_for_message(a.args[0]) + "'");
     }
+    PairAxis axis;
+    if (a.verb == "rocks")
+      for (const auto& w : a.args)
+        if (!parse_pair_axis(w, &axis))
+          fail("'rocks': expected an axis (" + std::string(kPairAxisWords) + "), got '" + quoted_for_message(w) + "'");
+    if (a.verb == "select")
+      for (const auto& w : a.args) {
+        double v = NAN;
+        if (!parse_decimal(w, &v)) fail("'select': expected a number, got '" + quoted_for_message(w) + "'");
+      }
     RegistrationMethod method;
     if (a.verb == "rerun" && !parse_method(a.args[0], &method))
       fail("'rerun': expected " + method_choices() + ", got '" + a.args[0] + "'");

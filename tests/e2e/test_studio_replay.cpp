@@ -215,5 +215,45 @@ TEST(StudioReplay, ProblemsTheCliReportsArePrintedOnStderr) {
       << err;
 }
 
+// Two scenes: s1 as write_two_rock_study (pairs with |diff| 2/3 and 0), s2 with both sides' predictions on
+// their rocks (|diff| 0 twice). A drag box over |diff| >= 0.5, perf A >= 0.5 holds one pair, in s1: the scene
+// list then shows s1 alone, under the selection's label.
+TEST(StudioReplay, ARockViewBoxBecomesASceneListFilter) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  for (const char* domain : {"real", "synth"}) {
+    const std::string rocks = "0 0.3 0.3 0.1 0.1\n0 0.7 0.4 0.15 0.1\n";
+    test::write_text(d / fmt::format("{}/labels/s2.txt", domain), rocks);
+    test::write_text(d / fmt::format("{}/predictions/det/s2.txt", domain),
+                     "0 0.3 0.3 0.1 0.1 0.9\n0 0.7 0.4 0.15 0.1 0.7\n");
+  }
+  test::write_text(d / "actions.txt", fmt::format("list {}\nrocks diff perf-a\nwait 2\nselect 0.5 0.5 1 1\nwait 2\n"
+                                                  "list {}\nscreenshot {}\n",
+                                                  d / "before.txt", d / "after.txt", d / "rocks.png"));
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d.path(), d / "actions.txt");
+  ASSERT_EQ(run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path()), 0) << read_file(d / "err.txt");
+  EXPECT_EQ(read_file(d / "before.txt"), "\ns1\ns2\n");
+  EXPECT_EQ(read_file(d / "after.txt"), "selection: 1 pair in 1 scene\ns1\n");
+  EXPECT_TRUE(fs::exists(d / "rocks.png"));
+}
+
+TEST(StudioReplay, RockViewActionsNameTheirArguments) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  test::write_text(d / "actions.txt", "rocks perf-a width\n");
+  const std::string cmd = fmt::format("{} --replay {} >{} 2>&1", studio, d / "actions.txt", d / "log.txt");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" +
+                ":1: 'rocks': expected an axis (perf-a, perf-b, diff, size, x, y, conf-a or conf-b), got 'width'\n");
+  test::write_text(d / "actions.txt", "select 0 0 1 one\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"), "error: " + d / "actions.txt" + ":1: 'select': expected a number, got 'one'\n");
+}
+
 }  // namespace
 }  // namespace ipd

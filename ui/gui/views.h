@@ -104,6 +104,13 @@ struct UiState {
   bool show_problems = false;            // the Problems window
   bool focus = false;                    // focus view: the pictures fill the window, the side columns are strips (Z)
   bool keep_zoom_across_scenes = false;  // else a scene change fits both pictures again
+  bool show_rock_view = false;           // the linked rock view and gallery (rock_view.h)
+  // The rock view's drag box as a filter of the scene list: the scenes (ascending) it holds pairs in, for the
+  // domain pair and model it was drawn on (another one clears it); empty: no selection.
+  std::vector<int> selection_scenes;
+  std::string selection_label;  // "selection: 37 pairs in 12 scenes"
+  int selection_pair = -1;
+  std::string selection_model;
 };
 
 struct UiCommands {
@@ -122,6 +129,8 @@ struct UiCommands {
   bool quit = false;                   // confirmed (or nothing unsaved)
   bool next_suspect = false;           // `N`: the next suspect pair anywhere in the study
   int goto_problem = -1;               // a row of the Problems window (index into StudyView::problems): its scene
+  // A pair of the rock view: its scene, with the pair (view indices) selected and in view.
+  int goto_pair_scene = -1, goto_pair_left = -1, goto_pair_right = -1;
 };
 
 // The scene order of the browser (sorted and filtered as the user asked); sets ui.filter_error.

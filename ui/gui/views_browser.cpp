@@ -13,8 +13,9 @@ std::vector<int> browser_order(const std::vector<SceneSummary>& sums, UiState& u
   const SceneFilter filter = SceneFilter::parse(ui.filter);
   ui.filter_error = filter.error;
   std::vector<int> order;
+  const auto& sel = ui.selection_scenes;
   for (int k = 0; k < static_cast<int>(sums.size()); ++k)
-    if (filter.matches(sums[k])) order.push_back(k);
+    if (filter.matches(sums[k]) && (sel.empty() || std::binary_search(sel.begin(), sel.end(), k))) order.push_back(k);
   auto key = [&](int k) -> double {
     const auto& m = sums[k];
     switch (ui.sort_column) {
@@ -124,6 +125,22 @@ float browser_width(const StudyView& v, float min_w, float max_w) {
   return std::clamp(w + st.ScrollbarSize + 2 * st.WindowPadding.x + 8, min_w, max_w);
 }
 
+// The rock view's selection as a chip under the filter: its label and a button that clears it. A selection
+// drawn on another domain pair or model names other scenes' pairs: it is cleared.
+static void draw_selection_chip(const Session& s, UiState& ui) {
+  if (ui.selection_scenes.empty()) return;
+  const bool stale = ui.selection_pair != s.pair_index() || ui.selection_model != s.model();
+  if (stale || (ImGui::SmallButton("x##clearselection"))) {
+    ui.selection_scenes.clear();
+    ui.selection_label.clear();
+    ui.order.clear();  // the app lists the scenes again
+    return;
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("clear the rock view's selection");
+  ImGui::SameLine();
+  ImGui::TextUnformatted(ui.selection_label.c_str());
+}
+
 void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   const Session& s = *v.session;
   const Study& st = s.study();
@@ -166,6 +183,7 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   ImGui::SetNextItemWidth(-1);
   ImGui::InputTextWithHint("##filter", "filter: text, ipd>0.1, suspect, edited", ui.filter, sizeof ui.filter);
   if (!ui.filter_error.empty()) ImGui::TextColored({1, 0.5f, 0.3f, 1}, "%s", ui.filter_error.c_str());
+  draw_selection_chip(s, ui);
   ImGui::TextDisabled("%s of %s%s", thousands(ui.order.size()).c_str(), counted(v.summaries->size(), "scene").c_str(),
                       v.loading.empty() ? "" : " so far (the rest is loading)");
   ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |

@@ -129,6 +129,7 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
     ImGui::MenuItem("Keep zoom across scenes", nullptr, &ui.keep_zoom_across_scenes);
     if (ImGui::MenuItem("Go to scene...", "Ctrl+G")) ui.show_goto = true;
     if (ImGui::MenuItem("Next suspect pair", "N")) out.next_suspect = true;
+    ImGui::MenuItem("Rock pairs (scatter, gallery)", nullptr, &ui.show_rock_view);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Help")) {

@@ -1,0 +1,157 @@
+#include "core/session/rock_pair_points.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "core/stats/study_statistics.h"
+
+namespace ipd {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double best_confidence(const PerformanceValues& perf, const std::vector<Box>& predictions, int rock) {
+  const int best = perf.best_prediction[rock];
+  return best >= 0 ? predictions[best].conf : kNaN;
+}
+
+// One scene's counted pairs, turned to the view's orientation (contributions are in the domain pair's).
+void add_scene(const Session& session, int scene, const SceneIpd& contribution, double pixel_area,
+               std::vector<RockPairPoint>* out) {
+  const bool swapped = session.swapped();
+  const auto& gt_left = session.gt(Side::kA, scene);
+  const PerformanceValues& perf_left = session.performance(Side::kA, scene);
+  const PerformanceValues& perf_right = session.performance(Side::kB, scene);
+  const auto& pred_left = session.predictions(Side::kA, scene);
+  const auto& pred_right = session.predictions(Side::kB, scene);
+  for (size_t k = 0; k < contribution.counted.size(); ++k) {
+    const auto [a, b] = contribution.counted[k];
+    RockPairPoint p;
+    p.scene = scene;
+    p.rock_a = swapped ? b : a;
+    p.rock_b = swapped ? a : b;
+    p.perf_a = swapped ? contribution.perf_b[k] : contribution.perf_a[k];
+    p.perf_b = swapped ? contribution.perf_a[k] : contribution.perf_b[k];
+    p.abs_diff = std::abs(p.perf_a - p.perf_b);
+    const Box& box = gt_left[p.rock_a];
+    p.size = box.area() * pixel_area;
+    p.x = box.cx;
+    p.y = box.cy;
+    p.conf_a = best_confidence(perf_left, pred_left, p.rock_a);
+    p.conf_b = best_confidence(perf_right, pred_right, p.rock_b);
+    out->push_back(p);
+  }
+}
+
+bool inside(double v, double lo, double hi) { return v >= lo && v <= hi; }  // false for NaN
+
+}  // namespace
+
+std::vector<RockPairPoint> rock_pair_points(const Session& session, const std::vector<int>& scenes) {
+  std::vector<RockPairPoint> out;
+  const auto& contributions = session.contributions_for(session.model(), session.pair_index());
+  if (contributions.empty()) return out;
+  const auto [width, height] = domain_image_size(session.study(), session.left_domain());
+  const double pixel_area = width > 0 ? static_cast<double>(width) * height : 1e6;
+  if (scenes.empty()) {
+    for (size_t s = 0; s < contributions.size(); ++s)
+      add_scene(session, static_cast<int>(s), contributions[s], pixel_area, &out);
+  } else {
+    for (const int s : scenes)
+      if (s >= 0 && static_cast<size_t>(s) < contributions.size())
+        add_scene(session, s, contributions[s], pixel_area, &out);
+  }
+  return out;
+}
+
+double axis_value(const RockPairPoint& p, PairAxis axis) {
+  switch (axis) {
+    case PairAxis::kPerfA:
+      return p.perf_a;
+    case PairAxis::kPerfB:
+      return p.perf_b;
+    case PairAxis::kAbsDiff:
+      return p.abs_diff;
+    case PairAxis::kSize:
+      return p.size;
+    case PairAxis::kX:
+      return p.x;
+    case PairAxis::kY:
+      return p.y;
+    case PairAxis::kConfA:
+      return p.conf_a;
+    case PairAxis::kConfB:
+      return p.conf_b;
+  }
+  return kNaN;
+}
+
+const char* axis_name(PairAxis axis) {
+  switch (axis) {
+    case PairAxis::kPerfA:
+      return "perf A";
+    case PairAxis::kPerfB:
+      return "perf B";
+    case PairAxis::kAbsDiff:
+      return "|diff|";
+    case PairAxis::kSize:
+      return "size (px)";
+    case PairAxis::kX:
+      return "x";
+    case PairAxis::kY:
+      return "y";
+    case PairAxis::kConfA:
+      return "conf A";
+    case PairAxis::kConfB:
+      return "conf B";
+  }
+  return "?";
+}
+
+bool parse_pair_axis(const std::string& word, PairAxis* axis) {
+  static const std::pair<const char*, PairAxis> kWords[] = {{"perf-a", PairAxis::kPerfA}, {"perf-b", PairAxis::kPerfB},
+                                                            {"diff", PairAxis::kAbsDiff}, {"size", PairAxis::kSize},
+                                                            {"x", PairAxis::kX},          {"y", PairAxis::kY},
+                                                            {"conf-a", PairAxis::kConfA}, {"conf-b", PairAxis::kConfB}};
+  for (const auto& [w, a] : kWords)
+    if (word == w) return *axis = a, true;
+  return false;
+}
+
+std::vector<int> gallery_order(const std::vector<RockPairPoint>& points) {
+  std::vector<int> order(points.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int i, int j) {
+    const RockPairPoint &p = points[i], &q = points[j];
+    if (p.abs_diff != q.abs_diff) return p.abs_diff > q.abs_diff;
+    if (p.scene != q.scene) return p.scene < q.scene;
+    if (p.rock_a != q.rock_a) return p.rock_a < q.rock_a;
+    return p.rock_b < q.rock_b;
+  });
+  return order;
+}
+
+std::string PairSelection::label() const {
+  return fmt::format("selection: {} pair{} in {} scene{}", points.size(), points.size() == 1 ? "" : "s", scenes.size(),
+                     scenes.size() == 1 ? "" : "s");
+}
+
+PairSelection select_in_box(const std::vector<RockPairPoint>& points, PairAxis x_axis, PairAxis y_axis, double x0,
+                            double y0, double x1, double y1) {
+  PairSelection out;
+  const double xlo = std::min(x0, x1), xhi = std::max(x0, x1), ylo = std::min(y0, y1), yhi = std::max(y0, y1);
+  std::set<int> scenes;
+  for (size_t i = 0; i < points.size(); ++i) {
+    if (!inside(axis_value(points[i], x_axis), xlo, xhi) || !inside(axis_value(points[i], y_axis), ylo, yhi)) continue;
+    out.points.push_back(static_cast<int>(i));
+    scenes.insert(points[i].scene);
+  }
+  out.scenes.assign(scenes.begin(), scenes.end());
+  return out;
+}
+
+}  // namespace ipd

@@ -1,0 +1,54 @@
+// The counted rock pairs of the current cell (domain pair and model) as points, for the studio's linked rock
+// view (a scatter of any two of their values) and its paired-rock gallery (the worst |diff| pairs first), and
+// for `ipd figure gallery`. Pure functions of an immutable Session: no drawing, no file I/O.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/session/session.h"
+
+namespace ipd {
+
+// One counted pair, in the view's orientation (left = A unless the view is swapped), as the cell counts it.
+struct RockPairPoint {
+  int scene = -1;                // index into Session::scenes()
+  int rock_a = -1, rock_b = -1;  // left and right rock indices
+  double perf_a = 0, perf_b = 0, abs_diff = 0;
+  // The left rock's area in pixels (the size breakdown's rule: the domain's picture size, else the
+  // normalised area x 10^6) and its box centre in normalised image coordinates.
+  double size = 0, x = 0, y = 0;
+  // Confidence of each rock's best-IoU prediction; NaN when no prediction overlaps it.
+  double conf_a = 0, conf_b = 0;
+};
+
+// Every counted pair of the session's current cell, by scene then in counting order. `scenes` (optional):
+// only those scene indices (e.g. the filtered scene list); empty: every scene. A model without predictions
+// for a domain counts nothing: empty.
+std::vector<RockPairPoint> rock_pair_points(const Session& session, const std::vector<int>& scenes = {});
+
+// What a scatter axis plots.
+enum class PairAxis { kPerfA, kPerfB, kAbsDiff, kSize, kX, kY, kConfA, kConfB };
+double axis_value(const RockPairPoint& p, PairAxis axis);
+const char* axis_name(PairAxis axis);  // "perf A", "perf B", "|diff|", "size (px)", "x", "y", "conf A", "conf B"
+
+// The axis names of scripts (ipd-studio --replay): perf-a, perf-b, diff, size, x, y, conf-a, conf-b.
+bool parse_pair_axis(const std::string& word, PairAxis* axis);
+inline constexpr const char* kPairAxisWords = "perf-a, perf-b, diff, size, x, y, conf-a or conf-b";
+
+// Indices of `points` in the gallery's order: largest |diff| first; ties by scene, then left rock, then right
+// rock, so the order never depends on how the points were gathered.
+std::vector<int> gallery_order(const std::vector<RockPairPoint>& points);
+
+// A drag-box selection on a scatter of (x_axis, y_axis): the points inside the box (corners in either order,
+// edges included; a NaN value is never inside) and the scenes they are in.
+struct PairSelection {
+  std::vector<int> points;  // indices into the points, ascending
+  std::vector<int> scenes;  // scene indices, ascending, each once
+  // The scene list's filter chip: "selection: 37 pairs in 12 scenes".
+  std::string label() const;
+};
+PairSelection select_in_box(const std::vector<RockPairPoint>& points, PairAxis x_axis, PairAxis y_axis, double x0,
+                            double y0, double x1, double y1);
+
+}  // namespace ipd
