@@ -64,7 +64,7 @@ Eigen::Matrix2d similarity_step(const Eigen::Matrix2d& a, const Eigen::Matrix2d&
 }  // namespace
 
 MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
-                           const RegistrationOptions& o) {
+                           const RegistrationOptions& o, const Deadline& deadline) {
   MethodOutcome out;
   out.affine_normalised = f.from_image(identity_affine());
   const int m = static_cast<int>(f.a.size()), n = static_cast<int>(f.b.size());
@@ -97,6 +97,11 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   for (; it < o.cpd_iterations; ++it) {
     if (it >= allowed) {
       out.stop = StopReason::kWorkBudget;
+      break;
+    }
+    // One EM step on 5,000 rocks a side is tens of milliseconds: the time budget is read before each.
+    if (deadline.passed()) {
+      out.stop = StopReason::kTimeBudget;
       break;
     }
     out.work += per_step;

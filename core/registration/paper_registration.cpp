@@ -65,7 +65,7 @@ struct MeanNearestScorer {
 
 }  // namespace
 
-MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o) {
+MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o, const Deadline& deadline) {
   MethodOutcome out;
   const double gate = o.pair_gate;  // the normalised frame has unit spread
   auto count_inliers = [&](const Affine2& m) {
@@ -95,6 +95,7 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   RobustLoopOptions lo;
   lo.max_trials = o.max_trials;
   lo.time_budget_ms = o.time_budget_ms;
+  lo.deadline = &deadline;
   lo.max_work = work_budget(o, f.a.size(), f.b.size());
   lo.work_per_model = static_cast<double>(f.a.size());  // one nearest-neighbour query per A rock
   // The trace's samples: A's triple in drawing order, B's in the order this model matched them.

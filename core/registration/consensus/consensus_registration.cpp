@@ -445,7 +445,8 @@ Affine2 final_fit(const RegistrationFrame& f, const std::vector<Box>& boxes_a, c
 }  // namespace
 
 MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
-                                 const std::vector<Box>& boxes_b, const RegistrationOptions& o) {
+                                 const std::vector<Box>& boxes_b, const RegistrationOptions& o,
+                                 const Deadline& deadline) {
   MethodOutcome out;
   // A triple of nearby rocks carries their labelling noise into its affine (several degrees, tens of
   // percent of scale), so hypotheses are held to the user's bounds with that much slack.
@@ -467,6 +468,7 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
     RobustLoopOptions lo;
     lo.max_trials = o.max_trials;
     lo.time_budget_ms = o.time_budget_ms;
+    lo.deadline = &deadline;
     lo.max_work = work_budget(o, f.a.size(), f.b.size());
     lo.work_per_model = static_cast<double>(f.a.size());  // one nearest-neighbour query per A rock
     auto sample_of = [&](const Affine2&, std::vector<int>* sa, std::vector<int>* sb) {
