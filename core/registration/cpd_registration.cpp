@@ -157,7 +157,13 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
     out.note = "EM diverged: identity used";
   }
   out.score = std::sqrt(std::max(sigma2, 0.0)) * f.spread;  // final mixture width, fraction of image width
-  out.confidence = cpd_confidence(f, &out.affine_normalised, &out.beaten, recorder);
+  if (out.stop == StopReason::kTimeBudget) {
+    // The rival placements score whole sets again: with the budget spent EM's answer stands, unjudged.
+    out.confidence = 0;
+    out.note = "time budget spent: EM's alignment, not judged against rival placements";
+  } else {
+    out.confidence = cpd_confidence(f, &out.affine_normalised, &out.beaten, recorder);
+  }
   if (out.beaten) {
     out.note = "a shifted placement fitted better than EM's alignment: used";
     recorder.add_step(TraceStepKind::kPolish, out.affine_normalised, out.score, out.score, true);  // replays end on it

@@ -16,12 +16,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
-
-#include "core/registration/deadline.h"
 
 namespace ipd {
 
@@ -75,20 +72,9 @@ inline int compute_num_trials(int num_inliers, int num_points, int sample_size, 
   return n >= cap ? cap : std::max(1, static_cast<int>(n));
 }
 
-// The pure stop rule checked before each sample is drawn: the trial cap first (it never depends on time, so
-// results without a budget are the same on any machine), then the time budget (0: none). The budget is read
-// before every sample, not every few: one sample on 5,000 rocks can cost more than the whole budget.
-inline std::optional<StopReason> stop_before_sample(int trials, int max_trials, double elapsed_ms, double budget_ms) {
-  if (trials >= max_trials) return StopReason::kMaxTrials;
-  if (budget_ms > 0 && elapsed_ms >= budget_ms) return StopReason::kTimeBudget;
-  return std::nullopt;
-}
-
 struct RobustLoopOptions {
   int max_trials = 1000;
   double time_budget_ms = 0.0;  // 0: no limit
-  // When set, the budget runs from this deadline's start (e.g. before the set-up), not from the loop's.
-  const Deadline* deadline = nullptr;
   // Work bound: each scored model costs `work_per_model` units (e.g. the points it maps); the loop stops
   // before the total would pass `max_work`. 0: no limit.
   double max_work = 0.0, work_per_model = 1.0;
@@ -114,16 +100,22 @@ template <typename Model, typename Sample, typename Sampler, typename Estimator,
           typename Observer = NoObserver>
 RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, Scorer& scorer,
                                         const RobustLoopOptions& options, Observer&& observer = Observer()) {
-  const Deadline own(options.deadline ? 0.0 : options.time_budget_ms);
-  const Deadline& deadline = options.deadline ? *options.deadline : own;
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
   RobustLoopResult<Model> r;
   std::vector<Model> models;
   Sample sample;
   while (true) {
-    if (const auto stop =
-            stop_before_sample(r.trials, options.max_trials, deadline.elapsed_ms(), deadline.budget_ms())) {
-      r.stop = *stop;
+    if (r.trials >= options.max_trials) {
+      r.stop = StopReason::kMaxTrials;
       break;
+    }
+    if (options.time_budget_ms > 0 && (r.trials & 15) == 0 && r.trials > 0) {
+      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+      if (ms > options.time_budget_ms) {
+        r.stop = StopReason::kTimeBudget;
+        break;
+      }
     }
     if (!sampler.next(&sample)) {
       r.stop = StopReason::kExhausted;

@@ -2,10 +2,13 @@
 // run (the wall-clock bound itself is measured by `ipd bench`).
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <vector>
 
 #include "core/registration/deadline.h"
+#include "core/registration/registration_frame.h"  // core/src: internal
 #include "core/registration/robust_loop.h"
+#include "tests/support/test_support.h"
 
 namespace ipd {
 namespace {
@@ -60,16 +63,82 @@ TEST(StopRule, LoopStopsBeforeTheSampleThatWouldPassTheBudget) {
   double now = 0;
   const Deadline d(4.5, [&] { return now; });
   now = 2.0;  // set-up before the loop counts against the budget
-  CountingSampler sampler{&now};
+  CountingSampler inner{&now};
+  DeadlineSampler<CountingSampler> sampler{inner, d, 1000};
   OneModel estimator;
   FlatScorer scorer;
   RobustLoopOptions lo;
   lo.max_trials = 1000;
-  lo.time_budget_ms = 4.5;
-  lo.deadline = &d;
   const auto r = run_robust_loop<int, int>(sampler, estimator, scorer, lo);
-  EXPECT_EQ(r.stop, StopReason::kTimeBudget);
+  EXPECT_EQ(sampler.stop(r.stop), StopReason::kTimeBudget);
   EXPECT_EQ(r.trials, 3);  // at 2, 3 and 4 ms a sample is drawn; at 5 ms the budget of 4.5 is spent
+}
+
+TEST(StopRule, TheTrialCapStillEndsATimedLoop) {
+  double now = 0;
+  const Deadline d(1e9, [&] { return now; });
+  CountingSampler inner{&now};
+  DeadlineSampler<CountingSampler> sampler{inner, d, 7};
+  OneModel estimator;
+  FlatScorer scorer;
+  RobustLoopOptions lo;
+  lo.max_trials = 7;
+  const auto r = run_robust_loop<int, int>(sampler, estimator, scorer, lo);
+  EXPECT_EQ(sampler.stop(r.stop), StopReason::kMaxTrials);
+  EXPECT_EQ(r.trials, 7);
+}
+
+// A clock that stands still for its first `still` readings (the deadline's start is one), then jumps 1 s.
+MsClock clock_passing_after(int still) {
+  auto reads = std::make_shared<int>(0);
+  return [reads, still] { return ++*reads <= still ? 0.0 : 1000.0; };
+}
+
+RegistrationOptions budget_of_5ms(RegistrationMethod m) {
+  RegistrationOptions o;
+  o.method = m;
+  o.time_budget_ms = 5;
+  return o;
+}
+
+TEST(StopRule, ConsensusSpentBeforeItsFirstSampleSaysSo) {
+  const auto a = test::seven_rocks(0), b = test::seven_rocks(0.05);
+  const detail::RegistrationFrame f(a, b, 1.0);
+  const auto o = budget_of_5ms(RegistrationMethod::kConsensus);
+  const auto out = detail::register_consensus(f, a, b, o, Deadline(5, clock_passing_after(1)));
+  EXPECT_EQ(out.stop, StopReason::kTimeBudget);
+  EXPECT_EQ(out.trials, 0);
+  EXPECT_EQ(out.note, "time budget spent before a plausible affine was found: identity used");
+}
+
+TEST(StopRule, ConsensusSpentDuringTheSearchKeepsItsBestUnpolished) {
+  const auto a = test::seven_rocks(0), b = test::seven_rocks(0.05);
+  const detail::RegistrationFrame f(a, b, 1.0);
+  const auto o = budget_of_5ms(RegistrationMethod::kConsensus);
+  const auto out = detail::register_consensus(f, a, b, o, Deadline(5, clock_passing_after(3)));
+  EXPECT_EQ(out.stop, StopReason::kTimeBudget);
+  EXPECT_EQ(out.trials, 2);  // the start and two checks read the still clock; the third check is past it
+  EXPECT_EQ(out.note, "time budget spent: the search's best, without the rival placements, polish or second look");
+}
+
+TEST(StopRule, CpdReadsTheBudgetBeforeEachEmStep) {
+  const auto a = test::seven_rocks(0), b = test::seven_rocks(0.05);
+  const detail::RegistrationFrame f(a, b, 1.0);
+  const auto o = budget_of_5ms(RegistrationMethod::kCpd);
+  const auto out = detail::register_cpd(f, a, b, o, Deadline(5, clock_passing_after(3)));
+  EXPECT_EQ(out.stop, StopReason::kTimeBudget);
+  EXPECT_EQ(out.trials, 2);
+  EXPECT_EQ(out.note, "time budget spent: EM's alignment, not judged against rival placements");
+}
+
+TEST(StopRule, PaperSpentBeforeItsFirstSampleSaysSo) {
+  const auto a = test::seven_rocks(0), b = test::seven_rocks(0.05);
+  const detail::RegistrationFrame f(a, b, 1.0);
+  const auto out =
+      detail::register_paper(f, budget_of_5ms(RegistrationMethod::kPaper), Deadline(5, clock_passing_after(1)));
+  EXPECT_EQ(out.stop, StopReason::kTimeBudget);
+  EXPECT_EQ(out.trials, 0);
+  EXPECT_EQ(out.note, "time budget spent before a triple was scored: identity used");
 }
 
 }  // namespace
