@@ -71,7 +71,7 @@ Eigen::Matrix2d similarity_step(const Eigen::Matrix2d& a, const Eigen::Matrix2d&
 }  // namespace
 
 MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
-                           const RegistrationOptions& o) {
+                           const RegistrationOptions& o, const Deadline& deadline) {
   MethodOutcome out;
   out.affine_normalised = f.from_image(identity_affine());
   const int m = static_cast<int>(f.a.size()), n = static_cast<int>(f.b.size());
@@ -109,6 +109,11 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   for (; it < o.cpd_iterations; ++it) {
     if (it >= allowed) {
       out.stop = StopReason::kWorkBudget;
+      break;
+    }
+    // One EM step on 5,000 rocks a side is tens of milliseconds: the time budget is read before each.
+    if (deadline.passed()) {
+      out.stop = StopReason::kTimeBudget;
       break;
     }
     out.work += per_step;
@@ -164,7 +169,13 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
     out.note = "EM diverged: identity used";
   }
   out.score = std::sqrt(std::max(sigma2, 0.0)) * f.spread;  // final mixture width, fraction of image width
-  out.confidence = cpd_confidence(f, &out.affine_normalised, &out.beaten, recorder);
+  if (out.stop == StopReason::kTimeBudget) {
+    // The rival placements score whole sets again: with the budget spent EM's answer stands, unjudged.
+    out.confidence = 0;
+    out.note = "time budget spent: EM's alignment, not judged against rival placements";
+  } else {
+    out.confidence = cpd_confidence(f, &out.affine_normalised, &out.beaten, recorder);
+  }
   if (out.beaten) {
     out.note = "a shifted placement fitted better than EM's alignment: used";
     recorder.add_step(TraceStepKind::kPolish, out.affine_normalised, out.score, out.score, true);  // replays end on it

@@ -65,7 +65,7 @@ struct MeanNearestScorer {
 
 }  // namespace
 
-MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o) {
+MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o, const Deadline& deadline) {
   MethodOutcome out;
   const double gate = o.pair_gate;  // the normalised frame has unit spread
   auto count_inliers = [&](const Affine2& m) {
@@ -94,7 +94,6 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   MeanNearestScorer scorer{f.a, grid_b};
   RobustLoopOptions lo;
   lo.max_trials = o.max_trials;
-  lo.time_budget_ms = o.time_budget_ms;
   lo.max_work = work_budget(o, f.a.size(), f.b.size());
   lo.work_per_model = static_cast<double>(f.a.size());  // one nearest-neighbour query per A rock
   // The trace's samples: A's triple in drawing order, B's in the order this model matched them.
@@ -112,7 +111,9 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   SearchRecorder recorder(
       f, gate, o.record_trace, [spread](double s) { return -s * spread; }, sample_of);
   scorer.recorder = &recorder;
-  const auto r = run_robust_loop<Affine2, TriplePair>(sampler, estimator, scorer, lo, recorder);
+  DeadlineSampler<RandomTripleSampler> timed{sampler, deadline, o.max_trials};
+  auto r = run_robust_loop<Affine2, TriplePair>(timed, estimator, scorer, lo, recorder);
+  r.stop = timed.stop(r.stop);
   out.trials = r.trials;
   out.hypotheses = r.hypotheses;
   out.work = r.work;
@@ -124,7 +125,8 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   out.trace = recorder.take_trace(describe_stop(r.stop, r.trials, r.hypotheses, r.work, lo.max_work));
   if (!r.found) {
     out.affine_normalised = f.from_image(identity_affine());
-    out.note = "every sampled triple was degenerate: identity used";
+    out.note = r.stop == StopReason::kTimeBudget ? "time budget spent before a triple was scored: identity used"
+                                                 : "every sampled triple was degenerate: identity used";
   } else {
     out.affine_normalised = r.best;
     out.score = -r.best_score * f.spread;  // mean distance, as a fraction of the image width

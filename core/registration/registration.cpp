@@ -294,6 +294,7 @@ RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<B
   const std::string problem = options.validate();
   if (!problem.empty()) throw std::invalid_argument("registration options: " + problem);
   const auto start = std::chrono::steady_clock::now();
+  const Deadline deadline(options.time_budget_ms);
   const detail::RegistrationFrame frame(a, b, options.aspect);
   detail::MethodOutcome out;
   if (identical_layouts(a, b)) {
@@ -305,13 +306,13 @@ RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<B
   } else {
     switch (options.method) {
       case RegistrationMethod::kPaper:
-        out = detail::register_paper(frame, options);
+        out = detail::register_paper(frame, options, deadline);
         break;
       case RegistrationMethod::kConsensus:
-        out = detail::register_consensus(frame, a, b, options);
+        out = detail::register_consensus(frame, a, b, options, deadline);
         break;
       case RegistrationMethod::kCpd:
-        out = detail::register_cpd(frame, a, b, options);
+        out = detail::register_cpd(frame, a, b, options, deadline);
         break;
     }
   }

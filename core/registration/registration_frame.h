@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/geometry/geometry.h"
+#include "core/registration/deadline.h"
 #include "core/registration/registration.h"
 
 namespace ipd::detail {
@@ -61,11 +62,13 @@ std::string describe_stop(StopReason stop, int trials, int hypotheses, double wo
 std::string count_of(double n, const char* singular, const char* plural);
 std::string grouped(double n);  // 89700 -> "89,700"
 
-MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o);
+// `deadline` holds options.time_budget_ms from the start of register_rocks, so the set-up counts against it.
+MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o, const Deadline& deadline);
 MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
-                                 const std::vector<Box>& boxes_b, const RegistrationOptions& o);
+                                 const std::vector<Box>& boxes_b, const RegistrationOptions& o,
+                                 const Deadline& deadline);
 MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
-                           const RegistrationOptions& o);
+                           const RegistrationOptions& o, const Deadline& deadline);
 
 // A small deterministic generator (the standard distributions differ between library versions).
 class Rng {

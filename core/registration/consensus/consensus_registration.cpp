@@ -445,7 +445,8 @@ Affine2 final_fit(const RegistrationFrame& f, const std::vector<Box>& boxes_a, c
 }  // namespace
 
 MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
-                                 const std::vector<Box>& boxes_b, const RegistrationOptions& o) {
+                                 const std::vector<Box>& boxes_b, const RegistrationOptions& o,
+                                 const Deadline& deadline) {
   MethodOutcome out;
   // A triple of nearby rocks carries their labelling noise into its affine (several degrees, tens of
   // percent of scale), so hypotheses are held to the user's bounds with that much slack.
@@ -466,7 +467,6 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
     PassThroughEstimator estimator;
     RobustLoopOptions lo;
     lo.max_trials = o.max_trials;
-    lo.time_budget_ms = o.time_budget_ms;
     lo.max_work = work_budget(o, f.a.size(), f.b.size());
     lo.work_per_model = static_cast<double>(f.a.size());  // one nearest-neighbour query per A rock
     auto sample_of = [&](const Affine2&, std::vector<int>* sa, std::vector<int>* sb) {
@@ -476,12 +476,22 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
     };
     SearchRecorder recorder(
         f, gate, o.record_trace, [](double s) { return s; }, sample_of);
-    const auto r = run_robust_loop<Affine2, Affine2>(sampler, estimator, scorer, lo, recorder);
+    DeadlineSampler<GuidedSampler> timed{sampler, deadline, o.max_trials};
+    auto r = run_robust_loop<Affine2, Affine2>(timed, estimator, scorer, lo, recorder);
+    r.stop = timed.stop(r.stop);
     out.trials = r.trials;
     out.hypotheses = r.hypotheses;
     out.work = r.work;
     out.stop = r.stop;
-    if (r.found && std::isfinite(r.best_score)) {
+    if (r.found && std::isfinite(r.best_score) && deadline.passed()) {
+      // Each stage after the search scores whole sets again (tens of milliseconds on 5,000 rocks): with the
+      // time budget spent the answer is the search's best as it stands, judged against the rivals it scored.
+      out.affine_normalised = r.best;
+      out.score = r.best_score;
+      out.stop = StopReason::kTimeBudget;
+      out.confidence = confidence_from_scores(r.best_score, recorder.rival_score());
+      out.note = "time budget spent: the search's best, without the rival placements, polish or second look";
+    } else if (r.found && std::isfinite(r.best_score)) {
       out.affine_normalised = r.best;
       out.score = r.best_score;
       // The search stops as soon as its best can't be beaten, often before a rival is scored. Shifted
@@ -521,6 +531,9 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
       recorder.add_step(TraceStepKind::kPolish, out.affine_normalised, out.score, out.score, false);
       out.confidence = confidence_from_scores(answer, rival);  // both as searched, before the soft refinement
       second_look(f, boxes_a, boxes_b, o, bounds, &scorer, &recorder, &out);
+    } else if (r.stop == StopReason::kTimeBudget) {
+      out.note = "time budget spent before a plausible affine was found: identity used";
+      out.confidence = 0;
     } else {
       out.note = "no plausible affine found: identity used";
       out.confidence = 0;
