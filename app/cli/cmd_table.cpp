@@ -27,7 +27,8 @@ Runner add_table_command(CLI::App& app) {
                 "LaTeX: the wide layout (names spelled out, intervals beside the values) for a table* across both "
                 "columns; the default fits one IEEE column for up to 3 domains");
   cmd->add_option("--out", args->out, "Write the table to this file (atomically) instead of stdout");
-  cmd->add_flag("--verbose", args->verbose, "List the scenes whose registration was ambiguous");
+  cmd->add_flag("--verbose", args->verbose,
+                "List the scenes whose registration was ambiguous and the scenes whose pairs were set by hand");
   return [args]() -> int {
     TableFormat format = TableFormat::kText;
     parse_table_format(args->format, &format);
@@ -44,6 +45,9 @@ Runner add_table_command(CLI::App& app) {
     fo.level = loaded->bootstrap.level;
     fo.seed = loaded->bootstrap.seed;
     fo.conf_threshold = loaded->conf_threshold;
+    // Which numbers are automatic and which edited, and which labels they came from, travel with the table.
+    const Provenance provenance = table_provenance(loaded->table, loaded->labels.study);
+    fo.provenance = &provenance;
     std::string text = format_table(loaded->table, format, fo);
     // What a reader must know to trust the numbers: the prediction threshold used, and the scenes whose
     // registration could not decide between alignments (their pairs may be wrong). In the text table
@@ -66,6 +70,10 @@ Runner add_table_command(CLI::App& app) {
                                   ambiguous.size() == 1 ? "" : "s", args->verbose ? ":" : "; --verbose lists them"));
       if (args->verbose) notes.insert(notes.end(), ambiguous.begin(), ambiguous.end());
     }
+    notes.push_back(provenance_note(provenance));
+    if (args->verbose)
+      for (const EditedScene& e : provenance.edited_scenes)
+        notes.push_back(fmt::format("  {} vs {}: {}: pairs set by hand", e.a, e.b, e.stem));
     if (format == TableFormat::kLatex) {
       // Whether the table fits where it is meant to go, at 10 pt type (never by shrinking it).
       const double w = latex_table_width_pt(loaded->table, fo);

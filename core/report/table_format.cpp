@@ -172,6 +172,16 @@ std::string text_table(const CrossTable& t, const TableFormatOptions& o) {
   return out + footnote_lines(notes);
 }
 
+nlohmann::json provenance_json(const Provenance& p) {
+  nlohmann::json edited = nlohmann::json::array();
+  for (const EditedScene& e : p.edited_scenes) edited.push_back({{"a", e.a}, {"b", e.b}, {"stem", e.stem}});
+  return {{"label_fingerprint", p.label_fingerprint},
+          {"scenes_with_hand_pairs", p.scenes_with_hand_pairs},
+          {"pairs_set_by_hand", p.pairs_set_by_hand},
+          {"rocks_excluded", p.rocks_excluded},
+          {"edited_scenes", edited}};
+}
+
 nlohmann::json distribution_json(const TableCell& c) {
   const SceneDistribution d = scene_distribution(c);
   nlohmann::json worst = nlohmann::json::array();
@@ -436,6 +446,7 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
       j["bootstrap"] = {{"resamples", o.resamples}, {"level", o.level}, {"seed", o.seed}};
       j["conf_threshold"] = o.conf_threshold;
       j["warnings"] = t.warnings;
+      if (o.provenance) j["provenance"] = provenance_json(*o.provenance);
       return dump_json_output(j, 2) + "\n";
     }
     case TableFormat::kMarkdown: {

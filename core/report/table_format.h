@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/ipd/ipd.h"
+#include "core/report/provenance.h"
 
 namespace ipd {
 
@@ -24,6 +25,8 @@ struct TableFormatOptions {
   double level = 0.95;
   unsigned long long seed = 0;
   double conf_threshold = 0;  // the prediction threshold the table was computed with (JSON)
+  // JSON: a "provenance" object (hand-pair counts, edited scenes, label fingerprint) when set.
+  const Provenance* provenance = nullptr;
 };
 
 // Why a shown cell has no interval: "1 scene: no interval" (or "0 scenes") when fewer than two of its

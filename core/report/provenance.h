@@ -1,0 +1,41 @@
+// What a reader of a number needs to tell an automatic result from an edited one: how many scenes have hand
+// pairs, how many pairs were set by hand and rocks left out, and a short fingerprint of the label set the
+// numbers were computed from (two tables with the same fingerprint came from the same GT label files).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/ipd/ipd.h"
+
+namespace ipd {
+
+struct EditedScene {
+  std::string a, b, stem;  // the domain pair and the scene whose pairs file counted
+};
+
+struct Provenance {
+  // Counted over the table's domain pairs: a scene with hand pairs in two domain pairs counts twice, as it
+  // was edited twice.
+  int scenes_with_hand_pairs = 0;
+  int pairs_set_by_hand = 0;  // pairs in those scenes' pairs files
+  int rocks_excluded = 0;     // rocks left out of the IPD on purpose, both sides
+  std::string label_fingerprint;
+  std::vector<EditedScene> edited_scenes;  // in column and scene order
+};
+
+// The first 12 hex digits of SHA-256 over every GT label file of the study, in sorted order of its path
+// below the study ("<domain>/labels/<stem>.txt"): each file contributes its path, a 0 byte, its size in
+// decimal, a 0 byte and its bytes, so renaming, moving or editing any label file changes it. Predictions,
+// pictures, study.yaml and pairs files are not covered (the hand-pair counts speak for the pairs). Throws
+// IoError naming the file for a symbolic link or an unreadable file.
+std::string label_set_fingerprint(const Study& study);
+
+// The hand-pair counts of `table` and the fingerprint of `study`'s labels.
+Provenance table_provenance(const CrossTable& table, const Study& study);
+
+// The text footnote: "Labels 1a2b3c4d5e6f; hand pairs in 2 scenes (5 pairs set by hand, 1 rock excluded)."
+// or "Labels 1a2b3c4d5e6f; no hand pairs (every pair from registration)."
+std::string provenance_note(const Provenance& p);
+
+}  // namespace ipd
