@@ -116,6 +116,7 @@ void StudioApp::adopt_snapshot() {
     // The study's own search is shown finished (press play to watch it); an explicit re-run plays.
     ui_.replay.position = snap_->rerun_is_automatic ? steps + 1.0f : 0.0f;
     ui_.replay.playing = !snap_->rerun_is_automatic;
+    if (snap_->rerun_is_automatic) ui_.rerun_discarded = false;  // the study's own search is back on display
   }
 }
 
@@ -238,7 +239,11 @@ void StudioApp::frame() {
       }
       // Record the search of the scene in view, for the replay panel.
       const std::string key = std::to_string(s->pair_index()) + "/" + stem;
-      if (traced_ != key) {
+      // A discarded re-run had replaced the study's own search in the panel: record that one again.
+      const bool rerecord =
+          ui_.rerun_discarded && snap_->rerun && !snap_->rerun_is_automatic && discarded_rerun_ != snap_->rerun.get();
+      if (rerecord) discarded_rerun_ = snap_->rerun.get();
+      if (traced_ != key || rerecord) {
         traced_ = key;
         command::RerunRegistration c;
         c.scene = ui_.scene;

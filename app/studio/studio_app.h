@@ -73,6 +73,8 @@ class StudioApp {
   bool order_desc_ = true;
   long jump_serial_ = 0;
   std::string traced_;  // "pair/stem" whose search was asked to be recorded
+  // The discarded re-run whose place the study's own search was asked to take back (once per discard).
+  const RegistrationReport* discarded_rerun_ = nullptr;
   std::string listed_dir_;
   bool done_ = false, open_failed_ = false, replay_failed_ = false;
   // Timing

@@ -68,19 +68,24 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const auto& [da, db] = s.domain_pairs()[s.pair_index()];
   const int steps = static_cast<int>(r.trace.steps.size());
   text_wrapped_at_spaces(registration_summary(da, db, r));
+  // The registration maps the pair's first domain onto its second, whichever the view puts on the left.
+  if (s.swapped())
+    text_disabled_wrapped_at_spaces("(the view is swapped: " + db + " on the left, " + da + " on the right)");
   if (r.ambiguous)
     text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1},
                                     std::string("ambiguous: ") + ambiguity_reason(r.ambiguity) + "; check the pairs");
   text_disabled_wrapped_at_spaces(std::string("stopped: ") + to_string(r.stop) + (r.note.empty() ? "" : "; " + r.note));
   ReplayState& rp = ui.replay;
   const float end = static_cast<float>(steps) + 1.0f;  // the steps, then one unit of raw -> aligned motion
+  // A position left from another registration's longer trace (a discarded re-run) ends at this one's motion.
+  rp.position = std::min(rp.position, end);
   if (ImGui::Button(rp.playing ? "pause" : "play")) {
     rp.playing = !rp.playing;
     if (rp.playing && rp.position >= end) rp.position = 0;
   }
   // The scrubber names the same step as the line under it ("step K of N"), K = replay_step() + 1.
   const int shown = rp.position < steps ? replay_step(r, rp.position) : -1;
-  const std::string scrub_label = steps == 0   ? "%.2f"
+  const std::string scrub_label = steps == 0   ? "raw -> aligned"
                                   : shown >= 0 ? "step " + thousands(shown + 1) + " of " + thousands(steps)
                                                : "final motion";
   ImGui::SameLine();
@@ -140,7 +145,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   if (step)
     text_wrapped_at_spaces(replay_step_line(*step, k, steps));
   else if (steps == 0)
-    ImGui::TextDisabled(v.rerun ? "no search recorded for this method" : "recording the search...");
+    ImGui::TextDisabled(have_rerun ? "no search recorded for this method" : "recording the search...");
   else
     ImGui::TextDisabled("final affine: raw -> aligned");
   if (r.trace.truncated) text_disabled_wrapped_at_spaces(trace_cap_note(steps, r.hypotheses));
