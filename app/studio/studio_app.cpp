@@ -97,7 +97,7 @@ void StudioApp::adopt_snapshot() {
                  s.read_only_reason().empty() ? "" : ": ", s.read_only_reason());
   }
   if (snap_->version != order_version_ || ui_.order.empty()) {
-    ui_.order = ui::browser_order(snap_->summaries, ui_);
+    ui::update_browser_order(snap_->summaries, ui_);
     order_version_ = snap_->version;
   }
   if (other_pair) goto_scene(ui_.order.empty() ? 0 : ui_.order.front());
@@ -165,6 +165,7 @@ void StudioApp::frame() {
   ui::StudyView v;
   v.pending_saves = worker_.saver().pending();
   v.failed_saves = worker_.saver().failures();
+  v.unsaved_edits = worker_.unsaved_edits();
   for (const Conflict& c : worker_.saver().conflicts())
     v.conflicts.push_back({c.job.path, c.message, describe_pairs_file(c.job.contents), describe_pairs_file(c.on_disk)});
   v.busy = !worker_.idle();
@@ -212,7 +213,7 @@ void StudioApp::frame() {
       order_filter_ = ui_.filter;
       order_sort_ = ui_.sort_column;
       order_desc_ = ui_.sort_descending;
-      ui_.order = ui::browser_order(snap_->summaries, ui_);
+      ui::update_browser_order(snap_->summaries, ui_);
     }
     if (o_.cycle_scenes > 0 && counted_ > 0 && !changing_ && ++since_change_ >= o_.cycle_scenes &&
         ui_.order.size() > 1) {

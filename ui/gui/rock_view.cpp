@@ -209,7 +209,9 @@ void draw_gallery(const Session& s, RockViewState& st, UiCommands& out) {
 }  // namespace
 
 bool refresh_rock_points(const Session& s, const UiState& ui, RockViewState& st) {
-  std::vector<int> scenes = st.current_scene ? std::vector<int>{ui.scene} : ui.order;
+  std::vector<int> scenes = st.current_scene              ? std::vector<int>{ui.scene}
+                            : ui.selection_scenes.empty() ? ui.order
+                                                          : ui.order_without_selection;
   if (st.session == &s && scenes == st.scenes) return false;
   st.session = &s;
   st.scenes = std::move(scenes);
@@ -244,6 +246,9 @@ void apply_pair_selection(const Session& s, const PairSelection& sel, UiState& u
 void draw_rock_view(const StudyView& v, RockViewState& st, UiState& ui, UiCommands& out) {
   if (!ui.show_rock_view || !v.session) return;
   ImGui::SetNextWindowSize({720, 520}, ImGuiCond_FirstUseEver);
+  // Over the pictures, not the scene list: the selection's chip and the filtered list stay in sight.
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos({display.x * 0.5f, display.y * 0.5f}, ImGuiCond_FirstUseEver, {0.3f, 0.5f});
   if (!ImGui::Begin("Rock pairs###RockView", &ui.show_rock_view)) {
     ImGui::End();
     return;

@@ -34,7 +34,8 @@ struct RockViewState {
   std::vector<unsigned char> drawn;  // one flag per plot pixel: a point already drawn there
 };
 
-// The pairs the view shows: the scene list's scenes (ui.order), or only ui.scene. Gathered again only when
+// The pairs the view shows: the scene list's scenes (ui.order, before a selection of this view narrowed it),
+// or only ui.scene. Gathered again only when
 // the snapshot, the scope or the list changed; true when it did.
 bool refresh_rock_points(const Session& s, const UiState& ui, RockViewState& st);
 

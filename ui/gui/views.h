@@ -48,6 +48,7 @@ struct StudyView {
   // Status bar inputs.
   int pending_saves = 0;
   std::vector<std::string> failed_saves;
+  int unsaved_edits = 0;  // edits of a read-only study made since it was last saved elsewhere ('save as')
   // Saves refused because someone else changed the file (the conflict dialog shows the first).
   struct Conflict {
     std::string key;           // the save's file (UiCommands::keep_mine / keep_theirs)
@@ -90,6 +91,9 @@ struct UiState {
   char save_as_dir[512] = "";
   std::string status;
   std::vector<int> order;  // browser_order(), recomputed by the app only when its inputs change
+  // With a rock-view selection: the list the filter alone gives, so the scatter keeps every pair it was drawn
+  // on (a second box then selects among all of them, not within the first); empty without a selection.
+  std::vector<int> order_without_selection;
   std::string filter_error;
   // Chrome: menus and dialogs.
   bool show_help = false, show_goto = false, show_open = false, show_quit = false;
@@ -135,6 +139,8 @@ struct UiCommands {
 
 // The scene order of the browser (sorted and filtered as the user asked); sets ui.filter_error.
 std::vector<int> browser_order(const std::vector<SceneSummary>& summaries, UiState& ui);
+// Sets ui.order, and ui.order_without_selection when a selection filters the list.
+void update_browser_order(const std::vector<SceneSummary>& summaries, UiState& ui);
 
 // The scene list's columns, left to right: header (sized from text) and what a click on it sorts by, which is
 // also what its cells show.

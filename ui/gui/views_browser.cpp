@@ -43,6 +43,16 @@ std::vector<int> browser_order(const std::vector<SceneSummary>& sums, UiState& u
   return order;
 }
 
+void update_browser_order(const std::vector<SceneSummary>& sums, UiState& ui) {
+  ui.order = browser_order(sums, ui);
+  ui.order_without_selection.clear();
+  if (ui.selection_scenes.empty()) return;
+  std::vector<int> selection = std::move(ui.selection_scenes);
+  ui.selection_scenes.clear();
+  ui.order_without_selection = browser_order(sums, ui);
+  ui.selection_scenes = std::move(selection);
+}
+
 const std::vector<BrowserColumn>& browser_columns() {
   const ImGuiTableColumnFlags num = ImGuiTableColumnFlags_WidthFixed | ImGuiTableColumnFlags_PreferSortDescending;
   // The IPD, the value a user looks for first, comes right after the (frozen) name, then the flags: a narrow

@@ -71,10 +71,9 @@ constexpr int kKeyF1 = 290;  // GLFW_KEY_F1: the GLFW backend indexes KeysDown b
 
 bool unsaved(const StudyView& v) {
   if (v.pending_saves > 0 || !v.failed_saves.empty()) return true;
-  if (!v.session || !v.session->read_only()) return false;
-  for (const auto& sc : v.session->scenes())
-    if (sc.edited && !sc.fixed_on_disk) return true;
-  return false;
+  // A read-only study's edits are lost on quitting unless 'save as' wrote them since (the scenes stay
+  // edited after it, so they can't tell).
+  return v.session && v.session->read_only() && v.unsaved_edits > 0;
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // ipd-studio's window layout and UI wording rules (ui/gui/studio_layout.h), with hand-computed numbers.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cmath>
 
@@ -206,6 +208,27 @@ TEST(RegistrationCanvas, PlotClipStopsAboveTheLegendAndHoldsThePictureBox) {
   const RegistrationCanvas t = registration_canvas({0, 50}, {100, 40}, 15);
   EXPECT_FLOAT_EQ(t.plot_max.y, 50);
   EXPECT_FLOAT_EQ(t.box_size.y, 0);
+}
+
+// A rock-view selection narrows the list; the scatter keeps the list before it, so a second box selects among
+// every pair the first was drawn on, and the filter still applies.
+TEST(BrowserOrder, TheScatterKeepsTheListBeforeTheSelection) {
+  std::vector<SceneSummary> sums(4);
+  for (int k = 0; k < 4; ++k) sums[k].stem = std::string(1, char('a' + k));
+  UiState ui;
+  ui.sort_column = kByStem, ui.sort_descending = false;
+  update_browser_order(sums, ui);
+  EXPECT_EQ(ui.order, (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_TRUE(ui.order_without_selection.empty());
+  ui.selection_scenes = {1, 3};
+  update_browser_order(sums, ui);
+  EXPECT_EQ(ui.order, (std::vector<int>{1, 3}));
+  EXPECT_EQ(ui.order_without_selection, (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(ui.selection_scenes, (std::vector<int>{1, 3}));  // the selection itself is kept
+  std::snprintf(ui.filter, sizeof ui.filter, "c");
+  update_browser_order(sums, ui);
+  EXPECT_EQ(ui.order, (std::vector<int>{}));
+  EXPECT_EQ(ui.order_without_selection, (std::vector<int>{2}));
 }
 
 TEST(BrowserOrder, AmbiguousScenesSortOnTheirOwnColumn) {
