@@ -72,8 +72,8 @@ Provenance table_provenance(const CrossTable& table, const Study& study) {
 
 std::string provenance_note(const Provenance& p) {
   if (p.scenes_with_hand_pairs == 0)
-    return fmt::format("Labels {}; no hand pairs (every pair from registration).", p.label_fingerprint);
-  return fmt::format("Labels {}; hand pairs in {} ({} set by hand, {} excluded).", p.label_fingerprint,
+    return fmt::format("Label files {}; no hand pairs (every pair from registration).", p.label_fingerprint);
+  return fmt::format("Label files {}; hand pairs in {} ({} set by hand, {} excluded).", p.label_fingerprint,
                      plural(p.scenes_with_hand_pairs, "scene", "scenes"), plural(p.pairs_set_by_hand, "pair", "pairs"),
                      plural(p.rocks_excluded, "rock", "rocks"));
 }

@@ -46,8 +46,9 @@ TEST(Provenance, TableJsonCarriesHandPairCountsAndFingerprint) {
   EXPECT_EQ(p.at("pairs_set_by_hand"), 1);
   EXPECT_EQ(p.at("rocks_excluded"), 1);
   EXPECT_EQ(p.at("edited_scenes"), nlohmann::json::parse(R"([{"a": "real", "b": "synth", "stem": "s1"}])"));
-  EXPECT_NE(r.err.find("note: Labels d189a61c07b5; hand pairs in 1 scene (1 pair set by hand, 1 rock excluded).\n"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("note: Label files d189a61c07b5; hand pairs in 1 scene (1 pair set by hand, 1 rock excluded).\n"),
+      std::string::npos)
       << r.err;
 }
 
@@ -56,12 +57,13 @@ TEST(Provenance, TextTableFootnoteAndVerboseListOfEditedScenes) {
   test::write_two_rock_study(d);
   auto r = test::run_ipd("table " + d.path() + " --no-cache");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("\nLabels d189a61c07b5; no hand pairs (every pair from registration).\n"), std::string::npos)
+  EXPECT_NE(r.out.find("\nLabel files d189a61c07b5; no hand pairs (every pair from registration).\n"),
+            std::string::npos)
       << r.out;
   write_hand_pairs(d);
   r = test::run_ipd("table " + d.path() + " --no-cache --verbose");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("\nLabels d189a61c07b5; hand pairs in 1 scene (1 pair set by hand, 1 rock excluded).\n"
+  EXPECT_NE(r.out.find("\nLabel files d189a61c07b5; hand pairs in 1 scene (1 pair set by hand, 1 rock excluded).\n"
                        "  real vs synth: s1: pairs set by hand\n"),
             std::string::npos)
       << r.out;
@@ -73,7 +75,8 @@ TEST(Provenance, NoteCountsInPlural) {
   p.scenes_with_hand_pairs = 2;
   p.pairs_set_by_hand = 5;
   p.rocks_excluded = 0;
-  EXPECT_EQ(provenance_note(p), "Labels 0123456789ab; hand pairs in 2 scenes (5 pairs set by hand, 0 rocks excluded).");
+  EXPECT_EQ(provenance_note(p),
+            "Label files 0123456789ab; hand pairs in 2 scenes (5 pairs set by hand, 0 rocks excluded).");
 }
 
 }  // namespace
