@@ -90,6 +90,18 @@ cv::Matx23d camera_offset(int scene_index, int w, int h) {
   return {c, -s, cx - c * cx + s * cy + tx, s, c, cy - s * cx - c * cy + ty};
 }
 
+// A rock as the domain's camera sees it: moved by `cam` (and 1.5% larger) when the domain has a camera offset.
+Rock seen_through(const Rock& r0, const DomainLook& look, const cv::Matx23d& cam) {
+  Rock r = r0;
+  if (look.camera_offset) {
+    r.x = cam(0, 0) * r0.x + cam(0, 1) * r0.y + cam(0, 2);
+    r.y = cam(1, 0) * r0.x + cam(1, 1) * r0.y + cam(1, 2);
+    r.rx *= 1.015;
+    r.ry *= 1.015;
+  }
+  return r;
+}
+
 // Ground: two octaves of smoothed noise, the same field for every domain of a scene (drawn from `tex` first).
 cv::Mat ground(const DomainLook& look, int w, int h, cv::RNG& tex) {
   cv::Mat coarse(h / 16 + 1, w / 16 + 1, CV_32F), fine(h / 4 + 1, w / 4 + 1, CV_32F);
@@ -174,13 +186,7 @@ cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& ca
   const cv::Point2d light(std::cos(sun), std::sin(sun));
   gt->clear();
   for (const auto& r0 : scene.rocks) {
-    Rock r = r0;
-    if (look.camera_offset) {
-      r.x = cam(0, 0) * r0.x + cam(0, 1) * r0.y + cam(0, 2);
-      r.y = cam(1, 0) * r0.x + cam(1, 1) * r0.y + cam(1, 2);
-      r.rx *= 1.015;
-      r.ry *= 1.015;
-    }
+    const Rock r = seen_through(r0, look, cam);
     draw_shadow(r, look, light, img);
     const cv::Rect covered = draw_rock(r, look, light, img);
     if (covered.empty()) continue;                                      // outside the frame
@@ -221,13 +227,7 @@ IPD Studio can be tried without downloading anything.
 // The GT box of a rock as seen through `cam` (no picture): the rotated ellipse's bounding box, clipped.
 bool geometric_box(const Rock& r0, const DomainLook& look, const Scene& scene, const cv::Matx23d& cam, int w, int h,
                    Box* out) {
-  Rock r = r0;
-  if (look.camera_offset) {
-    r.x = cam(0, 0) * r0.x + cam(0, 1) * r0.y + cam(0, 2);
-    r.y = cam(1, 0) * r0.x + cam(1, 1) * r0.y + cam(1, 2);
-    r.rx *= 1.015;
-    r.ry *= 1.015;
-  }
+  const Rock r = seen_through(r0, look, cam);
   if (look.wall_shadow && in_wall_shadow(scene, r.x, r.y)) return false;
   const double ca = std::cos(r.angle_deg * M_PI / 180), sa = std::sin(r.angle_deg * M_PI / 180);
   const double ex = std::hypot(r.rx * ca, r.ry * sa), ey = std::hypot(r.rx * sa, r.ry * ca);
