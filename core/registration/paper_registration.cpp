@@ -54,8 +54,9 @@ struct MeanNearestScorer {
     const double mean = sum / static_cast<double>(a.size());
     return std::isfinite(mean) ? -mean : -INFINITY;
   }
-  bool worth_refining(double, double) const { return false; }  // the paper does no local optimisation
-  void refine(Affine2*, double*) const {}
+  // The paper does no local optimisation.
+  bool worth_refining(const TriplePair&, const Affine2&, double, double) const { return false; }
+  void refine(const TriplePair&, Affine2*, double*) const {}
   // Every centre lands exactly on one, and so does a distinct rival's (a symmetric layout): nothing more can
   // change the answer or its confidence 0. An exact fit alone is no reason to stop: its mirror may fit as
   // exactly, and only the rest of the K samples can tell (8 mirror-symmetric rocks read confidence 1).

@@ -52,6 +52,25 @@ TEST(RegistrationCacheRules, StoredPairsMustNameRocksTheSceneHas) {
   EXPECT_FALSE(RegistrationCache(d / "cache").load(key, 7, 6).has_value());
 }
 
+// The key's bytes for given settings change only with kFormat: entries written by an earlier build stay valid.
+// Pinned for the defaults, for paper with its own trial count, a time budget and an aspect, and for consensus
+// with a gate, a work budget and its own trial count.
+TEST(RegistrationCacheRules, TheKeyOfGivenSettingsIsPinned) {
+  const auto a = seven(0), b = seven(0.02);
+  EXPECT_EQ(registration_cache_key(a, b, RegistrationOptions()), "4615073b3617d22b65a4418e131d69c2");
+  RegistrationOptions p;
+  p.method = RegistrationMethod::kPaper;
+  p.max_trials = 5;
+  p.time_budget_ms = 7;
+  p.aspect = 1.6;
+  EXPECT_EQ(registration_cache_key(a, b, p), "d65e605e22832cc22570c8c6242421cf");
+  RegistrationOptions c;
+  c.inlier_gate = 0.01;
+  c.work_budget = 1e5;
+  c.max_trials = 9;
+  EXPECT_EQ(registration_cache_key(a, b, c), "9703abe6d5af5c57fb87b9d52c56bc56");
+}
+
 // Every option that can change the answer is part of the key: changing one never reuses another's entry.
 TEST(RegistrationCacheRules, TheKeyCoversEveryOptionThatChangesTheAnswer) {
   const auto a = seven(0), b = seven(0.02);
