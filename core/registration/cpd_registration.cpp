@@ -94,7 +94,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   for (int i = 0; i < m; ++i)
     for (int j = 0; j < n; ++j) sigma2 += (x.row(j) - (y.row(i) * lin.transpose() + t)).squaredNorm();
   sigma2 /= 2.0 * m * n;
-  const double w = o.cpd_outlier_weight;
+  const double w = o.cpd.outlier_weight;
   Eigen::MatrixXd p(m, n);
   const double tolerance = 1e-10;
   int it = 0;
@@ -106,7 +106,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   SearchRecorder recorder(
       f, std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2), o.record_trace, [](double s) { return s; }, nullptr);
   double best_sigma = INFINITY;
-  for (; it < o.cpd_iterations; ++it) {
+  for (; it < o.cpd.iterations; ++it) {
     if (it >= allowed) {
       out.stop = StopReason::kWorkBudget;
       break;

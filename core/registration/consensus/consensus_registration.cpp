@@ -33,8 +33,9 @@ namespace {
 // A triple of nearby rocks carries their labelling noise into its affine (several degrees, tens of percent of
 // scale), so hypotheses are held to the user's bounds with that much slack.
 Bounds hypothesis_bounds(const RegistrationOptions& o) {
-  return Bounds{o.min_scale / kTuning.bound_slack_scale, o.max_scale * kTuning.bound_slack_scale,
-                (o.max_rotation_deg + kTuning.bound_slack_deg) * M_PI / 180.0, o.max_anisotropy};
+  const ConsensusParams& c = o.consensus;
+  return Bounds{c.min_scale / kTuning.bound_slack_scale, c.max_scale * kTuning.bound_slack_scale,
+                (c.max_rotation_deg + kTuning.bound_slack_deg) * M_PI / 180.0, c.max_anisotropy};
 }
 
 // The gate: the user's, or a fraction of the typical spacing of B's rocks within bounds of the layout's spread
@@ -42,13 +43,10 @@ Bounds hypothesis_bounds(const RegistrationOptions& o) {
 // the picture's width (two labellings put a rock's centre up to ~1% of the width apart however close the rocks
 // are) unless that is over half the spacing.
 double consensus_gate(const RegistrationFrame& f, const RegistrationOptions& o) {
-  double gate = o.inlier_gate / f.spread;
-  if (!(gate > 0)) {
-    const double spacing = median_nn_distance(f.b);
-    gate = std::max(std::clamp(kTuning.gate_of_spacing * spacing, kTuning.gate_min, kTuning.gate_max),
-                    std::min(kTuning.min_gate_of_width / f.spread, kTuning.max_floor_of_spacing * spacing));
-  }
-  return gate;
+  if (o.consensus.inlier_gate) return *o.consensus.inlier_gate / f.spread;
+  const double spacing = median_nn_distance(f.b);
+  return std::max(std::clamp(kTuning.gate_of_spacing * spacing, kTuning.gate_min, kTuning.gate_max),
+                  std::min(kTuning.min_gate_of_width / f.spread, kTuning.max_floor_of_spacing * spacing));
 }
 
 // The second look (consensus_second_look.h) when the search ended unconfirmed (it ran out of hypotheses or
@@ -211,10 +209,10 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
   const double gate = consensus_gate(f, o);
   GuidedSampler sampler(f, bounds, gate, o.seed, o.record_trace, coarse_hypotheses(f, boxes_a, boxes_b, o));
   SupportMeasurer support(f, gate, bounds);
-  ConsensusScorer scorer(&support, o.max_trials);
+  ConsensusScorer scorer(&support, o.consensus.max_hypotheses);
   PassThroughEstimator estimator;
   RobustLoopOptions lo;
-  lo.max_trials = o.max_trials;
+  lo.max_trials = o.consensus.max_hypotheses;
   lo.max_work = work_budget(o, f.a.size(), f.b.size());
   lo.work_per_model = static_cast<double>(f.a.size());  // one nearest-neighbour query per A rock
   auto sample_of = [&](const Affine2&, std::vector<int>* sa, std::vector<int>* sb) {
@@ -224,7 +222,7 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
   };
   SearchRecorder recorder(
       f, gate, o.record_trace, [](double s) { return s; }, sample_of);
-  DeadlineSampler<GuidedSampler> timed{sampler, deadline, o.max_trials};
+  DeadlineSampler<GuidedSampler> timed{sampler, deadline, o.consensus.max_hypotheses};
   auto r = run_robust_loop<Affine2, GuidedHypothesis>(timed, estimator, scorer, lo, recorder);
   r.stop = timed.stop(r.stop);
   out->trials = r.trials;
