@@ -74,10 +74,7 @@ Row run_config(const std::vector<RegistrationCase>& cases, const std::string& re
   RegistrationOptions o;
   o.method = c.method;
   o.aspect = aspect;
-  if (c.method == RegistrationMethod::kCpd)
-    o.cpd_iterations = c.budget;
-  else
-    o.max_trials = c.budget;
+  o.trials() = c.budget;
   Row row;
   row.regime = regime;
   row.method = to_string(c.method);
@@ -482,7 +479,7 @@ Runner add_bench_command(CLI::App& app) {
       const Row* deflt = nullptr;
       const Row* py = nullptr;
       for (const auto& r : tier) {
-        if (r.method == "consensus" && r.config.budget == RegistrationOptions().max_trials) deflt = &r;
+        if (r.method == "consensus" && r.config.budget == RegistrationOptions().consensus.max_hypotheses) deflt = &r;
         if (r.method == "pycpd-numpy") py = &r;
       }
       if (deflt) {

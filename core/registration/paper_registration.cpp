@@ -66,8 +66,9 @@ struct MeanNearestScorer {
     const double mean = sum / n;
     return std::isfinite(mean) ? -mean : -INFINITY;
   }
-  bool worth_refining(double, double) const { return false; }  // the paper does no local optimisation
-  void refine(Affine2*, double*) const {}
+  // The paper does no local optimisation.
+  bool worth_refining(const TriplePair&, const Affine2&, double, double) const { return false; }
+  void refine(const TriplePair&, Affine2*, double*) const {}
   // Every centre lands exactly on one, and so does a distinct rival's (a symmetric layout): nothing more can
   // change the answer or its confidence 0. An exact fit alone is no reason to stop: its mirror may fit as
   // exactly, and only the rest of the K samples can tell (8 mirror-symmetric rocks read confidence 1).
@@ -79,7 +80,7 @@ struct MeanNearestScorer {
 
 MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o, const Deadline& deadline) {
   MethodOutcome out;
-  const double gate = o.pair_gate;  // the normalised frame has unit spread
+  const double gate = o.paper.pair_gate;  // the normalised frame has unit spread
   auto count_inliers = [&](const Affine2& m) {
     std::vector<Eigen::Vector2d> moved;
     for (const auto& p : f.a) moved.push_back(apply(m, p));
@@ -105,7 +106,7 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   AffinePermutationEstimator estimator;
   MeanNearestScorer scorer{f.a, grid_b};
   RobustLoopOptions lo;
-  lo.max_trials = o.max_trials;
+  lo.max_trials = o.paper.samples;
   lo.max_work = work_budget(o, f.a.size(), f.b.size());
   lo.work_per_model = static_cast<double>(f.a.size());  // one nearest-neighbour query per A rock
   // The trace's samples: A's triple in drawing order, B's in the order this model matched them.
@@ -123,7 +124,7 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   SearchRecorder recorder(
       f, gate, o.record_trace, [spread](double s) { return -s * spread; }, sample_of);
   scorer.recorder = &recorder;
-  DeadlineSampler<RandomTripleSampler> timed{sampler, deadline, o.max_trials};
+  DeadlineSampler<RandomTripleSampler> timed{sampler, deadline, o.paper.samples};
   auto r = run_robust_loop<Affine2, TriplePair>(timed, estimator, scorer, lo, recorder);
   r.stop = timed.stop(r.stop);
   out.trials = r.trials;
