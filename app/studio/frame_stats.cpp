@@ -25,8 +25,9 @@ void FrameStats::print(bool frames, const std::string& open_note) const {
   if (frames && content_ms_ >= 0)
     fmt::print("open_ms={:.0f} (first content on screen) loaded_ms={:.0f} (whole study; {})\n", content_ms_, loaded_ms_,
                open_note);
-  if (frames) line(summary("frame_ms", frame_ms_));
+  if (frames) line(summary("frame_ms", frame_ms_)), line(summary("ui_cpu_ms", frame_cpu_ms_));
   line(summary("scene_ms", scene_ms_));
+  line(summary("edit_ms", edit_ms_));
   if (frames) line(summary("export_frame_ms", export_frame_ms_)), line(summary("export_ui_cpu_ms", export_ui_cpu_ms_));
 }
 

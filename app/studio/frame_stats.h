@@ -1,5 +1,6 @@
 // What `ipd-studio --frame-stats` measures and prints: time to the first content and to the whole study,
-// frame times, scene changes (request to both full pictures drawn) and frames while a figure exports.
+// frame times, scene changes (request to both full pictures drawn), the worker's time per edit and frames while
+// a figure exports.
 #pragma once
 
 #include <chrono>
@@ -10,8 +11,15 @@ namespace ipd::studio {
 
 class FrameStats {
  public:
-  void add_frame(double ms) { frame_ms_.push_back(ms); }
+  // A frame's wall-clock time, and the UI thread's own CPU time in it (what the program costs, apart from
+  // the rasteriser and from other programs on the machine).
+  void add_frame(double ms, double ui_cpu_ms) {
+    frame_ms_.push_back(ms);
+    frame_cpu_ms_.push_back(ui_cpu_ms);
+  }
   void add_scene_change(double ms) { scene_ms_.push_back(ms); }
+  // An edit, undo or redo: the worker's time from taking it to publishing the snapshot that shows it.
+  void add_edit(double ms) { edit_ms_.push_back(ms); }
   void add_export_frame(double ms, double ui_cpu_ms) {
     export_frame_ms_.push_back(ms);
     export_ui_cpu_ms_.push_back(ui_cpu_ms);
@@ -23,14 +31,15 @@ class FrameStats {
 
   // `NAME median=X p95=Y max=Z n=N over_50ms=K` (empty without values).
   static std::string summary(const char* name, std::vector<double> values);
-  // open_ms/loaded_ms (with `open_note` after them), then frame_ms and the export lines when `frames`;
-  // scene_ms whenever scenes were changed.
+  // open_ms/loaded_ms (with `open_note` after them), then frame_ms, ui_cpu_ms and the export lines when
+  // `frames`;
+  // scene_ms whenever scenes were changed, edit_ms whenever edits were made.
   void print(bool frames, const std::string& open_note) const;
 
  private:
   void mark(double* slot);
   std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
-  std::vector<double> frame_ms_, scene_ms_, export_frame_ms_, export_ui_cpu_ms_;
+  std::vector<double> frame_ms_, frame_cpu_ms_, scene_ms_, edit_ms_, export_frame_ms_, export_ui_cpu_ms_;
   double content_ms_ = -1;  // start to the first frame showing the study (a first look at big studies)
   double loaded_ms_ = -1;   // start to the first frame with the whole study in
 };

@@ -1,5 +1,7 @@
 #include "app/studio/studio_app.h"
 
+#include "app/studio/study_folder.h"
+
 #include "app/studio/studio_gl_textures.h"
 
 #include <sys/resource.h>
@@ -76,6 +78,7 @@ void StudioApp::adopt_snapshot() {
                           snap->session->swapped() != snap_->session->swapped();
   const bool new_rerun = snap->rerun && (!snap_ || snap->rerun != snap_->rerun);
   snap_ = std::move(snap);
+  if (snap_->edit_ms >= 0) stats_out_.add_edit(snap_->edit_ms);
   const Session& s = *snap_->session;
   problems_ = s.problems();
   problems_.insert(problems_.end(), picture_problems_.begin(), picture_problems_.end());
@@ -97,7 +100,7 @@ void StudioApp::adopt_snapshot() {
                  s.read_only_reason().empty() ? "" : ": ", s.read_only_reason());
   }
   if (snap_->version != order_version_ || ui_.order.empty()) {
-    ui::update_browser_order(snap_->summaries, ui_);
+    ui::update_browser_order(*snap_->summaries, ui_);
     order_version_ = snap_->version;
   }
   if (other_pair) goto_scene(ui_.order.empty() ? 0 : ui_.order.front());
@@ -175,7 +178,7 @@ void StudioApp::frame() {
   const Session* s = snap_ ? snap_->session.get() : nullptr;
   if (s) {
     v.session = s;
-    v.summaries = &snap_->summaries;
+    v.summaries = snap_->summaries.get();
     v.problems = &problems_;
     stats_.update(snap_, ui::stats_request(*s, stats_ui_));
     v.stats = stats_.result();
@@ -213,7 +216,7 @@ void StudioApp::frame() {
       order_filter_ = ui_.filter;
       order_sort_ = ui_.sort_column;
       order_desc_ = ui_.sort_descending;
-      ui::update_browser_order(snap_->summaries, ui_);
+      ui::update_browser_order(*snap_->summaries, ui_);
     }
     if (o_.cycle_scenes > 0 && counted_ > 0 && !changing_ && ++since_change_ >= o_.cycle_scenes &&
         ui_.order.size() > 1) {
@@ -225,6 +228,12 @@ void StudioApp::frame() {
     }
     ui::Picture left, right;
     bool full_l = false, full_r = false;
+    if (!s->scenes().empty() && !s->scenes()[ui_.scene].registered) {
+      // A hand-paired scene opened without its registration: the worker computes it now it is shown.
+      const std::string wanted = fmt::format("{}/{}", s->pair_index(), s->scenes()[ui_.scene].stem);
+      if (registering_ != wanted)
+        worker_.submit(command::RegisterScene{s->pair_index(), s->scenes()[ui_.scene].stem}), registering_ = wanted;
+    }
     if (!s->scenes().empty()) {
       const std::string& stem = s->scenes()[ui_.scene].stem;
       left = picture(s->left_domain(), stem, true, &full_l);
@@ -263,7 +272,10 @@ void StudioApp::frame() {
   if (ui_.show_open) list_browse_dir();
   ui::draw_dialogs(v, ui_, cmd);
   ui::draw_problems_window(v, ui_, cmd);
-  if (s) ui::draw_rock_view(v, rock_view_, ui_, cmd);
+  if (s && ui_.show_rock_view) {
+    rock_points_.update(snap_, ui::rock_view_scenes(ui_, rock_view_));
+    ui::draw_rock_view(v, rock_points_.result(), rock_points_.computing(), rock_view_, ui_, cmd);
+  }
   if (s)
     if (auto request = ui::draw_export_dialog(export_dialog_, ui::export_view_context(*s, ui_, stats_ui_)))
       export_figure(*request);
@@ -274,6 +286,18 @@ void StudioApp::frame() {
 
 void StudioApp::apply(const ui::UiCommands& cmd) {
   if (cmd.quit) done_ = true;
+  if (!cmd.open_typed_path.empty()) {
+    const std::string path = expand_typed_path(cmd.open_typed_path);
+    ui_.open_error = open_path_problem(path);
+    std::error_code ec;
+    if (ui_.open_error.empty()) {
+      ui::UiCommands open;
+      open.open_study = path;
+      ui_.show_open = false;
+      return apply(open);
+    }
+    if (fs::is_directory(path, ec)) ui_.browse_dir = path;  // a folder, not a study: show what is in it
+  }
   if (!cmd.open_study.empty()) {
     o_.study = cmd.open_study;
     worker_.submit(command::OpenStudy{cmd.open_study});
@@ -408,18 +432,30 @@ void StudioApp::replay_rock_axes(const std::string& x, const std::string& y) {
   parse_pair_axis(x, &ax);
   parse_pair_axis(y, &ay);
   ui_.show_rock_view = true;
+  rock_view_.select_tab = 0;  // the scatter, whichever tab was shown
   rock_view_.x_axis = static_cast<int>(ax);
   rock_view_.y_axis = static_cast<int>(ay);
 }
 
 void StudioApp::replay_select(double x0, double y0, double x1, double y1) {
   const Session& s = *snap_->session;
-  ui::refresh_rock_points(s, ui_, rock_view_);
+  ui::adopt_rock_points(s, rock_points_.result(), rock_view_);  // current: replay_step waited for them
+  static const std::vector<RockPairPoint> kNone;
+  const auto& points = rock_view_.points ? rock_view_.points->points : kNone;
   const auto ax = static_cast<PairAxis>(rock_view_.x_axis), ay = static_cast<PairAxis>(rock_view_.y_axis);
   rock_view_.has_box = true;
   rock_view_.box_x = rock_view_.x_axis, rock_view_.box_y = rock_view_.y_axis;
   rock_view_.bx0 = x0, rock_view_.by0 = y0, rock_view_.bx1 = x1, rock_view_.by1 = y1;
-  ui::apply_pair_selection(s, select_in_box(rock_view_.points, ax, ay, x0, y0, x1, y1), ui_);
+  ui::apply_pair_selection(s, select_in_box(points, ax, ay, x0, y0, x1, y1), ui_);
+}
+
+void StudioApp::replay_gallery(const std::vector<std::string>& args) {
+  ui_.show_rock_view = true;
+  rock_view_.select_tab = 1;
+  for (size_t k = 0; k + 1 < args.size(); k += 2) {  // checked by parse_replay
+    if (args[k] == "page") rock_view_.gallery_page = std::atoi(args[k + 1].c_str()) - 1;
+    if (args[k] == "sort") parse_gallery_sort(args[k + 1], &rock_view_.gallery_sort);
+  }
 }
 
 std::string StudioApp::write_scene_list(const std::string& file) const {
@@ -458,7 +494,7 @@ void StudioApp::next_suspect() {
   const long at = std::find(ui_.order.begin(), ui_.order.end(), ui_.scene) - ui_.order.begin();
   for (size_t k = 1; k <= ui_.order.size(); ++k) {
     const int scene = ui_.order[(at + k) % ui_.order.size()];
-    if (snap_->summaries[scene].suspects == 0) continue;
+    if ((*snap_->summaries)[scene].suspects == 0) continue;
     const auto list = suspects(scene);
     if (!list.empty()) return select(scene, list.front());
   }
@@ -468,6 +504,8 @@ void StudioApp::next_suspect() {
 bool StudioApp::replay_step() {
   if (replay_wait_ > 0) return --replay_wait_, false;
   if (!snap_ || !worker_.idle() || worker_.snapshot() != snap_ || worker_.saver().pending() > 0) return false;
+  // The Rock pairs window's pairs are of this snapshot and list before the next action acts on them.
+  if (ui_.show_rock_view && !rock_points_.current(snap_, ui::rock_view_scenes(ui_, rock_view_))) return false;
   if (replay_next_ >= replay_.size()) {
     replay_next_ = replay_.size() + 1;  // finished
     return true;
@@ -539,6 +577,8 @@ bool StudioApp::replay_step() {
     cmd.rerun_registration = true;
   } else if (a.verb == "rocks") {
     replay_rock_axes(a.args[0], a.args[1]);
+  } else if (a.verb == "gallery") {
+    replay_gallery(a.args);
   } else if (a.verb == "select") {
     replay_select(std::strtod(a.args[0].c_str(), nullptr), std::strtod(a.args[1].c_str(), nullptr),
                   std::strtod(a.args[2].c_str(), nullptr), std::strtod(a.args[3].c_str(), nullptr));
@@ -572,7 +612,7 @@ std::string StudioApp::after_render(double ms, double ui_cpu_ms) {
   if (ready && (!o_.screenshot.empty() || !replay_.empty())) {
     // Count frames once the study is open and the current pictures are in (or after a grace period).
     if (loader_.idle() || ++settle_ > 600) {
-      if (counted_ > 2) stats_out_.add_frame(ms);  // the first frames upload textures
+      if (counted_ > 2) stats_out_.add_frame(ms, ui_cpu_ms);  // the first frames upload textures
       ++counted_;
     }
     // A study that can't be opened ends the replay: its actions have nothing to act on.
@@ -591,7 +631,7 @@ int StudioApp::print_stats() const {
   stats_out_.print(o_.frame_stats,
                    fmt::format("{} of {} registrations from the cache; parsed-study cache {}: {} label files reused, "
                                "{} parsed",
-                               p.cached, snap_ ? snap_->summaries.size() * snap_->session->domain_pairs().size() : 0,
+                               p.cached, snap_ ? snap_->summaries->size() * snap_->session->domain_pairs().size() : 0,
                                p.study_cache.state, p.study_cache.files_reused, p.study_cache.files_parsed));
   if (!o_.screenshot.empty()) fmt::print("{}\n", o_.screenshot);
   // What the Problems window lists, for scripted runs to see (as `ipd table` prints its warnings).

@@ -11,6 +11,7 @@
 
 #include "app/studio/frame_stats.h"
 #include "app/studio/studio_options.h"
+#include "app/studio/studio_points.h"
 #include "app/studio/studio_replay.h"
 #include "app/studio/studio_stats.h"
 #include "app/studio/studio_textures.h"
@@ -51,6 +52,7 @@ class StudioApp {
   // Replay verbs of the rock view (studio_replay.h): its axes, a drag box, the scene list written out.
   void replay_rock_axes(const std::string& x, const std::string& y);
   void replay_select(double x0, double y0, double x1, double y1);
+  void replay_gallery(const std::vector<std::string>& args);
   std::string write_scene_list(const std::string& file) const;  // the rock view's click: the pair selected, in view
 
   StudioOptions o_;
@@ -61,7 +63,8 @@ class StudioApp {
   ui::ExportDialogState export_dialog_;
   ui::StatsPanelState stats_ui_;
   ui::RockViewState rock_view_;
-  StatsJob stats_;  // intervals, histogram, breakdown, comparison: off the UI thread
+  StatsJob stats_;             // intervals, histogram, breakdown, comparison: off the UI thread
+  RockPointsJob rock_points_;  // the Rock pairs window's pairs: off the UI thread
   std::shared_ptr<const Snapshot> snap_;
   // The session's problems and then the pictures that could not be read (found as they are shown).
   std::vector<Problem> problems_, picture_problems_;
@@ -72,7 +75,8 @@ class StudioApp {
   int order_sort_ = -1;
   bool order_desc_ = true;
   long jump_serial_ = 0;
-  std::string traced_;  // "pair/stem" whose search was asked to be recorded
+  std::string traced_;       // "pair/stem" whose search was asked to be recorded
+  std::string registering_;  // "pair/stem" of the hand-paired scene the worker was asked to register
   // The discarded re-run whose place the study's own search was asked to take back (once per discard).
   const RegistrationReport* discarded_rerun_ = nullptr;
   std::string listed_dir_;

@@ -14,6 +14,31 @@
 
 namespace ipd::studio {
 
+namespace {
+// `gallery [page N] [sort KEY]`: each option once, in either order.
+template <class Fail>
+void check_gallery_options(const std::vector<std::string>& args, Fail fail) {
+  bool page = false, sort = false;
+  for (size_t k = 0; k + 1 < args.size(); k += 2) {
+    const std::string& value = args[k + 1];
+    long long n = 0;
+    if (args[k] == "page" && !page) {
+      page = true;
+      if (!parse_integer(value, 1, std::numeric_limits<int>::max(), &n))
+        fail("'gallery': expected a page number >= 1, got '" + quoted_for_message(value) + "'");
+    } else if (args[k] == "sort" && !sort) {
+      sort = true;
+      int key = 0;
+      if (!parse_gallery_sort(value, &key))
+        fail("'gallery': expected a sort key (" + std::string(kGallerySortWords) + "), got '" +
+             quoted_for_message(value) + "'");
+    } else {
+      fail("'gallery': expected 'page N' or 'sort KEY' (each once), got '" + quoted_for_message(args[k]) + "'");
+    }
+  }
+}
+}  // namespace
+
 std::vector<ReplayAction> parse_replay(const std::string& text, const std::string& file) {
   // verb -> (argument count, what they are)
   static const std::map<std::string, std::pair<int, const char*>> verbs = {
@@ -36,6 +61,7 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
       {"rocks", {2, "two axis names (x, y)"}},
       {"select", {4, "a box's corners x0 y0 x1 y1 on the rock view's axes"}},
       {"list", {1, "a text file"}},
+      {"gallery", {0, "[page N] [sort diff|perf-left|perf-right|size]"}},
   };
   std::vector<ReplayAction> out;
   std::istringstream in(text);
@@ -53,9 +79,10 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
     if (it == verbs.end())
       fail("unknown action '" + a.verb +
            "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, undo, "
-           "redo, rerun, export, screenshot, problems, problem, focus, rocks, select or list)");
+           "redo, rerun, export, screenshot, problems, problem, focus, rocks, select, list or gallery)");
     const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
-    if (static_cast<int>(a.args.size()) != it->second.first && !export_with_kind)
+    const bool gallery_options = a.verb == "gallery" && (a.args.size() == 2 || a.args.size() == 4);
+    if (static_cast<int>(a.args.size()) != it->second.first && !export_with_kind && !gallery_options)
       fail("'" + a.verb + "' takes " + it->second.second + ", got " + std::to_string(a.args.size()) + " argument(s)");
     // The whole word is the number ("5\0" is not 5) and it fits the int the studio keeps it in.
     auto positive = [&](const std::string& w) {
@@ -85,6 +112,7 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
         double v = NAN;
         if (!parse_decimal(w, &v)) fail("'select': expected a number, got '" + quoted_for_message(w) + "'");
       }
+    if (a.verb == "gallery") check_gallery_options(a.args, fail);
     RegistrationMethod method;
     if (a.verb == "rerun" && !parse_method(a.args[0], &method))
       fail("'rerun': expected " + method_choices() + ", got '" + a.args[0] + "'");

@@ -20,6 +20,10 @@ namespace {
 // A first look opens this many scenes; studies no bigger open in one go.
 constexpr size_t kFirstLookScenes = 40;
 
+double now_ms() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 bool study_fits_first_look(const std::string& root) {
   // Counting label files of the first domain is enough to tell a small study from a big one.
   std::error_code ec;
@@ -139,11 +143,22 @@ void StudyWorker::publish_new_session() {
   publish(true);
 }
 
-void StudyWorker::publish(bool session_changed, int jump_to_scene) {
+void StudyWorker::publish(bool session_changed, int jump_to_scene, int edited_scene, double edit_started_ms) {
   auto snap = std::make_shared<Snapshot>();
   if (session_changed || !published_) {
     published_ = std::make_shared<const Session>(*session_);
-    published_summaries_ = session_->summaries();
+    const Session& s = *session_;
+    const std::tuple<int, bool, std::string, double> made_for{s.pair_index(), s.swapped(), s.model(),
+                                                              s.conf_threshold()};
+    if (edited_scene >= 0 && published_summaries_ && made_for == summaries_made_for_ &&
+        edited_scene < static_cast<int>(published_summaries_->size())) {
+      auto summaries = std::make_shared<std::vector<SceneSummary>>(*published_summaries_);
+      (*summaries)[edited_scene] = s.summary(edited_scene);
+      published_summaries_ = std::move(summaries);
+    } else {
+      published_summaries_ = std::make_shared<const std::vector<SceneSummary>>(s.summaries());
+      summaries_made_for_ = made_for;
+    }
   }
   snap->session = published_;
   snap->summaries = published_summaries_;
@@ -155,6 +170,7 @@ void StudyWorker::publish(bool session_changed, int jump_to_scene) {
   snap->rerun_stem = rerun_stem_;
   snap->rerun_pair = rerun_pair_;
   snap->rerun_is_automatic = rerun_automatic_;
+  if (edit_started_ms >= 0) snap->edit_ms = now_ms() - edit_started_ms;
   std::lock_guard<std::mutex> l(mu_);
   if (snapshot_) retired_.push_back(std::move(snapshot_));
   snapshot_ = std::move(snap);
@@ -280,21 +296,24 @@ void StudyWorker::execute(WorkerCommand& c) {
     messages_.push_back(std::move(message));
   };
   // Each command says whether it changed the session (and publishes itself when it did not change it).
-  int jump = -1;
+  const double started_ms = now_ms();
+  int jump = -1, edited_scene = -1;
   const bool changed =
       std::visit(Visitor{
                      [&](const command::OpenStudy&) { return false; },
                      [&](const command::ApplyEdit& e) {
                        if (e.scene >= 0 && e.scene < static_cast<int>(s.scenes().size()))
-                         save(s.apply(e.scene, e.edit));
+                         save(s.apply(e.scene, e.edit)), edited_scene = e.scene;
                        return true;
                      },
                      [&](const command::Undo&) {
-                       if (auto job = s.undo()) save(std::move(*job)), jump = std::max(0, s.last_edited_scene());
+                       if (auto job = s.undo())
+                         save(std::move(*job)), jump = edited_scene = std::max(0, s.last_edited_scene());
                        return true;
                      },
                      [&](const command::Redo&) {
-                       if (auto job = s.redo()) save(std::move(*job)), jump = std::max(0, s.last_edited_scene());
+                       if (auto job = s.redo())
+                         save(std::move(*job)), jump = edited_scene = std::max(0, s.last_edited_scene());
                        return true;
                      },
                      [&](const command::SelectDomains& d) { return s.select_domains(d.left, d.right), true; },
@@ -311,13 +330,21 @@ void StudyWorker::execute(WorkerCommand& c) {
                        return false;
                      },
                      [&](const command::ReloadScene& r) { return s.reload_scene(r.pair, r.stem), true; },
+                     [&](const command::RegisterScene& r) {
+                       if (r.pair != s.pair_index()) return false;  // another domain pair is shown by now
+                       const int scene = s.scene_index(r.stem);
+                       if (!s.register_scene(r.pair, scene)) return false;
+                       edited_scene = scene;  // its summary (ambiguity) alone changes
+                       return true;
+                     },
                      [&](const command::ExportFigure& x) {
                        say(x.job ? x.job() : std::string("export failed: nothing to export"));
                        return false;
                      },
                  },
                  c);
-  if (changed) publish(true, jump);
+  const bool edit = !std::holds_alternative<command::RegisterScene>(c);
+  if (changed) publish(true, jump, edited_scene, edited_scene >= 0 && edit ? started_ms : -1);
 }
 
 }  // namespace ipd::studio

@@ -11,6 +11,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <variant>
 #include <vector>
 
@@ -23,7 +24,8 @@ namespace ipd::studio {
 // Everything the view may read; never modified after it is published.
 struct Snapshot {
   std::shared_ptr<const Session> session;
-  std::vector<SceneSummary> summaries;  // per scene of the current domain pair, computed once per change
+  // Per scene of the current domain pair: after an edit only the edited scene's entry is computed again.
+  std::shared_ptr<const std::vector<SceneSummary>> summaries;
   long version = 0;
   // Set by undo/redo: the scene the view should show (with jump_serial changing each time).
   int jump_to_scene = -1;
@@ -34,6 +36,9 @@ struct Snapshot {
   std::string rerun_stem;
   int rerun_pair = -1;
   bool rerun_is_automatic = false;  // recorded with the study's own options (the replay of what was done)
+  // Made by an edit, undo or redo: the worker's time from taking the command to publishing this snapshot
+  // (ipd-studio --frame-stats prints it as edit_ms); -1 for other snapshots.
+  double edit_ms = -1;
 };
 
 struct OpenProgress {
@@ -77,6 +82,11 @@ struct RerunRegistration {
 struct SaveAllTo {
   std::string dir;
 };
+// A hand-paired scene opened without its registration is shown: register it (Session::register_scene).
+struct RegisterScene {
+  int pair = -1;  // index into Session::domain_pairs()
+  std::string stem;
+};
 // After a save conflict the user keeps the file on disk: the scene's pairs are read again.
 struct ReloadScene {
   int pair = -1;  // index into Session::domain_pairs()
@@ -92,7 +102,7 @@ struct ExportFigure {
 using WorkerCommand =
     std::variant<command::OpenStudy, command::ApplyEdit, command::Undo, command::Redo, command::SelectDomains,
                  command::SelectModel, command::SetConfThreshold, command::RerunRegistration, command::SaveAllTo,
-                 command::ReloadScene, command::ExportFigure>;
+                 command::ReloadScene, command::ExportFigure, command::RegisterScene>;
 
 // Lowers the calling thread's CPU priority a little (threads it starts inherit it): heavy jobs yield to the
 // window's frames, and to the rasteriser's threads, on a machine with few cores.
@@ -118,7 +128,8 @@ class StudyWorker {
   void execute(WorkerCommand& c);
   void open(const command::OpenStudy& c);
   void rerun(Session& s, const command::RerunRegistration& c);
-  void publish(bool session_changed, int jump_to_scene = -1);
+  // `edited_scene` >= 0: only that scene of the current domain pair changed (its summary alone is redone).
+  void publish(bool session_changed, int jump_to_scene = -1, int edited_scene = -1, double edit_started_ms = -1);
   void publish_new_session();
 
   mutable std::mutex mu_;
@@ -140,7 +151,9 @@ class StudyWorker {
   int rerun_pair_ = -1;
   bool rerun_automatic_ = false;
   std::shared_ptr<const Session> published_;  // reused when a command did not change the session
-  std::vector<SceneSummary> published_summaries_;
+  std::shared_ptr<const std::vector<SceneSummary>> published_summaries_;
+  // What the published summaries were made for: another domain pair, order, model or threshold makes new ones.
+  std::tuple<int, bool, std::string, double> summaries_made_for_{-1, false, {}, 0};
   long version_ = 0, jump_serial_ = 0;
   Saver saver_;
   std::unique_ptr<StudyLock> lock_;  // the open study's one-writer lock; null when read-only

@@ -189,9 +189,7 @@ RegistrationReport read_report(Reader& rd) {
   r.inliers = rd.pod<std::int32_t>();
   r.score = rd.pod<double>();
   const int stop = rd.pod<std::int32_t>();
-  // kIdenticalLayouts is the last reason: a registration of identical layouts must read back, or every run
-  // would find the whole file unusable and parse and register the study again.
-  if (stop < 0 || stop > static_cast<int>(StopReason::kIdenticalLayouts)) throw std::runtime_error("bad stop reason");
+  if (stop < 0 || stop > static_cast<int>(kLastStopReason)) throw std::runtime_error("bad stop reason");
   r.stop = static_cast<StopReason>(stop);
   r.note = rd.str();
   r.elapsed_ms = rd.pod<double>();

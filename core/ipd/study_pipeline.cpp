@@ -133,13 +133,29 @@ PipelineScene pair_one(const StudyLabels& labels, const std::string& a, const st
     p.pairs_problems = std::move(read.problems);
   }
   if (!s.fixed || register_fixed) {
-    p.registration = register_rocks_cached(cache, ga, gb, reg, &p.from_cache);
+    p.registration = register_scene(labels, a, b, stem, reg, cache, &p.from_cache);
     p.pairs = p.registration.pairs;
   }
   return s;
 }
 
+// The registration options every scene of the study is registered with.
+RegistrationOptions with_study_aspect(const Study& study, RegistrationOptions reg) {
+  if (!reg.aspect) reg.aspect = study.aspect();
+  return reg;
+}
+
 }  // namespace
+
+RegistrationReport register_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
+                                  const std::string& stem, const RegistrationOptions& options,
+                                  const RegistrationCache* cache, bool* from_cache) {
+  bool hit = false;
+  RegistrationReport r = register_rocks_cached(cache, labels.gt_of(a, stem).boxes, labels.gt_of(b, stem).boxes,
+                                               with_study_aspect(labels.study, options), &hit);
+  if (from_cache) *from_cache = hit;
+  return r;
+}
 
 ScenePairing pair_scene(const StudyLabels& labels, const std::string& a, const std::string& b, const std::string& stem,
                         const RegistrationOptions& options, const RegistrationCache* cache) {
@@ -215,8 +231,7 @@ PairedStudy pair_study(const StudyLabels& labels, const std::vector<std::pair<st
       jobs.push_back({c, k, &stem, !listed || listed->count(stem) > 0, {}, {}});
     }
   }
-  RegistrationOptions reg = options.registration;
-  if (!reg.aspect) reg.aspect = study.aspect();
+  const RegistrationOptions reg = with_study_aspect(study, options.registration);
   const auto start = std::chrono::steady_clock::now();
   std::atomic<int> done{0};
   const int total = static_cast<int>(jobs.size());

@@ -20,7 +20,8 @@ class RegistrationCache;
 struct PipelineOptions {
   // The registration of every scene without fixed pairs; an aspect left at 1.0 takes the study's own.
   RegistrationOptions registration;
-  // Also register scenes that have fixed pairs: the studio shows (and can go back to) their automatic pairs.
+  // Also register scenes that have fixed pairs (their automatic pairs); the studio leaves them for later
+  // (register_scene) so a study with hand pairs opens without registering scenes nobody looks at.
   bool register_fixed_scenes = false;
   int threads = 0;                           // 0: hardware concurrency; the result does not depend on it
   const RegistrationCache* cache = nullptr;  // may be null: register every scene
@@ -65,6 +66,12 @@ std::vector<Problem> label_problems(const StudyLabels& labels);
 
 // A model without a predictions folder for a domain: its cells for that domain are empty.
 Problem missing_predictions_problem(const Study& study, const std::string& model, const std::string& domain);
+
+// One scene's registration exactly as pair_study registers it (the study's aspect when `options` leave it at
+// 1.0; through `cache`, which may be null): for a hand-paired scene opened without it. `from_cache` may be null.
+RegistrationReport register_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
+                                  const std::string& stem, const RegistrationOptions& options,
+                                  const RegistrationCache* cache, bool* from_cache = nullptr);
 
 // Pairs every scene of every domain pair in `pairs` (domain names of the study). Throws StudyError for a
 // pairs file that can't be used (the first one in domain-pair then scene order).

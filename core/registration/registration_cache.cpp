@@ -200,8 +200,7 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     r.inliers = j.at("inliers").get<int>();
     r.score = j.at("score").get<double>();
     const int stop = j.at("stop").get<int>();
-    // kIdenticalLayouts is the last reason (identical layouts' entries must be usable too).
-    if (stop < 0 || stop > static_cast<int>(StopReason::kIdenticalLayouts)) return unusable();
+    if (stop < 0 || stop > static_cast<int>(kLastStopReason)) return unusable();
     r.stop = static_cast<StopReason>(stop);
     r.note = j.at("note").get<std::string>();
     r.elapsed_ms = j.at("elapsed_ms").get<double>();

@@ -35,6 +35,8 @@ enum class StopReason {
   kWorkBudget,
   kIdenticalLayouts  // both sides hold exactly the same boxes: the identity, without a search
 };
+// The last stop reason: caches read a stored reason back only up to it (keep it the enum's last).
+inline constexpr StopReason kLastStopReason = StopReason::kIdenticalLayouts;
 
 inline const char* to_string(StopReason r) {
   switch (r) {

@@ -31,6 +31,9 @@ struct PairAudit {
 };
 
 struct SceneAudit {
+  // A hand-paired scene whose registration is not computed yet: no affine to audit against, so no pair
+  // audits and no residuals (never a number measured against a made-up affine).
+  bool waits_for_registration = false;
   std::vector<PairAudit> pairs;    // in the order of the pairs given
   double typical_residual_px = 0;  // median residual
   double suspect_residual_px = 0;  // the threshold that was used

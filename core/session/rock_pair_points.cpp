@@ -122,6 +122,13 @@ bool parse_pair_axis(const std::string& word, PairAxis* axis) {
   return false;
 }
 
+bool parse_gallery_sort(const std::string& word, int* sort) {
+  static const char* kWords[] = {"diff", "perf-left", "perf-right", "size"};
+  for (int k = 0; k < 4; ++k)
+    if (word == kWords[k]) return *sort = k, true;
+  return false;
+}
+
 std::vector<int> gallery_order(const std::vector<RockPairPoint>& points) {
   std::vector<int> order(points.size());
   for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);

@@ -27,6 +27,16 @@ struct RockPairPoint {
 // for a domain counts nothing: empty.
 std::vector<RockPairPoint> rock_pair_points(const Session& session, const std::vector<int>& scenes = {});
 
+// The pairs of one scene list as the studio's Rock pairs window shows them (gathered off the UI thread), with
+// the cell they belong to: scene indices stay valid while the domain pair, its order and the model do.
+struct RockPointSet {
+  std::vector<int> scenes;  // the scene indices asked for, ascending
+  std::vector<RockPairPoint> points;
+  int pair = -1;
+  bool swapped = false;
+  std::string model;
+};
+
 // What a scatter axis plots.
 enum class PairAxis { kPerfA, kPerfB, kAbsDiff, kSize, kX, kY, kConfA, kConfB };
 double axis_value(const RockPairPoint& p, PairAxis axis);
@@ -39,6 +49,10 @@ inline constexpr const char* kPairAxisWords = "perf-a, perf-b, diff, size, x, y,
 // Indices of `points` in the gallery's order: largest |diff| first; ties by scene, then left rock, then right
 // rock, so the order never depends on how the points were gathered.
 std::vector<int> gallery_order(const std::vector<RockPairPoint>& points);
+// The gallery's sort keys in scripts (ipd-studio --replay `gallery sort WORD`): 0 |diff|, 1 the left rock's
+// performance, 2 the right rock's, 3 size.
+bool parse_gallery_sort(const std::string& word, int* sort);
+inline constexpr const char* kGallerySortWords = "diff, perf-left, perf-right or size";
 
 // A drag-box selection on a scatter of (x_axis, y_axis): the points inside the box (corners in either order,
 // edges included; a NaN value is never inside) and the scenes they are in.

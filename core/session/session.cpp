@@ -164,7 +164,10 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
   pairs_ = ipd::domain_pairs(st, {});
   PipelineOptions po;
   po.registration = options.registration ? *options.registration : st.config.registration;
-  po.register_fixed_scenes = true;  // a hand-fixed scene can go back to its automatic pairs
+  // Hand-paired scenes are registered when first needed (register_scene): opening reads their pairs only.
+  po.register_fixed_scenes = false;
+  registration_ = po.registration;
+  cache_dir_ = options.registration_cache ? options.registration_cache->dir() : options.cache_dir;
   const RegistrationCache own_cache(options.registration_cache ? std::string() : options.cache_dir);
   po.cache = options.registration_cache ? options.registration_cache : &own_cache;
   if (options.progress)
@@ -186,21 +189,24 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
       if (d.scenes[k].fixed) {
         s.current = std::move(*d.scenes[k].fixed);
         s.edited = s.fixed_on_disk = true;
+        s.registered = false;
       }
     }
-    scenes_.push_back(std::move(list));
-    audits_.emplace_back(scenes_.back().size());
-    for (size_t k = 0; k < scenes_.back().size(); ++k)
-      reaudit(static_cast<int>(scenes_.size()) - 1, static_cast<int>(k));
+    const int pair = static_cast<int>(scenes_.size());
+    std::vector<SceneAudit> audits(list.size());
+    parallel_for(list.size(), 0, [&](size_t k) { audits[k] = audit_of(pair, list[k]); });
+    scenes_.emplace_back(std::move(list));
+    audits_.emplace_back(std::move(audits));
   }
   // Every problem the engine found, in the order the CLI reports them: label files, then scene matching and
   // pairs files, then prediction sets that are missing.
-  problems_ = label_problems(labels_ref);
-  problems_.insert(problems_.end(), paired.problems.begin(), paired.problems.end());
+  std::vector<Problem> problems = label_problems(labels_ref);
+  problems.insert(problems.end(), paired.problems.begin(), paired.problems.end());
   for (const auto& m : st.models)
     for (const auto& d : st.domains)
       if (!labels_ref.has_predictions(d.name, m.name))
-        problems_.push_back(missing_predictions_problem(st, m.name, d.name));
+        problems.push_back(missing_predictions_problem(st, m.name, d.name));
+  problems_ = std::make_shared<const std::vector<Problem>>(std::move(problems));
   cached_ = paired.cached_registrations;
   if (!st.models.empty()) model_ = st.models.front().name;
   // Default view: the first model trained on the first domain, if any.
@@ -297,15 +303,34 @@ RockPairs Session::view_pairs(int scene) const {
   return out;
 }
 
-void Session::reaudit(int pair, int scene) {
+SceneAudit Session::audit_of(int pair, const SceneState& s) const {
+  if (!s.registered) {
+    SceneAudit waiting;
+    waiting.waits_for_registration = true;
+    return waiting;
+  }
   const auto& [a, b] = pairs_[pair];
-  const SceneState& s = scenes_[pair][scene];
   const Study& st = labels_->study;
   // Residuals in pixels; a study without image_size counts 1000 px across.
   const int w = st.config.image_width > 0 ? st.config.image_width : 1000;
   const int h = st.config.image_height > 0 ? st.config.image_height : static_cast<int>(std::lround(w / st.aspect()));
-  audits_[pair][scene] = audit_pairs(labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes, s.current.pairs,
-                                     s.automatic.registration.affine, w, h);
+  return audit_pairs(labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes, s.current.pairs,
+                     s.automatic.registration.affine, w, h);
+}
+
+bool Session::register_scene(int pair, int scene) {
+  if (pair < 0 || pair >= static_cast<int>(scenes_.size()) || scene < 0 ||
+      scene >= static_cast<int>(scenes_[pair].size()) || scenes_[pair][scene].registered)
+    return false;
+  const auto& [a, b] = pairs_[pair];
+  const RegistrationCache cache(cache_dir_);
+  SceneState& s = scenes_[pair].edit(scene);
+  s.automatic.registration =
+      ipd::register_scene(*labels_, a, b, s.stem, registration_, &cache, &s.automatic.from_cache);
+  s.automatic.pairs = s.automatic.registration.pairs;
+  s.registered = true;
+  audits_[pair].set(scene, audit_of(pair, s));
+  return true;
 }
 
 std::vector<char> Session::suspect_rocks(Side side, int scene) const {
@@ -361,8 +386,8 @@ CellTotals Session::totals_for(const std::string& model, int pair_index) const {
   return it->second;
 }
 
-const std::vector<SceneIpd>& Session::contributions_for(const std::string& model, int pair_index) const {
-  static const std::vector<SceneIpd> kNone;
+const CowVector<SceneIpd>& Session::contributions_for(const std::string& model, int pair_index) const {
+  static const CowVector<SceneIpd> kNone;
   const auto it = contributions_.find({model, pair_index});
   return it == contributions_.end() ? kNone : it->second;
 }
@@ -399,7 +424,7 @@ void Session::recompute_performance() {
 }
 
 std::vector<Problem> Session::problems() const {
-  std::vector<Problem> out = problems_;
+  std::vector<Problem> out = *problems_;
   out.insert(out.end(), threshold_problems_.begin(), threshold_problems_.end());
   return out;
 }
@@ -422,7 +447,7 @@ void Session::rebuild_totals() {
     for (size_t p = 0; p < pairs_.size(); ++p) {
       if (!labels_->has_predictions(pairs_[p].first, m.name) || !labels_->has_predictions(pairs_[p].second, m.name))
         continue;
-      auto& list = contributions_[{m.name, static_cast<int>(p)}];
+      std::vector<SceneIpd> list;
       CellTotals& t = totals_[{m.name, static_cast<int>(p)}];
       for (size_t s = 0; s < scenes_[p].size(); ++s) {
         list.push_back(contribution(m.name, static_cast<int>(p), static_cast<int>(s)));
@@ -432,6 +457,7 @@ void Session::rebuild_totals() {
         t.unpaired_b += list.back().unpaired_b;
         ++t.scenes;
       }
+      contributions_[{m.name, static_cast<int>(p)}] = CowVector<SceneIpd>(std::move(list));
       // The table's rule (compute_cross_table): no predictions on either side is no number; on one, a warning.
       const auto& [a, b] = pairs_[p];
       const long na = shown_predictions(a, m.name, static_cast<int>(p)),
@@ -475,7 +501,7 @@ SaveJob Session::job_for(int pair, int scene, const std::string& root) const {
 }
 
 SaveJob Session::set_scene(int pair, int scene, const FixedPairs& fp, bool edited) {
-  SceneState& s = scenes_[pair][scene];
+  SceneState& s = scenes_[pair].edit(scene);  // the only scene that changes: its chunk alone is copied
   s.current = fp;
   std::sort(s.current.pairs.begin(), s.current.pairs.end());
   s.edited = edited;
@@ -488,13 +514,13 @@ SaveJob Session::set_scene(int pair, int scene, const FixedPairs& fp, bool edite
     t.pairs -= old.pairs;
     t.unpaired_a -= old.unpaired_a;
     t.unpaired_b -= old.unpaired_b;
-    list[scene] = contribution(key.first, pair, scene);
+    list.set(scene, contribution(key.first, pair, scene));
     t.sum_abs_diff += list[scene].sum_abs_diff;
     t.pairs += list[scene].pairs;
     t.unpaired_a += list[scene].unpaired_a;
     t.unpaired_b += list[scene].unpaired_b;
   }
-  reaudit(pair, scene);
+  audits_[pair].set(scene, audit_of(pair, s));
   last_scene_ = scene;
   SaveJob job = job_for(pair, scene, labels_->study.root);
   // From now on this window's version is what the job leaves on disk.
@@ -504,6 +530,7 @@ SaveJob Session::set_scene(int pair, int scene, const FixedPairs& fp, bool edite
 }
 
 SaveJob Session::apply(int scene, Edit e) {
+  if (e.kind == Edit::Kind::kResetToAutomatic) register_scene(pair_, scene);  // the pairs it goes back to
   const SceneState& s = scenes_[pair_][scene];
   FixedPairs next = s.current;
   bool edited = true;
@@ -544,7 +571,7 @@ SaveJob Session::apply(int scene, Edit e) {
       break;
   }
   std::sort(next.pairs.begin(), next.pairs.end());
-  history_.resize(undo_pos_);
+  history_.truncate(undo_pos_);
   history_.push_back({pair_, scene, s.current, next, s.edited, edited});
   ++undo_pos_;
   return set_scene(pair_, scene, next, edited);
@@ -552,14 +579,14 @@ SaveJob Session::apply(int scene, Edit e) {
 
 std::optional<SaveJob> Session::undo() {
   if (!can_undo()) return std::nullopt;
-  const HistoryEntry& h = history_[--undo_pos_];
+  const HistoryEntry h = history_[--undo_pos_];
   pair_ = h.pair;
   return set_scene(h.pair, h.scene, h.before, h.edited_before);
 }
 
 std::optional<SaveJob> Session::redo() {
   if (!can_redo()) return std::nullopt;
-  const HistoryEntry& h = history_[undo_pos_++];
+  const HistoryEntry h = history_[undo_pos_++];
   pair_ = h.pair;
   return set_scene(h.pair, h.scene, h.after, h.edited_after);
 }
@@ -578,19 +605,21 @@ void Session::reload_scene(int pair, const std::string& stem) {
   const auto it = std::find_if(list.begin(), list.end(), [&](const SceneState& sc) { return sc.stem == stem; });
   if (it == list.end()) return;
   const int scene = static_cast<int>(it - list.begin());
+  register_scene(pair, scene);  // without a pairs file the scene goes back to its automatic pairs
   const auto& [a, b] = pairs_[pair];
   FixedPairsRead read =
       load_fixed_pairs(labels_->study, a, b, stem, labels_->gt_of(a, stem).boxes, labels_->gt_of(b, stem).boxes);
-  SceneState& s = scenes_[pair][scene];
+  const SceneState& old = scenes_[pair][scene];
   FixedPairs next;
-  next.pairs = s.automatic.pairs;
+  next.pairs = old.automatic.pairs;
   const bool edited = read.pairs.has_value();
   if (read.pairs) next = std::move(*read.pairs);
   std::sort(next.pairs.begin(), next.pairs.end());
-  history_.resize(undo_pos_);
-  history_.push_back({pair, scene, s.current, next, s.edited, edited});
+  history_.truncate(undo_pos_);
+  history_.push_back({pair, scene, old.current, next, old.edited, edited});
   ++undo_pos_;
   set_scene(pair, scene, next, edited);  // its job would write what is on disk: not needed
+  SceneState& s = scenes_[pair].edit(scene);
   s.disk_ab = read.version_ab;
   s.disk_ba = read.version_ba;
   s.fixed_on_disk = edited;

@@ -18,6 +18,7 @@
 #include "core/session/audit.h"
 #include "core/study/problem.h"
 #include "core/util/atomic_file.h"
+#include "core/util/cow_vector.h"
 
 namespace ipd {
 
@@ -73,9 +74,12 @@ void run_save_job(const SaveJob& job, const WriteStepHook& hook = {});
 
 struct SceneState {
   std::string stem;
-  ScenePairing automatic;  // what registration found
-  FixedPairs current;      // what counts now
-  bool edited = false;     // current differs from automatic and is saved as fixed pairs
+  ScenePairing automatic;  // what registration found (meaningful when `registered`)
+  // False for a scene opened with its hand pairs: it is registered when first needed (register_scene),
+  // until then its audit says it waits for the registration.
+  bool registered = true;
+  FixedPairs current;   // what counts now
+  bool edited = false;  // current differs from automatic and is saved as fixed pairs
   bool fixed_on_disk = false;
   // Problems of the scene's pairs files found when the study was opened (rocks found again by their
   // boxes, unusable hand pairs: then the automatic pairs count, `pairs_unusable`, and the file is kept
@@ -129,7 +133,9 @@ class Session {
   static Session open(const std::string& study_root, const SessionOptions& options);
   explicit Session(StudyLabels labels, const RegistrationOptions* registration = nullptr);
   Session(StudyLabels labels, const SessionOptions& options);
-  // Copies are cheap enough to publish a snapshot after every change: labels are shared, not copied.
+  // Copies are cheap enough to publish a snapshot after every change: labels are shared, not copied, and
+  // the per-scene records, audits, contributions and undo history are CowVectors (a copy shares them; an
+  // edit copies only the chunk of scenes it changes), so a copy costs one pointer per 128 scenes.
 
   const Study& study() const { return labels_->study; }
   const StudyLabels& labels() const { return *labels_; }
@@ -160,13 +166,17 @@ class Session {
   const std::string& right_domain() const;
 
   // Scenes of the current domain pair, in stem order.
-  const std::vector<SceneState>& scenes() const { return scenes_[pair_]; }
+  const CowVector<SceneState>& scenes() const { return scenes_[pair_]; }
   int scene_index(const std::string& stem) const;
   SceneSummary summary(int scene) const;
   std::vector<SceneSummary> summaries() const;  // every scene of the current domain pair
   // The audit of a scene's current pairs against its registration affine, in the domain pair's (A, B)
   // orientation (audit.pairs[k].a indexes A even when the view is swapped).
   const SceneAudit& audit(int scene) const { return audits_[pair_][scene]; }
+  // Registers a hand-paired scene opened without its registration (the studio does it when the scene is
+  // shown): its automatic pairs, affine and audit; the counted pairs stay the hand pairs. False when it
+  // was registered already.
+  bool register_scene(int pair, int scene);
   // Per rock of a view side: 1 when its pair is suspect.
   std::vector<char> suspect_rocks(Side side, int scene) const;
   // The current pairs of a scene oriented as (left index, right index).
@@ -181,7 +191,7 @@ class Session {
   CellTotals totals_for(const std::string& model, int pair_index) const;
   // Each scene's contribution to a cell (scene order of the domain pair; `counted` in (A, B) indices);
   // empty when the model lacks predictions for a domain. For the statistics (session_statistics.h).
-  const std::vector<SceneIpd>& contributions_for(const std::string& model, int pair_index) const;
+  const CowVector<SceneIpd>& contributions_for(const std::string& model, int pair_index) const;
 
   // Edits of one scene; sides refer to the view (left = A unless swapped). Returns the save job.
   SaveJob apply(int scene, Edit edit);
@@ -217,16 +227,19 @@ class Session {
   long shown_predictions(const std::string& domain, const std::string& model, int pair) const;
   double effective_threshold() const;
   SceneIpd contribution(const std::string& model, int pair, int scene) const;
-  void reaudit(int pair, int scene);
+  SceneAudit audit_of(int pair, const SceneState& scene) const;
   Side pair_side(Side view_side) const;  // view side -> side of the domain pair
   const std::string& domain_of(Side view_side) const;
 
   std::shared_ptr<const StudyLabels> labels_;
   std::vector<std::pair<std::string, std::string>> pairs_;
-  std::vector<std::vector<SceneState>> scenes_;  // per domain pair
-  std::vector<std::vector<SceneAudit>> audits_;  // per domain pair, per scene
+  RegistrationOptions registration_;  // what register_scene registers with, and its cache
+  std::string cache_dir_;
+  std::vector<CowVector<SceneState>> scenes_;  // per domain pair
+  std::vector<CowVector<SceneAudit>> audits_;  // per domain pair, per scene
   int cached_ = 0;
-  std::vector<Problem> problems_, threshold_problems_;
+  std::shared_ptr<const std::vector<Problem>> problems_;  // opening's (fixed once open)
+  std::vector<Problem> threshold_problems_;
   StudyCacheStats study_cache_stats_;
   int pair_ = 0;
   bool swapped_ = false;
@@ -240,8 +253,8 @@ class Session {
   std::shared_ptr<const ByDomainModelStem<std::vector<Box>>> shown_predictions_;
   // (model, pair) -> totals, and each scene's contribution to them
   std::map<std::pair<std::string, int>, CellTotals> totals_;
-  std::map<std::pair<std::string, int>, std::vector<SceneIpd>> contributions_;
-  std::vector<HistoryEntry> history_;
+  std::map<std::pair<std::string, int>, CowVector<SceneIpd>> contributions_;
+  CowVector<HistoryEntry> history_;
   size_t undo_pos_ = 0;
   int last_scene_ = -1;
 };

@@ -17,7 +17,7 @@ CrossTable session_table(const Session& s) {
       const auto& [a, b] = t.columns[p];
       TableCell c = make_table_cell(m, a, b);
       c.missing_predictions = !s.labels().has_predictions(a, m.name) || !s.labels().has_predictions(b, m.name);
-      if (!c.missing_predictions) c.per_scene = s.contributions_for(m.name, static_cast<int>(p));
+      if (!c.missing_predictions) c.per_scene = s.contributions_for(m.name, static_cast<int>(p)).to_vector();
       total_table_cell(c);
       c.no_value_reason = s.totals_for(m.name, static_cast<int>(p)).no_value_reason;
       if (!c.no_value_reason.empty()) c.ipd = std::nan("");

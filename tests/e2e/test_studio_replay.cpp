@@ -230,7 +230,7 @@ TEST(StudioReplay, ARockViewBoxBecomesASceneListFilter) {
                      "0 0.3 0.3 0.1 0.1 0.9\n0 0.7 0.4 0.15 0.1 0.7\n");
   }
   test::write_text(d / "actions.txt", fmt::format("list {}\nrocks diff perf-a\nwait 2\nselect 0.5 0.5 1 1\nwait 2\n"
-                                                  "list {}\nscreenshot {}\n",
+                                                  "list {}\ngallery page 2 sort size\nwait 2\nscreenshot {}\n",
                                                   d / "before.txt", d / "after.txt", d / "rocks.png"));
   const std::string cmd =
       fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d.path(), d / "actions.txt");
@@ -253,6 +253,24 @@ TEST(StudioReplay, RockViewActionsNameTheirArguments) {
   test::write_text(d / "actions.txt", "select 0 0 1 one\n");
   EXPECT_EQ(run(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"), "error: " + d / "actions.txt" + ":1: 'select': expected a number, got 'one'\n");
+  test::write_text(d / "actions.txt", "gallery sort worst\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" +
+                ":1: 'gallery': expected a sort key (diff, perf-left, perf-right or size), got 'worst'\n");
+  test::write_text(d / "actions.txt", "gallery page 0\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" + ":1: 'gallery': expected a page number >= 1, got '0'\n");
+  test::write_text(d / "actions.txt", "gallery page 2 page 3\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" + ":1: 'gallery': expected 'page N' or 'sort KEY' (each once), got 'page'\n");
+  test::write_text(d / "actions.txt", "gallery page\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"), "error: " + d / "actions.txt" +
+                                          ":1: 'gallery' takes [page N] [sort diff|perf-left|perf-right|size], got 1 "
+                                          "argument(s)\n");
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "ui/figures/figure_charts.h"
 #include "ui/gui/studio_layout.h"
 
 namespace ipd::ui {
@@ -15,25 +16,27 @@ namespace {
 constexpr PairAxis kAxes[] = {PairAxis::kPerfA, PairAxis::kPerfB, PairAxis::kAbsDiff, PairAxis::kSize,
                               PairAxis::kX,     PairAxis::kY,     PairAxis::kConfA,   PairAxis::kConfB};
 // Okabe-Ito blue and orange: told apart with every common colour-vision deficiency.
-const ImU32 kPoint = IM_COL32(0, 114, 178, 255), kSelected = IM_COL32(230, 159, 0, 255);
-
-// An axis's range: [0, 1] for the values that live there, [0, largest] for size.
-std::pair<double, double> axis_range(const std::vector<RockPairPoint>& points, PairAxis axis) {
-  if (axis != PairAxis::kSize) return {0, 1};
-  double hi = 0;
-  for (const auto& p : points) hi = std::max(hi, p.size);
-  return {0, hi > 0 ? hi : 1};
-}
+const ImU32 kSelected = IM_COL32(230, 159, 0, 255);
+constexpr int kCellPx = 3;  // one square per 3 x 3 pixels of plot
 
 struct Plot {
   ImVec2 p0, p1;  // screen rectangle
-  double x0, x1, y0, y1;
+  ScatterRange r;
   ImVec2 to_screen(double x, double y) const {
-    return {float(p0.x + (x - x0) / (x1 - x0) * (p1.x - p0.x)), float(p1.y - (y - y0) / (y1 - y0) * (p1.y - p0.y))};
+    return {float(p0.x + (x - r.x0) / (r.x1 - r.x0) * (p1.x - p0.x)),
+            float(p1.y - (y - r.y0) / (r.y1 - r.y0) * (p1.y - p0.y))};
   }
-  double data_x(float sx) const { return x0 + (sx - p0.x) / (p1.x - p0.x) * (x1 - x0); }
-  double data_y(float sy) const { return y0 + (p1.y - sy) / (p1.y - p0.y) * (y1 - y0); }
+  double data_x(float sx) const { return r.x0 + (sx - p0.x) / (p1.x - p0.x) * (r.x1 - r.x0); }
+  double data_y(float sy) const { return r.y0 + (p1.y - sy) / (p1.y - p0.y) * (r.y1 - r.y0); }
 };
+
+// Wide enough for an axis or sort name with either domain's name in it.
+float name_combo_width(const Session& s) {
+  const float domain =
+      std::max(ImGui::CalcTextSize(s.left_domain().c_str()).x, ImGui::CalcTextSize(s.right_domain().c_str()).x);
+  return std::max(ImGui::CalcTextSize("conf ").x + domain, ImGui::CalcTextSize("size (px)").x) +
+         ImGui::GetFrameHeight() * 1.5f;
+}
 
 std::string pair_line(const Session& s, const RockPairPoint& p) {
   return fmt::format("{}: rock {} ({}) | rock {} ({}), perf {:.3f} | {:.3f}, |diff| {:.3f}", s.scenes()[p.scene].stem,
@@ -46,41 +49,91 @@ void go_to(const RockPairPoint& p, UiCommands& out) {
   out.goto_pair_right = p.rock_b;
 }
 
-bool axis_combo(const char* label, int& axis) {
+bool axis_combo(const char* label, int& axis, const Session& s) {
   bool changed = false;
-  ImGui::SetNextItemWidth(110);
-  if (ImGui::BeginCombo(label, axis_name(kAxes[axis]))) {
+  ImGui::SetNextItemWidth(name_combo_width(s));
+  if (ImGui::BeginCombo(label, pair_axis_label(kAxes[axis], s.left_domain(), s.right_domain()).c_str())) {
     for (int k = 0; k < static_cast<int>(std::size(kAxes)); ++k)
-      if (ImGui::Selectable(axis_name(kAxes[k]), k == axis)) axis = k, changed = true;
+      if (ImGui::Selectable(pair_axis_label(kAxes[k], s.left_domain(), s.right_domain()).c_str(), k == axis))
+        axis = k, changed = true;
     ImGui::EndCombo();
   }
   return changed;
 }
 
-// Every point once per pixel (a dense cloud costs what the plot's area costs); the hovered point's index.
-int draw_points(const Plot& plot, RockViewState& st, PairAxis ax, PairAxis ay, ImDrawList* dl) {
-  const int w = std::max(1, int(plot.p1.x - plot.p0.x) + 1), h = std::max(1, int(plot.p1.y - plot.p0.y) + 1);
-  st.drawn.assign(static_cast<size_t>(w) * h, 0);
+// Bins the points again when they, the axes, the plot's size or the drag box changed.
+void rebin(RockViewState& st, PairAxis ax, PairAxis ay, int w, int h) {
+  const bool box = st.has_box && st.box_x == static_cast<int>(ax) && st.box_y == static_cast<int>(ay);
+  const double b[4] = {st.bx0, st.by0, st.bx1, st.by1};
+  if (st.binned_points == st.points.get() && st.binned_x == static_cast<int>(ax) &&
+      st.binned_y == static_cast<int>(ay) && st.binned_w == w && st.binned_h == h && st.binned_box == box &&
+      (!box || std::equal(b, b + 4, st.binned_b)))
+    return;
+  st.binned_points = st.points.get();
+  st.binned_x = static_cast<int>(ax), st.binned_y = static_cast<int>(ay), st.binned_w = w, st.binned_h = h;
+  st.binned_box = box;
+  std::copy(b, b + 4, st.binned_b);
+  static const std::vector<RockPairPoint> kNone;
+  const auto& points = st.points ? st.points->points : kNone;
+  const auto [x0, x1] = scatter_axis_range(points, ax);
+  const auto [y0, y1] = scatter_axis_range(points, ay);
+  st.range = {x0, x1, y0, y1};
+  const DataBox data_box{st.bx0, st.by0, st.bx1, st.by1};
+  st.density = bin_pair_points(points, ax, ay, st.range, std::max(1, w / kCellPx), std::max(1, h / kCellPx),
+                               box ? &data_box : nullptr);
+}
+
+// A cell's blue: light for one pair, darker as more pairs share it (log scale: a few dense cells must not
+// wash out the rest).
+ImU32 density_colour(int count, int max_count) {
+  const float t = max_count > 1 ? float(std::log(double(count)) / std::log(double(max_count))) : 1.0f;
+  const float light = 0.4f * (1 - t);  // 0: Okabe-Ito blue (0, 114, 178)
+  return IM_COL32(int(0 + (255 - 0) * light), int(114 + (255 - 114) * light), int(178 + (255 - 178) * light), 255);
+}
+
+// The occupied cells (a frame costs what they cost); the index of the hovered cell's first point.
+int draw_cells(const Plot& plot, const PairDensity& d, ImDrawList* dl) {
   const ImVec2 mouse = ImGui::GetMousePos();
+  const float cw = (plot.p1.x - plot.p0.x) / d.cells_x, ch = (plot.p1.y - plot.p0.y) / d.cells_y;
   int hovered = -1;
   float best = 36;  // within 6 px
-  const bool box = st.has_box && st.box_x == static_cast<int>(ax) && st.box_y == static_cast<int>(ay);
-  for (size_t i = 0; i < st.points.size(); ++i) {
-    const double x = axis_value(st.points[i], ax), y = axis_value(st.points[i], ay);
-    if (!std::isfinite(x) || !std::isfinite(y)) continue;  // no confidence: not on a confidence axis
-    const ImVec2 q = plot.to_screen(x, y);
-    const float d = (q.x - mouse.x) * (q.x - mouse.x) + (q.y - mouse.y) * (q.y - mouse.y);
-    if (d < best) best = d, hovered = static_cast<int>(i);
-    const bool in = box && x >= std::min(st.bx0, st.bx1) && x <= std::max(st.bx0, st.bx1) &&
-                    y >= std::min(st.by0, st.by1) && y <= std::max(st.by0, st.by1);
-    const int px = std::clamp(int(q.x - plot.p0.x), 0, w - 1), py = std::clamp(int(q.y - plot.p0.y), 0, h - 1);
-    unsigned char& cell = st.drawn[static_cast<size_t>(py) * w + px];
-    const unsigned char mark = in ? 2 : 1;
-    if (cell >= mark) continue;
-    cell = mark;
-    dl->AddRectFilled({q.x - 1.5f, q.y - 1.5f}, {q.x + 1.5f, q.y + 1.5f}, in ? kSelected : kPoint);
+  for (const DensityCell& c : d.cells) {
+    const ImVec2 q0{plot.p0.x + c.cx * cw, plot.p1.y - (c.cy + 1) * ch};
+    const ImVec2 q1{q0.x + std::max(cw, 2.0f), q0.y + std::max(ch, 2.0f)};
+    dl->AddRectFilled(q0, q1, c.selected > 0 ? kSelected : density_colour(c.count, d.max_count));
+    const float dx = (q0.x + q1.x) / 2 - mouse.x, dy = (q0.y + q1.y) / 2 - mouse.y;
+    if (dx * dx + dy * dy < best) best = dx * dx + dy * dy, hovered = c.first;
   }
   return hovered;
+}
+
+// Round ticks with their labels and faint grid lines, on both axes.
+void draw_axes(const Plot& plot, PairAxis ax, PairAxis ay, const Session& s, ImVec2 origin, ImDrawList* dl) {
+  const ImU32 text = ImGui::GetColorU32(ImGuiCol_Text), grid = IM_COL32(128, 128, 128, 60);
+  const float line = ImGui::GetTextLineHeight();
+  const auto xt = nice_ticks(plot.r.x0, plot.r.x1, std::max(2, int((plot.p1.x - plot.p0.x) / (6 * line))));
+  const auto yt = nice_ticks(plot.r.y0, plot.r.y1, std::max(2, int((plot.p1.y - plot.p0.y) / (3 * line))));
+  const double xs = xt.size() > 1 ? xt[1] - xt[0] : 1, ys = yt.size() > 1 ? yt[1] - yt[0] : 1;
+  for (const double t : xt) {
+    if (t < plot.r.x0 - 1e-12 || t > plot.r.x1 + 1e-12) continue;
+    const float x = plot.to_screen(t, plot.r.y0).x;
+    dl->AddLine({x, plot.p0.y}, {x, plot.p1.y}, grid);
+    const std::string label = tick_text(t, xs);
+    const float w = ImGui::CalcTextSize(label.c_str()).x;
+    dl->AddText({std::clamp(x - w / 2, plot.p0.x - w / 2, plot.p1.x - w), plot.p1.y + 2}, text, label.c_str());
+  }
+  for (const double t : yt) {
+    if (t < plot.r.y0 - 1e-12 || t > plot.r.y1 + 1e-12) continue;
+    const float y = plot.to_screen(plot.r.x0, t).y;
+    dl->AddLine({plot.p0.x, y}, {plot.p1.x, y}, grid);
+    const std::string label = tick_text(t, ys);
+    dl->AddText({plot.p0.x - ImGui::CalcTextSize(label.c_str()).x - 4, y - line / 2}, text, label.c_str());
+  }
+  const std::string xn = pair_axis_label(ax, s.left_domain(), s.right_domain());
+  const std::string yn = pair_axis_label(ay, s.left_domain(), s.right_domain());
+  dl->AddText({(plot.p0.x + plot.p1.x - ImGui::CalcTextSize(xn.c_str()).x) / 2, plot.p1.y + 2 + line}, text,
+              xn.c_str());
+  dl->AddText({origin.x, origin.y}, text, yn.c_str());
 }
 
 // Mouse: a press starts a box, a release under 4 px away is a click on the hovered point.
@@ -94,49 +147,48 @@ void handle_mouse(const Session& s, const Plot& plot, int hovered, PairAxis ax, 
   if (ImGui::IsMouseDown(0)) return;
   st.dragging = false;
   if (std::abs(m.x - st.drag_from.x) < 4 && std::abs(m.y - st.drag_from.y) < 4) {
-    if (hovered >= 0) go_to(st.points[hovered], out);
+    if (hovered >= 0) go_to(st.points->points[hovered], out);
     return;
   }
   st.has_box = true;
   st.box_x = static_cast<int>(ax), st.box_y = static_cast<int>(ay);
   st.bx0 = plot.data_x(st.drag_from.x), st.bx1 = plot.data_x(m.x);
   st.by0 = plot.data_y(st.drag_from.y), st.by1 = plot.data_y(m.y);
-  apply_pair_selection(s, select_in_box(st.points, ax, ay, st.bx0, st.by0, st.bx1, st.by1), ui);
+  apply_pair_selection(s, select_in_box(st.points->points, ax, ay, st.bx0, st.by0, st.bx1, st.by1), ui);
 }
 
-void draw_scatter(const Session& s, RockViewState& st, UiState& ui, UiCommands& out) {
-  axis_combo("x##rockx", st.x_axis);
+void draw_scatter(const Session& s, bool gathering, RockViewState& st, UiState& ui, UiCommands& out) {
+  axis_combo("x##rockx", st.x_axis, s);
   ImGui::SameLine();
-  axis_combo("y##rocky", st.y_axis);
+  axis_combo("y##rocky", st.y_axis, s);
   ImGui::SameLine();
   ImGui::Checkbox("current scene only", &st.current_scene);
-  ImGui::TextDisabled("%s of %s: drag a box to filter the scene list, click a point to see its pair",
-                      counted(static_cast<long>(st.points.size()), "pair").c_str(),
-                      st.current_scene ? "this scene" : "the listed scenes");
+  const long n = st.points ? static_cast<long>(st.points->points.size()) : 0;
+  if (!st.points)
+    ImGui::TextDisabled("gathering the pairs...");
+  else
+    ImGui::TextDisabled("%s of %s%s: drag a box to filter the scene list, click a point to see its pair",
+                        counted(n, "pair").c_str(), st.current_scene ? "this scene" : "the listed scenes",
+                        gathering ? " (updating...)" : "");
   const PairAxis ax = kAxes[st.x_axis], ay = kAxes[st.y_axis];
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const float line = ImGui::GetTextLineHeight();
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 size{std::max(80.0f, avail.x), std::max(80.0f, avail.y)};
   ImGui::InvisibleButton("##rockplot", size);
-  const auto [x0, x1] = axis_range(st.points, ax);
-  const auto [y0, y1] = axis_range(st.points, ay);
-  Plot plot{{origin.x + 4 * line, origin.y + 4}, {origin.x + size.x - 8, origin.y + size.y - 2 * line}, x0, x1, y0, y1};
+  if (!st.points) return;
+  const ImVec2 p0{origin.x + ImGui::CalcTextSize("0.000").x + 8, origin.y + line + 4};
+  const ImVec2 p1{origin.x + size.x - ImGui::CalcTextSize("0.0").x, origin.y + size.y - 2 * line - 4};
+  rebin(st, ax, ay, std::max(1, int(p1.x - p0.x)), std::max(1, int(p1.y - p0.y)));
+  const Plot plot{p0, p1, st.range};
   ImDrawList* dl = ImGui::GetWindowDrawList();
+  draw_axes(plot, ax, ay, s, origin, dl);
   dl->AddRect(plot.p0, plot.p1, IM_COL32(140, 140, 140, 255));
-  const ImU32 text = ImGui::GetColorU32(ImGuiCol_Text);
-  dl->AddText({plot.p0.x, plot.p1.y + 2}, text, fmt::format("{:g}", x0).c_str());
-  const std::string xhi = fmt::format("{:g}", x1);
-  dl->AddText({plot.p1.x - ImGui::CalcTextSize(xhi.c_str()).x, plot.p1.y + 2}, text, xhi.c_str());
-  dl->AddText({(plot.p0.x + plot.p1.x) / 2, plot.p1.y + 2}, text, axis_name(ax));
-  dl->AddText({origin.x, plot.p0.y}, text, fmt::format("{:g}", y1).c_str());
-  dl->AddText({origin.x, (plot.p0.y + plot.p1.y) / 2}, text, axis_name(ay));
-  dl->AddText({origin.x, plot.p1.y - line}, text, fmt::format("{:g}", y0).c_str());
   dl->PushClipRect(plot.p0, plot.p1, true);
-  const int hovered = draw_points(plot, st, ax, ay, dl);
-  if (hovered >= 0 && ImGui::IsItemHovered()) {
-    const RockPairPoint& p = st.points[hovered];
-    dl->AddCircle(plot.to_screen(axis_value(p, ax), axis_value(p, ay)), 5, text);
+  const int hovered = draw_cells(plot, st.density, dl);
+  if (hovered >= 0 && ImGui::IsItemHovered() && !st.dragging) {
+    const RockPairPoint& p = st.points->points[hovered];
+    dl->AddCircle(plot.to_screen(axis_value(p, ax), axis_value(p, ay)), 5, ImGui::GetColorU32(ImGuiCol_Text));
     ImGui::SetTooltip("%s", pair_line(s, p).c_str());
   }
   dl->PopClipRect();
@@ -167,11 +219,17 @@ void draw_crop(const Session& s, Side side, int scene, int rock, float px) {
 constexpr int kGalleryPage = 8;
 
 void draw_gallery(const Session& s, RockViewState& st, UiCommands& out) {
-  static const char* kSorts[] = {"|diff|", "perf A", "perf B", "size"};
-  ImGui::SetNextItemWidth(110);
-  ImGui::Combo("sort (largest first)", &st.gallery_sort, kSorts, 4);
+  const std::string sorts[] = {"|diff|", "perf " + s.left_domain(), "perf " + s.right_domain(), "size"};
+  ImGui::SetNextItemWidth(name_combo_width(s));
+  if (ImGui::BeginCombo("sort (largest first)", sorts[std::clamp(st.gallery_sort, 0, 3)].c_str())) {
+    for (int k = 0; k < 4; ++k)
+      if (ImGui::Selectable(sorts[k].c_str(), k == st.gallery_sort)) st.gallery_sort = k;
+    ImGui::EndCombo();
+  }
+  static const std::vector<RockPairPoint> kNone;
+  const auto& points = st.points ? st.points->points : kNone;
   if (st.gallery_sorted_by != st.gallery_sort) {
-    st.gallery = gallery_sorted(st.points, st.gallery_sort);
+    st.gallery = gallery_sorted(points, st.gallery_sort);
     st.gallery_sorted_by = st.gallery_sort;
   }
   const int pages = std::max(1, (static_cast<int>(st.gallery.size()) + kGalleryPage - 1) / kGalleryPage);
@@ -179,15 +237,18 @@ void draw_gallery(const Session& s, RockViewState& st, UiCommands& out) {
   ImGui::SameLine();
   if (ImGui::ArrowButton("##gprev", ImGuiDir_Left)) st.gallery_page = std::max(0, st.gallery_page - 1);
   ImGui::SameLine();
-  ImGui::Text("page %d of %d", st.gallery_page + 1, pages);
+  ImGui::TextUnformatted(fmt::format("page {} of {}", thousands(st.gallery_page + 1), thousands(pages)).c_str());
   ImGui::SameLine();
   if (ImGui::ArrowButton("##gnext", ImGuiDir_Right)) st.gallery_page = std::min(pages - 1, st.gallery_page + 1);
-  ImGui::TextDisabled("Boxes on a neutral background (GT blue, its best-IoU prediction orange); %s | %s. Click to go.",
-                      s.left_domain().c_str(), s.right_domain().c_str());
+  text_wrapped_at_spaces(
+      fmt::format("Boxes on a neutral background (GT blue, its best-IoU prediction orange); "
+                  "{} | {}. Click to go.",
+                  s.left_domain(), s.right_domain()));
   const float px = 5 * ImGui::GetTextLineHeight();
+  ImGui::BeginChild("##gallerypairs");
   for (int k = st.gallery_page * kGalleryPage;
        k < std::min<int>(st.gallery.size(), (st.gallery_page + 1) * kGalleryPage); ++k) {
-    const RockPairPoint& p = st.points[st.gallery[k]];
+    const RockPairPoint& p = points[st.gallery[k]];
     ImGui::PushID(k);
     ImGui::BeginGroup();
     draw_crop(s, Side::kA, p.scene, p.rock_a, px);
@@ -195,8 +256,9 @@ void draw_gallery(const Session& s, RockViewState& st, UiCommands& out) {
     draw_crop(s, Side::kB, p.scene, p.rock_b, px);
     ImGui::SameLine();
     ImGui::BeginGroup();
-    ImGui::Text("%d. %s", k + 1, s.scenes()[p.scene].stem.c_str());
-    ImGui::Text("rock %d | rock %d", p.rock_a + 1, p.rock_b + 1);
+    ImGui::Text("%s. %s", thousands(k + 1).c_str(), s.scenes()[p.scene].stem.c_str());
+    ImGui::Text("rock %d (%s) | rock %d (%s)", p.rock_a + 1, s.left_domain().c_str(), p.rock_b + 1,
+                s.right_domain().c_str());
     ImGui::Text("perf %.3f | %.3f   |diff| %.3f", p.perf_a, p.perf_b, p.abs_diff);
     if (ImGui::SmallButton("go to pair")) go_to(p, out);
     ImGui::EndGroup();
@@ -204,20 +266,43 @@ void draw_gallery(const Session& s, RockViewState& st, UiCommands& out) {
     if (ImGui::IsItemClicked()) go_to(p, out);
     ImGui::PopID();
   }
+  ImGui::EndChild();
 }
 
 }  // namespace
 
-bool refresh_rock_points(const Session& s, const UiState& ui, RockViewState& st) {
+std::string pair_axis_label(PairAxis axis, const std::string& left, const std::string& right) {
+  switch (axis) {
+    case PairAxis::kPerfA:
+      return "perf " + left;
+    case PairAxis::kPerfB:
+      return "perf " + right;
+    case PairAxis::kConfA:
+      return "conf " + left;
+    case PairAxis::kConfB:
+      return "conf " + right;
+    default:
+      return axis_name(axis);
+  }
+}
+
+std::vector<int> rock_view_scenes(const UiState& ui, const RockViewState& st) {
   std::vector<int> scenes = st.current_scene              ? std::vector<int>{ui.scene}
                             : ui.selection_scenes.empty() ? ui.order
                                                           : ui.order_without_selection;
-  if (st.session == &s && scenes == st.scenes) return false;
-  st.session = &s;
-  st.scenes = std::move(scenes);
-  std::vector<int> sorted = st.scenes;
-  std::sort(sorted.begin(), sorted.end());  // points by scene, whatever the list's sort order
-  st.points = rock_pair_points(s, sorted);
+  std::sort(scenes.begin(), scenes.end());  // points by scene, whatever the list's sort order
+  return scenes;
+}
+
+bool adopt_rock_points(const Session& s, const std::shared_ptr<const RockPointSet>& points, RockViewState& st) {
+  if (!points || points == st.points) return false;
+  if (points->pair != s.pair_index() || points->swapped != s.swapped() || points->model != s.model()) {
+    if (st.points &&
+        (st.points->pair != s.pair_index() || st.points->swapped != s.swapped() || st.points->model != s.model()))
+      st.points.reset(), st.gallery_sorted_by = -1;  // another cell's points: nothing to show meanwhile
+    return false;
+  }
+  st.points = points;
   st.gallery_sorted_by = -1;
   return true;
 }
@@ -243,7 +328,8 @@ void apply_pair_selection(const Session& s, const PairSelection& sel, UiState& u
   ui.order.clear();  // the app lists the scenes again
 }
 
-void draw_rock_view(const StudyView& v, RockViewState& st, UiState& ui, UiCommands& out) {
+void draw_rock_view(const StudyView& v, const std::shared_ptr<const RockPointSet>& points, bool gathering,
+                    RockViewState& st, UiState& ui, UiCommands& out) {
   if (!ui.show_rock_view || !v.session) return;
   ImGui::SetNextWindowSize({720, 520}, ImGuiCond_FirstUseEver);
   // Over the pictures, not the scene list: the selection's chip and the filtered list stay in sight.
@@ -254,13 +340,14 @@ void draw_rock_view(const StudyView& v, RockViewState& st, UiState& ui, UiComman
     return;
   }
   const Session& s = *v.session;
-  refresh_rock_points(s, ui, st);
+  adopt_rock_points(s, points, st);
   if (ImGui::BeginTabBar("##rocktabs")) {
-    if (ImGui::BeginTabItem("Scatter")) {
-      draw_scatter(s, st, ui, out);
+    const int select = std::exchange(st.select_tab, -1);
+    if (ImGui::BeginTabItem("Scatter", nullptr, select == 0 ? ImGuiTabItemFlags_SetSelected : 0)) {
+      draw_scatter(s, gathering, st, ui, out);
       ImGui::EndTabItem();
     }
-    if (ImGui::BeginTabItem("Gallery")) {
+    if (ImGui::BeginTabItem("Gallery", nullptr, select == 1 ? ImGuiTabItemFlags_SetSelected : 0)) {
       draw_gallery(s, st, out);
       ImGui::EndTabItem();
     }

@@ -1,14 +1,19 @@
 // The linked rock view: every counted pair of the current cell (domain pair and model) as a point, x and y
-// chosen among perf A, perf B, |diff|, size, position and confidence, over the filtered scene list or the
-// current scene. Hover names the rock pair, a click goes to its scene with the pair selected, a drag box
-// becomes a filter of the scene list ("selection: 37 pairs in 12 scenes", cleared from the list). Its second
-// tab, the paired-rock gallery, lists the worst |diff| pairs first, A | B side by side with their boxes.
-// The points come from rock_pair_points (core/session), gathered again only when the snapshot or the scene
-// list changes; thousands of points are drawn once per screen pixel, on ImGui's draw list.
+// chosen among each side's performance, |diff|, size, position and each side's confidence, over the filtered
+// scene list or the current scene. Hover names the rock pair, a click goes to its scene with the pair
+// selected, a drag box becomes a filter of the scene list ("selection: 37 pairs in 12 scenes", cleared from
+// the list). Its second tab, the paired-rock gallery, lists the worst |diff| pairs first, left | right side
+// by side with their boxes.
+// The points are gathered off the UI thread (app/studio/studio_points.h) and binned into small cells
+// (core/session/pair_density.h) when they, the axes, the plot's size or the drag box change: a frame draws
+// the occupied cells, shaded by how many pairs each holds, never the 300,000 pairs of a 10,000-scene study.
 #pragma once
 
+#include <memory>
+#include <string>
 #include <vector>
 
+#include "core/session/pair_density.h"
 #include "core/session/rock_pair_points.h"
 #include "ui/gui/views.h"
 
@@ -23,28 +28,40 @@ struct RockViewState {
   bool has_box = false;
   int box_x = 0, box_y = 0;
   double bx0 = 0, by0 = 0, bx1 = 0, by1 = 0;
-  int gallery_sort = 0;  // 0: |diff|, 1: perf A, 2: perf B, 3: size; largest first
+  int gallery_sort = 0;  // 0: |diff|, 1: left perf, 2: right perf, 3: size; largest first
   int gallery_page = 0;
-  // What the points were gathered from (recomputed when any of it changes).
-  const Session* session = nullptr;
-  std::vector<int> scenes;
-  std::vector<RockPairPoint> points;
-  std::vector<int> gallery;          // points in the gallery's order
-  int gallery_sorted_by = -1;        // gallery_sort the order was made for
-  std::vector<unsigned char> drawn;  // one flag per plot pixel: a point already drawn there
+  int select_tab = -1;  // 0: scatter, 1: gallery, shown on the next frame (a script's `gallery`); -1: as is
+  // The points in use (from the Rock pairs job) and what was derived from them.
+  std::shared_ptr<const RockPointSet> points;
+  std::vector<int> gallery;    // points in the gallery's order
+  int gallery_sorted_by = -1;  // gallery_sort the order was made for
+  // The binned scatter and what it was binned for.
+  PairDensity density;
+  ScatterRange range;
+  const RockPointSet* binned_points = nullptr;
+  int binned_x = -1, binned_y = -1, binned_w = 0, binned_h = 0;
+  bool binned_box = false;
+  double binned_b[4] = {0, 0, 0, 0};
 };
 
-// The pairs the view shows: the scene list's scenes (ui.order, before a selection of this view narrowed it),
-// or only ui.scene. Gathered again only when
-// the snapshot, the scope or the list changed; true when it did.
-bool refresh_rock_points(const Session& s, const UiState& ui, RockViewState& st);
+// The scenes whose pairs the view shows, ascending: the scene list's scenes (ui.order, before a selection
+// of this view narrowed it), or only ui.scene.
+std::vector<int> rock_view_scenes(const UiState& ui, const RockViewState& st);
 
-// The gallery's order of st.points for sort key `sort` (see RockViewState::gallery_sort): largest first,
+// Takes `points` for the view when they belong to the session's current cell (domain pair, its order and
+// model): older points of the same cell are shown while newer ones are gathered. True when they changed.
+bool adopt_rock_points(const Session& s, const std::shared_ptr<const RockPointSet>& points, RockViewState& st);
+
+// The gallery's order of `points` for sort key `sort` (see RockViewState::gallery_sort): largest first,
 // ties in gallery_order's order (scene, then rocks).
 std::vector<int> gallery_sorted(const std::vector<RockPairPoint>& points, int sort);
 
-// The window (open while ui.show_rock_view).
-void draw_rock_view(const StudyView& v, RockViewState& st, UiState& ui, UiCommands& out);
+// An axis as the view names it: the domain's name, not A or B ("perf real", "conf synthetic", "|diff|").
+std::string pair_axis_label(PairAxis axis, const std::string& left, const std::string& right);
+
+// The window (open while ui.show_rock_view); `points`: the latest gathered (may be null or stale).
+void draw_rock_view(const StudyView& v, const std::shared_ptr<const RockPointSet>& points, bool gathering,
+                    RockViewState& st, UiState& ui, UiCommands& out);
 
 // Sets the scene list's selection filter from a drag box (nothing when it holds no pair).
 void apply_pair_selection(const Session& s, const PairSelection& sel, UiState& ui);

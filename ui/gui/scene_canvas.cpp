@@ -58,9 +58,10 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
   struct Pending {
     ImVec2 q0, q1;
     double conf;
+    size_t prediction;
   };
   std::vector<Pending> confidences;
-  std::vector<ImVec4> number_rects;  // x0, y0, x1, y1
+  std::vector<LabelRect> number_rects;
   struct Number {
     RockNumberTag tag;
     std::string text;
@@ -74,7 +75,7 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
       const bool best =
           in.gt && std::find(in.best_prediction.begin(), in.best_prediction.end(), int(k)) != in.best_prediction.end();
       dl->AddRect(q0, q1, best ? kRed : IM_COL32(235, 40, 40, 140), 0, 0, best ? 2 * thick : thick);
-      if (layers.confidences && q1.x - q0.x >= in.min_box_px_for_confidence) confidences.push_back({q0, q1, b.conf});
+      if (layers.confidences && q1.x - q0.x >= in.min_box_px_for_confidence) confidences.push_back({q0, q1, b.conf, k});
     }
   }
   if (layers.gt && in.gt) {
@@ -116,24 +117,42 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
     if (l.position == LabelPosition::kLeader)
       dl->AddLine({float(l.leader_x0), float(l.leader_y0)}, {float(l.leader_x1), float(l.leader_y1)}, numbers[i].colour,
                   thick);
-    number_rects.push_back({float(l.box.x0), float(l.box.y0), float(l.box.x1), float(l.box.y1)});
+    number_rects.push_back(l.box);
     text_with_backdrop(dl, {float(l.box.x0) + 1, float(l.box.y0)}, numbers[i].colour, numbers[i].text.c_str(), ts);
   }
-  // Below the box's left corner, else right of its bottom, else above its right end; with no free spot the
-  // label is left out rather than drawn under or over a rock number.
-  const float conf_size = 0.85f * ImGui::GetFontSize() * ts;
-  for (const Pending& p : confidences) {
-    std::snprintf(buf, sizeof buf, "%.2f", p.conf);
-    const ImVec2 ext = ImGui::GetFont()->CalcTextSizeA(conf_size, FLT_MAX, 0.0f, buf);
-    const ImVec2 spots[] = {{p.q0.x, p.q1.y + 1}, {p.q1.x + 2, p.q1.y - ext.y}, {p.q1.x - ext.x, p.q0.y - ext.y - 1}};
-    for (const ImVec2& at : spots) {
-      bool clear = true;
-      for (const ImVec4& r : number_rects)
-        if (at.x - 1 < r.z && at.x + ext.x + 1 > r.x && at.y < r.w && at.y + ext.y > r.y) clear = false;
-      if (!clear) continue;
-      text_with_backdrop(dl, at, kRed, buf, 0.85f * ts);
-      number_rects.push_back({at.x - 1, at.y, at.x + ext.x + 1, at.y + ext.y});  // confidences don't overlap either
-      break;
+  // Confidences with the same placer, after the numbers: clear of them, of other predictions' boxes and of
+  // every GT box but the one the prediction matches, so none reads as a neighbour's; left out otherwise.
+  if (!confidences.empty() && asz.x > 0 && asz.y > 0) {
+    std::stable_sort(confidences.begin(), confidences.end(),
+                     [](const Pending& x, const Pending& y) { return x.conf > y.conf; });  // the surest first
+    std::vector<LabelRect> gt_rects;
+    if (in.gt)
+      for (const Box& g : *in.gt) {
+        const ImVec2 q0 = pl.to_screen(g.x0(), g.y0()), q1 = pl.to_screen(g.x1(), g.y1());
+        gt_rects.push_back({q0.x, q0.y, q1.x, q1.y});
+      }
+    const float conf_size = 0.85f * ImGui::GetFontSize() * ts;
+    std::vector<ConfidenceTag> tags;
+    std::vector<std::string> texts;
+    for (const Pending& p : confidences) {
+      std::snprintf(buf, sizeof buf, "%.2f", p.conf);
+      texts.emplace_back(buf);
+      const ImVec2 ext = ImGui::GetFont()->CalcTextSizeA(conf_size, FLT_MAX, 0.0f, buf);
+      int matched = -1;  // the GT box of highest IoU with the prediction
+      double best_iou = 0;
+      if (in.gt)
+        for (size_t j = 0; j < in.gt->size(); ++j)
+          if (const double v = iou((*in.gt)[j], (*in.predictions)[p.prediction]); v > best_iou)
+            best_iou = v, matched = static_cast<int>(j);
+      tags.push_back({{p.q0.x, p.q0.y, p.q1.x, p.q1.y}, ext.x + 2, ext.y, matched});
+    }
+    const LabelPlacement placed_conf = place_confidences(tags, gt_rects, number_rects, {a0.x, a0.y, a1.x, a1.y});
+    for (size_t i = 0; i < tags.size(); ++i) {
+      const PlacedLabel& l = placed_conf.labels[i];
+      if (!l.shown()) continue;
+      if (l.position == LabelPosition::kLeader)
+        dl->AddLine({float(l.leader_x0), float(l.leader_y0)}, {float(l.leader_x1), float(l.leader_y1)}, kRed, thick);
+      text_with_backdrop(dl, {float(l.box.x0) + 1, float(l.box.y0)}, kRed, texts[i].c_str(), 0.85f * ts);
     }
   }
   if (!in.caption.empty())

@@ -101,6 +101,8 @@ struct UiState {
   std::string browse_dir;                      // the Open study… browser's directory
   std::vector<std::string> browse_dirs;        // its subdirectories (listed by the app when browse_dir changes)
   bool browse_is_study = false;                // browse_dir has a study.yaml or domain folders
+  char open_path[1024] = "";                   // the Open dialog's path field (typed or pasted)
+  std::string open_error;                      // why the typed path was not opened (shown under the field)
   std::vector<std::string> recent;             // recent studies, newest first
   float pictures_height = -1;                  // height of the pictures pane; -1: fit the pictures' aspect
   float browser_width = -1, stats_width = -1;  // side columns as dragged; -1: from their content
@@ -128,6 +130,7 @@ struct UiCommands {
   bool export_figures = false;  // Fig. 1 and Fig. 2 of the current view, through `ipd figure`
   bool export_dialog = false;   // File > Export figure… (the figure dialog hook)
   std::string open_study;       // File > Open study… / Recent
+  std::string open_typed_path;  // Enter in the Open dialog's path field: opened when it is a study
   bool retry_saves = false;
   std::string keep_mine, keep_theirs;  // a conflict's key: the version the user keeps
   bool quit = false;                   // confirmed (or nothing unsaved)

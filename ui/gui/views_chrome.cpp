@@ -268,7 +268,24 @@ void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out) {
   if (ui.show_open) ImGui::OpenPopup("Open study");
   ImGui::SetNextWindowSize({640, 420}, ImGuiCond_Appearing);
   if (ImGui::BeginPopupModal("Open study", &ui.show_open)) {
+    if (ImGui::IsWindowAppearing()) {
+      std::snprintf(ui.open_path, sizeof ui.open_path, "%s", ui.browse_dir.c_str());
+      ui.open_error.clear();
+      ImGui::SetKeyboardFocusHere();
+    }
+    ImGui::SetNextItemWidth(-FLT_MIN);
+    if (ImGui::InputTextWithHint("##openpath", "type or paste a study folder's path; Enter opens it", ui.open_path,
+                                 sizeof ui.open_path, ImGuiInputTextFlags_EnterReturnsTrue))
+      out.open_typed_path = ui.open_path;
+    if (!ui.open_error.empty()) {
+      ImGui::PushStyleColor(ImGuiCol_Text, ImVec4{1, 0.4f, 0.3f, 1});
+      text_wrapped_at_spaces(ui.open_error);
+      ImGui::PopStyleColor();
+    }
+    ImGui::TextDisabled("or browse:");
+    ImGui::SameLine();
     ImGui::TextWrapped("%s", ui.browse_dir.c_str());
+    const std::string browsed = ui.browse_dir;
     if (ImGui::Button("Up")) ui.browse_dir = std::filesystem::path(ui.browse_dir).parent_path().string();
     ImGui::SameLine();
     ImGui::BeginDisabled(!ui.browse_is_study);
@@ -283,6 +300,10 @@ void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out) {
       if (ImGui::Selectable((d + "/").c_str(), false, ImGuiSelectableFlags_AllowDoubleClick))
         ui.browse_dir = (std::filesystem::path(ui.browse_dir) / d).string();
     ImGui::EndChild();
+    if (ui.browse_dir != browsed) {  // the field follows the browser
+      std::snprintf(ui.open_path, sizeof ui.open_path, "%s", ui.browse_dir.c_str());
+      ui.open_error.clear();
+    }
     if (ImGui::Button("Cancel") || pressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) ui.show_open = false;
     ImGui::EndPopup();
   }

@@ -63,6 +63,12 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const Session& s = *v.session;
   if (s.scenes().empty()) return;
   const SceneState& sc = s.scenes()[ui.scene];
+  if (!sc.registered && !(v.rerun && !ui.rerun_discarded)) {
+    text_disabled_wrapped_at_spaces(
+        "registering this scene: it was opened with its hand pairs, and its registration is computed when "
+        "it is first shown");
+    return;
+  }
   const bool have_rerun = v.rerun && !ui.rerun_discarded;
   const RegistrationReport& r = have_rerun ? *v.rerun : sc.automatic.registration;
   const auto& [da, db] = s.domain_pairs()[s.pair_index()];
@@ -88,9 +94,11 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const std::string scrub_label = steps == 0   ? "raw -> aligned"
                                   : shown >= 0 ? "step " + thousands(shown + 1) + " of " + thousands(steps)
                                                : "final motion";
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(std::max(
-      80.0f, std::min(ImGui::GetContentRegionAvail().x * 0.5f, ImGui::CalcTextSize("step 5,000 of 5,000").x + 24)));
+  // Wide enough for its longest label ("step 5,000 of 5,000"): on the play button's line when that fits,
+  // else on a line of its own, never cut ("step 2,316 of 5,0").
+  const float scrub_w = ImGui::CalcTextSize(("step " + thousands(steps) + " of " + thousands(steps)).c_str()).x + 24;
+  same_line_if_fits(scrub_w);
+  ImGui::SetNextItemWidth(std::max(80.0f, std::min(ImGui::GetContentRegionAvail().x, scrub_w)));
   if (ImGui::SliderFloat("##scrub", &rp.position, 0.0f, end, scrub_label.c_str())) rp.playing = false;
   same_line_if_fits(90 + ImGui::CalcTextSize("steps/s").x + ImGui::GetStyle().ItemInnerSpacing.x);
   ImGui::SetNextItemWidth(90);
@@ -213,10 +221,12 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   // The legend stays inside the canvas (three lines), under the plot, never under the score curve.
   dl->PushClipRect(p0, {p0.x + size.x, p0.y + size.y}, true);
   const float line = ImGui::GetTextLineHeight();
-  const char* legend[] = {"blue: A moved   green: inliers", "rings: B   frame: B's picture",
-                          "bright: the sample   orange: suspect"};
+  // The domains by name, as every other panel names them (the registration maps the pair's first onto its
+  // second, whichever the view puts on the left).
+  const std::string legend[] = {"blue: " + da + " moved   green: inliers", "rings: " + db + "   frame: its picture",
+                                "bright: the sample   orange: suspect"};
   for (int k = 0; k < 3; ++k)
-    dl->AddText({p0.x + 14, p0.y + size.y - (3 - k) * line - 4}, IM_COL32(200, 200, 200, 255), legend[k]);
+    dl->AddText({p0.x + 14, p0.y + size.y - (3 - k) * line - 4}, IM_COL32(200, 200, 200, 255), legend[k].c_str());
   dl->PopClipRect();
   if (steps > 0) {
     // Best-so-far score over the steps, with the current one marked.

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <thread>
 
@@ -46,7 +47,7 @@ TEST(StudyWorker, OpensAStudyAndPublishesItsScenes) {
   const auto snap = w.snapshot();
   ASSERT_TRUE(snap) << w.open_error();
   EXPECT_EQ(snap->session->scenes().size(), 3u);
-  EXPECT_EQ(snap->summaries.size(), 3u);
+  EXPECT_EQ(snap->summaries->size(), 3u);
   EXPECT_EQ(w.open_error(), "");
 }
 
@@ -76,7 +77,10 @@ TEST(StudyWorker, AnEditIsPublishedSavedAndUndone) {
   EXPECT_GT(after->version, before->version);
   EXPECT_TRUE(after->session->excluded(Side::kA, 0, 0));
   EXPECT_FALSE(before->session->excluded(Side::kA, 0, 0)) << "a published snapshot never changes";
-  EXPECT_TRUE(after->summaries[0].edited);
+  EXPECT_TRUE((*after->summaries)[0].edited);
+  EXPECT_FALSE((*before->summaries)[0].edited) << "nor do its summaries";
+  EXPECT_GE(after->edit_ms, 0);
+  EXPECT_EQ(before->edit_ms, -1);  // made by opening, not by an edit
   EXPECT_TRUE(fs::exists(pairs_file)) << pairs_file;
 
   w.submit(command::Undo{});
@@ -89,6 +93,36 @@ TEST(StudyWorker, AnEditIsPublishedSavedAndUndone) {
   wait_done(w);
   EXPECT_TRUE(w.snapshot()->session->excluded(Side::kA, 0, 0));
   EXPECT_TRUE(fs::exists(pairs_file));
+}
+
+// After an edit only the edited scene's summary is made again: the published list equals a full one.
+TEST(StudyWorker, SummariesAfterEditsEqualThoseOfTheWholeSession) {
+  TempDir d;
+  StudyWorker w;
+  open_small_study(d, w);
+  const auto opened = w.snapshot();
+  ASSERT_TRUE(opened);
+  const SceneSummary untouched = (*opened->summaries)[1];
+  w.submit(command::ApplyEdit{1, Edit::unpair(Side::kA, 0)});
+  w.submit(command::ApplyEdit{2, Edit::toggle_exclude(Side::kA, 1)});
+  w.submit(command::Undo{});
+  wait_done(w);
+  const auto snap = w.snapshot();
+  const std::vector<SceneSummary> full = snap->session->summaries();
+  ASSERT_EQ(snap->summaries->size(), full.size());
+  for (size_t k = 0; k < full.size(); ++k) {
+    const SceneSummary& p = (*snap->summaries)[k];
+    EXPECT_EQ(p.stem, full[k].stem);
+    EXPECT_EQ(p.pairs, full[k].pairs) << k;
+    EXPECT_EQ(p.unpaired_a, full[k].unpaired_a) << k;
+    EXPECT_EQ(p.edited, full[k].edited) << k;
+    EXPECT_EQ(p.suspects, full[k].suspects) << k;
+    EXPECT_TRUE(p.ipd == full[k].ipd || (std::isnan(p.ipd) && std::isnan(full[k].ipd))) << k;
+  }
+  EXPECT_TRUE((*snap->summaries)[1].edited);
+  EXPECT_FALSE((*snap->summaries)[2].edited);  // undone
+  EXPECT_EQ((*snap->summaries)[1].pairs, untouched.pairs - 1);
+  EXPECT_EQ((*opened->summaries)[1].pairs, untouched.pairs);
 }
 
 TEST(StudyWorker, ARerunIsPublishedWithoutChangingTheSession) {

@@ -270,6 +270,25 @@ TEST(StudyCache, SessionReopensFromItWithTheSameFigures) {
   EXPECT_EQ(warm.totals().ipd(), cold.totals().ipd());
 }
 
+// A twin rendered from the same labels registers as 'identical layouts' (the last stop reason): the cache
+// holding such registrations is loaded again, not ignored and rebuilt at every open.
+TEST(StudyCache, IdenticalTwinsAreReadBackFromIt) {
+  test::TempDir d;
+  write_study(d);
+  for (int k = 0; k < 3; ++k)
+    fs::copy_file(d / fmt::format("real/labels/s{}.txt", k), d / fmt::format("synth/labels/s{}.txt", k),
+                  fs::copy_options::overwrite_existing);
+  SessionOptions o;
+  o.cache_dir = registration_cache_dir(d.path());
+  o.study_cache_path = parsed_study_cache_path(d.path());
+  const Session cold = Session::open(d.path(), o);
+  ASSERT_EQ(cold.scenes()[0].automatic.registration.stop, StopReason::kIdenticalLayouts);
+  fs::remove_all(o.cache_dir);
+  const Session warm = Session::open(d.path(), o);
+  EXPECT_EQ(warm.study_cache_stats().state, "loaded");
+  EXPECT_EQ(warm.cached_registrations(), 3);
+}
+
 TEST(StudyCache, FirstScenesAreAPrefixOfTheStudy) {
   test::TempDir d;
   write_study(d);

@@ -84,6 +84,94 @@ TEST(Session, PairUnpairUndoRedoAndSaveAreSeenByTheEngine) {
   EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
 }
 
+// 300 copies of the tiny study's scene (s001 ... s300): scenes 0 and 200 in different chunks of CowVector's 128 scenes.
+void write_300_scene_study(const test::TempDir& d) {
+  for (int k = 1; k <= 300; ++k) {
+    const std::string stem = fmt::format("s{:03d}", k);
+    test::write_text(d / ("real/labels/" + stem + ".txt"), "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+    test::write_text(d / ("synth/labels/" + stem + ".txt"), "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
+    test::write_text(d / ("real/predictions/det/" + stem + ".txt"), "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
+    test::write_text(d / ("synth/predictions/det/" + stem + ".txt"), "0 0.25 0.2 0.1 0.1 0.8\n");
+  }
+}
+
+// The studio publishes copies of its Session after every edit: an edit, undo or redo made after a copy never
+// shows in the copy, and the copy shares the scenes the edit did not touch.
+TEST(Session, ACopyIsASnapshotThatLaterEditsLeaveAlone) {
+  test::TempDir d;
+  write_300_scene_study(d);
+  Session s = Session::open(d.path());
+  ASSERT_EQ(s.scenes().size(), 300u);
+  const Session before = s;
+  // Unpair real rock 1 of s201: its (1, 0) pair goes, |1/3 - 0| with it. Each scene's sum is 1 over 2 pairs;
+  // s201's is 2/3 over 1 pair: (299 + 2/3) / 599 = 899 / 1797.
+  s.apply(200, Edit::unpair(Side::kA, 1));
+  EXPECT_NEAR(s.totals().ipd(), 899.0 / 1797, 1e-12);
+  EXPECT_EQ(s.view_pairs(200), (RockPairs{{0, 1}}));
+  EXPECT_EQ(s.audit(200).pairs.size(), 1u);
+  EXPECT_TRUE(s.summary(200).edited);
+  EXPECT_NEAR(before.totals().ipd(), 0.5, 1e-12);
+  EXPECT_EQ(before.totals().pairs, 600);
+  EXPECT_EQ(before.view_pairs(200), (RockPairs{{0, 1}, {1, 0}}));
+  EXPECT_EQ(before.audit(200).pairs.size(), 2u);
+  EXPECT_FALSE(before.summary(200).edited);
+  EXPECT_NEAR(before.summary(200).ipd, 0.5, 1e-12);
+  EXPECT_EQ(before.contributions_for("det", 0)[200].pairs, 2);
+  EXPECT_FALSE(before.can_undo());
+  EXPECT_TRUE(s.scenes().shares_element(before.scenes(), 0));     // another chunk: shared
+  EXPECT_FALSE(s.scenes().shares_element(before.scenes(), 200));  // the edited scene's chunk: copied
+
+  const Session edited = s;
+  ASSERT_TRUE(s.undo().has_value());
+  EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
+  EXPECT_EQ(edited.view_pairs(200), (RockPairs{{0, 1}}));
+  EXPECT_NEAR(edited.totals().ipd(), 899.0 / 1797, 1e-12);
+  EXPECT_TRUE(edited.can_undo());
+  EXPECT_FALSE(edited.can_redo());
+  ASSERT_TRUE(s.redo().has_value());
+  s.apply(5, Edit::toggle_exclude(Side::kA, 0));  // a new edit drops the redo history of s, not of `edited`
+  EXPECT_FALSE(s.can_redo());
+  EXPECT_TRUE(s.excluded(Side::kA, 5, 0));
+  EXPECT_FALSE(edited.excluded(Side::kA, 5, 0));
+  EXPECT_EQ(edited.contributions_for("det", 0)[5].pairs, 2);
+}
+
+// A hand-paired scene opens with its pairs file only: no registration until it is needed, and meanwhile its
+// audit says it waits for one instead of measuring residuals against a made-up affine.
+TEST(Session, AHandPairedSceneIsRegisteredOnlyWhenNeeded) {
+  test::TempDir d;
+  write_tiny_study(d);
+  test::write_text(d / "pairs/real__synth/s1.json",
+                   "{\"pairs\":[[0,1]],\"rocks_a\":[[0,0.2,0.2,0.1,0.1]],\"rocks_b\":[[1,0.2,0.2,0.1,0.1]]}\n");
+  Session s = Session::open(d.path());
+  ASSERT_EQ(s.scenes().size(), 1u);
+  EXPECT_FALSE(s.scenes()[0].registered);
+  EXPECT_TRUE(s.scenes()[0].edited);
+  EXPECT_TRUE(s.audit(0).waits_for_registration);
+  EXPECT_TRUE(s.audit(0).pairs.empty());
+  EXPECT_EQ(s.audit(0).suspects, 0);
+  EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);  // the hand pair (0, 1) counts: |1 - 1/3|
+  const Session before = s;
+  EXPECT_TRUE(s.register_scene(0, 0));
+  EXPECT_FALSE(s.register_scene(0, 0));  // once
+  EXPECT_TRUE(s.scenes()[0].registered);
+  EXPECT_EQ(s.scenes()[0].automatic.pairs, (RockPairs{{0, 1}, {1, 0}}));
+  EXPECT_FALSE(s.audit(0).waits_for_registration);
+  ASSERT_EQ(s.audit(0).pairs.size(), 1u);  // the audit of the hand pair against the found affine
+  EXPECT_NEAR(s.audit(0).pairs[0].residual_px, 0, 1e-6);
+  EXPECT_EQ(s.view_pairs(0), (RockPairs{{0, 1}}));  // still the hand pairs
+  EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
+  EXPECT_FALSE(before.scenes()[0].registered);  // a snapshot taken before keeps waiting
+
+  // Going back to automatic pairs on a scene not registered yet registers it first.
+  Session fresh = Session::open(d.path());
+  ASSERT_FALSE(fresh.scenes()[0].registered);
+  fresh.apply(0, Edit::reset());
+  EXPECT_TRUE(fresh.scenes()[0].registered);
+  EXPECT_EQ(fresh.view_pairs(0), (RockPairs{{0, 1}, {1, 0}}));
+  EXPECT_NEAR(fresh.totals().ipd(), 0.5, 1e-12);
+}
+
 TEST(Session, ExcludeAndSwappedView) {
   test::TempDir d;
   write_tiny_study(d);
