@@ -365,6 +365,36 @@ double cm_width(const std::string& s, bool bold) {
   return w;
 }
 
+std::string csv_table(const CrossTable& t, const TableFormatOptions& o) {
+  std::string out =
+      "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,"
+      "reason";
+  // Provenance: the same columns on every row (provenance_csv_fields).
+  const auto prov =
+      o.provenance ? provenance_csv_fields(*o.provenance) : std::vector<std::pair<std::string, std::string>>();
+  for (const auto& [name, value] : prov) out += "," + name;
+  out += "\n";
+  for (const auto& c : t.cells) {
+    std::vector<std::string> fields = {c.model,
+                                       c.trained_on,
+                                       c.a,
+                                       c.b,
+                                       number_or_empty(c.ipd),
+                                       std::to_string(c.pairs),
+                                       std::to_string(c.unpaired_a),
+                                       std::to_string(c.unpaired_b),
+                                       std::to_string(c.scenes),
+                                       c.involves_training_domain ? "true" : "false",
+                                       number_or_empty(c.ci_low),
+                                       number_or_empty(c.ci_high),
+                                       number_or_empty(c.se),
+                                       c.no_value_reason};
+    for (const auto& [name, value] : prov) fields.push_back(value);
+    out += csv_row(fields);
+  }
+  return out;
+}
+
 }  // namespace
 
 double latex_table_width_pt(const CrossTable& t, const TableFormatOptions& o) {
@@ -404,35 +434,8 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
   switch (format) {
     case TableFormat::kText:
       return text_table(t, o);
-    case TableFormat::kCsv: {
-      std::string out =
-          "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,"
-          "reason";
-      // Provenance: the same columns on every row (provenance_csv_fields).
-      const auto prov =
-          o.provenance ? provenance_csv_fields(*o.provenance) : std::vector<std::pair<std::string, std::string>>();
-      for (const auto& [name, value] : prov) out += "," + name;
-      out += "\n";
-      for (const auto& c : t.cells) {
-        std::vector<std::string> fields = {c.model,
-                                           c.trained_on,
-                                           c.a,
-                                           c.b,
-                                           number_or_empty(c.ipd),
-                                           std::to_string(c.pairs),
-                                           std::to_string(c.unpaired_a),
-                                           std::to_string(c.unpaired_b),
-                                           std::to_string(c.scenes),
-                                           c.involves_training_domain ? "true" : "false",
-                                           number_or_empty(c.ci_low),
-                                           number_or_empty(c.ci_high),
-                                           number_or_empty(c.se),
-                                           c.no_value_reason};
-        for (const auto& [name, value] : prov) fields.push_back(value);
-        out += csv_row(fields);
-      }
-      return out;
-    }
+    case TableFormat::kCsv:
+      return csv_table(t, o);
     case TableFormat::kJson: {
       nlohmann::json j;
       j["cells"] = nlohmann::json::array();

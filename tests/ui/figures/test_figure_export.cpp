@@ -18,7 +18,7 @@ namespace ipd {
 namespace {
 
 struct Case {
-  std::string kind, by, cli;  // cli: the `ipd figure` arguments that describe the same view
+  std::string kind, by, cli;     // cli: the `ipd figure` arguments that describe the same view
   std::string after_study = {};  // more of them after STUDY (--domains takes every word up to the next option)
 };
 
