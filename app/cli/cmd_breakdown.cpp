@@ -9,6 +9,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/study_options.h"
 #include "core/report/csv.h"
+#include "core/report/provenance.h"
 #include "core/stats/study_statistics.h"
 #include "core/util/json_output.h"
 
@@ -63,6 +64,8 @@ Runner add_breakdown_command(CLI::App& app) {
       out.push_back(breakdown_cell(loaded->labels, cell, bo));
     }
     const std::string ref_note = "bins of the first domain's rock; ";
+    // Which label files and hand edits the bins' numbers come from: a JSON object, CSV columns, a text line.
+    const Provenance provenance = table_provenance(loaded->table, loaded->labels.study);
     if (args->format == "json") {
       nlohmann::ordered_json j = {
           {"by", args->by},
@@ -83,14 +86,31 @@ Runner add_breakdown_command(CLI::App& app) {
         j["cells"].push_back(
             {{"model", c.model}, {"trained_on", c.trained_on}, {"a", c.a}, {"b", c.b}, {"bins", bins}});
       }
+      j["provenance"] = provenance_json(provenance);
       std::cout << dump_json_output(j, 2) << "\n";
     } else if (args->format == "csv") {
-      std::cout << "model,trained_on,a,b,bin,low,high,ipd,ci_low,ci_high,pairs,scenes\n";
+      const auto prov = provenance_csv_fields(provenance);
+      std::cout << "model,trained_on,a,b,bin,low,high,ipd,ci_low,ci_high,pairs,scenes";
+      for (const auto& [name, value] : prov) std::cout << "," << name;
+      std::cout << "\n";
       auto n = [](double v) { return std::isnan(v) ? std::string() : fmt::format("{:.6g}", v); };
       for (const auto& c : out)
-        for (const auto& b : c.bins)
-          std::cout << csv_row({c.model, c.trained_on, c.a, c.b, b.label, n(b.low), n(b.high), n(b.ipd.estimate),
-                                n(b.ipd.low), n(b.ipd.high), std::to_string(b.pairs), std::to_string(b.scenes)});
+        for (const auto& b : c.bins) {
+          std::vector<std::string> fields = {c.model,
+                                             c.trained_on,
+                                             c.a,
+                                             c.b,
+                                             b.label,
+                                             n(b.low),
+                                             n(b.high),
+                                             n(b.ipd.estimate),
+                                             n(b.ipd.low),
+                                             n(b.ipd.high),
+                                             std::to_string(b.pairs),
+                                             std::to_string(b.scenes)};
+          for (const auto& [name, value] : prov) fields.push_back(value);
+          std::cout << csv_row(fields);
+        }
     } else {
       const bool md = args->format == "markdown";
       for (const auto& c : out) {
@@ -105,6 +125,7 @@ Runner add_breakdown_command(CLI::App& app) {
       }
       std::cout << fmt::format("({}{:g}% scene-bootstrap intervals, {} resamples, seed {})\n", ref_note,
                                100 * bo.bootstrap.level, bo.bootstrap.resamples, bo.bootstrap.seed);
+      std::cout << provenance_note(provenance) << "\n";
     }
     return kOk;
   };

@@ -9,6 +9,7 @@
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 #include "app/cli/study_options.h"
+#include "core/report/provenance.h"
 #include "core/stats/study_statistics.h"
 #include "core/util/json_output.h"
 
@@ -19,7 +20,7 @@ nlohmann::ordered_json number(double v) {
   return std::isnan(v) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v);
 }
 
-nlohmann::ordered_json comparison_json(const RendererComparison& c) {
+nlohmann::ordered_json comparison_json(const RendererComparison& c, const Provenance& provenance) {
   const Comparison& r = c.result;
   return {{"model", c.model},
           {"ref", c.ref},
@@ -37,7 +38,8 @@ nlohmann::ordered_json comparison_json(const RendererComparison& c) {
           {"pairs_b", r.pairs_b},
           {"delta_common", number(r.delta_common)},
           {"pairs_common", r.pairs_common},
-          {"sentence", comparison_sentence(c)}};
+          {"sentence", comparison_sentence(c)},
+          {"provenance", provenance_json(provenance)}};
 }
 }  // namespace
 
@@ -108,12 +110,14 @@ Runner add_compare_command(CLI::App& app) {
       throw StudyError(fmt::format("{}: nothing to compare: {}", study.root, no_value));
     if (results.empty())
       throw StudyError(fmt::format("{}: no model has predictions for {}, {} and {}", study.root, ref, a, b));
+    // Which label files and hand edits the comparison's numbers come from.
+    const Provenance provenance = table_provenance(loaded->table, loaded->labels.study);
     if (args->json) {
       if (results.size() == 1) {
-        std::cout << dump_json_output(comparison_json(results[0]), 2) << "\n";
+        std::cout << dump_json_output(comparison_json(results[0], provenance), 2) << "\n";
       } else {
         nlohmann::ordered_json all = nlohmann::ordered_json::array();
-        for (const auto& r : results) all.push_back(comparison_json(r));
+        for (const auto& r : results) all.push_back(comparison_json(r, provenance));
         std::cout << dump_json_output(all, 2) << "\n";
       }
     } else {
@@ -136,6 +140,7 @@ Runner add_compare_command(CLI::App& app) {
             "({:g}% paired scene-bootstrap interval, {} resamples; sign-flip permutation test, "
             "{}; seed {})\n",
             100 * co.bootstrap.level, co.bootstrap.resamples, test, co.bootstrap.seed);
+      std::cout << provenance_note(provenance) << "\n";
     }
     return kOk;
   };

@@ -1,5 +1,6 @@
-// `ipd figure table|compare|distribution|breakdown STUDY --out FILE.pdf|svg|png`: the study-wide figures,
-// built on the statistics of ipd/study_statistics.h (the numbers `ipd table --ci` prints).
+// `ipd figure table|compare|distribution|breakdown|gallery STUDY --out FILE.pdf|svg|png`: the study-wide
+// figures, built on the statistics of ipd/study_statistics.h (the numbers `ipd table --ci` prints) and, for
+// the gallery, on the counted rock pairs (core/session/rock_pair_points.h).
 #include <fmt/format.h>
 
 #include "app/cli/cli_common.h"
@@ -15,8 +16,8 @@ namespace {
 struct StatsArgs {
   StudyOptions study;
   FigureOutputArgs output;
-  std::string ref, a, b, by = "size";
-  int permutations = 2000, worst = 2, bins = 4;
+  std::string ref, a, b, by = "size", sort = "diff";
+  int permutations = 2000, worst = 2, bins = 4, count = 8;
 };
 
 int run(const std::string& kind, const StatsArgs& args) {
@@ -24,7 +25,7 @@ int run(const std::string& kind, const StatsArgs& args) {
   if (const int rc = figure_options(args.output, &o)) return rc;
   o.ci = args.study.ci_given;
   o.by = args.by;
-  auto loaded = load_study_table(args.study, true);
+  auto loaded = load_study_table(args.study, kind != "gallery");  // the gallery shows no intervals
   if (!loaded) return kBadInput;
   ui::StudyFigureRequest r;
   r.kind = kind;
@@ -37,6 +38,16 @@ int run(const std::string& kind, const StatsArgs& args) {
   r.permutations = args.permutations;
   r.worst = args.worst;
   r.bins = args.bins;
+  r.count = args.count;
+  parse_gallery_sort(args.sort, &r.gallery_sort);
+  if (kind == "gallery" && !args.study.domains.empty()) {
+    if (args.study.domains.size() != 2) {
+      fmt::print(stderr, "error: --domains: a gallery shows one domain pair, got {} domains\n",
+                 args.study.domains.size());
+      return kUsage;
+    }
+    r.a = args.study.domains[0], r.b = args.study.domains[1];
+  }
   const ui::FontMetrics metrics(o.font_file);
   ui::DisplayList fig(metrics);
   const std::string title = ui::draw_study_figure(fig, loaded->table, loaded->labels, r, o);
@@ -72,6 +83,15 @@ Runner add_figure_stats_commands(CLI::App* fig, std::shared_ptr<std::string> whi
   br->add_option("--bins", args->bins, "Quantile bins for size and confidence")->check(CLI::Range(1, 20));
   br->add_option("--a", args->a, "Reference domain (default: the first)");
   br->add_option("--b", args->b, "Other domain (default: the second)");
+  CLI::App* gallery = fig->add_subcommand(
+      "gallery",
+      "Crops of the rock pairs with the largest |perf A - perf B|, A | B side by side (GT and best prediction)");
+  add_study_options(gallery, &args->study, false);
+  add_figure_output_options(gallery, &args->output);
+  gallery->callback([which] { *which = "gallery"; });
+  gallery->add_option("--count", args->count, "How many pairs (default 8)")->check(CLI::Range(1, 200));
+  gallery->add_option("--sort", args->sort, "diff, size, perf-a or perf-b (largest first; default diff)")
+      ->check(CLI::IsMember({"diff", "size", "perf-a", "perf-b"}));
   return [args, which]() -> int { return run(*which, *args); };
 }
 

@@ -6,6 +6,7 @@
 #include <backends/imgui_impl_opengl2.h>
 
 #include "core/picture/picture_codec.h"
+#include "ui/canvas/png_text.h"
 #include "ui/gui/canvas_imgui.h"
 
 #include <cmath>
@@ -159,7 +160,8 @@ std::string render_png(const ui::DisplayList& fig, const ui::FontMetrics& metric
   });
   std::vector<uchar> png;
   if (!encode_picture(".png", bgr, &png)) throw std::runtime_error("PNG encoding failed");
-  return std::string(png.begin(), png.end());
+  const std::string bytes(png.begin(), png.end());
+  return fig.description.empty() ? bytes : ui::png_with_text(bytes, "Description", fig.description);
 }
 
 }  // namespace ipd::figure

@@ -118,11 +118,12 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
       fail("'rerun': expected " + method_choices() + ", got '" + a.args[0] + "'");
     static const std::vector<std::string> kinds = {"pairs",          "registration",     "table",
                                                    "compare",        "distribution",     "breakdown",
-                                                   "breakdown-size", "breakdown-region", "breakdown-confidence"};
+                                                   "breakdown-size", "breakdown-region", "breakdown-confidence",
+                                                   "gallery"};
     if (export_with_kind && std::find(kinds.begin(), kinds.end(), a.args[0]) == kinds.end())
       fail(
           "'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
-          "breakdown-size, breakdown-region or breakdown-confidence), got '" +
+          "breakdown-size, breakdown-region, breakdown-confidence or gallery), got '" +
           a.args[0] + "'");
     out.push_back(std::move(a));
   }

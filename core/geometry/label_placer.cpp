@@ -88,14 +88,18 @@ LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const Lab
   // An exclusive label's spot must keep clear of the other exclusive targets (and its leader cross none).
   // Nor does it cover another target that is not on its own (a label over another rock reads as that
   // rock's; over the GT box its own prediction overlaps, it still names the same rock).
-  auto unambiguous = [&](const LabelRect& box, size_t self) {
+  // LabelRequest::nearest_own: beside its target, clearly nearer it than any other of its group.
+  auto unambiguous = [&](const LabelRect& box, size_t self, bool leader) {
     if (!requests[self].exclusive) return true;
     const LabelRect& own = requests[self].target;
+    const double clearance = leader || !requests[self].nearest_own
+                                 ? o.exclusive_clearance
+                                 : distance(box, own) + std::max(o.exclusive_clearance, 0.5 * requests[self].height);
     for (size_t k = 0; k < requests.size(); ++k) {
       if (k == self) continue;
       const LabelRect& other = requests[k].target;
       if (requests[k].exclusive && requests[k].group == requests[self].group
-              ? distance(box, other) < o.exclusive_clearance
+              ? distance(box, other) < clearance
               : overlaps(box, other) && !overlaps(other, own))
         return false;
     }
@@ -143,7 +147,7 @@ LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const Lab
     int best = -1;
     double best_cover = INFINITY;
     for (size_t c = 0; c < cands.size() && best_cover > 0; ++c) {
-      if (!free(cands[c].box) || !unambiguous(cands[c].box, i)) continue;
+      if (!free(cands[c].box) || !unambiguous(cands[c].box, i, false)) continue;
       const double cover = covers(cands[c].box, i);
       if (cover < best_cover) best_cover = cover, best = int(c);
     }
@@ -167,7 +171,7 @@ LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const Lab
         const double bx = ux > 1e-9 ? ax : ux < -1e-9 ? ax - w : ax - w / 2;
         const double by = uy > 1e-9 ? ay : uy < -1e-9 ? ay - h : ay - h / 2;
         const LabelRect box = at(bx, by, w, h);
-        if (!free(box) || overlaps(box, t) || !unambiguous(box, i)) continue;
+        if (!free(box) || overlaps(box, t) || !unambiguous(box, i, true)) continue;
         double lx0, ly0, lx1, ly1;
         nearest(box, cx, cy, lx1, ly1);
         nearest(t, lx1, ly1, lx0, ly0);

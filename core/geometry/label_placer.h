@@ -31,6 +31,11 @@ struct LabelRequest {
   // its prediction matches; a registration number and every other marker).
   std::vector<LabelRect> keep_off = {};
   double keep_off_clearance = 0;
+  // An exclusive label attached by nearness alone (beside its target, no leader) must also lie nearer its
+  // own target than any other exclusive target of its group by max(exclusive_clearance, half its height):
+  // a "15" a gap above box 15 and 2 pt below box 1 reads as either's (the pairs figure's rock numbers). A
+  // leader draws the attachment, so a leader spot keeps the plain clearance.
+  bool nearest_own = false;
 };
 
 enum class LabelPosition {

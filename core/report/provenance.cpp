@@ -70,12 +70,60 @@ Provenance table_provenance(const CrossTable& table, const Study& study) {
   return p;
 }
 
+Provenance session_provenance(const Session& session) {
+  Provenance p;
+  const auto& pairs = session.domain_pairs();
+  for (size_t c = 0; c < pairs.size(); ++c)
+    for (const SceneState& s : session.scenes_of(static_cast<int>(c))) {
+      if (!s.edited) continue;
+      ++p.scenes_with_hand_pairs;
+      p.pairs_set_by_hand += static_cast<int>(s.current.pairs.size());
+      p.rocks_excluded += static_cast<int>(s.current.excluded_a.size() + s.current.excluded_b.size());
+      p.edited_scenes.push_back({pairs[c].first, pairs[c].second, s.stem});
+    }
+  p.label_fingerprint = label_set_fingerprint(session.study());
+  return p;
+}
+
 std::string provenance_note(const Provenance& p) {
   if (p.scenes_with_hand_pairs == 0)
     return fmt::format("Label files {}; no hand pairs (every pair from registration).", p.label_fingerprint);
   return fmt::format("Label files {}; hand pairs in {} ({} set by hand, {} excluded).", p.label_fingerprint,
                      plural(p.scenes_with_hand_pairs, "scene", "scenes"), plural(p.pairs_set_by_hand, "pair", "pairs"),
                      plural(p.rocks_excluded, "rock", "rocks"));
+}
+
+nlohmann::ordered_json provenance_json(const Provenance& p) {
+  nlohmann::ordered_json edited = nlohmann::ordered_json::array();
+  for (const EditedScene& e : p.edited_scenes) edited.push_back({{"a", e.a}, {"b", e.b}, {"stem", e.stem}});
+  return {{"label_fingerprint", p.label_fingerprint},
+          {"scenes_with_hand_pairs", p.scenes_with_hand_pairs},
+          {"pairs_set_by_hand", p.pairs_set_by_hand},
+          {"rocks_excluded", p.rocks_excluded},
+          {"edited_scenes", edited}};
+}
+
+std::vector<std::pair<std::string, std::string>> provenance_csv_fields(const Provenance& p) {
+  std::vector<std::pair<std::string, std::string>> out;
+  const nlohmann::ordered_json json = provenance_json(p);  // items() refers to it: not a temporary
+  for (const auto& [key, value] : json.items()) {
+    if (value.is_structured()) continue;  // lists (the edited scenes) stay in the JSON and --verbose
+    out.emplace_back(key, value.is_string() ? value.get<std::string>() : value.dump());
+  }
+  return out;
+}
+
+bool provenance_edited(const Provenance& p) { return p.scenes_with_hand_pairs > 0 || p.rocks_excluded > 0; }
+
+Provenance scene_provenance(bool fixed, int pairs, int rocks_excluded, std::string label_fingerprint) {
+  Provenance p;
+  if (fixed) {
+    p.scenes_with_hand_pairs = 1;
+    p.pairs_set_by_hand = pairs;
+  }
+  p.rocks_excluded = rocks_excluded;
+  p.label_fingerprint = std::move(label_fingerprint);
+  return p;
 }
 
 }  // namespace ipd

@@ -3,10 +3,13 @@
 // numbers were computed from (two tables with the same fingerprint came from the same GT label files).
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/ipd/ipd.h"
+#include "core/session/session.h"
 
 namespace ipd {
 
@@ -33,9 +36,31 @@ std::string label_set_fingerprint(const Study& study);
 
 // The hand-pair counts of `table` and the fingerprint of `study`'s labels.
 Provenance table_provenance(const CrossTable& table, const Study& study);
+// The same for ipd-studio's session over every domain pair: its edited scenes (edits not yet saved
+// included), as `ipd table` would count them once they are saved.
+Provenance session_provenance(const Session& session);
 
-// The text footnote: "Labels 1a2b3c4d5e6f; hand pairs in 2 scenes (5 pairs set by hand, 1 rock excluded)."
-// or "Labels 1a2b3c4d5e6f; no hand pairs (every pair from registration)."
+// Every output renders provenance through the two functions below, so a field added to Provenance shows
+// in all of them (tables, compare, breakdown, the rock export, every figure kind and its metadata).
+
+// The text footnote: "Label files 1a2b3c4d5e6f; hand pairs in 2 scenes (5 pairs set by hand, 1 rock
+// excluded)." or "Label files 1a2b3c4d5e6f; no hand pairs (every pair from registration)."
 std::string provenance_note(const Provenance& p);
+
+// The machine-readable form, keys in a fixed order: label_fingerprint, scenes_with_hand_pairs,
+// pairs_set_by_hand, rocks_excluded, edited_scenes (an array of {a, b, stem}).
+nlohmann::ordered_json provenance_json(const Provenance& p);
+
+// The scalar members of provenance_json as CSV columns (name, value), in the same order: repeated on every
+// row, so any CSV reader keeps them without options (comment rows need pandas' comment='#' and break R's
+// read.csv on a '#' inside a name).
+std::vector<std::pair<std::string, std::string>> provenance_csv_fields(const Provenance& p);
+
+// Whether any number may differ from the automatic result: a pair set by hand or a rock left out. Figures
+// print the note in the figure only then (the fingerprint always goes into their metadata).
+bool provenance_edited(const Provenance& p);
+
+// The provenance of one scene's pairs (the scene figures): one scene with hand pairs when `fixed`.
+Provenance scene_provenance(bool fixed, int pairs, int rocks_excluded, std::string label_fingerprint);
 
 }  // namespace ipd

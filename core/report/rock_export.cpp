@@ -1,6 +1,7 @@
 #include "core/report/rock_export.h"
 
 #include <fmt/format.h>
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -53,10 +54,14 @@ std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& tabl
       if (!options.unpaired) continue;
       const PerformanceValues pa = performance_values(ga, labels.predictions_of(cell.a, cell.model, sc.stem).boxes);
       const PerformanceValues pb = performance_values(gb, labels.predictions_of(cell.b, cell.model, sc.stem).boxes);
+      const auto listed = [](const std::vector<int>& v, size_t i) {
+        return std::find(v.begin(), v.end(), static_cast<int>(i)) != v.end();
+      };
       for (size_t i = 0; i < ga.size(); ++i) {
         if (paired_a[i]) continue;
         RockRow r = base;
         r.index_a = static_cast<int>(i);
+        r.excluded = listed(pairing.excluded_a, i);
         r.perf_a = pa.value[i];
         r.box_a = ga[i];
         rows.push_back(std::move(r));
@@ -65,6 +70,7 @@ std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& tabl
         if (paired_b[j]) continue;
         RockRow r = base;
         r.index_b = static_cast<int>(j);
+        r.excluded = listed(pairing.excluded_b, j);
         r.perf_b = pb.value[j];
         r.box_b = gb[j];
         rows.push_back(std::move(r));
@@ -77,30 +83,41 @@ std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& tabl
 namespace {
 const char* const kColumns[] = {"model",  "trained_on", "a",    "b",    "scene",       "index_a", "index_b",
                                 "perf_a", "perf_b",     "diff", "cx_a", "cy_a",        "w_a",     "h_a",
-                                "cx_b",   "cy_b",       "w_b",  "h_b",  "residual_px", "source"};
+                                "cx_b",   "cy_b",       "w_b",  "h_b",  "residual_px", "source",  "excluded"};
 
 std::string num(double v) { return std::isnan(v) ? std::string() : fmt::format("{:.12g}", v); }
 std::string field(const std::string& s) { return csv_field(s); }
 }  // namespace
 
-std::string rock_rows_csv(const std::vector<RockRow>& rows) {
-  std::string out;
+std::string rock_rows_csv(const std::vector<RockRow>& rows, const Provenance* provenance) {
+  std::string out, tail;  // tail: the provenance values every row ends with
   for (const char* c : kColumns) out += std::string(out.empty() ? "" : ",") + c;
+  if (provenance)
+    for (const auto& [name, value] : provenance_csv_fields(*provenance)) {
+      out += "," + name;
+      tail += "," + field(value);
+    }
   out += "\n";
   for (const auto& r : rows) {
     const bool a = r.index_a >= 0, b = r.index_b >= 0;
     auto box = [&](bool has, const Box& x) {
       return has ? fmt::format("{},{},{},{}", num(x.cx), num(x.cy), num(x.w), num(x.h)) : std::string(",,,");
     };
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", field(r.model), field(r.trained_on), field(r.a),
-                       field(r.b), field(r.scene), a ? std::to_string(r.index_a) : "",
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}{}\n", field(r.model), field(r.trained_on),
+                       field(r.a), field(r.b), field(r.scene), a ? std::to_string(r.index_a) : "",
                        b ? std::to_string(r.index_b) : "", num(r.perf_a), num(r.perf_b), num(r.diff), box(a, r.box_a),
-                       box(b, r.box_b), num(r.residual_px), r.source);
+                       box(b, r.box_b), num(r.residual_px), r.source, r.excluded ? "true" : "false", tail);
   }
   return out;
 }
 
-std::string rock_rows_json(const std::vector<RockRow>& rows) {
+std::string rock_rows_json(const std::vector<RockRow>& rows, const Provenance* provenance) {
+  nlohmann::ordered_json prov = nlohmann::ordered_json::object();
+  if (provenance) {
+    const nlohmann::ordered_json all = provenance_json(*provenance);  // items() refers to it
+    for (const auto& [key, value] : all.items())
+      if (!value.is_structured()) prov[key] = value;
+  }
   auto n = [](double v) { return std::isnan(v) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v); };
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   for (const auto& r : rows) {
@@ -125,7 +142,9 @@ std::string rock_rows_json(const std::vector<RockRow>& rows) {
                    {"w_b", n(b ? r.box_b.w : nan)},
                    {"h_b", n(b ? r.box_b.h : nan)},
                    {"residual_px", n(r.residual_px)},
-                   {"source", r.source}});
+                   {"source", r.source},
+                   {"excluded", r.excluded}});
+    out.back().update(prov);
   }
   return dump_json_output(out, 1) + "\n";
 }

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/ipd/ipd.h"
+#include "core/report/provenance.h"
 
 namespace ipd {
 
@@ -18,7 +19,8 @@ struct RockRow {
   double diff = std::numeric_limits<double>::quiet_NaN();         // |perf_a - perf_b|, NaN on unpaired rows
   Box box_a, box_b;                                               // normalised centre and size, as in the label files
   double residual_px = std::numeric_limits<double>::quiet_NaN();  // |affine(centre a) - centre b| in B's pixels
-  std::string source;  // "auto" (registration) or "hand" (pairs/<A>__<B>/<stem>.json)
+  std::string source;     // "auto" (registration) or "hand" (pairs/<A>__<B>/<stem>.json)
+  bool excluded = false;  // an unpaired row's rock left out of the IPD on purpose (its pairs file says so)
 };
 
 struct RockExportOptions {
@@ -31,7 +33,11 @@ struct RockExportOptions {
 // hand pairs (needs 3); they are NaN when the picture size is unknown.
 std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& table, const RockExportOptions& options);
 
-std::string rock_rows_csv(const std::vector<RockRow>& rows);   // header + one line per row; NaN -> empty
-std::string rock_rows_json(const std::vector<RockRow>& rows);  // an array of records; NaN -> null
+// Header + one line per row; NaN -> empty. With `provenance`, its columns (provenance_csv_fields) end
+// every row, so a reader of the rows alone can tell which label files and hand edits they come from.
+std::string rock_rows_csv(const std::vector<RockRow>& rows, const Provenance* provenance = nullptr);
+// An array of records (what pandas.read_json reads); NaN -> null; with `provenance`, its scalar fields in
+// every record, as in the CSV.
+std::string rock_rows_json(const std::vector<RockRow>& rows, const Provenance* provenance = nullptr);
 
 }  // namespace ipd

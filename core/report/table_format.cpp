@@ -19,6 +19,22 @@ std::string no_interval_reason(const TableCell& cell) {
   return fmt::format("{} scene{}: no interval", scenes, scenes == 1 ? "" : "s");
 }
 
+std::string footnote_mark(int k) {
+  static const char* const kDigits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  const std::string digits = std::to_string(k);
+  std::string out;
+  for (char ch : digits) out += kDigits[ch - '0'];
+  return out;
+}
+
+std::string no_value_mark(int k) { return "–" + footnote_mark(k); }
+
+int footnote_number(std::vector<std::string>* reasons, const std::string& reason) {
+  auto it = std::find(reasons->begin(), reasons->end(), reason);
+  if (it == reasons->end()) it = reasons->insert(reasons->end(), reason);
+  return static_cast<int>(it - reasons->begin()) + 1;
+}
+
 bool parse_table_format(const std::string& name, TableFormat* out) {
   static const std::pair<const char*, TableFormat> kNames[] = {{"text", TableFormat::kText},
                                                                {"csv", TableFormat::kCsv},
@@ -63,24 +79,15 @@ int footnote_of(const std::vector<std::string>& notes, const TableCell& c) {
   return static_cast<int>(std::find(notes.begin(), notes.end(), c.no_value_reason) - notes.begin()) + 1;
 }
 
-// "¹", "²", ... "¹⁰": a footnote mark in text and Markdown.
-std::string superscript(int n) {
-  static const char* const kDigits[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
-  const std::string digits = std::to_string(n);
-  std::string out;
-  for (char ch : digits) out += kDigits[ch - '0'];
-  return out;
-}
-
 // The text of a cell: a number, or "–" with the mark of its footnote when it is not one for a reason.
 std::string marked_cell_text(const TableCell& c, const char* dash, const std::vector<std::string>& notes) {
   const int k = footnote_of(notes, c);
-  return k > 0 ? dash + superscript(k) : cell_text(c, dash);
+  return k > 0 ? no_value_mark(k) : cell_text(c, dash);
 }
 
 std::string footnote_lines(const std::vector<std::string>& notes) {
   std::string out;
-  for (size_t k = 0; k < notes.size(); ++k) out += superscript(static_cast<int>(k) + 1) + " " + notes[k] + "\n";
+  for (size_t k = 0; k < notes.size(); ++k) out += footnote_mark(static_cast<int>(k) + 1) + " " + notes[k] + "\n";
   return out;
 }
 
@@ -170,16 +177,6 @@ std::string text_table(const CrossTable& t, const TableFormatOptions& o) {
   }
   if (any_ci(t)) out += ci_caption(o) + "\n";
   return out + footnote_lines(notes);
-}
-
-nlohmann::json provenance_json(const Provenance& p) {
-  nlohmann::json edited = nlohmann::json::array();
-  for (const EditedScene& e : p.edited_scenes) edited.push_back({{"a", e.a}, {"b", e.b}, {"stem", e.stem}});
-  return {{"label_fingerprint", p.label_fingerprint},
-          {"scenes_with_hand_pairs", p.scenes_with_hand_pairs},
-          {"pairs_set_by_hand", p.pairs_set_by_hand},
-          {"rocks_excluded", p.rocks_excluded},
-          {"edited_scenes", edited}};
 }
 
 nlohmann::json distribution_json(const TableCell& c) {
@@ -368,6 +365,36 @@ double cm_width(const std::string& s, bool bold) {
   return w;
 }
 
+std::string csv_table(const CrossTable& t, const TableFormatOptions& o) {
+  std::string out =
+      "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,"
+      "reason";
+  // Provenance: the same columns on every row (provenance_csv_fields).
+  const auto prov =
+      o.provenance ? provenance_csv_fields(*o.provenance) : std::vector<std::pair<std::string, std::string>>();
+  for (const auto& [name, value] : prov) out += "," + name;
+  out += "\n";
+  for (const auto& c : t.cells) {
+    std::vector<std::string> fields = {c.model,
+                                       c.trained_on,
+                                       c.a,
+                                       c.b,
+                                       number_or_empty(c.ipd),
+                                       std::to_string(c.pairs),
+                                       std::to_string(c.unpaired_a),
+                                       std::to_string(c.unpaired_b),
+                                       std::to_string(c.scenes),
+                                       c.involves_training_domain ? "true" : "false",
+                                       number_or_empty(c.ci_low),
+                                       number_or_empty(c.ci_high),
+                                       number_or_empty(c.se),
+                                       c.no_value_reason};
+    for (const auto& [name, value] : prov) fields.push_back(value);
+    out += csv_row(fields);
+  }
+  return out;
+}
+
 }  // namespace
 
 double latex_table_width_pt(const CrossTable& t, const TableFormatOptions& o) {
@@ -407,17 +434,8 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
   switch (format) {
     case TableFormat::kText:
       return text_table(t, o);
-    case TableFormat::kCsv: {
-      std::string out =
-          "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,"
-          "reason\n";
-      for (const auto& c : t.cells)
-        out += csv_row({c.model, c.trained_on, c.a, c.b, number_or_empty(c.ipd), std::to_string(c.pairs),
-                        std::to_string(c.unpaired_a), std::to_string(c.unpaired_b), std::to_string(c.scenes),
-                        c.involves_training_domain ? "true" : "false", number_or_empty(c.ci_low),
-                        number_or_empty(c.ci_high), number_or_empty(c.se), c.no_value_reason});
-      return out;
-    }
+    case TableFormat::kCsv:
+      return csv_table(t, o);
     case TableFormat::kJson: {
       nlohmann::json j;
       j["cells"] = nlohmann::json::array();
@@ -471,10 +489,15 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
       if (any_ci(t)) out += " " + ci_caption(o) + ".";
       out += "\n";
       if (!notes.empty()) out += "\n" + footnote_lines(notes);
+      if (o.provenance) out += "\n" + provenance_note(*o.provenance) + "\n";
       return out;
     }
-    case TableFormat::kLatex:
-      return o.latex_wide ? latex_table(t, o) : latex_compact_table(t, o);
+    case TableFormat::kLatex: {
+      std::string out = o.latex_wide ? latex_table(t, o) : latex_compact_table(t, o);
+      // A footnote line under the table: it wraps to the column like the legend.
+      if (o.provenance) out += "\\par{\\footnotesize " + latex_escape(provenance_note(*o.provenance)) + "\\par}\n";
+      return out;
+    }
   }
   return {};
 }

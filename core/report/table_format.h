@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/ipd/ipd.h"
 #include "core/report/provenance.h"
@@ -25,7 +26,9 @@ struct TableFormatOptions {
   double level = 0.95;
   unsigned long long seed = 0;
   double conf_threshold = 0;  // the prediction threshold the table was computed with (JSON)
-  // JSON: a "provenance" object (hand-pair counts, edited scenes, label fingerprint) when set.
+  // When set, the table says where its numbers come from (hand-pair counts, label fingerprint): JSON a
+  // "provenance" object, CSV the same columns on every row, Markdown and LaTeX a footnote line under the
+  // table (the text table's caller prints it with its other notes).
   const Provenance* provenance = nullptr;
 };
 
@@ -34,6 +37,16 @@ struct TableFormatOptions {
 std::string no_interval_reason(const TableCell& cell);
 
 bool parse_table_format(const std::string& name, TableFormat* out);
+
+// A footnote's mark, k from 1: "¹", "²", ... "¹⁰".
+std::string footnote_mark(int k);
+// The one mark of a shown cell that is not a number, with its footnote's number: "–¹". The text and
+// Markdown tables, the table figure and ipd-studio's table all mark such cells with it and say why in
+// footnote k (LaTeX spells the same mark "--$^{k}$").
+std::string no_value_mark(int k);
+// The footnote number (from 1) of `reason` among the distinct reasons met so far in cell order, adding it
+// when new: the numbering every table of cells uses.
+int footnote_number(std::vector<std::string>* reasons, const std::string& reason);
 
 // One IEEE column at 10 pt type, and both columns (table*), in points.
 constexpr double kIeeeColumnPt = 252, kIeeeTextWidthPt = 516;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -127,6 +128,75 @@ bool parse_gallery_sort(const std::string& word, int* sort) {
   for (int k = 0; k < 4; ++k)
     if (word == kWords[k]) return *sort = k, true;
   return false;
+}
+
+bool parse_gallery_sort(const std::string& word, GallerySort* sort) {
+  static const std::pair<const char*, GallerySort> kWords[] = {{"diff", GallerySort::kDiff},
+                                                               {"perf-a", GallerySort::kPerfA},
+                                                               {"perf-b", GallerySort::kPerfB},
+                                                               {"size", GallerySort::kSize}};
+  for (const auto& [w, s] : kWords)
+    if (word == w) {
+      *sort = s;
+      return true;
+    }
+  return false;
+}
+
+const char* gallery_sort_name(GallerySort sort) {
+  switch (sort) {
+    case GallerySort::kDiff:
+      return "|diff|";
+    case GallerySort::kPerfA:
+      return "perf A";
+    case GallerySort::kPerfB:
+      return "perf B";
+    case GallerySort::kSize:
+      return "size";
+  }
+  return "";
+}
+
+std::vector<int> gallery_sorted(const std::vector<RockPairPoint>& points, GallerySort sort) {
+  std::vector<int> order = gallery_order(points);
+  if (sort == GallerySort::kDiff) return order;
+  const PairAxis key = sort == GallerySort::kPerfA   ? PairAxis::kPerfA
+                       : sort == GallerySort::kPerfB ? PairAxis::kPerfB
+                                                     : PairAxis::kSize;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int i, int j) { return axis_value(points[i], key) > axis_value(points[j], key); });
+  return order;
+}
+
+std::vector<RockPairPoint> cell_pair_points(const StudyLabels& labels, const TableCell& cell) {
+  std::vector<RockPairPoint> out;
+  if (cell.missing_predictions) return out;
+  const auto [width, height] = domain_image_size(labels.study, cell.a);
+  const double pixel_area = width > 0 ? static_cast<double>(width) * height : 1e6;
+  for (size_t s = 0; s < cell.per_scene.size(); ++s) {
+    const SceneIpd& sc = cell.per_scene[s];
+    const auto& gt_a = labels.gt_of(cell.a, sc.stem).boxes;
+    const auto& gt_b = labels.gt_of(cell.b, sc.stem).boxes;
+    const auto& pred_a = labels.predictions_of(cell.a, cell.model, sc.stem).boxes;
+    const auto& pred_b = labels.predictions_of(cell.b, cell.model, sc.stem).boxes;
+    const PerformanceValues perf_a = performance_values(gt_a, pred_a), perf_b = performance_values(gt_b, pred_b);
+    for (size_t k = 0; k < sc.counted.size(); ++k) {
+      RockPairPoint p;
+      p.scene = static_cast<int>(s);
+      std::tie(p.rock_a, p.rock_b) = sc.counted[k];
+      p.perf_a = sc.perf_a[k];
+      p.perf_b = sc.perf_b[k];
+      p.abs_diff = std::abs(p.perf_a - p.perf_b);
+      const Box& box = gt_a[p.rock_a];
+      p.size = box.area() * pixel_area;
+      p.x = box.cx;
+      p.y = box.cy;
+      p.conf_a = best_confidence(perf_a, pred_a, p.rock_a);
+      p.conf_b = best_confidence(perf_b, pred_b, p.rock_b);
+      out.push_back(p);
+    }
+  }
+  return out;
 }
 
 std::vector<int> gallery_order(const std::vector<RockPairPoint>& points) {

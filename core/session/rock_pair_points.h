@@ -54,6 +54,18 @@ std::vector<int> gallery_order(const std::vector<RockPairPoint>& points);
 bool parse_gallery_sort(const std::string& word, int* sort);
 inline constexpr const char* kGallerySortWords = "diff, perf-left, perf-right or size";
 
+// The gallery's sort keys, each largest first; ties keep gallery_order (so |diff| breaks no ties).
+enum class GallerySort { kDiff, kPerfA, kPerfB, kSize };
+// "diff", "perf-a", "perf-b", "size" (`ipd figure gallery --sort`).
+bool parse_gallery_sort(const std::string& word, GallerySort* sort);
+const char* gallery_sort_name(GallerySort sort);  // "|diff|", "perf A", "perf B", "size"
+std::vector<int> gallery_sorted(const std::vector<RockPairPoint>& points, GallerySort sort);
+
+// The counted pairs of one cross-table cell, in the cell's orientation (A left), for a gallery without a
+// Session (`ipd figure gallery`): `scene` is the index into cell.per_scene, the size and confidences follow
+// rock_pair_points' rules. `labels` must be the ones the table was computed from (threshold applied).
+std::vector<RockPairPoint> cell_pair_points(const StudyLabels& labels, const TableCell& cell);
+
 // A drag-box selection on a scatter of (x_axis, y_axis): the points inside the box (corners in either order,
 // edges included; a NaN value is never inside) and the scenes they are in.
 struct PairSelection {

@@ -167,6 +167,8 @@ class Session {
 
   // Scenes of the current domain pair, in stem order.
   const CowVector<SceneState>& scenes() const { return scenes_[pair_]; }
+  // Scenes of any domain pair (index into domain_pairs()), in stem order.
+  const CowVector<SceneState>& scenes_of(int pair_index) const { return scenes_.at(pair_index); }
   int scene_index(const std::string& stem) const;
   SceneSummary summary(int scene) const;
   std::vector<SceneSummary> summaries() const;  // every scene of the current domain pair

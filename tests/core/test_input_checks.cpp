@@ -208,10 +208,13 @@ TEST(InputChecks, TableCsvQuotesNamesWithCommas) {
   test::write_text(d / "study.yaml", "models: {'det,v2': {trained_on: real}}\n");
   const auto r = test::run_ipd("table --format csv --bootstrap 0 " + d.path());
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(
-      r.out,
-      "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,reason\n"
-      "\"det,v2\",real,real,synth,0.500000,2,0,0,1,true,,,,\n");
+  const size_t nl = r.out.find('\n');
+  EXPECT_EQ(r.out.substr(0, nl),
+            "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,"
+            "reason,label_fingerprint,scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded");
+  const std::string row = r.out.substr(nl + 1);  // the provenance columns end it: fingerprint, no hand edits
+  EXPECT_EQ(row.substr(0, 51), "\"det,v2\",real,real,synth,0.500000,2,0,0,1,true,,,,,") << row;
+  EXPECT_EQ(row.substr(row.size() - 7), ",0,0,0\n") << row;
   const auto b = test::run_ipd("breakdown --format csv --bootstrap 0 --by region " + d.path());
   ASSERT_EQ(b.exit_code, 0) << b.err;
   EXPECT_NE(b.out.find("\n\"det,v2\",real,real,synth,"), std::string::npos) << b.out;

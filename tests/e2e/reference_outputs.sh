@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # reference_outputs.sh BUILD OUT: every output a behaviour-preserving change must leave byte-identical --
-# ipd table (text, json, latex --ci, csv --no-cache), ipd compare, ipd export rocks and the six ipd figure
+# ipd table (text, json, latex --ci, csv --no-cache), ipd compare, ipd export rocks and the seven ipd figure
 # kinds as svg/pdf/png -- on the built-in demo and on a 1,000-scene labels-only study. Compare two builds with
 #   tests/e2e/reference_outputs.sh build-before /tmp/a && tests/e2e/reference_outputs.sh build /tmp/b && diff -r /tmp/a /tmp/b
 set -u
@@ -18,7 +18,7 @@ for S in demo big; do
   $B table "$st" --no-cache --format csv > "$O/$S.table.csv" 2>&1
   $B compare "$st" > "$O/$S.compare.txt" 2>&1; echo "rc $?" >> "$O/$S.compare.txt"
   $B export rocks "$st" --out "$O/$S.rocks.csv" > "$O/$S.export.log" 2>&1
-  for f in pairs registration table compare distribution breakdown; do
+  for f in pairs registration table compare distribution breakdown gallery; do
     for ext in svg pdf png; do
       $B figure $f "$st" --out "$O/$S.fig-$f.$ext" > "$O/$S.fig-$f.$ext.log" 2>&1; echo "rc $?" >> "$O/$S.fig-$f.$ext.log"
     done

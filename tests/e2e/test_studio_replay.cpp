@@ -92,7 +92,7 @@ TEST(StudioReplay, BadActionsNameTheFileAndLine) {
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" +
                 ":1: 'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
-                "breakdown-size, breakdown-region or breakdown-confidence), got 'histogram'\n");
+                "breakdown-size, breakdown-region, breakdown-confidence or gallery), got 'histogram'\n");
   // A number is the whole word: "5\0" (a zero-filled block) is not 5, and it must fit the studio's int.
   test::write_text(d / "actions.txt", std::string("wait 5\0\n", 8));
   EXPECT_EQ(run(cmd), 2);

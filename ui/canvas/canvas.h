@@ -114,6 +114,9 @@ class DisplayList : public Canvas {
 
   // Page size in points: set by the figure once its content is laid out.
   double width_pt = 0, height_pt = 0;
+  // Written into the file, not drawn: the PDF's Subject, the SVG's <desc>, the PNG's "Description" text
+  // chunk (where the figures record the label files and hand edits they were drawn from).
+  std::string description;
 
  private:
   enum class Op { kRect, kFillRect, kLine, kPolyline, kCircle, kFillCircle, kText, kImage, kPushClip, kPopClip };

@@ -1,4 +1,5 @@
 #include "ui/canvas/canvas_cairo.h"
+#include "ui/canvas/png_text.h"
 
 #include <cairo-pdf.h>
 #include <cairo.h>
@@ -146,6 +147,8 @@ std::string render_figure_file(const DisplayList& fig, const FontMetrics& metric
     cairo_surface_t* surface = cairo_pdf_surface_create_for_stream(append, &bytes, fig.width_pt, fig.height_pt);
     cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "ipd figure (IPD Studio)");
     if (!title.empty()) cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE, title.c_str());
+    if (!fig.description.empty())
+      cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_SUBJECT, fig.description.c_str());
     cairo_t* cr = cairo_create(surface);
     CairoCanvas canvas(cr, metrics, false);
     fig.replay(canvas);
@@ -173,7 +176,7 @@ std::string render_figure_file(const DisplayList& fig, const FontMetrics& metric
   if (st == CAIRO_STATUS_SUCCESS) cairo_surface_write_to_png_stream(surface, append, &bytes);
   cairo_surface_destroy(surface);
   check(st, "PNG drawing");
-  return bytes;
+  return fig.description.empty() ? bytes : png_with_text(bytes, "Description", fig.description);
 }
 
 }  // namespace ipd::ui

@@ -147,8 +147,9 @@ std::string render_svg(const DisplayList& fig, const FontMetrics& metrics) {
       "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
       "width=\"{0:.2f}pt\" height=\"{1:.2f}pt\" viewBox=\"0 0 {0:.2f} {1:.2f}\" font-family=\"IpdFigure, 'DejaVu "
       "Sans', "
-      "sans-serif\">\n<style>\n{2}</style>\n<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n{3}</svg>\n",
-      fig.width_pt, fig.height_pt, style, svg.body_);
+      "sans-serif\">\n{4}<style>\n{2}</style>\n<rect width=\"100%\" height=\"100%\" fill=\"#ffffff\"/>\n{3}</svg>\n",
+      fig.width_pt, fig.height_pt, style, svg.body_,
+      fig.description.empty() ? std::string() : "<desc>" + xml_escape(fig.description) + "</desc>\n");
 }
 
 }  // namespace ipd::ui

@@ -95,6 +95,7 @@ LabelPlacement place_figure_labels(Canvas& c, const std::vector<Label>& labels, 
         {l.target.x0, l.target.y0, l.target.x1, l.target.y1}, m.x + 2 * kLabelPad, m.y, l.exclusive, l.group};
     for (const PtRect& k : l.keep_off) r.keep_off.push_back({k.x0, k.y0, k.x1, k.y1});
     r.keep_off_clearance = l.keep_off_clearance;
+    r.nearest_own = l.nearest_own;
     req.push_back(std::move(r));
   }
   LabelPlacementOptions o;

@@ -54,6 +54,7 @@ struct Label {
   int group = 0;           // LabelRequest::group
   std::vector<PtRect> keep_off = {};  // LabelRequest::keep_off, in points
   double keep_off_clearance = 0;      // LabelRequest::keep_off_clearance
+  bool nearest_own = false;           // LabelRequest::nearest_own
 };
 // Places labels inside `bounds` avoiding each other and `taken`; draws them (on a dark backdrop, leaders
 // in the label's colour) and returns how many were left out; `placement` (optional): where each went.

@@ -33,7 +33,8 @@ std::string bad_extension_message(const std::string& path) {
                      ext.empty() ? "(no extension)" : ext);
 }
 
-const char* const kFigureKinds[6] = {"pairs", "registration", "table", "compare", "distribution", "breakdown"};
+const char* const kFigureKinds[7] = {"pairs",        "registration", "table",  "compare",
+                                     "distribution", "breakdown",    "gallery"};
 
 bool is_figure_kind(const std::string& kind) {
   return std::find(std::begin(kFigureKinds), std::end(kFigureKinds), kind) != std::end(kFigureKinds);
@@ -61,11 +62,12 @@ std::string study_figure_file(const Session& session, const ExportRequest& r, Fi
   sr.bootstrap.seed = session.study().config.registration.seed;  // as `ipd table` without --seed
   CrossTable table = session_table(session);
   add_confidence_intervals(&table, sr.bootstrap, 1);
-  const StudyLabels labels =
-      r.kind == "breakdown" ? thresholded_labels(session) : StudyLabels{session.study(), {}, {}, {}};
+  const StudyLabels labels = r.kind == "breakdown" || r.kind == "gallery" ? thresholded_labels(session)
+                                                                          : StudyLabels{session.study(), {}, {}, {}};
   const FontMetrics metrics(r.options.font_file.empty() ? default_font_file() : r.options.font_file);
   DisplayList fig(metrics);
-  const std::string title = draw_study_figure(fig, table, labels, sr, r.options);
+  const Provenance provenance = session_provenance(session);  // its table has no pairings to count
+  const std::string title = draw_study_figure(fig, table, labels, sr, r.options, &provenance);
   return render_figure_file(fig, metrics, format, r.options.dpi, title);
 }
 

@@ -22,7 +22,8 @@ std::string scene_figure_file(const std::string& kind, const SceneFigureInput& i
 std::string bad_extension_message(const std::string& path);
 
 // The figure kinds, in the order the GUI's dialog lists them.
-extern const char* const kFigureKinds[6];  // pairs, registration, table, compare, distribution, breakdown
+// pairs, registration, table, compare, distribution, breakdown, gallery
+extern const char* const kFigureKinds[7];
 bool is_figure_kind(const std::string& kind);
 
 // What the GUI's "Export figure…" asks for: a figure of the session's current view.

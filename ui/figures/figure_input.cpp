@@ -5,6 +5,8 @@
 
 #include "core/geometry/affine_estimator.h"
 #include "core/picture/picture_codec.h"
+#include "core/report/provenance.h"
+#include "ui/figures/figure_provenance.h"
 
 namespace ipd::ui {
 
@@ -60,6 +62,7 @@ SceneFigureInput scene_input_from_study(const StudyLabels& labels, const std::st
   in.method = to_string(p.registration.method);
   in.affine = (p.fixed || swapped) ? affine_of_pairs(in) : p.registration.affine;
   if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
+  in.label_fingerprint = label_set_fingerprint(st);
   return in;
 }
 
@@ -87,6 +90,7 @@ SceneFigureInput scene_input_from_session(const Session& s, int scene) {
   in.affine = (state.edited || s.swapped()) ? affine_of_pairs(in) : state.automatic.registration.affine;
   const Study& st = s.study();
   if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
+  in.label_fingerprint = label_set_fingerprint(st);
   return in;
 }
 
@@ -110,6 +114,10 @@ void draw_scene_figure(DisplayList& out, const std::string& kind, const SceneFig
     draw_registration_figure(out, in, o);
   else
     throw std::invalid_argument("unknown scene figure kind '" + kind + "' (expected pairs or registration)");
+  // The scene's own edits: its pairs when set by hand, the rocks it leaves out.
+  const int excluded = static_cast<int>(in.excluded_a.size() + in.excluded_b.size());
+  add_provenance(
+      out, scene_provenance(in.pairs_fixed, static_cast<int>(in.pairs.size()), excluded, in.label_fingerprint), o);
 }
 
 }  // namespace ipd::ui

@@ -25,6 +25,7 @@ struct SceneFigureInput {
   cv::Mat picture_a, picture_b;        // BGR, empty when there is none
   std::string problem_a, problem_b;    // why a picture is missing
   int image_w = 1936, image_h = 1216;  // aspect when there is no picture
+  std::string label_fingerprint;       // of the study's label files (label_set_fingerprint), for the metadata
 };
 
 // The scene's IPD and number of pairs for the title, from the input's boxes and pairs.

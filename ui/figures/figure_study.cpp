@@ -4,13 +4,15 @@
 #include <algorithm>
 
 #include "ui/figures/figure_charts.h"
+#include "ui/figures/figure_gallery.h"
+#include "ui/figures/figure_provenance.h"
 #include "ui/figures/figure_stats.h"
 #include "ui/figures/figure_table.h"
 
 namespace ipd::ui {
 
 bool is_study_figure_kind(const std::string& kind) {
-  return kind == "table" || kind == "compare" || kind == "distribution" || kind == "breakdown";
+  return kind == "table" || kind == "compare" || kind == "distribution" || kind == "breakdown" || kind == "gallery";
 }
 
 namespace {
@@ -32,10 +34,8 @@ std::string pick_model(const CrossTable& t, const std::string& asked, const std:
   return t.models.front().name;
 }
 
-}  // namespace
-
-std::string draw_study_figure(DisplayList& fig, const CrossTable& t, const StudyLabels& labels,
-                              const StudyFigureRequest& r, const FigureOptions& o) {
+std::string draw_study_figure_body(DisplayList& fig, const CrossTable& t, const StudyLabels& labels,
+                                   const StudyFigureRequest& r, const FigureOptions& o) {
   const Study& st = labels.study;
   if (st.domains.empty()) throw StudyError(st.root + ": the study has no domains");
   if (r.kind == "table") {
@@ -68,13 +68,21 @@ std::string draw_study_figure(DisplayList& fig, const CrossTable& t, const Study
     draw_distribution_chart(fig, distribution_chart(t, model, r.worst), o);
     return "Per-scene IPD of " + model;
   }
-  if (r.kind != "breakdown") throw std::invalid_argument("not a study figure: '" + r.kind + "'");
-  if (st.domains.size() < 2) throw StudyError(st.root + ": a breakdown needs two domains, this study has one");
+  if (r.kind != "breakdown" && r.kind != "gallery") throw std::invalid_argument("not a study figure: '" + r.kind + "'");
+  if (st.domains.size() < 2)
+    throw StudyError(fmt::format("{}: a {} needs two domains, this study has one", st.root, r.kind));
   const std::string a = r.a.empty() ? st.domains[0].name : r.a;
   const std::string b = !r.b.empty() ? r.b : st.domains[0].name == a ? st.domains[1].name : st.domains[0].name;
   const std::string model = pick_model(t, r.model, a);
   const TableCell* cell = t.cell(model, a, b);
   if (!cell) throw StudyError(fmt::format("{}: no IPD({}, {}) for model {} in this study", st.root, a, b, model));
+  if (r.kind == "gallery") {
+    require_number(cell);
+    GalleryInput in = gallery_input(labels, *cell, r.count, r.gallery_sort);
+    load_gallery_pictures(in, st);
+    draw_gallery_figure(fig, in, o);
+    return fmt::format("Rock pairs of IPD({}, {}) for {}", cell->a, cell->b, model);
+  }
   BreakdownOptions bo;
   if (!parse_breakdown_by(o.by, &bo.by))
     throw std::invalid_argument("--by: expected size, region or confidence, found '" + o.by + "'");
@@ -83,6 +91,15 @@ std::string draw_study_figure(DisplayList& fig, const CrossTable& t, const Study
   if (const std::string bad = bo.validate(); !bad.empty()) throw StudyError(bad);
   draw_dot_whisker_chart(fig, breakdown_chart(breakdown_cell(labels, *cell, bo), bo.bootstrap.level), o);
   return fmt::format("IPD({}, {}) by {}", a, b, o.by);
+}
+
+}  // namespace
+
+std::string draw_study_figure(DisplayList& fig, const CrossTable& t, const StudyLabels& labels,
+                              const StudyFigureRequest& r, const FigureOptions& o, const Provenance* provenance) {
+  const std::string title = draw_study_figure_body(fig, t, labels, r, o);
+  add_provenance(fig, provenance ? *provenance : table_provenance(t, labels.study), o);
+  return title;
 }
 
 }  // namespace ipd::ui

@@ -6,30 +6,39 @@
 #include <string>
 #include <vector>
 
+#include "core/report/provenance.h"
+#include "core/session/rock_pair_points.h"
 #include "core/stats/study_statistics.h"
 #include "ui/canvas/canvas.h"
 #include "ui/figures/figure_options.h"
 
 namespace ipd::ui {
 
-bool is_study_figure_kind(const std::string& kind);  // table | compare | distribution | breakdown
+bool is_study_figure_kind(const std::string& kind);  // table | compare | distribution | breakdown | gallery
 
 struct StudyFigureRequest {
-  std::string kind;                 // table | compare | distribution | breakdown
-  std::string model;                // distribution, breakdown: the model whose predictions count
-  std::string ref, a, b;            // compare: reference and the two renderers; breakdown: the cell (a, b)
+  std::string kind;                 // table | compare | distribution | breakdown | gallery
+  std::string model;                // distribution, breakdown, gallery: the model whose predictions count
+  std::string ref, a, b;            // compare: reference and the two renderers; breakdown, gallery: the cell
   std::vector<std::string> models;  // compare: only these rows (empty: every model)
   BootstrapOptions bootstrap;       // the intervals' resamples, level and seed (the table's cells carry them)
   int permutations = 2000;          // compare
   int worst = 2;                    // distribution: scenes named per domain pair
   int bins = 4;                     // breakdown by size or confidence
+  int count = 8;                    // gallery: how many pairs
+  GallerySort gallery_sort = GallerySort::kDiff;
 };
 
 // Draws the figure into `out` (options.ci: the table's intervals; options.by: the breakdown's property) and
 // returns its title (the PDF's metadata). `table` must have its intervals (add_confidence_intervals) and
 // `labels` must be the labels it was computed from, predictions below the threshold already dropped (the
-// breakdown reads rock sizes and confidences from them). Throws StudyError for a missing cell or domain.
+// breakdown reads rock sizes and confidences from them, the gallery boxes; the gallery reads the pictures).
+// The provenance of `table` goes into the figure (figure_provenance.h). Throws StudyError for a missing
+// cell or domain.
+// `provenance` (optional): what the figure says about hand edits; null: table_provenance of `table`, which
+// needs the table's pairings (a session's table has none: pass session_provenance).
 std::string draw_study_figure(DisplayList& out, const CrossTable& table, const StudyLabels& labels,
-                              const StudyFigureRequest& request, const FigureOptions& options);
+                              const StudyFigureRequest& request, const FigureOptions& options,
+                              const Provenance* provenance = nullptr);
 
 }  // namespace ipd::ui

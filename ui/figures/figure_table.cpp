@@ -36,11 +36,13 @@ void for_each_text(const TableFigure& t, size_t c, F&& f) {
 // The intervals' smaller font (secondary_pt of the cells').
 double interval_pt(double cell_pt) { return secondary_pt(cell_pt); }
 
-}  // namespace
+// The font size and column widths of a table `avail` wide.
+struct TableFit {
+  double font_pt = 0;
+  std::vector<double> widths;
+};
 
-void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptions& o) {
-  o.validate();
-  const double W = o.width_pt(), m = kFigureMargin, avail = W - 2 * m;
+TableFit fit_table(Canvas& out, const TableFigure& t, const FigureOptions& o, double avail) {
   const size_t cols = t.header.size();
   // The largest font (up to --font-pt) at which every column fits with its cells wrapped at spaces; columns
   // narrower than their longest cell share the shortfall in proportion.
@@ -76,6 +78,18 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
     if (used < avail)
       for (size_t c = 1; c < cols; ++c) w[c] += (avail - used) / static_cast<double>(cols - 1);
   }
+  return {F, w};
+}
+
+}  // namespace
+
+void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptions& o) {
+  o.validate();
+  const double W = o.width_pt(), m = kFigureMargin, avail = W - 2 * m;
+  const size_t cols = t.header.size();
+  const TableFit fit = fit_table(out, t, o, avail);
+  const double F = fit.font_pt;
+  const std::vector<double>& w = fit.widths;
   const TextStyle body = style(F, kInk), bold = style(F, kInk, true), sub = style(interval_pt(F), kGrey);
   const double pad = 0.9 * F, line_h = out.measure(body, "Ag").y, sub_h = out.measure(sub, "Ag").y;
   const double lw = std::max(0.3, 0.06 * F);
@@ -122,15 +136,6 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
   out.height_pt = std::ceil(y + m);
 }
 
-namespace {
-// The k-th footnote mark (0-based): ¹ ² ³ ... ⁹, then *.
-std::string superscript(size_t k) {
-  static const char* const kMarks[] = {"\u00b9", "\u00b2", "\u00b3", "\u2074", "\u2075",
-                                       "\u2076", "\u2077", "\u2078", "\u2079"};
-  return k < 9 ? kMarks[k] : "*";
-}
-}  // namespace
-
 TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
   TableFigure fig;
   fig.title = "Instance Performance Difference (lower is better)";
@@ -141,11 +146,6 @@ TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
   // Cells that are not a number (no predictions left on either side) are marked and say why in the note, as
   // the text table's footnotes do.
   std::vector<std::string> reasons;
-  auto mark_of = [&](const TableCell& c) -> std::string {
-    auto it = std::find(reasons.begin(), reasons.end(), c.no_value_reason);
-    if (it == reasons.end()) it = reasons.insert(reasons.end(), c.no_value_reason);
-    return superscript(static_cast<size_t>(it - reasons.begin()));
-  };
   for (size_t r = 0; r < t.models.size(); ++r) {
     const auto& m = t.models[r];
     std::vector<std::string> row = {m.trained_on.empty() ? m.name : m.name + " (" + m.trained_on + ")"};
@@ -159,7 +159,7 @@ TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
     for (size_t c = 0; c < nc; ++c) {
       const auto& cell = t.cells[r * nc + c];
       row.push_back(!cell.involves_training_domain  ? "\u2013"
-                    : !cell.no_value_reason.empty() ? "\u2013" + mark_of(cell)
+                    : !cell.no_value_reason.empty() ? no_value_mark(footnote_number(&reasons, cell.no_value_reason))
                     : std::isnan(cell.ipd)          ? "n/a"
                                                     : fmt::format("{:.4f}", cell.ipd));
       bold[c + 1] = cell.involves_training_domain && cell.ipd == best;
@@ -180,7 +180,7 @@ TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
   });
   if (ci && brackets) fig.note += fmt::format(" Brackets: {:g}% scene-bootstrap interval.", 100 * level);
   for (size_t k = 0; k < reasons.size(); ++k)
-    fig.note += fmt::format(" \u2013{}: not a number, {}.", superscript(k), reasons[k]);
+    fig.note += fmt::format(" {}: not a number, {}.", no_value_mark(static_cast<int>(k) + 1), reasons[k]);
   return fig;
 }
 

@@ -45,7 +45,7 @@ ExportViewContext export_view_context(const Session& s, const UiState& ui, const
 }
 
 std::string default_figure_name(const ExportDialogState& st, const ExportViewContext& ctx) {
-  const std::string kind = kFigureKinds[std::clamp(st.kind, 0, 5)];
+  const std::string kind = kFigureKinds[std::clamp(st.kind, 0, 6)];
   char conf[32] = "";
   if (ctx.conf_threshold > 0) std::snprintf(conf, sizeof conf, "_conf%g", ctx.conf_threshold);
   const std::string model = ctx.model.empty() ? "" : "_" + ctx.model;
@@ -55,6 +55,7 @@ std::string default_figure_name(const ExportDialogState& st, const ExportViewCon
   if (kind == "table") return kind + conf;
   if (kind == "compare") return (ctx.ref.empty() ? kind : kind + "_" + ctx.ref + "_" + ctx.a + "_" + ctx.b) + conf;
   if (kind == "distribution") return kind + model + conf;
+  if (kind == "gallery") return kind + model + "_" + ctx.left + "_" + ctx.right + conf;
   return kind + "_" + kByNames[std::clamp(st.by, 0, 2)] + model + "_" + ctx.left + "_" + ctx.right + conf;
 }
 
@@ -69,7 +70,7 @@ void open_export_dialog(ExportDialogState& st, const ExportViewContext& ctx) {
 }
 
 bool set_export_kind(ExportDialogState& st, const std::string& kind) {
-  for (int k = 0; k < 6; ++k)
+  for (int k = 0; k < 7; ++k)
     if (kind == kFigureKinds[k]) return st.kind = k, st.by = 0, true;
   for (int b = 0; b < 3; ++b)
     if (kind == std::string("breakdown-") + kByNames[b]) return st.kind = 5, st.by = b, true;
@@ -78,7 +79,7 @@ bool set_export_kind(ExportDialogState& st, const std::string& kind) {
 
 ExportRequest export_request(const ExportDialogState& st, const ExportViewContext& ctx, const std::string& path) {
   ExportRequest r;
-  r.kind = kFigureKinds[std::clamp(st.kind, 0, 5)];
+  r.kind = kFigureKinds[std::clamp(st.kind, 0, 6)];
   r.options.width_in = st.column == 0 ? kSingleColumnIn : kDoubleColumnIn;
   r.options.font_pt = st.font_pt;
   r.options.layers = {st.layers[0], st.layers[1], st.layers[2], st.layers[3], st.layers[4], st.layers[5]};
@@ -96,11 +97,12 @@ std::optional<ExportRequest> draw_export_dialog(ExportDialogState& st, const Exp
   std::optional<ExportRequest> out;
   if (st.open && !ImGui::IsPopupOpen("Export figure")) ImGui::OpenPopup("Export figure");
   if (!ImGui::BeginPopupModal("Export figure", &st.open, ImGuiWindowFlags_AlwaysAutoResize)) return out;
-  static const char* kinds[] = {"pairs (Fig. 1)",      "registration (Fig. 2)",        "table (Table I)",
-                                "compare (renderers)", "distribution (per-scene IPD)", "breakdown"};
+  static const char* kinds[] = {"pairs (Fig. 1)",       "registration (Fig. 2)",        "table (Table I)",
+                                "compare (renderers)",  "distribution (per-scene IPD)", "breakdown",
+                                "gallery (worst pairs)"};
   static const char* formats[] = {"PDF", "SVG", "PNG (300 dpi)"};
   static const char* exts[] = {".pdf", ".svg", ".png"};
-  bool renamed = ImGui::Combo("figure", &st.kind, kinds, 6);
+  bool renamed = ImGui::Combo("figure", &st.kind, kinds, 7);
   if (st.kind == 5) {
     ImGui::SameLine();
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 7);

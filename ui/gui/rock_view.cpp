@@ -308,12 +308,9 @@ bool adopt_rock_points(const Session& s, const std::shared_ptr<const RockPointSe
 }
 
 std::vector<int> gallery_sorted(const std::vector<RockPairPoint>& points, int sort) {
-  std::vector<int> order = gallery_order(points);
-  if (sort <= 0) return order;
-  const PairAxis key = sort == 1 ? PairAxis::kPerfA : sort == 2 ? PairAxis::kPerfB : PairAxis::kSize;
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int i, int j) { return axis_value(points[i], key) > axis_value(points[j], key); });
-  return order;
+  static const GallerySort kSorts[] = {GallerySort::kDiff, GallerySort::kPerfA, GallerySort::kPerfB,
+                                       GallerySort::kSize};
+  return ipd::gallery_sorted(points, kSorts[std::clamp(sort, 0, 3)]);
 }
 
 void apply_pair_selection(const Session& s, const PairSelection& sel, UiState& ui) {

@@ -150,10 +150,12 @@ void draw_compare(const StudyView& v, const SessionStatistics* stats, StatsPanel
       spell_missing_glyphs(comparison_sentence(c), has_glyph));  // never "-0.|0799", never "delta" | "IPD"
 }
 
+}  // namespace
+
 // The charts draw on the figure canvas in window pixels, text at the GUI font's size.
 TextStyle gui_text() { return {ImGui::GetFontSize() / kLineToEm, {}, false}; }
 
-Colour colour_of(ImU32 c) {
+static Colour colour_of(ImU32 c) {
   return rgb(int(c & 0xff), int((c >> 8) & 0xff), int((c >> 16) & 0xff), int((c >> 24) & 0xff));
 }
 
@@ -166,6 +168,8 @@ ChartColours gui_colours() {
           colour_of(ImGui::GetColorU32(ImGuiCol_TextDisabled)),
           colour_of(ImGui::GetColorU32(ImGuiCol_Text))};
 }
+
+namespace {
 
 void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPanelState& st, UiState& ui) {
   text_wrapped_at_spaces("Per-scene IPD, " + v.session->model() + " (click a bar: those scenes)");

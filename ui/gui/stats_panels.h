@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/session/session_statistics.h"
+#include "ui/figures/stats_charts.h"
 #include "ui/gui/views.h"
 
 namespace ipd::ui {
@@ -45,5 +46,10 @@ HistogramBins histogram_bins(const std::vector<double>& values, int bins);
 // Why the per-scene IPD histogram has no bar, from the scene list's summaries: no scene has pairs, or scenes
 // have pairs but no IPD (SceneSummary::no_value_reason, e.g. no predictions left above the threshold).
 std::string empty_histogram_text(const std::vector<SceneSummary>& summaries);
+
+// The studio's charts draw on the figure canvas in window pixels: text at the GUI font's size, the theme's
+// colours.
+TextStyle gui_text();
+ChartColours gui_colours();
 
 }  // namespace ipd::ui

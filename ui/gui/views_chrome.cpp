@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <string>
 
+#include "core/report/table_format.h"
 #include "ui/gui/stats_panels.h"
 #include "ui/gui/studio_layout.h"
 #include "ui/gui/table_layout.h"
@@ -390,6 +391,7 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
       }
       ImGui::PopID();
     }
+    std::vector<std::string> reasons;  // of the cells that are not a number: footnote k is reasons[k - 1]
     for (const auto& m : s.study().models) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
@@ -403,8 +405,9 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
         const bool current = m.name == s.model() && static_cast<int>(p) == s.pair_index();
         if (!involves)
           ImGui::TextDisabled("-");
-        else if (!cell.no_value_reason.empty())
-          ImGui::TextColored({1, 0.55f, 0, 1}, "–*");
+        else if (!cell.no_value_reason.empty())  // the tables' and figures' mark, its reason below the table
+          ImGui::TextColored({1, 0.55f, 0, 1}, "%s",
+                             no_value_mark(footnote_number(&reasons, cell.no_value_reason)).c_str());
         else if (current)
           ImGui::TextColored({1, 0.85f, 0.3f, 1}, "%s", fmt_ipd(val).c_str());
         else
@@ -416,6 +419,8 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
       }
     }
     ImGui::EndTable();
+    for (size_t k = 0; k < reasons.size(); ++k)
+      ImGui::TextDisabled("%s: not a number, %s", no_value_mark(static_cast<int>(k) + 1).c_str(), reasons[k].c_str());
   }
   ImGui::Separator();
   ImGui::BeginDisabled(!s.can_undo());

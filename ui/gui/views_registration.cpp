@@ -4,6 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "ui/figures/score_curve.h"
+#include "ui/gui/canvas_imgui.h"
+#include "ui/gui/stats_panels.h"
 #include "ui/gui/studio_layout.h"
 #include "ui/gui/views.h"
 
@@ -162,7 +165,8 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   // as a strip under it, full width (a column beside it left both too narrow and cut its caption).
   const ImVec2 p0 = ImGui::GetCursorScreenPos(), avail = ImGui::GetContentRegionAvail();
   const float text_h = ImGui::GetTextLineHeightWithSpacing();
-  const float curve_h = steps > 0 ? std::clamp(avail.y * 0.25f, 36.0f, 110.0f) : 0.0f;
+  // Room for the curve and its step axis's labels below it.
+  const float curve_h = steps > 0 ? std::clamp(avail.y * 0.25f, 36.0f + text_h, 110.0f + text_h) : 0.0f;
   const float below = steps > 0 ? curve_h + 2 * text_h + ImGui::GetStyle().ItemSpacing.y : 0.0f;
   // At least 80 px for the picture box itself, besides the three legend lines and margins: a short panel
   // scrolls rather than squeezing the rings into one blob (as at 700 x 800).
@@ -229,20 +233,24 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
     dl->AddText({p0.x + 14, p0.y + size.y - (3 - k) * line - 4}, IM_COL32(200, 200, 200, 255), legend[k].c_str());
   dl->PopClipRect();
   if (steps > 0) {
-    // Best-so-far score over the steps, with the current one marked.
-    std::vector<float> best(steps);
-    for (int q = 0; q < steps; ++q) best[q] = static_cast<float>(r.trace.steps[q].best_score);
+    // Best-so-far score over the steps, with axes, which way is better and the current step marked.
+    ScoreCurveInput curve;
+    curve.method = r.method;
+    for (const auto& st : r.trace.steps) curve.best.push_back(st.best_score);
+    curve.current = shown >= 0 ? shown : steps - 1;  // the final motion: after the last step
     int news = 0;
     for (const auto& st : r.trace.steps) news += st.new_best;
     // One line of caption (two when the stop reason is long), then the strip.
-    text_disabled_wrapped_at_spaces("best score so far: " + counted(news, "improvement") + " over " +
-                                    counted(steps, "step") + "; " + r.trace.stop);
+    text_disabled_wrapped_at_spaces("best score so far (" + std::string(score_direction(r.method)) +
+                                    "): " + counted(news, "improvement") + " over " + counted(steps, "step") + "; " +
+                                    r.trace.stop);
     const ImVec2 c0 = ImGui::GetCursorScreenPos();
     const ImVec2 csz{avail.x - 4, std::max(30.0f, std::min(curve_h, ImGui::GetContentRegionAvail().y -
                                                                         8))};  // a margin like the other sides
-    ImGui::PlotLines("##best", best.data(), steps, 0, nullptr, FLT_MAX, FLT_MAX, csz);
-    const float x = c0.x + csz.x * std::clamp(rp.position / steps, 0.0f, 1.0f);
-    dl->AddLine({x, c0.y}, {x, c0.y + csz.y}, kHighlight, 1.5f);
+    ImGui::Dummy(csz);
+    ImGuiCanvas chart(ImGui::GetWindowDrawList(), c0, 1, {});
+    const TextStyle text = gui_text();
+    draw_score_curve(chart, text, layout_score_curve(chart, text, curve, {0, 0, csz.x, csz.y}), gui_colours());
   }
 }
 

@@ -1,6 +1,8 @@
 // The label placer: preferred positions in order, leaders when crowded, left-out counts, never an overlap.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "core/geometry/label_placer.h"
@@ -160,6 +162,57 @@ TEST(LabelPlacer, KeepOffRectsAreAvoidedWithTheirClearance) {
   p = place_labels({r}, o);
   EXPECT_EQ(p.labels[0].position, LabelPosition::kLeftOut);
   EXPECT_EQ(p.left_out_exclusive, 1);
+}
+
+// Box 15 right below box 1, 10 pt apart: 15's label above it (7 pt high, a 1 pt gap) would end 2 pt below
+// box 1, which keeps the 2 pt clearance but reads as box 1's as much as box 15's. Beside its box a label
+// must be nearer its own box by half its height (3.5 pt): 1 pt from 15 needs 4.5 pt from box 1, so it goes
+// below box 15 instead (1 pt from it, 18 pt from box 1).
+TEST(LabelPlacer, ANumberBesideItsBoxIsClearlyNearerItThanTheNextBox) {
+  auto o = page(200, 200);
+  o.exclusive_clearance = 2;
+  const LabelRect one{50, 40, 70, 50}, fifteen{50, 60, 70, 70};
+  LabelRequest r1{one, 10, 7, true}, r15{fifteen, 10, 7, true};
+  EXPECT_EQ(place_labels({r1, r15}, o).labels[1].position, LabelPosition::kAbove);  // the plain clearance only
+  r1.nearest_own = r15.nearest_own = true;
+  const auto p = place_labels({r1, r15}, o);
+  EXPECT_EQ(p.labels[0].position, LabelPosition::kAbove);
+  EXPECT_EQ(p.labels[1].position, LabelPosition::kBelow);
+  EXPECT_DOUBLE_EQ(p.labels[1].box.y0, 71);
+  // 4.5 pt apart from box 1 is enough: with the boxes 12.5 pt apart it stays above box 15.
+  r15.target = {50, 62.5, 70, 72.5};
+  const auto q = place_labels({r1, r15}, o);
+  EXPECT_EQ(q.labels[1].position, LabelPosition::kAbove);
+  EXPECT_DOUBLE_EQ(q.labels[1].box.y1, 61.5);
+}
+
+// The rule holds for every number placed beside its box in a dense crowd of exclusive labels.
+TEST(LabelPlacer, InACrowdEveryNumberBesideItsBoxIsNearestItsOwn) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 240);
+  std::vector<LabelRequest> req;
+  for (int k = 0; k < 60; ++k) {
+    const double x = u(rng), y = u(rng) * 0.6;
+    req.push_back({{x, y, x + 6 + u(rng) / 20, y + 6 + u(rng) / 20}, 8, 7, true});
+    req.back().nearest_own = true;
+  }
+  auto o = page(252, 160);
+  o.exclusive_clearance = 2;
+  const auto p = place_labels(req, o);
+  const auto gap = [](const LabelRect& a, const LabelRect& b) {
+    const double dx = std::max({0.0, a.x0 - b.x1, b.x0 - a.x1}), dy = std::max({0.0, a.y0 - b.y1, b.y0 - a.y1});
+    return std::hypot(dx, dy);
+  };
+  int beside = 0;
+  for (size_t i = 0; i < req.size(); ++i) {
+    const PlacedLabel& l = p.labels[i];
+    if (!l.shown() || l.position == LabelPosition::kLeader) continue;
+    ++beside;
+    for (size_t j = 0; j < req.size(); ++j) {
+      if (j != i) EXPECT_GE(gap(l.box, req[j].target), gap(l.box, req[i].target) + 3.5 - 1e-9) << i << " " << j;
+    }
+  }
+  EXPECT_GT(beside, 20);
 }
 
 TEST(LabelPlacer, NoTwoLabelsOverlapInACrowd) {

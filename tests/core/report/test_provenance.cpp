@@ -69,6 +69,103 @@ TEST(Provenance, TextTableFootnoteAndVerboseListOfEditedScenes) {
       << r.out;
 }
 
+// Every format of `ipd table` carries the provenance: CSV as the same columns on every row (any CSV reader
+// keeps them), Markdown and LaTeX as a footnote line under the table.
+TEST(Provenance, TableCsvMarkdownAndLatexCarryIt) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  write_hand_pairs(d);
+  auto r = test::run_ipd("table " + d.path() + " --format csv --no-cache --bootstrap 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,"
+            "reason,label_fingerprint,scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded\n"
+            "det,,real,synth,0.666667,1,0,1,1,true,,,,,d189a61c07b5,1,1,1\n");
+  r = test::run_ipd("table " + d.path() + " --format markdown --no-cache --bootstrap 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string note = "Label files d189a61c07b5; hand pairs in 1 scene (1 pair set by hand, 1 rock excluded).";
+  EXPECT_EQ(r.out.substr(r.out.size() - note.size() - 2), "\n" + note + "\n") << r.out;
+  r = test::run_ipd("table " + d.path() + " --format latex --no-cache --bootstrap 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(r.out.size() - note.size() - 25), "\\par{\\footnotesize " + note + "\\par}\n") << r.out;
+}
+
+// `ipd compare` prints the note after its sentence and its JSON carries the object; `ipd breakdown` the same
+// in text, as CSV columns and as a JSON object.
+TEST(Provenance, CompareAndBreakdownCarryIt) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  test::write_text(d / "other/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "other/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n");
+  write_hand_pairs(d);
+  const std::string note = "Label files c46076aa055d; hand pairs in 1 scene (1 pair set by hand, 1 rock excluded).\n";
+  auto r = test::run_ipd("compare " + d.path() + " --ref real --a synth --b other --no-cache");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_GE(r.out.size(), note.size());
+  EXPECT_EQ(r.out.substr(r.out.size() - note.size()), note) << r.out;
+  r = test::run_ipd("compare " + d.path() + " --ref real --a synth --b other --no-cache --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json p = nlohmann::json::parse(r.out).at("provenance");
+  EXPECT_EQ(p.at("pairs_set_by_hand"), 1);
+  EXPECT_EQ(p.at("label_fingerprint"), "c46076aa055d");
+  r = test::run_ipd("breakdown " + d.path() + " --domains real,synth --bins 1 --bootstrap 0 --no-cache");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(r.out.size() - note.size()), note) << r.out;  // the fingerprint covers every domain
+  r = test::run_ipd("breakdown " + d.path() + " --domains real,synth --bins 1 --bootstrap 0 --no-cache --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')),
+            "model,trained_on,a,b,bin,low,high,ipd,ci_low,ci_high,pairs,scenes,label_fingerprint,"
+            "scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded");
+  EXPECT_NE(r.out.find(",c46076aa055d,1,1,1\n"), std::string::npos) << r.out;
+  r = test::run_ipd("breakdown " + d.path() + " --domains real,synth --bins 1 --bootstrap 0 --no-cache --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out).at("provenance").at("rocks_excluded"), 1);
+}
+
+// The rock export: each row says whether its pair was set by hand (source) and whether its rock was left
+// out on purpose (excluded), and ends with the provenance columns (CSV) or keys (JSON).
+//   real rock 0 <-> synth rock 1 by hand: perf 1 (exact prediction) and 1/3 (shifted by half its width).
+//   real rock 1: excluded; its perf 0 (no prediction overlaps it). synth rock 0: unpaired, perf 0.
+TEST(Provenance, RockExportRowsSayHandAndExcluded) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  write_hand_pairs(d);
+  auto r = test::run_ipd("export rocks " + d.path() + " --unpaired --no-cache");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out,
+            "model,trained_on,a,b,scene,index_a,index_b,perf_a,perf_b,diff,cx_a,cy_a,w_a,h_a,cx_b,cy_b,w_b,h_b,"
+            "residual_px,source,excluded,label_fingerprint,scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded\n"
+            "det,,real,synth,s1,0,1,1,0.333333333333,0.666666666667,0.2,0.2,0.1,0.1,0.2,0.2,0.1,0.1,,hand,false,"
+            "d189a61c07b5,1,1,1\n"
+            "det,,real,synth,s1,1,,0,,,0.6,0.6,0.1,0.1,,,,,,hand,true,d189a61c07b5,1,1,1\n"
+            "det,,real,synth,s1,,0,,0,,,,,,0.6,0.6,0.1,0.1,,hand,false,d189a61c07b5,1,1,1\n");
+  r = test::run_ipd("export rocks " + d.path() + " --unpaired --no-cache --format json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json rows = nlohmann::json::parse(r.out);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[1].at("excluded"), true);
+  EXPECT_EQ(rows[0].at("excluded"), false);
+  EXPECT_EQ(rows[2].at("label_fingerprint"), "d189a61c07b5");
+  EXPECT_EQ(rows[2].at("pairs_set_by_hand"), 1);
+}
+
+// The machine-readable fields and which provenance counts as edited.
+TEST(Provenance, CsvFieldsFollowTheJsonAndEditedMeansAHandPairOrAnExcludedRock) {
+  Provenance p = scene_provenance(false, 4, 0, "0123456789ab");
+  EXPECT_FALSE(provenance_edited(p));
+  EXPECT_EQ(p.pairs_set_by_hand, 0);
+  using Fields = std::vector<std::pair<std::string, std::string>>;
+  EXPECT_EQ(provenance_csv_fields(p), (Fields{{"label_fingerprint", "0123456789ab"},
+                                              {"scenes_with_hand_pairs", "0"},
+                                              {"pairs_set_by_hand", "0"},
+                                              {"rocks_excluded", "0"}}));
+  p = scene_provenance(true, 4, 1, "0123456789ab");
+  EXPECT_TRUE(provenance_edited(p));
+  EXPECT_EQ(provenance_note(p),
+            "Label files 0123456789ab; hand pairs in 1 scene (4 pairs set by hand, 1 rock excluded).");
+  EXPECT_TRUE(provenance_edited(scene_provenance(false, 4, 1, "")));  // an excluded rock alone is an edit
+}
+
 TEST(Provenance, NoteCountsInPlural) {
   Provenance p;
   p.label_fingerprint = "0123456789ab";

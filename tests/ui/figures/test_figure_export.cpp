@@ -18,7 +18,8 @@ namespace ipd {
 namespace {
 
 struct Case {
-  std::string kind, by, cli;  // cli: the `ipd figure` arguments that describe the same view
+  std::string kind, by, cli;     // cli: the `ipd figure` arguments that describe the same view
+  std::string after_study = {};  // more of them after STUDY (--domains takes every word up to the next option)
 };
 
 TEST(FigureExport, GuiAndCliGiveTheSameStudyFigures) {
@@ -39,6 +40,7 @@ TEST(FigureExport, GuiAndCliGiveTheSameStudyFigures) {
       {"breakdown", "size", "breakdown --by size --a real --b hapke"},
       {"breakdown", "region", "breakdown --by region --a real --b hapke"},
       {"breakdown", "confidence", "breakdown --by confidence --a real --b hapke"},
+      {"gallery", "size", "gallery", "--domains real,hapke"},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.kind + " " + c.by);
@@ -49,7 +51,7 @@ TEST(FigureExport, GuiAndCliGiveTheSameStudyFigures) {
     request.path = d / ("gui_" + c.kind + c.by + ".pdf");
     EXPECT_EQ(ui::export_figure(s, request), "exported " + request.path);
     const std::string cli_pdf = d / ("cli_" + c.kind + c.by + ".pdf");
-    const auto r = test::run_ipd("figure " + c.cli + " " + d.path() + view + " --out " + cli_pdf);
+    const auto r = test::run_ipd("figure " + c.cli + " " + d.path() + " " + c.after_study + view + " --out " + cli_pdf);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string gui = test::pdf_words(request.path), cli = test::pdf_words(cli_pdf);
     EXPECT_GT(gui.size(), 100u) << gui;
@@ -57,6 +59,8 @@ TEST(FigureExport, GuiAndCliGiveTheSameStudyFigures) {
     if (c.kind == "breakdown") {
       EXPECT_NE(gui.find("IPD(real, hapke) of det (real) by"), std::string::npos) << gui;
     }
+    // The edit shows on every kind, in the GUI's file as in the CLI's.
+    EXPECT_NE(gui.find("hand pairs in 1 scene"), std::string::npos) << gui;
   }
   // The threshold is part of the view: without it the table and the confidence bins are other figures.
   ASSERT_EQ(test::run_ipd("figure table --ci 0.95 " + d.path() + " --out " + d / "all.pdf").exit_code, 0);

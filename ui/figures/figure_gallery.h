@@ -1,0 +1,61 @@
+// `ipd figure gallery`: crops of the rock pairs with the largest |perf_A - perf_B| of one model and domain
+// pair across the study, A | B side by side, each crop with the GT box (solid yellow) and the rock's best
+// prediction (dashed blue), the performance values and the scene and rock names; from the pictures when the
+// study has them, on a plain background when it has labels only (the figure says which). The pairs and their
+// order are the studio's Rock pairs gallery's (core/session/rock_pair_points.h).
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "core/ipd/ipd.h"
+#include "core/session/rock_pair_points.h"
+#include "ui/canvas/canvas.h"
+#include "ui/figures/figure_options.h"
+
+namespace ipd::ui {
+
+// One side of a pair: its GT rock, the rock's best-IoU prediction, and the region of the picture the crop
+// shows (normalised, a square in pixels around the rock, 2.5 times its larger side; it may reach past the
+// picture's edge, which shows as background).
+struct GalleryCrop {
+  int rock = -1;  // 0-based; printed from 1 as the studio numbers rocks
+  double perf = 0;
+  Box gt, pred;
+  bool has_pred = false;
+  Crop region;
+  cv::Mat pixels;       // the part of the picture inside `region` (BGR), empty without a picture
+  Crop covered;         // the normalised region `pixels` covers
+  std::string problem;  // why a picture the study names could not be read
+};
+
+struct GalleryEntry {
+  std::string stem;
+  double diff = 0;
+  GalleryCrop a, b;
+};
+
+struct GalleryInput {
+  std::string a, b, model;
+  GallerySort sort = GallerySort::kDiff;
+  int counted_pairs = 0;  // in the cell: the entries are the first of these
+  std::vector<GalleryEntry> entries;
+  bool pictures = false;  // load_gallery_pictures found a picture for some crop
+};
+
+// The first `count` counted pairs of `cell` in `sort` order (gallery_sorted), with their boxes. `labels`
+// must be the ones the table was computed from (threshold applied).
+GalleryInput gallery_input(const StudyLabels& labels, const TableCell& cell, int count, GallerySort sort);
+
+// Reads each scene's picture once and keeps only the crops (a picture that can't be decoded is named in the
+// crop's problem). File I/O: off the UI thread.
+void load_gallery_pictures(GalleryInput& in, const Study& study);
+
+// Where each entry went (points), for tests.
+struct GalleryLayout {
+  std::vector<PtRect> left, right;
+};
+GalleryLayout draw_gallery_figure(DisplayList& out, const GalleryInput& in, const FigureOptions& options);
+
+}  // namespace ipd::ui

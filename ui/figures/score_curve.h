@@ -1,0 +1,39 @@
+// The registration replay's score curve: the best score so far over the search's steps, with a value axis,
+// a step axis and which way is better, laid out and drawn on the figure canvas (the studio draws it through
+// its ImGui canvas). Pure layout + drawing: no ImGui, no I/O.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/registration/registration.h"
+#include "ui/canvas/canvas.h"
+#include "ui/figures/stats_charts.h"
+
+namespace ipd::ui {
+
+// Whether a method's trace scores fall as the alignment improves: paper's mean nearest-neighbour distance
+// and cpd's EM variance (sigma) do; consensus' soft inlier count rises.
+bool lower_score_is_better(RegistrationMethod method);
+// "lower is better" or "higher is better", for the chart and its caption.
+const char* score_direction(RegistrationMethod method);
+
+struct ScoreCurveInput {
+  std::vector<double> best;  // best score so far after each step (finite values; others are skipped)
+  int current = -1;          // the replay's step, marked by a vertical line (-1: none)
+  RegistrationMethod method = RegistrationMethod::kConsensus;
+};
+
+struct ScoreCurve {
+  PtRect plot;                       // the curve's box; value axis along plot.x0, step axis along plot.y1
+  std::vector<Pt> points;            // one per finite step
+  std::vector<AxisTick> value_axis;  // at: y
+  std::vector<AxisTick> step_axis;   // at: x; steps numbered from 1
+  double current_x = -1;             // the marker's x (-1: none)
+  std::string direction;             // "lower is better" / "higher is better", top right of the plot
+  Pt direction_at;                   // its top-right corner
+};
+ScoreCurve layout_score_curve(Canvas& c, const TextStyle& text, const ScoreCurveInput& in, const PtRect& area);
+void draw_score_curve(Canvas& c, const TextStyle& text, const ScoreCurve& curve, const ChartColours& colours);
+
+}  // namespace ipd::ui
