@@ -142,6 +142,9 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
   for (const auto& e : cmd.edits) worker_.submit(command::ApplyEdit{ui_.scene, e});
   if (cmd.undo) worker_.submit(command::Undo{});
   if (cmd.redo) worker_.submit(command::Redo{});
+  if (cmd.toggle_reviewed && !s.scenes().empty()) worker_.submit(command::ToggleReviewed{ui_.scene});
+  if (cmd.check_left >= 0 && !s.scenes().empty())
+    worker_.submit(command::ToggleChecked{ui_.scene, cmd.check_left, cmd.check_right});
   if (cmd.next_suspect) next_suspect();
   if (cmd.save_as && ui_.save_as_dir[0]) {
     worker_.submit(command::SaveAllTo{ui_.save_as_dir});

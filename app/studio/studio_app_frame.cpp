@@ -17,14 +17,17 @@ namespace ipd::studio {
 
 namespace {
 
-// One version of a pairs file for the conflict dialog: what it pairs, then the start of its text.
+// One version of a pairs or review file for the conflict dialog: what it holds, then the start of its text.
 std::string describe_pairs_file(const std::optional<std::string>& text) {
   if (!text) return "no file: the automatic pairs";
   std::string what = "not a pairs file";
   try {
     const nlohmann::json j = nlohmann::json::parse(*text);
     auto count = [&](const char* key) { return j.contains(key) && j[key].is_array() ? j[key].size() : size_t{0}; };
-    what = fmt::format("{} pair(s), {} excluded rock(s)", count("pairs"), count("excluded_a") + count("excluded_b"));
+    if (j.contains("reviewed"))  // a review file (review_state.h)
+      what = fmt::format("{} reviewed scene(s), {} checked pair(s)", count("reviewed"), count("checked"));
+    else
+      what = fmt::format("{} pair(s), {} excluded rock(s)", count("pairs"), count("excluded_a") + count("excluded_b"));
   } catch (const std::exception&) {
   }
   constexpr size_t kShown = 400;

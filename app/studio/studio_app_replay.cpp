@@ -107,6 +107,21 @@ bool StudioApp::replay_step() {
     if (const int l = rock(a.args[0], Side::kA); l >= 0) cmd.edits.push_back(Edit::unpair(Side::kA, l));
   } else if (a.verb == "exclude") {
     if (const int l = rock(a.args[0], Side::kA); l >= 0) cmd.edits.push_back(Edit::toggle_exclude(Side::kA, l));
+  } else if (a.verb == "review") {
+    cmd.toggle_reviewed = true;
+  } else if (a.verb == "suspect") {
+    cmd.next_suspect = true;
+  } else if (a.verb == "check") {
+    // The pair given (left, right rock numbers), or the one selected (by `suspect`, say).
+    const int l = a.args.empty() ? ui::selected_pair(s, ui_).first : rock(a.args[0], Side::kA);
+    const int r = a.args.empty() ? ui::selected_pair(s, ui_).second : l < 0 ? -1 : rock(a.args[1], Side::kB);
+    const RockPairs pairs = s.scenes().empty() ? RockPairs{} : s.view_pairs(ui_.scene);
+    if (l >= 0 && r >= 0 && std::find(pairs.begin(), pairs.end(), std::make_pair(l, r)) != pairs.end())
+      cmd.check_left = l, cmd.check_right = r;
+    else if (!replay_failed_)
+      fail(a.args.empty() ? std::string("'check': no pair is selected")
+                          : fmt::format("'check': rocks {} and {} are not a pair in {}", a.args[0], a.args[1],
+                                        s.scenes()[ui_.scene].stem));
   } else if (a.verb == "rerun") {
     const auto& methods = registration_methods();
     for (size_t k = 0; k < methods.size(); ++k)

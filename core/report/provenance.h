@@ -20,6 +20,10 @@ struct Provenance {
   int scenes_with_hand_pairs = 0;
   int pairs_set_by_hand = 0;  // pairs in those scenes' pairs files
   int rocks_excluded = 0;     // rocks left out of the IPD on purpose, both sides
+  // From the review files (core/session/review_state.h), over the same domain pairs: scenes marked
+  // reviewed, and pairs checked as correct that are still pairs of their scenes.
+  int scenes_reviewed = 0;
+  int pairs_checked = 0;
   std::string label_fingerprint;
   std::vector<EditedScene> edited_scenes;  // in column and scene order
 };
@@ -31,11 +35,13 @@ struct Provenance {
 // IoError naming the file for a symbolic link or an unreadable file.
 std::string label_set_fingerprint(const Study& study);
 
-// The hand-pair counts of `table` and the fingerprint of `study`'s labels.
-Provenance table_provenance(const CrossTable& table, const Study& study);
+// The hand-pair counts of `table`, the review marks of its domain pairs and the fingerprint of the labels.
+// Throws StudyError naming a review file that can't be read.
+Provenance table_provenance(const CrossTable& table, const StudyLabels& labels);
 
-// The text footnote: "Labels 1a2b3c4d5e6f; hand pairs in 2 scenes (5 pairs set by hand, 1 rock excluded)."
-// or "Labels 1a2b3c4d5e6f; no hand pairs (every pair from registration)."
+// The text footnote: "Label files 1a2b3c4d5e6f; hand pairs in 2 scenes (5 pairs set by hand, 1 rock
+// excluded)." or "Label files 1a2b3c4d5e6f; no hand pairs (every pair from registration).", with "; 12 scenes
+// reviewed, 3 pairs checked as correct" before the full stop when anything was reviewed or checked.
 std::string provenance_note(const Provenance& p);
 
 }  // namespace ipd

@@ -179,6 +179,8 @@ nlohmann::json provenance_json(const Provenance& p) {
           {"scenes_with_hand_pairs", p.scenes_with_hand_pairs},
           {"pairs_set_by_hand", p.pairs_set_by_hand},
           {"rocks_excluded", p.rocks_excluded},
+          {"scenes_reviewed", p.scenes_reviewed},
+          {"pairs_checked", p.pairs_checked},
           {"edited_scenes", edited}};
 }
 

@@ -100,14 +100,17 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
       }
     }
     scenes_.push_back(std::move(list));
-    audits_.emplace_back(scenes_.back().size());
-    for (size_t k = 0; k < scenes_.back().size(); ++k)
-      reaudit(static_cast<int>(scenes_.size()) - 1, static_cast<int>(k));
+  }
+  const std::vector<Problem> review_problems = load_reviews();  // before the audits: a checked pair is not suspect
+  for (size_t p = 0; p < scenes_.size(); ++p) {
+    audits_.emplace_back(scenes_[p].size());
+    for (size_t k = 0; k < scenes_[p].size(); ++k) reaudit(static_cast<int>(p), static_cast<int>(k));
   }
   // Every problem the engine found, in the order the CLI reports them: label files, then scene matching and
   // pairs files, then prediction sets that are missing.
   problems_ = label_problems(labels_ref);
   problems_.insert(problems_.end(), paired.problems.begin(), paired.problems.end());
+  problems_.insert(problems_.end(), review_problems.begin(), review_problems.end());
   for (const auto& m : st.models)
     for (const auto& d : st.domains)
       if (!labels_ref.has_predictions(d.name, m.name))
@@ -215,8 +218,16 @@ void Session::reaudit(int pair, int scene) {
   // Residuals in pixels; a study without image_size counts 1000 px across.
   const int w = st.config.image_width > 0 ? st.config.image_width : 1000;
   const int h = st.config.image_height > 0 ? st.config.image_height : static_cast<int>(std::lround(w / st.aspect()));
-  audits_[pair][scene] = audit_pairs(labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes, s.current.pairs,
-                                     s.automatic.registration.affine, w, h);
+  SceneAudit audit = audit_pairs(labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes, s.current.pairs,
+                                 s.automatic.registration.affine, w, h);
+  // A pair judged correct by hand is no longer suspect: N skips it and it is drawn as an ordinary pair.
+  for (PairAudit& p : audit.pairs)
+    if (reviews_[pair]->is_checked(scene, p.a, p.b)) {
+      p.checked = true;
+      if (p.suspect) --audit.suspects;
+      p.suspect = false;
+    }
+  audits_[pair][scene] = std::move(audit);
 }
 
 std::vector<char> Session::suspect_rocks(Side side, int scene) const {
@@ -242,6 +253,7 @@ SceneSummary Session::summary(int scene) const {
   s.stem = scenes_[pair_][scene].stem;
   s.edited = scenes_[pair_][scene].edited;
   s.suspects = audits_[pair_][scene].suspects;
+  s.reviewed = reviewed(scene);
   s.ambiguous = scenes_[pair_][scene].automatic.registration.ambiguous;
   s.ambiguity = scenes_[pair_][scene].automatic.registration.ambiguity;
   if (it == contributions_.end()) {

@@ -189,7 +189,7 @@ SaveJob Session::apply(int scene, Edit e) {
   }
   std::sort(next.pairs.begin(), next.pairs.end());
   history_.resize(undo_pos_);
-  history_.push_back({pair_, scene, s.current, next, s.edited, edited});
+  history_.push_back({pair_, scene, s.current, next, s.edited, edited, {}});
   ++undo_pos_;
   return set_scene(pair_, scene, next, edited);
 }
@@ -198,6 +198,7 @@ std::optional<SaveJob> Session::undo() {
   if (!can_undo()) return std::nullopt;
   const HistoryEntry& h = history_[--undo_pos_];
   pair_ = h.pair;
+  if (h.review.kind != ReviewToggle::Kind::kNone) return apply_review_toggle(h.pair, h.scene, h.review);
   return set_scene(h.pair, h.scene, h.before, h.edited_before);
 }
 
@@ -205,6 +206,7 @@ std::optional<SaveJob> Session::redo() {
   if (!can_redo()) return std::nullopt;
   const HistoryEntry& h = history_[undo_pos_++];
   pair_ = h.pair;
+  if (h.review.kind != ReviewToggle::Kind::kNone) return apply_review_toggle(h.pair, h.scene, h.review);
   return set_scene(h.pair, h.scene, h.after, h.edited_after);
 }
 
@@ -213,11 +215,14 @@ std::vector<SaveJob> Session::save_all_to(const std::string& other_root) const {
   for (size_t p = 0; p < scenes_.size(); ++p)
     for (size_t s = 0; s < scenes_[p].size(); ++s)
       if (scenes_[p][s].edited) jobs.push_back(job_for(static_cast<int>(p), static_cast<int>(s), other_root));
+  for (size_t p = 0; p < reviews_.size(); ++p)
+    if (!reviews_[p]->empty()) jobs.push_back(review_job(static_cast<int>(p), other_root));
   return jobs;
 }
 
 void Session::reload_scene(int pair, const std::string& stem) {
   if (pair < 0 || pair >= static_cast<int>(scenes_.size())) return;
+  if (stem.empty()) return reload_review(pair);
   const auto& list = scenes_[pair];
   const auto it = std::find_if(list.begin(), list.end(), [&](const SceneState& sc) { return sc.stem == stem; });
   if (it == list.end()) return;
@@ -232,7 +237,7 @@ void Session::reload_scene(int pair, const std::string& stem) {
   if (read.pairs) next = std::move(*read.pairs);
   std::sort(next.pairs.begin(), next.pairs.end());
   history_.resize(undo_pos_);
-  history_.push_back({pair, scene, s.current, next, s.edited, edited});
+  history_.push_back({pair, scene, s.current, next, s.edited, edited, {}});
   ++undo_pos_;
   set_scene(pair, scene, next, edited);  // its job would write what is on disk: not needed
   s.disk_ab = read.version_ab;

@@ -69,6 +69,31 @@ TEST(Provenance, TextTableFootnoteAndVerboseListOfEditedScenes) {
       << r.out;
 }
 
+// Review marks travel with the table: a reviewed scene, and a checked pair that is still a pair (the second
+// check names rocks that registration did not pair: it is not counted).
+TEST(Provenance, ReviewFilesCountReviewedScenesAndCheckedPairs) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  test::write_text(d / "review/real__synth.json",
+                   R"({"reviewed": ["s1"], "checked": [)"
+                   R"({"scene": "s1", "rock_a": [0.2, 0.2, 0.1, 0.1], "rock_b": [0.2, 0.2, 0.1, 0.1]},)"
+                   R"({"scene": "s1", "rock_a": [0.6, 0.6, 0.1, 0.1], "rock_b": [0.2, 0.2, 0.1, 0.1]}]})");
+  const auto r = test::run_ipd("table " + d.path() + " --format json --no-cache");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json p = nlohmann::json::parse(r.out).at("provenance");
+  EXPECT_EQ(p.at("scenes_reviewed"), 1);
+  EXPECT_EQ(p.at("pairs_checked"), 1);
+  EXPECT_NE(r.err.find("note: Label files d189a61c07b5; no hand pairs (every pair from registration); 1 scene "
+                       "reviewed, 1 pair checked as correct.\n"),
+            std::string::npos)
+      << r.err;
+  // A review file that is not JSON stops the table, naming the file.
+  test::write_text(d / "review/real__synth.json", "{\"reviewed\": [\"s1\"]");
+  const auto bad = test::run_ipd("table " + d.path() + " --no-cache");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find(d / "review/real__synth.json: invalid JSON"), std::string::npos) << bad.err;
+}
+
 TEST(Provenance, NoteCountsInPlural) {
   Provenance p;
   p.label_fingerprint = "0123456789ab";
@@ -77,6 +102,10 @@ TEST(Provenance, NoteCountsInPlural) {
   p.rocks_excluded = 0;
   EXPECT_EQ(provenance_note(p),
             "Label files 0123456789ab; hand pairs in 2 scenes (5 pairs set by hand, 0 rocks excluded).");
+  p.scenes_reviewed = 412;
+  EXPECT_EQ(provenance_note(p),
+            "Label files 0123456789ab; hand pairs in 2 scenes (5 pairs set by hand, 0 rocks excluded); 412 scenes "
+            "reviewed, 0 pairs checked as correct.");
 }
 
 }  // namespace
