@@ -189,7 +189,7 @@ RegistrationReport read_report(Reader& rd) {
   r.inliers = rd.pod<std::int32_t>();
   r.score = rd.pod<double>();
   const int stop = rd.pod<std::int32_t>();
-  if (stop < 0 || stop > static_cast<int>(StopReason::kWorkBudget)) throw std::runtime_error("bad stop reason");
+  if (stop < 0 || stop > static_cast<int>(kLastStopReason)) throw std::runtime_error("bad stop reason");
   r.stop = static_cast<StopReason>(stop);
   r.note = rd.str();
   r.elapsed_ms = rd.pod<double>();

@@ -198,7 +198,7 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     r.inliers = j.at("inliers").get<int>();
     r.score = j.at("score").get<double>();
     const int stop = j.at("stop").get<int>();
-    if (stop < 0 || stop > static_cast<int>(StopReason::kWorkBudget)) return unusable();
+    if (stop < 0 || stop > static_cast<int>(kLastStopReason)) return unusable();
     r.stop = static_cast<StopReason>(stop);
     r.note = j.at("note").get<std::string>();
     r.elapsed_ms = j.at("elapsed_ms").get<double>();

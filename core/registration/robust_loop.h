@@ -33,6 +33,8 @@ enum class StopReason {
   kWorkBudget,
   kIdenticalLayouts  // both sides hold exactly the same boxes: the identity, without a search
 };
+// The last StopReason: caches check stored values against it (a new reason goes before it or moves it).
+constexpr StopReason kLastStopReason = StopReason::kIdenticalLayouts;
 
 inline const char* to_string(StopReason r) {
   switch (r) {

@@ -56,6 +56,28 @@ TEST(SessionReview, CheckingASuspectPairStopsItCountingAndUndoRedoTogglesIt) {
   EXPECT_EQ(s.summary(0).suspects, 2);
   EXPECT_EQ(s.redo()->contents, job->contents);
   EXPECT_EQ(s.summary(0).suspects, 1);
+  // Swapped view (synth on the left): the same pair is (3, 2) in view indices.
+  ASSERT_TRUE(s.select_domains("synth", "real"));
+  EXPECT_TRUE(s.checked(0, 3, 2));
+  EXPECT_FALSE(s.checked(0, 2, 3));
+  EXPECT_FALSE(s.toggle_checked(0, 3, 2)->contents.has_value());  // unchecked: nothing left to keep
+  EXPECT_EQ(s.summary(0).suspects, 2);
+}
+
+// Unpairing a checked pair leaves its check in memory (undo brings the pair and the check back) but the file
+// keeps only checks of current pairs.
+TEST(SessionReview, ACheckOfAPairEditedAwayIsNotWrittenAndComesBackWithUndo) {
+  test::TempDir d;
+  test::write_review_study(d);
+  Session s = Session::open(d.path());
+  s.toggle_checked(0, 2, 3);
+  s.apply(0, Edit::unpair(Side::kA, 2));
+  EXPECT_EQ(s.summary(0).suspects, 1);  // [3, 2] is left, and not checked
+  EXPECT_EQ(*s.toggle_reviewed(1).contents, "{\"reviewed\":[\"s2\"],\"checked\":[]}\n");
+  s.undo();
+  s.undo();  // the pair [2, 3] is back, checked
+  EXPECT_EQ(s.summary(0).suspects, 1);
+  EXPECT_TRUE(s.audit(0).pairs[2].checked);
 }
 
 TEST(SessionReview, ReviewedScenesToggleCountAndFilter) {
