@@ -67,6 +67,25 @@ TEST(RegistrationCacheRules, AnIdenticalLayoutsEntryIsReused) {
   EXPECT_EQ(back->pairs, r.pairs);
 }
 
+// The key's bytes for given settings change only with kFormat: entries written by an earlier build stay valid.
+// Pinned for the defaults, for paper with its own trial count, a time budget and an aspect, and for consensus
+// with a gate, a work budget and its own trial count.
+TEST(RegistrationCacheRules, TheKeyOfGivenSettingsIsPinned) {
+  const auto a = seven(0), b = seven(0.02);
+  EXPECT_EQ(registration_cache_key(a, b, RegistrationOptions()), "4615073b3617d22b65a4418e131d69c2");
+  RegistrationOptions p;
+  p.method = RegistrationMethod::kPaper;
+  p.paper.samples = 5;
+  p.time_budget_ms = 7;
+  p.aspect = 1.6;
+  EXPECT_EQ(registration_cache_key(a, b, p), "d65e605e22832cc22570c8c6242421cf");
+  RegistrationOptions c;
+  c.consensus.inlier_gate = 0.01;
+  c.work_budget = 1e5;
+  c.consensus.max_hypotheses = 9;
+  EXPECT_EQ(registration_cache_key(a, b, c), "9703abe6d5af5c57fb87b9d52c56bc56");
+}
+
 // Every option that can change the answer is part of the key: changing one never reuses another's entry.
 TEST(RegistrationCacheRules, TheKeyCoversEveryOptionThatChangesTheAnswer) {
   const auto a = seven(0), b = seven(0.02);
@@ -75,18 +94,19 @@ TEST(RegistrationCacheRules, TheKeyCoversEveryOptionThatChangesTheAnswer) {
   const std::vector<std::pair<const char*, void (*)(RegistrationOptions*)>> changes = {
       {"method", [](RegistrationOptions* o) { o->method = RegistrationMethod::kCpd; }},
       {"seed", [](RegistrationOptions* o) { o->seed = 1; }},
-      {"max_trials", [](RegistrationOptions* o) { o->max_trials = 999; }},
+      {"consensus.max_hypotheses", [](RegistrationOptions* o) { o->consensus.max_hypotheses = 999; }},
+      {"paper.samples", [](RegistrationOptions* o) { o->method = RegistrationMethod::kPaper, o->paper.samples = 9; }},
       {"time_budget_ms", [](RegistrationOptions* o) { o->time_budget_ms = 5; }},
       {"aspect", [](RegistrationOptions* o) { o->aspect = 1.6; }},
-      {"pair_gate", [](RegistrationOptions* o) { o->pair_gate = 0.3; }},
-      {"min_scale", [](RegistrationOptions* o) { o->min_scale = 0.6; }},
-      {"max_scale", [](RegistrationOptions* o) { o->max_scale = 1.9; }},
-      {"max_rotation_deg", [](RegistrationOptions* o) { o->max_rotation_deg = 20; }},
-      {"max_anisotropy", [](RegistrationOptions* o) { o->max_anisotropy = 1.5; }},
-      {"inlier_gate", [](RegistrationOptions* o) { o->inlier_gate = 0.01; }},
+      {"pair_gate", [](RegistrationOptions* o) { o->paper.pair_gate = 0.3; }},
+      {"min_scale", [](RegistrationOptions* o) { o->consensus.min_scale = 0.6; }},
+      {"max_scale", [](RegistrationOptions* o) { o->consensus.max_scale = 1.9; }},
+      {"max_rotation_deg", [](RegistrationOptions* o) { o->consensus.max_rotation_deg = 20; }},
+      {"max_anisotropy", [](RegistrationOptions* o) { o->consensus.max_anisotropy = 1.5; }},
+      {"inlier_gate", [](RegistrationOptions* o) { o->consensus.inlier_gate = 0.01; }},
       {"min_pair_iou", [](RegistrationOptions* o) { o->min_pair_iou = 0.2; }},
-      {"cpd_iterations", [](RegistrationOptions* o) { o->cpd_iterations = 50; }},
-      {"cpd_outlier_weight", [](RegistrationOptions* o) { o->cpd_outlier_weight = 0.3; }},
+      {"cpd.iterations", [](RegistrationOptions* o) { o->cpd.iterations = 50; }},
+      {"cpd.outlier_weight", [](RegistrationOptions* o) { o->cpd.outlier_weight = 0.3; }},
       {"work_budget", [](RegistrationOptions* o) { o->work_budget = 1e5; }},
   };
   for (const auto& [name, change] : changes) {
