@@ -65,7 +65,7 @@ Runner add_breakdown_command(CLI::App& app) {
     }
     const std::string ref_note = "bins of the first domain's rock; ";
     // Which label files and hand edits the bins' numbers come from: a JSON object, CSV columns, a text line.
-    const Provenance provenance = table_provenance(loaded->table, loaded->labels.study);
+    const Provenance provenance = table_provenance(loaded->table, loaded->labels);
     if (args->format == "json") {
       nlohmann::ordered_json j = {
           {"by", args->by},

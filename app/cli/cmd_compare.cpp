@@ -111,7 +111,7 @@ Runner add_compare_command(CLI::App& app) {
     if (results.empty())
       throw StudyError(fmt::format("{}: no model has predictions for {}, {} and {}", study.root, ref, a, b));
     // Which label files and hand edits the comparison's numbers come from.
-    const Provenance provenance = table_provenance(loaded->table, loaded->labels.study);
+    const Provenance provenance = table_provenance(loaded->table, loaded->labels);
     if (args->json) {
       if (results.size() == 1) {
         std::cout << dump_json_output(comparison_json(results[0], provenance), 2) << "\n";

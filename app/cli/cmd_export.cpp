@@ -34,7 +34,7 @@ Runner add_export_command(CLI::App& app) {
     const auto rows = rock_rows(loaded->labels, loaded->table, eo);
     // Every row carries the label fingerprint and hand-edit counts: an exported number can be told from an
     // automatic one without the table beside it.
-    const Provenance provenance = table_provenance(loaded->table, loaded->labels.study);
+    const Provenance provenance = table_provenance(loaded->table, loaded->labels);
     const std::string text =
         args->format == "json" ? rock_rows_json(rows, &provenance) : rock_rows_csv(rows, &provenance);
     if (args->out.empty()) {

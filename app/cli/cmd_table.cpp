@@ -46,7 +46,7 @@ Runner add_table_command(CLI::App& app) {
     fo.seed = loaded->bootstrap.seed;
     fo.conf_threshold = loaded->conf_threshold;
     // Which numbers are automatic and which edited, and which labels they came from, travel with the table.
-    const Provenance provenance = table_provenance(loaded->table, loaded->labels.study);
+    const Provenance provenance = table_provenance(loaded->table, loaded->labels);
     fo.provenance = &provenance;
     std::string text = format_table(loaded->table, format, fo);
     // What a reader must know to trust the numbers: the prediction threshold used, and the scenes whose

@@ -38,6 +38,12 @@ class StudioApp {
  private:
   void apply(const ui::UiCommands& cmd);  // the one place commands take effect
   void adopt_snapshot();
+  // The frame's parts (studio_app_frame.cpp).
+  ui::StudyView study_view();
+  void draw_open_error(const std::string& error, float h);
+  void draw_opening(const OpenProgress& p, float h);
+  void draw_study(ui::StudyView& v, float h, ui::UiCommands& cmd);
+  void scene_pictures(const Session& s, ui::Picture* left, ui::Picture* right);  // and the neighbours' prefetch
   void next_suspect();
   void goto_scene(int scene);
   bool replay_step();  // one action of --replay; false while waiting

@@ -62,6 +62,9 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
       {"select", {4, "a box's corners x0 y0 x1 y1 on the rock view's axes"}},
       {"list", {1, "a text file"}},
       {"gallery", {0, "[page N] [sort diff|perf-left|perf-right|size]"}},
+      {"review", {0, "nothing"}},
+      {"suspect", {0, "nothing"}},
+      {"check", {2, "two rock numbers of a pair (left, right), or nothing for the selected pair"}},
   };
   std::vector<ReplayAction> out;
   std::istringstream in(text);
@@ -79,10 +82,12 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
     if (it == verbs.end())
       fail("unknown action '" + a.verb +
            "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, undo, "
-           "redo, rerun, export, screenshot, problems, problem, focus, rocks, select, list or gallery)");
+           "redo, rerun, export, screenshot, problems, problem, focus, rocks, select, list, gallery, review, suspect "
+           "or check)");
     const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
     const bool gallery_options = a.verb == "gallery" && (a.args.size() == 2 || a.args.size() == 4);
-    if (static_cast<int>(a.args.size()) != it->second.first && !export_with_kind && !gallery_options)
+    const bool check_selected = a.verb == "check" && a.args.empty();
+    if (static_cast<int>(a.args.size()) != it->second.first && !export_with_kind && !gallery_options && !check_selected)
       fail("'" + a.verb + "' takes " + it->second.second + ", got " + std::to_string(a.args.size()) + " argument(s)");
     // The whole word is the number ("5\0" is not 5) and it fits the int the studio keeps it in.
     auto positive = [&](const std::string& w) {
@@ -90,7 +95,8 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
       if (!parse_integer(w, 1, std::numeric_limits<int>::max(), &v))
         fail("'" + a.verb + "': expected a number >= 1, got '" + quoted_for_message(w) + "'");
     };
-    if (a.verb == "wait" || a.verb == "problem" || a.verb == "pair" || a.verb == "unpair" || a.verb == "exclude")
+    if (a.verb == "wait" || a.verb == "problem" || a.verb == "pair" || a.verb == "unpair" || a.verb == "exclude" ||
+        a.verb == "check")
       for (const auto& w : a.args) positive(w);
     // One domain against itself has no gap to measure: the studio would keep the domains it shows.
     if (a.verb == "domains" && a.args[0] == a.args[1])

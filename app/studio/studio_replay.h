@@ -3,10 +3,13 @@
 //   wait N | conf X | model NAME | domains A B | scene next|prev|STEM | pair I J | unpair I | exclude I
 //   undo | redo | rerun paper|consensus|cpd | export [KIND] FILE | screenshot FILE   (# starts a comment)
 //   problems | problem N | rocks X Y | select X0 Y0 X1 Y1 | list FILE | gallery [page N] [sort KEY]
+//   suspect | check [I J] | review
 // rocks: the rock view open on axes X, Y (perf-a, perf-b, diff, size, x, y, conf-a, conf-b); select: a drag box
 // in the axes' units, as the mouse draws it; list: the scene list (its selection chip's label, then one scene
 // per line) written to FILE; gallery: the Rock pairs window on its gallery tab, at page N (1-based), sorted by
-// KEY (diff, perf-left, perf-right, size; largest first).
+// KEY (diff, perf-left, perf-right, size; largest first). suspect: `N`, the next suspect pair (selected); check:
+// the pair I J (or the selected one) checked as correct, again: unchecked (`C`); review: the scene in view
+// reviewed, again: not (`R`).
 // KIND: pairs (the default), registration, table, compare, distribution, breakdown[-size|-region|-confidence]
 // (the Export figure dialog's defaults for that kind and the current view).
 #pragma once

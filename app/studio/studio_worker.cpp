@@ -306,6 +306,16 @@ void StudyWorker::execute(WorkerCommand& c) {
                          save(s.apply(e.scene, e.edit)), edited_scene = e.scene;
                        return true;
                      },
+                     [&](const command::ToggleReviewed& r) {
+                       if (r.scene >= 0 && r.scene < static_cast<int>(s.scenes().size()))
+                         save(s.toggle_reviewed(r.scene));
+                       return true;
+                     },
+                     [&](const command::ToggleChecked& c) {
+                       if (c.scene >= 0 && c.scene < static_cast<int>(s.scenes().size()))
+                         if (auto job = s.toggle_checked(c.scene, c.left, c.right)) save(std::move(*job));
+                       return true;
+                     },
                      [&](const command::Undo&) {
                        if (auto job = s.undo())
                          save(std::move(*job)), jump = edited_scene = std::max(0, s.last_edited_scene());
@@ -326,7 +336,7 @@ void StudyWorker::execute(WorkerCommand& c) {
                          std::lock_guard<std::mutex> l(mu_);
                          unsaved_edits_ = 0;
                        }
-                       say("edited pairs written under " + d.dir + "/pairs/");
+                       say("edited pairs and review marks written under " + d.dir);
                        return false;
                      },
                      [&](const command::ReloadScene& r) { return s.reload_scene(r.pair, r.stem), true; },

@@ -62,6 +62,13 @@ struct ApplyEdit {
   int scene = -1;
   Edit edit = Edit::reset();
 };
+// Review marks (review_state.h), undone like edits: a scene's "reviewed", a pair's "checked, correct".
+struct ToggleReviewed {
+  int scene = -1;
+};
+struct ToggleChecked {
+  int scene = -1, left = -1, right = -1;  // a current pair, in view orientation
+};
 struct Undo {};
 struct Redo {};
 struct SelectDomains {
@@ -100,9 +107,10 @@ struct ExportFigure {
 }  // namespace command
 
 using WorkerCommand =
-    std::variant<command::OpenStudy, command::ApplyEdit, command::Undo, command::Redo, command::SelectDomains,
-                 command::SelectModel, command::SetConfThreshold, command::RerunRegistration, command::SaveAllTo,
-                 command::ReloadScene, command::ExportFigure, command::RegisterScene>;
+    std::variant<command::OpenStudy, command::ApplyEdit, command::ToggleReviewed, command::ToggleChecked, command::Undo,
+                 command::Redo, command::SelectDomains, command::SelectModel, command::SetConfThreshold,
+                 command::RerunRegistration, command::SaveAllTo, command::ReloadScene, command::ExportFigure,
+                 command::RegisterScene>;
 
 // Lowers the calling thread's CPU priority a little (threads it starts inherit it): heavy jobs yield to the
 // window's frames, and to the rasteriser's threads, on a machine with few cores.

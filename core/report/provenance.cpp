@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "core/session/review_state.h"
 #include "core/util/contained_file.h"
 
 namespace ipd {
@@ -56,9 +57,28 @@ std::string label_set_fingerprint(const Study& study) {
   return sha.hex().substr(0, 12);
 }
 
-Provenance table_provenance(const CrossTable& table, const Study& study) {
+namespace {
+// The review marks of column `c` that still apply to the table's scenes and pairs.
+void count_reviews(const CrossTable& table, size_t c, const StudyLabels& labels, Provenance* p) {
+  const auto& [a, b] = table.columns[c];
+  std::vector<const ScenePairing*> scenes;
+  for (const ScenePairing& s : table.pairings[c]) scenes.push_back(&s);
+  std::sort(scenes.begin(), scenes.end(), [](const auto* x, const auto* y) { return x->stem < y->stem; });
+  ReviewScenes r;
+  for (const ScenePairing* s : scenes) r.stems.push_back(s->stem);
+  r.gt = [&](int k, bool side_a) -> const std::vector<Box>& {
+    return labels.gt_of(side_a ? a : b, scenes[k]->stem).boxes;
+  };
+  r.pairs = [&](int k) -> const RockPairs& { return scenes[k]->pairs; };
+  const ReviewRead read = load_review(labels.study.root, a, b, r);
+  p->scenes_reviewed += read.state.reviewed_scenes;
+  for (const RockPairs& checked : read.state.checked) p->pairs_checked += static_cast<int>(checked.size());
+}
+}  // namespace
+
+Provenance table_provenance(const CrossTable& table, const StudyLabels& labels) {
   Provenance p;
-  for (size_t c = 0; c < table.pairings.size() && c < table.columns.size(); ++c)
+  for (size_t c = 0; c < table.pairings.size() && c < table.columns.size(); ++c) {
     for (const ScenePairing& s : table.pairings[c]) {
       if (!s.fixed) continue;
       ++p.scenes_with_hand_pairs;
@@ -66,7 +86,9 @@ Provenance table_provenance(const CrossTable& table, const Study& study) {
       p.rocks_excluded += static_cast<int>(s.excluded_a.size() + s.excluded_b.size());
       p.edited_scenes.push_back({table.columns[c].first, table.columns[c].second, s.stem});
     }
-  p.label_fingerprint = label_set_fingerprint(study);
+    count_reviews(table, c, labels, &p);
+  }
+  p.label_fingerprint = label_set_fingerprint(labels.study);
   return p;
 }
 
@@ -81,16 +103,26 @@ Provenance session_provenance(const Session& session) {
       p.rocks_excluded += static_cast<int>(s.current.excluded_a.size() + s.current.excluded_b.size());
       p.edited_scenes.push_back({pairs[c].first, pairs[c].second, s.stem});
     }
+  for (size_t c = 0; c < pairs.size(); ++c) {
+    const ReviewState& r = session.review_of(static_cast<int>(c));
+    p.scenes_reviewed += static_cast<int>(std::count(r.reviewed.begin(), r.reviewed.end(), 1));
+    for (const RockPairs& checked : r.checked) p.pairs_checked += static_cast<int>(checked.size());
+  }
   p.label_fingerprint = label_set_fingerprint(session.study());
   return p;
 }
 
 std::string provenance_note(const Provenance& p) {
-  if (p.scenes_with_hand_pairs == 0)
-    return fmt::format("Label files {}; no hand pairs (every pair from registration).", p.label_fingerprint);
-  return fmt::format("Label files {}; hand pairs in {} ({} set by hand, {} excluded).", p.label_fingerprint,
-                     plural(p.scenes_with_hand_pairs, "scene", "scenes"), plural(p.pairs_set_by_hand, "pair", "pairs"),
-                     plural(p.rocks_excluded, "rock", "rocks"));
+  std::string note =
+      p.scenes_with_hand_pairs == 0
+          ? fmt::format("Label files {}; no hand pairs (every pair from registration)", p.label_fingerprint)
+          : fmt::format("Label files {}; hand pairs in {} ({} set by hand, {} excluded)", p.label_fingerprint,
+                        plural(p.scenes_with_hand_pairs, "scene", "scenes"),
+                        plural(p.pairs_set_by_hand, "pair", "pairs"), plural(p.rocks_excluded, "rock", "rocks"));
+  if (p.scenes_reviewed > 0 || p.pairs_checked > 0)
+    note += fmt::format("; {} reviewed, {} checked as correct", plural(p.scenes_reviewed, "scene", "scenes"),
+                        plural(p.pairs_checked, "pair", "pairs"));
+  return note + ".";
 }
 
 nlohmann::ordered_json provenance_json(const Provenance& p) {
@@ -100,6 +132,8 @@ nlohmann::ordered_json provenance_json(const Provenance& p) {
           {"scenes_with_hand_pairs", p.scenes_with_hand_pairs},
           {"pairs_set_by_hand", p.pairs_set_by_hand},
           {"rocks_excluded", p.rocks_excluded},
+          {"scenes_reviewed", p.scenes_reviewed},
+          {"pairs_checked", p.pairs_checked},
           {"edited_scenes", edited}};
 }
 

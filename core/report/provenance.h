@@ -23,6 +23,10 @@ struct Provenance {
   int scenes_with_hand_pairs = 0;
   int pairs_set_by_hand = 0;  // pairs in those scenes' pairs files
   int rocks_excluded = 0;     // rocks left out of the IPD on purpose, both sides
+  // From the review files (core/session/review_state.h), over the same domain pairs: scenes marked
+  // reviewed, and pairs checked as correct that are still pairs of their scenes.
+  int scenes_reviewed = 0;
+  int pairs_checked = 0;
   std::string label_fingerprint;
   std::vector<EditedScene> edited_scenes;  // in column and scene order
 };
@@ -34,8 +38,9 @@ struct Provenance {
 // IoError naming the file for a symbolic link or an unreadable file.
 std::string label_set_fingerprint(const Study& study);
 
-// The hand-pair counts of `table` and the fingerprint of `study`'s labels.
-Provenance table_provenance(const CrossTable& table, const Study& study);
+// The hand-pair counts of `table`, the review marks of its domain pairs and the fingerprint of the labels.
+// Throws StudyError naming a review file that can't be read.
+Provenance table_provenance(const CrossTable& table, const StudyLabels& labels);
 // The same for ipd-studio's session over every domain pair: its edited scenes (edits not yet saved
 // included), as `ipd table` would count them once they are saved.
 Provenance session_provenance(const Session& session);
@@ -44,7 +49,8 @@ Provenance session_provenance(const Session& session);
 // in all of them (tables, compare, breakdown, the rock export, every figure kind and its metadata).
 
 // The text footnote: "Label files 1a2b3c4d5e6f; hand pairs in 2 scenes (5 pairs set by hand, 1 rock
-// excluded)." or "Label files 1a2b3c4d5e6f; no hand pairs (every pair from registration)."
+// excluded)." or "Label files 1a2b3c4d5e6f; no hand pairs (every pair from registration).", with "; 12 scenes
+// reviewed, 3 pairs checked as correct" before the full stop when anything was reviewed or checked.
 std::string provenance_note(const Provenance& p);
 
 // The machine-readable form, keys in a fixed order: label_fingerprint, scenes_with_hand_pairs,

@@ -27,7 +27,8 @@ struct PairAudit {
   double aligned_iou = 0;  // IoU of a's box moved by the affine with b's box
   double size_ratio = 1;   // sqrt(area of the aligned a box / area of b's box)
   bool suspect = false;
-  std::string why;  // "residual", "size", "no overlap" (comma-separated), empty when not suspect
+  bool checked = false;  // judged correct by hand (review_state.h): then never suspect, `why` still says why
+  std::string why;       // "residual", "size", "no overlap" (comma-separated), empty when not suspect
 };
 
 struct SceneAudit {

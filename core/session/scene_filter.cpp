@@ -19,6 +19,10 @@ SceneFilter SceneFilter::parse(const std::string& text) {
       t.kind = Term::Kind::kEdited;
     else if (w == "ambiguous")
       t.kind = Term::Kind::kAmbiguous;
+    else if (w == "reviewed")
+      t.kind = Term::Kind::kReviewed;
+    else if (w == "unreviewed")
+      t.kind = Term::Kind::kUnreviewed;
     else if (w.rfind("ipd", 0) == 0 && w.size() > 3 && (w[3] == '<' || w[3] == '>' || w[3] == '=')) {
       t.kind = Term::Kind::kIpd;
       const size_t len = (w.size() > 4 && w[4] == '=') ? 2 : 1;
@@ -50,6 +54,12 @@ bool SceneFilter::matches(const SceneSummary& s) const {
         break;
       case Term::Kind::kAmbiguous:
         if (!s.ambiguous) return false;
+        break;
+      case Term::Kind::kReviewed:
+        if (!s.reviewed) return false;
+        break;
+      case Term::Kind::kUnreviewed:
+        if (s.reviewed) return false;
         break;
       case Term::Kind::kIpd: {
         if (std::isnan(s.ipd)) return false;

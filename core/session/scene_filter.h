@@ -1,6 +1,7 @@
 // The scene list's filter: words separated by spaces, every one must match. `ipd>0.1`, `ipd<=0.05`
-// (also >=, <, =), `suspect` (a suspect pair), `edited` (pairs fixed by hand), `ambiguous`
-// (registration could not decide), anything else: part of the scene's name.
+// (also >=, <, =), `suspect` (a suspect pair not checked as correct), `edited` (pairs fixed by hand),
+// `ambiguous` (registration could not decide), `reviewed` / `unreviewed` (marked as looked at or not,
+// review_state.h), anything else: part of the scene's name.
 #pragma once
 
 #include <string>
@@ -12,7 +13,7 @@ namespace ipd {
 
 struct SceneFilter {
   struct Term {
-    enum class Kind { kText, kIpd, kSuspect, kEdited, kAmbiguous } kind = Kind::kText;
+    enum class Kind { kText, kIpd, kSuspect, kEdited, kAmbiguous, kReviewed, kUnreviewed } kind = Kind::kText;
     std::string text, op;  // op: ">", ">=", "<", "<=", "="
     double value = 0;
   };

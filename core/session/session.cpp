@@ -1,6 +1,5 @@
 #include "core/session/session.h"
 
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
@@ -13,99 +12,11 @@
 #include "core/ipd/study_pipeline.h"
 #include "core/registration/registration_cache.h"
 #include "core/util/atomic_file.h"
-#include "core/util/contained_file.h"
 #include "core/util/parallel.h"
 
 namespace fs = std::filesystem;
 
 namespace ipd {
-
-namespace {
-void remove_durably(const std::string& path) {
-  std::error_code ec;
-  if (!fs::remove(path, ec) && ec) throw IoError(path + ": cannot remove: " + ec.message());
-  // Make the removal durable before the next step depends on it.
-  const std::string dir = fs::path(path).has_parent_path() ? fs::path(path).parent_path().string() : ".";
-  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd >= 0) {
-    ::fsync(fd);
-    ::close(fd);
-  }
-}
-
-// `path` below `root`, as the relative name contained_file.h walks.
-std::string relative_to(const std::string& root_in, const std::string& path) {
-  const std::string root =
-      root_in.size() > 1 && root_in.back() == '/' ? root_in.substr(0, root_in.size() - 1) : root_in;
-  if (path.size() <= root.size() + 1 || path.compare(0, root.size(), root) != 0 || path[root.size()] != '/')
-    throw IoError(fmt::format("{}: is not inside {}; not saved", path, root));
-  return path.substr(root.size() + 1);
-}
-
-// Refuses the job (nothing written yet) when a file it touches holds neither what this window last saw
-// there nor what the job would leave there (a retried job may find its own result).
-void check_expected(const SaveJob& job) {
-  if (job.expected.empty()) return;
-  std::vector<std::string> paths = {job.path};
-  paths.insert(paths.end(), job.also_remove.begin(), job.also_remove.end());
-  if (job.expected.size() != paths.size()) throw IoError(job.path + ": a save job with the wrong number of versions");
-  std::vector<std::optional<std::string>> texts;
-  std::vector<DiskVersion> now;
-  for (const auto& p : paths) {
-    texts.push_back(read_file_beneath(job.root, relative_to(job.root, p)));
-    now.push_back(version_of(texts.back()));
-  }
-  for (size_t k = 0; k < paths.size(); ++k) {
-    const DiskVersion target = k == 0 ? version_of(job.contents) : DiskVersion{};
-    if (now[k] == job.expected[k] || now[k] == target) continue;
-    throw SaveConflict(fmt::format("{}: changed on disk since this window read it (another window or program saved "
-                                   "it); not overwritten: keep one version",
-                                   paths[k]),
-                       paths[k], texts[k], now);
-  }
-}
-
-void run_unchecked_save_job(const SaveJob& job, const WriteStepHook& hook) {
-  if (job.contents) {
-    write_file_atomically(job.path, *job.contents, hook);
-    for (const auto& p : job.also_remove) {
-      remove_durably(p);
-      if (hook) hook("other removed");
-    }
-  } else {
-    for (const auto& p : job.also_remove) {
-      remove_durably(p);
-      if (hook) hook("other removed");
-    }
-    remove_durably(job.path);
-    if (hook) hook("removed");
-  }
-}
-}  // namespace
-
-void run_save_job(const SaveJob& job, const WriteStepHook& hook) {
-  if (job.root.empty()) return run_unchecked_save_job(job, hook);
-  // Every file the job touches is looked at first: a link on the way refuses the job before anything changed.
-  const std::string rel = relative_to(job.root, job.path);
-  check_beneath(job.root, rel);
-  for (const auto& p : job.also_remove) check_beneath(job.root, relative_to(job.root, p));
-  check_expected(job);
-  // `path` is the name order read_fixed_pairs tries first: while it exists, the other one doesn't count.
-  if (job.contents) {
-    write_file_beneath(job.root, rel, *job.contents, hook);
-    for (const auto& p : job.also_remove) {
-      remove_file_beneath(job.root, relative_to(job.root, p));
-      if (hook) hook("other removed");
-    }
-  } else {
-    for (const auto& p : job.also_remove) {
-      remove_file_beneath(job.root, relative_to(job.root, p));
-      if (hook) hook("other removed");
-    }
-    remove_file_beneath(job.root, rel);
-    if (hook) hook("removed");
-  }
-}
 
 double CellTotals::ipd() const {
   return pairs > 0 && no_value_reason.empty() ? sum_abs_diff / static_cast<double>(pairs) : std::nan("");
@@ -192,16 +103,20 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
         s.registered = false;
       }
     }
-    const int pair = static_cast<int>(scenes_.size());
-    std::vector<SceneAudit> audits(list.size());
-    parallel_for(list.size(), 0, [&](size_t k) { audits[k] = audit_of(pair, list[k]); });
     scenes_.emplace_back(std::move(list));
+  }
+  const std::vector<Problem> review_problems = load_reviews();  // before the audits: a checked pair is not suspect
+  for (size_t p = 0; p < scenes_.size(); ++p) {
+    const int pair = static_cast<int>(p);
+    std::vector<SceneAudit> audits(scenes_[p].size());
+    parallel_for(audits.size(), 0, [&](size_t k) { audits[k] = audit_of(pair, static_cast<int>(k)); });
     audits_.emplace_back(std::move(audits));
   }
   // Every problem the engine found, in the order the CLI reports them: label files, then scene matching and
-  // pairs files, then prediction sets that are missing.
+  // pairs files, then review marks that no longer apply, then prediction sets that are missing.
   std::vector<Problem> problems = label_problems(labels_ref);
   problems.insert(problems.end(), paired.problems.begin(), paired.problems.end());
+  problems.insert(problems.end(), review_problems.begin(), review_problems.end());
   for (const auto& m : st.models)
     for (const auto& d : st.domains)
       if (!labels_ref.has_predictions(d.name, m.name))
@@ -303,7 +218,8 @@ RockPairs Session::view_pairs(int scene) const {
   return out;
 }
 
-SceneAudit Session::audit_of(int pair, const SceneState& s) const {
+SceneAudit Session::audit_of(int pair, int scene) const {
+  const SceneState& s = scenes_[pair][scene];
   if (!s.registered) {
     SceneAudit waiting;
     waiting.waits_for_registration = true;
@@ -314,9 +230,19 @@ SceneAudit Session::audit_of(int pair, const SceneState& s) const {
   // Residuals in pixels; a study without image_size counts 1000 px across.
   const int w = st.config.image_width > 0 ? st.config.image_width : 1000;
   const int h = st.config.image_height > 0 ? st.config.image_height : static_cast<int>(std::lround(w / st.aspect()));
-  return audit_pairs(labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes, s.current.pairs,
-                     s.automatic.registration.affine, w, h);
+  SceneAudit audit = audit_pairs(labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes, s.current.pairs,
+                                 s.automatic.registration.affine, w, h);
+  // A pair judged correct by hand is no longer suspect: N skips it and it is drawn as an ordinary pair.
+  for (PairAudit& p : audit.pairs)
+    if (reviews_[pair]->is_checked(scene, p.a, p.b)) {
+      p.checked = true;
+      if (p.suspect) --audit.suspects;
+      p.suspect = false;
+    }
+  return audit;
 }
+
+void Session::reaudit(int pair, int scene) { audits_[pair].set(scene, audit_of(pair, scene)); }
 
 bool Session::register_scene(int pair, int scene) {
   if (pair < 0 || pair >= static_cast<int>(scenes_.size()) || scene < 0 ||
@@ -329,7 +255,7 @@ bool Session::register_scene(int pair, int scene) {
       ipd::register_scene(*labels_, a, b, s.stem, registration_, &cache, &s.automatic.from_cache);
   s.automatic.pairs = s.automatic.registration.pairs;
   s.registered = true;
-  audits_[pair].set(scene, audit_of(pair, s));
+  reaudit(pair, scene);
   return true;
 }
 
@@ -356,6 +282,7 @@ SceneSummary Session::summary(int scene) const {
   s.stem = scenes_[pair_][scene].stem;
   s.edited = scenes_[pair_][scene].edited;
   s.suspects = audits_[pair_][scene].suspects;
+  s.reviewed = reviewed(scene);
   s.ambiguous = scenes_[pair_][scene].automatic.registration.ambiguous;
   s.ambiguity = scenes_[pair_][scene].automatic.registration.ambiguity;
   if (it == contributions_.end()) {
@@ -483,153 +410,6 @@ void Session::rebuild_totals() {
 void Session::set_conf_threshold(double threshold) {
   conf_threshold_ = std::clamp(threshold, 0.0, 1.0);
   recompute_performance();
-}
-
-SaveJob Session::job_for(int pair, int scene, const std::string& root) const {
-  const auto& [a, b] = pairs_[pair];
-  const SceneState& s = scenes_[pair][scene];
-  SaveJob job;
-  job.root = root;
-  job.path = (fs::path(root) / fixed_pairs_relative_path(a, b, s.stem)).string();
-  job.also_remove.push_back((fs::path(root) / fixed_pairs_relative_path(b, a, s.stem)).string());
-  if (s.edited)
-    job.contents = fixed_pairs_json(s.current, labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes);
-  if (root == labels_->study.root) job.expected = {s.disk_ab, s.disk_ba};
-  job.pair = pair;
-  job.stem = s.stem;
-  return job;
-}
-
-SaveJob Session::set_scene(int pair, int scene, const FixedPairs& fp, bool edited) {
-  SceneState& s = scenes_[pair].edit(scene);  // the only scene that changes: its chunk alone is copied
-  s.current = fp;
-  std::sort(s.current.pairs.begin(), s.current.pairs.end());
-  s.edited = edited;
-  // Only this scene's contribution changes: swap it in every model's totals.
-  for (auto& [key, list] : contributions_) {
-    if (key.second != pair) continue;
-    CellTotals& t = totals_[key];
-    const SceneIpd& old = list[scene];
-    t.sum_abs_diff -= old.sum_abs_diff;
-    t.pairs -= old.pairs;
-    t.unpaired_a -= old.unpaired_a;
-    t.unpaired_b -= old.unpaired_b;
-    list.set(scene, contribution(key.first, pair, scene));
-    t.sum_abs_diff += list[scene].sum_abs_diff;
-    t.pairs += list[scene].pairs;
-    t.unpaired_a += list[scene].unpaired_a;
-    t.unpaired_b += list[scene].unpaired_b;
-  }
-  audits_[pair].set(scene, audit_of(pair, s));
-  last_scene_ = scene;
-  SaveJob job = job_for(pair, scene, labels_->study.root);
-  // From now on this window's version is what the job leaves on disk.
-  s.disk_ab = version_of(job.contents);
-  s.disk_ba = DiskVersion{};
-  return job;
-}
-
-SaveJob Session::apply(int scene, Edit e) {
-  if (e.kind == Edit::Kind::kResetToAutomatic) register_scene(pair_, scene);  // the pairs it goes back to
-  const SceneState& s = scenes_[pair_][scene];
-  FixedPairs next = s.current;
-  bool edited = true;
-  // Sides of the view to sides of the domain pair.
-  int ia = e.a, ib = e.b;
-  if (swapped_ && e.kind == Edit::Kind::kPair) std::swap(ia, ib);
-  const Side side = pair_side(e.side);
-  auto erase_if = [](RockPairs& v, auto pred) { v.erase(std::remove_if(v.begin(), v.end(), pred), v.end()); };
-  auto drop = [](std::vector<int>& v, int x) { v.erase(std::remove(v.begin(), v.end(), x), v.end()); };
-  switch (e.kind) {
-    case Edit::Kind::kPair:
-      erase_if(next.pairs, [&](const auto& p) { return p.first == ia || p.second == ib; });
-      next.pairs.emplace_back(ia, ib);
-      drop(next.excluded_a, ia);
-      drop(next.excluded_b, ib);
-      break;
-    case Edit::Kind::kUnpair:
-      erase_if(next.pairs, [&](const auto& p) { return side == Side::kA ? p.first == e.a : p.second == e.a; });
-      break;
-    case Edit::Kind::kToggleExclude: {
-      auto& list = side == Side::kA ? next.excluded_a : next.excluded_b;
-      if (std::find(list.begin(), list.end(), e.a) != list.end())
-        drop(list, e.a);
-      else
-        list.push_back(e.a);
-      std::sort(list.begin(), list.end());
-      break;
-    }
-    case Edit::Kind::kReplacePairs:
-      next.pairs = e.pairs;
-      if (swapped_)
-        for (auto& p : next.pairs) std::swap(p.first, p.second);
-      break;
-    case Edit::Kind::kResetToAutomatic:
-      next = FixedPairs{};
-      next.pairs = s.automatic.pairs;
-      edited = false;
-      break;
-  }
-  std::sort(next.pairs.begin(), next.pairs.end());
-  history_.truncate(undo_pos_);
-  history_.push_back({pair_, scene, s.current, next, s.edited, edited});
-  ++undo_pos_;
-  return set_scene(pair_, scene, next, edited);
-}
-
-std::optional<SaveJob> Session::undo() {
-  if (!can_undo()) return std::nullopt;
-  const HistoryEntry h = history_[--undo_pos_];
-  pair_ = h.pair;
-  return set_scene(h.pair, h.scene, h.before, h.edited_before);
-}
-
-std::optional<SaveJob> Session::redo() {
-  if (!can_redo()) return std::nullopt;
-  const HistoryEntry h = history_[undo_pos_++];
-  pair_ = h.pair;
-  return set_scene(h.pair, h.scene, h.after, h.edited_after);
-}
-
-std::vector<SaveJob> Session::save_all_to(const std::string& other_root) const {
-  std::vector<SaveJob> jobs;
-  for (size_t p = 0; p < scenes_.size(); ++p)
-    for (size_t s = 0; s < scenes_[p].size(); ++s)
-      if (scenes_[p][s].edited) jobs.push_back(job_for(static_cast<int>(p), static_cast<int>(s), other_root));
-  return jobs;
-}
-
-void Session::reload_scene(int pair, const std::string& stem) {
-  if (pair < 0 || pair >= static_cast<int>(scenes_.size())) return;
-  const auto& list = scenes_[pair];
-  const auto it = std::find_if(list.begin(), list.end(), [&](const SceneState& sc) { return sc.stem == stem; });
-  if (it == list.end()) return;
-  const int scene = static_cast<int>(it - list.begin());
-  register_scene(pair, scene);  // without a pairs file the scene goes back to its automatic pairs
-  const auto& [a, b] = pairs_[pair];
-  FixedPairsRead read =
-      load_fixed_pairs(labels_->study, a, b, stem, labels_->gt_of(a, stem).boxes, labels_->gt_of(b, stem).boxes);
-  const SceneState& old = scenes_[pair][scene];
-  FixedPairs next;
-  next.pairs = old.automatic.pairs;
-  const bool edited = read.pairs.has_value();
-  if (read.pairs) next = std::move(*read.pairs);
-  std::sort(next.pairs.begin(), next.pairs.end());
-  history_.truncate(undo_pos_);
-  history_.push_back({pair, scene, old.current, next, old.edited, edited});
-  ++undo_pos_;
-  set_scene(pair, scene, next, edited);  // its job would write what is on disk: not needed
-  SceneState& s = scenes_[pair].edit(scene);
-  s.disk_ab = read.version_ab;
-  s.disk_ba = read.version_ba;
-  s.fixed_on_disk = edited;
-  s.pairs_unusable = read.unusable();
-  s.pairs_problems = std::move(read.problems);
-}
-
-SaveJob Session::overwrite(SaveJob job, const SaveConflict& conflict) {
-  if (conflict.observed.size() == job.expected.size()) job.expected = conflict.observed;
-  return job;
 }
 
 }  // namespace ipd

@@ -16,6 +16,7 @@
 #include "core/ipd/ipd.h"
 #include "core/ipd/study_cache.h"
 #include "core/session/audit.h"
+#include "core/session/review_state.h"
 #include "core/study/problem.h"
 #include "core/util/atomic_file.h"
 #include "core/util/cow_vector.h"
@@ -95,7 +96,8 @@ struct SceneSummary {
   double ipd = 0;  // NaN when no pairs
   int pairs = 0, unpaired_a = 0, unpaired_b = 0;
   bool edited = false;
-  int suspects = 0;        // suspect pairs (audit_pairs)
+  int suspects = 0;        // suspect pairs (audit_pairs), less those checked as correct (review_state.h)
+  bool reviewed = false;   // marked as looked at (review_state.h)
   bool ambiguous = false;  // registration could not decide (RegistrationReport::ambiguous)
   // Why `ipd` is NaN although the scene has pairs: neither domain has a prediction left in it for the model
   // (no_predictions_reason, ipd.h). Its rocks still count in the cell, as rocks both domains missed.
@@ -207,21 +209,48 @@ class Session {
   void set_conf_threshold(double threshold);
   double conf_threshold() const { return conf_threshold_; }
 
-  // Every hand-edited scene's pairs written under another study root (for read-only studies).
+  // Review marks of the current domain pair (review_state.h), undone and redone with the edits; each
+  // returns the job writing review/<A>__<B>.json. A checked pair no longer counts as suspect.
+  SaveJob toggle_reviewed(int scene);
+  // (left, right): a current pair in view orientation; nullopt when it is not one.
+  std::optional<SaveJob> toggle_checked(int scene, int left, int right);
+  bool reviewed(int scene) const { return reviews_[pair_]->reviewed[scene] != 0; }
+  // The review marks of any domain pair (index into domain_pairs()).
+  const ReviewState& review_of(int pair_index) const { return *reviews_.at(pair_index); }
+  bool checked(int scene, int left, int right) const;  // view orientation
+  struct ReviewProgress {
+    int scenes = 0, reviewed = 0, suspects_left = 0;
+  };
+  ReviewProgress review_progress() const;  // of the current domain pair
+
+  // Every hand-edited scene's pairs, and every domain pair's review marks, written under another study root
+  // (for read-only studies).
   std::vector<SaveJob> save_all_to(const std::string& other_root) const;
 
   // After a SaveConflict the user keeps the disk's version: the scene of domain pair `pair` is read again
-  // from its pairs files (as an edit that undo takes back). Throws StudyError for a bad file.
+  // from its pairs files (as an edit that undo takes back); an empty stem reads the domain pair's review
+  // file again. Throws StudyError for a bad file.
   void reload_scene(int pair, const std::string& stem);
   // The user keeps this window's version: the job again, expecting what the disk held at the conflict.
   static SaveJob overwrite(SaveJob job, const SaveConflict& conflict);
 
  private:
+  // A review mark toggled (its own inverse): a scene's, or a pair's (a, b in the domain pair's order).
+  struct ReviewToggle {
+    enum class Kind { kNone, kScene, kPair } kind = Kind::kNone;
+    int a = -1, b = -1;
+  };
   struct HistoryEntry {
     int pair, scene;
     FixedPairs before, after;
     bool edited_before, edited_after;
+    ReviewToggle review;  // kNone: a pairs edit
   };
+  SaveJob apply_review_toggle(int pair, int scene, const ReviewToggle& t);
+  SaveJob review_job(int pair, const std::string& root) const;
+  ReviewScenes review_scenes(int pair) const;
+  void reload_review(int pair);
+  std::vector<Problem> load_reviews();  // every domain pair's review file; the marks dropped
   SaveJob set_scene(int pair, int scene, const FixedPairs& pairs, bool edited);
   SaveJob job_for(int pair, int scene, const std::string& root) const;
   void recompute_performance();
@@ -229,7 +258,8 @@ class Session {
   long shown_predictions(const std::string& domain, const std::string& model, int pair) const;
   double effective_threshold() const;
   SceneIpd contribution(const std::string& model, int pair, int scene) const;
-  SceneAudit audit_of(int pair, const SceneState& scene) const;
+  SceneAudit audit_of(int pair, int scene) const;  // checked pairs are not suspect
+  void reaudit(int pair, int scene);
   Side pair_side(Side view_side) const;  // view side -> side of the domain pair
   const std::string& domain_of(Side view_side) const;
 
@@ -256,6 +286,10 @@ class Session {
   // (model, pair) -> totals, and each scene's contribution to them
   std::map<std::pair<std::string, int>, CellTotals> totals_;
   std::map<std::pair<std::string, int>, CowVector<SceneIpd>> contributions_;
+  // Per domain pair: review marks (replaced whole on a change, so snapshots share them) and what this window
+  // last read or wrote at review/<A>__<B>.json.
+  std::vector<std::shared_ptr<const ReviewState>> reviews_;
+  std::vector<DiskVersion> review_disk_;
   CowVector<HistoryEntry> history_;
   size_t undo_pos_ = 0;
   int last_scene_ = -1;

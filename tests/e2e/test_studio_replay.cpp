@@ -116,6 +116,12 @@ TEST(StudioReplay, BadActionsNameTheFileAndLine) {
   EXPECT_EQ(run(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" + ":1: 'domains': expected two different domains, got 'real' twice\n");
+  test::write_text(d / "actions.txt", "check 2\n");
+  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(read_file(d / "log.txt"),
+            "error: " + d / "actions.txt" +
+                ":1: 'check' takes two rock numbers of a pair (left, right), or nothing for the selected pair, got 1 "
+                "argument(s)\n");
   test::write_text(d / "actions.txt", "focus yes\n");
   EXPECT_EQ(run(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"), "error: " + d / "actions.txt" + ":1: 'focus': expected on or off, got 'yes'\n");
@@ -238,6 +244,35 @@ TEST(StudioReplay, ARockViewBoxBecomesASceneListFilter) {
   EXPECT_EQ(read_file(d / "before.txt"), "\ns1\ns2\n");
   EXPECT_EQ(read_file(d / "after.txt"), "selection: 1 pair in 1 scene\ns1\n");
   EXPECT_TRUE(fs::exists(d / "rocks.png"));
+}
+
+// An audit driven through the review verbs: `suspect` selects the next suspect pair (N), `check` marks it
+// correct (C), `review` marks the scene (R), undo takes the last toggle back. The second `suspect` in s1 must
+// skip the pair checked before (else `check` would uncheck it). The review file then holds exactly what the
+// same toggles make through the Session API.
+TEST(StudioReplay, AReviewMarksScenesAndChecksSuspectPairs) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  test::write_review_study(d);
+  test::write_text(d / "actions.txt",
+                   "scene s1\nsuspect\ncheck\nscene s2\nreview\nreview\nundo\nscene s1\nsuspect\ncheck\n"
+                   "check 4 3\nundo\nreview\n");
+  Session s = Session::open(d.path());
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d.path(), d / "actions.txt");
+  ASSERT_EQ(run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path()), 0) << read_file(d / "err.txt");
+  s.toggle_checked(0, 2, 3);
+  s.toggle_reviewed(1);
+  s.toggle_checked(0, 3, 2);
+  const SaveJob expected = s.toggle_reviewed(0);
+  ASSERT_TRUE(expected.contents.has_value());
+  EXPECT_EQ(*expected.contents,
+            "{\"reviewed\":[\"s1\",\"s2\"],\"checked\":[{\"scene\":\"s1\",\"rock_a\":[0.3,0.8,0.12,0.1],"
+            "\"rock_b\":[0.75,0.7,0.08,0.12]},{\"scene\":\"s1\",\"rock_a\":[0.75,0.7,0.08,0.12],\"rock_b\":[0.3,"
+            "0.8,0.12,0.1]}]}\n");
+  EXPECT_EQ(read_file(d / "review/real__synth.json"), *expected.contents);
+  EXPECT_EQ(s.summary(0).suspects, 0);
 }
 
 TEST(StudioReplay, RockViewActionsNameTheirArguments) {

@@ -66,4 +66,20 @@ void write_two_rock_study(const TempDir& d) {
   write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
 }
 
+// Two scenes of four rocks of different sizes at the same places in both domains (registration pairs k
+// with k). Scene s1's hand pairs cross rocks 2 and 3: two suspect pairs ([2, 3] and [3, 2], no overlap).
+void write_review_study(const TempDir& d) {
+  const std::string rocks = "0 0.2 0.2 0.1 0.08\n0 0.8 0.25 0.06 0.06\n0 0.3 0.8 0.12 0.1\n0 0.75 0.7 0.08 0.12\n";
+  for (const char* stem : {"s1", "s2"})
+    for (const char* domain : {"real", "synth"}) {
+      write_text(d / (std::string(domain) + "/labels/" + stem + ".txt"), rocks);
+      write_text(d / (std::string(domain) + "/predictions/det/" + stem + ".txt"), "0 0.2 0.2 0.1 0.1 0.9\n");
+    }
+  write_text(d / "pairs/real__synth/s1.json",
+             "{\"pairs\": [[0, 0], [1, 1], [2, 3], [3, 2]], \"rocks_a\": [[0, 0.2, 0.2, 0.1, 0.08], [1, 0.8, "
+             "0.25, 0.06, 0.06], [2, 0.3, 0.8, 0.12, 0.1], [3, 0.75, 0.7, 0.08, 0.12]], "
+             "\"rocks_b\": [[0, 0.2, 0.2, 0.1, 0.08], [1, 0.8, 0.25, 0.06, 0.06], [2, 0.3, 0.8, 0.12, 0.1], [3, "
+             "0.75, 0.7, 0.08, 0.12]]}\n");
+}
+
 }  // namespace ipd::test

@@ -33,6 +33,10 @@ std::vector<Box> seven_rocks(double dx);
 // predictions of a model `det` on both sides.
 void write_two_rock_study(const TempDir& d);
 
+// Two scenes (s1, s2) of four rocks of different sizes at the same places in `real` and `synth`; s1's hand
+// pairs cross rocks 2 and 3 (0-based), which makes [2, 3] and [3, 2] suspect pairs. For the review marks.
+void write_review_study(const TempDir& d);
+
 struct CommandResult {
   int exit_code = -1;
   std::string out, err;

@@ -98,7 +98,7 @@ std::string draw_study_figure_body(DisplayList& fig, const CrossTable& t, const 
 std::string draw_study_figure(DisplayList& fig, const CrossTable& t, const StudyLabels& labels,
                               const StudyFigureRequest& r, const FigureOptions& o, const Provenance* provenance) {
   const std::string title = draw_study_figure_body(fig, t, labels, r, o);
-  add_provenance(fig, provenance ? *provenance : table_provenance(t, labels.study), o);
+  add_provenance(fig, provenance ? *provenance : table_provenance(t, labels), o);
   return title;
 }
 

@@ -71,7 +71,7 @@ struct ReplayState {
 };
 
 // What the scene list sorts by (UiState::sort_column); each of its columns sorts by one of these.
-enum SceneSortKey : int { kByStem, kByIpd, kByPairs, kByUnpaired, kBySuspects, kByEdited, kByAmbiguous };
+enum SceneSortKey : int { kByStem, kByIpd, kByPairs, kByUnpaired, kBySuspects, kByEdited, kByAmbiguous, kByReviewed };
 
 // What the views remember between frames (never study data).
 struct UiState {
@@ -132,10 +132,12 @@ struct UiCommands {
   std::string open_study;       // File > Open study… / Recent
   std::string open_typed_path;  // Enter in the Open dialog's path field: opened when it is a study
   bool retry_saves = false;
-  std::string keep_mine, keep_theirs;  // a conflict's key: the version the user keeps
-  bool quit = false;                   // confirmed (or nothing unsaved)
-  bool next_suspect = false;           // `N`: the next suspect pair anywhere in the study
-  int goto_problem = -1;               // a row of the Problems window (index into StudyView::problems): its scene
+  std::string keep_mine, keep_theirs;     // a conflict's key: the version the user keeps
+  bool quit = false;                      // confirmed (or nothing unsaved)
+  bool next_suspect = false;              // `N`: the next suspect pair anywhere in the study
+  bool toggle_reviewed = false;           // `R`: the scene in view marked reviewed (again: not)
+  int check_left = -1, check_right = -1;  // `C`: this pair (view indices) checked as correct (again: not)
+  int goto_problem = -1;                  // a row of the Problems window (index into StudyView::problems): its scene
   // A pair of the rock view: its scene, with the pair (view indices) selected and in view.
   int goto_pair_scene = -1, goto_pair_left = -1, goto_pair_right = -1;
 };
@@ -191,6 +193,10 @@ struct RegistrationCanvas {
   float legend_top = 0;
 };
 RegistrationCanvas registration_canvas(ImVec2 p0, ImVec2 size, float line_h);
+// The selected rock's pair (left, right in view indices), or {-1, -1} when the selected rock is unpaired.
+std::pair<int, int> selected_pair(const Session& s, const UiState& ui);
+// "412 of 2,000 scenes reviewed, 37 suspect pairs left" (the domain pair in view).
+std::string review_progress_line(const Session::ReviewProgress& p);
 // Keyboard shortcuts that act on the whole window.
 void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out);
 // Every shortcut, for the help window (and docs/gui.md).

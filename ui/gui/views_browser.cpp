@@ -31,6 +31,8 @@ std::vector<int> browser_order(const std::vector<SceneSummary>& sums, UiState& u
         return m.edited;
       case kByAmbiguous:
         return m.ambiguous;
+      case kByReviewed:
+        return m.reviewed;
       default:
         return 0;
     }
@@ -71,6 +73,8 @@ const std::vector<BrowserColumn>& browser_columns() {
       {{"ed.", "hand", "pairs fixed by hand", num}, kByEdited},
       {{"pairs", "999", "rock pairs counted in the IPD", num}, kByPairs},
       {{"unp.", "99/99", "unpaired rocks, left/right (excluded rocks are not counted)", num}, kByUnpaired},
+      {{"rev.", "rev.", "reviewed: marked as looked at (R), so an audit can be split over days or people", num},
+       kByReviewed},
   };
   return columns;
 }
@@ -110,6 +114,9 @@ void draw_scene_cell(SceneSortKey sort_key, const SceneSummary& m, int k, const 
       break;
     case kByEdited:
       if (m.edited) ImGui::TextColored({0.4f, 0.8f, 1, 1}, "hand");
+      break;
+    case kByReviewed:
+      if (m.reviewed) ImGui::TextColored({0.5f, 0.9f, 0.5f, 1}, "yes");
       break;
     case kByAmbiguous:
       if (m.ambiguous) {
@@ -191,11 +198,12 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   }
   if (ImGui::SliderFloat("conf >=", &ui.conf_threshold, 0.0f, 1.0f, "%.2f")) out.conf_threshold = ui.conf_threshold;
   ImGui::SetNextItemWidth(-1);
-  ImGui::InputTextWithHint("##filter", "filter: text, ipd>0.1, suspect, edited", ui.filter, sizeof ui.filter);
+  ImGui::InputTextWithHint("##filter", "filter: text, ipd>0.1, suspect, unreviewed", ui.filter, sizeof ui.filter);
   if (!ui.filter_error.empty()) ImGui::TextColored({1, 0.5f, 0.3f, 1}, "%s", ui.filter_error.c_str());
   draw_selection_chip(s, ui);
   ImGui::TextDisabled("%s of %s%s", thousands(ui.order.size()).c_str(), counted(v.summaries->size(), "scene").c_str(),
                       v.loading.empty() ? "" : " so far (the rest is loading)");
+  ImGui::TextDisabled("%s", review_progress_line(s.review_progress()).c_str());
   ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
                           ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable;
   // A column narrower than the table's text: scroll sideways rather than squeeze the scene names away.

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <string>
+#include <tuple>
 
 #include "core/report/table_format.h"
 #include "ui/gui/stats_panels.h"
@@ -87,7 +88,9 @@ const std::vector<std::pair<const char*, const char*>>& shortcut_list() {
       {"Esc", "clear the selection"},
       {"Ctrl+Z / Ctrl+Y", "undo / redo (every edit, any scene)"},
       {"Right / J, Left / K", "next / previous scene in the list's order"},
-      {"N", "next suspect pair anywhere in the study"},
+      {"N", "next suspect pair anywhere in the study (pairs checked as correct are skipped)"},
+      {"C", "the selected pair is checked, correct: no longer suspect (again: unchecked)"},
+      {"R", "the scene is reviewed (again: not reviewed)"},
       {"Ctrl+G", "go to a scene by name"},
       {"Ctrl+O", "open another study"},
       {"wheel", "zoom at the cursor"},
@@ -97,7 +100,7 @@ const std::vector<std::pair<const char*, const char*>>& shortcut_list() {
       {"1", "1:1 (one picture pixel per screen pixel)"},
       {"Space", "play / pause the registration replay"},
       {"F1 or ?", "this list"},
-      {"filter box", "text, ipd>0.1, ipd<=0.05, suspect, edited, ambiguous (all must match)"},
+      {"filter box", "text, ipd>0.1, ipd<=0.05, suspect, edited, ambiguous, reviewed, unreviewed (all must match)"},
   };
   return list;
 }
@@ -130,6 +133,17 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
     if (ImGui::MenuItem("Go to scene...", "Ctrl+G")) ui.show_goto = true;
     if (ImGui::MenuItem("Next suspect pair", "N")) out.next_suspect = true;
     ImGui::MenuItem("Rock pairs (scatter, gallery)", nullptr, &ui.show_rock_view);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Review", v.session != nullptr && !v.session->scenes().empty())) {
+    const Session& s = *v.session;
+    if (ImGui::MenuItem("Scene reviewed", "R", s.reviewed(ui.scene))) out.toggle_reviewed = true;
+    const auto [l, r] = selected_pair(s, ui);
+    if (ImGui::MenuItem("Selected pair checked, correct", "C", l >= 0 && s.checked(ui.scene, l, r), l >= 0))
+      out.check_left = l, out.check_right = r;
+    if (ImGui::MenuItem("Next suspect pair", "N")) out.next_suspect = true;
+    if (ImGui::MenuItem("Unreviewed scenes only", nullptr, std::string(ui.filter) == "unreviewed"))
+      std::snprintf(ui.filter, sizeof ui.filter, "%s", std::string(ui.filter) == "unreviewed" ? "" : "unreviewed");
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Help")) {
@@ -342,7 +356,18 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
     if (!m.no_value_reason.empty())
       text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "no IPD for this scene: " + m.no_value_reason);
     if (m.suspects)
-      ImGui::TextColored({1, 0.55f, 0, 1}, "%s: N jumps to the next one", counted(m.suspects, "suspect pair").c_str());
+      text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, counted(m.suspects, "suspect pair") +
+                                                            ": N jumps to the next one, C marks it checked, correct");
+    // Review marks: what was looked at, so an audit can be split over days or people.
+    bool reviewed = s.reviewed(ui.scene);
+    if (ImGui::Checkbox("reviewed (R)", &reviewed)) out.toggle_reviewed = true;
+    if (const auto [l, r] = selected_pair(s, ui); l >= 0) {
+      const std::string label = "pair " + std::to_string(l + 1) + " checked, correct (C)";
+      bool checked = s.checked(ui.scene, l, r);
+      same_line_if_fits(ImGui::GetFrameHeight() + ImGui::CalcTextSize(label.c_str()).x +
+                        ImGui::GetStyle().ItemInnerSpacing.x);
+      if (ImGui::Checkbox(label.c_str(), &checked)) out.check_left = l, out.check_right = r;
+    }
   }
   const CellTotals t = s.totals();
   ImGui::Separator();
@@ -439,6 +464,18 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
   }
 }
 
+std::pair<int, int> selected_pair(const Session& s, const UiState& ui) {
+  if (s.scenes().empty() || (ui.selected_left < 0 && ui.selected_right < 0)) return {-1, -1};
+  for (const auto& p : s.view_pairs(ui.scene))
+    if (ui.selected_left >= 0 ? p.first == ui.selected_left : p.second == ui.selected_right) return p;
+  return {-1, -1};
+}
+
+std::string review_progress_line(const Session::ReviewProgress& p) {
+  return thousands(p.reviewed) + " of " + counted(p.scenes, "scene") + " reviewed, " +
+         counted(p.suspects_left, "suspect pair") + " left";
+}
+
 void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out) {
   ImGuiIO& io = ImGui::GetIO();
   if (io.WantTextInput) return;
@@ -459,6 +496,8 @@ void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out) {
   if ((pressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow)) || pressed('K')) && !order.empty())
     out.goto_scene = order[std::max(at - 1, 0)];
   if (pressed('N')) out.next_suspect = true;
+  if (pressed('R')) out.toggle_reviewed = true;
+  if (pressed('C')) std::tie(out.check_left, out.check_right) = selected_pair(*v.session, ui);
   if (pressed('Z')) ui.focus = !ui.focus;
   if (pressed(ImGui::GetKeyIndex(ImGuiKey_Space))) {
     ui.replay.playing = !ui.replay.playing;

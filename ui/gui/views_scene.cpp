@@ -230,6 +230,7 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
             ImGui::Text("residual %.1f px, aligned IoU %.2f, size ratio %.2f", p.residual_px, p.aligned_iou,
                         p.size_ratio);
             if (p.suspect) ImGui::TextColored({1, 0.55f, 0, 1}, "suspect: %s", p.why.c_str());
+            if (p.checked) ImGui::TextColored({0.5f, 0.9f, 0.5f, 1}, "checked, correct (C)");
           }
         }
         if (in.excluded[hit]) ImGui::TextUnformatted("excluded from the IPD");
@@ -318,10 +319,12 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
       const bool suspect = row.audit && row.audit->suspect;
+      const bool checked = row.audit && row.audit->checked;  // judged correct by hand: green, not orange
       const bool excl = row.excluded;
       char label[48];
       std::snprintf(label, sizeof label, "%d%s##%d", row.l + 1, excl ? " x" : "", row.l);
-      if (suspect) ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1, 0.55f, 0, 1));
+      if (suspect || checked)
+        ImGui::PushStyleColor(ImGuiCol_Text, suspect ? ImVec4(1, 0.55f, 0, 1) : ImVec4(0.5f, 0.9f, 0.5f, 1));
       if (ImGui::Selectable(label, ui.selected_left == row.l, ImGuiSelectableFlags_SpanAllColumns)) {
         // Centre both pictures on the pair.
         const Box& bl = s.gt(Side::kA, ui.scene)[row.l];
@@ -330,10 +333,13 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
         ui.right_view = {ui.left_view.zoom, {float(br.cx - 0.5), float(br.cy - 0.5)}};
         ui.selected_left = row.l;
       }
-      if (suspect) ImGui::PopStyleColor();
+      if (suspect || checked) ImGui::PopStyleColor();
       if (ImGui::IsItemHovered()) {
         ui.hover_left = row.l;
-        if (suspect) ImGui::SetTooltip("suspect: %s", row.audit->why.c_str());
+        if (suspect) ImGui::SetTooltip("suspect: %s (C: checked, correct)", row.audit->why.c_str());
+        if (checked)
+          ImGui::SetTooltip("checked, correct%s%s",
+                            row.audit->why.empty() ? "" : "; the audit found: ", row.audit->why.c_str());
       }
       ImGui::TableNextColumn();
       ImGui::Text("%d", row.r + 1);

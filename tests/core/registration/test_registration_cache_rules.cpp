@@ -52,6 +52,21 @@ TEST(RegistrationCacheRules, StoredPairsMustNameRocksTheSceneHas) {
   EXPECT_FALSE(RegistrationCache(d / "cache").load(key, 7, 6).has_value());
 }
 
+// Two sides with exactly the same boxes stop before any search (the identity): such an entry is read back like
+// any other (labels-only twins are mostly like this).
+TEST(RegistrationCacheRules, AnIdenticalLayoutsEntryIsReused) {
+  test::TempDir d;
+  const auto a = seven(0);
+  const RegistrationReport r = register_rocks(a, a, {});
+  ASSERT_EQ(r.stop, StopReason::kIdenticalLayouts);
+  const std::string key = registration_cache_key(a, a, {});
+  ASSERT_TRUE(RegistrationCache(d / "cache").store(key, r));
+  const std::optional<RegistrationReport> back = RegistrationCache(d / "cache").load(key, 7, 7);
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->stop, StopReason::kIdenticalLayouts);
+  EXPECT_EQ(back->pairs, r.pairs);
+}
+
 // The key's bytes for given settings change only with kFormat: entries written by an earlier build stay valid.
 // Pinned for the defaults, for paper with its own trial count, a time budget and an aspect, and for consensus
 // with a gate, a work budget and its own trial count.

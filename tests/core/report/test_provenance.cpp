@@ -77,10 +77,11 @@ TEST(Provenance, TableCsvMarkdownAndLatexCarryIt) {
   write_hand_pairs(d);
   auto r = test::run_ipd("table " + d.path() + " --format csv --no-cache --bootstrap 0");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.out,
-            "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,"
-            "reason,label_fingerprint,scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded\n"
-            "det,,real,synth,0.666667,1,0,1,1,true,,,,,d189a61c07b5,1,1,1\n");
+  EXPECT_EQ(
+      r.out,
+      "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,"
+      "reason,label_fingerprint,scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded,scenes_reviewed,pairs_checked\n"
+      "det,,real,synth,0.666667,1,0,1,1,true,,,,,d189a61c07b5,1,1,1,0,0\n");
   r = test::run_ipd("table " + d.path() + " --format markdown --no-cache --bootstrap 0");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string note = "Label files d189a61c07b5; hand pairs in 1 scene (1 pair set by hand, 1 rock excluded).";
@@ -115,8 +116,8 @@ TEST(Provenance, CompareAndBreakdownCarryIt) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.substr(0, r.out.find('\n')),
             "model,trained_on,a,b,bin,low,high,ipd,ci_low,ci_high,pairs,scenes,label_fingerprint,"
-            "scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded");
-  EXPECT_NE(r.out.find(",c46076aa055d,1,1,1\n"), std::string::npos) << r.out;
+            "scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded,scenes_reviewed,pairs_checked");
+  EXPECT_NE(r.out.find(",c46076aa055d,1,1,1,0,0\n"), std::string::npos) << r.out;
   r = test::run_ipd("breakdown " + d.path() + " --domains real,synth --bins 1 --bootstrap 0 --no-cache --format json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out).at("provenance").at("rocks_excluded"), 1);
@@ -134,11 +135,12 @@ TEST(Provenance, RockExportRowsSayHandAndExcluded) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out,
             "model,trained_on,a,b,scene,index_a,index_b,perf_a,perf_b,diff,cx_a,cy_a,w_a,h_a,cx_b,cy_b,w_b,h_b,"
-            "residual_px,source,excluded,label_fingerprint,scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded\n"
+            "residual_px,source,excluded,label_fingerprint,scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded,"
+            "scenes_reviewed,pairs_checked\n"
             "det,,real,synth,s1,0,1,1,0.333333333333,0.666666666667,0.2,0.2,0.1,0.1,0.2,0.2,0.1,0.1,,hand,false,"
-            "d189a61c07b5,1,1,1\n"
-            "det,,real,synth,s1,1,,0,,,0.6,0.6,0.1,0.1,,,,,,hand,true,d189a61c07b5,1,1,1\n"
-            "det,,real,synth,s1,,0,,0,,,,,,0.6,0.6,0.1,0.1,,hand,false,d189a61c07b5,1,1,1\n");
+            "d189a61c07b5,1,1,1,0,0\n"
+            "det,,real,synth,s1,1,,0,,,0.6,0.6,0.1,0.1,,,,,,hand,true,d189a61c07b5,1,1,1,0,0\n"
+            "det,,real,synth,s1,,0,,0,,,,,,0.6,0.6,0.1,0.1,,hand,false,d189a61c07b5,1,1,1,0,0\n");
   r = test::run_ipd("export rocks " + d.path() + " --unpaired --no-cache --format json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json rows = nlohmann::json::parse(r.out);
@@ -158,12 +160,39 @@ TEST(Provenance, CsvFieldsFollowTheJsonAndEditedMeansAHandPairOrAnExcludedRock) 
   EXPECT_EQ(provenance_csv_fields(p), (Fields{{"label_fingerprint", "0123456789ab"},
                                               {"scenes_with_hand_pairs", "0"},
                                               {"pairs_set_by_hand", "0"},
-                                              {"rocks_excluded", "0"}}));
+                                              {"rocks_excluded", "0"},
+                                              {"scenes_reviewed", "0"},
+                                              {"pairs_checked", "0"}}));
   p = scene_provenance(true, 4, 1, "0123456789ab");
   EXPECT_TRUE(provenance_edited(p));
   EXPECT_EQ(provenance_note(p),
             "Label files 0123456789ab; hand pairs in 1 scene (4 pairs set by hand, 1 rock excluded).");
   EXPECT_TRUE(provenance_edited(scene_provenance(false, 4, 1, "")));  // an excluded rock alone is an edit
+}
+
+// Review marks travel with the table: a reviewed scene, and a checked pair that is still a pair (the second
+// check names rocks that registration did not pair: it is not counted).
+TEST(Provenance, ReviewFilesCountReviewedScenesAndCheckedPairs) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  test::write_text(d / "review/real__synth.json",
+                   R"({"reviewed": ["s1"], "checked": [)"
+                   R"({"scene": "s1", "rock_a": [0.2, 0.2, 0.1, 0.1], "rock_b": [0.2, 0.2, 0.1, 0.1]},)"
+                   R"({"scene": "s1", "rock_a": [0.6, 0.6, 0.1, 0.1], "rock_b": [0.2, 0.2, 0.1, 0.1]}]})");
+  const auto r = test::run_ipd("table " + d.path() + " --format json --no-cache");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json p = nlohmann::json::parse(r.out).at("provenance");
+  EXPECT_EQ(p.at("scenes_reviewed"), 1);
+  EXPECT_EQ(p.at("pairs_checked"), 1);
+  EXPECT_NE(r.err.find("note: Label files d189a61c07b5; no hand pairs (every pair from registration); 1 scene "
+                       "reviewed, 1 pair checked as correct.\n"),
+            std::string::npos)
+      << r.err;
+  // A review file that is not JSON stops the table, naming the file.
+  test::write_text(d / "review/real__synth.json", "{\"reviewed\": [\"s1\"]");
+  const auto bad = test::run_ipd("table " + d.path() + " --no-cache");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find(d / "review/real__synth.json: invalid JSON"), std::string::npos) << bad.err;
 }
 
 TEST(Provenance, NoteCountsInPlural) {
@@ -174,6 +203,10 @@ TEST(Provenance, NoteCountsInPlural) {
   p.rocks_excluded = 0;
   EXPECT_EQ(provenance_note(p),
             "Label files 0123456789ab; hand pairs in 2 scenes (5 pairs set by hand, 0 rocks excluded).");
+  p.scenes_reviewed = 412;
+  EXPECT_EQ(provenance_note(p),
+            "Label files 0123456789ab; hand pairs in 2 scenes (5 pairs set by hand, 0 rocks excluded); 412 scenes "
+            "reviewed, 0 pairs checked as correct.");
 }
 
 }  // namespace

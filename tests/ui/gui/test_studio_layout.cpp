@@ -248,7 +248,7 @@ TEST(BrowserOrder, AmbiguousScenesSortOnTheirOwnColumn) {
 TEST(BrowserColumns, IpdRightAfterTheNameAndEachHeaderSortsByItsOwnValue) {
   std::vector<std::string> headers;
   for (const auto& c : browser_columns()) headers.push_back(c.text.header);
-  EXPECT_EQ(headers, (std::vector<std::string>{"scene", "IPD", "amb.", "susp.", "ed.", "pairs", "unp."}));
+  EXPECT_EQ(headers, (std::vector<std::string>{"scene", "IPD", "amb.", "susp.", "ed.", "pairs", "unp.", "rev."}));
   // Four scenes that each value ranks differently (descending; ties keep the scenes' order).
   std::vector<SceneSummary> sums(4);
   sums[0].stem = "z", sums[0].ipd = 0.01, sums[0].pairs = 1;
@@ -256,8 +256,9 @@ TEST(BrowserColumns, IpdRightAfterTheNameAndEachHeaderSortsByItsOwnValue) {
   sums[2].stem = "c", sums[2].ipd = 0.02, sums[2].pairs = 9, sums[2].unpaired_a = 1, sums[2].suspects = 3;
   sums[3].stem = "d", sums[3].ipd = 0.03, sums[3].pairs = 3, sums[3].unpaired_b = 4;
   sums[3].edited = sums[3].ambiguous = true;
+  sums[1].reviewed = true;
   const std::vector<std::vector<int>> expected = {{0, 3, 2, 1}, {1, 3, 2, 0}, {3, 0, 1, 2}, {2, 0, 1, 3},
-                                                  {3, 0, 1, 2}, {2, 3, 1, 0}, {3, 2, 0, 1}};
+                                                  {3, 0, 1, 2}, {2, 3, 1, 0}, {3, 2, 0, 1}, {1, 0, 2, 3}};
   UiState ui;
   ui.sort_descending = true;
   for (size_t k = 0; k < expected.size(); ++k) {

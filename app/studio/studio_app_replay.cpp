@@ -1,0 +1,187 @@
+// StudioApp's replay (--replay, studio_replay.h): one scripted action per frame, the rock view's verbs,
+// and what a finished replay left undone.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdlib>
+
+#include "app/studio/studio_app.h"
+#include "core/util/atomic_file.h"
+
+namespace ipd::studio {
+
+void StudioApp::replay_rock_axes(const std::string& x, const std::string& y) {
+  PairAxis ax, ay;  // both checked by parse_replay
+  parse_pair_axis(x, &ax);
+  parse_pair_axis(y, &ay);
+  ui_.show_rock_view = true;
+  rock_view_.x_axis = static_cast<int>(ax);
+  rock_view_.select_tab = 0;  // the scatter, whichever tab was shown
+  rock_view_.y_axis = static_cast<int>(ay);
+}
+
+void StudioApp::replay_select(double x0, double y0, double x1, double y1) {
+  const Session& s = *snap_->session;
+  ui::adopt_rock_points(s, rock_points_.result(), rock_view_);  // current: replay_step waited for them
+  static const std::vector<RockPairPoint> kNone;
+  const auto& points = rock_view_.points ? rock_view_.points->points : kNone;
+  const auto ax = static_cast<PairAxis>(rock_view_.x_axis), ay = static_cast<PairAxis>(rock_view_.y_axis);
+  rock_view_.has_box = true;
+  rock_view_.box_x = rock_view_.x_axis, rock_view_.box_y = rock_view_.y_axis;
+  rock_view_.bx0 = x0, rock_view_.by0 = y0, rock_view_.bx1 = x1, rock_view_.by1 = y1;
+  ui::apply_pair_selection(s, select_in_box(points, ax, ay, x0, y0, x1, y1), ui_);
+}
+
+void StudioApp::replay_gallery(const std::vector<std::string>& args) {
+  ui_.show_rock_view = true;
+  rock_view_.select_tab = 1;
+  for (size_t k = 0; k + 1 < args.size(); k += 2) {  // checked by parse_replay
+    if (args[k] == "page") rock_view_.gallery_page = std::atoi(args[k + 1].c_str()) - 1;
+    if (args[k] == "sort") parse_gallery_sort(args[k + 1], &rock_view_.gallery_sort);
+  }
+}
+
+std::string StudioApp::write_scene_list(const std::string& file) const {
+  std::string text = ui_.selection_label + "\n";
+  for (const int k : ui_.order) text += snap_->session->scenes()[k].stem + "\n";
+  try {
+    write_file_atomically(file, text);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool StudioApp::replay_step() {
+  if (replay_wait_ > 0) return --replay_wait_, false;
+  if (!snap_ || !worker_.idle() || worker_.snapshot() != snap_ || worker_.saver().pending() > 0) return false;
+  // The Rock pairs window's pairs are of this snapshot and list before the next action acts on them.
+  if (ui_.show_rock_view && !rock_points_.current(snap_, ui::rock_view_scenes(ui_, rock_view_))) return false;
+  if (replay_next_ >= replay_.size()) {
+    replay_next_ = replay_.size() + 1;  // finished
+    return true;
+  }
+  const ReplayAction& a = replay_[replay_next_++];
+  const Session& s = *snap_->session;
+  ui::UiCommands cmd;
+  auto fail = [&](const std::string& why) {
+    fmt::print(stderr, "error: {}:{}: {}\n", o_.replay, a.line, why);
+    replay_next_ = replay_.size() + 1;
+    done_ = true;
+    replay_failed_ = true;
+  };
+  auto rock = [&](const std::string& w, Side side) {
+    const int n = std::atoi(w.c_str());
+    const int count = s.scenes().empty() ? 0 : static_cast<int>(s.gt(side, ui_.scene).size());
+    if (n > count) {
+      fail(fmt::format("rock {} does not exist: {} has {} rocks on the {} side", n, s.scenes()[ui_.scene].stem, count,
+                       side == Side::kA ? "left" : "right"));
+      return -1;
+    }
+    return n - 1;
+  };
+  if (a.verb == "wait")
+    replay_wait_ = std::atoi(a.args[0].c_str());
+  else if (a.verb == "conf")
+    cmd.conf_threshold = std::strtof(a.args[0].c_str(), nullptr);
+  else if (a.verb == "model")
+    cmd.model = a.args[0];
+  else if (a.verb == "domains" && (!s.study().domain(a.args[0]) || !s.study().domain(a.args[1])))
+    fail(fmt::format("'domains': the study has no domain '{}'", s.study().domain(a.args[0]) ? a.args[1] : a.args[0]));
+  else if (a.verb == "domains")
+    cmd.left_domain = a.args[0], cmd.right_domain = a.args[1];
+  else if (a.verb == "focus")
+    ui_.focus = a.args[0] == "on";
+  else if (a.verb == "undo")
+    cmd.undo = true;
+  else if (a.verb == "redo")
+    cmd.redo = true;
+  else if (a.verb == "screenshot")
+    screenshot_now_ = a.args[0];
+  else if (a.verb == "problems")
+    ui_.show_problems = true;
+  else if (a.verb == "problem") {
+    const int k = std::atoi(a.args[0].c_str());
+    if (k > static_cast<int>(problems_.size()))
+      fail(fmt::format("no problem {}: the study has {}", k, problems_.size()));
+    else
+      cmd.goto_problem = k - 1;
+  } else if (a.verb == "scene") {
+    const auto at = std::find(ui_.order.begin(), ui_.order.end(), ui_.scene) - ui_.order.begin();
+    if (a.args[0] == "next" && !ui_.order.empty())
+      cmd.goto_scene = ui_.order[std::min<long>(at + 1, ui_.order.size() - 1)];
+    else if (a.args[0] == "prev" && !ui_.order.empty())
+      cmd.goto_scene = ui_.order[std::max<long>(at - 1, 0)];
+    else if ((cmd.goto_scene = s.scene_index(a.args[0])) < 0)
+      fail("no scene '" + a.args[0] + "' in this domain pair");
+  } else if (a.verb == "pair") {
+    const int l = rock(a.args[0], Side::kA), r = l < 0 ? -1 : rock(a.args[1], Side::kB);
+    if (l >= 0 && r >= 0) cmd.edits.push_back(Edit::pair(l, r));
+  } else if (a.verb == "unpair") {
+    if (const int l = rock(a.args[0], Side::kA); l >= 0) cmd.edits.push_back(Edit::unpair(Side::kA, l));
+  } else if (a.verb == "exclude") {
+    if (const int l = rock(a.args[0], Side::kA); l >= 0) cmd.edits.push_back(Edit::toggle_exclude(Side::kA, l));
+  } else if (a.verb == "review") {
+    cmd.toggle_reviewed = true;
+  } else if (a.verb == "suspect") {
+    cmd.next_suspect = true;
+  } else if (a.verb == "check") {
+    // The pair given (left, right rock numbers), or the one selected (by `suspect`, say).
+    const int l = a.args.empty() ? ui::selected_pair(s, ui_).first : rock(a.args[0], Side::kA);
+    const int r = a.args.empty() ? ui::selected_pair(s, ui_).second : l < 0 ? -1 : rock(a.args[1], Side::kB);
+    const RockPairs pairs = s.scenes().empty() ? RockPairs{} : s.view_pairs(ui_.scene);
+    if (l >= 0 && r >= 0 && std::find(pairs.begin(), pairs.end(), std::make_pair(l, r)) != pairs.end())
+      cmd.check_left = l, cmd.check_right = r;
+    else if (!replay_failed_)
+      fail(a.args.empty() ? std::string("'check': no pair is selected")
+                          : fmt::format("'check': rocks {} and {} are not a pair in {}", a.args[0], a.args[1],
+                                        s.scenes()[ui_.scene].stem));
+  } else if (a.verb == "rerun") {
+    const auto& methods = registration_methods();
+    for (size_t k = 0; k < methods.size(); ++k)
+      if (a.args[0] == methods[k].name) ui_.rerun_method = static_cast<int>(k);
+    cmd.rerun_registration = true;
+  } else if (a.verb == "rocks") {
+    replay_rock_axes(a.args[0], a.args[1]);
+  } else if (a.verb == "gallery") {
+    replay_gallery(a.args);
+  } else if (a.verb == "select") {
+    replay_select(std::strtod(a.args[0].c_str(), nullptr), std::strtod(a.args[1].c_str(), nullptr),
+                  std::strtod(a.args[2].c_str(), nullptr), std::strtod(a.args[3].c_str(), nullptr));
+  } else if (a.verb == "list") {
+    if (const std::string e = write_scene_list(a.args[0]); !e.empty()) fail(e);
+  } else if (a.verb == "export" && !s.scenes().empty()) {
+    // The dialog's request with its defaults (single column, the view's layers and zoom) for the kind.
+    ui::ExportDialogState d;
+    const ui::ExportViewContext ctx = ui::export_view_context(s, ui_, stats_ui_);
+    ui::open_export_dialog(d, ctx);
+    if (a.args.size() == 2) ui::set_export_kind(d, a.args[0]);  // checked by parse_replay
+    export_figure(ui::export_request(d, ctx, a.args.back()));
+  }
+  apply(cmd);
+  return true;
+}
+
+std::vector<std::string> StudioApp::replay_problems() const {
+  std::vector<std::string> out;
+  if (replay_.empty() || replay_failed_) return out;
+  if (replay_next_ <= replay_.size())
+    out.push_back(fmt::format("stopped before line {} (the window was closed)",
+                              replay_[std::min(replay_next_, replay_.size() - 1)].line));
+  for (const auto& why : worker_.saver().failures()) out.push_back("edit not saved: " + why);
+  if (const int n = worker_.saver().pending(); n > 0)
+    out.push_back(fmt::format("{} edit(s) still being saved when the replay ended", n));
+  if (const int n = worker_.unsaved_edits(); n > 0)
+    out.push_back(fmt::format(
+        "{} edit(s) only in memory: the study is read-only (save them elsewhere with 'save as', below undo and redo)",
+        n));
+  {
+    std::lock_guard<std::mutex> l(export_failures_->mu);
+    out.insert(out.end(), export_failures_->messages.begin(), export_failures_->messages.end());
+  }
+  if (const int n = *exports_running_; n > 0)
+    out.push_back(fmt::format("{} export(s) still running when the replay ended", n));
+  return out;
+}
+
+}  // namespace ipd::studio
