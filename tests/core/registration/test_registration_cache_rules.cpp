@@ -70,6 +70,8 @@ TEST(RegistrationCacheRules, TheKeyCoversEveryOptionThatChangesTheAnswer) {
       {"max_anisotropy", [](RegistrationOptions* o) { o->max_anisotropy = 1.5; }},
       {"inlier_gate", [](RegistrationOptions* o) { o->inlier_gate = 0.01; }},
       {"min_pair_iou", [](RegistrationOptions* o) { o->min_pair_iou = 0.2; }},
+      {"pair_noise_floor", [](RegistrationOptions* o) { o->pair_noise_floor = 0.02; }},
+      {"pair_max_size_ratio", [](RegistrationOptions* o) { o->pair_max_size_ratio = 1.5; }},
       {"cpd_iterations", [](RegistrationOptions* o) { o->cpd_iterations = 50; }},
       {"cpd_outlier_weight", [](RegistrationOptions* o) { o->cpd_outlier_weight = 0.3; }},
       {"work_budget", [](RegistrationOptions* o) { o->work_budget = 1e5; }},
