@@ -7,7 +7,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <thread>
 
@@ -20,6 +19,7 @@
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 #include "app/data_files.h"
+#include "core/picture/picture_codec.h"
 #include "core/registration/pairing.h"
 #include "core/report/csv.h"
 #include "core/session/session.h"
@@ -83,10 +83,7 @@ Row run_config(const std::vector<RegistrationCase>& cases, const std::string& re
   RegistrationOptions o;
   o.method = c.method;
   o.aspect = aspect;
-  if (c.method == RegistrationMethod::kCpd)
-    o.cpd_iterations = c.budget;
-  else
-    o.max_trials = c.budget;
+  o.trials() = c.budget;
   Row row;
   row.regime = regime;
   row.method = to_string(c.method);
@@ -225,7 +222,7 @@ void compare_with_pycpd(const std::vector<LabelPair>& pairs, const std::vector<M
       list.insert(list.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
     }
     const Row ours =
-        run_config(list, tier.name, {RegistrationMethod::kConsensus, RegistrationOptions().max_trials}, aspect);
+        run_config(list, tier.name, {RegistrationMethod::kConsensus, RegistrationOptions().trials()}, aspect);
     const Row theirs = run_pycpd(list, tier.name, script, aspect);
     const double ratio = ours.ms_median > 0 ? theirs.ms_median / ours.ms_median : 0;
     fmt::print(
@@ -323,7 +320,7 @@ void plot(const std::vector<Row>& rows, const std::string& path) {
     ++panel;
   }
   std::vector<uchar> png;
-  cv::imencode(".png", img, png);
+  encode_picture(".png", img, &png);
   write_file_atomically(path, std::string(png.begin(), png.end()));
 }
 
@@ -402,6 +399,8 @@ Runner add_bench_command(CLI::App& app) {
   bench->get_subcommands({}).front()->callback([which] { *which = "edits"; });
   auto bootstrap = std::make_shared<Runner>(add_bench_bootstrap(bench));
   bench->get_subcommands({}).back()->callback([which] { *which = "bootstrap"; });
+  auto study = std::make_shared<Runner>(add_bench_study(bench));
+  bench->get_subcommands({}).back()->callback([which] { *which = "study"; });
   CLI::App* cmd = bench->add_subcommand("registration", "Registration run time against pair F1 and transform error");
   cmd->add_option("--data", args->data, "POLAR-Sim label directory (containing labels/)");
   cmd->add_option("--cases", args->cases, "Cases per misalignment range")->check(CLI::Range(1, 100000));
@@ -429,9 +428,10 @@ Runner add_bench_command(CLI::App& app) {
       "List the default method's cases below F1 1 (for analysis; with --folds: each fold's validation cases)");
   cmd->add_flag("--pycpd", args->pycpd, "Also run the Python baseline (numpy port of pycpd; needs python3-numpy)");
   cmd->add_option("--pycpd-script", args->pycpd_script, "Path of pycpd_reference.py");
-  return [args, edits, bootstrap, which]() -> int {
+  return [args, edits, bootstrap, study, which]() -> int {
     if (*which == "edits") return (*edits)();
     if (*which == "bootstrap") return (*bootstrap)();
+    if (*which == "study") return (*study)();
     if (args->scaling_only) {
       scaling(1936.0 / 1216.0, args->seed);
       return kOk;
@@ -533,7 +533,7 @@ Runner add_bench_command(CLI::App& app) {
       const Row* deflt = nullptr;
       const Row* py = nullptr;
       for (const auto& r : tier) {
-        if (r.method == "consensus" && r.config.budget == RegistrationOptions().max_trials) deflt = &r;
+        if (r.method == "consensus" && r.config.budget == RegistrationOptions().consensus.max_hypotheses) deflt = &r;
         if (r.method == "pycpd-numpy") py = &r;
       }
       if (deflt) {

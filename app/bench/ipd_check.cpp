@@ -47,7 +47,8 @@ void print_ipd_check(const std::vector<LabelPair>& pairs, const std::vector<Misa
   fmt::print("{:<8} {:<22} {:>8} {:>8} {:>10}\n", "tier", "pairs", "count", "IPD", "IPD - true");
   for (const auto& tier : tiers) {
     RegistrationOptions fair, overlap;
-    fair.aspect = overlap.aspect = aspect;
+    fair.aspect = aspect;
+    overlap.aspect = aspect;
     overlap.pair_noise_floor = 0;
     fair.pair_noise_floor = noise_floor;
     IpdCheck truth, fair_true_camera, overlap_true_camera, fair_found, overlap_found;

@@ -4,7 +4,6 @@
 
 #include <filesystem>
 #include <future>
-#include <opencv2/imgcodecs.hpp>
 #include <set>
 
 #include "app/cli/cli_common.h"
@@ -12,6 +11,7 @@
 #include "core/detect/rock_detector.h"
 #include "core/detect/yolo.h"
 #include "core/io/label_io.h"
+#include "core/picture/picture_codec.h"
 #include "core/study/study.h"
 #include "core/study/study_names.h"
 #include "core/util/contained_file.h"
@@ -92,7 +92,7 @@ std::vector<Job> collect_jobs(const Args& args) {
 int detect_all(const std::vector<Job>& jobs, YoloDetector* yolo, int threads) {
   Progress progress("detecting");
   int failed = 0;
-  auto decode = [](const std::string& p) { return cv::imread(p, cv::IMREAD_COLOR); };
+  auto decode = [](const std::string& p) { return read_picture(p, cv::IMREAD_COLOR); };
   std::vector<std::future<cv::Mat>> batch;
   size_t next = 0;
   auto fill = [&] {

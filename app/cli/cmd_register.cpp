@@ -199,11 +199,10 @@ Runner add_register_command(CLI::App& app) {
     RegistrationOptions opt;
     parse_method(args->method, &opt.method);
     opt.seed = args->seed;
-    if (cmd->count("--trials") > 0)
-      (opt.method == RegistrationMethod::kCpd ? opt.cpd_iterations : opt.max_trials) = args->trials;
-    opt.time_budget_ms = args->budget_ms;
-    if (cmd->count("--max-rotation") > 0) opt.max_rotation_deg = args->max_rotation;
-    if (cmd->count("--max-anisotropy") > 0) opt.max_anisotropy = args->max_anisotropy;
+    if (cmd->count("--trials") > 0) opt.trials() = args->trials;
+    if (args->budget_ms > 0) opt.time_budget_ms = args->budget_ms;  // 0: no limit
+    if (cmd->count("--max-rotation") > 0) opt.consensus.max_rotation_deg = args->max_rotation;
+    if (cmd->count("--max-anisotropy") > 0) opt.consensus.max_anisotropy = args->max_anisotropy;
     if (args->image_size.size() == 2) opt.aspect = static_cast<double>(args->image_size[0]) / args->image_size[1];
     const std::string bad = opt.validate();
     if (!bad.empty()) throw CLI::ValidationError("register", bad);

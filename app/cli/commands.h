@@ -25,5 +25,7 @@ Runner add_export_command(CLI::App& app);
 Runner add_metrics_command(CLI::App& app);
 // `ipd bench bootstrap` (app/bench/bench_bootstrap.cpp), added under `ipd bench`.
 Runner add_bench_bootstrap(CLI::App* bench);
+// `ipd bench study` (app/bench/bench_study.cpp), added under `ipd bench`.
+Runner add_bench_study(CLI::App* bench);
 
 }  // namespace ipd::cli

@@ -5,11 +5,11 @@
 #include <GL/osmesa.h>
 #include <backends/imgui_impl_opengl2.h>
 
+#include "core/picture/picture_codec.h"
 #include "ui/gui/canvas_imgui.h"
 
 #include <cmath>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <vector>
@@ -158,7 +158,7 @@ std::string render_png(const ui::DisplayList& fig, const ui::FontMetrics& metric
     fig.replay(canvas);
   });
   std::vector<uchar> png;
-  if (!cv::imencode(".png", bgr, png)) throw std::runtime_error("PNG encoding failed");
+  if (!encode_picture(".png", bgr, &png)) throw std::runtime_error("PNG encoding failed");
   return std::string(png.begin(), png.end());
 }
 

@@ -4,12 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "core/detect/rock_detector.h"
 #include "core/io/label_io.h"
+#include "core/picture/picture_codec.h"
 #include "core/util/atomic_file.h"
 
 namespace fs = std::filesystem;
@@ -206,7 +206,7 @@ cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& ca
 
 void write_png(const std::string& path, const cv::Mat& img) {
   std::vector<uchar> buf;
-  if (!cv::imencode(".png", img, buf)) throw IoError(path + ": PNG encoding failed");
+  if (!encode_picture(".png", img, &buf)) throw IoError(path + ": PNG encoding failed");
   write_file_atomically(path, std::string(buf.begin(), buf.end()));
 }
 

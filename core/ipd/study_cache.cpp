@@ -189,7 +189,9 @@ RegistrationReport read_report(Reader& rd) {
   r.inliers = rd.pod<std::int32_t>();
   r.score = rd.pod<double>();
   const int stop = rd.pod<std::int32_t>();
-  if (stop < 0 || stop > static_cast<int>(StopReason::kWorkBudget)) throw std::runtime_error("bad stop reason");
+  // kIdenticalLayouts is the last reason: a registration of identical layouts must read back, or every run
+  // would find the whole file unusable and parse and register the study again.
+  if (stop < 0 || stop > static_cast<int>(StopReason::kIdenticalLayouts)) throw std::runtime_error("bad stop reason");
   r.stop = static_cast<StopReason>(stop);
   r.note = rd.str();
   r.elapsed_ms = rd.pod<double>();
@@ -378,7 +380,6 @@ void StudyCache::hand_registrations_to(RegistrationCache& registration) {
 
 void StudyCache::save(const StudyLabels& labels, const RegistrationCache& registration) {
   if (path_.empty()) return;
-  const RegistrationEntries served = registration.entries_to_keep();
   size_t files = 0;
   for (const auto& [d, stems] : labels.gt) files += stems.size();
   for (const auto& [d, models] : labels.predictions)
@@ -387,6 +388,8 @@ void StudyCache::save(const StudyLabels& labels, const RegistrationCache& regist
                            files == contents_->labels.size();
   const bool registrations_same = stats_.state == "loaded" && registration.served_only_preloaded();
   if (labels_same && registrations_same) return;
+  // Copied only when the file is rewritten: a warm run of a 10,000-scene study keeps 30,000 reports.
+  const RegistrationEntries served = registration.entries_to_keep();
   Writer w;
   w.out.reserve(kHeaderBytes + files * 1500);
   w.out.resize(kHeaderBytes);  // filled in below, once the payload's size and checksum are known

@@ -216,7 +216,7 @@ PairedStudy pair_study(const StudyLabels& labels, const std::vector<std::pair<st
     }
   }
   RegistrationOptions reg = options.registration;
-  if (reg.aspect == 1.0) reg.aspect = study.aspect();
+  if (!reg.aspect) reg.aspect = study.aspect();
   const auto start = std::chrono::steady_clock::now();
   std::atomic<int> done{0};
   const int total = static_cast<int>(jobs.size());

@@ -9,7 +9,8 @@
 #include <stdexcept>
 
 #include "core/geometry/point_grid.h"
-#include "core/registration/consensus/consensus_scorer.h"
+#include "core/registration/consensus/shifted_placements.h"
+#include "core/registration/consensus/support_measurer.h"
 #include "core/registration/pairing.h"
 #include "core/registration/registration_frame.h"
 #include "core/registration/registration_recorder.h"
@@ -36,21 +37,20 @@ constexpr double kCpdMaxPairs = 16e6;
 double cpd_confidence(const RegistrationFrame& f, Affine2* found, bool* beaten, const SearchRecorder& recorder) {
   const double gate = std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2);
   const Bounds any{1e-3, 1e3, M_PI, 1e6};  // cpd's affine is not held to the consensus bounds
-  long anchor = 0;
-  ConsensusScorer scorer(f, gate, any, 1, &anchor);
-  const double best = scorer.score(*found);
+  SupportMeasurer support(f, gate, any);
+  const double best = support.score(*found);
   // Under cpd's own linear part and under the identity's (the camera unmoved): on a repetitive layout EM can
   // settle on a shrunk or stretched fit while the unmoved one fits as many rocks (a 3 x 3 block in a 5 x 5 grid
   // at 960 x 600 read 0.33 with only its own shifts as rivals).
-  const ShiftedPlacements own = shifted_placements(&scorer, recorder, f, *found, found->leftCols<2>(), gate, true);
+  const ShiftedPlacements own = shifted_placements(&support, recorder, f, *found, found->leftCols<2>(), gate, true);
   const ShiftedPlacements unmoved =
-      shifted_placements(&scorer, recorder, f, *found, f.from_image(identity_affine()).leftCols<2>(), gate, true);
+      shifted_placements(&support, recorder, f, *found, f.from_image(identity_affine()).leftCols<2>(), gate, true);
   const double rival = std::max(own.rival, unmoved.rival);
   if (rival > best) {
     *found = own.rival >= unmoved.rival ? own.rival_model : unmoved.rival_model;
     *beaten = true;
     // Against EM's alignment and the adopted placement's own rivals (a repetitive layout's other shifts).
-    const double others = shifted_placements(&scorer, recorder, f, *found, found->leftCols<2>(), gate, true).rival;
+    const double others = shifted_placements(&support, recorder, f, *found, found->leftCols<2>(), gate, true).rival;
     return confidence_from_scores(rival, std::max(best, others));
   }
   return confidence_from_scores(best, rival);
@@ -94,7 +94,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   for (int i = 0; i < m; ++i)
     for (int j = 0; j < n; ++j) sigma2 += (x.row(j) - (y.row(i) * lin.transpose() + t)).squaredNorm();
   sigma2 /= 2.0 * m * n;
-  const double w = o.cpd_outlier_weight;
+  const double w = o.cpd.outlier_weight;
   Eigen::MatrixXd p(m, n);
   const double tolerance = 1e-10;
   int it = 0;
@@ -106,7 +106,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   SearchRecorder recorder(
       f, std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2), o.record_trace, [](double s) { return s; }, nullptr);
   double best_sigma = INFINITY;
-  for (; it < o.cpd_iterations; ++it) {
+  for (; it < o.cpd.iterations; ++it) {
     if (it >= allowed) {
       out.stop = StopReason::kWorkBudget;
       break;

@@ -175,7 +175,7 @@ namespace ipd {
 constexpr double kDenseAssignmentWork = 1e8;
 
 PairingRule pairing_rule(const RegistrationOptions& o) {
-  return {o.min_pair_iou, o.pair_noise_floor, o.pair_max_size_ratio, o.aspect};
+  return {o.min_pair_iou, o.pair_noise_floor, o.pair_max_size_ratio, o.aspect_ratio()};
 }
 
 double pair_weight(const Box& moved_a, const Box& b, const PairingRule& rule) {

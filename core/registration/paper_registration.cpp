@@ -45,17 +45,30 @@ struct MeanNearestScorer {
   const std::vector<Eigen::Vector2d>& a;
   const PointGrid& grid_b;
   double score(const Affine2& m) const {
+    const double n = static_cast<double>(a.size());
+    // A model scoring below the best distinct rival changes nothing: neither the best, nor the rival, nor
+    // the confidence. Once its partial sum proves that, it is dropped (-inf, as a non-finite score is), and
+    // each nearest-rock search stops at the distance left: on a dense layout a wild affine throws rocks far
+    // outside, where each unbounded search would scan ring after ring of the grid. The 1e-9 margin keeps
+    // rounding from dropping a model that ties the rival. A recorded trace shows every score: no dropping.
+    const double rival = recorder && !recorder->recording() ? recorder->rival_score() : -INFINITY;
+    const double drop_at = std::isfinite(rival) ? -rival * n * (1 + 1e-9) : INFINITY;
     double sum = 0;
     for (const auto& p : a) {
       double d2 = 0;
-      grid_b.nearest(apply(m, p), &d2);
+      const double left = drop_at - sum;
+      if (grid_b.nearest(apply(m, p), &d2, std::isfinite(drop_at) ? left * left : INFINITY) < 0 &&
+          std::isfinite(drop_at))
+        return -INFINITY;
       sum += std::sqrt(d2);
+      if (sum >= drop_at) return -INFINITY;
     }
-    const double mean = sum / static_cast<double>(a.size());
+    const double mean = sum / n;
     return std::isfinite(mean) ? -mean : -INFINITY;
   }
-  bool worth_refining(double, double) const { return false; }  // the paper does no local optimisation
-  void refine(Affine2*, double*) const {}
+  // The paper does no local optimisation.
+  bool worth_refining(const TriplePair&, const Affine2&, double, double) const { return false; }
+  void refine(const TriplePair&, Affine2*, double*) const {}
   // Every centre lands exactly on one, and so does a distinct rival's (a symmetric layout): nothing more can
   // change the answer or its confidence 0. An exact fit alone is no reason to stop: its mirror may fit as
   // exactly, and only the rest of the K samples can tell (8 mirror-symmetric rocks read confidence 1).
@@ -67,7 +80,7 @@ struct MeanNearestScorer {
 
 MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o, const Deadline& deadline) {
   MethodOutcome out;
-  const double gate = o.pair_gate;  // the normalised frame has unit spread
+  const double gate = o.paper.pair_gate;  // the normalised frame has unit spread
   auto count_inliers = [&](const Affine2& m) {
     std::vector<Eigen::Vector2d> moved;
     for (const auto& p : f.a) moved.push_back(apply(m, p));
@@ -93,7 +106,7 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   AffinePermutationEstimator estimator;
   MeanNearestScorer scorer{f.a, grid_b};
   RobustLoopOptions lo;
-  lo.max_trials = o.max_trials;
+  lo.max_trials = o.paper.samples;
   lo.max_work = work_budget(o, f.a.size(), f.b.size());
   lo.work_per_model = static_cast<double>(f.a.size());  // one nearest-neighbour query per A rock
   // The trace's samples: A's triple in drawing order, B's in the order this model matched them.
@@ -111,7 +124,7 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   SearchRecorder recorder(
       f, gate, o.record_trace, [spread](double s) { return -s * spread; }, sample_of);
   scorer.recorder = &recorder;
-  DeadlineSampler<RandomTripleSampler> timed{sampler, deadline, o.max_trials};
+  DeadlineSampler<RandomTripleSampler> timed{sampler, deadline, o.paper.samples};
   auto r = run_robust_loop<Affine2, TriplePair>(timed, estimator, scorer, lo, recorder);
   r.stop = timed.stop(r.stop);
   out.trials = r.trials;

@@ -87,32 +87,67 @@ const char* ambiguity_reason(Ambiguity a) {
   return "";
 }
 
-std::string RegistrationOptions::validate() const {
-  if (max_trials < 1) return fmt::format("max_trials must be at least 1, got {}", max_trials);
-  if (!(time_budget_ms >= 0) || !std::isfinite(time_budget_ms))
-    return fmt::format("time_budget_ms must be >= 0, got {}", time_budget_ms);
-  if (!(aspect > 0) || !std::isfinite(aspect)) return fmt::format("aspect must be a positive number, got {}", aspect);
-  if (!(pair_gate > 0) || !std::isfinite(pair_gate)) return fmt::format("pair_gate must be > 0, got {}", pair_gate);
+std::string ConsensusParams::validate() const {
+  if (max_hypotheses < 1) return fmt::format("consensus.max_hypotheses must be at least 1, got {}", max_hypotheses);
   if (!(min_scale > 0) || !(max_scale >= min_scale) || !std::isfinite(max_scale))
     return fmt::format("scale bounds must satisfy 0 < min_scale <= max_scale, got [{}, {}]", min_scale, max_scale);
   if (!(max_rotation_deg > 0) || max_rotation_deg > 180)
     return fmt::format("max_rotation_deg must be in (0, 180], got {}", max_rotation_deg);
   if (!(max_anisotropy >= 1) || !std::isfinite(max_anisotropy))
     return fmt::format("max_anisotropy must be a number >= 1, got {}", max_anisotropy);
-  if (!(inlier_gate >= 0) || !std::isfinite(inlier_gate))
-    return fmt::format("inlier_gate must be >= 0 (0: automatic), got {}", inlier_gate);
+  if (inlier_gate && (!(*inlier_gate > 0) || !std::isfinite(*inlier_gate)))
+    return fmt::format("inlier_gate must be > 0 when set (unset: from the rock spacing), got {}", *inlier_gate);
+  return {};
+}
+
+std::string PaperParams::validate() const {
+  if (samples < 1) return fmt::format("paper.samples must be at least 1, got {}", samples);
+  if (!(pair_gate > 0) || !std::isfinite(pair_gate)) return fmt::format("pair_gate must be > 0, got {}", pair_gate);
+  return {};
+}
+
+std::string CpdParams::validate() const {
+  if (iterations < 1) return fmt::format("cpd.iterations must be at least 1, got {}", iterations);
+  if (!(outlier_weight >= 0 && outlier_weight < 1))
+    return fmt::format("cpd.outlier_weight must be in [0, 1), got {}", outlier_weight);
+  return {};
+}
+
+int& RegistrationOptions::trials() {
+  switch (method) {
+    case RegistrationMethod::kPaper:
+      return paper.samples;
+    case RegistrationMethod::kCpd:
+      return cpd.iterations;
+    case RegistrationMethod::kConsensus:
+      break;
+  }
+  return consensus.max_hypotheses;
+}
+
+int RegistrationOptions::trials() const { return const_cast<RegistrationOptions*>(this)->trials(); }
+
+std::string RegistrationOptions::validate() const {
+  if (time_budget_ms && (!(*time_budget_ms > 0) || !std::isfinite(*time_budget_ms)))
+    return fmt::format("time_budget_ms must be > 0 when set (unset: no limit), got {}", *time_budget_ms);
+  if (aspect && (!(*aspect > 0) || !std::isfinite(*aspect)))
+    return fmt::format("aspect must be a positive number, got {}", *aspect);
   if (!(min_pair_iou >= 0 && min_pair_iou < 1))
     return fmt::format("min_pair_iou must be in [0, 1), got {}", min_pair_iou);
   if (!(pair_noise_floor >= 0 && pair_noise_floor < 1))
     return fmt::format("pair_noise_floor must be in [0, 1) of the image width, got {}", pair_noise_floor);
   if (!(pair_max_size_ratio >= 1 && std::isfinite(pair_max_size_ratio)))
     return fmt::format("pair_max_size_ratio must be a finite number >= 1, got {}", pair_max_size_ratio);
-  if (!(work_budget >= 0) || !std::isfinite(work_budget))
-    return fmt::format("work_budget must be >= 0 (0: automatic), got {}", work_budget);
-  if (cpd_iterations < 1) return fmt::format("cpd_iterations must be at least 1, got {}", cpd_iterations);
-  if (!(cpd_outlier_weight >= 0 && cpd_outlier_weight < 1))
-    return fmt::format("cpd_outlier_weight must be in [0, 1), got {}", cpd_outlier_weight);
+  if (work_budget && (!(*work_budget > 0) || !std::isfinite(*work_budget)))
+    return fmt::format("work_budget must be > 0 when set (unset: automatic), got {}", *work_budget);
+  for (const std::string& problem : {consensus.validate(), paper.validate(), cpd.validate()})
+    if (!problem.empty()) return problem;
   return {};
+}
+
+void RegistrationOptions::check() const {
+  const std::string problem = validate();
+  if (!problem.empty()) throw std::invalid_argument("registration options: " + problem);
 }
 
 namespace detail {
@@ -192,7 +227,7 @@ Ambiguity judge_answer(const RegistrationFrame& f, const RockPairs& pairs, const
 }
 
 double work_budget(const RegistrationOptions& o, size_t na, size_t nb) {
-  if (o.work_budget > 0) return o.work_budget;
+  if (o.work_budget) return *o.work_budget;
   const double n = static_cast<double>(na + nb);
   return 1e6 + 300.0 * n * std::log2(n + 2);
 }
@@ -295,11 +330,10 @@ bool identical_layouts(const std::vector<Box>& a, const std::vector<Box>& b) {
 
 RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<Box>& b,
                                   const RegistrationOptions& options) {
-  const std::string problem = options.validate();
-  if (!problem.empty()) throw std::invalid_argument("registration options: " + problem);
+  options.check();
   const auto start = std::chrono::steady_clock::now();
-  const Deadline deadline(options.time_budget_ms);
-  const detail::RegistrationFrame frame(a, b, options.aspect);
+  const Deadline deadline(options.time_budget_ms.value_or(0));
+  const detail::RegistrationFrame frame(a, b, options.aspect_ratio());
   detail::MethodOutcome out;
   if (identical_layouts(a, b)) {
     out.affine_normalised = frame.from_image(identity_affine());

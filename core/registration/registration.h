@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,23 +36,50 @@ std::string methods_help();               // one line per method: name, descript
 
 using RockPairs = std::vector<std::pair<int, int>>;  // (index in A, index in B)
 
+// The consensus method's own settings: its search budget and what it holds plausible.
+struct ConsensusParams {
+  int max_hypotheses = 1000;                // hypotheses scored at most (--trials)
+  double min_scale = 0.5, max_scale = 2.0;  // singular values of the linear part
+  double max_rotation_deg = 30.0;           // a camera misalignment, not an arbitrary rotation
+  // Largest ratio of the linear part's singular values (one axis stretched this much more than the other).
+  // Wrong alignments of a small overlap are often strongly stretched (2.3-5x on the large tier's failures), a
+  // camera misalignment is not.
+  double max_anisotropy = 2.0;
+  std::optional<double> inlier_gate;  // fraction of image width; unset: from the rock spacing
+
+  // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence.
+  std::string validate() const;
+};
+
+// The paper's RANSAC's own settings.
+struct PaperParams {
+  int samples = 1000;  // K samples, each tried in all 6 orders (--trials)
+  // Rocks are paired as mutual nearest neighbours closer than this fraction of the centres' RMS spread
+  // (scale-free; 0.2 is about 5% of the image width for rocks spread over the picture).
+  double pair_gate = 0.2;
+
+  std::string validate() const;  // as ConsensusParams::validate
+};
+
+// Coherent Point Drift's own settings.
+struct CpdParams {
+  int iterations = 100;  // EM iterations (--trials)
+  double outlier_weight = 0.2;
+
+  std::string validate() const;  // as ConsensusParams::validate
+};
+
+// The settings every method shares, and each method's own beside them.
 struct RegistrationOptions {
   RegistrationMethod method = RegistrationMethod::kConsensus;
   std::uint64_t seed = 0;
-  int max_trials = 1000;      // paper: K samples (each tried in all 6 orders); consensus: hypotheses cap
-  double time_budget_ms = 0;  // 0: none
-  double aspect = 1.0;        // image width / height: distances and angles are measured in pixels
-  // paper: rocks are paired as mutual nearest neighbours closer than this fraction of the centres' RMS
-  // spread (scale-free; 0.2 is about 5% of the image width for rocks spread over the picture)
-  double pair_gate = 0.2;
-  // consensus: plausible affines only
-  double min_scale = 0.5, max_scale = 2.0;  // singular values of the linear part
-  double max_rotation_deg = 30.0;           // a camera misalignment, not an arbitrary rotation
-  // consensus: largest ratio of the linear part's singular values (one axis stretched this much more than the
-  // other). Wrong alignments of a small overlap are often strongly stretched (2.3-5x on the large tier's
-  // failures), a camera misalignment is not.
-  double max_anisotropy = 2.0;
-  double inlier_gate = 0;  // consensus, fraction of image width; 0: from the rock spacing
+  // Image width / height: distances and angles are measured in pixels. Unset: 1 (in a study, the study's).
+  std::optional<double> aspect;
+  std::optional<double> time_budget_ms;  // unset: no time limit
+  // Bound on the work per pair, in point evaluations (one mapped rock scored, or one A-B term of an EM step).
+  // Unset: automatic, growing as n log n in the rock count, so 5,000 rocks a side stop within seconds.
+  std::optional<double> work_budget;
+  bool record_trace = false;  // fill RegistrationReport::trace (ipd-studio's replay); off in batch runs
   // consensus, cpd: aligned boxes pair when they overlap by IoU > min_pair_iou, or when their centres are
   // closer than pair_noise_floor (fraction of the image width) and their sides agree within
   // pair_max_size_ratio (PairingRule). The floor is off by default: 0.0125 (24 px of 1936) lifts the large
@@ -60,15 +88,20 @@ struct RegistrationOptions {
   double min_pair_iou = 0.1;
   double pair_noise_floor = 0;
   double pair_max_size_ratio = 2.0;
-  int cpd_iterations = 100;  // cpd: EM iterations
-  double cpd_outlier_weight = 0.2;
-  bool record_trace = false;  // fill RegistrationReport::trace (ipd-studio's replay); off in batch runs
-  // Bound on the work per pair, in point evaluations (one mapped rock scored, or one A-B term of an EM
-  // step); 0: automatic, growing as n log n in the rock count, so 5,000 rocks a side stop within seconds.
-  double work_budget = 0;
+  ConsensusParams consensus;
+  PaperParams paper;
+  CpdParams cpd;
 
-  // Empty when usable; otherwise what is wrong, in one sentence.
+  // The search budget of `method`, as --trials and study.yaml's registration.trials set it: paper's samples,
+  // consensus' hypothesis cap, cpd's EM iterations.
+  int& trials();
+  int trials() const;
+  double aspect_ratio() const { return aspect.value_or(1.0); }
+
+  // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence.
   std::string validate() const;
+  // Throws std::invalid_argument("registration options: " + validate()) when not usable.
+  void check() const;
 };
 
 // Why a registration is flagged ambiguous (kNone: it is not). A number is only as good as the pairs behind it,

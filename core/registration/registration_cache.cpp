@@ -49,21 +49,23 @@ void feed(F&& f, const std::vector<Box>& a, const std::vector<Box>& b, const Reg
   f.value(kFormat);
   f.value(static_cast<int>(o.method));
   f.value(o.seed);
-  f.value(o.max_trials);
-  f.value(o.time_budget_ms);
-  f.value(o.aspect);
-  f.value(o.pair_gate);
-  f.value(o.min_scale);
-  f.value(o.max_scale);
-  f.value(o.max_rotation_deg);
-  f.value(o.max_anisotropy);
-  f.value(o.inlier_gate);
+  // The same bytes as when one flat struct held these (0 and 1.0 for unset; one trial count for paper and
+  // consensus), so entries written before the options were split by method stay valid.
+  f.value(o.method == RegistrationMethod::kPaper ? o.paper.samples : o.consensus.max_hypotheses);
+  f.value(o.time_budget_ms.value_or(0.0));
+  f.value(o.aspect.value_or(1.0));
+  f.value(o.paper.pair_gate);
+  f.value(o.consensus.min_scale);
+  f.value(o.consensus.max_scale);
+  f.value(o.consensus.max_rotation_deg);
+  f.value(o.consensus.max_anisotropy);
+  f.value(o.consensus.inlier_gate.value_or(0.0));
   f.value(o.min_pair_iou);
   f.value(o.pair_noise_floor);
   f.value(o.pair_max_size_ratio);
-  f.value(o.cpd_iterations);
-  f.value(o.cpd_outlier_weight);
-  f.value(o.work_budget);
+  f.value(o.cpd.iterations);
+  f.value(o.cpd.outlier_weight);
+  f.value(o.work_budget.value_or(0.0));
   for (const auto* set : {&a, &b}) {
     f.value(set->size());
     for (const Box& x : *set) {
@@ -200,7 +202,8 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
     r.inliers = j.at("inliers").get<int>();
     r.score = j.at("score").get<double>();
     const int stop = j.at("stop").get<int>();
-    if (stop < 0 || stop > static_cast<int>(StopReason::kWorkBudget)) return unusable();
+    // kIdenticalLayouts is the last reason (identical layouts' entries must be usable too).
+    if (stop < 0 || stop > static_cast<int>(StopReason::kIdenticalLayouts)) return unusable();
     r.stop = static_cast<StopReason>(stop);
     r.note = j.at("note").get<std::string>();
     r.elapsed_ms = j.at("elapsed_ms").get<double>();

@@ -48,7 +48,7 @@ Ambiguity judge_answer(const RegistrationFrame& f, const RockPairs& pairs, const
 // Minor over major axis of a point set's spread (standard deviations): 0 on a line, 1 for a round cloud.
 double flatness(const std::vector<Eigen::Vector2d>& p);
 
-// The work bound of a registration of na against nb rocks: options.work_budget, or when that is 0 one that
+// The work bound of a registration of na against nb rocks: options.work_budget, or when that is unset one that
 // grows as n log n in the rock count (about a second of work at 5,000 a side).
 double work_budget(const RegistrationOptions& o, size_t na, size_t nb);
 

@@ -1,12 +1,14 @@
 // A generic robust hypothesise-and-verify loop, in the manner of COLMAP's optim/ransac.h, but for
 // correspondence-free registration: a Sampler proposes minimal samples, an Estimator turns a sample into
-// zero or more models, a Scorer rates a model (higher is better) and may refine a new best one.
+// zero or more models, a Scorer rates a model (higher is better) and may refine a new best one. The Scorer is
+// handed the sample a model came from, so it never needs to read the Sampler's state.
 //
 //   Sampler:   bool next(Sample*)                      false when it has nothing more to propose
 //   Estimator: void estimate(const Sample&, std::vector<Model>*)
 //   Scorer:    double score(const Model&)
-//              bool worth_refining(double score, double best)  whether to locally optimise this model
-//              void refine(Model*, double* score)      local optimisation (may do nothing)
+//              bool worth_refining(const Sample&, const Model&, double score, double best)
+//                                                      whether to locally optimise this model
+//              void refine(const Sample&, Model*, double* score)  local optimisation (may do nothing)
 //              bool cannot_be_beaten(double score)     stop now: the best can't be (or won't be) improved
 //   Observer (optional): void on_model(const Model& raw, double raw_score, const Model& final, double score,
 //                                      bool refined, double best_score, bool new_best)
@@ -138,11 +140,11 @@ RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, 
       // often scores below a wrong one until it is refined (LO-RANSAC).
       bool refined = false;
       if constexpr (std::is_same_v<std::decay_t<Observer>, NoObserver>) {
-        if (scorer.worth_refining(s, r.best_score)) scorer.refine(&m, &s);
+        if (scorer.worth_refining(sample, m, s, r.best_score)) scorer.refine(sample, &m, &s);
       } else {
         const Model raw = m;
-        if (scorer.worth_refining(s, r.best_score)) {
-          scorer.refine(&m, &s);
+        if (scorer.worth_refining(sample, m, s, r.best_score)) {
+          scorer.refine(sample, &m, &s);
           refined = true;
         }
         const bool new_best = s > r.best_score;

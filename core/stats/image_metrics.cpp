@@ -6,12 +6,12 @@
 #include <limits>
 #include <map>
 #include <mutex>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <optional>
 #include <stdexcept>
 
 #include "core/geometry/affine_estimator.h"
+#include "core/picture/picture_codec.h"
 #include "core/util/parallel.h"
 
 namespace ipd {
@@ -150,7 +150,7 @@ StudyPixelMetrics pixel_metrics_all_columns(const StudyLabels& labels, const Cro
         const auto im = d->images.find(stem);
         cv::Mat m;
         if (im != d->images.end()) {
-          m = cv::imread(im->second, cv::IMREAD_GRAYSCALE);
+          m = read_picture(im->second, cv::IMREAD_GRAYSCALE);
           ++decoded;
           if (m.empty()) scene_problems[s].push_back(fmt::format("{}: can't read the picture", im->second));
         }
@@ -193,7 +193,8 @@ std::vector<ScenePixelMetrics> pixel_metrics(const StudyLabels& labels, const Cr
     const ScenePairing& p = pairings[k];
     const auto ia = da->images.find(p.stem), ib = db->images.find(p.stem);
     if (ia == da->images.end() || ib == db->images.end()) return;
-    const cv::Mat ga = cv::imread(ia->second, cv::IMREAD_GRAYSCALE), gb = cv::imread(ib->second, cv::IMREAD_GRAYSCALE);
+    const cv::Mat ga = read_picture(ia->second, cv::IMREAD_GRAYSCALE),
+                  gb = read_picture(ib->second, cv::IMREAD_GRAYSCALE);
     if (ga.empty() || gb.empty()) {
       std::lock_guard<std::mutex> lock(mu);
       problems->push_back(fmt::format("{}: can't read the picture", ga.empty() ? ia->second : ib->second));

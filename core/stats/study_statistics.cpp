@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <opencv2/imgcodecs.hpp>
 
+#include "core/picture/picture_codec.h"
 #include "core/util/parallel.h"
 
 namespace ipd {
@@ -186,7 +186,7 @@ std::pair<int, int> domain_image_size(const Study& study, const std::string& dom
   const Domain* d = study.domain(domain);
   if (d)
     for (const auto& [stem, path] : d->images) {
-      const cv::Mat m = cv::imread(path, cv::IMREAD_UNCHANGED);
+      const cv::Mat m = read_picture(path, cv::IMREAD_UNCHANGED);
       if (!m.empty()) return {m.cols, m.rows};
     }
   return {0, 0};

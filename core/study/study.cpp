@@ -156,8 +156,8 @@ void parse_registration(const YAML::Node& v, const std::string& file, int line, 
         throw StudyError(fmt::format("{}:{}: registration.trials must be at least 1, got {}", file,
                                      r.first.Mark().line + 1, trials));
     } else if (k == "gate") {
-      c->registration.pair_gate = yaml_get<double>(r.second, file, "registration.gate");
-      if (!(c->registration.pair_gate > 0) || !std::isfinite(c->registration.pair_gate))
+      c->registration.paper.pair_gate = yaml_get<double>(r.second, file, "registration.gate");
+      if (!(c->registration.paper.pair_gate > 0) || !std::isfinite(c->registration.paper.pair_gate))
         throw StudyError(
             fmt::format("{}:{}: registration.gate must be a number > 0 (a fraction of the rocks' "
                         "spread; default 0.2), got {}",
@@ -168,9 +168,7 @@ void parse_registration(const YAML::Node& v, const std::string& file, int line, 
     }
   }
   // trials is the configured method's search budget, as ipd register's --trials: cpd's EM iterations.
-  if (trials > 0)
-    (c->registration.method == RegistrationMethod::kCpd ? c->registration.cpd_iterations : c->registration.max_trials) =
-        trials;
+  if (trials > 0) c->registration.trials() = trials;
   const std::string bad = c->registration.validate();
   if (!bad.empty()) throw StudyError(fmt::format("{}:{}: {}", file, line, bad));
 }

@@ -340,7 +340,7 @@ TEST(Determinism, TheSeedChangesASampledResult) {
   const auto a = scattered_rocks(14, 1, 0), b = scattered_rocks(14, 2, 0);
   RegistrationOptions o;
   o.method = RegistrationMethod::kPaper;
-  o.max_trials = 3;
+  o.paper.samples = 3;
   std::set<std::vector<double>> outcomes;
   for (std::uint64_t seed = 0; seed < 6; ++seed) {
     o.seed = seed;

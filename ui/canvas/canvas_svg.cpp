@@ -2,10 +2,10 @@
 
 #include <fmt/format.h>
 
-#include <opencv2/imgcodecs.hpp>
 #include <set>
 #include <stdexcept>
 
+#include "core/picture/picture_codec.h"
 #include "ui/canvas/font_subset.h"
 
 namespace ipd::ui {
@@ -100,7 +100,7 @@ class SvgCanvas : public Canvas {
     // Photographs: JPEG at quality 90 is a tenth of a lossless PNG and looks the same at print size. The
     // pixels are the crop's own (native resolution, never resampled).
     std::vector<uchar> jpeg;
-    cv::imencode(".jpg", p.pixels, jpeg, {cv::IMWRITE_JPEG_QUALITY, 90});
+    encode_picture(".jpg", p.pixels, &jpeg, {cv::IMWRITE_JPEG_QUALITY, 90});
     body_ += fmt::format(
         "<image x=\"{:.2f}\" y=\"{:.2f}\" width=\"{:.2f}\" height=\"{:.2f}\" preserveAspectRatio=\"none\" "
         "xlink:href=\"data:image/jpeg;base64,{}\"/>\n",

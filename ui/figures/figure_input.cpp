@@ -1,10 +1,10 @@
 #include "ui/figures/figure_input.h"
 
 #include <algorithm>
-#include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
 #include "core/geometry/affine_estimator.h"
+#include "core/picture/picture_codec.h"
 
 namespace ipd::ui {
 
@@ -96,7 +96,7 @@ void load_pictures(SceneFigureInput& in, const Study& study) {
     if (!d) return;
     const auto it = d->images.find(in.stem);
     if (it == d->images.end()) return;
-    picture = cv::imread(it->second, cv::IMREAD_COLOR);
+    picture = read_picture(it->second, cv::IMREAD_COLOR);
     if (picture.empty()) problem = "cannot decode " + it->second;
   };
   load(in.a, in.picture_a, in.problem_a);

@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "core/geometry/point_grid.h"
+#include "core/registration/consensus/consensus_tuning.h"
 
 namespace ipd::detail {
 
@@ -79,10 +80,8 @@ std::vector<Eigen::Vector2d> top_translations(const Eigen::Matrix2d& lin, const 
   // Votes sorted by bin key (stably, so each bin sums its votes in the order they were cast), then counted run
   // by run; equally full bins are ranked by key, so the order depends on nothing but the votes. A sort of a
   // few hundred keys costs less than the hash map it replaced (one allocation per bin).
-  // 16 A rocks vote (every k-th): 64 made the votes cost n^2 up to 64 rocks a side and dominate sets of
-  // 50-200 (synthetic 100 rocks: 1.4 -> 0.7 ms median); the benchmark tiers' F1 is the same.
-  constexpr size_t kVoters = 16;
-  const size_t stride = std::max<size_t>(1, a.size() / kVoters);
+  // kTuning.translation_voters A rocks vote (every k-th), so the votes cost no n^2.
+  const size_t stride = std::max<size_t>(1, a.size() / kTuning.translation_voters);
   std::vector<std::pair<std::uint64_t, Eigen::Vector2d>> votes;
   votes.reserve((a.size() / stride + 1) * b.size());
   for (size_t i = 0; i < a.size(); i += stride) {

@@ -6,17 +6,13 @@
 #include <queue>
 
 #include "core/geometry/affine_estimator.h"
+#include "core/registration/consensus/consensus_tuning.h"
+#include "core/registration/consensus/local_optimisers.h"
 #include "core/registration/pairing.h"
 
 namespace ipd::detail {
 
 namespace {
-
-// Weights of the judgement, against the consensus score (one well-matched rock ~ 1). A is the first domain of
-// a pair, usually the real pictures: hand labels hold fewer rocks than the synthetic twin, so an A rock that B's
-// picture shows but B lacks is stronger evidence against an alignment than the converse. Chosen on the large
-// tier's candidates of seeds 1-4, checked on 5-6 (docs/method.md: tuned constants).
-constexpr double kWeightIou = 0.2, kWeightUnpairedA = 0.1, kWeightUnpairedB = 0.05;
 
 struct Rect {
   double x0, y0, x1, y1;
@@ -39,7 +35,7 @@ double log_size(const Eigen::Vector2d& wh) { return 0.5 * std::log(std::max(wh.x
 
 }  // namespace
 
-EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, ConsensusScorer* scorer, size_t keep) {
+EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, SupportMeasurer* support, size_t keep) {
   EdgeSearch out;
   const size_t na = f.a.size(), nb = f.b.size();
   std::vector<double> la(na), lb(nb);
@@ -77,18 +73,20 @@ EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, Con
           if (j1 == j2) continue;
           out.work += 1;
           const double d2 = lb[j2] - la[i2];
-          if (std::abs(d1 - d2) > 2 * kEdgeLogSizeGap) continue;  // no scale suits both ends
+          if (std::abs(d1 - d2) > 2 * kTuning.edge_log_size_gap) continue;  // no scale suits both ends
           const Edge& eb = edges_b[j1 * nb + j2];
           // The similarity's scale must lie in the bounds and agree with both rocks' size ratios.
           const double log_scale = eb.log_length - ea.log_length;
           if (log_scale < log_min_scale || log_scale > log_max_scale) continue;
-          if (std::abs(d1 - log_scale) > kEdgeLogSizeGap || std::abs(d2 - log_scale) > kEdgeLogSizeGap) continue;
+          if (std::abs(d1 - log_scale) > kTuning.edge_log_size_gap ||
+              std::abs(d2 - log_scale) > kTuning.edge_log_size_gap)
+            continue;
           if (ea.v.dot(eb.v) < bounds.cos_rotation * ea.length * eb.length) continue;
           const Eigen::Vector2d src[2] = {f.a[i1], f.a[i2]}, dst[2] = {f.b[j1], f.b[j2]};
           Affine2 m;
           if (!similarity_least_squares(src, dst, 2, &m) || !bounds.plausible(m.leftCols<2>())) continue;
           // Only the best `keep` go on: a hypothesis that can't reach the current keep-th best stops early.
-          const double s = scorer->score_above(m, best_scores.size() < keep ? -INFINITY : best_scores.top());
+          const double s = support->score_above(m, best_scores.size() < keep ? -INFINITY : best_scores.top());
           ++out.hypotheses;
           out.work += static_cast<double>(na);
           if (!std::isfinite(s)) continue;
@@ -107,8 +105,8 @@ EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, Con
   for (size_t k = 0; k < n; ++k) {
     Affine2 m = scored[k].second;
     double s = scored[k].first;
-    scorer->improve(&m, &s);
-    scorer->polish(&m);
+    improve(support, &m, &s);
+    polish(support, &m);
     out.candidates.push_back(m);
   }
   return out;
@@ -134,7 +132,8 @@ Judgement judge_candidate(const RegistrationFrame& f, const std::vector<Box>& bo
   if (invertible)
     for (size_t k = 0; k < boxes_b.size(); ++k)
       if (!paired_b[k] && picture_a.holds(transform_box(a_from_b, boxes_b[k]))) ++j.unpaired_b;
-  j.total = consensus + kWeightIou * j.iou_sum - kWeightUnpairedA * j.unpaired_a - kWeightUnpairedB * j.unpaired_b;
+  j.total = consensus + kTuning.weight_iou * j.iou_sum - kTuning.weight_unpaired_a * j.unpaired_a -
+            kTuning.weight_unpaired_b * j.unpaired_b;
   return j;
 }
 

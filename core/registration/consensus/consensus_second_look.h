@@ -8,21 +8,16 @@
 #include <vector>
 
 #include "core/geometry/geometry.h"
-#include "core/registration/consensus/consensus_scorer.h"
+#include "core/registration/consensus/consensus_bounds.h"
+#include "core/registration/consensus/support_measurer.h"
 #include "core/registration/pairing.h"
 #include "core/registration/registration.h"
 #include "core/registration/registration_frame.h"
 
 namespace ipd::detail {
 
-// Edge pairs the second look may examine; beyond this (about 18 rocks a side) it is skipped: larger sets
-// keep enough neighbours in common for the guided search, and the enumeration grows as n^4.
-inline constexpr double kMaxEdgePairs = 60000;
-// How far a rock's log box size may stray from the log scale of the edge it ends, and how many of the best
-// similarities are refined into candidates. Large tier F1 over seeds 0-6: mean 0.9642 with 0.4 / 15, 0.9633
-// with 0.6 / 30 (0.3-0.6 and 15-30 all within 0.001), and the search scores a third fewer hypotheses.
-inline constexpr double kEdgeLogSizeGap = 0.4;
-inline constexpr size_t kEdgeCandidates = 15;
+// Its limits (kTuning.max_edge_pairs: about 18 rocks a side, the enumeration grows as n^4) and its constants are
+// in consensus_tuning.h.
 
 struct EdgeSearch {
   std::vector<Affine2> candidates;  // refined and polished, best consensus first
@@ -30,9 +25,9 @@ struct EdgeSearch {
   double work = 0;                  // edge pairs examined plus rocks scored
 };
 
-// Similarity hypotheses from every A edge and every B edge (both directions), the `keep` best by the scorer's
-// consensus, each refined (least squares on its inliers) and polished.
-EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, ConsensusScorer* scorer, size_t keep);
+// Similarity hypotheses from every A edge and every B edge (both directions), the `keep` best by the support
+// measurer's consensus, each refined (least squares on its inliers) and polished.
+EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, SupportMeasurer* support, size_t keep);
 
 // A candidate judged on its final pairing: the consensus score, plus the IoU its pairs reach, minus the rocks
 // left without a partner although the other picture shows their whole box (a wrong alignment leaves many).

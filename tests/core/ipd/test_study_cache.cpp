@@ -187,6 +187,35 @@ TEST(StudyCache, RegistrationsGoInTheOneFileAndAnotherMethodsAreKept) {
   EXPECT_FALSE(fs::exists(registration_cache_dir(d.path())));
 }
 
+TEST(StudyCache, IdenticalLayoutsReadBackAndTheWarmRunRewritesNothing) {
+  // Scene s0's layouts are the same boxes on both sides: registered without a search (its own stop reason).
+  // That report must read back like any other, or the whole file would be ignored on every run.
+  test::TempDir d;
+  write_study(d);
+  test::write_text(d / "synth/labels/s0.txt", read_file(d / "real/labels/s0.txt"));
+  auto run = [&](bool* written) {
+    const Study study = open_study(d.path());
+    StudyCache cache(parsed_study_cache_path(study.root), study.root);
+    const StudyLabels labels = cache.load_labels(study);
+    RegistrationCache registration(registration_cache_dir(study.root));
+    cache.hand_registrations_to(registration);
+    TableOptions t;
+    t.registration = study.config.registration;
+    t.cache_dir = registration.dir();
+    t.registration_cache = &registration;
+    const CrossTable table = compute_cross_table(labels, t);
+    cache.save(labels, registration);
+    *written = cache.stats().written;
+    EXPECT_EQ(table.pairings.at(0).at(0).registration.stop, StopReason::kIdenticalLayouts);
+    return std::make_pair(cache.stats().state, table.cached_registrations);
+  };
+  bool written = false;
+  EXPECT_EQ(run(&written), std::make_pair(std::string("missing"), 0));
+  EXPECT_TRUE(written);
+  EXPECT_EQ(run(&written), std::make_pair(std::string("loaded"), 3));
+  EXPECT_FALSE(written);
+}
+
 TEST(StudyCache, AChangedLabelFileIsParsedAgain) {
   test::TempDir d;
   write_study(d);

@@ -318,7 +318,7 @@ TEST(PaperRegistration, RecoversAKnownAffineOnACleanLayout) {
   const auto b = moved(a, known_affine(), perm);
   RegistrationOptions o;
   o.method = RegistrationMethod::kPaper;
-  o.max_trials = 2000;
+  o.paper.samples = 2000;
   const RegistrationReport r = register_rocks(a, b, o);
   EXPECT_TRUE(r.affine.isApprox(known_affine(), 1e-6)) << r.affine;
   EXPECT_EQ(r.pairs, pairs_of(perm));
@@ -333,11 +333,36 @@ TEST(PaperRegistration, DeterministicForASeed) {
   b.pop_back();
   RegistrationOptions o;
   o.method = RegistrationMethod::kPaper;
-  o.max_trials = 50;
+  o.paper.samples = 50;
   o.seed = 9;
   const auto r1 = register_rocks(a, b, o), r2 = register_rocks(a, b, o);
   EXPECT_EQ(r1.affine, r2.affine);
   EXPECT_EQ(r1.pairs, r2.pairs);
+}
+
+TEST(PaperRegistration, DroppingModelsBelowTheRivalChangesNothing) {
+  // Two unrelated layouts: most hypotheses score below the best distinct rival, and the scorer stops summing
+  // them early. A recorded trace scores every model in full, so both runs must agree to the last bit.
+  auto scatter = [](int n, unsigned seed) {
+    std::mt19937 g(seed);
+    std::vector<Box> out(n);
+    for (Box& x : out) x.cx = 0.05 + 0.9 * (g() / 4294967296.0), x.cy = 0.05 + 0.9 * (g() / 4294967296.0);
+    for (Box& x : out) x.w = x.h = 0.02;
+    return out;
+  };
+  const auto a = scatter(300, 21), b = scatter(280, 22);
+  RegistrationOptions o;
+  o.method = RegistrationMethod::kPaper;
+  o.seed = 4;
+  const RegistrationReport fast = register_rocks(a, b, o);
+  o.record_trace = true;
+  const RegistrationReport full = register_rocks(a, b, o);
+  EXPECT_EQ(fast.affine, full.affine);
+  EXPECT_EQ(fast.score, full.score);
+  EXPECT_EQ(fast.confidence, full.confidence);
+  EXPECT_EQ(fast.pairs, full.pairs);
+  EXPECT_EQ(fast.trials, full.trials);
+  EXPECT_EQ(fast.hypotheses, full.hypotheses);
 }
 
 TEST(PaperRegistration, TooFewRocksFallsBackToIdentity) {
@@ -368,15 +393,69 @@ TEST(ConsensusRegistration, RecoversAKnownAffineWithHiddenRocks) {
 TEST(RegistrationOptions, ValidateNamesTheProblem) {
   RegistrationOptions o;
   EXPECT_EQ(o.validate(), "");
-  o.max_trials = 0;
-  EXPECT_EQ(o.validate(), "max_trials must be at least 1, got 0");
+  o.consensus.max_hypotheses = 0;
+  EXPECT_EQ(o.validate(), "consensus.max_hypotheses must be at least 1, got 0");
   o = {};
-  o.min_scale = 2, o.max_scale = 1;
+  o.consensus.min_scale = 2, o.consensus.max_scale = 1;
   EXPECT_EQ(o.validate(), "scale bounds must satisfy 0 < min_scale <= max_scale, got [2, 1]");
   o = {};
-  o.max_anisotropy = 0.5;
+  o.consensus.max_anisotropy = 0.5;
   EXPECT_EQ(o.validate(), "max_anisotropy must be a number >= 1, got 0.5");
   EXPECT_THROW(register_rocks({}, {}, o), std::invalid_argument);
+  try {
+    o.check();
+    ADD_FAILURE() << "check() accepted what validate() rejects";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "registration options: max_anisotropy must be a number >= 1, got 0.5");
+  }
+}
+
+// Unset is not zero: a set time budget, aspect, work budget or gate must be a usable number, and each method's
+// own settings are checked by its own validate().
+TEST(RegistrationOptions, SetOptionalsAndEachMethodsParamsAreChecked) {
+  RegistrationOptions o;
+  o.time_budget_ms = 0;
+  EXPECT_EQ(o.validate(), "time_budget_ms must be > 0 when set (unset: no limit), got 0");
+  o = {};
+  o.aspect = -1;
+  EXPECT_EQ(o.validate(), "aspect must be a positive number, got -1");
+  o = {};
+  o.work_budget = 0;
+  EXPECT_EQ(o.validate(), "work_budget must be > 0 when set (unset: automatic), got 0");
+  o = {};
+  o.consensus.inlier_gate = 0;
+  EXPECT_EQ(o.validate(), "inlier_gate must be > 0 when set (unset: from the rock spacing), got 0");
+  o = {};
+  o.paper.samples = 0;
+  EXPECT_EQ(o.validate(), "paper.samples must be at least 1, got 0");
+  o = {};
+  o.paper.pair_gate = 0;
+  EXPECT_EQ(o.validate(), "pair_gate must be > 0, got 0");
+  o = {};
+  o.cpd.iterations = 0;
+  EXPECT_EQ(o.validate(), "cpd.iterations must be at least 1, got 0");
+  o = {};
+  o.cpd.outlier_weight = 1;
+  EXPECT_EQ(o.validate(), "cpd.outlier_weight must be in [0, 1), got 1");
+  o = {};
+  o.min_pair_iou = 1;
+  EXPECT_EQ(o.validate(), "min_pair_iou must be in [0, 1), got 1");
+}
+
+// --trials and study.yaml's registration.trials set the configured method's own budget.
+TEST(RegistrationOptions, TrialsIsTheMethodsOwnBudget) {
+  RegistrationOptions o;
+  o.trials() = 7;
+  EXPECT_EQ(o.consensus.max_hypotheses, 7);
+  o.method = RegistrationMethod::kPaper;
+  o.trials() = 8;
+  EXPECT_EQ(o.paper.samples, 8);
+  o.method = RegistrationMethod::kCpd;
+  o.trials() = 9;
+  EXPECT_EQ(o.cpd.iterations, 9);
+  EXPECT_EQ(o.consensus.max_hypotheses, 7);
+  EXPECT_EQ(o.paper.samples, 8);
+  EXPECT_EQ(static_cast<const RegistrationOptions&>(o).trials(), 9);
 }
 
 // cpd holds a weight for every (A, B) rock pair: past 16 million pairs it refuses with the sizes, the limit and

@@ -63,6 +63,20 @@ TEST(RegistrationCache, StoresLoadsAndRecomputesCorruptEntries) {
   EXPECT_FALSE(cache.load(key, 3, 7).has_value());
 }
 
+TEST(RegistrationCache, IdenticalLayoutsAreStoredAndLoaded) {
+  test::TempDir d;
+  const RegistrationCache cache(d / "cache");
+  const auto a = rocks(0);
+  bool hit = true;
+  const RegistrationReport first = register_rocks_cached(&cache, a, a, {}, &hit);
+  EXPECT_FALSE(hit);
+  EXPECT_EQ(first.stop, StopReason::kIdenticalLayouts);
+  const RegistrationReport again = register_rocks_cached(&cache, a, a, {}, &hit);
+  EXPECT_TRUE(hit);
+  EXPECT_EQ(again.stop, StopReason::kIdenticalLayouts);
+  EXPECT_EQ(again.pairs, first.pairs);
+}
+
 TEST(RegistrationCache, TableAndSessionShareItAndAgree) {
   test::TempDir d;
   for (int k = 0; k < 3; ++k) {

@@ -52,6 +52,25 @@ TEST(RegistrationCacheRules, StoredPairsMustNameRocksTheSceneHas) {
   EXPECT_FALSE(RegistrationCache(d / "cache").load(key, 7, 6).has_value());
 }
 
+// The key's bytes for given settings change only with kFormat: entries written by an earlier build stay valid.
+// Pinned for the defaults, for paper with its own trial count, a time budget and an aspect, and for consensus
+// with a gate, a work budget and its own trial count.
+TEST(RegistrationCacheRules, TheKeyOfGivenSettingsIsPinned) {
+  const auto a = seven(0), b = seven(0.02);
+  EXPECT_EQ(registration_cache_key(a, b, RegistrationOptions()), "f24a0c7f02c276425e3c93028fac6ceb");
+  RegistrationOptions p;
+  p.method = RegistrationMethod::kPaper;
+  p.paper.samples = 5;
+  p.time_budget_ms = 7;
+  p.aspect = 1.6;
+  EXPECT_EQ(registration_cache_key(a, b, p), "61dc1e2a0ed7b10f5a490667b4e227c2");
+  RegistrationOptions c;
+  c.consensus.inlier_gate = 0.01;
+  c.work_budget = 1e5;
+  c.consensus.max_hypotheses = 9;
+  EXPECT_EQ(registration_cache_key(a, b, c), "7d3908ad1bfd0e566e6c3234f73abf17");
+}
+
 // Every option that can change the answer is part of the key: changing one never reuses another's entry.
 TEST(RegistrationCacheRules, TheKeyCoversEveryOptionThatChangesTheAnswer) {
   const auto a = seven(0), b = seven(0.02);
@@ -60,20 +79,21 @@ TEST(RegistrationCacheRules, TheKeyCoversEveryOptionThatChangesTheAnswer) {
   const std::vector<std::pair<const char*, void (*)(RegistrationOptions*)>> changes = {
       {"method", [](RegistrationOptions* o) { o->method = RegistrationMethod::kCpd; }},
       {"seed", [](RegistrationOptions* o) { o->seed = 1; }},
-      {"max_trials", [](RegistrationOptions* o) { o->max_trials = 999; }},
+      {"consensus.max_hypotheses", [](RegistrationOptions* o) { o->consensus.max_hypotheses = 999; }},
+      {"paper.samples", [](RegistrationOptions* o) { o->method = RegistrationMethod::kPaper, o->paper.samples = 9; }},
       {"time_budget_ms", [](RegistrationOptions* o) { o->time_budget_ms = 5; }},
       {"aspect", [](RegistrationOptions* o) { o->aspect = 1.6; }},
-      {"pair_gate", [](RegistrationOptions* o) { o->pair_gate = 0.3; }},
-      {"min_scale", [](RegistrationOptions* o) { o->min_scale = 0.6; }},
-      {"max_scale", [](RegistrationOptions* o) { o->max_scale = 1.9; }},
-      {"max_rotation_deg", [](RegistrationOptions* o) { o->max_rotation_deg = 20; }},
-      {"max_anisotropy", [](RegistrationOptions* o) { o->max_anisotropy = 1.5; }},
-      {"inlier_gate", [](RegistrationOptions* o) { o->inlier_gate = 0.01; }},
+      {"pair_gate", [](RegistrationOptions* o) { o->paper.pair_gate = 0.3; }},
+      {"min_scale", [](RegistrationOptions* o) { o->consensus.min_scale = 0.6; }},
+      {"max_scale", [](RegistrationOptions* o) { o->consensus.max_scale = 1.9; }},
+      {"max_rotation_deg", [](RegistrationOptions* o) { o->consensus.max_rotation_deg = 20; }},
+      {"max_anisotropy", [](RegistrationOptions* o) { o->consensus.max_anisotropy = 1.5; }},
+      {"inlier_gate", [](RegistrationOptions* o) { o->consensus.inlier_gate = 0.01; }},
       {"min_pair_iou", [](RegistrationOptions* o) { o->min_pair_iou = 0.2; }},
       {"pair_noise_floor", [](RegistrationOptions* o) { o->pair_noise_floor = 0.02; }},
       {"pair_max_size_ratio", [](RegistrationOptions* o) { o->pair_max_size_ratio = 1.5; }},
-      {"cpd_iterations", [](RegistrationOptions* o) { o->cpd_iterations = 50; }},
-      {"cpd_outlier_weight", [](RegistrationOptions* o) { o->cpd_outlier_weight = 0.3; }},
+      {"cpd.iterations", [](RegistrationOptions* o) { o->cpd.iterations = 50; }},
+      {"cpd.outlier_weight", [](RegistrationOptions* o) { o->cpd.outlier_weight = 0.3; }},
       {"work_budget", [](RegistrationOptions* o) { o->work_budget = 1e5; }},
   };
   for (const auto& [name, change] : changes) {

@@ -54,8 +54,8 @@ struct OneModel {
 };
 struct FlatScorer {
   double score(const int&) { return 1.0; }
-  bool worth_refining(double, double) { return false; }
-  void refine(int*, double*) {}
+  bool worth_refining(int, int, double, double) { return false; }
+  void refine(int, int*, double*) {}
   bool cannot_be_beaten(double) { return false; }
 };
 

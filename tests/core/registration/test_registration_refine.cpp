@@ -7,7 +7,8 @@
 #include <random>
 
 #include "core/geometry/affine_estimator.h"
-#include "core/registration/consensus/consensus_scorer.h"  // core/src: internal
+#include "core/registration/consensus/consensus_tuning.h"  // core/src: internal
+#include "core/registration/consensus/local_optimisers.h"  // core/src: internal
 #include "core/registration/registration.h"
 #include "core/registration/registration_frame.h"
 #include "tests/support/test_support.h"
@@ -71,19 +72,18 @@ TEST(GateFloor, LabellingOffsetsOfPointEightPercentStayInsideTheGateOfATightClus
     EXPECT_LT((apply(r.affine, x.centre()) - (x.centre() + Eigen::Vector2d(0.05, 0.03))).norm(), 0.008);
 }
 
-// A layout and a scorer over it, in the registration's own normalised frame.
+// A layout and a support measurer over it, in the registration's own normalised frame.
 struct ScorerSetup {
   std::vector<Box> a, b;
   detail::RegistrationFrame frame;
   double gate;
-  long anchor = 0;
-  detail::ConsensusScorer scorer;
+  detail::SupportMeasurer scorer;
   ScorerSetup(std::vector<Box> boxes_a, std::vector<Box> boxes_b, double gate_of_spread)
       : a(std::move(boxes_a)),
         b(std::move(boxes_b)),
         frame(a, b, 1.0),
         gate(gate_of_spread),
-        scorer(frame, gate, detail::Bounds{0.4, 2.5, 45 * M_PI / 180, 2.0}, 1000, &anchor) {}
+        scorer(frame, gate, detail::Bounds{0.4, 2.5, 45 * M_PI / 180, 2.0}) {}
 };
 
 // Fifteen rocks, B = A scaled by 1.1 about the centre; the start is the identity scaled by 1.04 and shifted
@@ -103,7 +103,7 @@ TEST(SoftRefine, SlidesFromAPartialAlignmentToTheTrueOne) {
   m.col(2) += Eigen::Vector2d(0.5 * s.gate, 0);
   double score = s.scorer.score(m);
   const double start = score;
-  ASSERT_TRUE(s.scorer.soft_refine(&m, &score));
+  ASSERT_TRUE(detail::soft_refine(&s.scorer, &m, &score));
   EXPECT_GT(score, start + 3);  // more rocks in, and closer
   EXPECT_NEAR(score, 15.0, 0.01);
   EXPECT_LT((m - truth_n).cwiseAbs().maxCoeff(), 0.01);
@@ -125,7 +125,7 @@ TEST(SoftRefine, KeepsTheRocksTheStartAlignsWhereTheyAre) {
   Affine2 m = s.frame.from_image(identity_affine());
   double score = s.scorer.score(m);
   const Affine2 start = m;
-  EXPECT_FALSE(s.scorer.soft_refine(&m, &score));
+  EXPECT_FALSE(detail::soft_refine(&s.scorer, &m, &score));
   EXPECT_EQ(m, start);
 }
 
@@ -148,9 +148,9 @@ TEST(Polish, NeverGivesUpMoreThanFivePercentOfTheConsensus) {
     ScorerSetup s(a, b, 0.1);
     Affine2 m = s.frame.from_image(identity_affine());
     const double before = s.scorer.score(m);
-    s.scorer.polish(&m);
+    detail::polish(&s.scorer, &m);
     const double after = s.scorer.score(m);
-    EXPECT_GE(after, before - detail::kPolishLoss * std::max(1.0, before)) << "seed " << seed;
+    EXPECT_GE(after, before - detail::kTuning.polish_loss * std::max(1.0, before)) << "seed " << seed;
     held += m == s.frame.from_image(identity_affine());
   }
   EXPECT_GT(held, 0) << "no layout needed the guard: the test no longer exercises it";

@@ -71,7 +71,7 @@ TEST(RegistrationStability, SamePairsWhenCoordinatesAreScaledOrShifted) {
   for (auto method : kAllMethods) {
     RegistrationOptions o;
     o.method = method;
-    o.max_trials = 300;
+    o.paper.samples = o.consensus.max_hypotheses = 300;
     const RockPairs base = register_rocks(c.a, c.b, o).pairs;
     if (method == RegistrationMethod::kConsensus) {
       EXPECT_EQ(base, c.truth);
@@ -125,7 +125,7 @@ TEST(RegistrationStability, DefinedResultsForDegenerateInputs) {
     for (size_t k = 0; k < inputs.size(); ++k) {
       RegistrationOptions o;
       o.method = method;
-      o.max_trials = 200;
+      o.paper.samples = o.consensus.max_hypotheses = 200;
       const auto r = register_rocks(inputs[k].first, inputs[k].second, o);
       EXPECT_TRUE(finite(r)) << to_string(method) << " input " << k << "\\n" << r.affine;
       EXPECT_LE(r.pairs.size(), std::min(inputs[k].first.size(), inputs[k].second.size()));
@@ -160,8 +160,8 @@ TEST(RegistrationStability, FiveHundredRocksPerSide) {
   for (auto method : kAllMethods) {
     RegistrationOptions o;
     o.method = method;
-    o.max_trials = 50;
-    o.cpd_iterations = 20;
+    o.paper.samples = o.consensus.max_hypotheses = 50;
+    o.cpd.iterations = 20;
     const auto r = register_rocks(a, b, o);
     EXPECT_TRUE(finite(r)) << to_string(method);
     if (method == RegistrationMethod::kConsensus) {

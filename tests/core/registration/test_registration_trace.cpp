@@ -37,7 +37,7 @@ RegistrationOptions traced(RegistrationMethod m) {
   RegistrationOptions o;
   o.method = m;
   o.record_trace = true;
-  o.max_trials = 200;
+  o.paper.samples = o.consensus.max_hypotheses = 200;
   return o;
 }
 
@@ -133,7 +133,7 @@ TEST(RegistrationTrace, ConsensusRecordsHypothesesRefinementsAndPolish) {
 TEST(RegistrationTrace, CpdRecordsOneStepPerIteration) {
   const Scene s = scene();
   RegistrationOptions o = traced(RegistrationMethod::kCpd);
-  o.cpd_iterations = 7;
+  o.cpd.iterations = 7;
   const auto r = register_rocks(s.a, s.b, o);
   // Seven EM steps leave the fit short of a shifted placement (refined) that fits better: that placement is the
   // answer, recorded as the final fit after the iterations.

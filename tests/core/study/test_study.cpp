@@ -146,11 +146,16 @@ TEST(Study, ModelSettingsAreCheckedAtEveryLevel) {
 // iterations, the others' trials; below 1 an error naming the line.
 TEST(Study, RegistrationTrialsIsTheMethodsBudget) {
   auto c = parse_study_config("registration:\n  trials: 7\n  method: cpd\n", "study.yaml");
-  EXPECT_EQ(c.registration.cpd_iterations, 7);
-  EXPECT_EQ(c.registration.max_trials, RegistrationOptions().max_trials);
+  EXPECT_EQ(c.registration.cpd.iterations, 7);
+  EXPECT_EQ(c.registration.consensus.max_hypotheses, 1000);
+  EXPECT_EQ(c.registration.paper.samples, 1000);
   c = parse_study_config("registration: {method: paper, trials: 5}\n", "study.yaml");
-  EXPECT_EQ(c.registration.max_trials, 5);
-  EXPECT_EQ(c.registration.cpd_iterations, RegistrationOptions().cpd_iterations);
+  EXPECT_EQ(c.registration.paper.samples, 5);
+  EXPECT_EQ(c.registration.consensus.max_hypotheses, 1000);
+  EXPECT_EQ(c.registration.cpd.iterations, 100);
+  c = parse_study_config("registration: {trials: 9}\n", "study.yaml");  // consensus, the default method
+  EXPECT_EQ(c.registration.consensus.max_hypotheses, 9);
+  EXPECT_EQ(c.registration.paper.samples, 1000);
   try {
     parse_study_config("registration:\n  method: cpd\n  trials: 0\n", "study.yaml");
     FAIL();
