@@ -173,21 +173,70 @@ std::vector<std::pair<std::string, std::string>> domain_pairs(const Study& study
   return out;
 }
 
+namespace {
+
+// The study's models that `wanted` names (all of them when it is empty); an unknown name is an error.
+std::vector<ModelInfo> chosen_models(const Study& study, const std::vector<std::string>& wanted) {
+  std::vector<ModelInfo> models;
+  for (const auto& m : study.models)
+    if (wanted.empty() || std::count(wanted.begin(), wanted.end(), m.name)) models.push_back(m);
+  for (const auto& want : wanted) {
+    if (std::none_of(models.begin(), models.end(), [&](const auto& m) { return m.name == want; }))
+      throw StudyError(fmt::format("{}: no model '{}' (no <domain>/predictions/{}/ directory and not in study.yaml)",
+                                   study.root, want, want));
+  }
+  if (models.empty()) throw StudyError(study.root + ": no models (expected <domain>/predictions/<model>/ directories)");
+  return models;
+}
+
+// One cell per (model, column) from the columns' rock pairs; a column not shown was never paired and has no value.
+void add_cells(const StudyLabels& labels, const std::vector<bool>& shown, CrossTable* t) {
+  const Study& study = labels.study;
+  std::set<std::string> warned;
+  for (const auto& model : t->models) {
+    for (size_t c = 0; c < t->columns.size(); ++c) {
+      const auto& [a, b] = t->columns[c];
+      TableCell cell = make_table_cell(model, a, b);
+      if (!shown[c]) {  // never registered: no scenes, no value
+        total_table_cell(cell);
+        t->cells.push_back(std::move(cell));
+        continue;
+      }
+      for (const auto& d : {a, b}) {
+        if (labels.has_predictions(d, model.name)) continue;
+        cell.missing_predictions = true;
+        if (warned.insert(model.name + "\n" + d).second)
+          t->warnings.push_back(missing_predictions_problem(study, model.name, d).to_string());
+      }
+      if (!cell.missing_predictions)
+        for (const ScenePairing& p : t->pairings[c])
+          cell.per_scene.push_back(
+              scene_ipd(p, labels.gt_of(a, p.stem).boxes, labels.predictions_of(a, model.name, p.stem).boxes,
+                        labels.gt_of(b, p.stem).boxes, labels.predictions_of(b, model.name, p.stem).boxes));
+      total_table_cell(cell);
+      if (!cell.missing_predictions) {
+        const double threshold = study.config.conf_threshold;
+        const long na = count_predictions(labels, a, model.name, t->pairings[c]);
+        const long nb = count_predictions(labels, b, model.name, t->pairings[c]);
+        cell.no_value_reason = no_predictions_reason(na, nb, a, b, threshold);
+        if (!cell.no_value_reason.empty())
+          cell.ipd = std::nan("");
+        else if (na == 0 || nb == 0)
+          t->warnings.push_back(one_side_without_predictions(model.name, na == 0 ? a : b, na == 0 ? b : a, threshold));
+      }
+      t->cells.push_back(std::move(cell));
+    }
+  }
+}
+
+}  // namespace
+
 CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& options) {
   const Study& study = labels.study;
   for (const auto& d : options.domains)
     if (!study.domain(d)) throw StudyError(fmt::format("{}: no domain '{}' in this study", study.root, d));
   CrossTable t;
-  for (const auto& m : study.models)
-    if (options.models.empty() || std::count(options.models.begin(), options.models.end(), m.name))
-      t.models.push_back(m);
-  for (const auto& want : options.models) {
-    if (std::none_of(t.models.begin(), t.models.end(), [&](const auto& m) { return m.name == want; }))
-      throw StudyError(fmt::format("{}: no model '{}' (no <domain>/predictions/{}/ directory and not in study.yaml)",
-                                   study.root, want, want));
-  }
-  if (t.models.empty())
-    throw StudyError(study.root + ": no models (expected <domain>/predictions/<model>/ directories)");
+  t.models = chosen_models(study, options.models);
   t.columns = domain_pairs(study, options.domains);
   if (t.columns.empty()) throw StudyError(study.root + ": at least two domains are needed to compare");
 
@@ -223,41 +272,7 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
     if (shown[c])
       for (const PipelineScene& s : paired.pairs[k++].scenes) t.pairings[c].push_back(s.counted());
 
-  std::set<std::string> warned;
-  for (const auto& model : t.models) {
-    for (size_t c = 0; c < t.columns.size(); ++c) {
-      const auto& [a, b] = t.columns[c];
-      TableCell cell = make_table_cell(model, a, b);
-      if (!shown[c]) {  // never registered: no scenes, no value
-        total_table_cell(cell);
-        t.cells.push_back(std::move(cell));
-        continue;
-      }
-      for (const auto& d : {a, b}) {
-        if (labels.has_predictions(d, model.name)) continue;
-        cell.missing_predictions = true;
-        if (warned.insert(model.name + "\n" + d).second)
-          t.warnings.push_back(missing_predictions_problem(study, model.name, d).to_string());
-      }
-      if (!cell.missing_predictions)
-        for (const ScenePairing& p : t.pairings[c])
-          cell.per_scene.push_back(
-              scene_ipd(p, labels.gt_of(a, p.stem).boxes, labels.predictions_of(a, model.name, p.stem).boxes,
-                        labels.gt_of(b, p.stem).boxes, labels.predictions_of(b, model.name, p.stem).boxes));
-      total_table_cell(cell);
-      if (!cell.missing_predictions) {
-        const double threshold = study.config.conf_threshold;
-        const long na = count_predictions(labels, a, model.name, t.pairings[c]);
-        const long nb = count_predictions(labels, b, model.name, t.pairings[c]);
-        cell.no_value_reason = no_predictions_reason(na, nb, a, b, threshold);
-        if (!cell.no_value_reason.empty())
-          cell.ipd = std::nan("");
-        else if (na == 0 || nb == 0)
-          t.warnings.push_back(one_side_without_predictions(model.name, na == 0 ? a : b, na == 0 ? b : a, threshold));
-      }
-      t.cells.push_back(std::move(cell));
-    }
-  }
+  add_cells(labels, shown, &t);
   return t;
 }
 
