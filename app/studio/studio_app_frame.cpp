@@ -108,6 +108,9 @@ void StudioApp::frame() {
 
 ui::StudyView StudioApp::study_view() {
   ui::StudyView v;
+  v.picture_of = [this](const std::string& domain, const std::string& stem) {
+    return picture(domain, stem, false, nullptr);
+  };
   v.pending_saves = worker_.saver().pending();
   v.failed_saves = worker_.saver().failures();
   v.unsaved_edits = worker_.unsaved_edits();

@@ -195,8 +195,10 @@ void draw_scatter(const Session& s, bool gathering, RockViewState& st, UiState& 
   handle_mouse(s, plot, ImGui::IsItemHovered() ? hovered : -1, ax, ay, st, ui, out);
 }
 
-// A rock's crop: the box and its best-IoU prediction on a neutral square, 2.5 rock sizes across.
-void draw_crop(const Session& s, Side side, int scene, int rock, float px) {
+// A rock's crop: the picture around it (when the study has one and it is loaded), the box and its best-IoU
+// prediction, 2.5 rock sizes across; a neutral square where there is no picture.
+void draw_crop(const StudyView& v, Side side, int scene, int rock, float px) {
+  const Session& s = *v.session;
   const ImVec2 p0 = ImGui::GetCursorScreenPos(), p1{p0.x + px, p0.y + px};
   ImGui::Dummy({px, px});
   ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -207,6 +209,15 @@ void draw_crop(const Session& s, Side side, int scene, int rock, float px) {
     return ImVec2{float(p0.x + ((x - g.cx) / span + 0.5) * px), float(p0.y + ((y - g.cy) / span + 0.5) * px)};
   };
   dl->PushClipRect(p0, p1, true);
+  if (v.picture_of) {
+    const std::string& domain = side == Side::kA ? s.left_domain() : s.right_domain();
+    const Picture pic = v.picture_of(domain, s.scenes()[scene].stem);
+    // Normalised label coordinates are the texture's: the crop's part inside the picture, nothing repeated.
+    const double u0 = std::max(0.0, g.cx - span / 2), v0 = std::max(0.0, g.cy - span / 2);
+    const double u1 = std::min(1.0, g.cx + span / 2), v1 = std::min(1.0, g.cy + span / 2);
+    if (pic.texture && u1 > u0 && v1 > v0)
+      dl->AddImage(pic.texture, at(u0, v0), at(u1, v1), ImVec2(float(u0), float(v0)), ImVec2(float(u1), float(v1)));
+  }
   dl->AddRect(at(g.x0(), g.y0()), at(g.x1(), g.y1()), IM_COL32(86, 180, 233, 255), 0, 0, 2);
   const int best = s.performance(side, scene).best_prediction[rock];
   if (best >= 0) {
@@ -218,7 +229,8 @@ void draw_crop(const Session& s, Side side, int scene, int rock, float px) {
 
 constexpr int kGalleryPage = 8;
 
-void draw_gallery(const Session& s, RockViewState& st, UiCommands& out) {
+void draw_gallery(const StudyView& v, RockViewState& st, UiCommands& out) {
+  const Session& s = *v.session;
   const std::string sorts[] = {"|diff|", "perf " + s.left_domain(), "perf " + s.right_domain(), "size"};
   ImGui::SetNextItemWidth(name_combo_width(s));
   if (ImGui::BeginCombo("sort (largest first)", sorts[std::clamp(st.gallery_sort, 0, 3)].c_str())) {
@@ -241,8 +253,8 @@ void draw_gallery(const Session& s, RockViewState& st, UiCommands& out) {
   ImGui::SameLine();
   if (ImGui::ArrowButton("##gnext", ImGuiDir_Right)) st.gallery_page = std::min(pages - 1, st.gallery_page + 1);
   text_wrapped_at_spaces(
-      fmt::format("Boxes on a neutral background (GT blue, its best-IoU prediction orange); "
-                  "{} | {}. Click to go.",
+      fmt::format("The picture around each rock (a grey square where the study has none), GT blue, its "
+                  "best-IoU prediction orange; {} | {}. Click to go.",
                   s.left_domain(), s.right_domain()));
   const float px = 5 * ImGui::GetTextLineHeight();
   ImGui::BeginChild("##gallerypairs");
@@ -251,9 +263,9 @@ void draw_gallery(const Session& s, RockViewState& st, UiCommands& out) {
     const RockPairPoint& p = points[st.gallery[k]];
     ImGui::PushID(k);
     ImGui::BeginGroup();
-    draw_crop(s, Side::kA, p.scene, p.rock_a, px);
+    draw_crop(v, Side::kA, p.scene, p.rock_a, px);
     ImGui::SameLine();
-    draw_crop(s, Side::kB, p.scene, p.rock_b, px);
+    draw_crop(v, Side::kB, p.scene, p.rock_b, px);
     ImGui::SameLine();
     ImGui::BeginGroup();
     ImGui::Text("%s. %s", thousands(k + 1).c_str(), s.scenes()[p.scene].stem.c_str());
@@ -345,7 +357,7 @@ void draw_rock_view(const StudyView& v, const std::shared_ptr<const RockPointSet
       ImGui::EndTabItem();
     }
     if (ImGui::BeginTabItem("Gallery", nullptr, select == 1 ? ImGuiTabItemFlags_SetSelected : 0)) {
-      draw_gallery(s, st, out);
+      draw_gallery(v, st, out);
       ImGui::EndTabItem();
     }
     ImGui::EndTabBar();

@@ -42,6 +42,8 @@ struct Picture {
 // What the views read this frame: never modified by them.
 struct StudyView {
   const Session* session = nullptr;
+  // A domain's picture of a scene, loaded in the background when not yet in (the gallery's crops); empty: none.
+  std::function<Picture(const std::string& domain, const std::string& stem)> picture_of;
   const std::vector<SceneSummary>* summaries = nullptr;  // per scene, computed by the worker once per change
   const RegistrationReport* rerun = nullptr;             // a re-run (with its trace) of the current scene
   bool rerun_is_automatic = false;                       // the re-run repeats the study's own registration
