@@ -157,9 +157,18 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
   for (const auto& e : cmd.edits) worker_.submit(command::ApplyEdit{ui_.scene, e});
   if (cmd.undo) worker_.submit(command::Undo{});
   if (cmd.redo) worker_.submit(command::Redo{});
-  if (cmd.toggle_reviewed && !s.scenes().empty()) worker_.submit(command::ToggleReviewed{ui_.scene});
-  if (cmd.check_left >= 0 && !s.scenes().empty())
+  // The status line says what a toggle did: else "suspect pair 3 in scene_02" stays up after `C` checked it.
+  if (cmd.toggle_reviewed && !s.scenes().empty()) {
+    worker_.submit(command::ToggleReviewed{ui_.scene});
+    ui_.status = fmt::format("{} {}", s.scenes()[ui_.scene].stem,
+                             s.reviewed(ui_.scene) ? "no longer marked reviewed" : "marked reviewed");
+  }
+  if (cmd.check_left >= 0 && !s.scenes().empty()) {
     worker_.submit(command::ToggleChecked{ui_.scene, cmd.check_left, cmd.check_right});
+    ui_.status = fmt::format(
+        "pair {} | {} in {} {}", cmd.check_left + 1, cmd.check_right + 1, s.scenes()[ui_.scene].stem,
+        s.checked(ui_.scene, cmd.check_left, cmd.check_right) ? "no longer checked as correct" : "checked as correct");
+  }
   if (cmd.next_suspect) next_suspect();
   if (cmd.save_as && ui_.save_as_dir[0]) {
     worker_.submit(command::SaveAllTo{ui_.save_as_dir});

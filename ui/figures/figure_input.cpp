@@ -6,6 +6,7 @@
 #include "core/geometry/affine_estimator.h"
 #include "core/picture/picture_codec.h"
 #include "core/report/provenance.h"
+#include "core/session/review_state.h"
 #include "ui/figures/figure_provenance.h"
 
 namespace ipd::ui {
@@ -32,6 +33,18 @@ std::vector<Box> above(const std::vector<Box>& boxes, double threshold) {
   for (const Box& b : boxes)
     if (b.conf >= threshold) out.push_back(b);
   return out;
+}
+
+// The review marks of scene `stem` of the domain pair (a, b) in the study's order, against its pairs now.
+void read_scene_review(const StudyLabels& labels, const std::string& a, const std::string& b, const std::string& stem,
+                       const RockPairs& pairs, SceneFigureInput& in) {
+  ReviewScenes one;
+  one.stems = {stem};
+  one.gt = [&](int, bool side_a) -> const std::vector<Box>& { return labels.gt_of(side_a ? a : b, stem).boxes; };
+  one.pairs = [&](int) -> const RockPairs& { return pairs; };
+  const ReviewRead read = load_review(labels.study.root, a, b, one);  // other scenes' marks are dropped
+  in.reviewed = read.state.reviewed_scenes > 0;
+  in.pairs_checked = static_cast<int>(read.state.checked.at(0).size());
 }
 
 }  // namespace
@@ -63,6 +76,7 @@ SceneFigureInput scene_input_from_study(const StudyLabels& labels, const std::st
   in.affine = (p.fixed || swapped) ? affine_of_pairs(in) : p.registration.affine;
   if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
   in.label_fingerprint = label_set_fingerprint(st);
+  read_scene_review(labels, swapped ? b : a, swapped ? a : b, stem, p.pairs, in);
   return in;
 }
 
@@ -91,6 +105,9 @@ SceneFigureInput scene_input_from_session(const Session& s, int scene) {
   const Study& st = s.study();
   if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
   in.label_fingerprint = label_set_fingerprint(st);
+  const ReviewState& review = s.review_of(s.pair_index());
+  in.reviewed = review.reviewed.at(scene) != 0;
+  in.pairs_checked = static_cast<int>(review.checked.at(scene).size());
   return in;
 }
 
@@ -114,10 +131,12 @@ void draw_scene_figure(DisplayList& out, const std::string& kind, const SceneFig
     draw_registration_figure(out, in, o);
   else
     throw std::invalid_argument("unknown scene figure kind '" + kind + "' (expected pairs or registration)");
-  // The scene's own edits: its pairs when set by hand, the rocks it leaves out.
+  // The scene's own edits: its pairs when set by hand, the rocks it leaves out; and its review marks.
   const int excluded = static_cast<int>(in.excluded_a.size() + in.excluded_b.size());
-  add_provenance(
-      out, scene_provenance(in.pairs_fixed, static_cast<int>(in.pairs.size()), excluded, in.label_fingerprint), o);
+  Provenance p = scene_provenance(in.pairs_fixed, static_cast<int>(in.pairs.size()), excluded, in.label_fingerprint);
+  p.scenes_reviewed = in.reviewed ? 1 : 0;
+  p.pairs_checked = in.pairs_checked;
+  add_provenance(out, p, o);
 }
 
 }  // namespace ipd::ui

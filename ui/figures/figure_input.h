@@ -13,6 +13,7 @@ namespace ipd::ui {
 
 // The study on disk: pairs as `ipd table` finds them (fixed pairs files or registration), predictions below
 // `conf_threshold` dropped (on top of study.yaml's). Domains are paired in study order, as the GUI does.
+// The scene's review marks come from review/<A>__<B>.json; throws StudyError naming that file when it is bad.
 SceneFigureInput scene_input_from_study(const StudyLabels& labels, const std::string& a, const std::string& b,
                                         const std::string& model, const std::string& stem, double conf_threshold,
                                         const RegistrationOptions& registration);

@@ -50,7 +50,13 @@ ScoreCurve layout_score_curve(Canvas& c, const TextStyle& st, const ScoreCurveIn
   }
   if (in.current >= 0 && in.current < n) out.current_x = x_of(in.current);
   out.direction = score_direction(in.method);
-  out.direction_at = {out.plot.x1 - 2, out.plot.y0 + 1};
+  if (lower_score_is_better(in.method)) {
+    out.direction_at = {out.plot.x1 - 2, out.plot.y0 + 1};
+    out.direction_anchor = Anchor::kTopRight;
+  } else {
+    out.direction_at = {out.plot.x1 - 2, out.plot.y1 - 1};
+    out.direction_anchor = Anchor::kBottomRight;
+  }
   return out;
 }
 
@@ -70,7 +76,7 @@ void draw_score_curve(Canvas& c, const TextStyle& st, const ScoreCurve& ch, cons
   if (ch.points.size() > 1) c.polyline(ch.points, col.bar_hot, 1.5, false);
   if (ch.points.size() == 1) c.fill_circle(ch.points.front(), 2, col.bar_hot);
   if (ch.current_x >= 0) c.line({ch.current_x, ch.plot.y0}, {ch.current_x, ch.plot.y1}, col.current, 1.5);
-  c.text(ch.direction_at, Anchor::kTopRight, TextStyle{st.size_pt, col.label, false}, ch.direction);
+  c.text(ch.direction_at, ch.direction_anchor, TextStyle{st.size_pt, col.label, false}, ch.direction);
 }
 
 }  // namespace ipd::ui

@@ -30,8 +30,12 @@ struct ScoreCurve {
   std::vector<AxisTick> value_axis;  // at: y
   std::vector<AxisTick> step_axis;   // at: x; steps numbered from 1
   double current_x = -1;             // the marker's x (-1: none)
-  std::string direction;             // "lower is better" / "higher is better", top right of the plot
-  Pt direction_at;                   // its top-right corner
+  // "lower is better" / "higher is better" in the right-hand corner the best-so-far curve leaves free: it
+  // never gets worse, so it ends at the top for higher-is-better (the label goes bottom right) and at the
+  // bottom for lower-is-better (top right).
+  std::string direction;
+  Pt direction_at;
+  Anchor direction_anchor = Anchor::kTopRight;  // the label's corner at direction_at
 };
 ScoreCurve layout_score_curve(Canvas& c, const TextStyle& text, const ScoreCurveInput& in, const PtRect& area);
 void draw_score_curve(Canvas& c, const TextStyle& text, const ScoreCurve& curve, const ChartColours& colours);

@@ -171,7 +171,10 @@ ChartColours gui_colours() {
 
 namespace {
 
-void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPanelState& st, UiState& ui) {
+// `computing`: these statistics are of an earlier state (the study still loading, or before an edit); the
+// caption says so, as the interval line does, so a partial count ("40 scenes" of 10,000) isn't read as final.
+void draw_histogram(const StudyView& v, const SessionStatistics* stats, bool computing, StatsPanelState& st,
+                    UiState& ui) {
   text_wrapped_at_spaces("Per-scene IPD, " + v.session->model() + " (click a bar: those scenes)");
   if (!stats || stats->scene_ipd.empty()) {
     text_wrapped_at_spaces(stats && v.summaries ? empty_histogram_text(*v.summaries) : "no scene with pairs");
@@ -212,16 +215,17 @@ void draw_histogram(const StudyView& v, const SessionStatistics* stats, StatsPan
     const std::string filter = fmt::format("ipd>={:g} ipd{}{:g}", b.lo, last ? "<=" : "<", b.hi);
     if (clicked && filter.size() < sizeof ui.filter) std::snprintf(ui.filter, sizeof ui.filter, "%s", filter.c_str());
   }
+  const std::string scenes = counted(values.size(), "scene") + (computing ? " (updating...)" : "");
   if (current_stem.empty() || std::isnan(in.current))
-    text_disabled_wrapped_at_spaces(counted(values.size(), "scene"));
+    text_disabled_wrapped_at_spaces(scenes);
   else
-    text_disabled_wrapped_at_spaces(counted(values.size(), "scene") + "; outlined: the bin of " + current_stem);
+    text_disabled_wrapped_at_spaces(scenes + "; outlined: the bin of " + current_stem);
 }
 
-void draw_size_breakdown(const SessionStatistics* stats) {
+void draw_size_breakdown(const SessionStatistics* stats, bool computing) {
   if (!stats || !stats->size) return;
   const CellBreakdown& b = *stats->size;
-  ImGui::Text("IPD by %s rock size (px²)", b.a.c_str());
+  ImGui::Text("IPD by %s rock size (px²)%s", b.a.c_str(), computing ? " (updating...)" : "");
   std::vector<ValueBarRow> rows;
   for (const auto& bin : b.bins) rows.push_back({bin.label, bin.ipd.estimate, bin.ipd.low, bin.ipd.high});
   const TextStyle text = gui_text();
@@ -266,9 +270,9 @@ void draw_stats_panels(const StudyView& v, const SessionStatistics* stats, bool 
     ImGui::TextDisabled("computing intervals...");
   }
   ImGui::Separator();
-  draw_histogram(v, stats, st, ui);
+  draw_histogram(v, stats, computing, st, ui);
   ImGui::Separator();
-  draw_size_breakdown(stats);
+  draw_size_breakdown(stats, computing);
   ImGui::Separator();
   draw_compare(v, stats, st);
 }

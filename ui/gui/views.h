@@ -93,6 +93,9 @@ struct UiState {
   char save_as_dir[512] = "";
   std::string status;
   std::vector<int> order;  // browser_order(), recomputed by the app only when its inputs change
+  // The scene the list last scrolled into view: a scene shown by N, a name, a histogram bar or the gallery
+  // may sit thousands of rows away from the list's scroll position.
+  int list_scrolled_to = -1;
   // With a rock-view selection: the list the filter alone gives, so the scatter keeps every pair it was drawn
   // on (a second box then selects among all of them, not within the first); empty without a selection.
   std::vector<int> order_without_selection;

@@ -221,8 +221,17 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
       spec->SpecsDirty = false;
       ui.order.clear();  // the app recomputes it
     }
+    // The scene in view, when it changed, scrolled into the list's middle unless its row is visible already
+    // (a click on a row must not move the list under the mouse).
+    int reveal = -1;
+    if (ui.scene != ui.list_scrolled_to) {
+      const auto at = std::find(ui.order.begin(), ui.order.end(), ui.scene);
+      if (at != ui.order.end()) reveal = static_cast<int>(at - ui.order.begin());
+      ui.list_scrolled_to = ui.scene;
+    }
     ImGuiListClipper clipper;
     clipper.Begin(static_cast<int>(ui.order.size()));
+    if (reveal >= 0) clipper.ForceDisplayRangeByIndices(reveal, reveal + 1);
     while (clipper.Step()) {
       for (int row = clipper.DisplayStart; row < clipper.DisplayEnd; ++row) {
         const int k = ui.order[row];
@@ -230,6 +239,10 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
         ImGui::TableNextRow();
         for (const auto& c : columns) {
           ImGui::TableNextColumn();
+          if (row == reveal && &c == &columns.front()) {
+            const ImVec2 p = ImGui::GetCursorScreenPos();
+            if (!ImGui::IsRectVisible(p, {p.x + 1, p.y + ImGui::GetTextLineHeight()})) ImGui::SetScrollHereY(0.5f);
+          }
           draw_scene_cell(c.sort_key, m, k, ui, out);
         }
       }

@@ -22,7 +22,8 @@ void draw_problems_window(const StudyView& v, UiState& ui, UiCommands& out) {
     return;
   }
   if (v.problems->empty()) ImGui::TextDisabled("None found.");
-  ImGui::TextDisabled(
+  // Wrapped: at the window's first-use width the line ran past its right edge.
+  text_disabled_wrapped_at_spaces(
       "Malformed label lines are skipped (their rocks are in no IPD); cells without a number say why. Click a row to "
       "see its scene.");
   if (ImGui::BeginTable("problems", 2,

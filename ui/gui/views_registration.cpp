@@ -97,9 +97,13 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const std::string scrub_label = steps == 0   ? "raw -> aligned"
                                   : shown >= 0 ? "step " + thousands(shown + 1) + " of " + thousands(steps)
                                                : "final motion";
-  // Wide enough for its longest label ("step 5,000 of 5,000"): on the play button's line when that fits,
-  // else on a line of its own, never cut ("step 2,316 of 5,0").
-  const float scrub_w = ImGui::CalcTextSize(("step " + thousands(steps) + " of " + thousands(steps)).c_str()).x + 24;
+  // Wide enough for its longest label ("step 5,000 of 5,000", or "final motion" on a short search) with
+  // the grab clear of the centred text at either end: on the play button's line when that fits, else on a
+  // line of its own, never cut ("step 2,316 of 5,0") nor covered by the grab ("final motio").
+  const float longest =
+      std::max({ImGui::CalcTextSize(("step " + thousands(steps) + " of " + thousands(steps)).c_str()).x,
+                ImGui::CalcTextSize("final motion").x, ImGui::CalcTextSize("raw -> aligned").x});
+  const float scrub_w = longest + 2 * (ImGui::GetStyle().GrabMinSize + ImGui::GetStyle().FramePadding.x + 2);
   same_line_if_fits(scrub_w);
   ImGui::SetNextItemWidth(std::max(80.0f, std::min(ImGui::GetContentRegionAvail().x, scrub_w)));
   if (ImGui::SliderFloat("##scrub", &rp.position, 0.0f, end, scrub_label.c_str())) rp.playing = false;

@@ -60,6 +60,27 @@ TEST(FigureProvenance, EditedStudyShowsTheNoteUnderEveryKind) {
   }
 }
 
+// A scene figure carries its scene's review marks, as the table's note does: scene s1 reviewed, its one
+// pair checked as correct.
+TEST(FigureProvenance, SceneFiguresCarryTheScenesReviewMarks) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  write_hand_pairs(d);
+  test::write_text(d / "review/real__synth.json",
+                   R"({"reviewed": ["s1"], "checked": [)"
+                   R"({"scene": "s1", "rock_a": [0.2, 0.2, 0.1, 0.1], "rock_b": [0.2, 0.2, 0.1, 0.1]}]})");
+  for (const std::string kind : {"pairs", "registration"}) {
+    SCOPED_TRACE(kind);
+    const std::string out = d / (kind + ".pdf");
+    const auto r = test::run_ipd("figure " + kind + " " + d.path() + " --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(test::pdf_text(out).all().find("Label files d189a61c07b5; hand pairs in 1 scene (1 pair set by hand, 1 "
+                                             "rock excluded); 1 scene reviewed, 1 pair checked as correct."),
+              std::string::npos)
+        << test::pdf_text(out).all();
+  }
+}
+
 // Nothing edited: no note on the page, the fingerprint in the metadata of PDF, SVG and PNG alike.
 TEST(FigureProvenance, AutomaticStudyKeepsTheFingerprintInTheMetadataOnly) {
   test::TempDir d;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "ui/figures/score_curve.h"
 #include "ui/figures/stats_charts.h"
 #include "ui/gui/stats_panels.h"
 #include "ui/gui/table_layout.h"
@@ -226,6 +227,38 @@ TEST(StatsCharts, CrossTableIsAsTallAsItsRows) {
 TEST(StatsCharts, CrossTableHeaderSplitsAfterTheMinus) {
   EXPECT_EQ(cross_table_header("real", "principled"),
             std::make_pair(std::string("|real -"), std::string("principled|")));
+}
+
+// "higher is better" sat top right, where a rising best-so-far curve ends, and the curve ran through it. The
+// label goes to the corner the curve leaves free, for both directions: no point of the curve (sampled along
+// every segment) falls in the label's box.
+TEST(StatsCharts, ScoreCurveDirectionLabelIsClearOfTheCurve) {
+  const std::vector<std::pair<RegistrationMethod, std::vector<double>>> cases = {
+      {RegistrationMethod::kConsensus, {15.9, 16.9, 16.9, 16.9}}, {RegistrationMethod::kPaper, {3.0, 2.0, 1.5, 1.5}}};
+  for (const auto& [method, best] : cases) {
+    SCOPED_TRACE(score_direction(method));
+    Recorder r;
+    const TextStyle st{8, rgb(0, 0, 0), false};
+    const ScoreCurve curve = layout_score_curve(r, st, {best, 3, method}, {0, 0, 300, 100});
+    draw_score_curve(r, st, curve, kColours);
+    const Recorder::Op* label = nullptr;
+    const Recorder::Op* line = nullptr;
+    for (const auto& op : r.ops) {
+      if (op.kind == "text" && op.text == score_direction(method)) label = &op;
+      if (op.kind == "polyline") line = &op;
+    }
+    ASSERT_TRUE(label && line);
+    EXPECT_LE(label->r.x1, curve.plot.x1);
+    EXPECT_GE(label->r.y0, curve.plot.y0);
+    EXPECT_LE(label->r.y1, curve.plot.y1);
+    for (size_t k = 1; k < line->points.size(); ++k)
+      for (int s = 0; s <= 100; ++s) {
+        const Pt a = line->points[k - 1], b = line->points[k];
+        const Pt p{a.x + (b.x - a.x) * s / 100, a.y + (b.y - a.y) * s / 100};
+        EXPECT_FALSE(p.x >= label->r.x0 && p.x <= label->r.x1 && p.y >= label->r.y0 && p.y <= label->r.y1)
+            << "segment " << k << " at (" << p.x << ", " << p.y << ")";
+      }
+  }
 }
 
 }  // namespace
