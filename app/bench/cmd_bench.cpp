@@ -14,6 +14,7 @@
 
 #include <random>
 #include "app/bench/fold_benchmark.h"
+#include "app/bench/ipd_check.h"
 #include "app/bench/registration_benchmark.h"
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
@@ -50,6 +51,14 @@ double percentile(std::vector<double> v, double q) {
   std::nth_element(v.begin(), v.begin() + k, v.end());
   return v[k];
 }
+
+// The default options' pairing rule in an image of this aspect (what every method pairs by).
+RegistrationOptions default_options(double aspect) {
+  RegistrationOptions o;
+  o.aspect = aspect;
+  return o;
+}
+PairingRule default_rule(double aspect) { return pairing_rule(default_options(aspect)); }
 
 // Adds one case's pair F1 and transform error to a row; finish_row averages.
 void score_case(const RegistrationCase& c, const RockPairs& pairs, const Affine2& affine, double aspect, Row* row,
@@ -110,7 +119,8 @@ void list_failures(const std::vector<RegistrationCase>& cases, const std::string
   for (size_t i = 0; i < cases.size(); ++i) {
     const auto& c = cases[i];
     const auto r = register_rocks(c.a, c.b, o);
-    const double f1 = score_pairs(r.pairs, c.truth).f1, ceiling = score_pairs(pairs_under_true_affine(c), c.truth).f1;
+    const double f1 = score_pairs(r.pairs, c.truth).f1,
+                 ceiling = score_pairs(pairs_under_true_affine(c, o), c.truth).f1;
     if (f1 >= ceiling) {
       flagged_ok += r.ambiguous;
       continue;
@@ -147,9 +157,8 @@ std::vector<Row> bounds_rows(const std::vector<RegistrationCase>& cases, const s
   for (const auto& c : cases) {
     Affine2 ls;
     if (!least_squares_on_truth(c, &ls)) ls = identity_affine();
-    score_case(c, pair_by_aligned_iou(ls, c.a, c.b, RegistrationOptions().min_pair_iou), ls, aspect, &floor,
-               &terr_floor);
-    score_case(c, pairs_under_true_affine(c), c.truth_affine, aspect, &ceiling, &terr_ceiling);
+    score_case(c, pair_aligned_boxes(ls, c.a, c.b, default_rule(aspect)), ls, aspect, &floor, &terr_floor);
+    score_case(c, pairs_under_true_affine(c, default_options(aspect)), c.truth_affine, aspect, &ceiling, &terr_ceiling);
   }
   finish_row(terr_floor, &floor);
   finish_row(terr_ceiling, &ceiling);
@@ -190,8 +199,7 @@ Row run_pycpd(const std::vector<RegistrationCase>& cases, const std::string& reg
     Affine2 m;  // back to normalised image coordinates
     m.leftCols<2>() = si * iso.leftCols<2>() * s;
     m.col(2) = si * iso.col(2);
-    score_case(cases[i], pair_by_aligned_iou(m, cases[i].a, cases[i].b, RegistrationOptions().min_pair_iou), m, aspect,
-               &row, &terr);
+    score_case(cases[i], pair_aligned_boxes(m, cases[i].a, cases[i].b, default_rule(aspect)), m, aspect, &row, &terr);
     row.ms_per_pair += o["ms"].get<double>();
     ms.push_back(o["ms"].get<double>());
   }
@@ -199,6 +207,30 @@ Row run_pycpd(const std::vector<RegistrationCase>& cases, const std::string& reg
   row.ms_median = percentile(ms, 0.5);
   finish_row(terr, &row);
   return row;
+}
+
+// The speed goal in the fold run: the default method and the pycpd port on the same validation cases (every
+// fold's held-out terrains), medians of ms per pair and their ratio.
+void compare_with_pycpd(const std::vector<LabelPair>& pairs, const std::vector<MisalignmentRange>& tiers, int cases,
+                        std::uint64_t seed, const std::string& script, double W, double H) {
+  const double aspect = W / H;
+  fmt::print("\nSpeed on the validation cases of every fold (same cases for both):\n");
+  for (const auto& tier : tiers) {
+    std::vector<RegistrationCase> list;
+    for (const auto& fold : benchmark_folds()) {
+      auto more = make_cases(fold_pairs(pairs, fold, true), tier, cases, seed, W, H);
+      list.insert(list.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+    }
+    const Row ours =
+        run_config(list, tier.name, {RegistrationMethod::kConsensus, RegistrationOptions().trials()}, aspect);
+    const Row theirs = run_pycpd(list, tier.name, script, aspect);
+    const double ratio = ours.ms_median > 0 ? theirs.ms_median / ours.ms_median : 0;
+    fmt::print(
+        "  {}: {} cases; consensus median {:.3f} ms/pair (F1 {:.4f}), pycpd-numpy median {:.3f} ms/pair (F1 {:.4f}): "
+        "{:.0f}x (goal >= 10x: {})\n",
+        tier.name, list.size(), ours.ms_median, ours.f1, theirs.ms_median, theirs.f1, ratio,
+        ratio >= 10 ? "met" : "NOT met");
+  }
 }
 
 // Time of the default method against the rock count (synthetic layouts, small misalignment): the goal is no
@@ -354,7 +386,8 @@ Runner add_bench_command(CLI::App& app) {
     std::string data = "../shared/data/polar-sim", csv, plot;
     int cases = 300;
     std::uint64_t seed = 1;
-    bool quick = false, pycpd = false, failures = false, scaling_only = false, folds = false;
+    double pair_noise_floor = 0;
+    bool quick = false, pycpd = false, failures = false, scaling_only = false, folds = false, ipd_check = false;
     std::vector<std::string> tiers, methods;
     std::string pycpd_script = find_data_file("pycpd_reference.py", IPD_APP_DIR);
   };
@@ -383,8 +416,16 @@ Runner add_bench_command(CLI::App& app) {
       ->check(CLI::IsMember(method_names()));
   cmd->add_flag("--folds", args->folds,
                 "Only the fold table: tuning against held-out terrains, gaps to the ceiling, size bands");
+  cmd->add_flag("--ipd-check", args->ipd_check,
+                "Only the IPD on known pairs: true pairs against overlap alone and the rule with a noise floor");
+  cmd->add_option("--pair-noise-floor", args->pair_noise_floor,
+                  "--folds: score the pairing rule with this noise floor (fraction of the width; 0: overlap alone); "
+                  "--ipd-check: the floor compared with overlap alone (0: 0.0125)")
+      ->check(CLI::Range(0.0, 0.5));
   cmd->add_flag("--scaling-only", args->scaling_only, "Only the time against the rock count");
-  cmd->add_flag("--failures", args->failures, "List the default method's cases below F1 1 (for analysis)");
+  cmd->add_flag(
+      "--failures", args->failures,
+      "List the default method's cases below F1 1 (for analysis; with --folds: each fold's validation cases)");
   cmd->add_flag("--pycpd", args->pycpd, "Also run the Python baseline (numpy port of pycpd; needs python3-numpy)");
   cmd->add_option("--pycpd-script", args->pycpd_script, "Path of pycpd_reference.py");
   return [args, edits, bootstrap, study, which]() -> int {
@@ -401,7 +442,7 @@ Runner add_bench_command(CLI::App& app) {
     const auto pairs = polar_sim_label_pairs(root);
     if (pairs.empty()) throw StudyError(root + ": no label pairs of one view at different sun azimuths");
     const double W = 1936, H = 1216, aspect = W / H;
-    if (args->folds) {
+    if (args->folds || args->ipd_check) {
       auto tiers = benchmark_tiers();
       if (!args->tiers.empty())
         tiers.erase(std::remove_if(tiers.begin(), tiers.end(),
@@ -412,7 +453,20 @@ Runner add_bench_command(CLI::App& app) {
                     tiers.end());
       fmt::print("{} label pairs (same view, different sun) from {}; 1 thread; seed {}\n", pairs.size(), root,
                  args->seed);
-      print_fold_report(pairs, tiers, args->cases, args->seed, W, H);
+      if (args->ipd_check) {
+        print_ipd_check(pairs, tiers, args->cases, args->seed, W, H,
+                        args->pair_noise_floor > 0 ? args->pair_noise_floor : 0.0125);
+        return kOk;
+      }
+      print_fold_report(pairs, tiers, args->cases, args->seed, W, H, args->pair_noise_floor);
+      if (args->failures)
+        for (const auto& fold : benchmark_folds())
+          for (const auto& tier : tiers) {
+            fmt::print("\nfold {}, validation, {}:\n", fold.name, tier.name);
+            list_failures(make_cases(fold_pairs(pairs, fold, true), tier, args->cases, args->seed, W, H),
+                          fmt::format("{}/{}", fold.name, tier.name), aspect);
+          }
+      if (args->pycpd) compare_with_pycpd(pairs, tiers, args->cases, args->seed, args->pycpd_script, W, H);
       return kOk;
     }
     fmt::print("{} label pairs (same view, different sun) from {}; {} cases per range; 1 thread; seed {}\n",

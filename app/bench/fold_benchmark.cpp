@@ -41,18 +41,16 @@ std::vector<LabelPair> fold_pairs(const std::vector<LabelPair>& pairs, const Fol
   return out;
 }
 
-FoldScore score_fold(const std::vector<RegistrationCase>& cases, double aspect, double W, double H) {
+FoldScore score_fold(const std::vector<RegistrationCase>& cases, const RegistrationOptions& o, double W, double H) {
   FoldScore s;
   s.cases = static_cast<int>(cases.size());
   if (cases.empty()) return s;
-  RegistrationOptions o;
-  o.aspect = aspect;
   std::vector<double> ms;
   for (const auto& c : cases) {
     const auto start = std::chrono::steady_clock::now();
     const auto r = register_rocks(c.a, c.b, o);
     ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
-    const RockPairs best = pairs_under_true_affine(c);
+    const RockPairs best = pairs_under_true_affine(c, o);
     s.f1 += score_pairs(r.pairs, c.truth).f1;
     s.ceiling += score_pairs(best, c.truth).f1;
     s.strict_f1 += score_pairs(r.pairs, c.strict_truth).f1;
@@ -67,8 +65,14 @@ FoldScore score_fold(const std::vector<RegistrationCase>& cases, double aspect, 
 }
 
 void print_fold_report(const std::vector<LabelPair>& pairs, const std::vector<MisalignmentRange>& tiers, int cases,
-                       std::uint64_t seed, double W, double H) {
-  const double aspect = W / H;
+                       std::uint64_t seed, double W, double H, double pair_noise_floor) {
+  RegistrationOptions o;
+  o.aspect = W / H;
+  o.pair_noise_floor = pair_noise_floor;
+  fmt::print("pairing rule: aligned IoU > {}{}\n", o.min_pair_iou,
+             pair_noise_floor > 0 ? fmt::format(", or centres within {} of the width ({:.1f} px) with sides within {}x",
+                                                pair_noise_floor, pair_noise_floor * W, o.pair_max_size_ratio)
+                                  : std::string(" (overlap alone)"));
   fmt::print(
       "Folds: the default method on its tuning terrains and on held-out (validation) terrains, {} cases per tier and "
       "side.\nceiling = the true camera with the method's pairing rule; gap = ceiling - F1. strict = against truth "
@@ -86,7 +90,7 @@ void print_fold_report(const std::vector<LabelPair>& pairs, const std::vector<Mi
       std::sort(terrains.begin(), terrains.end());
       terrains.erase(std::unique(terrains.begin(), terrains.end()), terrains.end());
       for (size_t t = 0; t < tiers.size(); ++t) {
-        const auto s = score_fold(make_cases(subset, tiers[t], cases, seed, W, H), aspect, W, H);
+        const auto s = score_fold(make_cases(subset, tiers[t], cases, seed, W, H), o, W, H);
         fmt::print("{:<5} {:<11} {:<15} {:<8} {:>6} {:>7.4f} {:>8.4f} {:>7.4f} {:>8.4f} {:>9.4f} {:>8.4f} {:>7.3f}\n",
                    fold.name, validation ? "validation" : "tuning", terrain_list(terrains), tiers[t].name, s.cases,
                    s.f1, s.ceiling, s.ceiling - s.f1, s.strict_f1, s.strict_ceiling, s.strict_ceiling - s.strict_f1,

@@ -28,14 +28,17 @@ struct FoldScore {
   double f1 = 0, ceiling = 0, strict_f1 = 0, strict_ceiling = 0, ms_median = 0;
   BandCounts bands, ceiling_bands;  // against `truth`, by side A's rock size
 };
-FoldScore score_fold(const std::vector<RegistrationCase>& cases, double aspect, double image_w, double image_h);
+// `o`: the default method's options with the image's aspect (and, to score another pairing rule, its floor).
+FoldScore score_fold(const std::vector<RegistrationCase>& cases, const RegistrationOptions& o, double image_w,
+                     double image_h);
 
 // The label pairs whose terrain is (validation = true) or is not in `fold.validation`.
 std::vector<LabelPair> fold_pairs(const std::vector<LabelPair>& pairs, const Fold& fold, bool validation);
 
 // Prints the fold table (per fold, tier and side: F1, ceiling, gap, both truths) and the size-band table
-// (validation sides of every fold together), with the goals' verdicts.
+// (validation sides of every fold together), with the goals' verdicts. `pair_noise_floor`: the pairing rule's
+// (RegistrationOptions), for the method and its ceiling alike.
 void print_fold_report(const std::vector<LabelPair>& pairs, const std::vector<MisalignmentRange>& tiers, int cases,
-                       std::uint64_t seed, double image_w, double image_h);
+                       std::uint64_t seed, double image_w, double image_h, double pair_noise_floor = 0);
 
 }  // namespace ipd

@@ -46,9 +46,8 @@ std::vector<LabelPair> polar_sim_label_pairs(const std::string& root, int min_tr
         keep_class(&fb, 0);
         p.a = fa.boxes;
         p.b = fb.boxes;
-        // The same rule the methods pair by, applied with the exact (identity) camera.
-        p.truth = pair_by_aligned_iou(identity_affine(), p.a, p.b, RegistrationOptions().min_pair_iou);
-        p.strict_truth = pair_by_aligned_iou(identity_affine(), p.a, p.b, kStrictTruthIou);
+        p.truth = pair_aligned_boxes(identity_affine(), p.a, p.b, overlap_only(kTruthIou));
+        p.strict_truth = pair_aligned_boxes(identity_affine(), p.a, p.b, overlap_only(kStrictTruthIou));
         if (static_cast<int>(p.truth.size()) >= min_true_pairs) out.push_back(std::move(p));
       }
   }
@@ -85,8 +84,15 @@ bool least_squares_on_truth(const RegistrationCase& c, Affine2* out) {
   return src.size() >= 3 && affine_least_squares(src, dst, out);
 }
 
-RockPairs pairs_under_true_affine(const RegistrationCase& c) {
-  return pair_by_aligned_iou(c.truth_affine, c.a, c.b, RegistrationOptions().min_pair_iou);
+PairingRule overlap_only(double min_iou) {
+  PairingRule rule;
+  rule.min_iou = min_iou;
+  rule.noise_floor = 0;
+  return rule;
+}
+
+RockPairs pairs_under_true_affine(const RegistrationCase& c, const RegistrationOptions& o) {
+  return pair_aligned_boxes(c.truth_affine, c.a, c.b, pairing_rule(o));
 }
 
 LabelPair synthetic_label_pair(int n, std::uint64_t seed) {

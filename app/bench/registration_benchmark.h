@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/geometry/geometry.h"
+#include "core/registration/pairing.h"
 #include "core/registration/registration.h"
 
 namespace ipd {
@@ -18,12 +19,17 @@ namespace ipd {
 struct LabelPair {
   std::string file_a, file_b;
   std::vector<Box> a, b;  // rock class only
-  RockPairs truth;        // IoU assignment of the untouched files
+  RockPairs truth;        // IoU > kTruthIou assignment of the untouched files
   // Truth that no method's pairing rule defines: one-to-one by IoU > kStrictTruthIou of the untouched files,
   // so a looser rule cannot raise its own score by pairing what merely touches.
   RockPairs strict_truth;
 };
 inline constexpr double kStrictTruthIou = 0.3;
+// The true pairs are the untouched files' one-to-one IoU > 0.1 assignment, by overlap alone: the camera did not
+// move, so no noise floor is needed, and a pairing rule with one is scored against a truth it does not define.
+inline constexpr double kTruthIou = 0.1;
+// The overlap-only rule the truths are made with (no near misses).
+PairingRule overlap_only(double min_iou);
 
 // The terrain number of a POLAR-Sim label file ("05_A_off_30_L_1024.txt" -> 5); -1 when the name has none.
 int terrain_of(const std::string& file);
@@ -68,8 +74,9 @@ std::vector<RegistrationCase> make_cases(const std::vector<LabelPair>& pairs, co
 // The floor of transform error: the least-squares affine on the true pairs' centres (image coordinates);
 // false when there are fewer than three true pairs or they are degenerate.
 bool least_squares_on_truth(const RegistrationCase& c, Affine2* out);
-// The ceiling of pairing: the true affine, then the methods' own pairing (IoU assignment).
-RockPairs pairs_under_true_affine(const RegistrationCase& c);
+// The ceiling of pairing: the true affine, then the methods' own pairing rule (pairing_rule(o), o.aspect the
+// image's).
+RockPairs pairs_under_true_affine(const RegistrationCase& c, const RegistrationOptions& o);
 
 // A synthetic label pair of n rocks spread over the picture (sizes shrinking as 1/sqrt(n)), side B a
 // re-labelling (centre and size noise); for timing registration against the rock count.

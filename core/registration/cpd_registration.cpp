@@ -183,7 +183,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   out.trace = recorder.take_trace(fmt::format("{} ({}, {} of {})", to_string(out.stop),
                                               count_of(it, "EM iteration", "EM iterations"), grouped(out.work),
                                               count_of(budget, "point evaluation", "point evaluations")));
-  out.pairs = pair_by_aligned_iou(f.to_image(out.affine_normalised), boxes_a, boxes_b, o.min_pair_iou);
+  out.pairs = pair_aligned_boxes(f.to_image(out.affine_normalised), boxes_a, boxes_b, pairing_rule(o));
   out.inliers = static_cast<int>(out.pairs.size());
   return out;
 }

@@ -1,6 +1,7 @@
 #include "core/registration/pairing.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <queue>
 
@@ -173,15 +174,31 @@ namespace ipd {
 // sparsely: its rows x cols matrix would take gigabytes and minutes for thousands of packed rocks.
 constexpr double kDenseAssignmentWork = 1e8;
 
-RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, const std::vector<Box>& b,
-                              double min_iou) {
+PairingRule pairing_rule(const RegistrationOptions& o) {
+  return {o.min_pair_iou, o.pair_noise_floor, o.pair_max_size_ratio, o.aspect_ratio()};
+}
+
+double pair_weight(const Box& moved_a, const Box& b, const PairingRule& rule) {
+  const double overlap = iou(moved_a, b);
+  if (overlap > rule.min_iou) return overlap;
+  const double small = std::min(moved_a.area(), b.area()), large = std::max(moved_a.area(), b.area());
+  if (!(small > 0) || large > rule.max_size_ratio * rule.max_size_ratio * small) return 0;
+  const double d = std::hypot(moved_a.cx - b.cx, (moved_a.cy - b.cy) / rule.aspect);  // in widths
+  if (!(d < rule.noise_floor)) return 0;
+  // Scaled by min_iou so every overlap outweighs it (a floor keeps near misses alive when min_iou is 0).
+  return std::max(rule.min_iou, 1e-6) * (1 - d / rule.noise_floor);
+}
+
+RockPairs pair_aligned_boxes(const Affine2& a_to_b, const std::vector<Box>& a, const std::vector<Box>& b,
+                             const PairingRule& rule) {
   // Boxes overlap only their neighbours, so the overlap graph falls apart into small connected components,
   // and the optimal assignment is the union of each component's optimum (no allowed pair crosses two). Solving
   // per component keeps thousands of rocks a side near-linear instead of one cubic assignment.
   const int n = static_cast<int>(a.size()), m = static_cast<int>(b.size());
   std::vector<Box> moved(a.size());
   for (int i = 0; i < n; ++i) moved[i] = transform_box(a_to_b, a[i]);
-  // B sorted by left edge, so each moved A box only looks at B boxes that can overlap it in x.
+  // B sorted by left edge, so each moved A box only looks at B boxes that can overlap it in x or have their
+  // centre within the noise floor.
   std::vector<int> b_by_x0(m);
   for (int j = 0; j < m; ++j) b_by_x0[j] = j;
   std::sort(b_by_x0.begin(), b_by_x0.end(), [&](int x, int y) { return b[x].x0() < b[y].x0(); });
@@ -193,11 +210,12 @@ RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, 
   };
   std::vector<Edge> edges;
   for (int i = 0; i < n; ++i) {
-    const double lo = moved[i].x0() - widest_b, hi = moved[i].x1();
+    const double lo = std::min(moved[i].x0(), moved[i].cx - rule.noise_floor) - widest_b,
+                 hi = std::max(moved[i].x1(), moved[i].cx + rule.noise_floor);
     auto it = std::lower_bound(b_by_x0.begin(), b_by_x0.end(), lo, [&](int j, double v) { return b[j].x0() < v; });
     for (; it != b_by_x0.end() && b[*it].x0() <= hi; ++it) {
-      const double w = iou(moved[i], b[*it]);
-      if (w > min_iou) edges.push_back({i, *it, w});
+      const double w = pair_weight(moved[i], b[*it], rule);
+      if (w > 0) edges.push_back({i, *it, w});
     }
   }
   // Union-find over A (0..n-1) and B (n..n+m-1).
@@ -219,7 +237,7 @@ RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, 
   for (size_t lo = 0; lo < by_root.size();) {
     size_t hi = lo + 1;
     while (hi < by_root.size() && by_root[hi].first == by_root[lo].first) ++hi;
-    if (hi - lo == 1) {  // one A rock, one B rock: the pair itself (its IoU is above min_iou)
+    if (hi - lo == 1) {  // one A rock, one B rock: the pair itself (the rule allows it)
       const Edge& e = edges[by_root[lo].second];
       pairs.emplace_back(e.i, e.j);
       lo = hi;
@@ -245,7 +263,7 @@ RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, 
         local.push_back({local_a[e.i], local_b[e.j], e.w});
       }
       for (const auto& [r, c] :
-           sparse_max_weight_assignment(local, static_cast<int>(rows.size()), static_cast<int>(cols.size()), min_iou))
+           sparse_max_weight_assignment(local, static_cast<int>(rows.size()), static_cast<int>(cols.size()), 0.0))
         pairs.emplace_back(rows[r], cols[c]);
       lo = hi;
       continue;
@@ -256,7 +274,7 @@ RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, 
       w[local_a[e.i] * cols.size() + local_b[e.j]] = e.w;
     }
     for (const auto& [r, c] :
-         max_weight_assignment(w, static_cast<int>(rows.size()), static_cast<int>(cols.size()), min_iou))
+         max_weight_assignment(w, static_cast<int>(rows.size()), static_cast<int>(cols.size()), 0.0))
       pairs.emplace_back(rows[r], cols[c]);
     lo = hi;
   }

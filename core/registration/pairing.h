@@ -33,8 +33,28 @@ RockPairs sparse_max_weight_assignment(const std::vector<WeightedEdge>& edges, i
 }  // namespace ipd
 
 namespace ipd {
-// Maps A's boxes by `a_to_b` (normalised image coordinates) and assigns them one-to-one to B's boxes,
-// maximising total IoU; pairs overlapping no more than `min_iou` are left out.
-RockPairs pair_by_aligned_iou(const Affine2& a_to_b, const std::vector<Box>& a, const std::vector<Box>& b,
-                              double min_iou);
+// When two aligned boxes are one rock. Overlap alone is unfair to small rocks: a few pixels of label noise cost a
+// 20 px box most of its IoU and a 200 px box almost none. So a pair is either an overlap (IoU > min_iou) or a
+// near miss: centres closer than a noise floor that is the same number of pixels whatever the rocks' size, with
+// sides that agree (a pebble beside a boulder is not the boulder). A near miss weighs less in the assignment
+// than any overlap, and less the farther apart, so it only takes rocks that no overlap claims. With the floor at
+// 0 (the default) the rule is overlap alone.
+struct PairingRule {
+  double min_iou = 0.1;
+  double noise_floor = 0;       // centre distance, fraction of the image width; 0: overlap alone
+  double max_size_ratio = 2.0;  // larger / smaller geometric-mean side of the two boxes
+  double aspect = 1.0;          // image width / height: distances are measured in pixels
+};
+
+// The rule RegistrationOptions describe (min_pair_iou, pair_noise_floor, pair_max_size_ratio, aspect).
+PairingRule pairing_rule(const RegistrationOptions& o);
+
+// The rule's weight for one pair of boxes already in B's frame: the IoU when above min_iou, a near miss's weight
+// in (0, min_iou] (more the closer), 0 when they are no pair.
+double pair_weight(const Box& moved_a, const Box& b, const PairingRule& rule);
+
+// Maps A's boxes by `a_to_b` (normalised image coordinates) and assigns them one-to-one to B's boxes under
+// `rule`, maximising the total weight.
+RockPairs pair_aligned_boxes(const Affine2& a_to_b, const std::vector<Box>& a, const std::vector<Box>& b,
+                             const PairingRule& rule);
 }  // namespace ipd

@@ -134,6 +134,10 @@ std::string RegistrationOptions::validate() const {
     return fmt::format("aspect must be a positive number, got {}", *aspect);
   if (!(min_pair_iou >= 0 && min_pair_iou < 1))
     return fmt::format("min_pair_iou must be in [0, 1), got {}", min_pair_iou);
+  if (!(pair_noise_floor >= 0 && pair_noise_floor < 1))
+    return fmt::format("pair_noise_floor must be in [0, 1) of the image width, got {}", pair_noise_floor);
+  if (!(pair_max_size_ratio >= 1 && std::isfinite(pair_max_size_ratio)))
+    return fmt::format("pair_max_size_ratio must be a finite number >= 1, got {}", pair_max_size_ratio);
   if (work_budget && (!(*work_budget > 0) || !std::isfinite(*work_budget)))
     return fmt::format("work_budget must be > 0 when set (unset: automatic), got {}", *work_budget);
   for (const std::string& problem : {consensus.validate(), paper.validate(), cpd.validate()})
@@ -333,7 +337,7 @@ RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<B
   detail::MethodOutcome out;
   if (identical_layouts(a, b)) {
     out.affine_normalised = frame.from_image(identity_affine());
-    out.pairs = pair_by_aligned_iou(identity_affine(), a, b, options.min_pair_iou);
+    out.pairs = pair_aligned_boxes(identity_affine(), a, b, pairing_rule(options));
     out.inliers = static_cast<int>(a.size());  // every centre sits on its copy
     out.stop = StopReason::kIdenticalLayouts;
     out.confidence = 1.0;

@@ -27,8 +27,8 @@ namespace {
 // cpd's rivals under the unmoved camera too; 10 for entries signed with the installation's key (cache_signer.h); 11
 // for the identity given to identical layouts without a search; 12 for the ambiguity reason (no support, too
 // few pairs, a degenerate or a beaten alignment: confidence 0 or a rival adopted) and the paper's search past an
-// exact fit.
-constexpr int kFormat = 12;
+// exact fit; 13 for the size-fair pairing rule (near misses within the noise floor pair too).
+constexpr int kFormat = 13;
 // An entry of 20,000 pairs is under 1 MB; anything much larger was not written by store().
 constexpr size_t kMaxEntryBytes = size_t{16} << 20;
 
@@ -61,6 +61,8 @@ void feed(F&& f, const std::vector<Box>& a, const std::vector<Box>& b, const Reg
   f.value(o.consensus.max_anisotropy);
   f.value(o.consensus.inlier_gate.value_or(0.0));
   f.value(o.min_pair_iou);
+  f.value(o.pair_noise_floor);
+  f.value(o.pair_max_size_ratio);
   f.value(o.cpd.iterations);
   f.value(o.cpd.outlier_weight);
   f.value(o.work_budget.value_or(0.0));

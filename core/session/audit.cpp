@@ -22,6 +22,7 @@ double median(std::vector<double> v) {
 
 std::string AuditOptions::validate() const {
   if (!(residual_factor >= 1)) return fmt::format("residual_factor must be at least 1, got {}", residual_factor);
+  if (!(noise_floor >= 0)) return fmt::format("noise_floor must be >= 0, got {}", noise_floor);
   if (!(min_residual_rock_fraction >= 0))
     return fmt::format("min_residual_rock_fraction must be >= 0, got {}", min_residual_rock_fraction);
   if (!(min_size_ratio > 0 && min_size_ratio <= 1 && max_size_ratio >= 1))
@@ -58,7 +59,7 @@ SceneAudit audit_pairs(const std::vector<Box>& a, const std::vector<Box>& b, con
     std::vector<const char*> why;
     if (p.residual_px > out.suspect_residual_px) why.push_back("residual");
     if (p.size_ratio < o.min_size_ratio || p.size_ratio > o.max_size_ratio) why.push_back("size");
-    if (p.aligned_iou <= 0) why.push_back("no overlap");
+    if (p.aligned_iou <= 0 && p.residual_px >= o.noise_floor * w) why.push_back("no overlap");
     for (size_t k = 0; k < why.size(); ++k) p.why += (k ? ", " : "") + std::string(why[k]);
     p.suspect = !why.empty();
     out.suspects += p.suspect;

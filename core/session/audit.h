@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/geometry/geometry.h"
+#include "core/registration/pairing.h"
 #include "core/registration/registration.h"
 
 namespace ipd {
@@ -17,6 +18,9 @@ struct AuditOptions {
   double residual_factor = 3.0;
   double min_residual_rock_fraction = 0.25;
   double min_size_ratio = 0.5, max_size_ratio = 2.0;  // aligned A box size / B box size (linear)
+  // Boxes that do not overlap are suspect only when their centres are farther apart than this (fraction of the
+  // image width): closer, a pairing rule with this noise floor pairs them as a near miss of label noise.
+  double noise_floor = PairingRule().noise_floor;
 
   std::string validate() const;  // empty when usable
 };
@@ -28,7 +32,8 @@ struct PairAudit {
   double size_ratio = 1;   // sqrt(area of the aligned a box / area of b's box)
   bool suspect = false;
   bool checked = false;  // judged correct by hand (review_state.h): then never suspect, `why` still says why
-  std::string why;       // "residual", "size", "no overlap" (comma-separated), empty when not suspect
+  // "residual", "size", "no overlap" (beyond the noise floor; comma-separated), empty when not suspect
+  std::string why;
 };
 
 struct SceneAudit {

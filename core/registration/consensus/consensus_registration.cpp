@@ -68,7 +68,7 @@ void second_look(const RegistrationFrame& f, const std::vector<Box>& boxes_a, co
       pool.push_back(m);
   std::vector<Judgement> judged;
   for (const auto& m : pool)
-    judged.push_back(judge_candidate(f, boxes_a, boxes_b, m, support->score(m), o.min_pair_iou));
+    judged.push_back(judge_candidate(f, boxes_a, boxes_b, m, support->score(m), pairing_rule(o)));
   size_t best = 0;
   for (size_t k = 1; k < pool.size(); ++k)
     if (judged[k].total > judged[best].total) best = k;
@@ -140,7 +140,7 @@ Affine2 final_fit(const RegistrationFrame& f, const std::vector<Box>& boxes_a, c
   Affine2 out = polished;
   double best_total = -INFINITY;
   for (const auto& m : fits) {
-    const double total = judge_candidate(f, boxes_a, boxes_b, m, support->score(m), o.min_pair_iou).total;
+    const double total = judge_candidate(f, boxes_a, boxes_b, m, support->score(m), pairing_rule(o)).total;
     if (total > best_total) best_total = total, out = m;
   }
   return out;
@@ -264,7 +264,7 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
     out.stop = StopReason::kTooFewPoints;
     out.note = "a side has no rocks: nothing to register";
   }
-  out.pairs = pair_by_aligned_iou(f.to_image(out.affine_normalised), boxes_a, boxes_b, o.min_pair_iou);
+  out.pairs = pair_aligned_boxes(f.to_image(out.affine_normalised), boxes_a, boxes_b, pairing_rule(o));
   return out;
 }
 

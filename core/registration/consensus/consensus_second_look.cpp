@@ -113,13 +113,13 @@ EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, Sup
 }
 
 Judgement judge_candidate(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
-                          const Affine2& normalised, double consensus, double min_pair_iou) {
+                          const Affine2& normalised, double consensus, const PairingRule& rule) {
   Judgement j;
   j.consensus = consensus;
   const Affine2 b_from_a = f.to_image(normalised);
   Affine2 a_from_b;
   const bool invertible = invert(b_from_a, &a_from_b);
-  const RockPairs pairs = pair_by_aligned_iou(b_from_a, boxes_a, boxes_b, min_pair_iou);
+  const RockPairs pairs = pair_aligned_boxes(b_from_a, boxes_a, boxes_b, rule);
   std::vector<char> paired_a(boxes_a.size(), 0), paired_b(boxes_b.size(), 0);
   for (const auto& [i, k] : pairs) {
     j.iou_sum += iou(transform_box(b_from_a, boxes_a[i]), boxes_b[k]);

@@ -10,6 +10,7 @@
 #include "core/geometry/geometry.h"
 #include "core/registration/consensus/consensus_bounds.h"
 #include "core/registration/consensus/support_measurer.h"
+#include "core/registration/pairing.h"
 #include "core/registration/registration.h"
 #include "core/registration/registration_frame.h"
 
@@ -36,6 +37,6 @@ struct Judgement {
   double total = 0;
 };
 Judgement judge_candidate(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
-                          const Affine2& normalised, double consensus, double min_pair_iou);
+                          const Affine2& normalised, double consensus, const PairingRule& rule);
 
 }  // namespace ipd::detail

@@ -199,8 +199,16 @@ TEST(PointGrid, FarQueriesStayExact) {
   }
 }
 
+// The pairing rule with near misses within 0.0125 of the width (sides within a factor 2) as well as overlaps.
+PairingRule near_misses_too() {
+  PairingRule r;
+  r.noise_floor = 0.0125;
+  return r;
+}
+
 TEST(Assignment, PerComponentPairingEqualsTheWholeAssignment) {
-  // pair_by_aligned_iou solves each group of overlapping boxes apart; the total IoU must equal the optimum.
+  // pair_aligned_boxes solves each group of boxes that may pair apart; the total weight (IoU, or a near miss's
+  // weight) must equal the whole problem's optimum.
   std::mt19937 g(11);
   auto u = [&] { return g() / 4294967296.0; };
   std::vector<Box> a, b;
@@ -208,10 +216,10 @@ TEST(Assignment, PerComponentPairingEqualsTheWholeAssignment) {
   for (int k = 0; k < 50; ++k) b.push_back({0, u(), u(), 0.03 + 0.1 * u(), 0.03 + 0.1 * u()});
   std::vector<double> w(a.size() * b.size());
   for (size_t i = 0; i < a.size(); ++i)
-    for (size_t j = 0; j < b.size(); ++j) w[i * b.size() + j] = iou(a[i], b[j]);
+    for (size_t j = 0; j < b.size(); ++j) w[i * b.size() + j] = pair_weight(a[i], b[j], near_misses_too());
   double whole = 0, parts = 0;
-  for (const auto& [i, j] : max_weight_assignment(w, 60, 50, 0.1)) whole += w[i * b.size() + j];
-  const RockPairs got = pair_by_aligned_iou(identity_affine(), a, b, 0.1);
+  for (const auto& [i, j] : max_weight_assignment(w, 60, 50, 0.0)) whole += w[i * b.size() + j];
+  const RockPairs got = pair_aligned_boxes(identity_affine(), a, b, near_misses_too());
   for (const auto& [i, j] : got) parts += w[i * b.size() + j];
   EXPECT_GT(got.size(), 5u);
   EXPECT_NEAR(parts, whole, 1e-12);
@@ -262,7 +270,7 @@ TEST(Assignment, SparseSolverFindsTheDenseOptimum) {
 
 TEST(Assignment, APackedLayoutIsOneComponentSolvedSparsely) {
   // 700 boxes a side packed so densely that their overlaps chain into one component: beyond the dense
-  // solver's work limit, pair_by_aligned_iou solves it sparsely, with the whole problem's optimal total.
+  // solver's work limit, pair_aligned_boxes solves it sparsely, with the whole problem's optimal total.
   std::mt19937 g(3);
   auto u = [&] { return g() / 4294967296.0; };
   std::vector<Box> a, b;
@@ -270,10 +278,10 @@ TEST(Assignment, APackedLayoutIsOneComponentSolvedSparsely) {
   for (int k = 0; k < 700; ++k) b.push_back({0, u(), u(), 0.06, 0.06});
   std::vector<double> w(a.size() * b.size());
   for (size_t i = 0; i < a.size(); ++i)
-    for (size_t j = 0; j < b.size(); ++j) w[i * b.size() + j] = iou(a[i], b[j]);
+    for (size_t j = 0; j < b.size(); ++j) w[i * b.size() + j] = pair_weight(a[i], b[j], near_misses_too());
   double whole = 0, parts = 0;
-  for (const auto& [i, j] : max_weight_assignment(w, 700, 700, 0.1)) whole += w[i * b.size() + j];
-  const RockPairs got = pair_by_aligned_iou(identity_affine(), a, b, 0.1);
+  for (const auto& [i, j] : max_weight_assignment(w, 700, 700, 0.0)) whole += w[i * b.size() + j];
+  const RockPairs got = pair_aligned_boxes(identity_affine(), a, b, near_misses_too());
   for (const auto& [i, j] : got) parts += w[i * b.size() + j];
   EXPECT_GT(got.size(), 300u);
   EXPECT_NEAR(parts, whole, 1e-9);

@@ -72,18 +72,18 @@ TEST(RegistrationCacheRules, AnIdenticalLayoutsEntryIsReused) {
 // with a gate, a work budget and its own trial count.
 TEST(RegistrationCacheRules, TheKeyOfGivenSettingsIsPinned) {
   const auto a = seven(0), b = seven(0.02);
-  EXPECT_EQ(registration_cache_key(a, b, RegistrationOptions()), "4615073b3617d22b65a4418e131d69c2");
+  EXPECT_EQ(registration_cache_key(a, b, RegistrationOptions()), "f24a0c7f02c276425e3c93028fac6ceb");
   RegistrationOptions p;
   p.method = RegistrationMethod::kPaper;
   p.paper.samples = 5;
   p.time_budget_ms = 7;
   p.aspect = 1.6;
-  EXPECT_EQ(registration_cache_key(a, b, p), "d65e605e22832cc22570c8c6242421cf");
+  EXPECT_EQ(registration_cache_key(a, b, p), "61dc1e2a0ed7b10f5a490667b4e227c2");
   RegistrationOptions c;
   c.consensus.inlier_gate = 0.01;
   c.work_budget = 1e5;
   c.consensus.max_hypotheses = 9;
-  EXPECT_EQ(registration_cache_key(a, b, c), "9703abe6d5af5c57fb87b9d52c56bc56");
+  EXPECT_EQ(registration_cache_key(a, b, c), "7d3908ad1bfd0e566e6c3234f73abf17");
 }
 
 // Every option that can change the answer is part of the key: changing one never reuses another's entry.
@@ -105,6 +105,8 @@ TEST(RegistrationCacheRules, TheKeyCoversEveryOptionThatChangesTheAnswer) {
       {"max_anisotropy", [](RegistrationOptions* o) { o->consensus.max_anisotropy = 1.5; }},
       {"inlier_gate", [](RegistrationOptions* o) { o->consensus.inlier_gate = 0.01; }},
       {"min_pair_iou", [](RegistrationOptions* o) { o->min_pair_iou = 0.2; }},
+      {"pair_noise_floor", [](RegistrationOptions* o) { o->pair_noise_floor = 0.02; }},
+      {"pair_max_size_ratio", [](RegistrationOptions* o) { o->pair_max_size_ratio = 1.5; }},
       {"cpd.iterations", [](RegistrationOptions* o) { o->cpd.iterations = 50; }},
       {"cpd.outlier_weight", [](RegistrationOptions* o) { o->cpd.outlier_weight = 0.3; }},
       {"work_budget", [](RegistrationOptions* o) { o->work_budget = 1e5; }},

@@ -57,7 +57,7 @@ TEST(SecondLook, JudgesACandidateOnThePairingItProduces) {
   const std::vector<Box> a = {box(0.2, 0.2, 0.1, 0.1), box(0.5, 0.2, 0.1, 0.1), box(0.5, 0.7, 0.1, 0.1)};
   const std::vector<Box> b = {box(0.2, 0.2, 0.1, 0.1), box(0.55, 0.2, 0.1, 0.1)};
   const detail::RegistrationFrame f(a, b, 1.0);
-  const auto j = detail::judge_candidate(f, a, b, f.from_image(identity_affine()), 2.0, 0.1);
+  const auto j = detail::judge_candidate(f, a, b, f.from_image(identity_affine()), 2.0, PairingRule());
   EXPECT_NEAR(j.iou_sum, 1.0 + 1.0 / 3.0, 1e-9);
   EXPECT_EQ(j.unpaired_a, 1);
   EXPECT_EQ(j.unpaired_b, 0);
@@ -65,7 +65,7 @@ TEST(SecondLook, JudgesACandidateOnThePairingItProduces) {
 
   Affine2 shift = identity_affine();
   shift(0, 2) = 0.6;
-  const auto k = detail::judge_candidate(f, a, b, f.from_image(shift), 0.0, 0.1);
+  const auto k = detail::judge_candidate(f, a, b, f.from_image(shift), 0.0, PairingRule());
   EXPECT_EQ(k.iou_sum, 0.0);
   EXPECT_EQ(k.unpaired_a, 1);
   EXPECT_EQ(k.unpaired_b, 0);

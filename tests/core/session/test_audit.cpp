@@ -47,6 +47,22 @@ TEST(Audit, ResidualIouSizeRatioAndSuspectsByHand) {
   EXPECT_EQ(s.suspects, 3);
 }
 
+// Two 10 x 10 px rocks (image 1000 x 500) 11 px apart do not overlap, but their centres are inside a noise
+// floor of 0.0125 x 1000 = 12.5 px: a pairing rule with that floor pairs such a near miss, so the audit with
+// the same floor does not call it "no overlap". 13 px apart they are beyond the floor and are. (The residual
+// rule is held off by a large factor; the default floor is 0, as the pairing rule's.)
+TEST(Audit, ANearMissWithinTheNoiseFloorIsNotNoOverlap) {
+  const std::vector<Box> a{box(0.5, 0.5, 0.01, 0.02)};
+  AuditOptions o;
+  o.min_residual_rock_fraction = 10;
+  o.noise_floor = 0.0125;
+  EXPECT_FALSE(
+      audit_pairs(a, {box(0.511, 0.5, 0.01, 0.02)}, {{0, 0}}, identity_affine(), 1000, 500, o).pairs[0].suspect);
+  const SceneAudit far = audit_pairs(a, {box(0.513, 0.5, 0.01, 0.02)}, {{0, 0}}, identity_affine(), 1000, 500, o);
+  EXPECT_NEAR(far.pairs[0].residual_px, 13.0, 1e-9);
+  EXPECT_EQ(far.pairs[0].why, "no overlap");
+}
+
 TEST(Audit, TheResidualFactorDecidesAboveTheRockFloor) {
   const Fixture f;
   AuditOptions o;
