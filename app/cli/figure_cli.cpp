@@ -46,7 +46,7 @@ int figure_options(const FigureOutputArgs& a, ui::FigureOptions* out) {
     o.layers = a.layers.empty() ? ui::default_layers(o.width_in) : ui::parse_layers(a.layers);
     if (!a.crop.empty()) o.crop = ui::parse_crop(a.crop);
     o.font_file = a.font.empty() ? ui::default_font_file() : a.font;
-    o.validate();
+    o.check();
   } catch (const std::invalid_argument& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kUsage;

@@ -44,6 +44,7 @@ std::vector<std::string> read_recent() {
 }  // namespace
 
 StudioApp::StudioApp(StudioOptions o) : o_(std::move(o)), textures_(gl_textures(), o_.texture_budget_mb << 20) {
+  o_.check();
   if (!o_.replay.empty()) replay_ = parse_replay(read_file(o_.replay), o_.replay);
   const bool demo = o_.study.empty();
   if (demo) o_.study = (cache_home() / "demo-study").string();

@@ -1,12 +1,29 @@
 #include "app/studio/studio_options.h"
 
+#include <fmt/format.h>
 #include <CLI/CLI.hpp>
+
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 
 #include "core/util/version.h"
 
 namespace ipd::studio {
+
+std::string StudioOptions::validate() const {
+  if (frames < 1) return fmt::format("frames must be at least 1, got {}", frames);
+  if (cycle_step < 1) return fmt::format("cycle_step must be at least 1, got {}", cycle_step);
+  if (texture_budget_mb < 16) return fmt::format("texture_budget_mb must be at least 16, got {}", texture_budget_mb);
+  if (width < 320 || height < 240)
+    return fmt::format("the window must be at least 320 x 240, got {} x {}", width, height);
+  return {};
+}
+
+void StudioOptions::check() const {
+  if (const std::string problem = validate(); !problem.empty())
+    throw std::invalid_argument("studio options: " + problem);
+}
 
 int parse_studio_options(int argc, char** argv, StudioOptions* o) {
   CLI::App cli{"ipd-studio: inspect and fix rock pairs, IPD live"};

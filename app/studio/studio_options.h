@@ -21,6 +21,12 @@ struct StudioOptions {
 
   // A run that ends by itself (screenshot or replay): no vsync, every frame finished before it is timed.
   bool headless() const { return !screenshot.empty() || !replay.empty(); }
+
+  // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence (the
+  // ranges the command line accepts; cycle_scenes <= 0 means no cycling).
+  std::string validate() const;
+  // Throws std::invalid_argument("studio options: " + validate()) when not usable.
+  void check() const;
 };
 
 // Parses the command line into `o`. Returns -1 to go on, else the exit code (0 after --help, 2 for bad

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <opencv2/imgproc.hpp>
 #include <random>
+#include <stdexcept>
 
 #include "core/detect/rock_detector.h"
 #include "core/io/label_io.h"
@@ -288,7 +289,22 @@ void write_labels_only_study(const std::string& dir, const DemoStudyOptions& o) 
 
 }  // namespace
 
+std::string DemoStudyOptions::validate() const {
+  if (scenes < 1) return fmt::format("scenes must be at least 1, got {}", scenes);
+  if (!(min_rocks >= 0 && min_rocks <= max_rocks))
+    return fmt::format("rocks per scene must satisfy 0 <= min_rocks <= max_rocks, got [{}, {}]", min_rocks, max_rocks);
+  if (width < 64 || height < 64)
+    return fmt::format("width and height must be at least 64 pixels, got {} x {}", width, height);
+  return {};
+}
+
+void DemoStudyOptions::check() const {
+  if (const std::string problem = validate(); !problem.empty())
+    throw std::invalid_argument("demo study options: " + problem);
+}
+
 void write_demo_study(const std::string& dir, const DemoStudyOptions& o) {
+  o.check();
   if (o.labels_only) return write_labels_only_study(dir, o);
   const int w = o.width, h = o.height;
   DemoRng rng(o.seed);

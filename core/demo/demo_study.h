@@ -15,6 +15,11 @@ struct DemoStudyOptions {
   // No pictures: GT boxes from the scene geometry and synthetic predictions (GT jittered, some missed,
   // a few false alarms), fast enough for 10,000-scene benchmark studies.
   bool labels_only = false;
+
+  // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence.
+  std::string validate() const;
+  // Throws std::invalid_argument("demo study options: " + validate()) when not usable.
+  void check() const;
 };
 
 // Writes the study into `dir` (created; existing demo files are replaced). Throws IoError on failure.

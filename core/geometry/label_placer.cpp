@@ -10,12 +10,17 @@ bool overlaps(const LabelRect& a, const LabelRect& b) {
   return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
 }
 
-void LabelPlacementOptions::validate() const {
-  if (!(bounds.x1 > bounds.x0 && bounds.y1 > bounds.y0))
-    throw std::invalid_argument("label placement: the bounds are empty");
-  if (!(gap >= 0)) throw std::invalid_argument("label placement: gap must be >= 0");
-  if (!(max_leader >= 0)) throw std::invalid_argument("label placement: max_leader must be >= 0");
-  if (!(exclusive_clearance >= 0)) throw std::invalid_argument("label placement: exclusive_clearance must be >= 0");
+std::string LabelPlacementOptions::validate() const {
+  if (!(bounds.x1 > bounds.x0 && bounds.y1 > bounds.y0)) return "the bounds are empty";
+  if (!(gap >= 0)) return "gap must be >= 0";
+  if (!(max_leader >= 0)) return "max_leader must be >= 0";
+  if (!(exclusive_clearance >= 0)) return "exclusive_clearance must be >= 0";
+  return {};
+}
+
+void LabelPlacementOptions::check() const {
+  if (const std::string problem = validate(); !problem.empty())
+    throw std::invalid_argument("label placement: " + problem);
 }
 
 namespace {
@@ -66,7 +71,7 @@ void nearest(const LabelRect& r, double x, double y, double& nx, double& ny) {
 }  // namespace
 
 LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const LabelPlacementOptions& o) {
-  o.validate();
+  o.check();
   LabelPlacement out;
   out.labels.resize(requests.size());
   std::vector<LabelRect> occupied = o.taken;  // inflated by the gap when compared

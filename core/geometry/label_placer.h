@@ -5,6 +5,7 @@
 // labels are placed greedily in the order given (put the important ones first).
 #pragma once
 
+#include <string>
 #include <vector>
 
 namespace ipd {
@@ -64,8 +65,11 @@ struct LabelPlacementOptions {
   double gap = 1;                  // clearance between a label and its target and between labels
   double max_leader = 3;           // the farthest a leader goes, in label heights
   double exclusive_clearance = 1;  // see LabelRequest::exclusive (more than gap: nearer its own target)
-  // Validates: bounds non-empty, gap >= 0, max_leader >= 0; throws std::invalid_argument otherwise.
-  void validate() const;
+  // Empty when usable (bounds non-empty, gap, max_leader and exclusive_clearance >= 0); otherwise the field
+  // that is wrong and the accepted range, in one sentence.
+  std::string validate() const;
+  // Throws std::invalid_argument("label placement: " + validate()) when not usable.
+  void check() const;
 };
 
 struct LabelPlacement {

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <stdexcept>
 #include <string_view>
 
 #include "core/util/atomic_file.h"
@@ -89,7 +90,19 @@ std::string parse_box(const std::vector<std::string>& f, const LabelParseOptions
 
 }  // namespace
 
+std::string LabelParseOptions::validate() const {
+  if (!(range_tolerance >= 0 && range_tolerance < 1))
+    return fmt::format("range_tolerance must be in [0, 1), got {}", range_tolerance);
+  return {};
+}
+
+void LabelParseOptions::check() const {
+  if (const std::string problem = validate(); !problem.empty())
+    throw std::invalid_argument("label parse options: " + problem);
+}
+
 LabelFile parse_labels(const std::string& text, const std::string& file_name, const LabelParseOptions& options) {
+  options.check();
   LabelFile out;
   out.path = file_name;
   out.exists = true;

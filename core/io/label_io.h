@@ -37,6 +37,11 @@ struct LabelFile {
 struct LabelParseOptions {
   LabelKind kind = LabelKind::kGroundTruth;
   double range_tolerance = 1e-3;  // how far outside [0, 1] a normalised value may stray (rounding)
+
+  // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence.
+  std::string validate() const;
+  // Throws std::invalid_argument("label parse options: " + validate()) when not usable.
+  void check() const;
 };
 
 // Parses text that came from `file_name`; every malformed line becomes one LabelError (the first

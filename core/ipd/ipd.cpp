@@ -11,6 +11,7 @@
 #include <cmath>
 #include <filesystem>
 #include <set>
+#include <stdexcept>
 
 namespace fs = std::filesystem;
 
@@ -231,7 +232,18 @@ void add_cells(const StudyLabels& labels, const std::vector<bool>& shown, CrossT
 
 }  // namespace
 
+std::string TableOptions::validate() const {
+  if (threads < 0) return fmt::format("threads must be >= 0 (0: hardware concurrency), got {}", threads);
+  return {};
+}
+
+void TableOptions::check() const {
+  if (const std::string problem = validate(); !problem.empty())
+    throw std::invalid_argument("table options: " + problem);
+}
+
 CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& options) {
+  options.check();
   const Study& study = labels.study;
   for (const auto& d : options.domains)
     if (!study.domain(d)) throw StudyError(fmt::format("{}: no domain '{}' in this study", study.root, d));

@@ -144,6 +144,12 @@ struct TableOptions {
   // the text, Markdown and LaTeX tables print "–" for the others, so registering them is wasted work. The
   // hidden columns' cells then have no scenes and no value (CSV and JSON print every cell: leave this off).
   bool shown_cells_only = false;
+
+  // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence. The
+  // registration options check themselves where a scene is registered (a fully cached table needs none).
+  std::string validate() const;
+  // Throws std::invalid_argument("table options: " + validate()) when not usable.
+  void check() const;
 };
 
 // The domain pairs (i < j in study order) of the chosen domains.

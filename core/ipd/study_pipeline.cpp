@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <unordered_set>
 
 #include "core/registration/registration_cache.h"
@@ -184,8 +185,19 @@ Problem missing_predictions_problem(const Study& study, const std::string& model
   return p;
 }
 
+std::string PipelineOptions::validate() const {
+  if (threads < 0) return fmt::format("threads must be >= 0 (0: hardware concurrency), got {}", threads);
+  return {};
+}
+
+void PipelineOptions::check() const {
+  if (const std::string problem = validate(); !problem.empty())
+    throw std::invalid_argument("pipeline options: " + problem);
+}
+
 PairedStudy pair_study(const StudyLabels& labels, const std::vector<std::pair<std::string, std::string>>& pairs,
                        const PipelineOptions& options) {
+  options.check();
   const Study& study = labels.study;
   PairedStudy out;
   struct Job {

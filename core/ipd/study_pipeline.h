@@ -27,6 +27,12 @@ struct PipelineOptions {
   const RegistrationCache* cache = nullptr;  // may be null: register every scene
   // Called from worker threads after each scene, with scenes done so far over all domain pairs.
   std::function<void(int done, int total)> progress;
+
+  // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence. The
+  // registration options check themselves where a scene is registered (hand-paired scenes need none).
+  std::string validate() const;
+  // Throws std::invalid_argument("pipeline options: " + validate()) when not usable.
+  void check() const;
 };
 
 // One scene of a domain pair.

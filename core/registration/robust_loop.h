@@ -82,6 +82,11 @@ struct RobustLoopOptions {
   // Work bound: each scored model costs `work_per_model` units (e.g. the points it maps); the loop stops
   // before the total would pass `max_work`. 0: no limit.
   double max_work = 0.0, work_per_model = 1.0;
+
+  // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence.
+  std::string validate() const;
+  // Throws std::invalid_argument("robust loop options: " + validate()) when not usable.
+  void check() const;
 };
 
 struct NoObserver {
@@ -104,6 +109,7 @@ template <typename Model, typename Sample, typename Sampler, typename Estimator,
           typename Observer = NoObserver>
 RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, Scorer& scorer,
                                         const RobustLoopOptions& options, Observer&& observer = Observer()) {
+  options.check();
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   RobustLoopResult<Model> r;

@@ -25,6 +25,9 @@ struct RockRow {
 
 struct RockExportOptions {
   bool unpaired = false;  // also a row for every rock left unpaired (or excluded), partner fields empty
+
+  // Always empty: a flag alone has no value to reject; kept so every options struct is checked alike.
+  std::string validate() const { return {}; }
 };
 
 // Rows in a stable order: cells as in the table (models × domain pairs), scenes by stem, counted pairs in

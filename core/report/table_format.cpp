@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "core/report/csv.h"
 #include "core/stats/study_statistics.h"
@@ -429,7 +430,21 @@ double latex_table_width_pt(const CrossTable& t, const TableFormatOptions& o) {
   return total + std::max(0.0, header + sep - values);
 }
 
+std::string TableFormatOptions::validate() const {
+  if (resamples < 0) return fmt::format("resamples must be >= 0 (0: no intervals), got {}", resamples);
+  if (!(level > 0 && level < 1)) return fmt::format("level must be in (0, 1), got {}", level);
+  if (!(conf_threshold >= 0 && conf_threshold <= 1))
+    return fmt::format("conf_threshold must be in [0, 1], got {}", conf_threshold);
+  return {};
+}
+
+void TableFormatOptions::check() const {
+  if (const std::string problem = validate(); !problem.empty())
+    throw std::invalid_argument("table format options: " + problem);
+}
+
 std::string format_table(const CrossTable& t, TableFormat format, const TableFormatOptions& o) {
+  o.check();
   const size_t nc = t.columns.size();
   switch (format) {
     case TableFormat::kText:

@@ -30,6 +30,11 @@ struct TableFormatOptions {
   // "provenance" object, CSV the same columns on every row, Markdown and LaTeX a footnote line under the
   // table (the text table's caller prints it with its other notes).
   const Provenance* provenance = nullptr;
+
+  // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence.
+  std::string validate() const;
+  // Throws std::invalid_argument("table format options: " + validate()) when not usable.
+  void check() const;
 };
 
 // Why a shown cell has no interval: "1 scene: no interval" (or "0 scenes") when fewer than two of its

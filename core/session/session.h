@@ -117,6 +117,10 @@ struct SessionOptions {
   const RegistrationCache* registration_cache = nullptr;
   // Called from worker threads while opening: stage ("labels", "registration"), done, total.
   std::function<void(const char* stage, int done, int total)> progress;
+
+  // Always empty: every value here is usable (null and empty mean "none"; any scene count is a cut), and the
+  // registration options check themselves where a scene is registered.
+  std::string validate() const { return {}; }
 };
 
 struct CellTotals {

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "core/study/study.h"
 #include "core/util/atomic_file.h"
@@ -82,7 +83,20 @@ namespace {
 CocoImportReport import_coco_checked(const CocoImportOptions& o);
 }
 
+std::string CocoImportOptions::validate() const {
+  if (annotations.empty()) return "annotations must name the COCO instances file, got an empty path";
+  if (out_dir.empty()) return "out_dir must name the domain directory to fill, got an empty path";
+  if (!results.empty() && model.empty()) return "model must name the prediction set when results are given, got \"\"";
+  return {};
+}
+
+void CocoImportOptions::check() const {
+  if (const std::string problem = validate(); !problem.empty())
+    throw std::invalid_argument("COCO import options: " + problem);
+}
+
 CocoImportReport import_coco(const CocoImportOptions& o) {
+  o.check();
   try {
     return import_coco_checked(o);
   } catch (const json::exception& e) {  // a case the checks below missed still names the file

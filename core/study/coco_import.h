@@ -12,10 +12,15 @@ namespace ipd {
 struct CocoImportOptions {
   std::string annotations;  // COCO GT: images, annotations, categories
   std::string results;      // optional: [{image_id, category_id, bbox, score}, ...]
-  std::string images_dir;   // where file_name resolves; linked into <out>/images
+  std::string images_dir;   // where file_name resolves; linked into <out>/images (empty: no pictures)
   std::string out_dir;      // the domain directory, e.g. STUDY/real
   std::string model = "coco-results";
   bool skip_bad_entries = false;
+
+  // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence.
+  std::string validate() const;
+  // Throws std::invalid_argument("COCO import options: " + validate()) when not usable.
+  void check() const;
 };
 
 struct CocoImportReport {

@@ -117,7 +117,7 @@ size_t most_lines(Canvas& c, const TextStyle& st, const std::vector<std::string>
 }  // namespace
 
 void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& ch, const FigureOptions& o) {
-  o.validate();
+  o.check();
   const double W = o.width_pt(), F = o.font_pt;
   const TextStyle body = style(F, kInk), note = style(secondary_pt(F), kGrey);
   double y = kMargin + draw_wrapped(out, {kMargin, kMargin}, body, ch.title, W - 2 * kMargin) + 0.5 * F;
@@ -169,7 +169,7 @@ void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& ch, const F
 }
 
 void draw_distribution_chart(DisplayList& out, const DistributionChart& ch, const FigureOptions& o) {
-  o.validate();
+  o.check();
   const double W = o.width_pt(), F = o.font_pt;
   const TextStyle body = style(F, kInk), name = style(secondary_pt(F), kRedC);
   double y = kMargin + draw_wrapped(out, {kMargin, kMargin}, body, ch.title, W - 2 * kMargin) + 0.5 * F;

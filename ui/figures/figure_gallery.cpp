@@ -136,7 +136,7 @@ void load_gallery_pictures(GalleryInput& in, const Study& study) {
 }
 
 GalleryLayout draw_gallery_figure(DisplayList& out, const GalleryInput& in, const FigureOptions& o) {
-  o.validate();
+  o.check();
   const double W = o.width_pt(), m = kFigureMargin, avail = W - 2 * m, F = o.font_pt, small = secondary_pt(F);
   const TextStyle body = style(F, kInk), bold = style(F, kInk, true), note = style(small, kGrey);
   double y = m;

@@ -82,17 +82,21 @@ Crop parse_crop(const std::string& text) {
   return {v[0], v[1], v[2], v[3]};
 }
 
-void FigureOptions::validate() const {
+std::string FigureOptions::validate() const {
   if (!(width_in >= 1 && width_in <= 40))
-    throw std::invalid_argument(fmt::format("--width-in: {} is not a figure width (1 to 40 inches)", width_in));
+    return fmt::format("--width-in: {} is not a figure width (1 to 40 inches)", width_in);
   if (!(font_pt >= kMinTextPt && font_pt <= 72))
-    throw std::invalid_argument(
-        fmt::format("--font-pt: {} is outside 6..72 (nothing smaller than 6 pt on the page)", font_pt));
-  if (!(dpi >= 30 && dpi <= 2400)) throw std::invalid_argument(fmt::format("--dpi: {} is outside 30..2400", dpi));
+    return fmt::format("--font-pt: {} is outside 6..72 (nothing smaller than 6 pt on the page)", font_pt);
+  if (!(dpi >= 30 && dpi <= 2400)) return fmt::format("--dpi: {} is outside 30..2400", dpi);
   if (!(crop.x0 >= 0 && crop.x0 < crop.x1 && crop.x1 <= 1 && crop.y0 >= 0 && crop.y0 < crop.y1 && crop.y1 <= 1))
-    throw std::invalid_argument("--crop: the region must satisfy 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1");
+    return "--crop: the region must satisfy 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1";
   if (by != "size" && by != "region" && by != "confidence")
-    throw std::invalid_argument("--by: expected size, region or confidence, found '" + by + "'");
+    return "--by: expected size, region or confidence, found '" + by + "'";
+  return {};
+}
+
+void FigureOptions::check() const {
+  if (const std::string problem = validate(); !problem.empty()) throw std::invalid_argument(problem);
 }
 
 }  // namespace ipd::ui

@@ -43,8 +43,10 @@ struct FigureOptions {
   bool ci = false;          // table: confidence intervals
   std::string by = "size";  // breakdown: size|region|confidence
   double width_pt() const { return width_in * 72.0; }
-  // Throws std::invalid_argument with a sentence naming the bad value.
-  void validate() const;
+  // Empty when usable; otherwise the option that is wrong and the accepted range, in one sentence.
+  std::string validate() const;
+  // Throws std::invalid_argument(validate()) when not usable.
+  void check() const;
 };
 
 }  // namespace ipd::ui

@@ -355,7 +355,7 @@ std::vector<LegendItem> registration_legend(const SceneFigureInput& in, const Fi
 }  // namespace
 
 PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, const FigureOptions& o) {
-  o.validate();
+  o.check();
   const double W = o.width_pt(), F = o.font_pt;
   const double gap = std::max(4.0, 0.5 * F);
   double y = draw_title(out, title_of(in, scene_numbers(in)), o) + 0.3 * F;
@@ -411,7 +411,7 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
 }
 
 void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, const FigureOptions& o) {
-  o.validate();
+  o.check();
   const double W = o.width_pt(), F = o.font_pt;
   const double gap = std::max(4.0, 0.5 * F);
   const std::string title = fmt::format("{}: GT box centres of {} and {}, {} ({} pair{})", in.stem, in.a, in.b,

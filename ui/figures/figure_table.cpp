@@ -84,7 +84,7 @@ TableFit fit_table(Canvas& out, const TableFigure& t, const FigureOptions& o, do
 }  // namespace
 
 void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptions& o) {
-  o.validate();
+  o.check();
   const double W = o.width_pt(), m = kFigureMargin, avail = W - 2 * m;
   const size_t cols = t.header.size();
   const TableFit fit = fit_table(out, t, o, avail);

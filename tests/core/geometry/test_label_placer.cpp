@@ -247,5 +247,26 @@ TEST(LabelPlacer, BadOptionsAreRejected) {
   EXPECT_THROW(place_labels({}, o), std::invalid_argument);
 }
 
+// Each check names its field; check() throws the sentence behind the "label placement: " prefix.
+TEST(LabelPlacer, ValidateNamesTheBadField) {
+  LabelPlacementOptions o = page(10, 10);
+  EXPECT_EQ(o.validate(), "");
+  o.max_leader = -0.5;
+  EXPECT_EQ(o.validate(), "max_leader must be >= 0");
+  o.max_leader = 3;
+  o.exclusive_clearance = -1;
+  EXPECT_EQ(o.validate(), "exclusive_clearance must be >= 0");
+  o.exclusive_clearance = 1;
+  o.gap = -1;
+  EXPECT_EQ(o.validate(), "gap must be >= 0");
+  try {
+    o.check();
+    FAIL() << "check() accepted a negative gap";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "label placement: gap must be >= 0");
+  }
+  EXPECT_EQ(LabelPlacementOptions{}.validate(), "the bounds are empty");
+}
+
 }  // namespace
 }  // namespace ipd

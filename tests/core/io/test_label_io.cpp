@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 
 #include "core/io/label_io.h"
 #include "tests/support/test_support.h"
@@ -201,6 +202,21 @@ TEST(LabelIo, GarbageStudyFilesGiveExitOneNotACrash) {
   test::write_text(d / "study.yaml", junk.substr(0, 300));
   r = test::run_ipd("table " + d.path());
   EXPECT_EQ(r.exit_code, 1) << r.err;
+}
+
+// A negative or whole-unit tolerance would let values far outside the image through: refused by name.
+TEST(LabelParseOptions, NameTheBadField) {
+  LabelParseOptions o;
+  EXPECT_EQ(o.validate(), "");
+  o.range_tolerance = -0.01;
+  EXPECT_EQ(o.validate(), "range_tolerance must be in [0, 1), got -0.01");
+  o.range_tolerance = 1;
+  try {
+    parse_labels("0 0.5 0.5 0.1 0.1\n", "a.txt", o);
+    FAIL() << "parse_labels accepted a tolerance of 1";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "label parse options: range_tolerance must be in [0, 1), got 1");
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "core/registration/deadline.h"
@@ -141,6 +142,35 @@ TEST(StopRule, PaperSpentBeforeItsFirstSampleSaysSo) {
   EXPECT_EQ(out.stop, StopReason::kTimeBudget);
   EXPECT_EQ(out.trials, 0);
   EXPECT_EQ(out.note, "time budget spent before a triple was scored: identity used");
+}
+
+// A negative budget is a caller's mistake, not "no limit": the loop refuses it with the field and its range.
+TEST(StopRule, RobustLoopOptionsNameTheBadField) {
+  RobustLoopOptions lo;
+  EXPECT_EQ(lo.validate(), "");
+  lo.max_trials = -1;
+  EXPECT_EQ(lo.validate(), "max_trials must be at least 0, got -1");
+  lo.max_trials = 10;
+  lo.time_budget_ms = -5;
+  EXPECT_EQ(lo.validate(), "time_budget_ms must be a number >= 0 (0: no limit), got -5");
+  lo.time_budget_ms = 0;
+  lo.max_work = -1;
+  EXPECT_EQ(lo.validate(), "max_work must be >= 0 (0: no limit), got -1");
+  lo.max_work = 0;
+  lo.work_per_model = -2;
+  EXPECT_EQ(lo.validate(), "work_per_model must be a number >= 0, got -2");
+  double now = 0;
+  CountingSampler inner{&now};
+  const Deadline d(1e9, [&] { return now; });
+  DeadlineSampler<CountingSampler> sampler{inner, d, 7};
+  OneModel estimator;
+  FlatScorer scorer;
+  try {
+    run_robust_loop<int, int>(sampler, estimator, scorer, lo);
+    FAIL() << "the loop ran with a negative work_per_model";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "robust loop options: work_per_model must be a number >= 0, got -2");
+  }
 }
 
 }  // namespace

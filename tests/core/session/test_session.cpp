@@ -295,5 +295,14 @@ TEST(Session, ReadOnlyStudyIsDetectedAndSaveAsWritesElsewhere) {
   EXPECT_TRUE(read_only);
 }
 
+// Null and empty mean "none" and any scene count is a cut: nothing in the session options can be wrong.
+TEST(Session, OptionsAreAlwaysUsable) {
+  SessionOptions o;
+  EXPECT_EQ(o.validate(), "");
+  o.first_scenes = 3;
+  o.cache_dir = "cache";
+  EXPECT_EQ(o.validate(), "");
+}
+
 }  // namespace
 }  // namespace ipd

@@ -13,6 +13,7 @@
 #include "tests/support/test_support.h"
 #include "ui/canvas/canvas_cairo.h"
 #include "ui/figures/figure_input.h"
+#include "ui/figures/figure_options.h"
 
 namespace fs = std::filesystem;
 
@@ -43,6 +44,30 @@ void expect_like_golden(const std::string& produced, const std::string& name) {
   cv::Mat big;
   cv::cvtColor(diff, big, cv::COLOR_BGR2GRAY);
   EXPECT_LT(cv::countNonZero(big > 64), static_cast<int>(0.01 * big.total())) << name;
+}
+
+// The figure options' sentences name the command-line option and its range; check() throws exactly that.
+TEST(Figures, OptionsValidateNamesTheOptionAndItsRange) {
+  ui::FigureOptions o;
+  EXPECT_EQ(o.validate(), "");
+  o.dpi = 20;
+  EXPECT_EQ(o.validate(), "--dpi: 20 is outside 30..2400");
+  o.dpi = 300;
+  o.width_in = 0.5;
+  EXPECT_EQ(o.validate(), "--width-in: 0.5 is not a figure width (1 to 40 inches)");
+  o.width_in = 3.5;
+  o.crop.x0 = 0.6;
+  o.crop.x1 = 0.4;
+  EXPECT_EQ(o.validate(), "--crop: the region must satisfy 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1");
+  o.crop = {};
+  o.by = "area";
+  EXPECT_EQ(o.validate(), "--by: expected size, region or confidence, found 'area'");
+  try {
+    o.check();
+    FAIL() << "check() accepted --by area";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "--by: expected size, region or confidence, found 'area'");
+  }
 }
 
 TEST(Figures, PairsRegistrationAndTableMatchTheirGoldenImages) {
