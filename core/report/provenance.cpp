@@ -72,7 +72,7 @@ void count_reviews(const CrossTable& table, size_t c, const StudyLabels& labels,
   r.pairs = [&](int k) -> const RockPairs& { return scenes[k]->pairs; };
   const ReviewRead read = load_review(labels.study.root, a, b, r);
   p->scenes_reviewed += read.state.reviewed_scenes;
-  for (const RockPairs& checked : read.state.checked) p->pairs_checked += static_cast<int>(checked.size());
+  p->pairs_checked += read.state.checked_pairs();
 }
 }  // namespace
 
@@ -105,8 +105,8 @@ Provenance session_provenance(const Session& session) {
     }
   for (size_t c = 0; c < pairs.size(); ++c) {
     const ReviewState& r = session.review_of(static_cast<int>(c));
-    p.scenes_reviewed += static_cast<int>(std::count(r.reviewed.begin(), r.reviewed.end(), 1));
-    for (const RockPairs& checked : r.checked) p.pairs_checked += static_cast<int>(checked.size());
+    p.scenes_reviewed += r.reviewed_scenes;
+    p.pairs_checked += r.checked_pairs();
   }
   p.label_fingerprint = label_set_fingerprint(session.study());
   return p;

@@ -129,6 +129,12 @@ class ReviewParser {
 
 }  // namespace
 
+int ReviewState::checked_pairs() const {
+  int n = 0;
+  for (const RockPairs& c : checked) n += static_cast<int>(c.size());
+  return n;
+}
+
 bool ReviewState::empty() const {
   return reviewed_scenes == 0 && std::all_of(checked.begin(), checked.end(), [](const auto& c) { return c.empty(); });
 }

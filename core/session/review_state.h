@@ -28,7 +28,8 @@ struct ReviewState {
   int reviewed_scenes = 0;
 
   explicit ReviewState(size_t scenes = 0) : reviewed(scenes, 0), checked(scenes) {}
-  bool empty() const;  // nothing reviewed, nothing checked: no file is kept
+  int checked_pairs() const;  // over every scene
+  bool empty() const;         // nothing reviewed, nothing checked: no file is kept
   bool is_checked(int scene, int a, int b) const;
   // Toggles, returning the new state's value.
   bool toggle_reviewed(int scene);
