@@ -264,9 +264,10 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
   std::vector<std::pair<std::string, std::string>> to_pair;
   for (size_t c = 0; c < t.columns.size(); ++c) {
     if (options.shown_cells_only) {
-      const auto& [a, b] = t.columns[c];
-      shown[c] = std::any_of(t.models.begin(), t.models.end(),
-                             [&](const ModelInfo& m) { return make_table_cell(m, a, b).involves_training_domain; });
+      const std::pair<std::string, std::string>& column = t.columns[c];
+      shown[c] = std::any_of(t.models.begin(), t.models.end(), [&](const ModelInfo& m) {
+        return make_table_cell(m, column.first, column.second).involves_training_domain;
+      });
     }
     if (shown[c]) to_pair.push_back(t.columns[c]);
   }

@@ -60,7 +60,8 @@ std::string label_set_fingerprint(const Study& study) {
 namespace {
 // The review marks of column `c` that still apply to the table's scenes and pairs.
 void count_reviews(const CrossTable& table, size_t c, const StudyLabels& labels, Provenance* p) {
-  const auto& [a, b] = table.columns[c];
+  const std::string& a = table.columns[c].first;
+  const std::string& b = table.columns[c].second;
   std::vector<const ScenePairing*> scenes;
   for (const ScenePairing& s : table.pairings[c]) scenes.push_back(&s);
   std::sort(scenes.begin(), scenes.end(), [](const auto* x, const auto* y) { return x->stem < y->stem; });

@@ -12,6 +12,7 @@
 #include "core/util/atomic_file.h"
 #include "core/util/json_input.h"
 #include "core/util/json_output.h"
+#include "core/util/number_text.h"
 
 namespace fs = std::filesystem;
 
@@ -48,7 +49,7 @@ void check_unique_keys(const YAML::Node& map, const std::string& file, const std
     const auto [it, fresh] = first_line.emplace(key, line);
     if (!fresh)
       throw StudyError(fmt::format("{}:{}: duplicate setting '{}{}' (first given on line {})", file, line, prefix,
-                                   key.size() > 40 ? key.substr(0, 37) + "..." : key, it->second));
+                                   quoted_for_message(key), it->second));
   }
 }
 
@@ -57,7 +58,7 @@ void check_unique_keys(const YAML::Node& map, const std::string& file, const std
 // cell of its row would then count as a cross-domain cell.
 std::string parse_model_settings(const YAML::Node& settings, const std::string& file, const std::string& name) {
   if (!settings.IsMap()) return "";
-  const std::string where = "models." + (name.size() > 40 ? name.substr(0, 37) + "..." : name);
+  const std::string where = "models." + quoted_for_message(name);
   check_unique_keys(settings, file, where + ".");
   std::string trained_on;
   for (const auto& kv : settings) {
@@ -65,7 +66,7 @@ std::string parse_model_settings(const YAML::Node& settings, const std::string& 
     const std::string key = kv.first.IsScalar() ? kv.first.Scalar() : std::string("(a list or mapping)");
     if (key != "trained_on")
       throw StudyError(fmt::format("{}:{}: unknown setting '{}.{}' (expected trained_on)", file, line, where,
-                                   key.size() > 40 ? key.substr(0, 37) + "..." : key));
+                                   quoted_for_message(key)));
     if (kv.second.IsNull())
       throw StudyError(
           fmt::format("{}:{}: {}.trained_on is empty (null); expected the name of the domain the "
@@ -127,7 +128,7 @@ void parse_models(const YAML::Node& v, const std::string& file, int line, StudyC
                                    printable_name(name, kShownNameBytes), why));
     if (!m.second.IsMap() && !m.second.IsNull())
       throw StudyError(fmt::format("{}:{}: models.{} must be a mapping like {{trained_on: real}}", file,
-                                   m.first.Mark().line + 1, name));
+                                   m.first.Mark().line + 1, quoted_for_message(name)));
     c->trained_on[name] = parse_model_settings(m.second, file, name);
   }
 }
@@ -143,12 +144,12 @@ void parse_registration(const YAML::Node& v, const std::string& file, int line, 
       const std::string name = yaml_get<std::string>(r.second, file, "registration.method");
       if (!parse_method(name, &c->registration.method))
         throw StudyError(fmt::format("{}:{}: unknown registration method '{}' (expected {})", file,
-                                     r.first.Mark().line + 1, name, method_choices()));
+                                     r.first.Mark().line + 1, quoted_for_message(name), method_choices()));
     } else if (k == "seed") {
       // yaml-cpp reads "-1" as 2^64 - 1 for an unsigned type: a negative seed is an error, not a seed.
       if (r.second.IsScalar() && r.second.Scalar().rfind('-', 0) == 0)
         throw StudyError(fmt::format("{}:{}: registration.seed must be a whole number >= 0, got {}", file,
-                                     r.first.Mark().line + 1, r.second.Scalar()));
+                                     r.first.Mark().line + 1, quoted_for_message(r.second.Scalar())));
       c->registration.seed = yaml_get<std::uint64_t>(r.second, file, "registration.seed");
     } else if (k == "trials") {
       trials = yaml_get<int>(r.second, file, "registration.trials");
@@ -161,10 +162,10 @@ void parse_registration(const YAML::Node& v, const std::string& file, int line, 
         throw StudyError(
             fmt::format("{}:{}: registration.gate must be a number > 0 (a fraction of the rocks' "
                         "spread; default 0.2), got {}",
-                        file, r.first.Mark().line + 1, r.second.Scalar()));
+                        file, r.first.Mark().line + 1, quoted_for_message(r.second.Scalar())));
     } else {
       throw StudyError(fmt::format("{}:{}: unknown registration setting '{}' (expected method, seed, trials, gate)",
-                                   file, r.first.Mark().line + 1, k));
+                                   file, r.first.Mark().line + 1, quoted_for_message(k)));
     }
   }
   // trials is the configured method's search budget, as ipd register's --trials: cpd's EM iterations.
@@ -231,7 +232,7 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
       throw StudyError(
           fmt::format("{}:{}: unknown setting '{}' (expected rock_class, conf_threshold, image_size, domains, models, "
                       "registration)",
-                      file, line, key));
+                      file, line, quoted_for_message(key)));
     }
   }
   return c;
@@ -382,8 +383,8 @@ Study open_study(const std::string& root_in) {
     throw StudyError(root_in + ": no domains found (expected subdirectories like real/labels/ with YOLO label files)");
   for (const auto& want : s.config.domain_order)
     if (std::find(names.begin(), names.end(), want) == names.end())
-      throw StudyError(
-          fmt::format("{}: study.yaml lists domain '{}' but there is no {}/labels/ directory", root_in, want, want));
+      throw StudyError(fmt::format("{}: study.yaml lists domain '{}' but there is no {}/labels/ directory", root_in,
+                                   quoted_for_message(want), quoted_for_message(want)));
   // Configured order first, then "real", then alphabetical.
   auto rank = [&](const std::string& n) {
     const auto p = std::find(s.config.domain_order.begin(), s.config.domain_order.end(), n);
@@ -397,7 +398,7 @@ Study open_study(const std::string& root_in) {
   for (const auto& [m, dom] : s.config.trained_on) {
     if (!dom.empty() && !s.domain(dom))
       throw StudyError(fmt::format("{}: study.yaml says model '{}' was trained on '{}', which is not a domain here",
-                                   root_in, m, dom));
+                                   root_in, quoted_for_message(m), quoted_for_message(dom)));
     all_models.insert(m);
   }
   for (const auto& m : all_models) {

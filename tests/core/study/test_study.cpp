@@ -110,6 +110,31 @@ TEST(Study, ClearErrorsForUnusableStudies) {
   EXPECT_EQ(message("rock_class: [0\n"), d / "study.yaml" + ":2: invalid YAML: end of sequence flow not found");
 }
 
+// study.yaml comes from whoever sent the study: a setting name, method or value of any length is quoted in a
+// message as at most 40 characters (37 and "..."), so a megabyte key can't become a megabyte error.
+TEST(Study, MessagesQuoteAtMostFortyCharactersOfTheFile) {
+  auto message = [](const std::string& yaml) {
+    try {
+      parse_study_config(yaml, "study.yaml");
+    } catch (const StudyError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string long_word(1000, 'r');  // YAML's longest plain key is 1024 characters
+  const std::string shown = std::string(37, 'r') + "...";
+  EXPECT_EQ(message(long_word + ": 1\n"),
+            "study.yaml:1: unknown setting '" + shown +
+                "' (expected rock_class, conf_threshold, image_size, domains, models, registration)");
+  EXPECT_EQ(message("registration: {" + long_word + ": 1}\n"),
+            "study.yaml:1: unknown registration setting '" + shown + "' (expected method, seed, trials, gate)");
+  EXPECT_EQ(message("registration: {method: " + long_word + "}\n"),
+            "study.yaml:1: unknown registration method '" + shown + "' (expected consensus, paper or cpd)");
+  EXPECT_EQ(message("registration: {seed: -" + long_word + "}\n"),
+            "study.yaml:1: registration.seed must be a whole number >= 0, got -" + std::string(36, 'r') + "...");
+  EXPECT_EQ(message("registration: {gate: " + long_word + "}\n"), "study.yaml:1: registration.gate has the wrong type");
+}
+
 // A misspelt model setting or `trained_on: null` left the model without its training domain (every cell of
 // its row then read as cross-domain), with no message; both are errors naming the line and what is allowed.
 TEST(Study, ModelSettingsAreCheckedAtEveryLevel) {
