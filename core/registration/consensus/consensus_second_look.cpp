@@ -43,8 +43,6 @@ double misalignment_cost(const Affine2& normalised) {
   return kTuning.weight_log_scale * std::abs(log_scale) + kTuning.weight_rotation * std::abs(rotation);
 }
 
-namespace {}  // namespace
-
 EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, SupportMeasurer* support, size_t keep) {
   EdgeSearch out;
   const size_t na = f.a.size(), nb = f.b.size();
