@@ -54,7 +54,7 @@ std::string joined(const std::set<std::string>& words) {
 
 Runner add_bench_budget(CLI::App* bench) {
   struct Args {
-    int rocks = 5000, runs = 5;
+    int rocks = 5560, runs = 5;  // 5,560 generated: 5,004 stay in A, 4,690 in B (seed 1)
     std::uint64_t seed = 1;
     std::vector<double> budgets = {1, 10, 100};
     std::vector<std::string> methods;
@@ -62,7 +62,7 @@ Runner add_bench_budget(CLI::App* bench) {
   };
   auto args = std::make_shared<Args>();
   CLI::App* cmd = bench->add_subcommand("budget", "Wall time of one registration under --budget-ms, for every method");
-  cmd->add_option("--rocks", args->rocks, "Rocks in A (B keeps those still in the picture)")
+  cmd->add_option("--rocks", args->rocks, "Rocks generated (about 90% stay in A; B keeps those still in the picture)")
       ->check(CLI::Range(3, 100000));
   cmd->add_option("--runs", args->runs, "Runs of each method and budget")->check(CLI::Range(1, 1000));
   cmd->add_option("--seed", args->seed, "Seed of the pair")->check(seed_validator());

@@ -190,18 +190,33 @@ AnswerAndRival settle_shifted_placements(const RegistrationFrame& f, double gate
   return {answer, rival};
 }
 
+// Under a time budget, whether a stage after the search may start: only when the time left (before the final
+// pairing's share) exceeds its cost, counted in whole-set scores and timed by one score measured after the search.
+// A stage cannot be cut once started (rival placements sort thousands of votes), so it is not started. Without a
+// budget every stage runs and the clock is never read.
+struct StageTime {
+  const Deadline& deadline;
+  double score_ms = 0;
+  bool allows(double scores) const {
+    return !deadline.has_budget() || deadline.ends_at_ms() - deadline.elapsed_ms() > scores * score_ms;
+  }
+};
+// Whole-set scores each stage costs, about (translation votes and their sort count as four): the rival placements
+// vote and score twice and may improve one, the soft refinement and the judged final fit iterate over the set.
+constexpr double kPlacementsScores = 30, kSoftRefineScores = 20, kFinalFitScores = 20, kSecondLookScores = 10;
+
 // The stages after a search that found a best (with time left): rival placements, the soft refinement of a
 // confirmed best, the judged final fit, and the second look of an unconfirmed one. Each later stage only starts
 // while the time budget lasts; a stage left out is noted and the budget named as the stop.
 void after_search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
                   const RegistrationOptions& o, const Bounds& bounds, double gate, const RobustLoopResult<Affine2>& r,
-                  const Deadline& deadline, SupportMeasurer* support, SearchRecorder* recorder, MethodOutcome* out) {
+                  const StageTime& time, SupportMeasurer* support, SearchRecorder* recorder, MethodOutcome* out) {
   out->affine_normalised = r.best;
   out->score = r.best_score;
   const AnswerAndRival scores = settle_shifted_placements(f, gate, r.best_score, support, recorder, out);
   out->confidence = confidence_from_scores(scores.answer, scores.rival);  // as searched, before soft refinement
   const char* left_out = nullptr;
-  if (deadline.passed()) {
+  if (!time.allows(kSoftRefineScores)) {
     left_out = "the soft refinement, final fit and second look";
   } else {
     // A confirmed best only: an unconfirmed one is judged against the second look's candidates next, and
@@ -209,13 +224,13 @@ void after_search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, c
     // SmallOverlap.ThreeTruePairsAmongFifteenRocksAt25Degrees).
     if (r.stop == StopReason::kCannotBeBeaten && soft_refine(support, &out->affine_normalised, &out->score))
       recorder->add_step(TraceStepKind::kRefinement, out->affine_normalised, out->score, out->score, true);
-    if (deadline.passed()) {
+    if (!time.allows(kFinalFitScores)) {
       left_out = "the final fit and second look";
     } else {
       out->affine_normalised = final_fit(f, boxes_a, boxes_b, o, bounds, gate, support, out->affine_normalised);
       recorder->add_step(TraceStepKind::kPolish, out->affine_normalised, out->score, out->score, false);
-      if (deadline.passed())
-        left_out = second_look_applies(f, out->stop) ? "the second look" : nullptr;
+      if (second_look_applies(f, out->stop) && !time.allows(kSecondLookScores))
+        left_out = "the second look";
       else
         second_look(f, boxes_a, boxes_b, o, bounds, support, recorder, out);
     }
@@ -275,7 +290,13 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
   out->work = r.work;
   out->stop = r.stop;
   const bool found = r.found && std::isfinite(r.best_score);
-  if (found && deadline.passed()) {
+  StageTime time{deadline};
+  if (found && deadline.has_budget()) {
+    const double before = deadline.elapsed_ms();
+    support.score(r.best);
+    time.score_ms = deadline.elapsed_ms() - before;
+  }
+  if (found && !time.allows(kPlacementsScores)) {
     // Each stage after the search scores whole sets again (tens of milliseconds on 5,000 rocks): with the
     // time budget spent the answer is the search's best as it stands, judged against the rivals it scored.
     out->affine_normalised = r.best;
@@ -284,7 +305,7 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
     out->confidence = confidence_from_scores(r.best_score, recorder.rival_score());
     out->note = "time budget spent: the search's best, without the rival placements, polish or second look";
   } else if (found) {
-    after_search(f, boxes_a, boxes_b, o, bounds, gate, r, deadline, &support, &recorder, out);
+    after_search(f, boxes_a, boxes_b, o, bounds, gate, r, time, &support, &recorder, out);
   } else {
     out->note = r.stop == StopReason::kTimeBudget
                     ? "time budget spent before a plausible affine was found: identity used"
