@@ -386,14 +386,7 @@ RockPairs pair_aligned_boxes_within(const Affine2& a_to_b, const std::vector<Box
   *greedy = false;
   const int n = static_cast<int>(a.size()), m = static_cast<int>(b.size());
   if (n == 0 || m == 0) return {};
-  std::vector<Edge> edges = grid_edges(moved_boxes(a_to_b, a), b, rule);
-  if (deadline.passed()) {
-    RockPairs pairs;
-    pair_greedily(std::move(edges), n, m, &pairs);
-    std::sort(pairs.begin(), pairs.end());
-    *greedy = true;
-    return pairs;
-  }
-  return solve_components(edges, n, m, &deadline, greedy);
+  // Read before the first component: a deadline already passed pairs everything greedily.
+  return solve_components(grid_edges(moved_boxes(a_to_b, a), b, rule), n, m, &deadline, greedy);
 }
 }  // namespace ipd

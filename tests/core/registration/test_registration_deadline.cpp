@@ -37,6 +37,21 @@ TEST(StopRule, DeadlineRunsFromItsStartOnTheGivenClock) {
   EXPECT_TRUE(d.passed());
 }
 
+// The share kept back for the final pairing ends the stages before it sooner (never more than half the budget);
+// the pairing's own deadline is the whole budget.
+TEST(StopRule, KeepingBackEndsTheStagesSoonerNotThePairing) {
+  double now = 0;
+  const Deadline whole(10.0, [&] { return now; });
+  const Deadline stages = whole.keeping_back(3.0);
+  EXPECT_DOUBLE_EQ(stages.ends_at_ms(), 7.0);
+  now = 7.0;
+  EXPECT_TRUE(stages.passed());
+  EXPECT_FALSE(whole.passed());
+  EXPECT_FALSE(stages.whole().passed());
+  EXPECT_DOUBLE_EQ(whole.keeping_back(8.0).ends_at_ms(), 5.0);       // at most half the budget
+  EXPECT_DOUBLE_EQ(Deadline().keeping_back(3.0).ends_at_ms(), 0.0);  // no budget: still none
+}
+
 TEST(StopRule, NoBudgetNeverReadsTheClock) {
   int reads = 0;
   const Deadline d(0.0, [&] { return static_cast<double>(++reads); });
@@ -77,6 +92,27 @@ TEST(StopRule, LoopStopsBeforeTheSampleThatWouldPassTheBudget) {
   const auto r = run_robust_loop<int, int>(sampler, estimator, scorer, lo);
   EXPECT_EQ(sampler.stop(r.stop), StopReason::kTimeBudget);
   EXPECT_EQ(r.trials, 3);  // at 2, 3 and 4 ms a sample is drawn; at 5 ms the budget of 4.5 is spent
+}
+
+// A sampler that reads the deadline itself (consensus' expands hundreds of rock pairs per call) and stops on it:
+// the search was ended by the budget, not by running out of hypotheses.
+struct DeadlineReadingSampler {
+  const Deadline& deadline;
+  bool next(int* s) {
+    *s = 0;
+    return !deadline.passed();
+  }
+};
+
+TEST(StopRule, ASamplerStoppedByTheDeadlineEndsOnTheBudget) {
+  int reads = 0;  // the deadline's start, the wrapper's reading: still 0 ms; the inner sampler's: 1 s
+  const Deadline d(5.0, [&] { return ++reads <= 2 ? 0.0 : 1000.0; });
+  DeadlineReadingSampler inner{d};
+  DeadlineSampler<DeadlineReadingSampler> sampler{inner, d, 1000};
+  int s = 0;
+  EXPECT_FALSE(sampler.next(&s));
+  EXPECT_EQ(reads, 4);  // the wrapper read once more after the inner sampler said no
+  EXPECT_EQ(sampler.stop(StopReason::kExhausted), StopReason::kTimeBudget);
 }
 
 TEST(StopRule, TheTrialCapStillEndsATimedLoop) {
