@@ -39,7 +39,7 @@ BudgetRow run_row(const RegistrationCase& c, RegistrationMethod method, double b
     row.wall_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     row.stops.insert(to_string(r.stop));
     row.f1 += score_pairs(r.pairs, c.truth).f1 / runs;
-    row.bounded_pairing = row.bounded_pairing || r.note.find("greedy") != std::string::npos;
+    row.bounded_pairing = row.bounded_pairing || r.note.find("paired greedily") != std::string::npos;
   }
   return row;
 }
@@ -81,6 +81,7 @@ Runner add_bench_budget(CLI::App* bench) {
         c.a.size(), c.b.size(), args->seed, args->runs);
     fmt::print("{:<10} {:>9} {:>10} {:>10} {:>10} {:>6} {:>6}  {}\n", "method", "budget ms", "wall med", "wall max",
                "allowed", "F1", "goal", "stop (pairing)");
+    fmt::print("(goal: PASS = every run within the allowed time; median = the median within, some run over; FAIL)\n");
     int failed = 0;
     for (const auto& info : registration_methods()) {
       if (!args->methods.empty() &&
@@ -101,16 +102,23 @@ Runner add_bench_budget(CLI::App* bench) {
         std::vector<double> sorted = row.wall_ms;
         std::sort(sorted.begin(), sorted.end());
         const double med = sorted[sorted.size() / 2], max = sorted.back();
+        // PASS: every run within the allowed time; "median": the median within, some run over (on a loaded
+        // machine a run can lose the CPU for a scheduler tick, 4 ms here, which no deadline can take back).
         const bool met = budget <= 0 || max <= allowed_ms(budget);
+        const bool median_met = budget <= 0 || med <= allowed_ms(budget);
         if (!met) ++failed;
         fmt::print("{:<10} {:>9} {:>10.2f} {:>10.2f} {:>10} {:>6.3f} {:>6}  {}{}\n", info.name,
                    budget > 0 ? fmt::format("{:g}", budget) : "none", med, max,
                    budget > 0 ? fmt::format("{:.2f}", allowed_ms(budget)) : "-", row.f1,
-                   budget > 0 ? (met ? "PASS" : "FAIL") : "-", joined(row.stops),
-                   row.bounded_pairing ? " (greedy pairing)" : "");
+                   budget > 0 ? (met          ? "PASS"
+                                 : median_met ? "median"
+                                              : "FAIL")
+                              : "-",
+                   joined(row.stops), row.bounded_pairing ? " (greedy pairing)" : "");
       }
     }
-    fmt::print("{}\n", failed == 0 ? "every budgeted row within its goal" : fmt::format("{} row(s) FAIL", failed));
+    fmt::print("{}\n", failed == 0 ? "every budgeted row within its goal"
+                                   : fmt::format("{} row(s) with a run over the allowed time", failed));
     return kOk;
   };
 }
