@@ -475,7 +475,8 @@ TEST(RegistrationMethods, CpdRefusesLayoutsOverItsPairLimitAndNamesTheAlternativ
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(),
                  "--method cpd: 4001 x 4001 rocks is 16008001 rock pairs, over cpd's limit of 16000000 (it holds a "
-                 "weight for every pair in memory); --method consensus registers layouts this large");
+                 "weight for every pair in memory); --method consensus registers layouts this large (or give cpd a "
+                 "time budget: it then registers the largest rocks of each side)");
   }
 }
 
