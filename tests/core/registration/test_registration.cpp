@@ -367,7 +367,9 @@ TEST(PaperRegistration, DroppingModelsBelowTheRivalChangesNothing) {
 
 TEST(PaperRegistration, TooFewRocksFallsBackToIdentity) {
   const auto a = layout(2, 1);
-  const RegistrationReport r = register_rocks(a, a, {RegistrationMethod::kPaper});
+  RegistrationOptions paper;
+  paper.method = RegistrationMethod::kPaper;
+  const RegistrationReport r = register_rocks(a, a, paper);
   EXPECT_EQ(r.stop, StopReason::kTooFewPoints);
   EXPECT_TRUE(r.affine.isApprox(identity_affine(), 1e-12));
   EXPECT_EQ(r.pairs, (RockPairs{{0, 0}, {1, 1}}));

@@ -231,7 +231,9 @@ TEST(StopRule, EveryMethodStopsWherePassedWithASaneAnswer) {
       } else {
         EXPECT_EQ(r.stop, StopReason::kTimeBudget);
         // Paper's best so far needs no note: its stop reason names the budget.
-        if (m != RegistrationMethod::kPaper) EXPECT_FALSE(r.note.empty());
+        if (m != RegistrationMethod::kPaper) {
+          EXPECT_FALSE(r.note.empty());
+        }
         notes.insert(r.note);
       }
     }
@@ -240,15 +242,20 @@ TEST(StopRule, EveryMethodStopsWherePassedWithASaneAnswer) {
       return std::any_of(notes.begin(), notes.end(),
                          [&](const std::string& n) { return n.find(words) != std::string::npos; });
     };
-    if (m != RegistrationMethod::kPaper) EXPECT_TRUE(seen("paired greedily")) << to_string(m);  // paper: mutual NN
+    if (m != RegistrationMethod::kPaper) {
+      EXPECT_TRUE(seen("paired greedily")) << to_string(m);  // paper: mutual NN
+    }
     if (m == RegistrationMethod::kConsensus) {
       EXPECT_TRUE(seen("time budget spent while setting up the search: identity used"));
       EXPECT_TRUE(seen("time budget spent while setting up the search: the alignment of the largest rocks used"));
       EXPECT_TRUE(seen("time budget spent: the search's best, without the rival placements, polish or second look"));
     }
-    if (m == RegistrationMethod::kCpd)
+    if (m == RegistrationMethod::kCpd) {
       EXPECT_TRUE(seen("time budget spent: EM's alignment, not judged against rival placements"));
-    if (m == RegistrationMethod::kPaper) EXPECT_TRUE(seen("time budget spent before a triple was scored"));
+    }
+    if (m == RegistrationMethod::kPaper) {
+      EXPECT_TRUE(seen("time budget spent before a triple was scored"));
+    }
   }
 }
 
