@@ -402,6 +402,8 @@ Runner add_bench_command(CLI::App& app) {
   bench->get_subcommands({}).back()->callback([which] { *which = "bootstrap"; });
   auto study = std::make_shared<Runner>(add_bench_study(bench));
   bench->get_subcommands({}).back()->callback([which] { *which = "study"; });
+  auto budget = std::make_shared<Runner>(add_bench_budget(bench));
+  bench->get_subcommands({}).back()->callback([which] { *which = "budget"; });
   CLI::App* cmd = bench->add_subcommand("registration", "Registration run time against pair F1 and transform error");
   cmd->add_option("--data", args->data, "POLAR-Sim label directory (containing labels/)");
   cmd->add_option("--cases", args->cases, "Cases per misalignment range")->check(CLI::Range(1, 100000));
@@ -433,8 +435,9 @@ Runner add_bench_command(CLI::App& app) {
       "List the default method's cases below F1 1 (for analysis; with --folds: each fold's validation cases)");
   cmd->add_flag("--pycpd", args->pycpd, "Also run the Python baseline (numpy port of pycpd; needs python3-numpy)");
   cmd->add_option("--pycpd-script", args->pycpd_script, "Path of pycpd_reference.py");
-  return [args, edits, bootstrap, study, which]() -> int {
+  return [args, edits, bootstrap, study, budget, which]() -> int {
     if (*which == "edits") return (*edits)();
+    if (*which == "budget") return (*budget)();
     if (*which == "bootstrap") return (*bootstrap)();
     if (*which == "study") return (*study)();
     if (args->scaling_only) {

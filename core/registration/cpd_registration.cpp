@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 #include "core/geometry/point_grid.h"
@@ -68,30 +69,71 @@ Eigen::Matrix2d similarity_step(const Eigen::Matrix2d& a, const Eigen::Matrix2d&
   return s * rot;
 }
 
+// Over its pair limit and under a time budget, cpd registers the largest rocks of each side: both labellings see
+// the large rocks (the consensus method's coarse pass relies on the same), and EM's cost is the product of the
+// two counts. sqrt(2,000 x budget in ms) a side, at least 64 and at most 4,000 (the pair limit): about 2,000
+// pair weights per millisecond of budget per EM step, so tens of steps fit the budget on a 2-core machine. The
+// subset depends on the budget, never on the clock.
+size_t budget_subset(double budget_ms) {
+  return static_cast<size_t>(std::clamp(std::sqrt(2000.0 * budget_ms), 64.0, std::sqrt(kCpdMaxPairs)));
+}
+
+// The indices of the `count` largest boxes (by area, ties by index), in index order.
+std::vector<int> largest_rocks(const std::vector<Box>& boxes, size_t count) {
+  std::vector<int> order(boxes.size());
+  std::iota(order.begin(), order.end(), 0);
+  count = std::min(count, order.size());
+  std::partial_sort(order.begin(), order.begin() + static_cast<long>(count), order.end(), [&](int x, int y) {
+    const double ax = boxes[x].w * boxes[x].h, ay = boxes[y].w * boxes[y].h;
+    return ax != ay ? ax > ay : x < y;
+  });
+  order.resize(count);
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
 }  // namespace
 
 MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
                            const RegistrationOptions& o, const Deadline& deadline) {
   MethodOutcome out;
   out.affine_normalised = f.from_image(identity_affine());
-  const int m = static_cast<int>(f.a.size()), n = static_cast<int>(f.b.size());
+  int m = static_cast<int>(f.a.size()), n = static_cast<int>(f.b.size());
   if (m == 0 || n == 0) {
     out.stop = StopReason::kTooFewPoints;
     out.note = "a side has no rocks: nothing to register";
     return out;
   }
-  if (static_cast<double>(m) * n > kCpdMaxPairs)
+  // Over the pair limit with a time budget: EM on the largest rocks of each side (see budget_subset); without
+  // one, refused as before.
+  std::vector<int> keep_a, keep_b;
+  const bool subset = static_cast<double>(m) * n > kCpdMaxPairs && deadline.has_budget();
+  if (subset) {
+    keep_a = largest_rocks(boxes_a, budget_subset(deadline.budget_ms()));
+    keep_b = largest_rocks(boxes_b, budget_subset(deadline.budget_ms()));
+    add_note(&out.note, fmt::format("{} x {} rocks is over cpd's limit of {} rock pairs: EM ran on the {} and {} "
+                                    "largest rocks (the time budget's subset), then every rock was paired",
+                                    m, n, grouped(kCpdMaxPairs), keep_a.size(), keep_b.size()));
+  } else if (static_cast<double>(m) * n > kCpdMaxPairs) {
     throw std::invalid_argument(fmt::format(
         "--method cpd: {} x {} rocks is {:.0f} rock pairs, over cpd's limit of {:.0f} (it holds a weight for every "
-        "pair in memory); --method consensus registers layouts this large",
+        "pair in memory); --method consensus registers layouts this large (or give cpd a time budget: it then "
+        "registers the largest rocks of each side)",
         m, n, static_cast<double>(m) * n, kCpdMaxPairs));
+  } else {
+    keep_a.resize(m), keep_b.resize(n);
+    std::iota(keep_a.begin(), keep_a.end(), 0);
+    std::iota(keep_b.begin(), keep_b.end(), 0);
+  }
+  m = static_cast<int>(keep_a.size()), n = static_cast<int>(keep_b.size());
   Eigen::MatrixXd x(n, 2), y(m, 2);
-  for (int k = 0; k < n; ++k) x.row(k) = f.b[k].transpose();
-  for (int k = 0; k < m; ++k) y.row(k) = f.a[k].transpose();
+  for (int k = 0; k < n; ++k) x.row(k) = f.b[keep_b[k]].transpose();
+  for (int k = 0; k < m; ++k) y.row(k) = f.a[keep_a[k]].transpose();
   Eigen::Matrix2d lin = out.affine_normalised.leftCols<2>();
   Eigen::RowVector2d t = out.affine_normalised.col(2).transpose();
   double sigma2 = 0;
-  for (int i = 0; i < m; ++i)
+  // Read every 64 rows: the first mixture width alone weighs every rock pair once.
+  for (int i = 0; i < m && !((i & 63) == 0 && deadline.passed()); ++i)
     for (int j = 0; j < n; ++j) sigma2 += (x.row(j) - (y.row(i) * lin.transpose() + t)).squaredNorm();
   sigma2 /= 2.0 * m * n;
   const double w = o.cpd.outlier_weight;
@@ -103,8 +145,11 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   const double budget = work_budget(o, f.a.size(), f.b.size()), per_step = static_cast<double>(m) * n;
   const int allowed = static_cast<int>(std::clamp(std::floor(budget / per_step), 1.0, 1e9));
   // Trace: one step per EM iteration; inliers within the consensus gate (0.3 of B's rock spacing).
+  // B's spacing reads the deadline (a millisecond on 5,000 rocks): cut short, EM does not start, and the
+  // recorder's gate, used only after EM, is never read.
   SearchRecorder recorder(
-      f, std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2), o.record_trace, [](double s) { return s; }, nullptr);
+      f, std::clamp(0.3 * median_nn_distance(f.b, &deadline), 0.02, 0.2), o.record_trace, [](double s) { return s; },
+      nullptr);
   double best_sigma = INFINITY;
   for (; it < o.cpd.iterations; ++it) {
     if (it >= allowed) {
@@ -122,8 +167,18 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
       break;
     }
     const Eigen::MatrixXd ty = (y * lin.transpose()).rowwise() + t;
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < n; ++j) p(i, j) = std::exp(-(x.row(j) - ty.row(i)).squaredNorm() / (2 * sigma2));
+    // One step weighs every pair (tens of milliseconds at the pair limit): the budget is also read every 16 rows,
+    // and a step it cuts is dropped, the alignment staying at the last whole step's.
+    bool cut = false;
+    for (int i = 0; i < m && !cut; ++i) {
+      if (deadline.has_budget() && (i & 15) == 0 && deadline.passed()) cut = true;
+      for (int j = 0; j < n && !cut; ++j) p(i, j) = std::exp(-(x.row(j) - ty.row(i)).squaredNorm() / (2 * sigma2));
+    }
+    if (cut) {
+      out.work -= per_step;
+      out.stop = StopReason::kTimeBudget;
+      break;
+    }
     const double c = 2 * M_PI * sigma2 * w / (1 - w) * m / n;
     Eigen::RowVectorXd den = p.colwise().sum().array() + c;
     for (int j = 0; j < n; ++j) p.col(j) /= std::max(den(j), 1e-300);
@@ -169,10 +224,11 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
     out.note = "EM diverged: identity used";
   }
   out.score = std::sqrt(std::max(sigma2, 0.0)) * f.spread;  // final mixture width, fraction of image width
-  if (out.stop == StopReason::kTimeBudget) {
+  if (out.stop == StopReason::kTimeBudget || deadline.passed()) {
     // The rival placements score whole sets again: with the budget spent EM's answer stands, unjudged.
+    out.stop = StopReason::kTimeBudget;
     out.confidence = 0;
-    out.note = "time budget spent: EM's alignment, not judged against rival placements";
+    add_note(&out.note, "time budget spent: EM's alignment, not judged against rival placements");
   } else {
     out.confidence = cpd_confidence(f, &out.affine_normalised, &out.beaten, recorder);
   }
@@ -183,7 +239,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   out.trace = recorder.take_trace(fmt::format("{} ({}, {} of {})", to_string(out.stop),
                                               count_of(it, "EM iteration", "EM iterations"), grouped(out.work),
                                               count_of(budget, "point evaluation", "point evaluations")));
-  out.pairs = pair_aligned_boxes(f.to_image(out.affine_normalised), boxes_a, boxes_b, pairing_rule(o));
+  out.pairs = pair_final(f.to_image(out.affine_normalised), boxes_a, boxes_b, o, deadline, &out.note, &out.stop);
   out.inliers = static_cast<int>(out.pairs.size());
   return out;
 }
