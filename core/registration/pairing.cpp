@@ -189,25 +189,23 @@ double pair_weight(const Box& moved_a, const Box& b, const PairingRule& rule) {
   return std::max(rule.min_iou, 1e-6) * (1 - d / rule.noise_floor);
 }
 
-RockPairs pair_aligned_boxes(const Affine2& a_to_b, const std::vector<Box>& a, const std::vector<Box>& b,
-                             const PairingRule& rule) {
-  // Boxes overlap only their neighbours, so the overlap graph falls apart into small connected components,
-  // and the optimal assignment is the union of each component's optimum (no allowed pair crosses two). Solving
-  // per component keeps thousands of rocks a side near-linear instead of one cubic assignment.
-  const int n = static_cast<int>(a.size()), m = static_cast<int>(b.size());
-  std::vector<Box> moved(a.size());
-  for (int i = 0; i < n; ++i) moved[i] = transform_box(a_to_b, a[i]);
-  // B sorted by left edge, so each moved A box only looks at B boxes that can overlap it in x or have their
-  // centre within the noise floor.
+namespace {
+
+// A pair the rule allows: A rock i, B rock j, its weight.
+struct Edge {
+  int i, j;
+  double w;
+};
+
+// Every pair the rule allows between the moved A boxes and B. B sorted by left edge, so each moved A box only
+// looks at B boxes that can overlap it in x or have their centre within the noise floor.
+std::vector<Edge> allowed_pairs(const std::vector<Box>& moved, const std::vector<Box>& b, const PairingRule& rule) {
+  const int n = static_cast<int>(moved.size()), m = static_cast<int>(b.size());
   std::vector<int> b_by_x0(m);
   for (int j = 0; j < m; ++j) b_by_x0[j] = j;
   std::sort(b_by_x0.begin(), b_by_x0.end(), [&](int x, int y) { return b[x].x0() < b[y].x0(); });
   double widest_b = 0;
   for (const Box& bx : b) widest_b = std::max(widest_b, bx.w);
-  struct Edge {
-    int i, j;
-    double w;
-  };
   std::vector<Edge> edges;
   for (int i = 0; i < n; ++i) {
     const double lo = std::min(moved[i].x0(), moved[i].cx - rule.noise_floor) - widest_b,
@@ -218,7 +216,13 @@ RockPairs pair_aligned_boxes(const Affine2& a_to_b, const std::vector<Box>& a, c
       if (w > 0) edges.push_back({i, *it, w});
     }
   }
-  // Union-find over A (0..n-1) and B (n..n+m-1).
+  return edges;
+}
+
+// Each edge's connected component (its root: union-find over A, 0..n-1, and B, n..n+m-1) with the edge's index,
+// sorted by root, then by position: each group keeps the order the whole problem would see, without a list per
+// rock (most components are one A rock and one B rock).
+std::vector<std::pair<int, int>> edges_by_component(const std::vector<Edge>& edges, int n, int m) {
   std::vector<int> parent(n + m);
   for (int k = 0; k < n + m; ++k) parent[k] = k;
   auto find = [&](int k) {
@@ -226,56 +230,83 @@ RockPairs pair_aligned_boxes(const Affine2& a_to_b, const std::vector<Box>& a, c
     return k;
   };
   for (const Edge& e : edges) parent[find(e.i)] = find(n + e.j);
-  // Edges grouped by component (sorted by root, then by position: each group keeps the order the whole
-  // problem would see), without a list per rock: most components are one A rock and one B rock.
   std::vector<std::pair<int, int>> by_root(edges.size());
   for (size_t k = 0; k < edges.size(); ++k) by_root[k] = {find(edges[k].i), static_cast<int>(k)};
   std::sort(by_root.begin(), by_root.end());
-  RockPairs pairs;
-  std::vector<int> local_a(n, -1), local_b(m, -1), rows, cols;
-  std::vector<double> w;
-  for (size_t lo = 0; lo < by_root.size();) {
-    size_t hi = lo + 1;
-    while (hi < by_root.size() && by_root[hi].first == by_root[lo].first) ++hi;
-    if (hi - lo == 1) {  // one A rock, one B rock: the pair itself (the rule allows it)
-      const Edge& e = edges[by_root[lo].second];
-      pairs.emplace_back(e.i, e.j);
-      lo = hi;
-      continue;
-    }
-    rows.clear(), cols.clear();  // global indices, in increasing order as the whole problem would see them
+  return by_root;
+}
+
+// The optimal assignment of one connected component of several edges (by_root[lo, hi)), added to `pairs`. The
+// buffers are reused between components: local_a and local_b (sized n and m, -1 where unused) map global rock
+// indices to the component's rows and columns.
+class ComponentAssigner {
+ public:
+  ComponentAssigner(int n, int m) : local_a_(n, -1), local_b_(m, -1) {}
+
+  void assign(const std::vector<Edge>& edges, const std::vector<std::pair<int, int>>& by_root, size_t lo, size_t hi,
+              RockPairs* pairs) {
+    rows_.clear(), cols_.clear();  // global indices, in increasing order as the whole problem would see them
     for (size_t q = lo; q < hi; ++q) {
       const Edge& e = edges[by_root[q].second];
-      if (local_a[e.i] < 0) local_a[e.i] = 0, rows.push_back(e.i);
-      if (local_b[e.j] < 0) local_b[e.j] = 0, cols.push_back(e.j);
+      if (local_a_[e.i] < 0) local_a_[e.i] = 0, rows_.push_back(e.i);
+      if (local_b_[e.j] < 0) local_b_[e.j] = 0, cols_.push_back(e.j);
     }
-    std::sort(rows.begin(), rows.end());
-    std::sort(cols.begin(), cols.end());
-    for (size_t r = 0; r < rows.size(); ++r) local_a[rows[r]] = static_cast<int>(r);
-    for (size_t c = 0; c < cols.size(); ++c) local_b[cols[c]] = static_cast<int>(c);
-    const double nr = static_cast<double>(rows.size()), nc = static_cast<double>(cols.size());
+    std::sort(rows_.begin(), rows_.end());
+    std::sort(cols_.begin(), cols_.end());
+    for (size_t r = 0; r < rows_.size(); ++r) local_a_[rows_[r]] = static_cast<int>(r);
+    for (size_t c = 0; c < cols_.size(); ++c) local_b_[cols_[c]] = static_cast<int>(c);
+    const double nr = static_cast<double>(rows_.size()), nc = static_cast<double>(cols_.size());
     if (std::min(nr, nc) * std::min(nr, nc) * std::max(nr, nc) > kDenseAssignmentWork) {
       // One giant overlap component (densely packed boxes): the sparse solver, same optimum.
       std::vector<WeightedEdge> local;
       local.reserve(hi - lo);
       for (size_t q = lo; q < hi; ++q) {
         const Edge& e = edges[by_root[q].second];
-        local.push_back({local_a[e.i], local_b[e.j], e.w});
+        local.push_back({local_a_[e.i], local_b_[e.j], e.w});
       }
       for (const auto& [r, c] :
-           sparse_max_weight_assignment(local, static_cast<int>(rows.size()), static_cast<int>(cols.size()), 0.0))
-        pairs.emplace_back(rows[r], cols[c]);
-      lo = hi;
-      continue;
+           sparse_max_weight_assignment(local, static_cast<int>(rows_.size()), static_cast<int>(cols_.size()), 0.0))
+        pairs->emplace_back(rows_[r], cols_[c]);
+      return;
     }
-    w.assign(rows.size() * cols.size(), 0.0);
+    w_.assign(rows_.size() * cols_.size(), 0.0);
     for (size_t q = lo; q < hi; ++q) {
       const Edge& e = edges[by_root[q].second];
-      w[local_a[e.i] * cols.size() + local_b[e.j]] = e.w;
+      w_[local_a_[e.i] * cols_.size() + local_b_[e.j]] = e.w;
     }
     for (const auto& [r, c] :
-         max_weight_assignment(w, static_cast<int>(rows.size()), static_cast<int>(cols.size()), 0.0))
-      pairs.emplace_back(rows[r], cols[c]);
+         max_weight_assignment(w_, static_cast<int>(rows_.size()), static_cast<int>(cols_.size()), 0.0))
+      pairs->emplace_back(rows_[r], cols_[c]);
+  }
+
+ private:
+  std::vector<int> local_a_, local_b_, rows_, cols_;
+  std::vector<double> w_;
+};
+
+}  // namespace
+
+RockPairs pair_aligned_boxes(const Affine2& a_to_b, const std::vector<Box>& a, const std::vector<Box>& b,
+                             const PairingRule& rule) {
+  // Boxes overlap only their neighbours, so the overlap graph falls apart into small connected components,
+  // and the optimal assignment is the union of each component's optimum (no allowed pair crosses two). Solving
+  // per component keeps thousands of rocks a side near-linear instead of one cubic assignment.
+  const int n = static_cast<int>(a.size()), m = static_cast<int>(b.size());
+  std::vector<Box> moved(a.size());
+  for (int i = 0; i < n; ++i) moved[i] = transform_box(a_to_b, a[i]);
+  const std::vector<Edge> edges = allowed_pairs(moved, b, rule);
+  const std::vector<std::pair<int, int>> by_root = edges_by_component(edges, n, m);
+  RockPairs pairs;
+  ComponentAssigner assigner(n, m);
+  for (size_t lo = 0; lo < by_root.size();) {
+    size_t hi = lo + 1;
+    while (hi < by_root.size() && by_root[hi].first == by_root[lo].first) ++hi;
+    if (hi - lo == 1) {  // one A rock, one B rock: the pair itself (the rule allows it)
+      const Edge& e = edges[by_root[lo].second];
+      pairs.emplace_back(e.i, e.j);
+    } else {
+      assigner.assign(edges, by_root, lo, hi, &pairs);
+    }
     lo = hi;
   }
   std::sort(pairs.begin(), pairs.end());
