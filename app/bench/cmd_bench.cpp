@@ -29,6 +29,7 @@ struct RegistrationBenchArgs {
   int cases = 300;
   std::uint64_t seed = 1;
   double pair_noise_floor = 0;
+  std::string bands_of = "validation";
   bool quick = false, pycpd = false, failures = false, scaling_only = false, folds = false, ipd_check = false;
   std::vector<std::string> tiers, methods;
   std::string pycpd_script = find_data_file("pycpd_reference.py", IPD_APP_DIR);
@@ -55,6 +56,10 @@ void declare_registration_bench_options(CLI::App* cmd, RegistrationBenchArgs* ar
                   "--folds: score the pairing rule with this noise floor (fraction of the width; 0: overlap alone); "
                   "--ipd-check: the floor compared with overlap alone (0: 0.0125)")
       ->check(CLI::Range(0.0, 0.5));
+  cmd->add_option("--bands-of", args->bands_of,
+                  "--folds: count the size-band table over the validation sides (the default) or the tuning sides, "
+                  "where a pairing rule is chosen")
+      ->check(CLI::IsMember({"validation", "tuning"}));
   cmd->add_flag("--scaling-only", args->scaling_only, "Only the time against the rock count");
   cmd->add_flag(
       "--failures", args->failures,
@@ -104,7 +109,7 @@ int run_fold_bench(const RegistrationBenchArgs& args, const std::vector<LabelPai
                     args.pair_noise_floor > 0 ? args.pair_noise_floor : 0.0125);
     return kOk;
   }
-  print_fold_report(pairs, tiers, args.cases, args.seed, W, H, args.pair_noise_floor);
+  print_fold_report(pairs, tiers, args.cases, args.seed, W, H, args.pair_noise_floor, args.bands_of == "tuning");
   if (args.failures)
     for (const auto& fold : benchmark_folds())
       for (const auto& tier : tiers) {

@@ -65,7 +65,7 @@ FoldScore score_fold(const std::vector<RegistrationCase>& cases, const Registrat
 }
 
 void print_fold_report(const std::vector<LabelPair>& pairs, const std::vector<MisalignmentRange>& tiers, int cases,
-                       std::uint64_t seed, double W, double H, double pair_noise_floor) {
+                       std::uint64_t seed, double W, double H, double pair_noise_floor, bool bands_on_tuning) {
   RegistrationOptions o;
   o.aspect = W / H;
   o.pair_noise_floor = pair_noise_floor;
@@ -95,16 +95,19 @@ void print_fold_report(const std::vector<LabelPair>& pairs, const std::vector<Mi
                    fold.name, validation ? "validation" : "tuning", terrain_list(terrains), tiers[t].name, s.cases,
                    s.f1, s.ceiling, s.ceiling - s.f1, s.strict_f1, s.strict_ceiling, s.strict_ceiling - s.strict_f1,
                    s.ms_median);
+        if (validation != bands_on_tuning) {
+          add_bands(s.bands, &bands[t]);
+          add_bands(s.ceiling_bands, &ceiling_bands[t]);
+        }
         if (!validation) continue;
-        add_bands(s.bands, &bands[t]);
-        add_bands(s.ceiling_bands, &ceiling_bands[t]);
         worst_gap[t] = std::max(worst_gap[t], s.ceiling - s.f1);
         worst_ms[t] = std::max(worst_ms[t], s.ms_median);
       }
     }
   fmt::print(
-      "\nBy size band of side A's rock (geometric mean of the box's sides, px), validation sides of every fold:\n"
-      "recall = true pairs found / true pairs, precision = true pairs found / pairs found.\n\n");
+      "\nBy size band of side A's rock (geometric mean of the box's sides, px), {} sides of every fold:\n"
+      "recall = true pairs found / true pairs, precision = true pairs found / pairs found.\n\n",
+      bands_on_tuning ? "tuning" : "validation");
   fmt::print("{:<8} {:<9} {:>7} {:>8} {:>8} {:>10} {:>10}\n", "tier", "band", "true", "recall", "prec", "ceil.recall",
              "ceil.prec");
   for (size_t t = 0; t < tiers.size(); ++t)
@@ -122,11 +125,13 @@ void print_fold_report(const std::vector<LabelPair>& pairs, const std::vector<Mi
     const double gap_goal = tiers[t].name == "small" ? 0.01 : 0.02;
     const double small_recall = ratio(bands[t].common[0], bands[t].truth[0]);
     auto verdict = [](bool met) { return met ? "met" : "NOT met"; };
-    fmt::print(
-        "  {}: worst validation gap {:.4f} (goal {}: {}), recall < 30 px {:.4f} (goal 0.97: {}), worst median {:.3f} "
-        "ms/pair (goal 0.5: {})\n",
-        tiers[t].name, worst_gap[t], gap_goal, verdict(worst_gap[t] <= gap_goal), small_recall,
-        verdict(small_recall >= 0.97), worst_ms[t], verdict(worst_ms[t] <= 0.5));
+    // The recall goal is judged on the validation sides only: with the tuning sides' bands it is just shown.
+    const std::string recall = bands_on_tuning ? fmt::format("recall < 30 px on the tuning sides {:.4f}", small_recall)
+                                               : fmt::format("recall < 30 px {:.4f} (goal 0.97: {})", small_recall,
+                                                             verdict(small_recall >= 0.97));
+    fmt::print("  {}: worst validation gap {:.4f} (goal {}: {}), {}, worst median {:.3f} ms/pair (goal 0.5: {})\n",
+               tiers[t].name, worst_gap[t], gap_goal, verdict(worst_gap[t] <= gap_goal), recall, worst_ms[t],
+               verdict(worst_ms[t] <= 0.5));
   }
 }
 

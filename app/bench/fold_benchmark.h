@@ -37,8 +37,10 @@ std::vector<LabelPair> fold_pairs(const std::vector<LabelPair>& pairs, const Fol
 
 // Prints the fold table (per fold, tier and side: F1, ceiling, gap, both truths) and the size-band table
 // (validation sides of every fold together), with the goals' verdicts. `pair_noise_floor`: the pairing rule's
-// (RegistrationOptions), for the method and its ceiling alike.
+// (RegistrationOptions), for the method and its ceiling alike. `bands_on_tuning`: the size-band table counts the
+// tuning sides instead, where a pairing rule is chosen (the goals' verdicts stay the validation sides').
 void print_fold_report(const std::vector<LabelPair>& pairs, const std::vector<MisalignmentRange>& tiers, int cases,
-                       std::uint64_t seed, double image_w, double image_h, double pair_noise_floor = 0);
+                       std::uint64_t seed, double image_w, double image_h, double pair_noise_floor = 0,
+                       bool bands_on_tuning = false);
 
 }  // namespace ipd

@@ -307,13 +307,15 @@ void StudyWorker::execute(WorkerCommand& c) {
                        return true;
                      },
                      [&](const command::ToggleReviewed& r) {
+                       // A mark changes its scene's summary alone: the other 9,999 are shared, not redone.
                        if (r.scene >= 0 && r.scene < static_cast<int>(s.scenes().size()))
-                         save(s.toggle_reviewed(r.scene));
+                         save(s.toggle_reviewed(r.scene)), edited_scene = r.scene;
                        return true;
                      },
                      [&](const command::ToggleChecked& c) {
                        if (c.scene >= 0 && c.scene < static_cast<int>(s.scenes().size()))
-                         if (auto job = s.toggle_checked(c.scene, c.left, c.right)) save(std::move(*job));
+                         if (auto job = s.toggle_checked(c.scene, c.left, c.right))
+                           save(std::move(*job)), edited_scene = c.scene;
                        return true;
                      },
                      [&](const command::Undo&) {

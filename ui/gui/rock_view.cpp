@@ -8,6 +8,8 @@
 #include <string>
 
 #include "ui/figures/figure_charts.h"
+#include "ui/figures/figure_common.h"
+#include "ui/gui/canvas_imgui.h"
 #include "ui/gui/studio_layout.h"
 
 namespace ipd::ui {
@@ -218,12 +220,22 @@ void draw_crop(const StudyView& v, Side side, int scene, int rock, float px) {
     if (pic.texture && u1 > u0 && v1 > v0)
       dl->AddImage(pic.texture, at(u0, v0), at(u1, v1), ImVec2(float(u0), float(v0)), ImVec2(float(u1), float(v1)));
   }
-  dl->AddRect(at(g.x0(), g.y0()), at(g.x1(), g.y1()), IM_COL32(86, 180, 233, 255), 0, 0, 2);
+  // The styles of `ipd figure gallery`, so the window previews the figure: the best prediction dashed on a
+  // light halo, the GT box solid on a dark halo (told apart in greyscale and by every colour-vision deficiency).
+  ImGuiCanvas canvas(dl, {0, 0}, 1.0f, nullptr);
+  const auto rect = [&](const Box& b) {
+    const ImVec2 q0 = at(b.x0(), b.y0()), q1 = at(b.x1(), b.y1());
+    return PtRect{q0.x, q0.y, q1.x, q1.y};
+  };
+  constexpr double kStroke = 2.0, kDash = 6.0;
   const int best = s.performance(side, scene).best_prediction[rock];
   if (best >= 0) {
-    const Box& b = s.predictions(side, scene)[best];
-    dl->AddRect(at(b.x0(), b.y0()), at(b.x1(), b.y1()), kSelected, 0, 0, 1.5f);
+    const PtRect r = rect(s.predictions(side, scene)[best]);
+    fig::dashed_rect(canvas, r, fig::kLightHalo, kStroke * fig::kHaloRatio, kDash);
+    fig::dashed_rect(canvas, r, fig::kPredC, kStroke, kDash);
   }
+  canvas.rect(rect(g), fig::kDarkHalo, kStroke * fig::kHaloRatio);
+  canvas.rect(rect(g), fig::kGtC, kStroke);
   dl->PopClipRect();
 }
 
@@ -253,8 +265,8 @@ void draw_gallery(const StudyView& v, RockViewState& st, UiCommands& out) {
   ImGui::SameLine();
   if (ImGui::ArrowButton("##gnext", ImGuiDir_Right)) st.gallery_page = std::min(pages - 1, st.gallery_page + 1);
   text_wrapped_at_spaces(
-      fmt::format("The picture around each rock (a grey square where the study has none), GT blue, its "
-                  "best-IoU prediction orange; {} | {}. Click to go.",
+      fmt::format("The picture around each rock (a grey square where the study has none), GT solid yellow, its "
+                  "best-IoU prediction dashed blue; {} | {}. Click to go.",
                   s.left_domain(), s.right_domain()));
   const float px = 5 * ImGui::GetTextLineHeight();
   ImGui::BeginChild("##gallerypairs");

@@ -35,6 +35,14 @@ double log_size(const Eigen::Vector2d& wh) { return 0.5 * std::log(std::max(wh.x
 
 }  // namespace
 
+double misalignment_cost(const Affine2& normalised) {
+  // The normalised frame is isotropic (pixels), so its linear part is the camera's in pixels.
+  const Eigen::Matrix2d l = normalised.leftCols<2>();
+  const double log_scale = 0.5 * std::log(std::max(std::abs(l(0, 0) * l(1, 1) - l(0, 1) * l(1, 0)), 1e-300));
+  const double rotation = std::atan2(l(1, 0) - l(0, 1), l(0, 0) + l(1, 1));
+  return kTuning.weight_log_scale * std::abs(log_scale) + kTuning.weight_rotation * std::abs(rotation);
+}
+
 EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, SupportMeasurer* support, size_t keep) {
   EdgeSearch out;
   const size_t na = f.a.size(), nb = f.b.size();
@@ -133,7 +141,7 @@ Judgement judge_candidate(const RegistrationFrame& f, const std::vector<Box>& bo
     for (size_t k = 0; k < boxes_b.size(); ++k)
       if (!paired_b[k] && picture_a.holds(transform_box(a_from_b, boxes_b[k]))) ++j.unpaired_b;
   j.total = consensus + kTuning.weight_iou * j.iou_sum - kTuning.weight_unpaired_a * j.unpaired_a -
-            kTuning.weight_unpaired_b * j.unpaired_b;
+            kTuning.weight_unpaired_b * j.unpaired_b - misalignment_cost(normalised);
   return j;
 }
 

@@ -29,8 +29,14 @@ struct EdgeSearch {
 // measurer's consensus, each refined (least squares on its inliers) and polished.
 EdgeSearch edge_candidates(const RegistrationFrame& f, const Bounds& bounds, SupportMeasurer* support, size_t keep);
 
+// The prior on the camera, in the judgement's units: kTuning.weight_log_scale x |log area scale| / 2 plus
+// kTuning.weight_rotation x |rotation| (radians) of an affine between normalised sets. When the rocks fit two
+// alignments about as well (three or four true pairs fix any affine), the smaller misalignment wins.
+double misalignment_cost(const Affine2& normalised);
+
 // A candidate judged on its final pairing: the consensus score, plus the IoU its pairs reach, minus the rocks
-// left without a partner although the other picture shows their whole box (a wrong alignment leaves many).
+// left without a partner although the other picture shows their whole box (a wrong alignment leaves many), minus
+// its misalignment_cost.
 struct Judgement {
   double consensus = 0, iou_sum = 0;
   int unpaired_a = 0, unpaired_b = 0;

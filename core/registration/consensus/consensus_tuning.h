@@ -86,6 +86,10 @@ struct ConsensusTuning {
   // The judgement's weights against the consensus (one well-matched rock ~ 1): IoU of the pairs, and rocks left
   // unpaired although the other picture shows them (A's count more: hand labels hold fewer rocks).
   double weight_iou = 0.2, weight_unpaired_a = 0.1, weight_unpaired_b = 0.05;
+  // The judgement's prior on the camera: a twin is rendered from about the real camera, so when the rocks fit
+  // two alignments about as well, the one nearer the unmoved camera is likelier. Cost per unit of
+  // |log area scale| / 2 (|log s| of a similarity) and per radian of rotation.
+  double weight_log_scale = 2.5, weight_rotation = 1.0;
 };
 
 inline constexpr ConsensusTuning kTuning{};

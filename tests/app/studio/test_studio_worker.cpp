@@ -125,6 +125,38 @@ TEST(StudyWorker, SummariesAfterEditsEqualThoseOfTheWholeSession) {
   EXPECT_EQ((*opened->summaries)[1].pairs, untouched.pairs);
 }
 
+// A review mark changes one scene's summary: the worker redoes that one (timed as an edit, edit_ms) instead of
+// every summary of the study, and the result equals the whole session's.
+TEST(StudyWorker, ReviewMarksRedoOnlyTheirScenesSummary) {
+  TempDir d;
+  StudyWorker w;
+  open_small_study(d, w);
+  const auto opened = w.snapshot();
+  ASSERT_TRUE(opened);
+  const std::pair<int, int> first_pair = opened->session->scenes()[0].current.pairs.at(0);
+  w.submit(command::ToggleReviewed{1});
+  wait_done(w);
+  const auto reviewed = w.snapshot();
+  EXPECT_GE(reviewed->edit_ms, 0) << "a review mark is timed as an edit";
+  EXPECT_TRUE((*reviewed->summaries)[1].reviewed);
+  EXPECT_FALSE((*opened->summaries)[1].reviewed) << "an earlier snapshot does not change";
+  w.submit(command::ToggleChecked{0, first_pair.first, first_pair.second});
+  w.submit(command::ToggleReviewed{2});
+  w.submit(command::Undo{});
+  wait_done(w);
+  const auto snap = w.snapshot();
+  EXPECT_GE(snap->edit_ms, 0);
+  const std::vector<SceneSummary> full = snap->session->summaries();
+  ASSERT_EQ(snap->summaries->size(), full.size());
+  for (size_t k = 0; k < full.size(); ++k) {
+    EXPECT_EQ((*snap->summaries)[k].reviewed, full[k].reviewed) << k;
+    EXPECT_EQ((*snap->summaries)[k].suspects, full[k].suspects) << k;
+  }
+  EXPECT_TRUE((*snap->summaries)[1].reviewed);
+  EXPECT_FALSE((*snap->summaries)[2].reviewed) << "undone";
+  EXPECT_EQ(snap->session->review_of(0).checked_pairs(), 1);
+}
+
 TEST(StudyWorker, ARerunIsPublishedWithoutChangingTheSession) {
   TempDir d;
   StudyWorker w;

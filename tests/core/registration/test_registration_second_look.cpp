@@ -72,5 +72,62 @@ TEST(SecondLook, JudgesACandidateOnThePairingItProduces) {
   EXPECT_NEAR(k.total, -0.1, 1e-12);
 }
 
+// The prior on the camera, by hand: 2.5 per unit of |log scale| and 1 per radian. Twice the size turned by 0.5 rad
+// costs 2.5 ln 2 + 0.5; half the size turned the other way costs the same; the unmoved camera and a pure shift
+// cost nothing.
+TEST(SecondLook, MisalignmentCostIsTheCamerasScaleAndRotation) {
+  auto similarity = [](double scale, double turn, double dx) {
+    Affine2 m;
+    m << scale * std::cos(turn), -scale * std::sin(turn), dx, scale * std::sin(turn), scale * std::cos(turn), 0;
+    return m;
+  };
+  EXPECT_EQ(detail::misalignment_cost(identity_affine()), 0.0);
+  EXPECT_EQ(detail::misalignment_cost(similarity(1, 0, 0.3)), 0.0);
+  EXPECT_NEAR(detail::misalignment_cost(similarity(2, 0.5, 0)), 2.5 * std::log(2.0) + 0.5, 1e-12);
+  EXPECT_NEAR(detail::misalignment_cost(similarity(0.5, -0.5, 0)), 2.5 * std::log(2.0) + 0.5, 1e-12);
+  // An anisotropic scale counts by its area: 2 x 0.5 keeps the area, so only its rotation costs.
+  Affine2 stretch;
+  stretch << 2, 0, 0, 0, 0.5, 0;
+  EXPECT_NEAR(detail::misalignment_cost(stretch), 0.0, 1e-12);
+  // The judgement subtracts it. A's rock, twice the size, lands at (0.4, 0.4) and B's maps back to (0.45, 0.45):
+  // each wholly inside the other picture, unpaired (0.1 and 0.05).
+  const std::vector<Box> a = {box(0.2, 0.2, 0.1, 0.1)}, b = {box(0.9, 0.9, 0.1, 0.1)};
+  const detail::RegistrationFrame f(a, b, 1.0);
+  Affine2 grown = identity_affine();
+  grown(0, 0) = grown(1, 1) = 2;
+  const auto j = detail::judge_candidate(f, a, b, f.from_image(grown), 1.0, PairingRule());
+  EXPECT_EQ(j.unpaired_a, 1);
+  EXPECT_EQ(j.unpaired_b, 1);
+  EXPECT_NEAR(j.total, 1.0 - 0.1 - 0.05 - 2.5 * std::log(2.0), 1e-9);
+}
+
+// Three rocks on B; A holds the same triangle twice about the picture's centre: once at 1/1.05 of the size (boxes too)
+// and once at 1/1.65. The camera 1.05 times closer and the one 1.65 times closer each fit three rocks exactly, with the
+// same IoU, sizes and unpaired rocks: nothing in the rocks decides. The prior on the camera does: whichever triangle A
+// lists first, the smaller misalignment (1.05) pairs. Without it the search keeps the 1.65 camera when A lists the 1.05
+// triangle first.
+TEST(SecondLook, AnExactTieGoesToTheSmallerMisalignment) {
+  const std::vector<Box> b = {box(0.30, 0.30, 0.06, 0.05), box(0.70, 0.35, 0.05, 0.07), box(0.45, 0.75, 0.07, 0.06)};
+  auto triangle = [&](double scale, double cx, double cy) {  // B's triangle shrunk by `scale` about (cx, cy)
+    std::vector<Box> out;
+    for (const Box& x : b) {
+      Box y = x;
+      y.cx = cx + (x.cx - cx) / scale, y.cy = cy + (x.cy - cy) / scale, y.w = x.w / scale, y.h = x.h / scale;
+      out.push_back(y);
+    }
+    return out;
+  };
+  const auto near = triangle(1.05, 0.5, 0.5), far = triangle(1.65, 0.5, 0.5);
+  for (bool near_first : {true, false}) {
+    std::vector<Box> a = near_first ? near : far;
+    const auto& second = near_first ? far : near;
+    a.insert(a.end(), second.begin(), second.end());
+    const int first = near_first ? 0 : 3;
+    const RegistrationReport r = register_rocks(a, b, RegistrationOptions());
+    EXPECT_EQ(r.pairs, (RockPairs{{first, 0}, {first + 1, 1}, {first + 2, 2}})) << near_first;
+    EXPECT_NEAR(r.affine(0, 0), 1.05, 1e-6) << near_first;
+  }
+}
+
 }  // namespace
 }  // namespace ipd
