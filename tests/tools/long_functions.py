@@ -74,9 +74,24 @@ def blank_non_code(text):
     return ''.join(out)
 
 
+def strip_template_heads(h):
+    """The text after any leading `template <...>` parameter lists (nested angle brackets matched)."""
+    while True:
+        m = re.match(r'\s*template\s*<', h)
+        if not m:
+            return h
+        depth, k = 1, m.end()
+        while k < len(h) and depth:
+            depth += {'<': 1, '>': -1}.get(h[k], 0)
+            k += 1
+        h = h[k:]
+
+
 def header_kind(header):
     """What a '{' at namespace or class scope opens, judged by the text before it."""
     h = ' '.join(header.split())
+    h = re.sub(r'\boperator\s*(\(\)|\[\]|[^\s(]+)', 'operator', h)  # operator==, operator= and operator() are names
+    h = strip_template_heads(h)  # `template <class T = int>`: its '=' is no initialiser
     if re.match(r'^(inline\s+)?namespace\b', h) or re.match(r'^extern\s+"', h):
         return 'namespace'
     if re.search(r'\benum\b', h):
@@ -123,6 +138,9 @@ def functions(path):
             header_start = k + 1
         elif ch == '{':
             header = code[header_start:k]
+            if header.count('(') > header.count(')'):
+                stack.append(('init', k, ''))  # a braced default argument inside a parameter list
+                continue
             kind = header_kind(header)
             # A brace in a constructor's initialiser list (after a name, or inside an argument list) initialises
             # a member or an argument; the body's brace follows a closed list.
@@ -136,7 +154,7 @@ def functions(path):
             start = header_start + (len(header) - len(stripped))
             name = ''
             if kind == 'function':
-                m = re.search(r'([~\w:]+(?:operator\s*[^\s(]+)?)\s*\(', ' '.join(header.split()))
+                m = re.search(r'([\w:]*\boperator\s*(?:\(\)|\[\]|[^\s(]+)|[~\w:]+)\s*\(', ' '.join(header.split()))
                 name = m.group(1) if m else '?'
             stack.append((kind if kind != 'other' else 'inner', start, name))
             header_start = k + 1
