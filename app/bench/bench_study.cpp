@@ -10,8 +10,11 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
@@ -156,9 +159,12 @@ Runner add_bench_study(CLI::App* bench) {
   return [args]() -> int {
     const StudyBenchOptions& o = args->options;
     const Study study = open_study(o.study);  // a bad study fails here, before any child runs
-    // The caches go to a fresh folder of their own: the study's and the user's caches stay untouched.
-    const fs::path scratch = fs::temp_directory_path() / fmt::format("ipd-bench-study-{}", getpid());
-    fs::remove_all(scratch);
+    // The caches go to a fresh folder of their own: the study's and the user's caches stay untouched. mkdtemp
+    // makes it with a name nobody can guess or have made first (a fixed name could be a link planted there).
+    std::string pattern = (fs::temp_directory_path() / "ipd-bench-study-XXXXXX").string();
+    if (::mkdtemp(pattern.data()) == nullptr)
+      throw StudyError(fmt::format("{}: cannot make a scratch folder: {}", pattern, std::strerror(errno)));
+    const fs::path scratch = pattern;
     fmt::print(
         "{}: {} domains, {} models; {} run(s) of each kind, median ms per stage; peak = largest resident "
         "size of a run (MiB)\n",

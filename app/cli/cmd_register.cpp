@@ -178,7 +178,8 @@ void declare_register_options(CLI::App* cmd, RegisterArgs* args) {
   cmd->add_option("--trials", args->trials,
                   "Search budget: paper: K samples (default 1000); consensus: hypothesis cap (default 1000); cpd: EM "
                   "iterations (default 100)");
-  cmd->add_option("--budget-ms", args->budget_ms, "Stop searching after this many milliseconds per pair");
+  cmd->add_option("--budget-ms", args->budget_ms,
+                  "Time budget of each registration in milliseconds, set-up and pairing included (0: none)");
   cmd->add_option("--image-size", args->image_size, "W,H of the pictures, so angles are measured in pixels")
       ->delimiter(',')
       ->expected(2);

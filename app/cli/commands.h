@@ -29,5 +29,7 @@ Runner add_bench_edits(CLI::App* bench);
 Runner add_bench_bootstrap(CLI::App* bench);
 // `ipd bench study` (app/bench/bench_study.cpp), added under `ipd bench`.
 Runner add_bench_study(CLI::App* bench);
+// `ipd bench budget` (app/bench/bench_budget.cpp), added under `ipd bench`.
+Runner add_bench_budget(CLI::App* bench);
 
 }  // namespace ipd::cli

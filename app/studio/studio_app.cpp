@@ -181,6 +181,7 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
     const auto& methods = registration_methods();
     c.options.method = methods[std::clamp<size_t>(ui_.rerun_method, 0, methods.size() - 1)].method;
     c.options.seed = static_cast<std::uint64_t>(std::max(0, ui_.rerun_seed));
+    c.options.time_budget_ms = ui::rerun_time_budget(ui_, c.options);
     worker_.submit(std::move(c));
     ui_.rerun_discarded = false;
   }

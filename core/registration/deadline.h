@@ -2,6 +2,7 @@
 // replaced, so the searches' stop rule is tested with a fake clock instead of timed runs.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <optional>
@@ -34,12 +35,29 @@ class Deadline {
       : budget_ms_(budget_ms), clock_(std::move(clock)), start_(budget_ms_ > 0 ? clock_() : 0) {}
 
   double budget_ms() const { return budget_ms_; }
+  bool has_budget() const { return budget_ms_ > 0; }
+  // When passed() comes: the budget less what is kept back (0: no budget).
+  double ends_at_ms() const { return budget_ms_ - reserve_ms_; }
   // 0 without a budget: the clock is then never read, so nothing can depend on it.
   double elapsed_ms() const { return budget_ms_ > 0 ? clock_() - start_ : 0; }
-  bool passed() const { return budget_ms_ > 0 && elapsed_ms() >= budget_ms_; }
+  bool passed() const { return budget_ms_ > 0 && elapsed_ms() >= budget_ms_ - reserve_ms_; }
+
+  // The same deadline with `ms` of its budget kept back (at most half of it): passed() comes that much sooner, so
+  // the stages before the last one end early enough to leave it its time; whole() is the last one's deadline.
+  Deadline keeping_back(double ms) const {
+    Deadline d = *this;
+    d.reserve_ms_ = std::clamp(ms, 0.0, budget_ms_ / 2);
+    return d;
+  }
+  Deadline whole() const {
+    Deadline d = *this;
+    d.reserve_ms_ = 0;
+    return d;
+  }
 
  private:
   double budget_ms_ = 0;
+  double reserve_ms_ = 0;
   MsClock clock_;
   double start_ = 0;
 };
@@ -56,11 +74,15 @@ struct DeadlineSampler {
 
   template <typename Sample>
   bool next(Sample* s) {
-    if (stop_before_sample(drawn, max_trials, deadline.elapsed_ms(), deadline.budget_ms()) == StopReason::kTimeBudget) {
+    if (stop_before_sample(drawn, max_trials, deadline.elapsed_ms(), deadline.ends_at_ms()) ==
+        StopReason::kTimeBudget) {
       spent = true;
       return false;
     }
-    if (!inner.next(s)) return false;
+    if (!inner.next(s)) {
+      spent = deadline.passed();  // a sampler that read the deadline itself stopped on it (never without a budget)
+      return false;
+    }
     ++drawn;
     return true;
   }

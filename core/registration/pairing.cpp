@@ -6,6 +6,7 @@
 #include <queue>
 
 #include "core/geometry/point_grid.h"
+#include "core/registration/deadline.h"
 
 namespace ipd {
 
@@ -191,15 +192,14 @@ double pair_weight(const Box& moved_a, const Box& b, const PairingRule& rule) {
 
 namespace {
 
-// A pair the rule allows: A rock i, B rock j, its weight.
 struct Edge {
   int i, j;
   double w;
 };
 
-// Every pair the rule allows between the moved A boxes and B. B sorted by left edge, so each moved A box only
-// looks at B boxes that can overlap it in x or have their centre within the noise floor.
-std::vector<Edge> allowed_pairs(const std::vector<Box>& moved, const std::vector<Box>& b, const PairingRule& rule) {
+// Every (A, B) pair the rule allows, found by sweeping B sorted by left edge: each moved A box only looks at B
+// boxes that can overlap it in x or have their centre within the noise floor.
+std::vector<Edge> sweep_edges(const std::vector<Box>& moved, const std::vector<Box>& b, const PairingRule& rule) {
   const int n = static_cast<int>(moved.size()), m = static_cast<int>(b.size());
   std::vector<int> b_by_x0(m);
   for (int j = 0; j < m; ++j) b_by_x0[j] = j;
@@ -219,10 +219,78 @@ std::vector<Edge> allowed_pairs(const std::vector<Box>& moved, const std::vector
   return edges;
 }
 
-// Each edge's connected component (its root: union-find over A, 0..n-1, and B, n..n+m-1) with the edge's index,
-// sorted by root, then by position: each group keeps the order the whole problem would see, without a list per
-// rock (most components are one A rock and one B rock).
-std::vector<std::pair<int, int>> edges_by_component(const std::vector<Edge>& edges, int n, int m) {
+// The same edges from a grid over B's centres, in a time that does not grow with the widest box: each moved A
+// box asks the grid for centres close enough to overlap it (or within the noise floor); the few B boxes far
+// larger than the typical one are tried against every A box instead of widening every query.
+std::vector<Edge> grid_edges(const std::vector<Box>& moved, const std::vector<Box>& b, const PairingRule& rule) {
+  const int n = static_cast<int>(moved.size()), m = static_cast<int>(b.size());
+  std::vector<double> half(m);
+  for (int j = 0; j < m; ++j) half[j] = 0.5 * std::sqrt(b[j].w * b[j].w + b[j].h * b[j].h);
+  std::vector<double> sorted = half;
+  std::nth_element(sorted.begin(), sorted.begin() + m / 2, sorted.end());
+  const double large = 4 * sorted[m / 2];
+  std::vector<Eigen::Vector2d> centres;
+  std::vector<int> index_of, larger;
+  double reach_b = 0;  // the largest half-diagonal among the boxes in the grid
+  for (int j = 0; j < m; ++j) {
+    if (half[j] > large) {
+      larger.push_back(j);
+      continue;
+    }
+    centres.emplace_back(b[j].cx, b[j].cy);
+    index_of.push_back(j);
+    reach_b = std::max(reach_b, half[j]);
+  }
+  const PointGrid grid(centres);
+  // Centres of a near miss are within the floor in pixels: noise_floor widths across, noise_floor x aspect down.
+  const double floor_reach = std::hypot(rule.noise_floor, rule.noise_floor * rule.aspect);
+  std::vector<Edge> edges;
+  std::vector<int> near;
+  for (int i = 0; i < n; ++i) {
+    const double half_a = 0.5 * std::sqrt(moved[i].w * moved[i].w + moved[i].h * moved[i].h);
+    const double reach = std::max(half_a + reach_b, floor_reach);
+    grid.within(Eigen::Vector2d(moved[i].cx, moved[i].cy), reach, &near);
+    for (int& k : near) k = index_of[k];
+    if (!larger.empty()) {
+      near.insert(near.end(), larger.begin(), larger.end());
+      std::sort(near.begin(), near.end());
+    }
+    for (int j : near) {
+      const double w = pair_weight(moved[i], b[j], rule);
+      if (w > 0) edges.push_back({i, j, w});
+    }
+  }
+  return edges;
+}
+
+// The heaviest allowed pair first, each rock taken once (ties by A, then B index): at least half the optimal
+// total weight. A pair whose two rocks have no other allowed pair is taken whatever the order, so only the rest
+// are sorted (on scattered rocks, most pairs are alone).
+void pair_greedily(std::vector<Edge> edges, int n, int m, RockPairs* pairs) {
+  std::vector<int> degree_a(n, 0), degree_b(m, 0);
+  for (const Edge& e : edges) ++degree_a[e.i], ++degree_b[e.j];
+  std::vector<Edge> contested;
+  for (const Edge& e : edges) {
+    if (degree_a[e.i] == 1 && degree_b[e.j] == 1)
+      pairs->emplace_back(e.i, e.j);
+    else
+      contested.push_back(e);
+  }
+  std::sort(contested.begin(), contested.end(), [](const Edge& x, const Edge& y) {
+    return x.w != y.w ? x.w > y.w : x.i != y.i ? x.i < y.i : x.j < y.j;
+  });
+  std::vector<char> used_a(n, 0), used_b(m, 0);
+  for (const Edge& e : contested) {
+    if (used_a[e.i] || used_b[e.j]) continue;
+    used_a[e.i] = used_b[e.j] = 1;
+    pairs->emplace_back(e.i, e.j);
+  }
+}
+
+// The optimal one-to-one assignment over `edges`, component by component (see pair_aligned_boxes). With a
+// deadline, components not solved when it passes are paired greedily instead, and *greedy says so.
+RockPairs solve_components(const std::vector<Edge>& edges, int n, int m, const Deadline* deadline, bool* greedy) {
+  // Union-find over A (0..n-1) and B (n..n+m-1).
   std::vector<int> parent(n + m);
   for (int k = 0; k < n + m; ++k) parent[k] = k;
   auto find = [&](int k) {
@@ -230,59 +298,76 @@ std::vector<std::pair<int, int>> edges_by_component(const std::vector<Edge>& edg
     return k;
   };
   for (const Edge& e : edges) parent[find(e.i)] = find(n + e.j);
+  // Edges grouped by component (sorted by root, then by position: each group keeps the order the whole
+  // problem would see), without a list per rock: most components are one A rock and one B rock.
   std::vector<std::pair<int, int>> by_root(edges.size());
   for (size_t k = 0; k < edges.size(); ++k) by_root[k] = {find(edges[k].i), static_cast<int>(k)};
   std::sort(by_root.begin(), by_root.end());
-  return by_root;
-}
-
-// The optimal assignment of one connected component of several edges (by_root[lo, hi)), added to `pairs`. The
-// buffers are reused between components: local_a and local_b (sized n and m, -1 where unused) map global rock
-// indices to the component's rows and columns.
-class ComponentAssigner {
- public:
-  ComponentAssigner(int n, int m) : local_a_(n, -1), local_b_(m, -1) {}
-
-  void assign(const std::vector<Edge>& edges, const std::vector<std::pair<int, int>>& by_root, size_t lo, size_t hi,
-              RockPairs* pairs) {
-    rows_.clear(), cols_.clear();  // global indices, in increasing order as the whole problem would see them
+  RockPairs pairs;
+  std::vector<int> local_a(n, -1), local_b(m, -1), rows, cols;
+  std::vector<double> w;
+  int solved = 0;
+  for (size_t lo = 0; lo < by_root.size();) {
+    // The deadline is read every 64 components: most are one pair, and a clock read costs about as much.
+    if (deadline != nullptr && (solved++ & 63) == 0 && deadline->passed()) {
+      std::vector<Edge> rest;
+      for (size_t q = lo; q < by_root.size(); ++q) rest.push_back(edges[by_root[q].second]);
+      pair_greedily(std::move(rest), n, m, &pairs);
+      *greedy = true;
+      break;
+    }
+    size_t hi = lo + 1;
+    while (hi < by_root.size() && by_root[hi].first == by_root[lo].first) ++hi;
+    if (hi - lo == 1) {  // one A rock, one B rock: the pair itself (the rule allows it)
+      const Edge& e = edges[by_root[lo].second];
+      pairs.emplace_back(e.i, e.j);
+      lo = hi;
+      continue;
+    }
+    rows.clear(), cols.clear();  // global indices, in increasing order as the whole problem would see them
     for (size_t q = lo; q < hi; ++q) {
       const Edge& e = edges[by_root[q].second];
-      if (local_a_[e.i] < 0) local_a_[e.i] = 0, rows_.push_back(e.i);
-      if (local_b_[e.j] < 0) local_b_[e.j] = 0, cols_.push_back(e.j);
+      if (local_a[e.i] < 0) local_a[e.i] = 0, rows.push_back(e.i);
+      if (local_b[e.j] < 0) local_b[e.j] = 0, cols.push_back(e.j);
     }
-    std::sort(rows_.begin(), rows_.end());
-    std::sort(cols_.begin(), cols_.end());
-    for (size_t r = 0; r < rows_.size(); ++r) local_a_[rows_[r]] = static_cast<int>(r);
-    for (size_t c = 0; c < cols_.size(); ++c) local_b_[cols_[c]] = static_cast<int>(c);
-    const double nr = static_cast<double>(rows_.size()), nc = static_cast<double>(cols_.size());
+    std::sort(rows.begin(), rows.end());
+    std::sort(cols.begin(), cols.end());
+    for (size_t r = 0; r < rows.size(); ++r) local_a[rows[r]] = static_cast<int>(r);
+    for (size_t c = 0; c < cols.size(); ++c) local_b[cols[c]] = static_cast<int>(c);
+    const double nr = static_cast<double>(rows.size()), nc = static_cast<double>(cols.size());
     if (std::min(nr, nc) * std::min(nr, nc) * std::max(nr, nc) > kDenseAssignmentWork) {
       // One giant overlap component (densely packed boxes): the sparse solver, same optimum.
       std::vector<WeightedEdge> local;
       local.reserve(hi - lo);
       for (size_t q = lo; q < hi; ++q) {
         const Edge& e = edges[by_root[q].second];
-        local.push_back({local_a_[e.i], local_b_[e.j], e.w});
+        local.push_back({local_a[e.i], local_b[e.j], e.w});
       }
       for (const auto& [r, c] :
-           sparse_max_weight_assignment(local, static_cast<int>(rows_.size()), static_cast<int>(cols_.size()), 0.0))
-        pairs->emplace_back(rows_[r], cols_[c]);
-      return;
+           sparse_max_weight_assignment(local, static_cast<int>(rows.size()), static_cast<int>(cols.size()), 0.0))
+        pairs.emplace_back(rows[r], cols[c]);
+      lo = hi;
+      continue;
     }
-    w_.assign(rows_.size() * cols_.size(), 0.0);
+    w.assign(rows.size() * cols.size(), 0.0);
     for (size_t q = lo; q < hi; ++q) {
       const Edge& e = edges[by_root[q].second];
-      w_[local_a_[e.i] * cols_.size() + local_b_[e.j]] = e.w;
+      w[local_a[e.i] * cols.size() + local_b[e.j]] = e.w;
     }
     for (const auto& [r, c] :
-         max_weight_assignment(w_, static_cast<int>(rows_.size()), static_cast<int>(cols_.size()), 0.0))
-      pairs->emplace_back(rows_[r], cols_[c]);
+         max_weight_assignment(w, static_cast<int>(rows.size()), static_cast<int>(cols.size()), 0.0))
+      pairs.emplace_back(rows[r], cols[c]);
+    lo = hi;
   }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
 
- private:
-  std::vector<int> local_a_, local_b_, rows_, cols_;
-  std::vector<double> w_;
-};
+std::vector<Box> moved_boxes(const Affine2& a_to_b, const std::vector<Box>& a) {
+  std::vector<Box> moved(a.size());
+  for (size_t i = 0; i < a.size(); ++i) moved[i] = transform_box(a_to_b, a[i]);
+  return moved;
+}
 
 }  // namespace
 
@@ -291,25 +376,17 @@ RockPairs pair_aligned_boxes(const Affine2& a_to_b, const std::vector<Box>& a, c
   // Boxes overlap only their neighbours, so the overlap graph falls apart into small connected components,
   // and the optimal assignment is the union of each component's optimum (no allowed pair crosses two). Solving
   // per component keeps thousands of rocks a side near-linear instead of one cubic assignment.
+  const std::vector<Box> moved = moved_boxes(a_to_b, a);
+  return solve_components(sweep_edges(moved, b, rule), static_cast<int>(a.size()), static_cast<int>(b.size()), nullptr,
+                          nullptr);
+}
+
+RockPairs pair_aligned_boxes_within(const Affine2& a_to_b, const std::vector<Box>& a, const std::vector<Box>& b,
+                                    const PairingRule& rule, const Deadline& deadline, bool* greedy) {
+  *greedy = false;
   const int n = static_cast<int>(a.size()), m = static_cast<int>(b.size());
-  std::vector<Box> moved(a.size());
-  for (int i = 0; i < n; ++i) moved[i] = transform_box(a_to_b, a[i]);
-  const std::vector<Edge> edges = allowed_pairs(moved, b, rule);
-  const std::vector<std::pair<int, int>> by_root = edges_by_component(edges, n, m);
-  RockPairs pairs;
-  ComponentAssigner assigner(n, m);
-  for (size_t lo = 0; lo < by_root.size();) {
-    size_t hi = lo + 1;
-    while (hi < by_root.size() && by_root[hi].first == by_root[lo].first) ++hi;
-    if (hi - lo == 1) {  // one A rock, one B rock: the pair itself (the rule allows it)
-      const Edge& e = edges[by_root[lo].second];
-      pairs.emplace_back(e.i, e.j);
-    } else {
-      assigner.assign(edges, by_root, lo, hi, &pairs);
-    }
-    lo = hi;
-  }
-  std::sort(pairs.begin(), pairs.end());
-  return pairs;
+  if (n == 0 || m == 0) return {};
+  // Read before the first component: a deadline already passed pairs everything greedily.
+  return solve_components(grid_edges(moved_boxes(a_to_b, a), b, rule), n, m, &deadline, greedy);
 }
 }  // namespace ipd

@@ -44,6 +44,7 @@ constexpr double kExact = 1e-9;
 struct MeanNearestScorer {
   const std::vector<Eigen::Vector2d>& a;
   const PointGrid& grid_b;
+  const Deadline& deadline;  // read every 16 rocks: a wild model's queries can each scan many grid rings
   double score(const Affine2& m) const {
     const double n = static_cast<double>(a.size());
     // A model scoring below the best distinct rival changes nothing: neither the best, nor the rival, nor
@@ -54,7 +55,10 @@ struct MeanNearestScorer {
     const double rival = recorder && !recorder->recording() ? recorder->rival_score() : -INFINITY;
     const double drop_at = std::isfinite(rival) ? -rival * n * (1 + 1e-9) : INFINITY;
     double sum = 0;
-    for (const auto& p : a) {
+    for (size_t k = 0; k < a.size(); ++k) {
+      const Eigen::Vector2d& p = a[k];
+      // Cut short by the budget: dropped like a model that cannot matter (the search stops before its next sample).
+      if (deadline.has_budget() && (k & 15) == 15 && deadline.passed()) return -INFINITY;
       double d2 = 0;
       const double left = drop_at - sum;
       if (grid_b.nearest(apply(m, p), &d2, std::isfinite(drop_at) ? left * left : INFINITY) < 0 &&
@@ -81,15 +85,22 @@ struct MeanNearestScorer {
 MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o, const Deadline& deadline) {
   MethodOutcome out;
   const double gate = o.paper.pair_gate;  // the normalised frame has unit spread
+  // The pairs (mutual nearest neighbours within the gate, as mutual_nearest_pairs finds them) and the inliers
+  // (moved A centres within the gate of their nearest B centre) from one nearest query per rock: the final step
+  // must stay cheap when a time budget leaves it little.
   auto count_inliers = [&](const Affine2& m) {
     std::vector<Eigen::Vector2d> moved;
     for (const auto& p : f.a) moved.push_back(apply(m, p));
-    out.pairs = mutual_nearest_pairs(moved, f.b, gate);
-    const PointGrid gb(f.b);
+    const PointGrid ga(moved), gb(f.b);
     int inl = 0;
-    for (const auto& p : moved) {
+    out.pairs.clear();
+    for (size_t i = 0; i < moved.size(); ++i) {
+      // Only centres within the gate matter: the query stops there (a wild answer's rocks land far from any).
       double d2 = INFINITY;
-      if (gb.nearest(p, &d2) >= 0 && d2 <= gate * gate) ++inl;
+      const int j = gb.nearest(moved[i], &d2, std::nextafter(gate * gate, INFINITY));
+      if (j < 0 || d2 > gate * gate) continue;
+      ++inl;
+      if (ga.nearest(f.b[j], nullptr) == static_cast<int>(i)) out.pairs.emplace_back(static_cast<int>(i), j);
     }
     out.inliers = inl;
   };
@@ -104,7 +115,7 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   const PointGrid grid_b(f.b);
   RandomTripleSampler sampler{f.a, f.b, Rng(o.seed)};
   AffinePermutationEstimator estimator;
-  MeanNearestScorer scorer{f.a, grid_b};
+  MeanNearestScorer scorer{f.a, grid_b, deadline};
   RobustLoopOptions lo;
   lo.max_trials = o.paper.samples;
   lo.max_work = work_budget(o, f.a.size(), f.b.size());

@@ -52,8 +52,9 @@ double flatness(const std::vector<Eigen::Vector2d>& p);
 // grows as n log n in the rock count (about a second of work at 5,000 a side).
 double work_budget(const RegistrationOptions& o, size_t na, size_t nb);
 
-// Median distance between a point and its nearest other point (0 for fewer than two points).
-double median_nn_distance(const std::vector<Eigen::Vector2d>& p);
+// Median distance between a point and its nearest other point (0 for fewer than two points). With a deadline that
+// passes (read every 256 points) it stops early and its answer must not be used.
+double median_nn_distance(const std::vector<Eigen::Vector2d>& p, const Deadline* deadline = nullptr);
 
 // The stop reason in words, with the numbers behind it.
 std::string describe_stop(StopReason stop, int trials, int hypotheses, double work, double budget);
@@ -61,6 +62,18 @@ std::string describe_stop(StopReason stop, int trials, int hypotheses, double wo
 // as the stop descriptions print them (they are shown in ipd-studio: no "8.97e+04", no "1 samples").
 std::string count_of(double n, const char* singular, const char* plural);
 std::string grouped(double n);  // 89700 -> "89,700"
+
+// register_rocks with its time budget given as a Deadline: tests drive it with a fake clock, and the coarse pass
+// of a large set runs under its caller's deadline.
+RegistrationReport register_rocks_until(const std::vector<Box>& a, const std::vector<Box>& b,
+                                        const RegistrationOptions& options, const Deadline& deadline);
+
+// A method's final pairing (pair_aligned_boxes by `image_affine`). Under a time budget it gets what is left of it:
+// pair_aligned_boxes_within, and when that had to pair greedily it says so in *note and sets *stop to the budget.
+RockPairs pair_final(const Affine2& image_affine, const std::vector<Box>& a, const std::vector<Box>& b,
+                     const RegistrationOptions& o, const Deadline& deadline, std::string* note, StopReason* stop);
+// Adds a sentence to a note ("a; b").
+void add_note(std::string* note, const std::string& sentence);
 
 // `deadline` holds options.time_budget_ms from the start of register_rocks, so the set-up counts against it.
 MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptions& o, const Deadline& deadline);

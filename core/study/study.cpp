@@ -133,7 +133,8 @@ void parse_models(const YAML::Node& v, const std::string& file, int line, StudyC
   }
 }
 
-// `registration:` - method, seed, trials (the method's search budget) and gate, validated together.
+// `registration:` - method, seed, trials (the method's search budget), gate and budget_ms (the time budget of each
+// registration), validated together.
 void parse_registration(const YAML::Node& v, const std::string& file, int line, StudyConfig* c) {
   if (!v.IsMap()) throw StudyError(fmt::format("{}:{}: registration must be a mapping", file, line));
   check_unique_keys(v, file, "registration.");
@@ -163,9 +164,20 @@ void parse_registration(const YAML::Node& v, const std::string& file, int line, 
             fmt::format("{}:{}: registration.gate must be a number > 0 (a fraction of the rocks' "
                         "spread; default 0.2), got {}",
                         file, r.first.Mark().line + 1, quoted_for_message(r.second.Scalar())));
+    } else if (k == "budget_ms") {
+      // A number > 0: what --budget-ms takes. yaml-cpp reads "nan" and ".inf" as doubles: both are refused.
+      double ms = 0;
+      if (!r.second.IsScalar() || !YAML::convert<double>::decode(r.second, ms) || !(ms > 0) || !std::isfinite(ms))
+        throw StudyError(
+            fmt::format("{}:{}: registration.budget_ms must be a number of milliseconds > 0 (unset: "
+                        "no time limit), got {}",
+                        file, r.first.Mark().line + 1,
+                        quoted_for_message(r.second.IsScalar() ? r.second.Scalar() : "a list or map")));
+      c->registration.time_budget_ms = ms;
     } else {
-      throw StudyError(fmt::format("{}:{}: unknown registration setting '{}' (expected method, seed, trials, gate)",
-                                   file, r.first.Mark().line + 1, quoted_for_message(k)));
+      throw StudyError(
+          fmt::format("{}:{}: unknown registration setting '{}' (expected method, seed, trials, gate, budget_ms)", file,
+                      r.first.Mark().line + 1, quoted_for_message(k)));
     }
   }
   // trials is the configured method's search budget, as ipd register's --trials: cpd's EM iterations.

@@ -88,6 +88,8 @@ struct UiState {
   char filter[128] = "";
   ReplayState replay;
   int rerun_method = 0, rerun_seed = 0;  // rerun_method: index into registration_methods()
+  // The re-run's time budget in ms: < 0 until edited (then study.yaml's registration.budget_ms is used), 0: none.
+  float rerun_budget_ms = -1;
   bool rerun_discarded = false;
   float conf_threshold = 0.0f;
   char save_as_dir[512] = "";
@@ -191,6 +193,11 @@ float button_width(const char* label);
 std::string registration_summary(const std::string& a, const std::string& b, const RegistrationReport& r);
 std::string replay_step_line(const TraceStep& step, int k, int steps);
 std::string trace_cap_note(int steps, int hypotheses);
+// The time budget the registration panel shows for a re-run: ui.rerun_budget_ms once edited, else the study's
+// registration.budget_ms (0: none).
+float rerun_budget_ms(const UiState& ui, const RegistrationOptions& study);
+// The budget a re-run is given: the one shown, unset when that is 0.
+std::optional<double> rerun_time_budget(const UiState& ui, const RegistrationOptions& study);
 // The registration canvas at `p0` of `size`: the plot's clip rect (all of the canvas above the three legend
 // lines), the picture's box inside it (10 px margins) and the legend's top.
 struct RegistrationCanvas {

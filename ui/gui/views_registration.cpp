@@ -62,6 +62,16 @@ std::string trace_cap_note(int steps, int hypotheses) {
          "; the search went on)";
 }
 
+float rerun_budget_ms(const UiState& ui, const RegistrationOptions& study) {
+  return ui.rerun_budget_ms >= 0 ? ui.rerun_budget_ms : static_cast<float>(study.time_budget_ms.value_or(0));
+}
+
+std::optional<double> rerun_time_budget(const UiState& ui, const RegistrationOptions& study) {
+  if (ui.rerun_budget_ms < 0) return study.time_budget_ms;  // the study's, unrounded
+  if (ui.rerun_budget_ms > 0) return static_cast<double>(ui.rerun_budget_ms);
+  return std::nullopt;
+}
+
 void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const Session& s = *v.session;
   if (s.scenes().empty()) return;
@@ -140,6 +150,14 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(70);
   ImGui::InputInt("seed", &ui.rerun_seed, 0);
+  // The time budget the re-run gets: the study's (registration.budget_ms) until edited here; 0 is none.
+  float budget = rerun_budget_ms(ui, s.study().config.registration);
+  same_line_if_fits(70 + ImGui::CalcTextSize("budget ms").x + ImGui::GetStyle().ItemInnerSpacing.x);
+  ImGui::SetNextItemWidth(70);
+  if (ImGui::InputFloat("budget ms", &budget, 0, 0, "%g")) ui.rerun_budget_ms = std::max(0.0f, budget);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "time budget of the re-run, in milliseconds (0: none); starts at study.yaml's registration.budget_ms");
   same_line_if_fits(button_width("re-run"));
   if (ImGui::Button("re-run")) ui.rerun_method = displayed, out.rerun_registration = true;
   if (have_rerun && !v.rerun_is_automatic) {

@@ -42,11 +42,18 @@ Bounds hypothesis_bounds(const RegistrationOptions& o) {
 // (normalised units, so shifting or scaling a layout within the picture keeps it), and not under a fraction of
 // the picture's width (two labellings put a rock's centre up to ~1% of the width apart however close the rocks
 // are) unless that is over half the spacing.
-double consensus_gate(const RegistrationFrame& f, const RegistrationOptions& o) {
+double consensus_gate(const RegistrationFrame& f, const RegistrationOptions& o, const Deadline& deadline) {
   if (o.consensus.inlier_gate) return *o.consensus.inlier_gate / f.spread;
-  const double spacing = median_nn_distance(f.b);
+  const double spacing = median_nn_distance(f.b, &deadline);
   return std::max(std::clamp(kTuning.gate_of_spacing * spacing, kTuning.gate_min, kTuning.gate_max),
                   std::min(kTuning.min_gate_of_width / f.spread, kTuning.max_floor_of_spacing * spacing));
+}
+
+// Whether the second look runs: an unconfirmed search on a set small enough to enumerate its rock pairs.
+bool second_look_applies(const RegistrationFrame& f, StopReason stop) {
+  const double na = static_cast<double>(f.a.size()), nb = static_cast<double>(f.b.size());
+  if (stop == StopReason::kCannotBeBeaten) return false;
+  return !(na < 2 || nb < 2 || na * (na - 1) / 2 * nb * (nb - 1) > kTuning.max_edge_pairs);
 }
 
 // The second look (consensus_second_look.h) when the search ended unconfirmed (it ran out of hypotheses or
@@ -56,9 +63,7 @@ double consensus_gate(const RegistrationFrame& f, const RegistrationOptions& o) 
 void second_look(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
                  const RegistrationOptions& o, const Bounds& bounds, SupportMeasurer* support, SearchRecorder* recorder,
                  MethodOutcome* out) {
-  const double na = static_cast<double>(f.a.size()), nb = static_cast<double>(f.b.size());
-  if (out->stop == StopReason::kCannotBeBeaten) return;
-  if (na < 2 || nb < 2 || na * (na - 1) / 2 * nb * (nb - 1) > kTuning.max_edge_pairs) return;
+  if (!second_look_applies(f, out->stop)) return;
   EdgeSearch edges = edge_candidates(f, bounds, support, kTuning.edge_candidates);
   out->hypotheses += edges.hypotheses;
   out->work += edges.work;
@@ -97,7 +102,8 @@ void second_look(const RegistrationFrame& f, const std::vector<Box>& boxes_a, co
 // usually ends the search at once (a dense layout of 500 rocks a side otherwise needs ~100 hypotheses, each
 // anchored on a third of B, and under a large misalignment mostly fails).
 std::vector<Affine2> coarse_hypotheses(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
-                                       const std::vector<Box>& boxes_b, const RegistrationOptions& o) {
+                                       const std::vector<Box>& boxes_b, const RegistrationOptions& o,
+                                       const Deadline& deadline) {
   const size_t rocks = kTuning.coarse_rocks;
   if (boxes_a.size() < kTuning.coarse_above || boxes_b.size() < kTuning.coarse_above) return {};
   auto largest = [&](const std::vector<Box>& boxes) {
@@ -114,7 +120,8 @@ std::vector<Affine2> coarse_hypotheses(const RegistrationFrame& f, const std::ve
   };
   RegistrationOptions sub = o;
   sub.record_trace = false;
-  const RegistrationReport r = register_rocks(largest(boxes_a), largest(boxes_b), sub);
+  // Under the whole registration's deadline: the coarse pass spends the budget, it gets none of its own.
+  const RegistrationReport r = register_rocks_until(largest(boxes_a), largest(boxes_b), sub, deadline);
   if (r.inliers < 3) return {};
   return {f.from_image(r.affine)};
 }
@@ -183,33 +190,86 @@ AnswerAndRival settle_shifted_placements(const RegistrationFrame& f, double gate
   return {answer, rival};
 }
 
+// Under a time budget, whether a stage after the search may start: only when the time left (before the final
+// pairing's share) exceeds its cost, counted in whole-set scores and timed by one score measured after the search.
+// A stage cannot be cut once started (rival placements sort thousands of votes), so it is not started. Without a
+// budget every stage runs and the clock is never read.
+struct StageTime {
+  const Deadline& deadline;
+  double score_ms = 0;
+  bool allows(double scores) const {
+    return !deadline.has_budget() || deadline.ends_at_ms() - deadline.elapsed_ms() > scores * score_ms;
+  }
+};
+// Whole-set scores each stage costs, about (translation votes and their sort count as four): the rival placements
+// vote and score twice and may improve one, the soft refinement and the judged final fit iterate over the set.
+constexpr double kPlacementsScores = 30, kSoftRefineScores = 20, kFinalFitScores = 20, kSecondLookScores = 10;
+
 // The stages after a search that found a best (with time left): rival placements, the soft refinement of a
-// confirmed best, the judged final fit, and the second look of an unconfirmed one.
+// confirmed best, the judged final fit, and the second look of an unconfirmed one. Each later stage only starts
+// while the time budget lasts; a stage left out is noted and the budget named as the stop.
 void after_search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
                   const RegistrationOptions& o, const Bounds& bounds, double gate, const RobustLoopResult<Affine2>& r,
-                  SupportMeasurer* support, SearchRecorder* recorder, MethodOutcome* out) {
+                  const StageTime& time, SupportMeasurer* support, SearchRecorder* recorder, MethodOutcome* out) {
   out->affine_normalised = r.best;
   out->score = r.best_score;
   const AnswerAndRival scores = settle_shifted_placements(f, gate, r.best_score, support, recorder, out);
-  // A confirmed best only: an unconfirmed one is judged against the second look's candidates next, and
-  // raising it alone would tilt that comparison (3 true pairs among 15 rocks: seed 5 of
-  // SmallOverlap.ThreeTruePairsAmongFifteenRocksAt25Degrees).
-  if (r.stop == StopReason::kCannotBeBeaten && soft_refine(support, &out->affine_normalised, &out->score))
-    recorder->add_step(TraceStepKind::kRefinement, out->affine_normalised, out->score, out->score, true);
-  out->affine_normalised = final_fit(f, boxes_a, boxes_b, o, bounds, gate, support, out->affine_normalised);
-  recorder->add_step(TraceStepKind::kPolish, out->affine_normalised, out->score, out->score, false);
   out->confidence = confidence_from_scores(scores.answer, scores.rival);  // as searched, before soft refinement
-  second_look(f, boxes_a, boxes_b, o, bounds, support, recorder, out);
+  const char* left_out = nullptr;
+  if (!time.allows(kSoftRefineScores)) {
+    left_out = "the soft refinement, final fit and second look";
+  } else {
+    // A confirmed best only: an unconfirmed one is judged against the second look's candidates next, and
+    // raising it alone would tilt that comparison (3 true pairs among 15 rocks: seed 5 of
+    // SmallOverlap.ThreeTruePairsAmongFifteenRocksAt25Degrees).
+    if (r.stop == StopReason::kCannotBeBeaten && soft_refine(support, &out->affine_normalised, &out->score))
+      recorder->add_step(TraceStepKind::kRefinement, out->affine_normalised, out->score, out->score, true);
+    if (!time.allows(kFinalFitScores)) {
+      left_out = "the final fit and second look";
+    } else {
+      out->affine_normalised = final_fit(f, boxes_a, boxes_b, o, bounds, gate, support, out->affine_normalised);
+      recorder->add_step(TraceStepKind::kPolish, out->affine_normalised, out->score, out->score, false);
+      if (second_look_applies(f, out->stop) && !time.allows(kSecondLookScores))
+        left_out = "the second look";
+      else
+        second_look(f, boxes_a, boxes_b, o, bounds, support, recorder, out);
+    }
+  }
+  if (left_out != nullptr) {
+    out->stop = StopReason::kTimeBudget;
+    add_note(&out->note, fmt::format("time budget spent after the search: {} left out", left_out));
+  }
+}
+
+// The answer when the time budget ends the set-up before any hypothesis is scored: the coarse pass's alignment
+// of the largest rocks when it found one, else the identity; neither was judged against a rival.
+void cut_during_set_up(const RegistrationFrame& f, const std::vector<Affine2>& coarse, MethodOutcome* out) {
+  out->stop = StopReason::kTimeBudget;
+  out->confidence = 0;
+  out->inliers = -1;  // the pairs stand in (no grid was built to count them)
+  if (!coarse.empty()) {
+    out->affine_normalised = coarse.front();
+    out->note = "time budget spent while setting up the search: the alignment of the largest rocks used";
+  } else {
+    out->affine_normalised = f.from_image(identity_affine());
+    out->note = "time budget spent while setting up the search: identity used";
+  }
 }
 
 // The search and the stages after it, on two non-empty sides.
 void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
             const RegistrationOptions& o, const Deadline& deadline, MethodOutcome* out) {
   const Bounds bounds = hypothesis_bounds(o);
-  const double gate = consensus_gate(f, o);
-  GuidedSampler sampler(f, bounds, gate, o.seed, o.record_trace, coarse_hypotheses(f, boxes_a, boxes_b, o));
+  const double gate = consensus_gate(f, o, deadline);
+  // The set-up (the coarse pass, each side's neighbours, the grid) is read against the time budget between its
+  // stages; when the budget ends it, no hypothesis has been scored and the search does not start.
+  std::vector<Affine2> coarse;
+  if (!deadline.passed()) coarse = coarse_hypotheses(f, boxes_a, boxes_b, o, deadline);
+  if (deadline.passed()) return cut_during_set_up(f, coarse, out);
+  GuidedSampler sampler(f, bounds, gate, o.seed, o.record_trace, coarse, &deadline);
+  if (deadline.passed()) return cut_during_set_up(f, coarse, out);
   SupportMeasurer support(f, gate, bounds);
-  ConsensusScorer scorer(&support, o.consensus.max_hypotheses);
+  ConsensusScorer scorer(&support, o.consensus.max_hypotheses, &deadline);
   PassThroughEstimator estimator;
   RobustLoopOptions lo;
   lo.max_trials = o.consensus.max_hypotheses;
@@ -230,7 +290,13 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
   out->work = r.work;
   out->stop = r.stop;
   const bool found = r.found && std::isfinite(r.best_score);
-  if (found && deadline.passed()) {
+  StageTime time{deadline};
+  if (found && deadline.has_budget()) {
+    const double before = deadline.elapsed_ms();
+    support.score(r.best);
+    time.score_ms = deadline.elapsed_ms() - before;
+  }
+  if (found && !time.allows(kPlacementsScores)) {
     // Each stage after the search scores whole sets again (tens of milliseconds on 5,000 rocks): with the
     // time budget spent the answer is the search's best as it stands, judged against the rivals it scored.
     out->affine_normalised = r.best;
@@ -239,7 +305,7 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
     out->confidence = confidence_from_scores(r.best_score, recorder.rival_score());
     out->note = "time budget spent: the search's best, without the rival placements, polish or second look";
   } else if (found) {
-    after_search(f, boxes_a, boxes_b, o, bounds, gate, r, &support, &recorder, out);
+    after_search(f, boxes_a, boxes_b, o, bounds, gate, r, time, &support, &recorder, out);
   } else {
     out->note = r.stop == StopReason::kTimeBudget
                     ? "time budget spent before a plausible affine was found: identity used"
@@ -247,7 +313,8 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
     out->confidence = 0;
   }
   out->trace = recorder.take_trace(describe_stop(r.stop, r.trials, r.hypotheses, r.work, lo.max_work));
-  out->inliers = support.count_inliers(out->affine_normalised);
+  // Counting inliers queries the grid once per A rock: with the budget spent the pairs stand in (set after them).
+  out->inliers = deadline.passed() ? -1 : support.count_inliers(out->affine_normalised);
   if (f.a.size() < 3 || f.b.size() < 3) out->note = "fewer than 3 rocks on a side: translation at most";
 }
 
@@ -264,7 +331,8 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
     out.stop = StopReason::kTooFewPoints;
     out.note = "a side has no rocks: nothing to register";
   }
-  out.pairs = pair_aligned_boxes(f.to_image(out.affine_normalised), boxes_a, boxes_b, pairing_rule(o));
+  out.pairs = pair_final(f.to_image(out.affine_normalised), boxes_a, boxes_b, o, deadline, &out.note, &out.stop);
+  if (out.inliers < 0) out.inliers = static_cast<int>(out.pairs.size());
   return out;
 }
 

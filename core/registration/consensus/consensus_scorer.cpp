@@ -31,8 +31,9 @@ void Confirmations::set_best(const Affine2& m, long anchor) {
   if (std::find(anchors_.begin(), anchors_.end(), anchor) == anchors_.end()) anchors_.push_back(anchor);
 }
 
-ConsensusScorer::ConsensusScorer(SupportMeasurer* support, int hypothesis_budget)
+ConsensusScorer::ConsensusScorer(SupportMeasurer* support, int hypothesis_budget, const Deadline* deadline)
     : support_(support),
+      deadline_(deadline),
       confirmations_(support->a(), support->gate2()),
       chance_(chance_of_agreement(support->grid().points(), support->gate2())),
       budget_(std::max(1, hypothesis_budget)),
@@ -40,6 +41,7 @@ ConsensusScorer::ConsensusScorer(SupportMeasurer* support, int hypothesis_budget
 
 bool ConsensusScorer::worth_refining(const GuidedHypothesis& h, const Affine2& m, double s, double best) {
   if (s < kTuning.min_refine_score) return false;
+  if (deadline_ != nullptr && deadline_->passed()) return false;
   if (confirmations_.has_best() && confirmations_.agrees_with_best(m)) {
     confirmations_.confirm(h.anchor);
     return false;
@@ -48,7 +50,10 @@ bool ConsensusScorer::worth_refining(const GuidedHypothesis& h, const Affine2& m
 }
 
 void ConsensusScorer::refine(const GuidedHypothesis& h, Affine2* m, double* s) {
-  improve(support_, m, s);
+  improve(support_, m, s, deadline_);
+  // The bookkeeping below counts inliers and a binomial tail over every rock: skipped once the budget is spent
+  // (the search stops before its next sample; the refined model is still scored as the loop's best).
+  if (deadline_ != nullptr && deadline_->passed()) return;
   if (confirmations_.has_best() && confirmations_.agrees_with_best(*m))
     confirmations_.confirm(h.anchor);
   else if (*s > best_refined_score_)

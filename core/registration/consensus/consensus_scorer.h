@@ -10,6 +10,7 @@
 #include "core/registration/consensus/consensus_stop.h"
 #include "core/registration/consensus/guided_sampler.h"
 #include "core/registration/consensus/support_measurer.h"
+#include "core/registration/deadline.h"
 
 namespace ipd::detail {
 
@@ -40,7 +41,9 @@ class Confirmations {
 
 class ConsensusScorer {
  public:
-  ConsensusScorer(SupportMeasurer* support, int hypothesis_budget);
+  // `deadline` (may be null): once passed, no hypothesis is refined (a refinement on 5,000 rocks costs
+  // milliseconds) and a refinement under way stops between its steps.
+  ConsensusScorer(SupportMeasurer* support, int hypothesis_budget, const Deadline* deadline = nullptr);
 
   double score(const Affine2& m) { return support_->score(m); }
   // Worth a least-squares pass: close to the best so far (after its own refinement), or early on. A hypothesis
@@ -52,6 +55,7 @@ class ConsensusScorer {
 
  private:
   SupportMeasurer* support_;
+  const Deadline* deadline_;
   Confirmations confirmations_;
   double chance_;
   int budget_, max_count_, best_count_ = 0;

@@ -13,7 +13,8 @@ namespace ipd::detail {
 // Each point's k nearest other points, nearest first (ties by index; coincident points left out: a duplicate
 // of the rock itself spans nothing). Grid queries in a disc that doubles until it holds k points, so the cost
 // is about n k log n, not n^2.
-std::vector<std::vector<int>> nearest_neighbours(const std::vector<Eigen::Vector2d>& p, int k) {
+std::vector<std::vector<int>> nearest_neighbours(const std::vector<Eigen::Vector2d>& p, int k,
+                                                 const Deadline* deadline) {
   const int n = static_cast<int>(p.size());
   std::vector<std::vector<int>> nn(n);
   const int kk = std::min(k, n - 1);
@@ -28,6 +29,7 @@ std::vector<std::vector<int>> nearest_neighbours(const std::vector<Eigen::Vector
   std::vector<int> near;
   std::vector<std::pair<double, int>> d;
   for (int i = 0; i < n; ++i) {
+    if (deadline != nullptr && (i & 255) == 0 && deadline->passed()) break;
     for (double r = r0;; r *= 2) {
       grid.within(p[i], r, &near);
       // Every point is inside once the disc covers the layout (or the radius stops growing).

@@ -6,12 +6,16 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/registration/deadline.h"
+
 namespace ipd::detail {
 
 // Each point's k nearest other points, nearest first (ties by index; coincident points left out: a duplicate
 // of the rock itself spans nothing). Grid queries in a disc that doubles until it holds k points, so the cost
-// is about n k log n, not n^2.
-std::vector<std::vector<int>> nearest_neighbours(const std::vector<Eigen::Vector2d>& p, int k);
+// is about n k log n, not n^2. With a deadline that passes, it stops early (read every 256 points) and the rest
+// of the lists stay empty: the caller must not use them.
+std::vector<std::vector<int>> nearest_neighbours(const std::vector<Eigen::Vector2d>& p, int k,
+                                                 const Deadline* deadline = nullptr);
 
 // P(X >= k) for X ~ Binomial(n, p), summed in log space.
 double binomial_tail(int n, double p, int k);

@@ -11,8 +11,9 @@
 namespace ipd::detail {
 
 GuidedSampler::GuidedSampler(const RegistrationFrame& f, const Bounds& bounds, double gate, std::uint64_t seed,
-                             bool record, const std::vector<Affine2>& first)
+                             bool record, const std::vector<Affine2>& first, const Deadline* deadline)
     : f_(f),
+      deadline_(deadline),
       bounds_(bounds),
       gate2_(gate * gate),
       min_det_(bounds.min_scale * bounds.min_scale),
@@ -26,11 +27,15 @@ GuidedSampler::GuidedSampler(const RegistrationFrame& f, const Bounds& bounds, d
   // 3. neighbourhood triples, rocks of A in a seeded order
   // Small sets are cheap to search widely, and need it: fewer rocks keep fewer neighbours in common.
   small_ = f.a.size() <= kTuning.small_set && f.b.size() <= kTuning.small_set;
-  nn_a_ = nearest_neighbours(f.a, small_ ? kTuning.neighbours_a + 2 : kTuning.neighbours_a);
+  nn_a_ = nearest_neighbours(f.a, small_ ? kTuning.neighbours_a + 2 : kTuning.neighbours_a, deadline);
+  if (deadline != nullptr && deadline->passed()) return;
   // A side that few rocks are left on (the rest out of view): every one of them may be a neighbour.
-  nn_b_ = nearest_neighbours(f.b, f.b.size() <= kTuning.all_neighbours_below ? static_cast<int>(f.b.size())
-                                  : small_                                   ? kTuning.neighbours_b + 3
-                                                                             : kTuning.neighbours_b);
+  nn_b_ = nearest_neighbours(f.b,
+                             f.b.size() <= kTuning.all_neighbours_below ? static_cast<int>(f.b.size())
+                             : small_                                   ? kTuning.neighbours_b + 3
+                                                                        : kTuning.neighbours_b,
+                             deadline);
+  if (deadline != nullptr && deadline->passed()) return;
   stars_a_.resize(f.a.size());
   stars_b_.resize(f.b.size());
   order_a_.resize(f.a.size());
@@ -79,7 +84,8 @@ bool GuidedSampler::next(GuidedHypothesis* out) {
   // Triples that two more neighbours confirm come first, anchor by anchor: in a first pass each A rock
   // meets the third of B closest to it in size, in a second pass the rest. Triples only one more
   // neighbour confirms are kept aside until both passes are done.
-  while (pending_.empty()) {
+  for (int expanded = 0; pending_.empty(); ++expanded) {
+    if (deadline_ != nullptr && (expanded & 63) == 63 && deadline_->passed()) return false;
     if (pass_ >= 2) return next_deferred(out);
     const size_t lo = pass_ == 0 ? 0 : first_window_, hi = pass_ == 0 ? first_window_ : f_.b.size();
     if (jb_ < lo) jb_ = lo;

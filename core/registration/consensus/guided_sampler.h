@@ -27,11 +27,13 @@ struct GuidedHypothesis {
 class GuidedSampler {
  public:
   // `first`: hypotheses proposed before any other (the coarse pass of a large set). `record`: keep each
-  // hypothesis' rocks for the trace.
+  // hypothesis' rocks for the trace. `deadline` (may be null): once it has passed the set-up stops early and the
+  // sampler must not be used (the caller reads the deadline after constructing it).
   GuidedSampler(const RegistrationFrame& f, const Bounds& bounds, double gate, std::uint64_t seed, bool record,
-                const std::vector<Affine2>& first);
+                const std::vector<Affine2>& first, const Deadline* deadline = nullptr);
 
-  // False when every hypothesis has been proposed.
+  // False when every hypothesis has been proposed, or when the deadline passed while expanding anchors (one call
+  // can expand hundreds of rock pairs that propose nothing).
   bool next(GuidedHypothesis* out);
 
   // The last hypothesis' rocks (record mode): A's three then B's three, in matching order; has_sample is false
@@ -69,6 +71,7 @@ class GuidedSampler {
   bool sizes_agree(int i, int j) const;
 
   const RegistrationFrame& f_;
+  const Deadline* deadline_;  // may be null; next() reads it every 64 expansions
   Bounds bounds_;
   double gate2_;
   double min_det_, max_det_;  // the determinant lies between the squared singular-value bounds

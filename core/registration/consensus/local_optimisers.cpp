@@ -9,9 +9,10 @@
 
 namespace ipd::detail {
 
-void improve(SupportMeasurer* support, Affine2* m, double* s) {
+void improve(SupportMeasurer* support, Affine2* m, double* s, const Deadline* deadline) {
   std::vector<Eigen::Vector2d> src, dst;
   for (double scale : kTuning.refine_gate_scales) {
+    if (deadline != nullptr && deadline->passed()) return;
     support->inlier_pairs(*m, scale * support->gate2(), &src, &dst);
     Affine2 cand;
     if (src.size() < 3 || !affine_least_squares(src, dst, &cand)) continue;

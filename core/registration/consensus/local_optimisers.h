@@ -4,12 +4,14 @@
 
 #include "core/geometry/geometry.h"
 #include "core/registration/consensus/support_measurer.h"
+#include "core/registration/deadline.h"
 
 namespace ipd::detail {
 
 // Least squares on the inliers, first with a wide gate (a triple's affine extrapolates poorly far from it)
 // then the scoring gate, each step kept while the score `*s` improves.
-void improve(SupportMeasurer* support, Affine2* m, double* s);
+// With a deadline that has passed, no further step starts.
+void improve(SupportMeasurer* support, Affine2* m, double* s, const Deadline* deadline = nullptr);
 
 // Robust least squares on the final consensus (Cauchy weights, scale a third of the gate): improve() stops at
 // the first fit that doesn't raise the score; this uses every inlier and lets the few rocks labelled far off

@@ -80,6 +80,30 @@ TEST(StudyPipeline, AMissingSceneIsOneProblemOverItsDomainPairs) {
   EXPECT_EQ(again.problems[0].scene, "s2");
 }
 
+// study.yaml's registration.budget_ms reaches every registration, for the table (through the options the CLI
+// builds from the study) and for the studio's Session. A budget of a nanosecond is spent at the first reading of
+// the clock after the start, so each registration stops on it.
+TEST(StudyPipeline, TheStudysTimeBudgetReachesEveryRegistration) {
+  test::TempDir d;
+  test::write_text(d / "study.yaml", "registration: {budget_ms: 0.000001}\n");
+  test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n0 0.3 0.8 0.1 0.1\n");
+  test::write_text(d / "synth/labels/s1.txt", "0 0.21 0.2 0.1 0.1\n0 0.61 0.6 0.1 0.1\n0 0.31 0.8 0.1 0.1\n");
+  const Study study = open_study(d.path());
+  EXPECT_EQ(study.config.registration.time_budget_ms, 0.000001);
+  PipelineOptions o;
+  o.registration = study.config.registration;  // what `ipd table` and `ipd metrics` pass (study_options.cpp)
+  const PairedStudy table = pair_study(load_labels(study), {{"real", "synth"}}, o);
+  ASSERT_EQ(table.pairs[0].scenes.size(), 1u);
+  EXPECT_EQ(table.pairs[0].scenes[0].automatic.registration.stop, StopReason::kTimeBudget);
+  const Session session = Session::open(d.path());
+  EXPECT_EQ(session.scenes()[0].automatic.registration.stop, StopReason::kTimeBudget);
+  // Without the setting the same scene is registered to the end, and pairs all three rocks.
+  test::write_text(d / "study.yaml", "registration: {method: consensus}\n");
+  const Session unbudgeted = Session::open(d.path());
+  EXPECT_NE(unbudgeted.scenes()[0].automatic.registration.stop, StopReason::kTimeBudget);
+  EXPECT_EQ(unbudgeted.scenes()[0].automatic.registration.pairs, (RockPairs{{0, 0}, {1, 1}, {2, 2}}));
+}
+
 TEST(StudyPipeline, TheSessionReportsWhatTheTableWarnsAbout) {
   test::TempDir d;
   write_study(d);

@@ -367,7 +367,9 @@ TEST(PaperRegistration, DroppingModelsBelowTheRivalChangesNothing) {
 
 TEST(PaperRegistration, TooFewRocksFallsBackToIdentity) {
   const auto a = layout(2, 1);
-  const RegistrationReport r = register_rocks(a, a, {RegistrationMethod::kPaper});
+  RegistrationOptions paper;
+  paper.method = RegistrationMethod::kPaper;
+  const RegistrationReport r = register_rocks(a, a, paper);
   EXPECT_EQ(r.stop, StopReason::kTooFewPoints);
   EXPECT_TRUE(r.affine.isApprox(identity_affine(), 1e-12));
   EXPECT_EQ(r.pairs, (RockPairs{{0, 0}, {1, 1}}));
@@ -475,7 +477,8 @@ TEST(RegistrationMethods, CpdRefusesLayoutsOverItsPairLimitAndNamesTheAlternativ
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(),
                  "--method cpd: 4001 x 4001 rocks is 16008001 rock pairs, over cpd's limit of 16000000 (it holds a "
-                 "weight for every pair in memory); --method consensus registers layouts this large");
+                 "weight for every pair in memory); --method consensus registers layouts this large (or give cpd a "
+                 "time budget: it then registers the largest rocks of each side)");
   }
 }
 

@@ -126,8 +126,9 @@ TEST(Study, MessagesQuoteAtMostFortyCharactersOfTheFile) {
   EXPECT_EQ(message(long_word + ": 1\n"),
             "study.yaml:1: unknown setting '" + shown +
                 "' (expected rock_class, conf_threshold, image_size, domains, models, registration)");
-  EXPECT_EQ(message("registration: {" + long_word + ": 1}\n"),
-            "study.yaml:1: unknown registration setting '" + shown + "' (expected method, seed, trials, gate)");
+  EXPECT_EQ(
+      message("registration: {" + long_word + ": 1}\n"),
+      "study.yaml:1: unknown registration setting '" + shown + "' (expected method, seed, trials, gate, budget_ms)");
   EXPECT_EQ(message("registration: {method: " + long_word + "}\n"),
             "study.yaml:1: unknown registration method '" + shown + "' (expected consensus, paper or cpd)");
   EXPECT_EQ(message("registration: {seed: -" + long_word + "}\n"),
@@ -159,12 +160,37 @@ TEST(Study, ModelSettingsAreCheckedAtEveryLevel) {
             "study.yaml:1: models.det.trained_on is an empty name; expected the name of the domain the model was "
             "trained on (leave the setting out when it is unknown)");
   EXPECT_EQ(message("registration: {method: cpd, sed: 3}\n"),
-            "study.yaml:1: unknown registration setting 'sed' (expected method, seed, trials, gate)");
+            "study.yaml:1: unknown registration setting 'sed' (expected method, seed, trials, gate, budget_ms)");
   // What stays allowed: a model with no settings (training domain unknown) and a quoted domain named null.
   const StudyConfig c = parse_study_config("models: {a: , b: {}, c: {trained_on: 'null'}}\n", "study.yaml");
   EXPECT_EQ(c.trained_on.at("a"), "");
   EXPECT_EQ(c.trained_on.at("b"), "");
   EXPECT_EQ(c.trained_on.at("c"), "null");
+}
+
+// registration.budget_ms is --budget-ms for every registration of the study: a number of milliseconds > 0; anything
+// else is an error naming the line, quoting at most 40 characters of what was written.
+TEST(Study, RegistrationBudgetIsANumberOfMillisecondsAboveZero) {
+  auto message = [](const std::string& yaml) {
+    try {
+      parse_study_config(yaml, "study.yaml");
+    } catch (const StudyError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_FALSE(parse_study_config("registration: {method: paper}\n", "study.yaml").registration.time_budget_ms);
+  EXPECT_EQ(parse_study_config("registration:\n  budget_ms: 12.5\n", "study.yaml").registration.time_budget_ms, 12.5);
+  const std::string expected =
+      "study.yaml:2: registration.budget_ms must be a number of milliseconds > 0 (unset: no "
+      "time limit), got ";
+  EXPECT_EQ(message("registration:\n  budget_ms: 0\n"), expected + "0");
+  EXPECT_EQ(message("registration:\n  budget_ms: -3\n"), expected + "-3");
+  EXPECT_EQ(message("registration:\n  budget_ms: .nan\n"), expected + ".nan");
+  EXPECT_EQ(message("registration:\n  budget_ms: .inf\n"), expected + ".inf");
+  EXPECT_EQ(message("registration:\n  budget_ms: [1]\n"), expected + "a list or map");
+  EXPECT_EQ(message("registration:\n  budget_ms: " + std::string(1000, '9') + "x\n"),
+            expected + std::string(37, '9') + "...");
 }
 
 // study.yaml's registration.trials is the configured method's budget, as ipd register's --trials: cpd's EM
