@@ -28,7 +28,7 @@ void check_gallery_options(const std::vector<std::string>& args, Fail fail) {
         fail("'gallery': expected a page number >= 1, got '" + quoted_for_message(value) + "'");
     } else if (args[k] == "sort" && !sort) {
       sort = true;
-      int key = 0;
+      GallerySort key = GallerySort::kDiff;
       if (!parse_gallery_sort(value, &key))
         fail("'gallery': expected a sort key (" + std::string(kGallerySortWords) + "), got '" +
              quoted_for_message(value) + "'");
@@ -65,7 +65,7 @@ const std::map<std::string, VerbArguments>& replay_verbs() {
       {"rocks", {2, "two axis names (x, y)"}},
       {"select", {4, "a box's corners x0 y0 x1 y1 on the rock view's axes"}},
       {"list", {1, "a text file"}},
-      {"gallery", {0, "[page N] [sort diff|perf-left|perf-right|size]"}},
+      {"gallery", {0, "[page N] [sort diff|perf-a|perf-b|size]"}},
       {"review", {0, "nothing"}},
       {"suspect", {0, "nothing"}},
       {"check", {2, "two rock numbers of a pair (left, right), or nothing for the selected pair"}},
