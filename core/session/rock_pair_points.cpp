@@ -123,13 +123,6 @@ bool parse_pair_axis(const std::string& word, PairAxis* axis) {
   return false;
 }
 
-bool parse_gallery_sort(const std::string& word, int* sort) {
-  static const char* kWords[] = {"diff", "perf-left", "perf-right", "size"};
-  for (int k = 0; k < 4; ++k)
-    if (word == kWords[k]) return *sort = k, true;
-  return false;
-}
-
 bool parse_gallery_sort(const std::string& word, GallerySort* sort) {
   static const std::pair<const char*, GallerySort> kWords[] = {{"diff", GallerySort::kDiff},
                                                                {"perf-a", GallerySort::kPerfA},

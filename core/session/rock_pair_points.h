@@ -49,15 +49,14 @@ inline constexpr const char* kPairAxisWords = "perf-a, perf-b, diff, size, x, y,
 // Indices of `points` in the gallery's order: largest |diff| first; ties by scene, then left rock, then right
 // rock, so the order never depends on how the points were gathered.
 std::vector<int> gallery_order(const std::vector<RockPairPoint>& points);
-// The gallery's sort keys in scripts (ipd-studio --replay `gallery sort WORD`): 0 |diff|, 1 the left rock's
-// performance, 2 the right rock's, 3 size.
-bool parse_gallery_sort(const std::string& word, int* sort);
-inline constexpr const char* kGallerySortWords = "diff, perf-left, perf-right or size";
-
 // The gallery's sort keys, each largest first; ties keep gallery_order (so |diff| breaks no ties).
 enum class GallerySort { kDiff, kPerfA, kPerfB, kSize };
-// "diff", "perf-a", "perf-b", "size" (`ipd figure gallery --sort`).
+// "diff", "perf-a", "perf-b", "size": the words of `ipd figure gallery --sort` and of scripts
+// (ipd-studio --replay `gallery sort WORD`).
 bool parse_gallery_sort(const std::string& word, GallerySort* sort);
+inline constexpr const char* kGallerySortWords = "diff, perf-a, perf-b or size";
+inline constexpr GallerySort kGallerySorts[] = {GallerySort::kDiff, GallerySort::kPerfA, GallerySort::kPerfB,
+                                                GallerySort::kSize};
 const char* gallery_sort_name(GallerySort sort);  // "|diff|", "perf A", "perf B", "size"
 std::vector<int> gallery_sorted(const std::vector<RockPairPoint>& points, GallerySort sort);
 

@@ -292,7 +292,7 @@ TEST(StudioReplay, RockViewActionsNameTheirArguments) {
   EXPECT_EQ(run(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" +
-                ":1: 'gallery': expected a sort key (diff, perf-left, perf-right or size), got 'worst'\n");
+                ":1: 'gallery': expected a sort key (diff, perf-a, perf-b or size), got 'worst'\n");
   test::write_text(d / "actions.txt", "gallery page 0\n");
   EXPECT_EQ(run(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
@@ -304,7 +304,7 @@ TEST(StudioReplay, RockViewActionsNameTheirArguments) {
   test::write_text(d / "actions.txt", "gallery page\n");
   EXPECT_EQ(run(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"), "error: " + d / "actions.txt" +
-                                          ":1: 'gallery' takes [page N] [sort diff|perf-left|perf-right|size], got 1 "
+                                          ":1: 'gallery' takes [page N] [sort diff|perf-a|perf-b|size], got 1 "
                                           "argument(s)\n");
 }
 

@@ -243,11 +243,15 @@ constexpr int kGalleryPage = 8;
 
 void draw_gallery(const StudyView& v, RockViewState& st, UiCommands& out) {
   const Session& s = *v.session;
-  const std::string sorts[] = {"|diff|", "perf " + s.left_domain(), "perf " + s.right_domain(), "size"};
+  const auto sort_label = [&](GallerySort g) {
+    return g == GallerySort::kPerfA   ? "perf " + s.left_domain()
+           : g == GallerySort::kPerfB ? "perf " + s.right_domain()
+                                      : std::string(gallery_sort_name(g));
+  };
   ImGui::SetNextItemWidth(name_combo_width(s));
-  if (ImGui::BeginCombo("sort (largest first)", sorts[std::clamp(st.gallery_sort, 0, 3)].c_str())) {
-    for (int k = 0; k < 4; ++k)
-      if (ImGui::Selectable(sorts[k].c_str(), k == st.gallery_sort)) st.gallery_sort = k;
+  if (ImGui::BeginCombo("sort (largest first)", sort_label(st.gallery_sort).c_str())) {
+    for (const GallerySort g : kGallerySorts)
+      if (ImGui::Selectable(sort_label(g).c_str(), g == st.gallery_sort)) st.gallery_sort = g;
     ImGui::EndCombo();
   }
   static const std::vector<RockPairPoint> kNone;
@@ -323,18 +327,12 @@ bool adopt_rock_points(const Session& s, const std::shared_ptr<const RockPointSe
   if (points->pair != s.pair_index() || points->swapped != s.swapped() || points->model != s.model()) {
     if (st.points &&
         (st.points->pair != s.pair_index() || st.points->swapped != s.swapped() || st.points->model != s.model()))
-      st.points.reset(), st.gallery_sorted_by = -1;  // another cell's points: nothing to show meanwhile
+      st.points.reset(), st.gallery_sorted_by.reset();  // another cell's points: nothing to show meanwhile
     return false;
   }
   st.points = points;
-  st.gallery_sorted_by = -1;
+  st.gallery_sorted_by.reset();
   return true;
-}
-
-std::vector<int> gallery_sorted(const std::vector<RockPairPoint>& points, int sort) {
-  static const GallerySort kSorts[] = {GallerySort::kDiff, GallerySort::kPerfA, GallerySort::kPerfB,
-                                       GallerySort::kSize};
-  return ipd::gallery_sorted(points, kSorts[std::clamp(sort, 0, 3)]);
 }
 
 void apply_pair_selection(const Session& s, const PairSelection& sel, UiState& ui) {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,13 +29,13 @@ struct RockViewState {
   bool has_box = false;
   int box_x = 0, box_y = 0;
   double bx0 = 0, by0 = 0, bx1 = 0, by1 = 0;
-  int gallery_sort = 0;  // 0: |diff|, 1: left perf, 2: right perf, 3: size; largest first
+  GallerySort gallery_sort = GallerySort::kDiff;  // largest first
   int gallery_page = 0;
   int select_tab = -1;  // 0: scatter, 1: gallery, shown on the next frame (a script's `gallery`); -1: as is
   // The points in use (from the Rock pairs job) and what was derived from them.
   std::shared_ptr<const RockPointSet> points;
-  std::vector<int> gallery;    // points in the gallery's order
-  int gallery_sorted_by = -1;  // gallery_sort the order was made for
+  std::vector<int> gallery;                      // points in the gallery's order
+  std::optional<GallerySort> gallery_sorted_by;  // gallery_sort the order was made for
   // The binned scatter and what it was binned for.
   PairDensity density;
   ScatterRange range;
@@ -51,10 +52,6 @@ std::vector<int> rock_view_scenes(const UiState& ui, const RockViewState& st);
 // Takes `points` for the view when they belong to the session's current cell (domain pair, its order and
 // model): older points of the same cell are shown while newer ones are gathered. True when they changed.
 bool adopt_rock_points(const Session& s, const std::shared_ptr<const RockPointSet>& points, RockViewState& st);
-
-// The gallery's order of `points` for sort key `sort` (see RockViewState::gallery_sort): largest first,
-// ties in gallery_order's order (scene, then rocks).
-std::vector<int> gallery_sorted(const std::vector<RockPairPoint>& points, int sort);
 
 // An axis as the view names it: the domain's name, not A or B ("perf real", "conf synthetic", "|diff|").
 std::string pair_axis_label(PairAxis axis, const std::string& left, const std::string& right);
