@@ -62,6 +62,34 @@ std::string trace_cap_note(int steps, int hypotheses) {
          "; the search went on)";
 }
 
+std::string registration_stop_line(const RegistrationReport& r) {
+  std::string line = std::string("stopped: ") + to_string(r.stop);
+  if (r.note.empty()) return line;
+  if (r.stop != StopReason::kTimeBudget) return line + "; " + r.note;
+  // The note's sentences are joined by "; " (add_note); each one the budget cut short starts with the reason.
+  static const std::string kSpent = "time budget spent";
+  std::string rest = r.note;
+  for (size_t from = 0; from < rest.size();) {
+    if (rest.compare(from, kSpent.size(), kSpent) == 0) {
+      size_t cut = kSpent.size();
+      if (rest.compare(from + cut, 2, ": ") == 0)
+        cut += 2;  // "time budget spent: EM's alignment, ..."
+      else if (rest.compare(from + cut, 1, " ") == 0)
+        cut += 1;  // "time budget spent while setting up ..."
+      rest.erase(from, cut);
+    }
+    const size_t next = rest.find("; ", from);
+    from = next == std::string::npos ? rest.size() : next + 2;
+  }
+  return line + "; " + rest;
+}
+
+std::string no_steps_line(const RegistrationReport& r, bool rerun) {
+  if (!rerun) return "recording the search...";
+  if (r.stop == StopReason::kTimeBudget) return "no search recorded: the time budget was spent before it began";
+  return "no search recorded for this method";
+}
+
 float rerun_budget_ms(const UiState& ui, const RegistrationOptions& study) {
   return ui.rerun_budget_ms >= 0 ? ui.rerun_budget_ms : static_cast<float>(study.time_budget_ms.value_or(0));
 }
@@ -93,7 +121,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   if (r.ambiguous)
     text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1},
                                     std::string("ambiguous: ") + ambiguity_reason(r.ambiguity) + "; check the pairs");
-  text_disabled_wrapped_at_spaces(std::string("stopped: ") + to_string(r.stop) + (r.note.empty() ? "" : "; " + r.note));
+  text_disabled_wrapped_at_spaces(registration_stop_line(r));
   ReplayState& rp = ui.replay;
   const float end = static_cast<float>(steps) + 1.0f;  // the steps, then one unit of raw -> aligned motion
   // A position left from another registration's longer trace (a discarded re-run) ends at this one's motion.
@@ -178,7 +206,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   if (step)
     text_wrapped_at_spaces(replay_step_line(*step, k, steps));
   else if (steps == 0)
-    ImGui::TextDisabled(have_rerun ? "no search recorded for this method" : "recording the search...");
+    text_disabled_wrapped_at_spaces(no_steps_line(r, have_rerun));
   else
     ImGui::TextDisabled("final affine: raw -> aligned");
   if (r.trace.truncated) text_disabled_wrapped_at_spaces(trace_cap_note(steps, r.hypotheses));
