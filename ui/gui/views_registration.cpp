@@ -182,10 +182,15 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   float budget = rerun_budget_ms(ui, s.study().config.registration);
   same_line_if_fits(70 + ImGui::CalcTextSize("budget ms").x + ImGui::GetStyle().ItemInnerSpacing.x);
   ImGui::SetNextItemWidth(70);
-  if (ImGui::InputFloat("budget ms", &budget, 0, 0, "%g")) ui.rerun_budget_ms = std::max(0.0f, budget);
+  // No budget reads "none", not a bare 0; the whole text is selected on a click, so typing a number replaces it.
+  // A number too large for a float (inf) is no limit either.
+  if (ImGui::InputFloat("budget ms", &budget, 0, 0, budget > 0 ? "%g" : "none", ImGuiInputTextFlags_AutoSelectAll))
+    ui.rerun_budget_ms = std::isfinite(budget) ? std::max(0.0f, budget) : 0.0f;
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
-        "time budget of the re-run, in milliseconds (0: none); starts at study.yaml's registration.budget_ms");
+        "time budget of the re-run, in milliseconds (0 or none: no limit)\n"
+        "when it is spent the registration stops and keeps what it found so far\n"
+        "starts at study.yaml's registration.budget_ms");
   same_line_if_fits(button_width("re-run"));
   if (ImGui::Button("re-run")) ui.rerun_method = displayed, out.rerun_registration = true;
   if (have_rerun && !v.rerun_is_automatic) {
