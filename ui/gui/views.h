@@ -197,6 +197,9 @@ std::string trace_cap_note(int steps, int hypotheses);
 // sentences then say only where it ran out and what was left out ("while setting up the search: identity
 // used"), not "time budget spent" again.
 std::string registration_stop_line(const RegistrationReport& r);
+// The warning of an ambiguous registration ("ambiguous: REASON; check the pairs"); when the time budget ended
+// it, the budget may be why: a larger one may settle it.
+std::string ambiguity_line(const RegistrationReport& r);
 // Under the scrubber when the registration recorded no step: why (a budget spent before the search began, a
 // method that records none) or, for the study's own registration, that its search is still being recorded.
 std::string no_steps_line(const RegistrationReport& r, bool rerun);

@@ -84,6 +84,12 @@ std::string registration_stop_line(const RegistrationReport& r) {
   return line + "; " + rest;
 }
 
+std::string ambiguity_line(const RegistrationReport& r) {
+  std::string line = std::string("ambiguous: ") + ambiguity_reason(r.ambiguity) + "; check the pairs";
+  if (r.stop == StopReason::kTimeBudget) line += ", or re-run with a larger time budget, which may settle it";
+  return line;
+}
+
 std::string no_steps_line(const RegistrationReport& r, bool rerun) {
   if (!rerun) return "recording the search...";
   if (r.stop == StopReason::kTimeBudget) return "no search recorded: the time budget was spent before it began";
@@ -118,9 +124,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   // The registration maps the pair's first domain onto its second, whichever the view puts on the left.
   if (s.swapped())
     text_disabled_wrapped_at_spaces("(the view is swapped: " + db + " on the left, " + da + " on the right)");
-  if (r.ambiguous)
-    text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1},
-                                    std::string("ambiguous: ") + ambiguity_reason(r.ambiguity) + "; check the pairs");
+  if (r.ambiguous) text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1}, ambiguity_line(r));
   text_disabled_wrapped_at_spaces(registration_stop_line(r));
   ReplayState& rp = ui.replay;
   const float end = static_cast<float>(steps) + 1.0f;  // the steps, then one unit of raw -> aligned motion

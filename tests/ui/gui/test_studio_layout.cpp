@@ -209,6 +209,10 @@ TEST(RegistrationWords, TheBudgetsStopIsSaidOnce) {
   r.note.clear();
   EXPECT_EQ(registration_stop_line(r), "stopped: time budget spent");
   EXPECT_EQ(no_steps_line(r, true), "no search recorded: the time budget was spent before it began");
+  r.ambiguous = true, r.ambiguity = Ambiguity::kFewPairs;
+  EXPECT_EQ(ambiguity_line(r),
+            "ambiguous: fewer than 3 rocks are paired: too few to fix an alignment, another fits as well; check the "
+            "pairs, or re-run with a larger time budget, which may settle it");
   EXPECT_EQ(no_steps_line(r, false), "recording the search...");
   // The search converged; only the final pairing ran out of time: the note says so in full.
   r.stop = StopReason::kConverged;
@@ -216,6 +220,9 @@ TEST(RegistrationWords, TheBudgetsStopIsSaidOnce) {
   EXPECT_EQ(registration_stop_line(r),
             "stopped: converged; time budget spent before the rocks were paired: paired greedily");
   EXPECT_EQ(no_steps_line(r, true), "no search recorded for this method");
+  EXPECT_EQ(ambiguity_line(r),
+            "ambiguous: fewer than 3 rocks are paired: too few to fix an alignment, another fits as well; check the "
+            "pairs");
 }
 
 TEST(RegistrationCanvas, PlotClipStopsAboveTheLegendAndHoldsThePictureBox) {
