@@ -41,18 +41,16 @@ nlohmann::ordered_json comparison_json(const RendererComparison& c, const Proven
           {"sentence", comparison_sentence(c)},
           {"provenance", provenance_json(provenance)}};
 }
-}  // namespace
 
-Runner add_compare_command(CLI::App& app) {
-  struct Args {
-    StudyOptions study;
-    std::string ref, a, b;
-    int permutations = 2000;
-    bool json = false;
-  };
-  auto args = std::make_shared<Args>();
-  CLI::App* cmd =
-      app.add_subcommand("compare", "Which renderer is closer to the reference: ΔIPD = IPD(ref, a) - IPD(ref, b)");
+// What `ipd compare` was asked for.
+struct CompareArgs {
+  StudyOptions study;
+  std::string ref, a, b;
+  int permutations = 2000;
+  bool json = false;
+};
+
+void declare_compare_options(CLI::App* cmd, CompareArgs* args) {
   add_study_options(cmd, &args->study, true);
   cmd->add_option("--ref", args->ref, "Reference domain (default: the study's first)");
   cmd->add_option("--a", args->a, "First renderer (default: the study's second domain)");
@@ -61,89 +59,121 @@ Runner add_compare_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->default_val(2000);
   cmd->add_flag("--json", args->json, "One JSON object (an array of them when several models are compared)");
-  return [args]() -> int {
-    StudyOptions so = args->study;
-    const Study study = open_study_with_conf(so);
-    if (args->json) require_utf8_names(study);  // before the work, naming the file
-    auto pick = [&](std::string name, size_t k, const char* flag) {
-      if (!name.empty()) return name;
-      if (study.domains.size() <= k)
-        throw StudyError(fmt::format("{}: compare needs three domains; give {}", study.root, flag));
-      return study.domains[k].name;
-    };
-    const std::string ref = pick(args->ref, 0, "--ref"), a = pick(args->a, 1, "--a"), b = pick(args->b, 2, "--b");
-    if (ref == a || ref == b || a == b)
-      throw StudyError(fmt::format("compare needs three different domains, got --ref {} --a {} --b {}", ref, a, b));
-    so.domains = {ref, a, b};
-    auto loaded = load_study_table(so, false);
-    if (!loaded) return kBadInput;
-    CompareOptions co;
-    co.bootstrap = loaded->bootstrap;
-    co.permutations = args->permutations;
-    if (const auto e = co.validate(); !e.empty()) throw CLI::ValidationError(e);
-    std::vector<RendererComparison> results;
-    std::string no_value;  // the first cell that is not a number, and why
-    for (const auto& m : loaded->table.models) {
-      const TableCell* x = loaded->table.cell(m.name, ref, a);
-      const TableCell* y = loaded->table.cell(m.name, ref, b);
-      if (!x || !y || x->missing_predictions || y->missing_predictions) {
-        std::string lacking;  // the domains without a predictions folder for this model, by name
-        for (const std::string& d : {ref, a, b})
-          if (!loaded->labels.has_predictions(d, m.name)) lacking += (lacking.empty() ? "" : ", ") + d;
-        if (!so.models.empty()) throw StudyError(fmt::format("model '{}' has no predictions for {}", m.name, lacking));
-        fmt::print(stderr, "warning: model '{}' skipped: it has no predictions for {}\n", m.name, lacking);
-        continue;
-      }
-      // Two empty prediction sets would compare as "no significant difference": refuse, and say why.
-      const TableCell* empty = !x->no_value_reason.empty() ? x : !y->no_value_reason.empty() ? y : nullptr;
-      if (empty) {
-        const std::string why = fmt::format("model '{}': IPD({}, {}) is not a number: {}", m.name, empty->a, empty->b,
-                                            empty->no_value_reason);
-        if (!so.models.empty()) throw StudyError(why);
-        fmt::print(stderr, "warning: {}; model skipped\n", why);
-        if (no_value.empty()) no_value = why;
-        continue;
-      }
-      results.push_back(compare_renderers(loaded->table, m.name, ref, a, b, co));
+}
+
+// The domain given by its flag, else the study's k-th.
+std::string domain_or_default(const Study& study, const std::string& name, size_t k, const char* flag) {
+  if (!name.empty()) return name;
+  if (study.domains.size() <= k)
+    throw StudyError(fmt::format("{}: compare needs three domains; give {}", study.root, flag));
+  return study.domains[k].name;
+}
+
+// One comparison per model with predictions for all three domains. A model without them is skipped with a
+// warning, or is an error when it was asked for by name; so is one whose IPD is not a number.
+std::vector<RendererComparison> compare_each_model(const LoadedStudy& loaded, const StudyOptions& so,
+                                                   const std::string& root, const std::string& ref,
+                                                   const std::string& a, const std::string& b,
+                                                   const CompareOptions& co) {
+  std::vector<RendererComparison> results;
+  std::string no_value;  // the first cell that is not a number, and why
+  for (const auto& m : loaded.table.models) {
+    const TableCell* x = loaded.table.cell(m.name, ref, a);
+    const TableCell* y = loaded.table.cell(m.name, ref, b);
+    if (!x || !y || x->missing_predictions || y->missing_predictions) {
+      std::string lacking;  // the domains without a predictions folder for this model, by name
+      for (const std::string& d : {ref, a, b})
+        if (!loaded.labels.has_predictions(d, m.name)) lacking += (lacking.empty() ? "" : ", ") + d;
+      if (!so.models.empty()) throw StudyError(fmt::format("model '{}' has no predictions for {}", m.name, lacking));
+      fmt::print(stderr, "warning: model '{}' skipped: it has no predictions for {}\n", m.name, lacking);
+      continue;
     }
-    if (results.empty() && !no_value.empty())
-      throw StudyError(fmt::format("{}: nothing to compare: {}", study.root, no_value));
-    if (results.empty())
-      throw StudyError(fmt::format("{}: no model has predictions for {}, {} and {}", study.root, ref, a, b));
-    // Which label files and hand edits the comparison's numbers come from.
-    const Provenance provenance = table_provenance(loaded->table, loaded->labels);
-    if (args->json) {
-      if (results.size() == 1) {
-        std::cout << dump_json_output(comparison_json(results[0], provenance), 2) << "\n";
-      } else {
-        nlohmann::ordered_json all = nlohmann::ordered_json::array();
-        for (const auto& r : results) all.push_back(comparison_json(r, provenance));
-        std::cout << dump_json_output(all, 2) << "\n";
-      }
-    } else {
-      for (const auto& r : results) {
-        std::cout << comparison_sentence(r) << "\n";
-        if (!std::isnan(r.result.delta_common))
-          std::cout << fmt::format("  over the {} ref rocks paired in both: ΔIPD = {}\n", r.result.pairs_common,
-                                   minus_number(r.result.delta_common, 4));  // the sentence's minus sign
-      }
-      // A row of fewer than 2 scenes has neither interval nor test (its sentence says so).
-      const auto tested = [](const RendererComparison& r) { return r.result.scenes >= 2; };
-      const bool all_exact =
-          std::all_of(results.begin(), results.end(), [&](const auto& r) { return r.result.exact_p || !tested(r); });
-      const std::string test = all_exact ? std::string("exact: every swap pattern of the scenes")
-                                         : fmt::format("{} permutations, exact where 2^scenes ≤ that", co.permutations);
-      if (std::none_of(results.begin(), results.end(), tested))
-        std::cout << "(intervals and tests need at least 2 scenes)\n";
-      else
-        std::cout << fmt::format(
-            "({:g}% paired scene-bootstrap interval, {} resamples; sign-flip permutation test, "
-            "{}; seed {})\n",
-            100 * co.bootstrap.level, co.bootstrap.resamples, test, co.bootstrap.seed);
-      std::cout << provenance_note(provenance) << "\n";
+    // Two empty prediction sets would compare as "no significant difference": refuse, and say why.
+    const TableCell* empty = !x->no_value_reason.empty() ? x : !y->no_value_reason.empty() ? y : nullptr;
+    if (empty) {
+      const std::string why = fmt::format("model '{}': IPD({}, {}) is not a number: {}", m.name, empty->a, empty->b,
+                                          empty->no_value_reason);
+      if (!so.models.empty()) throw StudyError(why);
+      fmt::print(stderr, "warning: {}; model skipped\n", why);
+      if (no_value.empty()) no_value = why;
+      continue;
     }
-    return kOk;
-  };
+    results.push_back(compare_renderers(loaded.table, m.name, ref, a, b, co));
+  }
+  if (results.empty() && !no_value.empty()) throw StudyError(fmt::format("{}: nothing to compare: {}", root, no_value));
+  if (results.empty()) throw StudyError(fmt::format("{}: no model has predictions for {}, {} and {}", root, ref, a, b));
+  return results;
+}
+
+void print_comparisons_json(const std::vector<RendererComparison>& results, const Provenance& provenance) {
+  if (results.size() == 1) {
+    std::cout << dump_json_output(comparison_json(results[0], provenance), 2) << "\n";
+  } else {
+    nlohmann::ordered_json all = nlohmann::ordered_json::array();
+    for (const auto& r : results) all.push_back(comparison_json(r, provenance));
+    std::cout << dump_json_output(all, 2) << "\n";
+  }
+}
+
+// One sentence per model, then how the intervals and tests were made and where the numbers come from.
+void print_comparisons_text(const std::vector<RendererComparison>& results, const CompareOptions& co,
+                            const Provenance& provenance) {
+  for (const auto& r : results) {
+    std::cout << comparison_sentence(r) << "\n";
+    if (!std::isnan(r.result.delta_common))
+      std::cout << fmt::format("  over the {} ref rocks paired in both: ΔIPD = {}\n", r.result.pairs_common,
+                               minus_number(r.result.delta_common, 4));  // the sentence's minus sign
+  }
+  // A row of fewer than 2 scenes has neither interval nor test (its sentence says so).
+  const auto tested = [](const RendererComparison& r) { return r.result.scenes >= 2; };
+  const bool all_exact =
+      std::all_of(results.begin(), results.end(), [&](const auto& r) { return r.result.exact_p || !tested(r); });
+  const std::string test = all_exact ? std::string("exact: every swap pattern of the scenes")
+                                     : fmt::format("{} permutations, exact where 2^scenes ≤ that", co.permutations);
+  if (std::none_of(results.begin(), results.end(), tested))
+    std::cout << "(intervals and tests need at least 2 scenes)\n";
+  else
+    std::cout << fmt::format(
+        "({:g}% paired scene-bootstrap interval, {} resamples; sign-flip permutation test, "
+        "{}; seed {})\n",
+        100 * co.bootstrap.level, co.bootstrap.resamples, test, co.bootstrap.seed);
+  std::cout << provenance_note(provenance) << "\n";
+}
+
+int run_compare(const CompareArgs& args) {
+  StudyOptions so = args.study;
+  const Study study = open_study_with_conf(so);
+  if (args.json) require_utf8_names(study);  // before the work, naming the file
+  const std::string ref = domain_or_default(study, args.ref, 0, "--ref");
+  const std::string a = domain_or_default(study, args.a, 1, "--a");
+  const std::string b = domain_or_default(study, args.b, 2, "--b");
+  if (ref == a || ref == b || a == b)
+    throw StudyError(fmt::format("compare needs three different domains, got --ref {} --a {} --b {}", ref, a, b));
+  so.domains = {ref, a, b};
+  auto loaded = load_study_table(so, false);
+  if (!loaded) return kBadInput;
+  CompareOptions co;
+  co.bootstrap = loaded->bootstrap;
+  co.permutations = args.permutations;
+  if (const auto e = co.validate(); !e.empty()) throw CLI::ValidationError(e);
+  const std::vector<RendererComparison> results = compare_each_model(*loaded, so, study.root, ref, a, b, co);
+  // Which label files and hand edits the comparison's numbers come from.
+  const Provenance provenance = table_provenance(loaded->table, loaded->labels);
+  if (args.json)
+    print_comparisons_json(results, provenance);
+  else
+    print_comparisons_text(results, co, provenance);
+  return kOk;
+}
+
+}  // namespace
+
+Runner add_compare_command(CLI::App& app) {
+  auto args = std::make_shared<CompareArgs>();
+  CLI::App* cmd =
+      app.add_subcommand("compare", "Which renderer is closer to the reference: ΔIPD = IPD(ref, a) - IPD(ref, b)");
+  declare_compare_options(cmd, args.get());
+  return [args]() -> int { return run_compare(*args); };
 }
 
 }  // namespace ipd::cli

@@ -131,39 +131,37 @@ std::vector<Job> read_list(const std::string& path) {
   return jobs;
 }
 
-}  // namespace
+// What `ipd register` was asked for.
+struct RegisterArgs {
+  std::string real, synth, list, method = "consensus";
+  std::uint64_t seed = 0;
+  int cls = -1, trials = 0, threads = 0;
+  std::vector<int> image_size;
+  double budget_ms = 0, max_rotation = 0, max_anisotropy = 0;
+  bool json = false, skip_bad_lines = false;
 
-Runner add_register_command(CLI::App& app) {
-  struct Args {
-    std::string real, synth, list, method = "consensus";
-    std::uint64_t seed = 0;
-    int cls = -1, trials = 0, threads = 0;
-    std::vector<int> image_size;
-    double budget_ms = 0, max_rotation = 0, max_anisotropy = 0;
-    bool json = false, skip_bad_lines = false;
+  // Empty when every option given is in range, else "--option: what is wrong". A value out of range is an
+  // error, never the default (`--max-rotation -5` used to run with 30 degrees).
+  std::string validate(const CLI::App& cmd) const {
+    auto given = [&](const char* flag) { return cmd.count(flag) > 0; };
+    if (given("--trials") && trials < 1) return fmt::format("--trials: must be at least 1, got {}", trials);
+    if (given("--class") && cls < 0)
+      return fmt::format("--class: must be a class number >= 0 (leave it out for every class), got {}", cls);
+    if (given("--budget-ms") && !(budget_ms >= 0 && std::isfinite(budget_ms)))
+      return fmt::format("--budget-ms: must be a number of milliseconds >= 0 (0: no limit), got {}", budget_ms);
+    if (given("--max-rotation") && !(max_rotation > 0 && max_rotation <= 180))
+      return fmt::format("--max-rotation: must be in (0, 180] degrees, got {}", max_rotation);
+    if (given("--max-anisotropy") && !(max_anisotropy >= 1 && std::isfinite(max_anisotropy)))
+      return fmt::format("--max-anisotropy: must be a ratio >= 1 (1: no stretch allowed), got {}", max_anisotropy);
+    if (image_size.size() == 2 && (image_size[0] <= 0 || image_size[1] <= 0))
+      return fmt::format("--image-size: width and height must be positive, got {},{}", image_size[0], image_size[1]);
+    if (given("--threads") && threads < 0)
+      return fmt::format("--threads: must be >= 0 (0: every core), got {}", threads);
+    return {};
+  }
+};
 
-    // Empty when every option given is in range, else "--option: what is wrong". A value out of range is an
-    // error, never the default (`--max-rotation -5` used to run with 30 degrees).
-    std::string validate(const CLI::App& cmd) const {
-      auto given = [&](const char* flag) { return cmd.count(flag) > 0; };
-      if (given("--trials") && trials < 1) return fmt::format("--trials: must be at least 1, got {}", trials);
-      if (given("--class") && cls < 0)
-        return fmt::format("--class: must be a class number >= 0 (leave it out for every class), got {}", cls);
-      if (given("--budget-ms") && !(budget_ms >= 0 && std::isfinite(budget_ms)))
-        return fmt::format("--budget-ms: must be a number of milliseconds >= 0 (0: no limit), got {}", budget_ms);
-      if (given("--max-rotation") && !(max_rotation > 0 && max_rotation <= 180))
-        return fmt::format("--max-rotation: must be in (0, 180] degrees, got {}", max_rotation);
-      if (given("--max-anisotropy") && !(max_anisotropy >= 1 && std::isfinite(max_anisotropy)))
-        return fmt::format("--max-anisotropy: must be a ratio >= 1 (1: no stretch allowed), got {}", max_anisotropy);
-      if (image_size.size() == 2 && (image_size[0] <= 0 || image_size[1] <= 0))
-        return fmt::format("--image-size: width and height must be positive, got {},{}", image_size[0], image_size[1]);
-      if (given("--threads") && threads < 0)
-        return fmt::format("--threads: must be >= 0 (0: every core), got {}", threads);
-      return {};
-    }
-  };
-  auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("register", "Pair the rocks of two GT label files by point-set registration");
+void declare_register_options(CLI::App* cmd, RegisterArgs* args) {
   cmd->add_option("REAL", args->real, "Real image's label file (YOLO txt)");
   cmd->add_option("SYNTH", args->synth, "Synthetic image's label file (YOLO txt)");
   // What --list prints is checked by Cli.RegisterListPrintsWhatItsHelpSays.
@@ -192,97 +190,125 @@ Runner add_register_command(CLI::App& app) {
   cmd->add_option("--threads", args->threads, "Worker threads for --list (default: all cores)");
   cmd->add_flag("--json", args->json, "Print JSON, one object per pair on its own line");
   cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
-  return [args, cmd]() -> int {
-    const bool list_mode = !args->list.empty();
-    if (list_mode == (!args->real.empty() || !args->synth.empty()) || (!list_mode && args->synth.empty()))
-      throw CLI::ValidationError("register", "give either REAL SYNTH or --list FILE.tsv");
-    if (const std::string bad = args->validate(*cmd); !bad.empty()) throw CLI::ValidationError(bad);
-    RegistrationOptions opt;
-    parse_method(args->method, &opt.method);
-    opt.seed = args->seed;
-    if (cmd->count("--trials") > 0) opt.trials() = args->trials;
-    if (args->budget_ms > 0) opt.time_budget_ms = args->budget_ms;  // 0: no limit
-    if (cmd->count("--max-rotation") > 0) opt.consensus.max_rotation_deg = args->max_rotation;
-    if (cmd->count("--max-anisotropy") > 0) opt.consensus.max_anisotropy = args->max_anisotropy;
-    if (args->image_size.size() == 2) opt.aspect = static_cast<double>(args->image_size[0]) / args->image_size[1];
-    const std::string bad = opt.validate();
-    if (!bad.empty()) throw CLI::ValidationError("register", bad);
-    std::vector<Job> jobs;
-    if (list_mode)
-      jobs = read_list(args->list);
-    else
-      jobs.push_back({args->real, args->synth, 0, {}, {}});
-    parallel_for(jobs.size(), args->threads,
-                 [&](size_t k) { run_job(&jobs[k], opt, args->cls, args->skip_bad_lines); });
-    int failed = 0, reported = 0;
-    for (const auto& job : jobs) {
-      // JSON holds only UTF-8: a path in another encoding is this pair's error, named, not the whole output's.
-      if (args->json && (!is_utf8(job.real) || !is_utf8(job.synth))) {
-        const std::string why = fmt::format(
-            "{}: the name is not UTF-8 text, which JSON output cannot hold; rename "
-            "it (the text report takes it as it is)",
-            escape_non_utf8(is_utf8(job.real) ? job.synth : job.real));
-        fmt::print(stderr, "error: {}\n", why);
-        ++failed;
-        if (list_mode)
-          std::cout << dump_json_output(nlohmann::json{
-                           {"real", escape_non_utf8(job.real)}, {"synth", escape_non_utf8(job.synth)}, {"error", why}})
-                    << "\n";
-        continue;
-      }
-      const bool fatal = job.result.is_null();
-      if (report_label_errors(job.errors, !fatal && args->skip_bad_lines) || fatal) {
-        ++failed;
-        if (list_mode && args->json) {
-          nlohmann::json e = {{"real", job.real}, {"synth", job.synth}};
-          e["error"] = job.errors.empty() ? "failed" : job.errors.front().to_string();
-          std::cout << dump_json_output(e) << "\n";
-        }
-        continue;
-      }
-      if (args->json) {
-        std::cout << dump_json_output(job.result) << "\n";
-        continue;
-      }
-      const auto& r = job.result;
-      ++reported;
-      fmt::print("{} -> {}\n", job.real, job.synth);
-      const std::string method = r["method"].get<std::string>();
-      // The same counts, under the same names, as --json (the studio's header says the same).
-      std::string searched;
-      for (const auto& c : search_counts(opt.method))
-        searched += (searched.empty() ? "" : ", ") + counted(r[c.json_key].get<double>(), c.singular, c.plural);
-      fmt::print("  method {}: {}, score {}; stopped: {}\n", method, searched,
-                 fixed_no_minus_zero(r["score"].get<double>()), r["stop"].get<std::string>());
-      // Two different counts: A centres that land within the gate of some B centre after the alignment,
-      // and the one-to-one pairs the method then forms (which the IPD uses).
-      fmt::print("  {} within the gate; {} by {}\n", counted(r["inliers"].get<double>(), "centre", "centres"),
-                 counted(static_cast<double>(r["pairs"].size()), "pair", "pairs"),
-                 method == "paper" ? "mutual nearest neighbour" : "aligned-box IoU (one-to-one)");
-      // The budget is the same for every method: 10^6 + 300 n log2 n point evaluations for n rocks in all.
-      fmt::print("  work: {} of {} point evaluations (the bound for this many rocks); confidence {:.3f}{}\n",
-                 grouped_count(r["work"].get<double>()), grouped_count(r["work_budget"].get<double>()),
-                 r["confidence"].get<double>(),
-                 r["ambiguous"].get<bool>() ? "; AMBIGUOUS: " + r["ambiguity"].get<std::string>()
-                                            : std::string());  // the reason may have its own "(e.g. ...)"
-      if (r.contains("note")) fmt::print("  note: {}\n", r["note"].get<std::string>());
-      const auto& a = r["affine"];
-      fmt::print("  affine (real -> synth, normalised): [{} {} {}; {} {} {}]\n",
-                 fixed_no_minus_zero(a[0][0].get<double>()), fixed_no_minus_zero(a[0][1].get<double>()),
-                 fixed_no_minus_zero(a[0][2].get<double>()), fixed_no_minus_zero(a[1][0].get<double>()),
-                 fixed_no_minus_zero(a[1][1].get<double>()), fixed_no_minus_zero(a[1][2].get<double>()));
-      fmt::print("  pairs (1-based real:synth):");
-      for (const auto& p : r["pairs"]) fmt::print(" {}:{}", p[0].get<int>() + 1, p[1].get<int>() + 1);
-      fmt::print("\n");
+}
+
+// The registration the options ask for; throws CLI::ValidationError naming what is out of range.
+RegistrationOptions registration_options(const RegisterArgs& args, const CLI::App& cmd) {
+  if (const std::string bad = args.validate(cmd); !bad.empty()) throw CLI::ValidationError(bad);
+  RegistrationOptions opt;
+  parse_method(args.method, &opt.method);
+  opt.seed = args.seed;
+  if (cmd.count("--trials") > 0) opt.trials() = args.trials;
+  if (args.budget_ms > 0) opt.time_budget_ms = args.budget_ms;  // 0: no limit
+  if (cmd.count("--max-rotation") > 0) opt.consensus.max_rotation_deg = args.max_rotation;
+  if (cmd.count("--max-anisotropy") > 0) opt.consensus.max_anisotropy = args.max_anisotropy;
+  if (args.image_size.size() == 2) opt.aspect = static_cast<double>(args.image_size[0]) / args.image_size[1];
+  const std::string bad = opt.validate();
+  if (!bad.empty()) throw CLI::ValidationError("register", bad);
+  return opt;
+}
+
+// The text report of one registered pair (its JSON result read back, so both say the same).
+void print_report_text(const Job& job, RegistrationMethod method_used) {
+  const auto& r = job.result;
+  fmt::print("{} -> {}\n", job.real, job.synth);
+  const std::string method = r["method"].get<std::string>();
+  // The same counts, under the same names, as --json (the studio's header says the same).
+  std::string searched;
+  for (const auto& c : search_counts(method_used))
+    searched += (searched.empty() ? "" : ", ") + counted(r[c.json_key].get<double>(), c.singular, c.plural);
+  fmt::print("  method {}: {}, score {}; stopped: {}\n", method, searched,
+             fixed_no_minus_zero(r["score"].get<double>()), r["stop"].get<std::string>());
+  // Two different counts: A centres that land within the gate of some B centre after the alignment,
+  // and the one-to-one pairs the method then forms (which the IPD uses).
+  fmt::print("  {} within the gate; {} by {}\n", counted(r["inliers"].get<double>(), "centre", "centres"),
+             counted(static_cast<double>(r["pairs"].size()), "pair", "pairs"),
+             method == "paper" ? "mutual nearest neighbour" : "aligned-box IoU (one-to-one)");
+  // The budget is the same for every method: 10^6 + 300 n log2 n point evaluations for n rocks in all.
+  fmt::print("  work: {} of {} point evaluations (the bound for this many rocks); confidence {:.3f}{}\n",
+             grouped_count(r["work"].get<double>()), grouped_count(r["work_budget"].get<double>()),
+             r["confidence"].get<double>(),
+             r["ambiguous"].get<bool>() ? "; AMBIGUOUS: " + r["ambiguity"].get<std::string>()
+                                        : std::string());  // the reason may have its own "(e.g. ...)"
+  if (r.contains("note")) fmt::print("  note: {}\n", r["note"].get<std::string>());
+  const auto& a = r["affine"];
+  fmt::print("  affine (real -> synth, normalised): [{} {} {}; {} {} {}]\n", fixed_no_minus_zero(a[0][0].get<double>()),
+             fixed_no_minus_zero(a[0][1].get<double>()), fixed_no_minus_zero(a[0][2].get<double>()),
+             fixed_no_minus_zero(a[1][0].get<double>()), fixed_no_minus_zero(a[1][1].get<double>()),
+             fixed_no_minus_zero(a[1][2].get<double>()));
+  fmt::print("  pairs (1-based real:synth):");
+  for (const auto& p : r["pairs"]) fmt::print(" {}:{}", p[0].get<int>() + 1, p[1].get<int>() + 1);
+  fmt::print("\n");
+}
+
+// Each job's report, or its error, in the list's order; returns how many failed and counts the text reports.
+int print_reports(const std::vector<Job>& jobs, const RegisterArgs& args, RegistrationMethod method, bool list_mode,
+                  int* reported) {
+  int failed = 0;
+  for (const auto& job : jobs) {
+    // JSON holds only UTF-8: a path in another encoding is this pair's error, named, not the whole output's.
+    if (args.json && (!is_utf8(job.real) || !is_utf8(job.synth))) {
+      const std::string why = fmt::format(
+          "{}: the name is not UTF-8 text, which JSON output cannot hold; rename "
+          "it (the text report takes it as it is)",
+          escape_non_utf8(is_utf8(job.real) ? job.synth : job.real));
+      fmt::print(stderr, "error: {}\n", why);
+      ++failed;
+      if (list_mode)
+        std::cout << dump_json_output(nlohmann::json{
+                         {"real", escape_non_utf8(job.real)}, {"synth", escape_non_utf8(job.synth)}, {"error", why}})
+                  << "\n";
+      continue;
     }
-    // Angles and the rotation bound are measured in pixels: without the picture's size a wide picture's
-    // alignment reads differently from ipd-studio's and ipd table's, which take it from study.yaml.
-    if (reported > 0 && args->image_size.empty())
-      fmt::print(stderr,
-                 "note: pictures taken as square (aspect 1); --image-size W,H measures angles in pixels, "
-                 "as ipd table and ipd-studio do with study.yaml's image size\n");
-    return failed ? kBadInput : kOk;
-  };
+    const bool fatal = job.result.is_null();
+    if (report_label_errors(job.errors, !fatal && args.skip_bad_lines) || fatal) {
+      ++failed;
+      if (list_mode && args.json) {
+        nlohmann::json e = {{"real", job.real}, {"synth", job.synth}};
+        e["error"] = job.errors.empty() ? "failed" : job.errors.front().to_string();
+        std::cout << dump_json_output(e) << "\n";
+      }
+      continue;
+    }
+    if (args.json) {
+      std::cout << dump_json_output(job.result) << "\n";
+      continue;
+    }
+    ++*reported;
+    print_report_text(job, method);
+  }
+  return failed;
+}
+
+int run_register(const RegisterArgs& args, const CLI::App& cmd) {
+  const bool list_mode = !args.list.empty();
+  if (list_mode == (!args.real.empty() || !args.synth.empty()) || (!list_mode && args.synth.empty()))
+    throw CLI::ValidationError("register", "give either REAL SYNTH or --list FILE.tsv");
+  const RegistrationOptions opt = registration_options(args, cmd);
+  std::vector<Job> jobs;
+  if (list_mode)
+    jobs = read_list(args.list);
+  else
+    jobs.push_back({args.real, args.synth, 0, {}, {}});
+  parallel_for(jobs.size(), args.threads, [&](size_t k) { run_job(&jobs[k], opt, args.cls, args.skip_bad_lines); });
+  int reported = 0;
+  const int failed = print_reports(jobs, args, opt.method, list_mode, &reported);
+  // Angles and the rotation bound are measured in pixels: without the picture's size a wide picture's
+  // alignment reads differently from ipd-studio's and ipd table's, which take it from study.yaml.
+  if (reported > 0 && args.image_size.empty())
+    fmt::print(stderr,
+               "note: pictures taken as square (aspect 1); --image-size W,H measures angles in pixels, "
+               "as ipd table and ipd-studio do with study.yaml's image size\n");
+  return failed ? kBadInput : kOk;
+}
+
+}  // namespace
+
+Runner add_register_command(CLI::App& app) {
+  auto args = std::make_shared<RegisterArgs>();
+  CLI::App* cmd = app.add_subcommand("register", "Pair the rocks of two GT label files by point-set registration");
+  declare_register_options(cmd, args.get());
+  return [args, cmd]() -> int { return run_register(*args, *cmd); };
 }
 
 }  // namespace ipd::cli

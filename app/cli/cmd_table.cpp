@@ -10,15 +10,16 @@
 #include "core/util/atomic_file.h"
 
 namespace ipd::cli {
+namespace {
 
-Runner add_table_command(CLI::App& app) {
-  struct Args {
-    StudyOptions study;
-    std::string format = "text", out;
-    bool booktabs = false, latex_wide = false, verbose = false;
-  };
-  auto args = std::make_shared<Args>();
-  CLI::App* cmd = app.add_subcommand("table", "Compute the IPD cross table (rows: models, columns: domain pairs)");
+// What `ipd table` was asked for.
+struct TableArgs {
+  StudyOptions study;
+  std::string format = "text", out;
+  bool booktabs = false, latex_wide = false, verbose = false;
+};
+
+void declare_table_options(CLI::App* cmd, TableArgs* args) {
   add_study_options(cmd, &args->study, true);
   cmd->add_option("--format", args->format, "text, csv, json, markdown or latex")
       ->check(CLI::IsMember({"text", "csv", "json", "markdown", "latex"}));
@@ -29,80 +30,101 @@ Runner add_table_command(CLI::App& app) {
   cmd->add_option("--out", args->out, "Write the table to this file (atomically) instead of stdout");
   cmd->add_flag("--verbose", args->verbose,
                 "List the scenes whose registration was ambiguous and the scenes whose pairs were set by hand");
-  return [args]() -> int {
-    TableFormat format = TableFormat::kText;
-    parse_table_format(args->format, &format);
-    // CSV and JSON list every cell's value; the other formats print "–" where no chosen model trained.
-    const bool every_cell = format == TableFormat::kCsv || format == TableFormat::kJson;
-    auto loaded = load_study_table(args->study, true, !every_cell);
-    if (!loaded) return kBadInput;
-    if (args->format == "json") require_utf8_names(loaded->labels.study);
-    TableFormatOptions fo;
-    fo.latex_ci = args->study.ci_given;
-    fo.booktabs = args->booktabs;
-    fo.latex_wide = args->latex_wide;
-    fo.resamples = loaded->bootstrap.resamples;
-    fo.level = loaded->bootstrap.level;
-    fo.seed = loaded->bootstrap.seed;
-    fo.conf_threshold = loaded->conf_threshold;
-    // Which numbers are automatic and which edited, and which labels they came from, travel with the table.
-    const Provenance provenance = table_provenance(loaded->table, loaded->labels);
-    fo.provenance = &provenance;
-    std::string text = format_table(loaded->table, format, fo);
-    // What a reader must know to trust the numbers: the prediction threshold used, and the scenes whose
-    // registration could not decide between alignments (their pairs may be wrong). In the text table
-    // itself; beside the machine-readable formats, on stderr.
-    std::vector<std::string> notes;
-    if (loaded->conf_threshold > 0)
-      notes.push_back(
-          fmt::format("Predictions with confidence below {:g} dropped (--conf, else study.yaml's "
-                      "conf_threshold).",
-                      loaded->conf_threshold));
-    std::vector<std::string> ambiguous;
-    const CrossTable& t = loaded->table;
-    for (size_t c = 0; c < t.columns.size() && c < t.pairings.size(); ++c)
-      for (const ScenePairing& p : t.pairings[c])
-        if (!p.fixed && p.registration.ambiguous)
-          ambiguous.push_back(fmt::format("  {} vs {}: {}: {}", t.columns[c].first, t.columns[c].second, p.stem,
-                                          ambiguity_reason(p.registration.ambiguity)));
-    if (!ambiguous.empty()) {
-      notes.push_back(fmt::format("{} scene{}: registration ambiguous (see ipd-studio '?'){}", ambiguous.size(),
-                                  ambiguous.size() == 1 ? "" : "s", args->verbose ? ":" : "; --verbose lists them"));
-      if (args->verbose) notes.insert(notes.end(), ambiguous.begin(), ambiguous.end());
-    }
-    notes.push_back(provenance_note(provenance));
-    if (args->verbose)
-      for (const EditedScene& e : provenance.edited_scenes)
-        notes.push_back(fmt::format("  {} vs {}: {}: pairs set by hand", e.a, e.b, e.stem));
-    if (format == TableFormat::kLatex) {
-      // Whether the table fits where it is meant to go, at 10 pt type (never by shrinking it).
-      const double w = latex_table_width_pt(loaded->table, fo);
-      if (!fo.latex_wide && w > kIeeeColumnPt)
-        notes.push_back(
-            fmt::format("the LaTeX table is about {:.0f} pt wide, more than one IEEE column ({:g} pt at 10 pt "
-                        "type): only a table* across both columns fits it (--latex-wide spells the names out "
-                        "for that)",
-                        w, kIeeeColumnPt));
-      else if (fo.latex_wide && w > kIeeeTextWidthPt)
-        notes.push_back(
-            fmt::format("the LaTeX table is about {:.0f} pt wide, more than both IEEE columns ({:g} pt): "
-                        "drop --latex-wide for the compact layout",
-                        w, kIeeeTextWidthPt));
-    }
-    for (const std::string& n : notes) {
-      if (format == TableFormat::kText)
-        text += n + "\n";
-      else
-        fmt::print(stderr, "note: {}\n", n);
-    }
-    if (args->out.empty()) {
-      std::cout << text;
-    } else {
-      write_file_atomically(args->out, text);
-      fmt::print(stderr, "wrote {}\n", args->out);
-    }
-    return kOk;
-  };
+}
+
+// What a reader must know to trust the numbers: the prediction threshold used, and the scenes whose
+// registration could not decide between alignments (their pairs may be wrong). In the text table
+// itself; beside the machine-readable formats, on stderr.
+std::vector<std::string> table_notes(const TableArgs& args, const LoadedStudy& loaded, const Provenance& provenance) {
+  std::vector<std::string> notes;
+  if (loaded.conf_threshold > 0)
+    notes.push_back(
+        fmt::format("Predictions with confidence below {:g} dropped (--conf, else study.yaml's "
+                    "conf_threshold).",
+                    loaded.conf_threshold));
+  std::vector<std::string> ambiguous;
+  const CrossTable& t = loaded.table;
+  for (size_t c = 0; c < t.columns.size() && c < t.pairings.size(); ++c)
+    for (const ScenePairing& p : t.pairings[c])
+      if (!p.fixed && p.registration.ambiguous)
+        ambiguous.push_back(fmt::format("  {} vs {}: {}: {}", t.columns[c].first, t.columns[c].second, p.stem,
+                                        ambiguity_reason(p.registration.ambiguity)));
+  if (!ambiguous.empty()) {
+    notes.push_back(fmt::format("{} scene{}: registration ambiguous (see ipd-studio '?'){}", ambiguous.size(),
+                                ambiguous.size() == 1 ? "" : "s", args.verbose ? ":" : "; --verbose lists them"));
+    if (args.verbose) notes.insert(notes.end(), ambiguous.begin(), ambiguous.end());
+  }
+  notes.push_back(provenance_note(provenance));
+  if (args.verbose)
+    for (const EditedScene& e : provenance.edited_scenes)
+      notes.push_back(fmt::format("  {} vs {}: {}: pairs set by hand", e.a, e.b, e.stem));
+  return notes;
+}
+
+// Whether a LaTeX table fits where it is meant to go, at 10 pt type (never by shrinking it); empty when it fits.
+std::string latex_width_note(const CrossTable& table, const TableFormatOptions& fo) {
+  const double w = latex_table_width_pt(table, fo);
+  if (!fo.latex_wide && w > kIeeeColumnPt)
+    return fmt::format(
+        "the LaTeX table is about {:.0f} pt wide, more than one IEEE column ({:g} pt at 10 pt "
+        "type): only a table* across both columns fits it (--latex-wide spells the names out "
+        "for that)",
+        w, kIeeeColumnPt);
+  if (fo.latex_wide && w > kIeeeTextWidthPt)
+    return fmt::format(
+        "the LaTeX table is about {:.0f} pt wide, more than both IEEE columns ({:g} pt): "
+        "drop --latex-wide for the compact layout",
+        w, kIeeeTextWidthPt);
+  return "";
+}
+
+int run_table(const TableArgs& args) {
+  TableFormat format = TableFormat::kText;
+  parse_table_format(args.format, &format);
+  // CSV and JSON list every cell's value; the other formats print "–" where no chosen model trained.
+  const bool every_cell = format == TableFormat::kCsv || format == TableFormat::kJson;
+  auto loaded = load_study_table(args.study, true, !every_cell);
+  if (!loaded) return kBadInput;
+  if (args.format == "json") require_utf8_names(loaded->labels.study);
+  TableFormatOptions fo;
+  fo.latex_ci = args.study.ci_given;
+  fo.booktabs = args.booktabs;
+  fo.latex_wide = args.latex_wide;
+  fo.resamples = loaded->bootstrap.resamples;
+  fo.level = loaded->bootstrap.level;
+  fo.seed = loaded->bootstrap.seed;
+  fo.conf_threshold = loaded->conf_threshold;
+  // Which numbers are automatic and which edited, and which labels they came from, travel with the table.
+  const Provenance provenance = table_provenance(loaded->table, loaded->labels);
+  fo.provenance = &provenance;
+  std::string text = format_table(loaded->table, format, fo);
+  std::vector<std::string> notes = table_notes(args, *loaded, provenance);
+  if (format == TableFormat::kLatex) {
+    std::string width = latex_width_note(loaded->table, fo);
+    if (!width.empty()) notes.push_back(width);
+  }
+  for (const std::string& n : notes) {
+    if (format == TableFormat::kText)
+      text += n + "\n";
+    else
+      fmt::print(stderr, "note: {}\n", n);
+  }
+  if (args.out.empty()) {
+    std::cout << text;
+  } else {
+    write_file_atomically(args.out, text);
+    fmt::print(stderr, "wrote {}\n", args.out);
+  }
+  return kOk;
+}
+
+}  // namespace
+
+Runner add_table_command(CLI::App& app) {
+  auto args = std::make_shared<TableArgs>();
+  CLI::App* cmd = app.add_subcommand("table", "Compute the IPD cross table (rows: models, columns: domain pairs)");
+  declare_table_options(cmd, args.get());
+  return [args]() -> int { return run_table(*args); };
 }
 
 }  // namespace ipd::cli

@@ -23,6 +23,8 @@ Runner add_compare_command(CLI::App& app);
 Runner add_breakdown_command(CLI::App& app);
 Runner add_export_command(CLI::App& app);
 Runner add_metrics_command(CLI::App& app);
+// `ipd bench edits` (app/bench/bench_edits.cpp), added under `ipd bench`.
+Runner add_bench_edits(CLI::App* bench);
 // `ipd bench bootstrap` (app/bench/bench_bootstrap.cpp), added under `ipd bench`.
 Runner add_bench_bootstrap(CLI::App* bench);
 // `ipd bench study` (app/bench/bench_study.cpp), added under `ipd bench`.

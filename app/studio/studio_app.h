@@ -60,6 +60,14 @@ class StudioApp {
   void replay_select(double x0, double y0, double x1, double y1);
   void replay_gallery(const std::vector<std::string>& args);
   std::string write_scene_list(const std::string& file) const;  // the rock view's click: the pair selected, in view
+  // One replay action of a verb group (studio_app_replay.cpp); each returns false when the verb is not of its
+  // group. View: what is shown and how it is computed; edits: pairs, undo and the review marks; outputs: the
+  // rock view, the scene list, figures and screenshots.
+  bool replay_view_action(const ReplayAction& a, ui::UiCommands* cmd);
+  bool replay_edit_action(const ReplayAction& a, ui::UiCommands* cmd);
+  bool replay_output_action(const ReplayAction& a);
+  void replay_fail(const ReplayAction& a, const std::string& why);  // reports it and ends the replay, failed
+  int replay_rock(const ReplayAction& a, const std::string& number, Side side);  // 0-based; -1: none (failed)
 
   StudioOptions o_;
   StudyWorker worker_;

@@ -52,6 +52,130 @@ std::string StudioApp::write_scene_list(const std::string& file) const {
   return "";
 }
 
+void StudioApp::replay_fail(const ReplayAction& a, const std::string& why) {
+  fmt::print(stderr, "error: {}:{}: {}\n", o_.replay, a.line, why);
+  replay_next_ = replay_.size() + 1;
+  done_ = true;
+  replay_failed_ = true;
+}
+
+int StudioApp::replay_rock(const ReplayAction& a, const std::string& number, Side side) {
+  const Session& s = *snap_->session;
+  const int n = std::atoi(number.c_str());
+  const int count = s.scenes().empty() ? 0 : static_cast<int>(s.gt(side, ui_.scene).size());
+  if (n > count) {
+    replay_fail(a, fmt::format("rock {} does not exist: {} has {} rocks on the {} side", n, s.scenes()[ui_.scene].stem,
+                               count, side == Side::kA ? "left" : "right"));
+    return -1;
+  }
+  return n - 1;
+}
+
+bool StudioApp::replay_view_action(const ReplayAction& a, ui::UiCommands* cmd) {
+  const Session& s = *snap_->session;
+  if (a.verb == "wait") {
+    replay_wait_ = std::atoi(a.args[0].c_str());
+  } else if (a.verb == "conf") {
+    cmd->conf_threshold = std::strtof(a.args[0].c_str(), nullptr);
+  } else if (a.verb == "model") {
+    cmd->model = a.args[0];
+  } else if (a.verb == "domains") {
+    if (!s.study().domain(a.args[0]) || !s.study().domain(a.args[1]))
+      replay_fail(a, fmt::format("'domains': the study has no domain '{}'",
+                                 s.study().domain(a.args[0]) ? a.args[1] : a.args[0]));
+    else
+      cmd->left_domain = a.args[0], cmd->right_domain = a.args[1];
+  } else if (a.verb == "focus") {
+    ui_.focus = a.args[0] == "on";
+  } else if (a.verb == "problems") {
+    ui_.show_problems = true;
+  } else if (a.verb == "problem") {
+    const int k = std::atoi(a.args[0].c_str());
+    if (k > static_cast<int>(problems_.size()))
+      replay_fail(a, fmt::format("no problem {}: the study has {}", k, problems_.size()));
+    else
+      cmd->goto_problem = k - 1;
+  } else if (a.verb == "scene") {
+    const auto at = std::find(ui_.order.begin(), ui_.order.end(), ui_.scene) - ui_.order.begin();
+    if (a.args[0] == "next" && !ui_.order.empty())
+      cmd->goto_scene = ui_.order[std::min<long>(at + 1, ui_.order.size() - 1)];
+    else if (a.args[0] == "prev" && !ui_.order.empty())
+      cmd->goto_scene = ui_.order[std::max<long>(at - 1, 0)];
+    else if ((cmd->goto_scene = s.scene_index(a.args[0])) < 0)
+      replay_fail(a, "no scene '" + a.args[0] + "' in this domain pair");
+  } else if (a.verb == "rerun") {
+    const auto& methods = registration_methods();
+    for (size_t k = 0; k < methods.size(); ++k)
+      if (a.args[0] == methods[k].name) ui_.rerun_method = static_cast<int>(k);
+    cmd->rerun_registration = true;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+bool StudioApp::replay_edit_action(const ReplayAction& a, ui::UiCommands* cmd) {
+  const Session& s = *snap_->session;
+  if (a.verb == "undo") {
+    cmd->undo = true;
+  } else if (a.verb == "redo") {
+    cmd->redo = true;
+  } else if (a.verb == "pair") {
+    const int l = replay_rock(a, a.args[0], Side::kA), r = l < 0 ? -1 : replay_rock(a, a.args[1], Side::kB);
+    if (l >= 0 && r >= 0) cmd->edits.push_back(Edit::pair(l, r));
+  } else if (a.verb == "unpair") {
+    if (const int l = replay_rock(a, a.args[0], Side::kA); l >= 0) cmd->edits.push_back(Edit::unpair(Side::kA, l));
+  } else if (a.verb == "exclude") {
+    if (const int l = replay_rock(a, a.args[0], Side::kA); l >= 0)
+      cmd->edits.push_back(Edit::toggle_exclude(Side::kA, l));
+  } else if (a.verb == "review") {
+    cmd->toggle_reviewed = true;
+  } else if (a.verb == "suspect") {
+    cmd->next_suspect = true;
+  } else if (a.verb == "check") {
+    // The pair given (left, right rock numbers), or the one selected (by `suspect`, say).
+    const int l = a.args.empty() ? ui::selected_pair(s, ui_).first : replay_rock(a, a.args[0], Side::kA);
+    const int r = a.args.empty() ? ui::selected_pair(s, ui_).second : l < 0 ? -1 : replay_rock(a, a.args[1], Side::kB);
+    const RockPairs pairs = s.scenes().empty() ? RockPairs{} : s.view_pairs(ui_.scene);
+    if (l >= 0 && r >= 0 && std::find(pairs.begin(), pairs.end(), std::make_pair(l, r)) != pairs.end())
+      cmd->check_left = l, cmd->check_right = r;
+    else if (!replay_failed_)
+      replay_fail(a, a.args.empty() ? std::string("'check': no pair is selected")
+                                    : fmt::format("'check': rocks {} and {} are not a pair in {}", a.args[0], a.args[1],
+                                                  s.scenes()[ui_.scene].stem));
+  } else {
+    return false;
+  }
+  return true;
+}
+
+bool StudioApp::replay_output_action(const ReplayAction& a) {
+  const Session& s = *snap_->session;
+  if (a.verb == "screenshot") {
+    screenshot_now_ = a.args[0];
+  } else if (a.verb == "rocks") {
+    replay_rock_axes(a.args[0], a.args[1]);
+  } else if (a.verb == "gallery") {
+    replay_gallery(a.args);
+  } else if (a.verb == "select") {
+    replay_select(std::strtod(a.args[0].c_str(), nullptr), std::strtod(a.args[1].c_str(), nullptr),
+                  std::strtod(a.args[2].c_str(), nullptr), std::strtod(a.args[3].c_str(), nullptr));
+  } else if (a.verb == "list") {
+    if (const std::string e = write_scene_list(a.args[0]); !e.empty()) replay_fail(a, e);
+  } else if (a.verb == "export") {
+    if (s.scenes().empty()) return true;  // no view to export
+    // The dialog's request with its defaults (single column, the view's layers and zoom) for the kind.
+    ui::ExportDialogState d;
+    const ui::ExportViewContext ctx = ui::export_view_context(s, ui_, stats_ui_);
+    ui::open_export_dialog(d, ctx);
+    if (a.args.size() == 2) ui::set_export_kind(d, a.args[0]);  // checked by parse_replay
+    export_figure(ui::export_request(d, ctx, a.args.back()));
+  } else {
+    return false;
+  }
+  return true;
+}
+
 bool StudioApp::replay_step() {
   if (replay_wait_ > 0) return --replay_wait_, false;
   if (!snap_ || !worker_.idle() || worker_.snapshot() != snap_ || worker_.saver().pending() > 0) return false;
@@ -62,102 +186,9 @@ bool StudioApp::replay_step() {
     return true;
   }
   const ReplayAction& a = replay_[replay_next_++];
-  const Session& s = *snap_->session;
   ui::UiCommands cmd;
-  auto fail = [&](const std::string& why) {
-    fmt::print(stderr, "error: {}:{}: {}\n", o_.replay, a.line, why);
-    replay_next_ = replay_.size() + 1;
-    done_ = true;
-    replay_failed_ = true;
-  };
-  auto rock = [&](const std::string& w, Side side) {
-    const int n = std::atoi(w.c_str());
-    const int count = s.scenes().empty() ? 0 : static_cast<int>(s.gt(side, ui_.scene).size());
-    if (n > count) {
-      fail(fmt::format("rock {} does not exist: {} has {} rocks on the {} side", n, s.scenes()[ui_.scene].stem, count,
-                       side == Side::kA ? "left" : "right"));
-      return -1;
-    }
-    return n - 1;
-  };
-  if (a.verb == "wait")
-    replay_wait_ = std::atoi(a.args[0].c_str());
-  else if (a.verb == "conf")
-    cmd.conf_threshold = std::strtof(a.args[0].c_str(), nullptr);
-  else if (a.verb == "model")
-    cmd.model = a.args[0];
-  else if (a.verb == "domains" && (!s.study().domain(a.args[0]) || !s.study().domain(a.args[1])))
-    fail(fmt::format("'domains': the study has no domain '{}'", s.study().domain(a.args[0]) ? a.args[1] : a.args[0]));
-  else if (a.verb == "domains")
-    cmd.left_domain = a.args[0], cmd.right_domain = a.args[1];
-  else if (a.verb == "focus")
-    ui_.focus = a.args[0] == "on";
-  else if (a.verb == "undo")
-    cmd.undo = true;
-  else if (a.verb == "redo")
-    cmd.redo = true;
-  else if (a.verb == "screenshot")
-    screenshot_now_ = a.args[0];
-  else if (a.verb == "problems")
-    ui_.show_problems = true;
-  else if (a.verb == "problem") {
-    const int k = std::atoi(a.args[0].c_str());
-    if (k > static_cast<int>(problems_.size()))
-      fail(fmt::format("no problem {}: the study has {}", k, problems_.size()));
-    else
-      cmd.goto_problem = k - 1;
-  } else if (a.verb == "scene") {
-    const auto at = std::find(ui_.order.begin(), ui_.order.end(), ui_.scene) - ui_.order.begin();
-    if (a.args[0] == "next" && !ui_.order.empty())
-      cmd.goto_scene = ui_.order[std::min<long>(at + 1, ui_.order.size() - 1)];
-    else if (a.args[0] == "prev" && !ui_.order.empty())
-      cmd.goto_scene = ui_.order[std::max<long>(at - 1, 0)];
-    else if ((cmd.goto_scene = s.scene_index(a.args[0])) < 0)
-      fail("no scene '" + a.args[0] + "' in this domain pair");
-  } else if (a.verb == "pair") {
-    const int l = rock(a.args[0], Side::kA), r = l < 0 ? -1 : rock(a.args[1], Side::kB);
-    if (l >= 0 && r >= 0) cmd.edits.push_back(Edit::pair(l, r));
-  } else if (a.verb == "unpair") {
-    if (const int l = rock(a.args[0], Side::kA); l >= 0) cmd.edits.push_back(Edit::unpair(Side::kA, l));
-  } else if (a.verb == "exclude") {
-    if (const int l = rock(a.args[0], Side::kA); l >= 0) cmd.edits.push_back(Edit::toggle_exclude(Side::kA, l));
-  } else if (a.verb == "review") {
-    cmd.toggle_reviewed = true;
-  } else if (a.verb == "suspect") {
-    cmd.next_suspect = true;
-  } else if (a.verb == "check") {
-    // The pair given (left, right rock numbers), or the one selected (by `suspect`, say).
-    const int l = a.args.empty() ? ui::selected_pair(s, ui_).first : rock(a.args[0], Side::kA);
-    const int r = a.args.empty() ? ui::selected_pair(s, ui_).second : l < 0 ? -1 : rock(a.args[1], Side::kB);
-    const RockPairs pairs = s.scenes().empty() ? RockPairs{} : s.view_pairs(ui_.scene);
-    if (l >= 0 && r >= 0 && std::find(pairs.begin(), pairs.end(), std::make_pair(l, r)) != pairs.end())
-      cmd.check_left = l, cmd.check_right = r;
-    else if (!replay_failed_)
-      fail(a.args.empty() ? std::string("'check': no pair is selected")
-                          : fmt::format("'check': rocks {} and {} are not a pair in {}", a.args[0], a.args[1],
-                                        s.scenes()[ui_.scene].stem));
-  } else if (a.verb == "rerun") {
-    const auto& methods = registration_methods();
-    for (size_t k = 0; k < methods.size(); ++k)
-      if (a.args[0] == methods[k].name) ui_.rerun_method = static_cast<int>(k);
-    cmd.rerun_registration = true;
-  } else if (a.verb == "rocks") {
-    replay_rock_axes(a.args[0], a.args[1]);
-  } else if (a.verb == "gallery") {
-    replay_gallery(a.args);
-  } else if (a.verb == "select") {
-    replay_select(std::strtod(a.args[0].c_str(), nullptr), std::strtod(a.args[1].c_str(), nullptr),
-                  std::strtod(a.args[2].c_str(), nullptr), std::strtod(a.args[3].c_str(), nullptr));
-  } else if (a.verb == "list") {
-    if (const std::string e = write_scene_list(a.args[0]); !e.empty()) fail(e);
-  } else if (a.verb == "export" && !s.scenes().empty()) {
-    // The dialog's request with its defaults (single column, the view's layers and zoom) for the kind.
-    ui::ExportDialogState d;
-    const ui::ExportViewContext ctx = ui::export_view_context(s, ui_, stats_ui_);
-    ui::open_export_dialog(d, ctx);
-    if (a.args.size() == 2) ui::set_export_kind(d, a.args[0]);  // checked by parse_replay
-    export_figure(ui::export_request(d, ctx, a.args.back()));
-  }
+  // parse_replay accepted only known verbs, each of exactly one group.
+  if (!replay_view_action(a, &cmd) && !replay_edit_action(a, &cmd)) replay_output_action(a);
   apply(cmd);
   return true;
 }

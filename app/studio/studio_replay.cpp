@@ -37,11 +37,15 @@ void check_gallery_options(const std::vector<std::string>& args, Fail fail) {
     }
   }
 }
-}  // namespace
 
-std::vector<ReplayAction> parse_replay(const std::string& text, const std::string& file) {
-  // verb -> (argument count, what they are)
-  static const std::map<std::string, std::pair<int, const char*>> verbs = {
+// How many arguments a verb takes, and what they are (for the message when the count is wrong).
+struct VerbArguments {
+  int count;
+  const char* what;
+};
+
+const std::map<std::string, VerbArguments>& replay_verbs() {
+  static const std::map<std::string, VerbArguments> verbs = {
       {"wait", {1, "a frame count"}},
       {"conf", {1, "a threshold in [0, 1]"}},
       {"model", {1, "a model name"}},
@@ -66,6 +70,81 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
       {"suspect", {0, "nothing"}},
       {"check", {2, "two rock numbers of a pair (left, right), or nothing for the selected pair"}},
   };
+  return verbs;
+}
+
+// `export KIND FILE`: the figure kinds the Export figure dialog makes.
+bool is_figure_kind(const std::string& word) {
+  static const std::vector<std::string> kinds = {"pairs",          "registration",     "table",
+                                                 "compare",        "distribution",     "breakdown",
+                                                 "breakdown-size", "breakdown-region", "breakdown-confidence",
+                                                 "gallery"};
+  return std::find(kinds.begin(), kinds.end(), word) != kinds.end();
+}
+
+// The action's verb is known and it has as many arguments as the verb takes (or one of the optional forms).
+template <class Fail>
+void check_verb_and_count(const ReplayAction& a, Fail fail) {
+  const auto it = replay_verbs().find(a.verb);
+  if (it == replay_verbs().end())
+    fail("unknown action '" + a.verb +
+         "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, undo, "
+         "redo, rerun, export, screenshot, problems, problem, focus, rocks, select, list, gallery, review, suspect "
+         "or check)");
+  const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
+  const bool gallery_options = a.verb == "gallery" && (a.args.size() == 2 || a.args.size() == 4);
+  const bool check_selected = a.verb == "check" && a.args.empty();
+  if (static_cast<int>(a.args.size()) != it->second.count && !export_with_kind && !gallery_options && !check_selected)
+    fail("'" + a.verb + "' takes " + it->second.what + ", got " + std::to_string(a.args.size()) + " argument(s)");
+}
+
+// The arguments' values: numbers, thresholds, names from a fixed set; the first wrong one fails.
+template <class Fail>
+void check_argument_values(const ReplayAction& a, Fail fail) {
+  // The whole word is the number ("5\0" is not 5) and it fits the int the studio keeps it in.
+  auto positive = [&](const std::string& w) {
+    long long v = 0;
+    if (!parse_integer(w, 1, std::numeric_limits<int>::max(), &v))
+      fail("'" + a.verb + "': expected a number >= 1, got '" + quoted_for_message(w) + "'");
+  };
+  if (a.verb == "wait" || a.verb == "problem" || a.verb == "pair" || a.verb == "unpair" || a.verb == "exclude" ||
+      a.verb == "check")
+    for (const auto& w : a.args) positive(w);
+  // One domain against itself has no gap to measure: the studio would keep the domains it shows.
+  if (a.verb == "domains" && a.args[0] == a.args[1])
+    fail("'domains': expected two different domains, got '" + quoted_for_message(a.args[0]) + "' twice");
+  if (a.verb == "focus" && a.args[0] != "on" && a.args[0] != "off")
+    fail("'focus': expected on or off, got '" + quoted_for_message(a.args[0]) + "'");
+  if (a.verb == "conf") {
+    double v = NAN;
+    if (!parse_decimal(a.args[0], &v) || !(v >= 0 && v <= 1))
+      fail("'conf': expected a threshold in [0, 1], got '" + quoted_for_message(a.args[0]) + "'");
+  }
+  PairAxis axis;
+  if (a.verb == "rocks")
+    for (const auto& w : a.args)
+      if (!parse_pair_axis(w, &axis))
+        fail("'rocks': expected an axis (" + std::string(kPairAxisWords) + "), got '" + quoted_for_message(w) + "'");
+  if (a.verb == "select")
+    for (const auto& w : a.args) {
+      double v = NAN;
+      if (!parse_decimal(w, &v)) fail("'select': expected a number, got '" + quoted_for_message(w) + "'");
+    }
+  if (a.verb == "gallery") check_gallery_options(a.args, fail);
+  RegistrationMethod method;
+  if (a.verb == "rerun" && !parse_method(a.args[0], &method))
+    fail("'rerun': expected " + method_choices() + ", got '" + a.args[0] + "'");
+  const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
+  if (export_with_kind && !is_figure_kind(a.args[0]))
+    fail(
+        "'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
+        "breakdown-size, breakdown-region, breakdown-confidence or gallery), got '" +
+        a.args[0] + "'");
+}
+
+}  // namespace
+
+std::vector<ReplayAction> parse_replay(const std::string& text, const std::string& file) {
   std::vector<ReplayAction> out;
   std::istringstream in(text);
   int n = 0;
@@ -77,60 +156,9 @@ std::vector<ReplayAction> parse_replay(const std::string& text, const std::strin
     a.line = n;
     if (!(words >> a.verb)) continue;
     for (std::string w; words >> w;) a.args.push_back(w);
-    const auto it = verbs.find(a.verb);
     auto fail = [&](const std::string& why) { throw std::runtime_error(file + ":" + std::to_string(n) + ": " + why); };
-    if (it == verbs.end())
-      fail("unknown action '" + a.verb +
-           "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, undo, "
-           "redo, rerun, export, screenshot, problems, problem, focus, rocks, select, list, gallery, review, suspect "
-           "or check)");
-    const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
-    const bool gallery_options = a.verb == "gallery" && (a.args.size() == 2 || a.args.size() == 4);
-    const bool check_selected = a.verb == "check" && a.args.empty();
-    if (static_cast<int>(a.args.size()) != it->second.first && !export_with_kind && !gallery_options && !check_selected)
-      fail("'" + a.verb + "' takes " + it->second.second + ", got " + std::to_string(a.args.size()) + " argument(s)");
-    // The whole word is the number ("5\0" is not 5) and it fits the int the studio keeps it in.
-    auto positive = [&](const std::string& w) {
-      long long v = 0;
-      if (!parse_integer(w, 1, std::numeric_limits<int>::max(), &v))
-        fail("'" + a.verb + "': expected a number >= 1, got '" + quoted_for_message(w) + "'");
-    };
-    if (a.verb == "wait" || a.verb == "problem" || a.verb == "pair" || a.verb == "unpair" || a.verb == "exclude" ||
-        a.verb == "check")
-      for (const auto& w : a.args) positive(w);
-    // One domain against itself has no gap to measure: the studio would keep the domains it shows.
-    if (a.verb == "domains" && a.args[0] == a.args[1])
-      fail("'domains': expected two different domains, got '" + quoted_for_message(a.args[0]) + "' twice");
-    if (a.verb == "focus" && a.args[0] != "on" && a.args[0] != "off")
-      fail("'focus': expected on or off, got '" + quoted_for_message(a.args[0]) + "'");
-    if (a.verb == "conf") {
-      double v = NAN;
-      if (!parse_decimal(a.args[0], &v) || !(v >= 0 && v <= 1))
-        fail("'conf': expected a threshold in [0, 1], got '" + quoted_for_message(a.args[0]) + "'");
-    }
-    PairAxis axis;
-    if (a.verb == "rocks")
-      for (const auto& w : a.args)
-        if (!parse_pair_axis(w, &axis))
-          fail("'rocks': expected an axis (" + std::string(kPairAxisWords) + "), got '" + quoted_for_message(w) + "'");
-    if (a.verb == "select")
-      for (const auto& w : a.args) {
-        double v = NAN;
-        if (!parse_decimal(w, &v)) fail("'select': expected a number, got '" + quoted_for_message(w) + "'");
-      }
-    if (a.verb == "gallery") check_gallery_options(a.args, fail);
-    RegistrationMethod method;
-    if (a.verb == "rerun" && !parse_method(a.args[0], &method))
-      fail("'rerun': expected " + method_choices() + ", got '" + a.args[0] + "'");
-    static const std::vector<std::string> kinds = {"pairs",          "registration",     "table",
-                                                   "compare",        "distribution",     "breakdown",
-                                                   "breakdown-size", "breakdown-region", "breakdown-confidence",
-                                                   "gallery"};
-    if (export_with_kind && std::find(kinds.begin(), kinds.end(), a.args[0]) == kinds.end())
-      fail(
-          "'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
-          "breakdown-size, breakdown-region, breakdown-confidence or gallery), got '" +
-          a.args[0] + "'");
+    check_verb_and_count(a, fail);
+    check_argument_values(a, fail);
     out.push_back(std::move(a));
   }
   return out;

@@ -277,24 +277,26 @@ struct Visitor : F... {
 template <class... F>
 Visitor(F...) -> Visitor<F...>;
 
+void StudyWorker::save_edit(SaveJob job) {
+  if (session_->read_only()) {
+    std::lock_guard<std::mutex> l(mu_);
+    messages_.push_back(
+        "read-only study: the edit is kept in memory; save it elsewhere with 'save as', below undo and redo");
+    ++unsaved_edits_;
+  } else {
+    saver_.submit(std::move(job));
+  }
+}
+
+void StudyWorker::say(std::string message) {
+  std::lock_guard<std::mutex> l(mu_);
+  messages_.push_back(std::move(message));
+}
+
 void StudyWorker::execute(WorkerCommand& c) {
   if (auto* o = std::get_if<command::OpenStudy>(&c)) return open(*o);
   if (!session_) return;
   Session& s = *session_;
-  auto save = [&](SaveJob job) {
-    if (s.read_only()) {
-      std::lock_guard<std::mutex> l(mu_);
-      messages_.push_back(
-          "read-only study: the edit is kept in memory; save it elsewhere with 'save as', below undo and redo");
-      ++unsaved_edits_;
-    } else {
-      saver_.submit(std::move(job));
-    }
-  };
-  auto say = [&](std::string message) {
-    std::lock_guard<std::mutex> l(mu_);
-    messages_.push_back(std::move(message));
-  };
   // Each command says whether it changed the session (and publishes itself when it did not change it).
   const double started_ms = now_ms();
   int jump = -1, edited_scene = -1;
@@ -303,29 +305,29 @@ void StudyWorker::execute(WorkerCommand& c) {
                      [&](const command::OpenStudy&) { return false; },
                      [&](const command::ApplyEdit& e) {
                        if (e.scene >= 0 && e.scene < static_cast<int>(s.scenes().size()))
-                         save(s.apply(e.scene, e.edit)), edited_scene = e.scene;
+                         save_edit(s.apply(e.scene, e.edit)), edited_scene = e.scene;
                        return true;
                      },
                      [&](const command::ToggleReviewed& r) {
                        // A mark changes its scene's summary alone: the other 9,999 are shared, not redone.
                        if (r.scene >= 0 && r.scene < static_cast<int>(s.scenes().size()))
-                         save(s.toggle_reviewed(r.scene)), edited_scene = r.scene;
+                         save_edit(s.toggle_reviewed(r.scene)), edited_scene = r.scene;
                        return true;
                      },
                      [&](const command::ToggleChecked& c) {
                        if (c.scene >= 0 && c.scene < static_cast<int>(s.scenes().size()))
                          if (auto job = s.toggle_checked(c.scene, c.left, c.right))
-                           save(std::move(*job)), edited_scene = c.scene;
+                           save_edit(std::move(*job)), edited_scene = c.scene;
                        return true;
                      },
                      [&](const command::Undo&) {
                        if (auto job = s.undo())
-                         save(std::move(*job)), jump = edited_scene = std::max(0, s.last_edited_scene());
+                         save_edit(std::move(*job)), jump = edited_scene = std::max(0, s.last_edited_scene());
                        return true;
                      },
                      [&](const command::Redo&) {
                        if (auto job = s.redo())
-                         save(std::move(*job)), jump = edited_scene = std::max(0, s.last_edited_scene());
+                         save_edit(std::move(*job)), jump = edited_scene = std::max(0, s.last_edited_scene());
                        return true;
                      },
                      [&](const command::SelectDomains& d) { return s.select_domains(d.left, d.right), true; },

@@ -136,6 +136,9 @@ class StudyWorker {
   void execute(WorkerCommand& c);
   void open(const command::OpenStudy& c);
   void rerun(Session& s, const command::RerunRegistration& c);
+  // An edit's save job to the saver; in a read-only study the edit stays in memory, counted and said.
+  void save_edit(SaveJob job);
+  void say(std::string message);  // a message for the window's status line
   // `edited_scene` >= 0: only that scene of the current domain pair changed (its summary alone is redone).
   void publish(bool session_changed, int jump_to_scene = -1, int edited_scene = -1, double edit_started_ms = -1);
   void publish_new_session();

@@ -68,86 +68,41 @@ void nearest(const LabelRect& r, double x, double y, double& nx, double& ny) {
   ny = std::clamp(y, r.y0, r.y1);
 }
 
-}  // namespace
+struct Candidate {
+  LabelPosition pos;
+  LabelRect box;
+};
 
-LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const LabelPlacementOptions& o) {
-  o.check();
-  LabelPlacement out;
-  out.labels.resize(requests.size());
-  std::vector<LabelRect> occupied = o.taken;  // inflated by the gap when compared
-  const double g = o.gap;
-  auto free = [&](const LabelRect& r) {
-    if (!inside(r, o.bounds)) return false;
-    const LabelRect grown{r.x0 - g, r.y0 - g, r.x1 + g, r.y1 + g};
-    for (const LabelRect& t : occupied)
-      if (overlaps(grown, t)) return false;
-    return true;
+// The spots beside a target, in order of preference: above and below (left- then right-aligned), the inside
+// corners when the label fits inside with a gap all round, then left and right.
+std::vector<Candidate> spots_beside(const LabelRect& t, double w, double h, double g) {
+  std::vector<Candidate> cands = {
+      {LabelPosition::kAbove, at(t.x0, t.y0 - g - h, w, h)},
+      {LabelPosition::kBelow, at(t.x0, t.y1 + g, w, h)},
+      {LabelPosition::kAbove, at(t.x1 - w, t.y0 - g - h, w, h)},
+      {LabelPosition::kBelow, at(t.x1 - w, t.y1 + g, w, h)},
   };
-  // How much a spot hides other targets (labels may sit on boxes, but preferably not).
-  auto covers = [&](const LabelRect& r, size_t self) {
-    double a = 0;
-    for (size_t k = 0; k < requests.size(); ++k)
-      if (k != self) a += overlap_area(r, requests[k].target);
-    return a;
-  };
-  // An exclusive label's spot must keep clear of the other exclusive targets (and its leader cross none).
-  // Nor does it cover another target that is not on its own (a label over another rock reads as that
-  // rock's; over the GT box its own prediction overlaps, it still names the same rock).
-  // LabelRequest::nearest_own: beside its target, clearly nearer it than any other of its group.
-  auto unambiguous = [&](const LabelRect& box, size_t self, bool leader) {
-    if (!requests[self].exclusive) return true;
-    const LabelRect& own = requests[self].target;
-    const double clearance = leader || !requests[self].nearest_own
-                                 ? o.exclusive_clearance
-                                 : distance(box, own) + std::max(o.exclusive_clearance, 0.5 * requests[self].height);
-    for (size_t k = 0; k < requests.size(); ++k) {
-      if (k == self) continue;
-      const LabelRect& other = requests[k].target;
-      if (requests[k].exclusive && requests[k].group == requests[self].group
-              ? distance(box, other) < clearance
-              : overlaps(box, other) && !overlaps(other, own))
-        return false;
-    }
-    const double c = requests[self].keep_off_clearance;
-    for (const LabelRect& r : requests[self].keep_off)
-      if (overlaps(box, r) || distance(box, r) < c) return false;
-    return true;
-  };
-  auto leader_clear = [&](double x0, double y0, double x1, double y1, size_t self) {
-    if (!requests[self].exclusive) return true;
-    for (size_t k = 0; k < requests.size(); ++k) {
-      if (k == self || !requests[k].exclusive || requests[k].group != requests[self].group) continue;
-      const LabelRect& q = requests[k].target;
-      const double c = o.exclusive_clearance;
-      if (segment_hits(x0, y0, x1, y1, {q.x0 - c, q.y0 - c, q.x1 + c, q.y1 + c})) return false;
-    }
-    const double c = requests[self].keep_off_clearance;
-    for (const LabelRect& q : requests[self].keep_off)
-      if (segment_hits(x0, y0, x1, y1, {q.x0 - c, q.y0 - c, q.x1 + c, q.y1 + c})) return false;
-    return true;
-  };
-  for (size_t i = 0; i < requests.size(); ++i) {
-    const LabelRect& t = requests[i].target;
-    const double w = requests[i].width, h = requests[i].height;
-    PlacedLabel& placed = out.labels[i];
-    struct Candidate {
-      LabelPosition pos;
-      LabelRect box;
-    };
-    std::vector<Candidate> cands = {
-        {LabelPosition::kAbove, at(t.x0, t.y0 - g - h, w, h)},
-        {LabelPosition::kBelow, at(t.x0, t.y1 + g, w, h)},
-        {LabelPosition::kAbove, at(t.x1 - w, t.y0 - g - h, w, h)},
-        {LabelPosition::kBelow, at(t.x1 - w, t.y1 + g, w, h)},
-    };
-    if (w + 2 * g <= t.width() && h + 2 * g <= t.height()) {
-      cands.push_back({LabelPosition::kInsideTopLeft, at(t.x0 + g, t.y0 + g, w, h)});
-      cands.push_back({LabelPosition::kInsideTopRight, at(t.x1 - g - w, t.y0 + g, w, h)});
-      cands.push_back({LabelPosition::kInsideBottomLeft, at(t.x0 + g, t.y1 - g - h, w, h)});
-      cands.push_back({LabelPosition::kInsideBottomRight, at(t.x1 - g - w, t.y1 - g - h, w, h)});
-    }
-    cands.push_back({LabelPosition::kLeft, at(t.x0 - g - w, t.y0, w, h)});
-    cands.push_back({LabelPosition::kRight, at(t.x1 + g, t.y0, w, h)});
+  if (w + 2 * g <= t.width() && h + 2 * g <= t.height()) {
+    cands.push_back({LabelPosition::kInsideTopLeft, at(t.x0 + g, t.y0 + g, w, h)});
+    cands.push_back({LabelPosition::kInsideTopRight, at(t.x1 - g - w, t.y0 + g, w, h)});
+    cands.push_back({LabelPosition::kInsideBottomLeft, at(t.x0 + g, t.y1 - g - h, w, h)});
+    cands.push_back({LabelPosition::kInsideBottomRight, at(t.x1 - g - w, t.y1 - g - h, w, h)});
+  }
+  cands.push_back({LabelPosition::kLeft, at(t.x0 - g - w, t.y0, w, h)});
+  cands.push_back({LabelPosition::kRight, at(t.x1 + g, t.y0, w, h)});
+  return cands;
+}
+
+// The greedy placement's state: the requests, the options and every rectangle taken so far.
+class LabelPlacer {
+ public:
+  LabelPlacer(const std::vector<LabelRequest>& requests, const LabelPlacementOptions& o)
+      : requests_(requests), o_(o), occupied_(o.taken) {}
+
+  // Label i beside its target; false when no spot there is free and unambiguous.
+  bool place_beside(size_t i, PlacedLabel* placed) {
+    const LabelRect& t = requests_[i].target;
+    const std::vector<Candidate> cands = spots_beside(t, requests_[i].width, requests_[i].height, o_.gap);
     // The first free spot that hides no other target; else the free spot hiding least.
     int best = -1;
     double best_cover = INFINITY;
@@ -156,18 +111,22 @@ LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const Lab
       const double cover = covers(cands[c].box, i);
       if (cover < best_cover) best_cover = cover, best = int(c);
     }
-    if (best >= 0) {
-      placed.position = cands[best].pos;
-      placed.box = cands[best].box;
-      occupied.push_back(placed.box);
-      continue;
-    }
-    // A short leader: rings of spots farther out, nearest first, the line crossing no other label.
+    if (best < 0) return false;
+    placed->position = cands[best].pos;
+    placed->box = cands[best].box;
+    occupied_.push_back(placed->box);
+    return true;
+  }
+
+  // Label i a little way off with a short leader: rings of spots farther out, nearest first, the line crossing
+  // no other label; false when none fits within max_leader label heights.
+  bool place_with_leader(size_t i, PlacedLabel* placed) {
+    const LabelRect& t = requests_[i].target;
+    const double w = requests_[i].width, h = requests_[i].height;
     const double cx = 0.5 * (t.x0 + t.x1), cy = 0.5 * (t.y0 + t.y1);
-    bool done = false;
-    for (double d = 1; d <= o.max_leader && !done; d += 0.5) {
+    for (double d = 1; d <= o_.max_leader; d += 0.5) {
       const double r = d * h;
-      for (int k = 0; k < 16 && !done; ++k) {
+      for (int k = 0; k < 16; ++k) {
         const double a = -M_PI / 2 + k * M_PI / 8;  // starting above, clockwise
         // Box placed so its nearest point lies r beyond the target's edge in direction a.
         const double ux = std::cos(a), uy = std::sin(a);
@@ -181,20 +140,97 @@ LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const Lab
         nearest(box, cx, cy, lx1, ly1);
         nearest(t, lx1, ly1, lx0, ly0);
         bool crosses = false;
-        for (const LabelRect& q : occupied) crosses |= segment_hits(lx0, ly0, lx1, ly1, q);
+        for (const LabelRect& q : occupied_) crosses |= segment_hits(lx0, ly0, lx1, ly1, q);
         if (crosses || !leader_clear(lx0, ly0, lx1, ly1, i)) continue;
-        placed.position = LabelPosition::kLeader;
-        placed.box = box;
-        placed.leader_x0 = lx0, placed.leader_y0 = ly0, placed.leader_x1 = lx1, placed.leader_y1 = ly1;
-        occupied.push_back(box);
-        ++out.with_leader;
-        done = true;
+        placed->position = LabelPosition::kLeader;
+        placed->box = box;
+        placed->leader_x0 = lx0, placed->leader_y0 = ly0, placed->leader_x1 = lx1, placed->leader_y1 = ly1;
+        occupied_.push_back(box);
+        return true;
       }
     }
-    if (!done) {
-      ++out.left_out;
-      out.left_out_exclusive += requests[i].exclusive;
+    return false;
+  }
+
+ private:
+  // Inside the bounds and a gap away from everything taken.
+  bool free(const LabelRect& r) const {
+    if (!inside(r, o_.bounds)) return false;
+    const double g = o_.gap;
+    const LabelRect grown{r.x0 - g, r.y0 - g, r.x1 + g, r.y1 + g};
+    for (const LabelRect& t : occupied_)
+      if (overlaps(grown, t)) return false;
+    return true;
+  }
+
+  // How much a spot hides other targets (labels may sit on boxes, but preferably not).
+  double covers(const LabelRect& r, size_t self) const {
+    double a = 0;
+    for (size_t k = 0; k < requests_.size(); ++k)
+      if (k != self) a += overlap_area(r, requests_[k].target);
+    return a;
+  }
+
+  // An exclusive label's spot must keep clear of the other exclusive targets (and its leader cross none).
+  // Nor does it cover another target that is not on its own (a label over another rock reads as that
+  // rock's; over the GT box its own prediction overlaps, it still names the same rock).
+  // LabelRequest::nearest_own: beside its target, clearly nearer it than any other of its group.
+  bool unambiguous(const LabelRect& box, size_t self, bool leader) const {
+    if (!requests_[self].exclusive) return true;
+    const LabelRect& own = requests_[self].target;
+    const double clearance = leader || !requests_[self].nearest_own
+                                 ? o_.exclusive_clearance
+                                 : distance(box, own) + std::max(o_.exclusive_clearance, 0.5 * requests_[self].height);
+    for (size_t k = 0; k < requests_.size(); ++k) {
+      if (k == self) continue;
+      const LabelRect& other = requests_[k].target;
+      if (requests_[k].exclusive && requests_[k].group == requests_[self].group
+              ? distance(box, other) < clearance
+              : overlaps(box, other) && !overlaps(other, own))
+        return false;
     }
+    const double c = requests_[self].keep_off_clearance;
+    for (const LabelRect& r : requests_[self].keep_off)
+      if (overlaps(box, r) || distance(box, r) < c) return false;
+    return true;
+  }
+
+  // An exclusive label's leader crosses no other exclusive target of its group and nothing it keeps off.
+  bool leader_clear(double x0, double y0, double x1, double y1, size_t self) const {
+    if (!requests_[self].exclusive) return true;
+    for (size_t k = 0; k < requests_.size(); ++k) {
+      if (k == self || !requests_[k].exclusive || requests_[k].group != requests_[self].group) continue;
+      const LabelRect& q = requests_[k].target;
+      const double c = o_.exclusive_clearance;
+      if (segment_hits(x0, y0, x1, y1, {q.x0 - c, q.y0 - c, q.x1 + c, q.y1 + c})) return false;
+    }
+    const double c = requests_[self].keep_off_clearance;
+    for (const LabelRect& q : requests_[self].keep_off)
+      if (segment_hits(x0, y0, x1, y1, {q.x0 - c, q.y0 - c, q.x1 + c, q.y1 + c})) return false;
+    return true;
+  }
+
+  const std::vector<LabelRequest>& requests_;
+  const LabelPlacementOptions& o_;
+  std::vector<LabelRect> occupied_;  // inflated by the gap when compared
+};
+
+}  // namespace
+
+LabelPlacement place_labels(const std::vector<LabelRequest>& requests, const LabelPlacementOptions& o) {
+  o.check();
+  LabelPlacement out;
+  out.labels.resize(requests.size());
+  LabelPlacer placer(requests, o);
+  for (size_t i = 0; i < requests.size(); ++i) {
+    PlacedLabel& placed = out.labels[i];
+    if (placer.place_beside(i, &placed)) continue;
+    if (placer.place_with_leader(i, &placed)) {
+      ++out.with_leader;
+      continue;
+    }
+    ++out.left_out;
+    out.left_out_exclusive += requests[i].exclusive;
   }
   return out;
 }

@@ -92,28 +92,17 @@ std::vector<int> largest_rocks(const std::vector<Box>& boxes, size_t count) {
   return order;
 }
 
-}  // namespace
-
-MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
-                           const RegistrationOptions& o, const Deadline& deadline) {
-  MethodOutcome out;
-  out.affine_normalised = f.from_image(identity_affine());
-  int m = static_cast<int>(f.a.size()), n = static_cast<int>(f.b.size());
-  if (m == 0 || n == 0) {
-    out.stop = StopReason::kTooFewPoints;
-    out.note = "a side has no rocks: nothing to register";
-    return out;
-  }
-  // Over the pair limit with a time budget: EM on the largest rocks of each side (see budget_subset); without
-  // one, refused as before.
-  std::vector<int> keep_a, keep_b;
+// The rocks EM runs on, as indices into each side of m and n rocks: all of them, or over the pair limit and under a
+// time budget the largest of each side (budget_subset; the note says so). Over the limit without a budget: refused.
+void rocks_for_em(int m, int n, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
+                  const Deadline& deadline, std::vector<int>* keep_a, std::vector<int>* keep_b, std::string* note) {
   const bool subset = static_cast<double>(m) * n > kCpdMaxPairs && deadline.has_budget();
   if (subset) {
-    keep_a = largest_rocks(boxes_a, budget_subset(deadline.budget_ms()));
-    keep_b = largest_rocks(boxes_b, budget_subset(deadline.budget_ms()));
-    add_note(&out.note, fmt::format("{} x {} rocks is over cpd's limit of {} rock pairs: EM ran on the {} and {} "
-                                    "largest rocks (the time budget's subset), then every rock was paired",
-                                    m, n, grouped(kCpdMaxPairs), keep_a.size(), keep_b.size()));
+    *keep_a = largest_rocks(boxes_a, budget_subset(deadline.budget_ms()));
+    *keep_b = largest_rocks(boxes_b, budget_subset(deadline.budget_ms()));
+    add_note(note, fmt::format("{} x {} rocks is over cpd's limit of {} rock pairs: EM ran on the {} and {} "
+                               "largest rocks (the time budget's subset), then every rock was paired",
+                               m, n, grouped(kCpdMaxPairs), keep_a->size(), keep_b->size()));
   } else if (static_cast<double>(m) * n > kCpdMaxPairs) {
     throw std::invalid_argument(fmt::format(
         "--method cpd: {} x {} rocks is {:.0f} rock pairs, over cpd's limit of {:.0f} (it holds a weight for every "
@@ -121,26 +110,152 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
         "registers the largest rocks of each side)",
         m, n, static_cast<double>(m) * n, kCpdMaxPairs));
   } else {
-    keep_a.resize(m), keep_b.resize(n);
-    std::iota(keep_a.begin(), keep_a.end(), 0);
-    std::iota(keep_b.begin(), keep_b.end(), 0);
+    keep_a->resize(m), keep_b->resize(n);
+    std::iota(keep_a->begin(), keep_a->end(), 0);
+    std::iota(keep_b->begin(), keep_b->end(), 0);
   }
-  m = static_cast<int>(keep_a.size()), n = static_cast<int>(keep_b.size());
-  Eigen::MatrixXd x(n, 2), y(m, 2);
-  for (int k = 0; k < n; ++k) x.row(k) = f.b[keep_b[k]].transpose();
-  for (int k = 0; k < m; ++k) y.row(k) = f.a[keep_a[k]].transpose();
-  Eigen::Matrix2d lin = out.affine_normalised.leftCols<2>();
-  Eigen::RowVector2d t = out.affine_normalised.col(2).transpose();
+}
+
+// EM stops when the variance changes by less than this, and takes it as the variance when a step drives it to 0.
+constexpr double kTolerance = 1e-10;
+
+// What EM fits: the affine (linear part and translation, acting on row vectors) and the mixture's variance.
+struct CpdFit {
+  Eigen::Matrix2d lin;
+  Eigen::RowVector2d t;
+  double sigma2 = 0;
+};
+
+// The starting variance: the mean squared distance of every (A, B) pair under the starting affine, per axis.
+double initial_sigma2(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, const CpdFit& fit, const Deadline& deadline) {
+  const int m = static_cast<int>(y.rows()), n = static_cast<int>(x.rows());
   double sigma2 = 0;
   // Read every 64 rows: the first mixture width alone weighs every rock pair once.
   for (int i = 0; i < m && !((i & 63) == 0 && deadline.passed()); ++i)
-    for (int j = 0; j < n; ++j) sigma2 += (x.row(j) - (y.row(i) * lin.transpose() + t)).squaredNorm();
+    for (int j = 0; j < n; ++j) sigma2 += (x.row(j) - (y.row(i) * fit.lin.transpose() + fit.t)).squaredNorm();
   sigma2 /= 2.0 * m * n;
-  const double w = o.cpd.outlier_weight;
-  Eigen::MatrixXd p(m, n);
-  const double tolerance = 1e-10;
+  return sigma2;
+}
+
+enum class EmStep {
+  kStepped,       // the fit moved
+  kNothingToFit,  // no weight left, the weight on one centre, or a degenerate affine: the fit stays
+  kCut,           // the time budget passed during the E-step: the step is dropped, the fit stays
+};
+
+// One EM step: the soft correspondences under the current fit (E), then the closed-form affine and variance (M).
+// p_weights: the m x n correspondence weights, reused between steps.
+EmStep em_step(const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, double w, const Deadline& deadline,
+               Eigen::MatrixXd* p_weights, CpdFit* fit) {
+  const int m = static_cast<int>(y.rows()), n = static_cast<int>(x.rows());
+  Eigen::MatrixXd& p = *p_weights;
+  const double sigma2 = fit->sigma2;
+  const Eigen::MatrixXd ty = (y * fit->lin.transpose()).rowwise() + fit->t;
+  // One step weighs every pair (tens of milliseconds at the pair limit): the budget is also read every 16 rows,
+  // and a step it cuts is dropped, the alignment staying at the last whole step's.
+  bool cut = false;
+  for (int i = 0; i < m && !cut; ++i) {
+    if (deadline.has_budget() && (i & 15) == 0 && deadline.passed()) cut = true;
+    for (int j = 0; j < n && !cut; ++j) p(i, j) = std::exp(-(x.row(j) - ty.row(i)).squaredNorm() / (2 * sigma2));
+  }
+  if (cut) return EmStep::kCut;
+  const double c = 2 * M_PI * sigma2 * w / (1 - w) * m / n;
+  Eigen::RowVectorXd den = p.colwise().sum().array() + c;
+  for (int j = 0; j < n; ++j) p.col(j) /= std::max(den(j), 1e-300);
+  const Eigen::VectorXd pt1 = p.colwise().sum().transpose(), p1 = p.rowwise().sum();
+  const double np = p1.sum();
+  if (!(np > 1e-12)) return EmStep::kNothingToFit;
+  const Eigen::RowVector2d mu_x = (pt1.transpose() * x) / np, mu_y = (p1.transpose() * y) / np;
+  const Eigen::MatrixXd xh = x.rowwise() - mu_x, yh = y.rowwise() - mu_y;
+  const Eigen::Matrix2d a = xh.transpose() * p.transpose() * yh;
+  const Eigen::Matrix2d yy = yh.transpose() * p1.asDiagonal() * yh;
+  // Singular relative to the centres' own spread (an absolute bound let rounding noise through).
+  if (!(yy.trace() > 1e-12)) return EmStep::kNothingToFit;  // the weight sits on one centre: nothing to fit
+  const bool on_a_line = !(yy.determinant() > kSingularBelow * yy.trace() * yy.trace());
+  const Eigen::Matrix2d b = on_a_line ? similarity_step(a, yy) : Eigen::Matrix2d(a * yy.inverse());
+  if (!b.allFinite() || !(std::abs(b.determinant()) > 0)) return EmStep::kNothingToFit;
+  fit->lin = b;
+  fit->t = mu_x - mu_y * b.transpose();
+  const double xx = (xh.array().square().colwise() * pt1.array()).sum();
+  fit->sigma2 = (xx - (a * b.transpose()).trace()) / (np * 2);
+  if (!(fit->sigma2 > 0)) fit->sigma2 = kTolerance;
+  return EmStep::kStepped;
+}
+
+// EM from the fit given until it converges, cannot go on, or the iteration, work or time budget ends it (at most
+// `allowed` steps of `per_step` point evaluations each). Returns the steps run; sets out->stop and out->work.
+int run_em(const RegistrationFrame& f, const Eigen::MatrixXd& x, const Eigen::MatrixXd& y, const RegistrationOptions& o,
+           const Deadline& deadline, int allowed, double per_step, SearchRecorder& recorder, CpdFit* fit,
+           MethodOutcome* out) {
+  Eigen::MatrixXd p(y.rows(), x.rows());
   int it = 0;
-  out.stop = StopReason::kMaxTrials;
+  out->stop = StopReason::kMaxTrials;
+  double best_sigma = INFINITY;
+  for (; it < o.cpd.iterations; ++it) {
+    if (it >= allowed) {
+      out->stop = StopReason::kWorkBudget;
+      break;
+    }
+    // One EM step on 5,000 rocks a side is tens of milliseconds: the time budget is read before each.
+    if (deadline.passed()) {
+      out->stop = StopReason::kTimeBudget;
+      break;
+    }
+    out->work += per_step;
+    if (!(fit->sigma2 > 1e-12)) {
+      out->stop = StopReason::kCannotBeBeaten;
+      break;
+    }
+    const double old = fit->sigma2;
+    const EmStep step = em_step(x, y, o.cpd.outlier_weight, deadline, &p, fit);
+    if (step == EmStep::kCut) {
+      out->work -= per_step;
+      out->stop = StopReason::kTimeBudget;
+      break;
+    }
+    if (step == EmStep::kNothingToFit) break;
+    if (recorder.recording()) {
+      Affine2 affine;
+      affine.leftCols<2>() = fit->lin;
+      affine.col(2) = fit->t.transpose();
+      const double sigma = std::sqrt(fit->sigma2) * f.spread;
+      const bool better = sigma < best_sigma;
+      best_sigma = std::min(best_sigma, sigma);
+      recorder.add_step(TraceStepKind::kIteration, affine, sigma, best_sigma, better);
+    }
+    if (std::abs(old - fit->sigma2) < kTolerance) {
+      out->stop = StopReason::kConverged;
+      ++it;
+      break;
+    }
+  }
+  return it;
+}
+
+}  // namespace
+
+MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const std::vector<Box>& boxes_b,
+                           const RegistrationOptions& o, const Deadline& deadline) {
+  MethodOutcome out;
+  out.affine_normalised = f.from_image(identity_affine());
+  if (f.a.empty() || f.b.empty()) {
+    out.stop = StopReason::kTooFewPoints;
+    out.note = "a side has no rocks: nothing to register";
+    return out;
+  }
+  // Over the pair limit with a time budget: EM on the largest rocks of each side (see budget_subset); without
+  // one, refused as before.
+  std::vector<int> keep_a, keep_b;
+  rocks_for_em(static_cast<int>(f.a.size()), static_cast<int>(f.b.size()), boxes_a, boxes_b, deadline, &keep_a, &keep_b,
+               &out.note);
+  const int m = static_cast<int>(keep_a.size()), n = static_cast<int>(keep_b.size());
+  Eigen::MatrixXd x(n, 2), y(m, 2);
+  for (int k = 0; k < n; ++k) x.row(k) = f.b[keep_b[k]].transpose();
+  for (int k = 0; k < m; ++k) y.row(k) = f.a[keep_a[k]].transpose();
+  CpdFit fit;
+  fit.lin = out.affine_normalised.leftCols<2>();
+  fit.t = out.affine_normalised.col(2).transpose();
+  fit.sigma2 = initial_sigma2(x, y, fit, deadline);
   // Each EM step weighs every (A, B) pair: the work budget bounds the number of steps (at least one).
   const double budget = work_budget(o, f.a.size(), f.b.size()), per_step = static_cast<double>(m) * n;
   const int allowed = static_cast<int>(std::clamp(std::floor(budget / per_step), 1.0, 1e9));
@@ -150,80 +265,16 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   SearchRecorder recorder(
       f, std::clamp(0.3 * median_nn_distance(f.b, &deadline), 0.02, 0.2), o.record_trace, [](double s) { return s; },
       nullptr);
-  double best_sigma = INFINITY;
-  for (; it < o.cpd.iterations; ++it) {
-    if (it >= allowed) {
-      out.stop = StopReason::kWorkBudget;
-      break;
-    }
-    // One EM step on 5,000 rocks a side is tens of milliseconds: the time budget is read before each.
-    if (deadline.passed()) {
-      out.stop = StopReason::kTimeBudget;
-      break;
-    }
-    out.work += per_step;
-    if (!(sigma2 > 1e-12)) {
-      out.stop = StopReason::kCannotBeBeaten;
-      break;
-    }
-    const Eigen::MatrixXd ty = (y * lin.transpose()).rowwise() + t;
-    // One step weighs every pair (tens of milliseconds at the pair limit): the budget is also read every 16 rows,
-    // and a step it cuts is dropped, the alignment staying at the last whole step's.
-    bool cut = false;
-    for (int i = 0; i < m && !cut; ++i) {
-      if (deadline.has_budget() && (i & 15) == 0 && deadline.passed()) cut = true;
-      for (int j = 0; j < n && !cut; ++j) p(i, j) = std::exp(-(x.row(j) - ty.row(i)).squaredNorm() / (2 * sigma2));
-    }
-    if (cut) {
-      out.work -= per_step;
-      out.stop = StopReason::kTimeBudget;
-      break;
-    }
-    const double c = 2 * M_PI * sigma2 * w / (1 - w) * m / n;
-    Eigen::RowVectorXd den = p.colwise().sum().array() + c;
-    for (int j = 0; j < n; ++j) p.col(j) /= std::max(den(j), 1e-300);
-    const Eigen::VectorXd pt1 = p.colwise().sum().transpose(), p1 = p.rowwise().sum();
-    const double np = p1.sum();
-    if (!(np > 1e-12)) break;
-    const Eigen::RowVector2d mu_x = (pt1.transpose() * x) / np, mu_y = (p1.transpose() * y) / np;
-    const Eigen::MatrixXd xh = x.rowwise() - mu_x, yh = y.rowwise() - mu_y;
-    const Eigen::Matrix2d a = xh.transpose() * p.transpose() * yh;
-    const Eigen::Matrix2d yy = yh.transpose() * p1.asDiagonal() * yh;
-    // Singular relative to the centres' own spread (an absolute bound let rounding noise through).
-    if (!(yy.trace() > 1e-12)) break;  // the weight sits on one centre: nothing to fit
-    const bool on_a_line = !(yy.determinant() > kSingularBelow * yy.trace() * yy.trace());
-    const Eigen::Matrix2d b = on_a_line ? similarity_step(a, yy) : Eigen::Matrix2d(a * yy.inverse());
-    if (!b.allFinite() || !(std::abs(b.determinant()) > 0)) break;
-    lin = b;
-    t = mu_x - mu_y * b.transpose();
-    const double old = sigma2;
-    const double xx = (xh.array().square().colwise() * pt1.array()).sum();
-    sigma2 = (xx - (a * b.transpose()).trace()) / (np * 2);
-    if (!(sigma2 > 0)) sigma2 = tolerance;
-    if (recorder.recording()) {
-      Affine2 step;
-      step.leftCols<2>() = lin;
-      step.col(2) = t.transpose();
-      const double sigma = std::sqrt(sigma2) * f.spread;
-      const bool better = sigma < best_sigma;
-      best_sigma = std::min(best_sigma, sigma);
-      recorder.add_step(TraceStepKind::kIteration, step, sigma, best_sigma, better);
-    }
-    if (std::abs(old - sigma2) < tolerance) {
-      out.stop = StopReason::kConverged;
-      ++it;
-      break;
-    }
-  }
+  const int it = run_em(f, x, y, o, deadline, allowed, per_step, recorder, &fit, &out);
   out.trials = it;
   out.hypotheses = it;
-  out.affine_normalised.leftCols<2>() = lin;
-  out.affine_normalised.col(2) = t.transpose();
+  out.affine_normalised.leftCols<2>() = fit.lin;
+  out.affine_normalised.col(2) = fit.t.transpose();
   if (!out.affine_normalised.allFinite()) {
     out.affine_normalised = f.from_image(identity_affine());
     out.note = "EM diverged: identity used";
   }
-  out.score = std::sqrt(std::max(sigma2, 0.0)) * f.spread;  // final mixture width, fraction of image width
+  out.score = std::sqrt(std::max(fit.sigma2, 0.0)) * f.spread;  // final mixture width, fraction of image width
   if (out.stop == StopReason::kTimeBudget || deadline.passed()) {
     // The rival placements score whole sets again: with the budget spent EM's answer stands, unjudged.
     out.stop = StopReason::kTimeBudget;

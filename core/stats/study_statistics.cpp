@@ -192,15 +192,37 @@ std::pair<int, int> domain_image_size(const Study& study, const std::string& dom
   return {0, 0};
 }
 
-CellBreakdown breakdown_cell(const StudyLabels& labels, const TableCell& cell, const BreakdownOptions& options) {
-  if (const auto e = options.validate(); !e.empty()) throw std::invalid_argument(e);
-  if (!cell.no_value_reason.empty()) throw_no_value(cell);  // its bins would all read 0
-  CellBreakdown out{cell.model, cell.trained_on, cell.a, cell.b, options.by, {}};
-  // Every counted pair: its scene, the ref rock's property, |diff|. NaN property: "no detection".
-  struct PairValue {
-    int scene;
-    double value, diff;
-  };
+namespace {
+
+// One counted pair of a cell: its scene, the ref rock's property, |diff|. NaN property: "no detection".
+struct PairValue {
+  int scene;
+  double value, diff;
+};
+
+// The property a breakdown bins by, of ref rock i of a scene (gt: the scene's GT in domain a, pred its
+// predictions, perf their performance values when binning by confidence).
+double rock_property(BreakdownBy by, const std::vector<Box>& gt, const std::vector<Box>& pred,
+                     const PerformanceValues& perf, int i, double pixel_area) {
+  const Box& box = gt[i];
+  double v = 0;
+  switch (by) {
+    case BreakdownBy::kSize:
+      v = box.area() * pixel_area;
+      break;
+    case BreakdownBy::kRegion:
+      v = std::clamp(static_cast<int>(std::floor(box.cy * 3)), 0, 2) * 3 +
+          std::clamp(static_cast<int>(std::floor(box.cx * 3)), 0, 2);
+      break;
+    case BreakdownBy::kConfidence:
+      v = perf.best_prediction[i] >= 0 ? pred[perf.best_prediction[i]].conf : kNaN;
+      break;
+  }
+  return v;
+}
+
+// Every counted pair of the cell with its ref rock's property.
+std::vector<PairValue> pair_values(const StudyLabels& labels, const TableCell& cell, BreakdownBy by) {
   std::vector<PairValue> pairs;
   const auto [width, height] = domain_image_size(labels.study, cell.a);
   const double pixel_area = width > 0 ? static_cast<double>(width) * height : 1e6;
@@ -209,52 +231,54 @@ CellBreakdown breakdown_cell(const StudyLabels& labels, const TableCell& cell, c
     const auto& gt = labels.gt_of(cell.a, sc.stem).boxes;
     const auto& pred = labels.predictions_of(cell.a, cell.model, sc.stem).boxes;
     PerformanceValues perf;
-    if (options.by == BreakdownBy::kConfidence) perf = performance_values(gt, pred);
+    if (by == BreakdownBy::kConfidence) perf = performance_values(gt, pred);
     for (size_t k = 0; k < sc.counted.size(); ++k) {
-      const int i = sc.counted[k].first;
-      const Box& box = gt[i];
-      double v = 0;
-      switch (options.by) {
-        case BreakdownBy::kSize:
-          v = box.area() * pixel_area;
-          break;
-        case BreakdownBy::kRegion:
-          v = std::clamp(static_cast<int>(std::floor(box.cy * 3)), 0, 2) * 3 +
-              std::clamp(static_cast<int>(std::floor(box.cx * 3)), 0, 2);
-          break;
-        case BreakdownBy::kConfidence:
-          v = perf.best_prediction[i] >= 0 ? pred[perf.best_prediction[i]].conf : kNaN;
-          break;
-      }
+      const double v = rock_property(by, gt, pred, perf, sc.counted[k].first, pixel_area);
       pairs.push_back({static_cast<int>(s), v, std::abs(sc.perf_a[k] - sc.perf_b[k])});
     }
   }
-  // Bin edges and labels.
+  return pairs;
+}
+
+// The bins of a breakdown, empty of pairs: the nine regions, or quantile bins of the properties present (plus
+// "no detection" by confidence). Returns the quantile bins' inner edges (none for regions).
+std::vector<double> make_bins(const std::vector<PairValue>& pairs, const BreakdownOptions& options,
+                              std::vector<BreakdownBin>* bins) {
   std::vector<double> edges;  // inner edges for quantile bins
   std::vector<double> present;
   for (const auto& p : pairs)
     if (!std::isnan(p.value)) present.push_back(p.value);
-  int nbins = 0;
   if (options.by == BreakdownBy::kRegion) {
-    nbins = 9;
     static const char* kRegions[] = {"top-left", "top",         "top-right", "left",        "centre",
                                      "right",    "bottom-left", "bottom",    "bottom-right"};
-    for (int k = 0; k < 9; ++k) out.bins.push_back({kRegions[k], double(k), double(k), {}, 0, 0});
-  } else {
-    nbins = options.bins;
-    edges = quantile_edges(present, nbins);
-    const double lo = quantile(present, 0), hi = quantile(present, 1);
-    for (int k = 0; k < nbins; ++k) {
-      BreakdownBin b;
-      b.low = k == 0 ? lo : edges[k - 1];
-      b.high = k == nbins - 1 ? hi : edges[k];
-      // A range takes an en dash (print typography; a hyphen reads as a minus next to numbers).
-      b.label = options.by == BreakdownBy::kSize ? fmt::format("{:.0f}\u2013{:.0f} px²", b.low, b.high)
-                                                 : fmt::format("{:.2f}\u2013{:.2f}", b.low, b.high);
-      out.bins.push_back(b);
-    }
-    if (options.by == BreakdownBy::kConfidence) out.bins.push_back({"no detection", kNaN, kNaN, {}, 0, 0});
+    for (int k = 0; k < 9; ++k) bins->push_back({kRegions[k], double(k), double(k), {}, 0, 0});
+    return edges;
   }
+  const int nbins = options.bins;
+  edges = quantile_edges(present, nbins);
+  const double lo = quantile(present, 0), hi = quantile(present, 1);
+  for (int k = 0; k < nbins; ++k) {
+    BreakdownBin b;
+    b.low = k == 0 ? lo : edges[k - 1];
+    b.high = k == nbins - 1 ? hi : edges[k];
+    // A range takes an en dash (print typography; a hyphen reads as a minus next to numbers).
+    b.label = options.by == BreakdownBy::kSize ? fmt::format("{:.0f}\u2013{:.0f} px²", b.low, b.high)
+                                               : fmt::format("{:.2f}\u2013{:.2f}", b.low, b.high);
+    bins->push_back(b);
+  }
+  if (options.by == BreakdownBy::kConfidence) bins->push_back({"no detection", kNaN, kNaN, {}, 0, 0});
+  return edges;
+}
+
+}  // namespace
+
+CellBreakdown breakdown_cell(const StudyLabels& labels, const TableCell& cell, const BreakdownOptions& options) {
+  if (const auto e = options.validate(); !e.empty()) throw std::invalid_argument(e);
+  if (!cell.no_value_reason.empty()) throw_no_value(cell);  // its bins would all read 0
+  CellBreakdown out{cell.model, cell.trained_on, cell.a, cell.b, options.by, {}};
+  const std::vector<PairValue> pairs = pair_values(labels, cell, options.by);
+  const std::vector<double> edges = make_bins(pairs, options, &out.bins);
+  const int nbins = options.by == BreakdownBy::kRegion ? 9 : options.bins;
   auto bin_of = [&](double v) {
     if (std::isnan(v)) return nbins;  // the "no detection" bin
     if (options.by == BreakdownBy::kRegion) return static_cast<int>(v);
