@@ -189,6 +189,11 @@ TEST(Study, RegistrationBudgetIsANumberOfMillisecondsAboveZero) {
   EXPECT_EQ(message("registration:\n  budget_ms: .nan\n"), expected + ".nan");
   EXPECT_EQ(message("registration:\n  budget_ms: .inf\n"), expected + ".inf");
   EXPECT_EQ(message("registration:\n  budget_ms: [1]\n"), expected + "a list or map");
+  // "budget_ms:" with no value is YAML's null, neither a list nor a map.
+  EXPECT_EQ(message("registration:\n  budget_ms:\n"), expected + "nothing");
+  EXPECT_EQ(message("registration: {budget_ms: }\n"),
+            "study.yaml:1: registration.budget_ms must be a number of "
+            "milliseconds > 0 (unset: no time limit), got nothing");
   EXPECT_EQ(message("registration:\n  budget_ms: " + std::string(1000, '9') + "x\n"),
             expected + std::string(37, '9') + "...");
 }
