@@ -54,6 +54,17 @@ std::vector<std::string> table_notes(const TableArgs& args, const LoadedStudy& l
                                 ambiguous.size() == 1 ? "" : "s", args.verbose ? ":" : "; --verbose lists them"));
     if (args.verbose) notes.insert(notes.end(), ambiguous.begin(), ambiguous.end());
   }
+  // A search the time budget ended answers with what it had when the time ran out: on a slower or busier
+  // machine, or another run, its pairs may differ.
+  int budget_ended = 0;
+  for (size_t c = 0; c < t.columns.size() && c < t.pairings.size(); ++c)
+    for (const ScenePairing& p : t.pairings[c])
+      if (!p.fixed && p.registration.stop == StopReason::kTimeBudget) ++budget_ended;
+  if (budget_ended > 0)
+    notes.push_back(
+        fmt::format("{} scene{}: registration ended by the time budget of {:g} ms (--budget-ms, else study.yaml's "
+                    "registration.budget_ms); their pairs may differ on another machine or run",
+                    budget_ended, budget_ended == 1 ? "" : "s", loaded.registration_budget_ms));
   notes.push_back(provenance_note(provenance));
   if (args.verbose)
     for (const EditedScene& e : provenance.edited_scenes)

@@ -2,10 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "app/cli/cli_common.h"
 #include "core/ipd/study_cache.h"
 #include "core/registration/registration_cache.h"
 #include "core/stats/study_statistics.h"
+#include "core/util/number_text.h"
 
 namespace ipd::cli {
 
@@ -23,6 +26,8 @@ std::string StudyOptions::validate() const {
   if (bootstrap < 0) return fmt::format("--bootstrap: must be >= 0 (0: no intervals), got {}", bootstrap);
   if (!(level >= 0.5 && level <= 0.9999)) return fmt::format("--ci: must be in [0.5, 0.9999], got {}", level);
   if (threads < 0) return fmt::format("--threads: must be >= 0 (0: every core), got {}", threads);
+  if (!std::isnan(budget_ms) && !(budget_ms >= 0 && std::isfinite(budget_ms)))
+    return fmt::format("--budget-ms: must be a number of milliseconds >= 0 (0: no limit), got {}", budget_ms);
   return {};
 }
 
@@ -34,6 +39,16 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
          "--method", o->method,
          "Registration method (default from study.yaml, else " + method_names().front() + "):\n" + methods_help())
       ->check(CLI::IsMember(method_names()));
+  cmd->add_option("--budget-ms", o->budget_ms,
+                  "Time budget of each registration in milliseconds, set-up and pairing included (0: none; default "
+                  "from study.yaml's registration.budget_ms, else none). A search it ends keeps its best so far, "
+                  "so pairs may then differ between machines and runs")
+      ->check(CLI::Validator(
+          [](std::string& s) {
+            return is_non_finite_word(s) ? "must be a number of milliseconds >= 0 (0: no limit), got " + s
+                                         : std::string();
+          },
+          "MS >= 0"));
   // -1 stands for "not given": typed, it is as out of range as -5 (which used to mean "study.yaml's seed").
   cmd->add_option("--seed", o->seed, "Registration and bootstrap seed (default from study.yaml, else 0)")
       ->check(seed_validator());
@@ -70,7 +85,7 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   const Study study = open_study_with_conf(o);
   // The GUI's parsed-study cache (study_cache.h): unchanged label files and registrations are read back.
   StudyCache parsed(o.no_cache ? std::string() : parsed_study_cache_path(study.root), study.root);
-  LoadedStudy out{parsed.load_labels(study), {}, study.config.conf_threshold, {}};
+  LoadedStudy out{parsed.load_labels(study), {}, study.config.conf_threshold, 0, {}};
   if (report_label_errors(out.labels.errors, o.skip_bad_lines)) return std::nullopt;
   RegistrationCache registration(o.no_cache ? std::string() : registration_cache_dir(study.root));
   parsed.hand_registrations_to(registration);
@@ -81,6 +96,9 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   opt.registration = study.config.registration;
   if (!o.method.empty()) parse_method(o.method, &opt.registration.method);
   if (o.seed >= 0) opt.registration.seed = static_cast<std::uint64_t>(o.seed);
+  if (o.budget_ms == 0) opt.registration.time_budget_ms.reset();
+  if (o.budget_ms > 0) opt.registration.time_budget_ms = o.budget_ms;
+  out.registration_budget_ms = opt.registration.time_budget_ms.value_or(0);
   opt.cache_dir = registration.dir();
   opt.registration_cache = &registration;
   opt.shown_cells_only = shown_cells_only;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,6 +18,9 @@ struct StudyOptions {
   std::string study;
   std::vector<std::string> models, domains;
   std::string method;
+  // --budget-ms: each registration's time budget, 0 none; NaN (not given): study.yaml's. Not -1, which typed is
+  // as wrong as -5.
+  double budget_ms = std::numeric_limits<double>::quiet_NaN();
   long long seed = -1;    // registration and bootstrap seed; -1: study.yaml's, else 0
   double conf = -1;       // --conf X: prediction threshold (as the GUI slider); -1: study.yaml's
   int bootstrap = 2000;   // resamples; 0 = off
@@ -42,7 +46,8 @@ struct LoadedStudy {
   StudyLabels labels;
   CrossTable table;
   double conf_threshold = 0;
-  BootstrapOptions bootstrap;  // as used: the seed is --seed, else the study's registration seed
+  double registration_budget_ms = 0;  // the time budget each registration had (0: none)
+  BootstrapOptions bootstrap;         // as used: the seed is --seed, else the study's registration seed
 };
 // shown_cells_only: TableOptions::shown_cells_only (for a table that prints "–" where no model trained).
 std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, bool shown_cells_only = false);

@@ -94,7 +94,7 @@ void StudioApp::adopt_snapshot() {
   if (snap_->jump_serial != jump_serial_) {
     jump_serial_ = snap_->jump_serial;
     if (snap_->jump_to_scene >= 0 && snap_->jump_to_scene < static_cast<int>(s.scenes().size()))
-      goto_scene(snap_->jump_to_scene);
+      ui::show_scene_of_edit(ui_, snap_->jump_to_scene);
   }
   if (new_rerun) {
     const int steps = static_cast<int>(snap_->rerun->trace.steps.size());

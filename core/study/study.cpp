@@ -172,7 +172,9 @@ void parse_registration(const YAML::Node& v, const std::string& file, int line, 
             fmt::format("{}:{}: registration.budget_ms must be a number of milliseconds > 0 (unset: "
                         "no time limit), got {}",
                         file, r.first.Mark().line + 1,
-                        quoted_for_message(r.second.IsScalar() ? r.second.Scalar() : "a list or map")));
+                        r.second.IsNull()     ? std::string("nothing")
+                        : r.second.IsScalar() ? quoted_for_message(r.second.Scalar())
+                                              : std::string("a list or map")));
       c->registration.time_budget_ms = ms;
     } else {
       throw StudyError(

@@ -20,13 +20,6 @@ constexpr double kContext = 2.5;     // a crop spans this many times its rock's 
 constexpr double kMinEntryPt = 110;  // an entry (two crops) is at least this wide: 2 per single column
 constexpr Colour kPlain = rgb(92, 92, 98);
 
-// A square of pixels around `gt` (at least 16 px wide), in normalised coordinates of a w x h picture.
-Crop region_around(const Box& gt, int w, int h) {
-  const double side = std::max({gt.w * w, gt.h * h, 16.0}) * kContext;
-  const double hx = side / 2 / w, hy = side / 2 / h;
-  return {gt.cx - hx, gt.cy - hy, gt.cx + hx, gt.cy + hy};
-}
-
 GalleryCrop crop_of(const std::vector<Box>& gt, const std::vector<Box>& pred, int rock, double perf, int w, int h) {
   GalleryCrop c;
   c.rock = rock;
@@ -34,7 +27,7 @@ GalleryCrop crop_of(const std::vector<Box>& gt, const std::vector<Box>& pred, in
   c.gt = gt[rock];
   const int best = performance_values(gt, pred).best_prediction[rock];
   if (best >= 0) c.pred = pred[best], c.has_pred = true;
-  c.region = region_around(c.gt, w, h);
+  c.region = gallery_crop_region(c.gt, w, h);
   return c;
 }
 
@@ -87,6 +80,16 @@ double draw_caption(Canvas& c, const PtRect& panel, const GalleryCrop& g, const 
 
 }  // namespace
 
+Crop gallery_crop_region(const Box& gt, int w, int h) {
+  const double side = std::max({gt.w * w, gt.h * h, 16.0}) * kContext;
+  const double hx = side / 2 / w, hy = side / 2 / h;
+  return {gt.cx - hx, gt.cy - hy, gt.cx + hx, gt.cy + hy};
+}
+
+std::pair<int, int> gallery_picture_size(int w, int h) {
+  return w > 0 && h > 0 ? std::pair<int, int>{w, h} : std::pair<int, int>{1936, 1216};
+}
+
 GalleryInput gallery_input(const StudyLabels& labels, const TableCell& cell, int count, GallerySort sort) {
   GalleryInput in;
   in.a = cell.a, in.b = cell.b, in.model = cell.model, in.sort = sort;
@@ -94,7 +97,7 @@ GalleryInput gallery_input(const StudyLabels& labels, const TableCell& cell, int
   in.counted_pairs = static_cast<int>(points.size());
   const auto size_of = [&](const std::string& d) {
     const auto [w, h] = domain_image_size(labels.study, d);
-    return w > 0 && h > 0 ? std::pair<int, int>{w, h} : std::pair<int, int>{1936, 1216};
+    return gallery_picture_size(w, h);
   };
   const auto [wa, ha] = size_of(cell.a);
   const auto [wb, hb] = size_of(cell.b);

@@ -7,6 +7,7 @@
 
 #include <opencv2/core.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/ipd/ipd.h"
@@ -43,6 +44,13 @@ struct GalleryInput {
   std::vector<GalleryEntry> entries;
   bool pictures = false;  // load_gallery_pictures found a picture for some crop
 };
+
+// The region a crop shows: a square of pixels around `gt`, kContext (2.5) times its larger side and at least
+// 16 px wide, in normalised coordinates of a w x h picture. The studio's gallery crops with it too, so its
+// rocks keep their shape and read as the figure's.
+Crop gallery_crop_region(const Box& gt, int w, int h);
+// The picture size crops are measured in: w x h when known (> 0), else the POLAR cameras' 1936 x 1216.
+std::pair<int, int> gallery_picture_size(int w, int h);
 
 // The first `count` counted pairs of `cell` in `sort` order (gallery_sorted), with their boxes. `labels`
 // must be the ones the table was computed from (threshold applied).

@@ -27,12 +27,16 @@ ScoreCurve layout_score_curve(Canvas& c, const TextStyle& st, const ScoreCurveIn
   if (vt.back() < hi - 1e-12) vt.push_back(vt.back() + step);  // the axis covers the highest value
   double label_w = 0;
   for (double v : vt) label_w = std::max(label_w, c.measure(st, tick_text(v, step)).x);
-  out.plot = {area.x0 + label_w + tick + 2, area.y0 + 0.5 * line, area.x1 - 2, area.y1 - line - tick - 1};
+  // The last step's label is centred on the plot's right end: half of it must fit inside the area ("5000" was
+  // cut to "500" at the panel's edge).
+  const int n = static_cast<int>(in.best.size());
+  const double last_half = c.measure(st, tick_text(std::max(1, n), 1)).x / 2;
+  out.plot = {area.x0 + label_w + tick + 2, area.y0 + 0.5 * line, area.x1 - std::max(2.0, last_half + 1),
+              area.y1 - line - tick - 1};
   if (out.plot.y1 <= out.plot.y0) out.plot.y1 = out.plot.y0 + 1;
   const double v0 = vt.front(), v1 = vt.back();
   const auto y_of = [&](double v) { return out.plot.y1 - (v - v0) / (v1 - v0) * out.plot.height(); };
   for (double v : vt) out.value_axis.push_back({v, y_of(v), tick_text(v, step)});
-  const int n = static_cast<int>(in.best.size());
   const auto x_of = [&](double k) { return out.plot.x0 + (n > 1 ? k / (n - 1) : 0.5) * out.plot.width(); };
   for (int k = 0; k < n; ++k)
     if (std::isfinite(in.best[k])) out.points.push_back({x_of(k), y_of(in.best[k])});

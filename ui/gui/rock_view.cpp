@@ -9,6 +9,7 @@
 
 #include "ui/figures/figure_charts.h"
 #include "ui/figures/figure_common.h"
+#include "ui/figures/figure_gallery.h"
 #include "ui/gui/canvas_imgui.h"
 #include "ui/gui/studio_layout.h"
 
@@ -198,7 +199,8 @@ void draw_scatter(const Session& s, bool gathering, RockViewState& st, UiState& 
 }
 
 // A rock's crop: the picture around it (when the study has one and it is loaded), the box and its best-IoU
-// prediction, 2.5 rock sizes across; a neutral square where there is no picture.
+// prediction, on the region `ipd figure gallery` shows (a square of pixels 2.5 rock sizes across, so a rock
+// keeps its shape); a neutral square where there is no picture.
 void draw_crop(const StudyView& v, Side side, int scene, int rock, float px) {
   const Session& s = *v.session;
   const ImVec2 p0 = ImGui::GetCursorScreenPos(), p1{p0.x + px, p0.y + px};
@@ -206,20 +208,23 @@ void draw_crop(const StudyView& v, Side side, int scene, int rock, float px) {
   ImDrawList* dl = ImGui::GetWindowDrawList();
   dl->AddRectFilled(p0, p1, IM_COL32(96, 96, 96, 255));
   const Box& g = s.gt(side, scene)[rock];
-  const double span = std::max({g.w, g.h, 1e-6}) * 2.5;
+  Picture pic;
+  if (v.picture_of) pic = v.picture_of(side == Side::kA ? s.left_domain() : s.right_domain(), s.scenes()[scene].stem);
+  // The study's image_size first, as the figure measures it, else the picture's own, else the cameras'.
+  const StudyConfig& config = s.study().config;
+  const bool configured = config.image_width > 0 && config.image_height > 0;
+  const auto [w, h] =
+      gallery_picture_size(configured ? config.image_width : pic.width, configured ? config.image_height : pic.height);
+  const Crop r = gallery_crop_region(g, w, h);
   auto at = [&](double x, double y) {
-    return ImVec2{float(p0.x + ((x - g.cx) / span + 0.5) * px), float(p0.y + ((y - g.cy) / span + 0.5) * px)};
+    return ImVec2{float(p0.x + (x - r.x0) / (r.x1 - r.x0) * px), float(p0.y + (y - r.y0) / (r.y1 - r.y0) * px)};
   };
   dl->PushClipRect(p0, p1, true);
-  if (v.picture_of) {
-    const std::string& domain = side == Side::kA ? s.left_domain() : s.right_domain();
-    const Picture pic = v.picture_of(domain, s.scenes()[scene].stem);
-    // Normalised label coordinates are the texture's: the crop's part inside the picture, nothing repeated.
-    const double u0 = std::max(0.0, g.cx - span / 2), v0 = std::max(0.0, g.cy - span / 2);
-    const double u1 = std::min(1.0, g.cx + span / 2), v1 = std::min(1.0, g.cy + span / 2);
-    if (pic.texture && u1 > u0 && v1 > v0)
-      dl->AddImage(pic.texture, at(u0, v0), at(u1, v1), ImVec2(float(u0), float(v0)), ImVec2(float(u1), float(v1)));
-  }
+  // Normalised label coordinates are the texture's: the crop's part inside the picture, nothing repeated.
+  const double u0 = std::max(0.0, r.x0), v0 = std::max(0.0, r.y0);
+  const double u1 = std::min(1.0, r.x1), v1 = std::min(1.0, r.y1);
+  if (pic.texture && u1 > u0 && v1 > v0)
+    dl->AddImage(pic.texture, at(u0, v0), at(u1, v1), ImVec2(float(u0), float(v0)), ImVec2(float(u1), float(v1)));
   // The styles of `ipd figure gallery`, so the window previews the figure: the best prediction dashed on a
   // light halo, the GT box solid on a dark halo (told apart in greyscale and by every colour-vision deficiency).
   ImGuiCanvas canvas(dl, {0, 0}, 1.0f, nullptr);

@@ -17,4 +17,10 @@ void enter_scene(UiState& ui, int scene) {
   ui.status.clear();
 }
 
+void show_scene_of_edit(UiState& ui, int scene) {
+  if (scene != ui.scene) return enter_scene(ui, scene);
+  // "scene_00038 marked reviewed" is no longer true once that mark is undone.
+  ui.status.clear();
+}
+
 }  // namespace ipd::ui

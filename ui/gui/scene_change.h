@@ -8,5 +8,9 @@
 namespace ipd::ui {
 
 void enter_scene(UiState& ui, int scene);
+// Where an undo or redo took effect: that scene, entered as above when another one is in view; on the scene in
+// view only the status line, about the action undone, is cleared (undoing a review mark keeps the selected pair,
+// the zoom and the replay).
+void show_scene_of_edit(UiState& ui, int scene);
 
 }  // namespace ipd::ui

@@ -193,6 +193,16 @@ float button_width(const char* label);
 std::string registration_summary(const std::string& a, const std::string& b, const RegistrationReport& r);
 std::string replay_step_line(const TraceStep& step, int k, int steps);
 std::string trace_cap_note(int steps, int hypotheses);
+// "stopped: REASON; NOTE". When the time budget ended the registration the reason says so once: the note's
+// sentences then say only where it ran out and what was left out ("while setting up the search: identity
+// used"), not "time budget spent" again.
+std::string registration_stop_line(const RegistrationReport& r);
+// The warning of an ambiguous registration ("ambiguous: REASON; check the pairs"); when the time budget ended
+// it, the budget may be why: a larger one may settle it.
+std::string ambiguity_line(const RegistrationReport& r);
+// Under the scrubber when the registration recorded no step: why (a budget spent before the search began, a
+// method that records none) or, for the study's own registration, that its search is still being recorded.
+std::string no_steps_line(const RegistrationReport& r, bool rerun);
 // The time budget the registration panel shows for a re-run: ui.rerun_budget_ms once edited, else the study's
 // registration.budget_ms (0: none).
 float rerun_budget_ms(const UiState& ui, const RegistrationOptions& study);

@@ -62,6 +62,40 @@ std::string trace_cap_note(int steps, int hypotheses) {
          "; the search went on)";
 }
 
+std::string registration_stop_line(const RegistrationReport& r) {
+  std::string line = std::string("stopped: ") + to_string(r.stop);
+  if (r.note.empty()) return line;
+  if (r.stop != StopReason::kTimeBudget) return line + "; " + r.note;
+  // The note's sentences are joined by "; " (add_note); each one the budget cut short starts with the reason.
+  static const std::string kSpent = "time budget spent";
+  std::string rest = r.note;
+  for (size_t from = 0; from < rest.size();) {
+    if (rest.compare(from, kSpent.size(), kSpent) == 0) {
+      size_t cut = kSpent.size();
+      if (rest.compare(from + cut, 2, ": ") == 0)
+        cut += 2;  // "time budget spent: EM's alignment, ..."
+      else if (rest.compare(from + cut, 1, " ") == 0)
+        cut += 1;  // "time budget spent while setting up ..."
+      rest.erase(from, cut);
+    }
+    const size_t next = rest.find("; ", from);
+    from = next == std::string::npos ? rest.size() : next + 2;
+  }
+  return line + "; " + rest;
+}
+
+std::string ambiguity_line(const RegistrationReport& r) {
+  std::string line = std::string("ambiguous: ") + ambiguity_reason(r.ambiguity) + "; check the pairs";
+  if (r.stop == StopReason::kTimeBudget) line += ", or re-run with a larger time budget, which may settle it";
+  return line;
+}
+
+std::string no_steps_line(const RegistrationReport& r, bool rerun) {
+  if (!rerun) return "recording the search...";
+  if (r.stop == StopReason::kTimeBudget) return "no search recorded: the time budget was spent before it began";
+  return "no search recorded for this method";
+}
+
 float rerun_budget_ms(const UiState& ui, const RegistrationOptions& study) {
   return ui.rerun_budget_ms >= 0 ? ui.rerun_budget_ms : static_cast<float>(study.time_budget_ms.value_or(0));
 }
@@ -90,10 +124,8 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   // The registration maps the pair's first domain onto its second, whichever the view puts on the left.
   if (s.swapped())
     text_disabled_wrapped_at_spaces("(the view is swapped: " + db + " on the left, " + da + " on the right)");
-  if (r.ambiguous)
-    text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1},
-                                    std::string("ambiguous: ") + ambiguity_reason(r.ambiguity) + "; check the pairs");
-  text_disabled_wrapped_at_spaces(std::string("stopped: ") + to_string(r.stop) + (r.note.empty() ? "" : "; " + r.note));
+  if (r.ambiguous) text_coloured_wrapped_at_spaces({1, 0.8f, 0.3f, 1}, ambiguity_line(r));
+  text_disabled_wrapped_at_spaces(registration_stop_line(r));
   ReplayState& rp = ui.replay;
   const float end = static_cast<float>(steps) + 1.0f;  // the steps, then one unit of raw -> aligned motion
   // A position left from another registration's longer trace (a discarded re-run) ends at this one's motion.
@@ -154,10 +186,15 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   float budget = rerun_budget_ms(ui, s.study().config.registration);
   same_line_if_fits(70 + ImGui::CalcTextSize("budget ms").x + ImGui::GetStyle().ItemInnerSpacing.x);
   ImGui::SetNextItemWidth(70);
-  if (ImGui::InputFloat("budget ms", &budget, 0, 0, "%g")) ui.rerun_budget_ms = std::max(0.0f, budget);
+  // No budget reads "none", not a bare 0; the whole text is selected on a click, so typing a number replaces it.
+  // A number too large for a float (inf) is no limit either.
+  if (ImGui::InputFloat("budget ms", &budget, 0, 0, budget > 0 ? "%g" : "none", ImGuiInputTextFlags_AutoSelectAll))
+    ui.rerun_budget_ms = std::isfinite(budget) ? std::max(0.0f, budget) : 0.0f;
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip(
-        "time budget of the re-run, in milliseconds (0: none); starts at study.yaml's registration.budget_ms");
+        "time budget of the re-run, in milliseconds (0 or none: no limit)\n"
+        "when it is spent the registration stops and keeps what it found so far\n"
+        "starts at study.yaml's registration.budget_ms");
   same_line_if_fits(button_width("re-run"));
   if (ImGui::Button("re-run")) ui.rerun_method = displayed, out.rerun_registration = true;
   if (have_rerun && !v.rerun_is_automatic) {
@@ -178,7 +215,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   if (step)
     text_wrapped_at_spaces(replay_step_line(*step, k, steps));
   else if (steps == 0)
-    ImGui::TextDisabled(have_rerun ? "no search recorded for this method" : "recording the search...");
+    text_disabled_wrapped_at_spaces(no_steps_line(r, have_rerun));
   else
     ImGui::TextDisabled("final affine: raw -> aligned");
   if (r.trace.truncated) text_disabled_wrapped_at_spaces(trace_cap_note(steps, r.hypotheses));

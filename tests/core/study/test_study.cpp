@@ -189,6 +189,11 @@ TEST(Study, RegistrationBudgetIsANumberOfMillisecondsAboveZero) {
   EXPECT_EQ(message("registration:\n  budget_ms: .nan\n"), expected + ".nan");
   EXPECT_EQ(message("registration:\n  budget_ms: .inf\n"), expected + ".inf");
   EXPECT_EQ(message("registration:\n  budget_ms: [1]\n"), expected + "a list or map");
+  // "budget_ms:" with no value is YAML's null, neither a list nor a map.
+  EXPECT_EQ(message("registration:\n  budget_ms:\n"), expected + "nothing");
+  EXPECT_EQ(message("registration: {budget_ms: }\n"),
+            "study.yaml:1: registration.budget_ms must be a number of "
+            "milliseconds > 0 (unset: no time limit), got nothing");
   EXPECT_EQ(message("registration:\n  budget_ms: " + std::string(1000, '9') + "x\n"),
             expected + std::string(37, '9') + "...");
 }
@@ -473,6 +478,39 @@ TEST(Cli, TableNamesTheThresholdAndTheAmbiguousRegistrations) {
   r = test::run_ipd("table " + d.path() + " --method paper --bootstrap 0 --format csv");  // CSV stays CSV
   EXPECT_EQ(r.out.find("ambiguous"), std::string::npos) << r.out;
   EXPECT_NE(r.err.find("note: 1 scene: registration ambiguous"), std::string::npos) << r.err;
+}
+
+// A registration the time budget ended keeps its best so far: the table says how many, and under which budget,
+// since its pairs may differ on another machine. --budget-ms overrides study.yaml's (0: no limit).
+TEST(Cli, TableNamesTheScenesTheTimeBudgetEnded) {
+  test::TempDir d;
+  test::write_text(d / "study.yaml", "domains: [real, synth]\nregistration: {budget_ms: 0.000001}\n");
+  const std::string rocks = "0 0.2 0.2 0.05 0.05\n0 0.7 0.3 0.06 0.05\n0 0.4 0.8 0.05 0.07\n0 0.8 0.8 0.04 0.05\n";
+  test::write_text(d / "real/labels/s1.txt", rocks);
+  test::write_text(d / "real/labels/s2.txt", rocks);
+  test::write_text(d / "synth/labels/s1.txt", "0 0.21 0.2 0.05 0.05\n0 0.71 0.3 0.06 0.05\n0 0.41 0.8 0.05 0.07\n");
+  test::write_text(d / "synth/labels/s2.txt", "0 0.2 0.21 0.05 0.05\n0 0.7 0.31 0.06 0.05\n0 0.4 0.81 0.05 0.07\n");
+  for (const char* f : {"real/predictions/det/s1.txt", "real/predictions/det/s2.txt", "synth/predictions/det/s1.txt",
+                        "synth/predictions/det/s2.txt"})
+    test::write_text(d / f, "0 0.2 0.2 0.05 0.05 0.9\n");
+  const std::string note =
+      "\n2 scenes: registration ended by the time budget of 1e-06 ms (--budget-ms, else study.yaml's "
+      "registration.budget_ms); their pairs may differ on another machine or run\n";
+  auto r = test::run_ipd("table " + d.path() + " --bootstrap 0 --no-cache");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find(note), std::string::npos) << r.out;
+  r = test::run_ipd("table " + d.path() + " --bootstrap 0 --no-cache --budget-ms 0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("time budget"), std::string::npos) << r.out;
+  r = test::run_ipd("table " + d.path() + " --bootstrap 0 --no-cache --budget-ms 0.000002");
+  EXPECT_NE(r.out.find("\n2 scenes: registration ended by the time budget of 2e-06 ms"), std::string::npos) << r.out;
+  for (const char* bad : {"-1", "nan", "inf"}) {
+    r = test::run_ipd("table " + d.path() + " --budget-ms " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find(std::string("--budget-ms: must be a number of milliseconds >= 0 (0: no limit), got ") + bad),
+              std::string::npos)
+        << r.err;
+  }
 }
 
 }  // namespace

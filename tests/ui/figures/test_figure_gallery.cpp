@@ -94,6 +94,24 @@ TEST(FigureGallery, PairsAreTheLargestDiffFirstWithTheirValues) {
 
 // With pictures, each crop keeps only its square of pixels: 40 x 40 of the 100 x 100 picture (16 px is the
 // least side, 2.5 x 16 = 40; the rock's 10 px x 2.5 = 25 is smaller).
+// A crop is square in pixels, not in normalised units: a 0.1 x 0.1 box of a 960 x 600 picture is 96 x 60 px,
+// so the crop is 2.5 x 96 = 240 px each way: 0.25 of the width, 0.4 of the height (drawn square by the figure
+// and the studio's gallery alike, the rock keeps its 96:60 shape).
+TEST(FigureGallery, CropRegionIsASquareOfPixels) {
+  const ui::Crop r = ui::gallery_crop_region(Box{0, 0.5, 0.5, 0.1, 0.1}, 960, 600);
+  EXPECT_NEAR(r.x0, 0.375, 1e-12);
+  EXPECT_NEAR(r.x1, 0.625, 1e-12);
+  EXPECT_NEAR(r.y0, 0.3, 1e-12);
+  EXPECT_NEAR(r.y1, 0.7, 1e-12);
+  // A rock under 16 px gets a 40 px crop: 20 px either side of its centre.
+  const ui::Crop tiny = ui::gallery_crop_region(Box{0, 0.5, 0.5, 0.001, 0.001}, 960, 600);
+  EXPECT_NEAR(tiny.x1 - 0.5, 20.0 / 960, 1e-12);
+  EXPECT_NEAR(tiny.y1 - 0.5, 20.0 / 600, 1e-12);
+  // An unknown size is measured in the POLAR cameras' pixels.
+  EXPECT_EQ(ui::gallery_picture_size(0, 600), (std::pair<int, int>{1936, 1216}));
+  EXPECT_EQ(ui::gallery_picture_size(960, 600), (std::pair<int, int>{960, 600}));
+}
+
 TEST(FigureGallery, CropsComeFromThePictures) {
   test::TempDir d;
   write_gallery_study(d, true);

@@ -232,6 +232,28 @@ TEST(StatsCharts, CrossTableHeaderSplitsAfterTheMinus) {
 // "higher is better" sat top right, where a rising best-so-far curve ends, and the curve ran through it. The
 // label goes to the corner the curve leaves free, for both directions: no point of the curve (sampled along
 // every segment) falls in the label's box.
+// A recorded search of 5,000 steps: every label, the last step's "5000" centred on the plot's right end
+// included, stays inside the area the curve was given (6 pt a character here: "5000" is 24 wide, so the plot
+// ends 13 short of the area).
+TEST(StatsCharts, ScoreCurveLastStepLabelStaysInsideTheArea) {
+  Recorder r;
+  const TextStyle st{8, rgb(0, 0, 0), false};
+  const std::vector<double> best(5000, 0.5);
+  const ScoreCurve curve = layout_score_curve(r, st, {best, 10, RegistrationMethod::kPaper}, {0, 0, 300, 100});
+  draw_score_curve(r, st, curve, kColours);
+  EXPECT_DOUBLE_EQ(curve.plot.x1, 287);
+  ASSERT_FALSE(curve.step_axis.empty());
+  EXPECT_EQ(curve.step_axis.back().text, "5000");
+  int texts = 0;
+  for (const auto& op : r.ops)
+    if (op.kind == "text") {
+      ++texts;
+      EXPECT_GE(op.r.x0, 0) << op.text;
+      EXPECT_LE(op.r.x1, 300) << op.text;
+    }
+  EXPECT_GT(texts, 3);
+}
+
 TEST(StatsCharts, ScoreCurveDirectionLabelIsClearOfTheCurve) {
   const std::vector<std::pair<RegistrationMethod, std::vector<double>>> cases = {
       {RegistrationMethod::kConsensus, {15.9, 16.9, 16.9, 16.9}}, {RegistrationMethod::kPaper, {3.0, 2.0, 1.5, 1.5}}};

@@ -42,5 +42,21 @@ TEST(SceneChange, KeepsTheZoomWhenAsked) {
   EXPECT_EQ(ui.status, "");
 }
 
+// Undo or redo on the scene in view (a review mark taken back, say) keeps what the user was looking at; on
+// another scene it is a scene change.
+TEST(SceneChange, AnEditOfTheSceneInViewKeepsSelectionZoomAndReplay) {
+  UiState ui = zoomed_in_scene_3();
+  show_scene_of_edit(ui, 3);
+  EXPECT_EQ(ui.selected_left, 7);
+  EXPECT_FLOAT_EQ(ui.left_view.zoom, 4.0f);
+  EXPECT_FLOAT_EQ(ui.replay.position, 12.0f);
+  EXPECT_TRUE(ui.rerun_discarded);
+  EXPECT_EQ(ui.status, "");  // it was about the action undone
+  show_scene_of_edit(ui, 5);
+  EXPECT_EQ(ui.scene, 5);
+  EXPECT_EQ(ui.selected_left, -1);
+  EXPECT_FLOAT_EQ(ui.left_view.zoom, 1.0f);
+}
+
 }  // namespace
 }  // namespace ipd::ui

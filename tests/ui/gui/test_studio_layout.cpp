@@ -191,6 +191,40 @@ TEST(RegistrationWords, SingularCountsPlainNumbersOneStepNumber) {
       "went on)");
 }
 
+// A registration the time budget ended says "time budget spent" once, in its stop reason; the note's
+// sentences (the registration's own words, as ipd register prints them) then say where it ran out and what was
+// left out. Any other stop keeps the note whole.
+TEST(RegistrationWords, TheBudgetsStopIsSaidOnce) {
+  RegistrationReport r;
+  r.stop = StopReason::kTimeBudget;
+  r.note =
+      "time budget spent while setting up the search: identity used; time budget spent before the rocks were "
+      "paired: paired greedily (heaviest overlap first), not by the optimal assignment";
+  EXPECT_EQ(registration_stop_line(r),
+            "stopped: time budget spent; while setting up the search: identity used; before the rocks were paired: "
+            "paired greedily (heaviest overlap first), not by the optimal assignment");
+  r.note = "time budget spent: EM's alignment, not judged against rival placements";
+  EXPECT_EQ(registration_stop_line(r),
+            "stopped: time budget spent; EM's alignment, not judged against rival placements");
+  r.note.clear();
+  EXPECT_EQ(registration_stop_line(r), "stopped: time budget spent");
+  EXPECT_EQ(no_steps_line(r, true), "no search recorded: the time budget was spent before it began");
+  r.ambiguous = true, r.ambiguity = Ambiguity::kFewPairs;
+  EXPECT_EQ(ambiguity_line(r),
+            "ambiguous: fewer than 3 rocks are paired: too few to fix an alignment, another fits as well; check the "
+            "pairs, or re-run with a larger time budget, which may settle it");
+  EXPECT_EQ(no_steps_line(r, false), "recording the search...");
+  // The search converged; only the final pairing ran out of time: the note says so in full.
+  r.stop = StopReason::kConverged;
+  r.note = "time budget spent before the rocks were paired: paired greedily";
+  EXPECT_EQ(registration_stop_line(r),
+            "stopped: converged; time budget spent before the rocks were paired: paired greedily");
+  EXPECT_EQ(no_steps_line(r, true), "no search recorded for this method");
+  EXPECT_EQ(ambiguity_line(r),
+            "ambiguous: fewer than 3 rocks are paired: too few to fix an alignment, another fits as well; check the "
+            "pairs");
+}
+
 TEST(RegistrationCanvas, PlotClipStopsAboveTheLegendAndHoldsThePictureBox) {
   // Canvas at (100, 200), 300 x 200, 15 px lines: the legend's three lines start at 200 + 200 - 45 - 4 = 351;
   // the plot (and its clip) is (100, 200)-(400, 349); the picture box has 10 px margins: 280 x 129.
