@@ -27,7 +27,8 @@ void FrameStats::print(bool frames, const std::string& open_note) const {
                open_note);
   if (frames) line(summary("frame_ms", frame_ms_)), line(summary("ui_cpu_ms", frame_cpu_ms_));
   line(summary("scene_ms", scene_ms_));
-  if (frames) line(summary("edit_ms", edit_ms_));  // a measurement, as frame_ms: only when asked for
+  // Measurements, as frame_ms: only when asked for.
+  if (frames) line(summary("edit_ms", edit_ms_)), line(summary("edit_cpu_ms", edit_cpu_ms_));
   if (frames) line(summary("export_frame_ms", export_frame_ms_)), line(summary("export_ui_cpu_ms", export_ui_cpu_ms_));
 }
 

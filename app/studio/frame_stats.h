@@ -18,8 +18,12 @@ class FrameStats {
     frame_cpu_ms_.push_back(ui_cpu_ms);
   }
   void add_scene_change(double ms) { scene_ms_.push_back(ms); }
-  // An edit, undo or redo: the worker's time from taking it to publishing the snapshot that shows it.
-  void add_edit(double ms) { edit_ms_.push_back(ms); }
+  // An edit, undo or redo: the worker's time from taking it to publishing the snapshot that shows it, and the
+  // worker thread's own CPU time in it.
+  void add_edit(double ms, double cpu_ms) {
+    edit_ms_.push_back(ms);
+    edit_cpu_ms_.push_back(cpu_ms);
+  }
   void add_export_frame(double ms, double ui_cpu_ms) {
     export_frame_ms_.push_back(ms);
     export_ui_cpu_ms_.push_back(ui_cpu_ms);
@@ -39,7 +43,7 @@ class FrameStats {
  private:
   void mark(double* slot);
   std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
-  std::vector<double> frame_ms_, frame_cpu_ms_, scene_ms_, edit_ms_, export_frame_ms_, export_ui_cpu_ms_;
+  std::vector<double> frame_ms_, frame_cpu_ms_, scene_ms_, edit_ms_, edit_cpu_ms_, export_frame_ms_, export_ui_cpu_ms_;
   double content_ms_ = -1;  // start to the first frame showing the study (a first look at big studies)
   double loaded_ms_ = -1;   // start to the first frame with the whole study in
 };

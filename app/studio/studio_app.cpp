@@ -61,7 +61,7 @@ void StudioApp::adopt_snapshot() {
                           snap->session->swapped() != snap_->session->swapped();
   const bool new_rerun = snap->rerun && (!snap_ || snap->rerun != snap_->rerun);
   snap_ = std::move(snap);
-  if (snap_->edit_ms >= 0) stats_out_.add_edit(snap_->edit_ms);
+  if (snap_->edit_ms >= 0) stats_out_.add_edit(snap_->edit_ms, snap_->edit_cpu_ms);
   const Session& s = *snap_->session;
   problems_ = s.problems();
   problems_.insert(problems_.end(), picture_problems_.begin(), picture_problems_.end());

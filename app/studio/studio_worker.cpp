@@ -2,6 +2,7 @@
 
 #include <sys/resource.h>
 #include <sys/syscall.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -22,6 +23,13 @@ constexpr size_t kFirstLookScenes = 40;
 
 double now_ms() {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// This thread's CPU time: an edit's cost, whatever else ran on the cores meanwhile.
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
 }
 
 bool study_fits_first_look(const std::string& root) {
@@ -143,7 +151,8 @@ void StudyWorker::publish_new_session() {
   publish(true);
 }
 
-void StudyWorker::publish(bool session_changed, int jump_to_scene, int edited_scene, double edit_started_ms) {
+void StudyWorker::publish(bool session_changed, int jump_to_scene, int edited_scene, double edit_started_ms,
+                          double edit_started_cpu_ms) {
   auto snap = std::make_shared<Snapshot>();
   if (session_changed || !published_) {
     published_ = std::make_shared<const Session>(*session_);
@@ -171,6 +180,7 @@ void StudyWorker::publish(bool session_changed, int jump_to_scene, int edited_sc
   snap->rerun_pair = rerun_pair_;
   snap->rerun_is_automatic = rerun_automatic_;
   if (edit_started_ms >= 0) snap->edit_ms = now_ms() - edit_started_ms;
+  if (edit_started_cpu_ms >= 0) snap->edit_cpu_ms = thread_cpu_ms() - edit_started_cpu_ms;
   std::lock_guard<std::mutex> l(mu_);
   if (snapshot_) retired_.push_back(std::move(snapshot_));
   snapshot_ = std::move(snap);
@@ -298,7 +308,7 @@ void StudyWorker::execute(WorkerCommand& c) {
   if (!session_) return;
   Session& s = *session_;
   // Each command says whether it changed the session (and publishes itself when it did not change it).
-  const double started_ms = now_ms();
+  const double started_ms = now_ms(), started_cpu_ms = thread_cpu_ms();
   int jump = -1, edited_scene = -1;
   const bool changed =
       std::visit(Visitor{
@@ -358,7 +368,8 @@ void StudyWorker::execute(WorkerCommand& c) {
                  },
                  c);
   const bool edit = !std::holds_alternative<command::RegisterScene>(c);
-  if (changed) publish(true, jump, edited_scene, edited_scene >= 0 && edit ? started_ms : -1);
+  const bool timed = edited_scene >= 0 && edit;
+  if (changed) publish(true, jump, edited_scene, timed ? started_ms : -1, timed ? started_cpu_ms : -1);
 }
 
 }  // namespace ipd::studio

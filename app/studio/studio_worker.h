@@ -37,8 +37,9 @@ struct Snapshot {
   int rerun_pair = -1;
   bool rerun_is_automatic = false;  // recorded with the study's own options (the replay of what was done)
   // Made by an edit, undo or redo: the worker's time from taking the command to publishing this snapshot
-  // (ipd-studio --frame-stats prints it as edit_ms); -1 for other snapshots.
-  double edit_ms = -1;
+  // (ipd-studio --frame-stats prints it as edit_ms); -1 for other snapshots. edit_cpu_ms: the worker thread's
+  // own CPU time in it, the edit's cost apart from threads (the rasteriser's, say) that took the cores meanwhile.
+  double edit_ms = -1, edit_cpu_ms = -1;
 };
 
 struct OpenProgress {
@@ -140,7 +141,9 @@ class StudyWorker {
   void save_edit(SaveJob job);
   void say(std::string message);  // a message for the window's status line
   // `edited_scene` >= 0: only that scene of the current domain pair changed (its summary alone is redone).
-  void publish(bool session_changed, int jump_to_scene = -1, int edited_scene = -1, double edit_started_ms = -1);
+  // edit_started_ms / edit_started_cpu_ms: when the edit was taken, on the wall clock and the thread's CPU clock.
+  void publish(bool session_changed, int jump_to_scene = -1, int edited_scene = -1, double edit_started_ms = -1,
+               double edit_started_cpu_ms = -1);
   void publish_new_session();
 
   mutable std::mutex mu_;

@@ -80,7 +80,10 @@ TEST(StudyWorker, AnEditIsPublishedSavedAndUndone) {
   EXPECT_TRUE((*after->summaries)[0].edited);
   EXPECT_FALSE((*before->summaries)[0].edited) << "nor do its summaries";
   EXPECT_GE(after->edit_ms, 0);
+  EXPECT_GE(after->edit_cpu_ms, 0);
+  EXPECT_LE(after->edit_cpu_ms, after->edit_ms + 1) << "the worker's CPU time in the edit is within its wall time";
   EXPECT_EQ(before->edit_ms, -1);  // made by opening, not by an edit
+  EXPECT_EQ(before->edit_cpu_ms, -1);
   EXPECT_TRUE(fs::exists(pairs_file)) << pairs_file;
 
   w.submit(command::Undo{});
