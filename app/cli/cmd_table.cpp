@@ -62,8 +62,9 @@ std::vector<std::string> table_notes(const TableArgs& args, const LoadedStudy& l
       if (!p.fixed && p.registration.stop == StopReason::kTimeBudget) ++budget_ended;
   if (budget_ended > 0)
     notes.push_back(
-        fmt::format("{} scene{}: registration ended by the time budget of {:g} ms (--budget-ms, else study.yaml's "
-                    "registration.budget_ms); their pairs may differ on another machine or run",
+        fmt::format("{} registration{} (a scene in a domain pair) ended by the time budget of {:g} ms (--budget-ms, "
+                    "else study.yaml's registration.budget_ms); their pairs may differ on another machine or run (a "
+                    "larger budget, or 0 for none, lets the search finish)",
                     budget_ended, budget_ended == 1 ? "" : "s", loaded.registration_budget_ms));
   notes.push_back(provenance_note(provenance));
   if (args.verbose)

@@ -136,6 +136,12 @@ bool parse_gallery_sort(const std::string& word, GallerySort* sort) {
   return false;
 }
 
+std::string gallery_sort_label(GallerySort sort, const std::string& a, const std::string& b) {
+  if (sort == GallerySort::kPerfA) return "perf " + a;
+  if (sort == GallerySort::kPerfB) return "perf " + b;
+  return gallery_sort_name(sort);
+}
+
 const char* gallery_sort_name(GallerySort sort) {
   switch (sort) {
     case GallerySort::kDiff:

@@ -58,6 +58,8 @@ inline constexpr const char* kGallerySortWords = "diff, perf-a, perf-b or size";
 inline constexpr GallerySort kGallerySorts[] = {GallerySort::kDiff, GallerySort::kPerfA, GallerySort::kPerfB,
                                                 GallerySort::kSize};
 const char* gallery_sort_name(GallerySort sort);  // "|diff|", "perf A", "perf B", "size"
+// As a reader sees it, the domains named: "|diff|", "perf real", "perf synthetic", "size".
+std::string gallery_sort_label(GallerySort sort, const std::string& a, const std::string& b);
 std::vector<int> gallery_sorted(const std::vector<RockPairPoint>& points, GallerySort sort);
 
 // The counted pairs of one cross-table cell, in the cell's orientation (A left), for a gallery without a

@@ -268,23 +268,15 @@ TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
 
 // study.yaml's registration block: every number is checked where it is written.
 TEST(InputChecks, StudyYamlRegistrationNumbersAreChecked) {
-  auto message = [](const std::string& yaml) {
-    try {
-      parse_study_config(yaml, "study.yaml");
-    } catch (const StudyError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
-  EXPECT_EQ(message("registration:\n  seed: -1\n"),
+  EXPECT_EQ(test::study_yaml_error("registration:\n  seed: -1\n"),
             "study.yaml:2: registration.seed must be a whole number >= 0, got -1");
   EXPECT_EQ(
-      message("registration:\n  gate: 0\n"),
+      test::study_yaml_error("registration:\n  gate: 0\n"),
       "study.yaml:2: registration.gate must be a number > 0 (a fraction of the rocks' spread; default 0.2), got 0");
-  EXPECT_EQ(message("registration:\n  gate: .inf\n"),
+  EXPECT_EQ(test::study_yaml_error("registration:\n  gate: .inf\n"),
             "study.yaml:2: registration.gate must be a number > 0 (a fraction of the rocks' spread; default 0.2), got "
             ".inf");
-  EXPECT_EQ(message("registration:\n  method: paper\n  trials: -3\n"),
+  EXPECT_EQ(test::study_yaml_error("registration:\n  method: paper\n  trials: -3\n"),
             "study.yaml:3: registration.trials must be at least 1, got -3");
   EXPECT_EQ(parse_study_config("registration: {seed: 12, gate: 0.3}\n", "study.yaml").registration.seed, 12u);
 }

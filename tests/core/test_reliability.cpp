@@ -237,23 +237,15 @@ TEST(Reliability, ManyBadLinesListFiftyAndCountTheRest) {
 
 // --- defect 10: nothing silent in study.yaml or the pairs directory
 TEST(Reliability, DuplicateKeysAndExtraDocumentsInStudyYaml) {
-  auto error_of = [](const std::string& yaml) {
-    try {
-      parse_study_config(yaml, "study.yaml");
-    } catch (const StudyError& e) {
-      return std::string(e.what());
-    }
-    return std::string("accepted");
-  };
-  EXPECT_EQ(error_of("rock_class: 0\nconf_threshold: 0.2\nrock_class: 1\n"),
+  EXPECT_EQ(test::study_yaml_error("rock_class: 0\nconf_threshold: 0.2\nrock_class: 1\n"),
             "study.yaml:3: duplicate setting 'rock_class' (first given on line 1)");
-  EXPECT_EQ(error_of("registration:\n  seed: 1\n  seed: 2\n"),
+  EXPECT_EQ(test::study_yaml_error("registration:\n  seed: 1\n  seed: 2\n"),
             "study.yaml:3: duplicate setting 'registration.seed' (first given on line 2)");
-  EXPECT_EQ(error_of("models:\n  det: {trained_on: real}\n  det: {trained_on: synth}\n"),
+  EXPECT_EQ(test::study_yaml_error("models:\n  det: {trained_on: real}\n  det: {trained_on: synth}\n"),
             "study.yaml:3: duplicate setting 'models.det' (first given on line 2)");
-  EXPECT_EQ(error_of("rock_class: 0\n---\nrock_class: 1\n"),
+  EXPECT_EQ(test::study_yaml_error("rock_class: 0\n---\nrock_class: 1\n"),
             "study.yaml:3: a second YAML document; expected one mapping of settings");
-  EXPECT_EQ(error_of("rock_class: 0\n---\n"), "accepted");  // an empty second document is nothing
+  EXPECT_EQ(test::study_yaml_error("rock_class: 0\n---\n"), "no error");  // an empty second document is nothing
 }
 
 TEST(Reliability, PairsInBothNameOrdersWarnAndTheFirstCounts) {

@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/study/study.h"
+
 namespace fs = std::filesystem;
 
 namespace ipd::test {
@@ -68,6 +70,15 @@ void write_two_rock_study(const TempDir& d) {
 
 // Two scenes of four rocks of different sizes at the same places in both domains (registration pairs k
 // with k). Scene s1's hand pairs cross rocks 2 and 3: two suspect pairs ([2, 3] and [3, 2], no overlap).
+std::string study_yaml_error(const std::string& yaml) {
+  try {
+    parse_study_config(yaml, "study.yaml");
+  } catch (const StudyError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 void write_review_study(const TempDir& d) {
   const std::string rocks = "0 0.2 0.2 0.1 0.08\n0 0.8 0.25 0.06 0.06\n0 0.3 0.8 0.12 0.1\n0 0.75 0.7 0.08 0.12\n";
   for (const char* stem : {"s1", "s2"})

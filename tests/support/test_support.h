@@ -37,6 +37,9 @@ void write_two_rock_study(const TempDir& d);
 // pairs cross rocks 2 and 3 (0-based), which makes [2, 3] and [3, 2] suspect pairs. For the review marks.
 void write_review_study(const TempDir& d);
 
+// parse_study_config's message for `yaml` read as "study.yaml", or "no error" when it is accepted.
+std::string study_yaml_error(const std::string& yaml);
+
 struct CommandResult {
   int exit_code = -1;
   std::string out, err;

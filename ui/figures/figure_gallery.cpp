@@ -144,8 +144,8 @@ GalleryLayout draw_gallery_figure(DisplayList& out, const GalleryInput& in, cons
   const TextStyle body = style(F, kInk), bold = style(F, kInk, true), note = style(small, kGrey);
   double y = m;
   y += draw_wrapped(out, {m, y}, bold,
-                    fmt::format("Rock pairs by {} (largest first): {} | {}, model {}", gallery_sort_name(in.sort), in.a,
-                                in.b, in.model),
+                    fmt::format("Rock pairs by {} (largest first): {} | {}, model {}",
+                                gallery_sort_label(in.sort, in.a, in.b), in.a, in.b, in.model),
                     avail) +
        0.2 * F;
   y += draw_legend(out, {m, y}, avail, body,

@@ -248,11 +248,7 @@ constexpr int kGalleryPage = 8;
 
 void draw_gallery(const StudyView& v, RockViewState& st, UiCommands& out) {
   const Session& s = *v.session;
-  const auto sort_label = [&](GallerySort g) {
-    return g == GallerySort::kPerfA   ? "perf " + s.left_domain()
-           : g == GallerySort::kPerfB ? "perf " + s.right_domain()
-                                      : std::string(gallery_sort_name(g));
-  };
+  const auto sort_label = [&](GallerySort g) { return gallery_sort_label(g, s.left_domain(), s.right_domain()); };
   ImGui::SetNextItemWidth(name_combo_width(s));
   if (ImGui::BeginCombo("sort (largest first)", sort_label(st.gallery_sort).c_str())) {
     for (const GallerySort g : kGallerySorts)

@@ -113,53 +113,38 @@ TEST(Study, ClearErrorsForUnusableStudies) {
 // study.yaml comes from whoever sent the study: a setting name, method or value of any length is quoted in a
 // message as at most 40 characters (37 and "..."), so a megabyte key can't become a megabyte error.
 TEST(Study, MessagesQuoteAtMostFortyCharactersOfTheFile) {
-  auto message = [](const std::string& yaml) {
-    try {
-      parse_study_config(yaml, "study.yaml");
-    } catch (const StudyError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   const std::string long_word(1000, 'r');  // YAML's longest plain key is 1024 characters
   const std::string shown = std::string(37, 'r') + "...";
-  EXPECT_EQ(message(long_word + ": 1\n"),
+  EXPECT_EQ(test::study_yaml_error(long_word + ": 1\n"),
             "study.yaml:1: unknown setting '" + shown +
                 "' (expected rock_class, conf_threshold, image_size, domains, models, registration)");
   EXPECT_EQ(
-      message("registration: {" + long_word + ": 1}\n"),
+      test::study_yaml_error("registration: {" + long_word + ": 1}\n"),
       "study.yaml:1: unknown registration setting '" + shown + "' (expected method, seed, trials, gate, budget_ms)");
-  EXPECT_EQ(message("registration: {method: " + long_word + "}\n"),
+  EXPECT_EQ(test::study_yaml_error("registration: {method: " + long_word + "}\n"),
             "study.yaml:1: unknown registration method '" + shown + "' (expected consensus, paper or cpd)");
-  EXPECT_EQ(message("registration: {seed: -" + long_word + "}\n"),
+  EXPECT_EQ(test::study_yaml_error("registration: {seed: -" + long_word + "}\n"),
             "study.yaml:1: registration.seed must be a whole number >= 0, got -" + std::string(36, 'r') + "...");
-  EXPECT_EQ(message("registration: {gate: " + long_word + "}\n"), "study.yaml:1: registration.gate has the wrong type");
+  EXPECT_EQ(test::study_yaml_error("registration: {gate: " + long_word + "}\n"),
+            "study.yaml:1: registration.gate has the wrong type");
 }
 
 // A misspelt model setting or `trained_on: null` left the model without its training domain (every cell of
 // its row then read as cross-domain), with no message; both are errors naming the line and what is allowed.
 TEST(Study, ModelSettingsAreCheckedAtEveryLevel) {
-  auto message = [](const std::string& yaml) {
-    try {
-      parse_study_config(yaml, "study.yaml");
-    } catch (const StudyError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
-  EXPECT_EQ(message("models:\n  det-real:\n    traind_on: real\n"),
+  EXPECT_EQ(test::study_yaml_error("models:\n  det-real:\n    traind_on: real\n"),
             "study.yaml:3: unknown setting 'models.det-real.traind_on' (expected trained_on)");
-  EXPECT_EQ(message("models: {det: {trained_on: real, epochs: 30}}\n"),
+  EXPECT_EQ(test::study_yaml_error("models: {det: {trained_on: real, epochs: 30}}\n"),
             "study.yaml:1: unknown setting 'models.det.epochs' (expected trained_on)");
   for (const char* empty : {"null", "~", ""})
-    EXPECT_EQ(message(std::string("models:\n  det:\n    trained_on: ") + empty + "\n"),
+    EXPECT_EQ(test::study_yaml_error(std::string("models:\n  det:\n    trained_on: ") + empty + "\n"),
               "study.yaml:3: models.det.trained_on is empty (null); expected the name of the domain the model was "
               "trained on (leave the setting out when it is unknown)")
         << empty;
-  EXPECT_EQ(message("models: {det: {trained_on: ''}}\n"),
+  EXPECT_EQ(test::study_yaml_error("models: {det: {trained_on: ''}}\n"),
             "study.yaml:1: models.det.trained_on is an empty name; expected the name of the domain the model was "
             "trained on (leave the setting out when it is unknown)");
-  EXPECT_EQ(message("registration: {method: cpd, sed: 3}\n"),
+  EXPECT_EQ(test::study_yaml_error("registration: {method: cpd, sed: 3}\n"),
             "study.yaml:1: unknown registration setting 'sed' (expected method, seed, trials, gate, budget_ms)");
   // What stays allowed: a model with no settings (training domain unknown) and a quoted domain named null.
   const StudyConfig c = parse_study_config("models: {a: , b: {}, c: {trained_on: 'null'}}\n", "study.yaml");
@@ -171,30 +156,22 @@ TEST(Study, ModelSettingsAreCheckedAtEveryLevel) {
 // registration.budget_ms is --budget-ms for every registration of the study: a number of milliseconds > 0; anything
 // else is an error naming the line, quoting at most 40 characters of what was written.
 TEST(Study, RegistrationBudgetIsANumberOfMillisecondsAboveZero) {
-  auto message = [](const std::string& yaml) {
-    try {
-      parse_study_config(yaml, "study.yaml");
-    } catch (const StudyError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
   EXPECT_FALSE(parse_study_config("registration: {method: paper}\n", "study.yaml").registration.time_budget_ms);
   EXPECT_EQ(parse_study_config("registration:\n  budget_ms: 12.5\n", "study.yaml").registration.time_budget_ms, 12.5);
   const std::string expected =
       "study.yaml:2: registration.budget_ms must be a number of milliseconds > 0 (unset: no "
       "time limit), got ";
-  EXPECT_EQ(message("registration:\n  budget_ms: 0\n"), expected + "0");
-  EXPECT_EQ(message("registration:\n  budget_ms: -3\n"), expected + "-3");
-  EXPECT_EQ(message("registration:\n  budget_ms: .nan\n"), expected + ".nan");
-  EXPECT_EQ(message("registration:\n  budget_ms: .inf\n"), expected + ".inf");
-  EXPECT_EQ(message("registration:\n  budget_ms: [1]\n"), expected + "a list or map");
+  EXPECT_EQ(test::study_yaml_error("registration:\n  budget_ms: 0\n"), expected + "0");
+  EXPECT_EQ(test::study_yaml_error("registration:\n  budget_ms: -3\n"), expected + "-3");
+  EXPECT_EQ(test::study_yaml_error("registration:\n  budget_ms: .nan\n"), expected + ".nan");
+  EXPECT_EQ(test::study_yaml_error("registration:\n  budget_ms: .inf\n"), expected + ".inf");
+  EXPECT_EQ(test::study_yaml_error("registration:\n  budget_ms: [1]\n"), expected + "a list or map");
   // "budget_ms:" with no value is YAML's null, neither a list nor a map.
-  EXPECT_EQ(message("registration:\n  budget_ms:\n"), expected + "nothing");
-  EXPECT_EQ(message("registration: {budget_ms: }\n"),
+  EXPECT_EQ(test::study_yaml_error("registration:\n  budget_ms:\n"), expected + "nothing");
+  EXPECT_EQ(test::study_yaml_error("registration: {budget_ms: }\n"),
             "study.yaml:1: registration.budget_ms must be a number of "
             "milliseconds > 0 (unset: no time limit), got nothing");
-  EXPECT_EQ(message("registration:\n  budget_ms: " + std::string(1000, '9') + "x\n"),
+  EXPECT_EQ(test::study_yaml_error("registration:\n  budget_ms: " + std::string(1000, '9') + "x\n"),
             expected + std::string(37, '9') + "...");
 }
 
@@ -494,8 +471,9 @@ TEST(Cli, TableNamesTheScenesTheTimeBudgetEnded) {
                         "synth/predictions/det/s2.txt"})
     test::write_text(d / f, "0 0.2 0.2 0.05 0.05 0.9\n");
   const std::string note =
-      "\n2 scenes: registration ended by the time budget of 1e-06 ms (--budget-ms, else study.yaml's "
-      "registration.budget_ms); their pairs may differ on another machine or run\n";
+      "\n2 registrations (a scene in a domain pair) ended by the time budget of 1e-06 ms (--budget-ms, else "
+      "study.yaml's registration.budget_ms); their pairs may differ on another machine or run (a larger budget, or "
+      "0 for none, lets the search finish)\n";
   auto r = test::run_ipd("table " + d.path() + " --bootstrap 0 --no-cache");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find(note), std::string::npos) << r.out;
@@ -503,7 +481,9 @@ TEST(Cli, TableNamesTheScenesTheTimeBudgetEnded) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.find("time budget"), std::string::npos) << r.out;
   r = test::run_ipd("table " + d.path() + " --bootstrap 0 --no-cache --budget-ms 0.000002");
-  EXPECT_NE(r.out.find("\n2 scenes: registration ended by the time budget of 2e-06 ms"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\n2 registrations (a scene in a domain pair) ended by the time budget of 2e-06 ms"),
+            std::string::npos)
+      << r.out;
   for (const char* bad : {"-1", "nan", "inf"}) {
     r = test::run_ipd("table " + d.path() + " --budget-ms " + bad);
     EXPECT_EQ(r.exit_code, 2) << bad;

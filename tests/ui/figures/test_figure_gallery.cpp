@@ -128,6 +128,19 @@ TEST(FigureGallery, CropsComeFromThePictures) {
 
 // The CLI's PDF: a single column, the entries' values as text, nothing overlapping, no text under 7 pt;
 // a labels-only study says its crops are boxes on a plain background.
+// One vocabulary for the sort keys (ipd figure gallery --sort, the studio's replay) and one label that names the
+// domains (the figure's title, the studio's combo).
+TEST(FigureGallery, SortKeysAndTheirLabels) {
+  GallerySort sort = GallerySort::kDiff;
+  ASSERT_TRUE(parse_gallery_sort("perf-b", &sort));
+  EXPECT_EQ(sort, GallerySort::kPerfB);
+  EXPECT_FALSE(parse_gallery_sort("perf-right", &sort));
+  EXPECT_EQ(gallery_sort_label(GallerySort::kPerfA, "real", "synth"), "perf real");
+  EXPECT_EQ(gallery_sort_label(GallerySort::kPerfB, "real", "synth"), "perf synth");
+  EXPECT_EQ(gallery_sort_label(GallerySort::kDiff, "real", "synth"), "|diff|");
+  EXPECT_EQ(gallery_sort_label(GallerySort::kSize, "real", "synth"), "size");
+}
+
 TEST(FigureGallery, PdfPrintsTheChosenPairsInOrder) {
   test::TempDir d;
   write_gallery_study(d, false);
