@@ -279,6 +279,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
     // The rival placements score whole sets again: with the budget spent EM's answer stands, unjudged.
     out.stop = StopReason::kTimeBudget;
     out.confidence = 0;
+    out.unjudged = Ambiguity::kUnchecked;
     add_note(&out.note, "time budget spent: EM's alignment, not judged against rival placements");
   } else {
     out.confidence = cpd_confidence(f, &out.affine_normalised, &out.beaten, recorder);

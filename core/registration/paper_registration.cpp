@@ -149,8 +149,10 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   out.trace = recorder.take_trace(describe_stop(r.stop, r.trials, r.hypotheses, r.work, lo.max_work));
   if (!r.found) {
     out.affine_normalised = f.from_image(identity_affine());
-    out.note = r.stop == StopReason::kTimeBudget ? "time budget spent before a triple was scored: identity used"
-                                                 : "every sampled triple was degenerate: identity used";
+    const bool budget = r.stop == StopReason::kTimeBudget;
+    out.note = budget ? "time budget spent before a triple was scored: identity used"
+                      : "every sampled triple was degenerate: identity used";
+    out.unjudged = budget ? Ambiguity::kUnchecked : Ambiguity::kDegenerate;
   } else {
     out.affine_normalised = r.best;
     out.score = -r.best_score * f.spread;  // mean distance, as a fraction of the image width

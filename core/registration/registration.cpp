@@ -84,6 +84,9 @@ const char* ambiguity_reason(Ambiguity a) {
     case Ambiguity::kBeaten:
       return "the search's own best was beaten by a placement scored after it (that one is used), so the search "
              "may have missed a better one";
+    case Ambiguity::kUnchecked:
+      return "the alignment used was never compared with another (the time budget ended first, or no plausible "
+             "alignment was found), so nothing singles it out";
   }
   return "";
 }
@@ -200,8 +203,12 @@ double flatness(const std::vector<Eigen::Vector2d>& p) {
   return std::sqrt(std::max(m - r, 0.0) / (m + r));
 }
 
-Ambiguity judge_answer(const RegistrationFrame& f, const RockPairs& pairs, const Affine2& normalised, bool beaten,
-                       double* confidence) {
+Ambiguity judge_answer(const RegistrationFrame& f, const RockPairs& pairs, const Affine2& normalised,
+                       const MethodOutcome& out, double* confidence) {
+  if (out.unjudged != Ambiguity::kNone) {
+    *confidence = 0;  // the method's own reason first: however many rocks it pairs, nothing was weighed against it
+    return out.unjudged;
+  }
   Ambiguity a = Ambiguity::kNone;
   if (pairs.empty()) {
     a = Ambiguity::kNoSupport;
@@ -223,7 +230,7 @@ Ambiguity judge_answer(const RegistrationFrame& f, const RockPairs& pairs, const
     *confidence = 0;  // no placement is better than another: nothing pins it
     return a;
   }
-  if (beaten) return Ambiguity::kBeaten;
+  if (out.beaten) return Ambiguity::kBeaten;
   return *confidence < kAmbiguousBelow ? Ambiguity::kRival : Ambiguity::kNone;
 }
 
@@ -431,7 +438,7 @@ RegistrationReport register_rocks_until(const std::vector<Box>& a, const std::ve
   r.stop = out.stop;
   r.note = std::move(out.note);
   r.confidence = out.confidence;
-  r.ambiguity = detail::judge_answer(frame, r.pairs, frame.from_image(r.affine), out.beaten, &r.confidence);
+  r.ambiguity = detail::judge_answer(frame, r.pairs, frame.from_image(r.affine), out, &r.confidence);
   r.ambiguous = r.ambiguity != Ambiguity::kNone;
   r.work = out.work;
   r.work_budget = detail::work_budget(options, a.size(), b.size());

@@ -113,8 +113,10 @@ enum class Ambiguity : std::uint8_t {
   kFewPairs,    // fewer than 3 rocks paired: too few to fix an affine, any other placement fits as well
   kDegenerate,  // the paired rocks lie on a line, or the alignment squashes them onto one
   kBeaten,      // a rival the method scored after its search fitted better; that rival is the answer
+  kUnchecked,   // the answer was never compared with another (the time budget ended first, or nothing plausible
+                // was found): the identity, the largest rocks' alignment or EM's fit, unjudged
 };
-inline constexpr int kAmbiguityCount = 6;  // values of Ambiguity, for the caches' range checks
+inline constexpr int kAmbiguityCount = 7;  // values of Ambiguity, for the caches' range checks
 
 // The reason a flagged registration is ambiguous, worded once for the studio, `ipd register` and `ipd table`.
 inline constexpr const char* kAmbiguousReason =

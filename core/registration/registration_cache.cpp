@@ -28,8 +28,9 @@ namespace {
 // for the identity given to identical layouts without a search; 12 for the ambiguity reason (no support, too
 // few pairs, a degenerate or a beaten alignment: confidence 0 or a rival adopted) and the paper's search past an
 // exact fit; 13 for the size-fair pairing rule (near misses within the noise floor pair too); 14 for the
-// consensus judgement's prior on the camera (misalignment_cost).
-constexpr int kFormat = 14;
+// consensus judgement's prior on the camera (misalignment_cost); 15 for answers nothing was compared with (the
+// time budget's or no plausible alignment's identity, EM's unjudged fit), which read confident or "a rival" before.
+constexpr int kFormat = 15;
 // An entry of 20,000 pairs is under 1 MB; anything much larger was not written by store().
 constexpr size_t kMaxEntryBytes = size_t{16} << 20;
 

@@ -37,14 +37,17 @@ struct MethodOutcome {
   double confidence = 1.0;
   // The search's own best lost to a rival scored after it (which is then the answer): flagged kBeaten.
   bool beaten = false;
+  // Why the method itself knows its answer is not singled out, whatever the pairs look like (kNone: it does not):
+  // an answer nothing was compared with (kUnchecked), or one left by degenerate samples (kDegenerate).
+  Ambiguity unjudged = Ambiguity::kNone;
   double work = 0;          // point evaluations spent (see RegistrationOptions::work_budget)
   RegistrationTrace trace;  // filled when options.record_trace
 };
 
 // Flags what nothing singles out (see Ambiguity) and sets the report's ambiguity; shared by every method so
 // that no method's confidence can vouch for a non-answer.
-Ambiguity judge_answer(const RegistrationFrame& f, const RockPairs& pairs, const Affine2& normalised, bool beaten,
-                       double* confidence);
+Ambiguity judge_answer(const RegistrationFrame& f, const RockPairs& pairs, const Affine2& normalised,
+                       const MethodOutcome& out, double* confidence);
 // Minor over major axis of a point set's spread (standard deviations): 0 on a line, 1 for a round cloud.
 double flatness(const std::vector<Eigen::Vector2d>& p);
 

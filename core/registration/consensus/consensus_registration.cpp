@@ -246,6 +246,7 @@ void after_search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, c
 void cut_during_set_up(const RegistrationFrame& f, const std::vector<Affine2>& coarse, MethodOutcome* out) {
   out->stop = StopReason::kTimeBudget;
   out->confidence = 0;
+  out->unjudged = Ambiguity::kUnchecked;
   out->inliers = -1;  // the pairs stand in (no grid was built to count them)
   if (!coarse.empty()) {
     out->affine_normalised = coarse.front();
@@ -311,6 +312,7 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
                     ? "time budget spent before a plausible affine was found: identity used"
                     : "no plausible affine found: identity used";
     out->confidence = 0;
+    out->unjudged = Ambiguity::kUnchecked;
   }
   out->trace = recorder.take_trace(describe_stop(r.stop, r.trials, r.hypotheses, r.work, lo.max_work));
   // Counting inliers queries the grid once per A rock: with the budget spent the pairs stand in (set after them).

@@ -167,6 +167,24 @@ TEST(StopRule, PaperSpentBeforeItsFirstSampleSaysSo) {
   EXPECT_EQ(out.note, "time budget spent before a triple was scored: identity used");
 }
 
+// An answer the budget left unjudged (the identity before any hypothesis, EM's fit before its rivals) pairs the
+// seven rocks, yet nothing was compared with it: every method flags it as such, never confident and never "a
+// rival fits as well" (paper's identity read confidence 1 before).
+TEST(StopRule, AnAnswerTheBudgetLeftUnjudgedIsFlaggedAsNeverCompared) {
+  const auto a = test::seven_rocks(0), b = test::seven_rocks(0.05);
+  for (auto m : {RegistrationMethod::kConsensus, RegistrationMethod::kPaper, RegistrationMethod::kCpd}) {
+    const auto r = detail::register_rocks_until(a, b, budget_of_5ms(m), Deadline(5, clock_passing_after(1)));
+    EXPECT_EQ(r.stop, StopReason::kTimeBudget) << to_string(m);
+    EXPECT_FALSE(r.pairs.empty()) << to_string(m);
+    EXPECT_EQ(r.ambiguity, Ambiguity::kUnchecked) << to_string(m);
+    EXPECT_TRUE(r.ambiguous) << to_string(m);
+    EXPECT_EQ(r.confidence, 0) << to_string(m);
+  }
+  EXPECT_STREQ(ambiguity_reason(Ambiguity::kUnchecked),
+               "the alignment used was never compared with another (the time budget ended first, or no plausible "
+               "alignment was found), so nothing singles it out");
+}
+
 // 300 rocks spread over the picture (over the coarse pass's 160), and the same rocks shifted by 1% of the width
 // and labelled again (centres within 0.1% of the width), every tenth one missing.
 struct ShiftedLayout {
