@@ -1,9 +1,14 @@
 // `ipd demo OUT_DIR`: writes the built-in demo study.
 #include <fmt/format.h>
 
+#include <filesystem>
+#include <system_error>
+
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 #include "core/demo/demo_study.h"
+
+namespace fs = std::filesystem;
 
 namespace ipd::cli {
 
@@ -25,6 +30,15 @@ Runner add_demo_command(CLI::App& app) {
   cmd->add_flag("--labels-only", args->options.labels_only,
                 "No pictures: GT from the scene geometry and synthetic predictions (fast; for 10,000-scene studies)");
   return [args]() -> int {
+    // A new study only: written over an existing one, its hand pairs and review marks would stay and mix with the
+    // new labels (and the tour's numbers would not be the demo's).
+    std::error_code ec;
+    const bool exists = fs::exists(args->out, ec);
+    if (ec || (exists && (!fs::is_directory(args->out, ec) || !fs::is_empty(args->out, ec) || ec))) {
+      fmt::print(stderr, "error: {}: {}; ipd demo writes a new study into an empty or new directory\n", args->out,
+                 ec ? "cannot be read (" + ec.message() + ")" : "already exists and is not an empty directory");
+      return kBadInput;
+    }
     DemoStudyOptions o = args->options;
     o.seed = args->seed;
     o.min_rocks = std::min(o.min_rocks, o.max_rocks);

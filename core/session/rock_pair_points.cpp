@@ -100,7 +100,7 @@ const char* axis_name(PairAxis axis) {
     case PairAxis::kAbsDiff:
       return "|diff|";
     case PairAxis::kSize:
-      return "size (px)";
+      return "size (px²)";
     case PairAxis::kX:
       return "x";
     case PairAxis::kY:

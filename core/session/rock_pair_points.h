@@ -40,7 +40,7 @@ struct RockPointSet {
 // What a scatter axis plots.
 enum class PairAxis { kPerfA, kPerfB, kAbsDiff, kSize, kX, kY, kConfA, kConfB };
 double axis_value(const RockPairPoint& p, PairAxis axis);
-const char* axis_name(PairAxis axis);  // "perf A", "perf B", "|diff|", "size (px)", "x", "y", "conf A", "conf B"
+const char* axis_name(PairAxis axis);  // "perf A", "perf B", "|diff|", "size (px²)", "x", "y", "conf A", "conf B"
 
 // The axis names of scripts (ipd-studio --replay): perf-a, perf-b, diff, size, x, y, conf-a, conf-b.
 bool parse_pair_axis(const std::string& word, PairAxis* axis);

@@ -266,6 +266,23 @@ TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
   EXPECT_FALSE(fs::exists(d / "demo"));
 }
 
+// ipd demo writes a new study: over an existing directory with files (a study with hand pairs, say) it writes
+// nothing and says so; an empty directory is fine.
+TEST(InputChecks, DemoRefusesADirectoryThatHoldsFiles) {
+  test::TempDir d;
+  fs::create_directories(d.path() + "/old/pairs");
+  test::write_text(d / "old/pairs/scene_01.txt", "1 2\n");
+  const auto demo = test::run_ipd("demo " + d / "old" + " --labels-only --scenes 1 --rocks 8");
+  EXPECT_EQ(demo.exit_code, 1);
+  EXPECT_EQ(demo.err, "error: " + d / "old" +
+                          ": already exists and is not an empty directory; ipd demo writes a new study into an empty "
+                          "or new directory\n");
+  EXPECT_FALSE(fs::exists(d / "old/study.yaml"));
+  fs::create_directories(d.path() + "/empty");
+  EXPECT_EQ(test::run_ipd("demo " + d / "empty" + " --labels-only --scenes 1 --rocks 8").exit_code, 0);
+  EXPECT_TRUE(fs::exists(d / "empty/study.yaml"));
+}
+
 // study.yaml's registration block: every number is checked where it is written.
 TEST(InputChecks, StudyYamlRegistrationNumbersAreChecked) {
   EXPECT_EQ(test::study_yaml_error("registration:\n  seed: -1\n"),

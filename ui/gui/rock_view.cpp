@@ -37,7 +37,7 @@ struct Plot {
 float name_combo_width(const Session& s) {
   const float domain =
       std::max(ImGui::CalcTextSize(s.left_domain().c_str()).x, ImGui::CalcTextSize(s.right_domain().c_str()).x);
-  return std::max(ImGui::CalcTextSize("conf ").x + domain, ImGui::CalcTextSize("size (px)").x) +
+  return std::max(ImGui::CalcTextSize("conf ").x + domain, ImGui::CalcTextSize("size (px²)").x) +
          ImGui::GetFrameHeight() * 1.5f;
 }
 
@@ -351,9 +351,12 @@ void apply_pair_selection(const Session& s, const PairSelection& sel, UiState& u
 void draw_rock_view(const StudyView& v, const std::shared_ptr<const RockPointSet>& points, bool gathering,
                     RockViewState& st, UiState& ui, UiCommands& out) {
   if (!ui.show_rock_view || !v.session) return;
-  ImGui::SetNextWindowSize({720, 520}, ImGuiCond_FirstUseEver);
-  // Over the pictures, not the scene list: the selection's chip and the filtered list stay in sight.
+  // Over the pictures, not the scene list: the selection's chip and the filtered list stay in sight. A share of
+  // the screen, so a large one shows a larger scatter and a whole gallery page.
   const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowSize({std::clamp(display.x * 0.6f, std::min(720.0f, display.x), 1280.0f),
+                            std::clamp(display.y * 0.7f, std::min(520.0f, display.y), 860.0f)},
+                           ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowPos({display.x * 0.5f, display.y * 0.5f}, ImGuiCond_FirstUseEver, {0.3f, 0.5f});
   if (!ImGui::Begin("Rock pairs###RockView", &ui.show_rock_view)) {
     ImGui::End();

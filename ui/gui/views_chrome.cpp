@@ -445,7 +445,7 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
     }
     ImGui::EndTable();
     for (size_t k = 0; k < reasons.size(); ++k)
-      ImGui::TextDisabled("%s: not a number, %s", no_value_mark(static_cast<int>(k) + 1).c_str(), reasons[k].c_str());
+      text_disabled_wrapped_at_spaces(no_value_mark(static_cast<int>(k) + 1) + ": not a number, " + reasons[k]);
   }
   ImGui::Separator();
   ImGui::BeginDisabled(!s.can_undo());

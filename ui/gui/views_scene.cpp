@@ -188,6 +188,7 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
     int& hover = k == 0 ? ui.hover_left : ui.hover_right;
     hover = hovered_area ? hit : -1;
     if (hovered_area) {
+      const CanvasView before = view;
       const float wheel = ImGui::GetIO().MouseWheel;
       if (wheel != 0) zoom_at(view, std::pow(1.2f, wheel), mouse, p0, size, in.image_w, in.image_h);
       if (!ImGui::GetIO().WantTextInput && ImGui::IsKeyPressed('F', false)) view = CanvasView{};
@@ -208,9 +209,15 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
           ui.selected_left = ui.selected_right = -1;
         }
       }
-      if (ui.sync_views)
-        (k == 0 ? ui.right_view : ui.left_view) = partner_view(view, {mouse.x - p0.x, mouse.y - p0.y}, size, in.image_w,
-                                                               in.image_h, towards_partner(s, ui, k));
+      // Only when this picture's view changed: following the cursor as it merely moves would slide the other
+      // picture by the registration's offset at every hover.
+      const bool moved = view.zoom != before.zoom || view.pan.x != before.pan.x || view.pan.y != before.pan.y;
+      CanvasView& partner = k == 0 ? ui.right_view : ui.left_view;
+      if (ui.sync_views && moved)
+        partner = view.zoom == 1.0f && view.pan.x == 0 && view.pan.y == 0
+                      ? CanvasView{}  // back to the whole picture: so is the other
+                      : partner_view(view, {mouse.x - p0.x, mouse.y - p0.y}, size, in.image_w, in.image_h,
+                                     towards_partner(s, ui, k));
       if (hit >= 0) {
         const auto& pv_self = s.performance(side, ui.scene).value;
         ImGui::BeginTooltip();
