@@ -92,7 +92,8 @@ DistributionChart distribution_chart(const CrossTable& table, const std::string&
                   info ? model_label(info->name, info->trained_on) : model);
   ch.axis_label = "scene IPD";
   for (const TableCell& cell : table.cells) {
-    if (cell.model != model) continue;
+    // As in the table: a domain pair without the model's training domain is not that model's result.
+    if (cell.model != model || !cell.involves_training_domain) continue;
     BoxRow row;
     row.label = "|" + cell.a + " \u2212 " + cell.b + "|";
     for (const SceneIpd& s : cell.per_scene)

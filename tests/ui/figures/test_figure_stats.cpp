@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <regex>
+#include <tuple>
 
 #include "core/demo/demo_study.h"
 #include "tests/support/figure_test_study.h"
@@ -10,6 +11,7 @@
 #include "tests/support/test_support.h"
 #include "ui/figures/figure_charts.h"
 #include "ui/figures/figure_export.h"
+#include "ui/figures/figure_stats.h"
 
 namespace ipd {
 namespace {
@@ -199,6 +201,29 @@ TEST(FigureStats, WorstScenesAtOneSpotShareOneName) {
   EXPECT_TRUE(has_text(texts, "scene_01, scene_02"));
   EXPECT_TRUE(has_text(texts, "scene_03"));
   EXPECT_FALSE(has_text(texts, "scene_01"));
+}
+
+// The distribution figure shows what the table shows: a domain pair without the model's training domain is "–"
+// there (as in the paper), so it gets no box either.
+TEST(FigureStats, DistributionLeavesOutPairsWithoutTheTrainingDomain) {
+  CrossTable t;
+  t.models = {{"det-real", "real"}};
+  for (const auto& [a, b, involved] : {std::tuple<const char*, const char*, bool>{"real", "principled", true},
+                                       {"real", "hapke", true},
+                                       {"principled", "hapke", false}}) {
+    TableCell c;
+    c.model = "det-real", c.trained_on = "real", c.a = a, c.b = b;
+    c.involves_training_domain = involved;
+    SceneIpd s;
+    s.stem = "scene_01", s.pairs = 2, s.sum_abs_diff = 0.1;
+    c.per_scene = {s};
+    t.cells.push_back(c);
+  }
+  const ui::DistributionChart ch = ui::distribution_chart(t, "det-real", 1);
+  ASSERT_EQ(ch.rows.size(), 2u);
+  EXPECT_EQ(ch.rows[0].label, "|real \u2212 principled|");
+  EXPECT_EQ(ch.rows[1].label, "|real \u2212 hapke|");
+  EXPECT_EQ(ch.rows[1].values, std::vector<double>{0.05});
 }
 
 TEST(FigureStats, NiceTicks) {
