@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "ui/canvas/text_wrap.h"
 #include "ui/figures/figure_options.h"
 
 namespace ipd::ui::fig {
@@ -17,20 +18,9 @@ constexpr double kLabelPad = 0.6;  // a label's backdrop margin around its text
 TextStyle style(double size_pt, Colour colour, bool bold) { return {std::max(kMinTextPt, size_pt), colour, bold}; }
 
 std::vector<std::string> wrap(Canvas& c, const TextStyle& st, const std::string& text, double width) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  std::string line;
-  for (std::string word; in >> word;) {
-    const std::string tried = line.empty() ? word : line + " " + word;
-    if (!line.empty() && c.measure(st, tried).x > width) {
-      lines.push_back(line);
-      line = word;
-    } else {
-      line = tried;
-    }
-  }
-  if (!line.empty()) lines.push_back(line);
-  return lines;
+  // The studio's rule (ui/canvas/text_wrap.h): never "scene IPD" on one line and its number on the next.
+  return wrap_at_spaces(text, static_cast<float>(width),
+                        [&](const std::string& s) { return static_cast<float>(c.measure(st, s).x); });
 }
 
 double draw_wrapped(Canvas& c, Pt at, const TextStyle& st, const std::string& text, double width) {

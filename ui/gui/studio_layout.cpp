@@ -41,18 +41,6 @@ StudioColumns focus_columns(float width, float splitter) {
   return c;
 }
 
-namespace {
-bool is_relation(const std::string& w) { return w == "=" || w == "<" || w == ">" || w == "<=" || w == ">="; }
-// A whole count such as "8" or "1,000" (not "0.97", not "8," that ends a clause): it counts the word after it.
-bool is_count(const std::string& w) {
-  return !w.empty() && std::isdigit(static_cast<unsigned char>(w.front())) &&
-         std::isdigit(static_cast<unsigned char>(w.back())) && std::all_of(w.begin(), w.end(), [](char ch) {
-           return std::isdigit(static_cast<unsigned char>(ch)) || ch == ',';
-         });
-}
-bool starts_with_letter(const std::string& w) { return !w.empty() && std::isalpha(static_cast<unsigned char>(w[0])); }
-}  // namespace
-
 std::string spell_missing_glyphs(std::string text, const std::function<bool(char32_t)>& has_glyph) {
   struct Spelling {
     char32_t glyph;
@@ -66,55 +54,6 @@ std::string spell_missing_glyphs(std::string text, const std::function<bool(char
       text.replace(at, from.size(), s.ascii);
   }
   return text;
-}
-
-std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
-                                        const std::function<float(const std::string&)>& measure) {
-  std::vector<std::string> lines;
-  if (text.empty()) return lines;
-  size_t start = 0;
-  while (true) {  // each paragraph (between newlines) on its own
-    const size_t nl = text.find('\n', start);
-    const std::string para = text.substr(start, nl == std::string::npos ? std::string::npos : nl - start);
-    std::vector<std::string> words;
-    bool after_relation = false, after_count = false, after_delta = false;
-    for (size_t p = 0; p <= para.size();) {
-      size_t sp = para.find(' ', p);
-      if (sp == std::string::npos) sp = para.size();
-      std::string word = para.substr(p, sp - p);
-      p = sp + 1;
-      if (word.empty() && sp < para.size()) continue;  // runs of spaces
-      // A label and its number stay together: "p = 0.031", "p < 0.0001" never break around the sign; so do a
-      // count and the word it counts: "8 scenes", "1,000 trials"; and "delta IPD", ΔIPD spelled in ASCII, is one
-      // symbol.
-      const bool glue =
-          !words.empty() && (is_relation(word) || after_relation || (after_count && starts_with_letter(word)) ||
-                             (after_delta && word.rfind("IPD", 0) == 0));
-      after_relation = is_relation(word);
-      after_count = is_count(word);
-      after_delta = word == "delta";
-      if (glue)
-        words.back() += " " + word;
-      else
-        words.push_back(std::move(word));
-    }
-    std::string line;
-    bool any = false;
-    for (const std::string& word : words) {
-      const std::string joined = line.empty() ? word : line + " " + word;
-      if (!line.empty() && measure(joined) > width) {
-        lines.push_back(line);
-        line = word;
-      } else {
-        line = joined;
-      }
-      any = true;
-    }
-    if (any || nl != std::string::npos) lines.push_back(line);
-    if (nl == std::string::npos) break;
-    start = nl + 1;
-  }
-  return lines;
 }
 
 std::string counted(long n, const char* singular, const char* plural) {

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "ui/canvas/text_wrap.h"  // wrap_at_spaces, shared with the figures
+
 namespace ipd::ui {
 
 // The main window's columns. Wide windows: browser | centre | statistics, the side columns at their
@@ -29,13 +31,6 @@ StudioColumns studio_columns(float width, float browser_pref, float stats_pref, 
 // kFocusStrip (a button each to bring them back) so the two pictures fill the centre column.
 constexpr float kFocusStrip = 28;
 StudioColumns focus_columns(float width, float splitter);
-
-// `text` broken into lines no wider than `width` (as `measure` says), at spaces only: a word, number
-// included, is never split, nor a label from its number ("p = 0.031") or a count from the word it counts
-// ("8 scenes"), nor "delta IPD" (ΔIPD in ASCII); a word (or such a group) wider than `width` gets a line of
-// its own. Newlines are kept.
-std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
-                                        const std::function<float(const std::string&)>& measure);
 
 // `text` with what the GUI font has no glyph for (`has_glyph`: ImFont::FindGlyphNoFallback) spelled in ASCII:
 // "ΔIPD" -> "delta IPD" without U+0394, the typographic minus "−" -> "-" without U+2212; kept otherwise.

@@ -75,6 +75,19 @@ TEST(WrapAtSpaces, NeverBetweenALabelAndItsNumber) {
   EXPECT_EQ(wrap_at_spaces("x p < 0.0001 y", 100, chars), (std::vector<std::string>{"x", "p < 0.0001", "y"}));
 }
 
+TEST(WrapAtSpaces, NeverBetweenANumberAndItsUnit) {
+  // 230 px: "pairs: typical residual 0.3" is 27 characters and would fit, leaving "px" alone (the studio's pair
+  // header at 1920 px); the number goes down with its unit.
+  EXPECT_EQ(wrap_at_spaces("pairs: typical residual 0.3 px", 270, chars),
+            (std::vector<std::string>{"pairs: typical residual", "0.3 px"}));
+  EXPECT_EQ(wrap_at_spaces("took 12.5 ms, then", 90, chars), (std::vector<std::string>{"took", "12.5 ms,", "then"}));
+  // An IPD and its value: the single-column scene figure's title broke "scene IPD" / "0.0404".
+  EXPECT_EQ(wrap_at_spaces("model det-real, scene IPD 0.0404 (12 pairs)", 250, chars),
+            (std::vector<std::string>{"model det-real, scene", "IPD 0.0404 (12 pairs)"}));
+  // A word that merely follows a number is free to wrap.
+  EXPECT_EQ(wrap_at_spaces("0.3 pixels", 50, chars), (std::vector<std::string>{"0.3", "pixels"}));
+}
+
 TEST(WrapAtSpaces, NeverBetweenACountAndTheWordItCounts) {
   // 120 px: "(exact), 8" is 10 characters and would fit, leaving "scenes" alone (ipd-studio's compare sentence
   // at 1000 px); the count goes down with its word.

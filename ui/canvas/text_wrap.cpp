@@ -1,0 +1,84 @@
+#include "ui/canvas/text_wrap.h"
+
+#include <algorithm>
+#include <cctype>
+
+namespace ipd::ui {
+
+namespace {
+bool is_relation(const std::string& w) { return w == "=" || w == "<" || w == ">" || w == "<=" || w == ">="; }
+// A whole count such as "8" or "1,000" (not "0.97", not "8," that ends a clause): it counts the word after it.
+bool is_count(const std::string& w) {
+  return !w.empty() && std::isdigit(static_cast<unsigned char>(w.front())) &&
+         std::isdigit(static_cast<unsigned char>(w.back())) && std::all_of(w.begin(), w.end(), [](char ch) {
+           return std::isdigit(static_cast<unsigned char>(ch)) || ch == ',';
+         });
+}
+bool starts_with_letter(const std::string& w) { return !w.empty() && std::isalpha(static_cast<unsigned char>(w[0])); }
+// Any number, "0.3", "-1.5", "1,000": the unit after it belongs to it.
+bool is_number(const std::string& w) {
+  return !w.empty() && std::isdigit(static_cast<unsigned char>(w.back())) &&
+         std::all_of(w.begin(), w.end(), [](char ch) {
+           return std::isdigit(static_cast<unsigned char>(ch)) || ch == ',' || ch == '.' || ch == '-';
+         });
+}
+bool is_unit(const std::string& w) {
+  for (const char* unit : {"px", "px\u00b2", "px,", "px;", "px)", "ms", "ms,", "ms;", "ms)", "s", "%", "MB", "GB"})
+    if (w == unit) return true;
+  return false;
+}
+}  // namespace
+
+std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
+                                        const std::function<float(const std::string&)>& measure) {
+  std::vector<std::string> lines;
+  if (text.empty()) return lines;
+  size_t start = 0;
+  while (true) {  // each paragraph (between newlines) on its own
+    const size_t nl = text.find('\n', start);
+    const std::string para = text.substr(start, nl == std::string::npos ? std::string::npos : nl - start);
+    std::vector<std::string> words;
+    bool after_relation = false, after_count = false, after_number = false, after_ipd = false, after_delta = false;
+    for (size_t p = 0; p <= para.size();) {
+      size_t sp = para.find(' ', p);
+      if (sp == std::string::npos) sp = para.size();
+      std::string word = para.substr(p, sp - p);
+      p = sp + 1;
+      if (word.empty() && sp < para.size()) continue;  // runs of spaces
+      // A label and its number stay together: "p = 0.031", "p < 0.0001" never break around the sign; so do a
+      // count and the word it counts: "8 scenes", "1,000 trials"; a number and its unit: "0.3 px", "12.5 ms"; an IPD
+      // and its value: "scene IPD 0.0404"; and "delta IPD", ΔIPD spelled in ASCII, is one symbol.
+      const bool glue =
+          !words.empty() && (is_relation(word) || after_relation || (after_count && starts_with_letter(word)) ||
+                             (after_number && is_unit(word)) || (after_ipd && is_number(word)) ||
+                             (after_delta && word.rfind("IPD", 0) == 0));
+      after_relation = is_relation(word);
+      after_count = is_count(word);
+      after_number = is_number(word);
+      after_ipd = word.size() >= 3 && word.compare(word.size() - 3, 3, "IPD") == 0;
+      after_delta = word == "delta";
+      if (glue)
+        words.back() += " " + word;
+      else
+        words.push_back(std::move(word));
+    }
+    std::string line;
+    bool any = false;
+    for (const std::string& word : words) {
+      const std::string joined = line.empty() ? word : line + " " + word;
+      if (!line.empty() && measure(joined) > width) {
+        lines.push_back(line);
+        line = word;
+      } else {
+        line = joined;
+      }
+      any = true;
+    }
+    if (any || nl != std::string::npos) lines.push_back(line);
+    if (nl == std::string::npos) break;
+    start = nl + 1;
+  }
+  return lines;
+}
+
+}  // namespace ipd::ui
