@@ -69,6 +69,9 @@ StudioWindow::StudioWindow(int width, int height, bool headless, const std::stri
   ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;
   ImGui::GetStyle().Colors[ImGuiCol_ChildBg] = ImVec4(0, 0, 0, 0);
   load_font(exe_dir);
+  // Before ImGui's backend, which calls the callback it finds installed before setting a key's state.
+  glfwSetWindowUserPointer(window_, this);
+  glfwSetKeyCallback(window_, &StudioWindow::on_key);
   ImGui_ImplGlfw_InitForOpenGL(window_, true);
   ImGui_ImplOpenGL3_Init("#version 130");
 }
@@ -81,8 +84,17 @@ StudioWindow::~StudioWindow() {
   glfwTerminate();
 }
 
+void StudioWindow::on_key(GLFWwindow* window, int key, int, int action, int) {
+  auto* self = static_cast<StudioWindow*>(glfwGetWindowUserPointer(window));
+  if (!self) return;
+  if (action == GLFW_PRESS) self->taps_.pressed(key);
+  if (action == GLFW_RELEASE) self->taps_.released(key);
+}
+
 bool StudioWindow::begin_frame() {
   glfwPollEvents();
+  ImGuiIO& io = ImGui::GetIO();
+  taps_.apply(io.KeysDown, static_cast<int>(IM_ARRAYSIZE(io.KeysDown)));
   const bool close = glfwWindowShouldClose(window_);
   if (close) glfwSetWindowShouldClose(window_, GLFW_FALSE);  // the quit warning decides
   ImGui_ImplOpenGL3_NewFrame();

@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "app/studio/key_taps.h"
+
 struct GLFWwindow;
 
 namespace ipd::studio {
@@ -24,8 +26,10 @@ class StudioWindow {
   void present();
 
  private:
+  static void on_key(GLFWwindow* window, int key, int scancode, int action, int mods);
   GLFWwindow* window_ = nullptr;
   bool headless_ = false;
+  KeyTaps taps_;
 };
 
 // Wall-clock and this thread's CPU time since construction: a frame's time, and its own share of it (apart
