@@ -23,6 +23,19 @@ TEST(StudioColumns, WideWindowKeepsPreferredSideWidths) {
   EXPECT_FALSE(c.tabbed_centre);
 }
 
+TEST(StudioColumns, AtTwelveEightyTheBrowserGivesWayToTheStatistics) {
+  // 1280: usable 1268, the centre keeps 0.45 * 1268 = 570.6; the sides have 697.4 for 500 + 400. The statistics
+  // keep 400 (the cross table whole) and the browser takes the 297.4 left, over its 260 floor.
+  const StudioColumns c = studio_columns(1280, 500, 400, 6);
+  EXPECT_FLOAT_EQ(c.right, 400);
+  EXPECT_NEAR(c.left, 297.4, 1e-3);
+  EXPECT_NEAR(c.centre, 570.6, 1e-3);
+  EXPECT_FALSE(c.tabbed_centre);
+  // 1200: usable 1188, the centre keeps 534.6 and the sides 653.4, so 253.4 would be left for the browser, under
+  // 260: in proportion again.
+  EXPECT_NEAR(studio_columns(1200, 500, 400, 6).right, 653.4 * 400 / 900, 1e-3);
+}
+
 TEST(StudioColumns, NarrowerWindowShrinksSidesInProportion) {
   // 1000: usable 988, the centre keeps 0.45 * 988 = 444.6; the sides share 543.4 as 380:400 -> 264.73 and
   // 278.67.
