@@ -8,6 +8,7 @@
 #include "app/cli/study_options.h"
 #include "core/report/rock_export.h"
 #include "core/util/atomic_file.h"
+#include "core/util/contained_file.h"
 
 namespace ipd::cli {
 
@@ -40,7 +41,7 @@ Runner add_export_command(CLI::App& app) {
     if (args->out.empty()) {
       std::cout << text;
     } else {
-      write_file_atomically(args->out, text);
+      write_output_file(loaded->labels.study.root, args->out, text);
       fmt::print(stderr, "wrote {} rows to {}\n", rows.size(), args->out);
     }
     return kOk;

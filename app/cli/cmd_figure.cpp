@@ -101,7 +101,8 @@ int scene_figure(const std::string& kind, const Args& args, const ui::FigureOpti
   ui::SceneFigureInput in = ui::scene_input_from_study(c.labels, c.a, c.b, c.model, c.stem, args.conf, reg);
   if (kind == "pairs") ui::load_pictures(in, c.labels.study);
   const ui::FontMetrics metrics(o.font_file);
-  write_figure(ui::scene_figure(kind, in, o, metrics), metrics, o, args.output.out, c.stem + " " + c.a + " vs " + c.b);
+  write_figure(ui::scene_figure(kind, in, o, metrics), metrics, o, c.labels.study.root, args.output.out,
+               c.stem + " " + c.a + " vs " + c.b);
   return kOk;
 }
 

@@ -51,7 +51,7 @@ int run(const std::string& kind, const StatsArgs& args) {
   const ui::FontMetrics metrics(o.font_file);
   ui::DisplayList fig(metrics);
   const std::string title = ui::draw_study_figure(fig, loaded->table, loaded->labels, r, o);
-  write_figure(fig, metrics, o, args.output.out, title);
+  write_figure(fig, metrics, o, loaded->labels.study.root, args.output.out, title);
   return kOk;
 }
 

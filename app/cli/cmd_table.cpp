@@ -8,6 +8,7 @@
 #include "app/cli/study_options.h"
 #include "core/report/table_format.h"
 #include "core/util/atomic_file.h"
+#include "core/util/contained_file.h"
 
 namespace ipd::cli {
 namespace {
@@ -124,7 +125,7 @@ int run_table(const TableArgs& args) {
   if (args.out.empty()) {
     std::cout << text;
   } else {
-    write_file_atomically(args.out, text);
+    write_output_file(loaded->labels.study.root, args.out, text);
     fmt::print(stderr, "wrote {}\n", args.out);
   }
   return kOk;

@@ -7,6 +7,7 @@
 #include "app/cli/cli_common.h"
 #include "app/cli/offscreen_renderer.h"
 #include "core/util/atomic_file.h"
+#include "core/util/contained_file.h"
 #include "ui/canvas/canvas_cairo.h"
 #include "ui/figures/figure_export.h"
 
@@ -60,12 +61,12 @@ int figure_options(const FigureOutputArgs& a, ui::FigureOptions* out) {
 }
 
 void write_figure(const ui::DisplayList& fig, const ui::FontMetrics& metrics, const ui::FigureOptions& o,
-                  const std::string& path, const std::string& title) {
+                  const std::string& study_root, const std::string& path, const std::string& title) {
   const ui::FigureFormat format = *ui::figure_format_of(path);
   const std::string bytes = format == ui::FigureFormat::kPng
                                 ? figure::render_png(fig, metrics, o.dpi)
                                 : ui::render_figure_file(fig, metrics, format, o.dpi, title);
-  write_file_atomically(path, bytes);
+  write_output_file(study_root, path, bytes);
   fmt::print("{}\n", path);
 }
 

@@ -22,8 +22,9 @@ void add_figure_output_options(CLI::App* cmd, FigureOutputArgs* args);
 // `out` when all is well (nothing is written either way).
 int figure_options(const FigureOutputArgs& args, ui::FigureOptions* out);
 
-// Writes the figure atomically to args.out and prints the path.
+// Writes the figure atomically to `path` (below the study never through a link it holds: write_output_file) and
+// prints the path.
 void write_figure(const ui::DisplayList& figure, const ui::FontMetrics& metrics, const ui::FigureOptions& options,
-                  const std::string& path, const std::string& title);
+                  const std::string& study_root, const std::string& path, const std::string& title);
 
 }  // namespace ipd::cli

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <random>
 #include <vector>
 
@@ -219,6 +220,37 @@ std::optional<std::string> read_file_beneath(const std::string& root, const std:
     out.append(buf, static_cast<size_t>(n));
   }
   return out;
+}
+
+namespace {
+
+// `path` relative to `base` when it is lexically below it (both absolute and normal).
+std::optional<std::string> relative_below(const std::filesystem::path& base, const std::filesystem::path& path) {
+  const std::filesystem::path rel = path.lexically_relative(base);
+  if (rel.empty() || rel == "." || *rel.begin() == "..") return std::nullopt;
+  return rel.string();
+}
+
+}  // namespace
+
+std::optional<std::string> path_below(const std::string& root, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path p = fs::absolute(path, ec).lexically_normal();
+  if (ec) return std::nullopt;
+  if (auto rel = relative_below(fs::absolute(root, ec).lexically_normal(), p)) return rel;
+  const fs::path real_root = fs::canonical(root, ec);  // the user named root: its own link may be resolved
+  if (ec) return std::nullopt;
+  return relative_below(real_root, p);
+}
+
+void write_output_file(const std::string& root, const std::string& path, const std::string& contents) {
+  if (const auto rel = path_below(root, path)) {
+    std::error_code ec;
+    write_file_beneath(std::filesystem::canonical(root, ec).string(), *rel, contents);
+    return;
+  }
+  write_file_atomically(path, contents);
 }
 
 }  // namespace ipd

@@ -21,6 +21,16 @@ namespace ipd {
 void write_file_beneath(const std::string& root, const std::string& relative, const std::string& contents,
                         const WriteStepHook& hook = {});
 
+// Where `path` lies below `root`: its path relative to root when it is below root (written as given, or below
+// root's real path when root is itself a link), nullopt when it is elsewhere. Lexical: links below root are
+// not resolved, which is the point (a link there must not say where a file goes).
+std::optional<std::string> path_below(const std::string& root, const std::string& path);
+
+// Writes `path` atomically: below `root` (a study) as write_file_beneath writes, so a link the study holds
+// (`figures -> /elsewhere`) is refused, never written through; anywhere else it is the user's own path
+// (write_file_atomically: a link the user made there is resolved).
+void write_output_file(const std::string& root, const std::string& path, const std::string& contents);
+
 // Removes root/relative durably (fsync of its folder); false when it was not there. Refuses (IoError) a
 // symbolic link, whether the file or a folder on the way. `hook` steps: "folder opened", "checked".
 bool remove_file_beneath(const std::string& root, const std::string& relative, const WriteStepHook& hook = {});

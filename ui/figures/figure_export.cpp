@@ -8,6 +8,7 @@
 #include "core/io/label_io.h"
 #include "core/session/session_statistics.h"
 #include "core/util/atomic_file.h"
+#include "core/util/contained_file.h"
 #include "ui/figures/figure_study.h"
 
 namespace ipd::ui {
@@ -79,13 +80,13 @@ std::string export_figure(const Session& session, const ExportRequest& r) {
     if (!format) return bad_extension_message(r.path);
     if (!is_figure_kind(r.kind)) return "export failed: unknown figure kind '" + r.kind + "'";
     if (is_study_figure_kind(r.kind)) {
-      write_file_atomically(r.path, study_figure_file(session, r, *format));
+      write_output_file(session.study().root, r.path, study_figure_file(session, r, *format));
       return "exported " + r.path;
     }
     if (r.scene < 0 || r.scene >= int(session.scenes().size())) return "export failed: no scene selected";
     SceneFigureInput in = scene_input_from_session(session, r.scene);
     if (r.kind == "pairs") load_pictures(in, session.study());
-    write_file_atomically(r.path, scene_figure_file(r.kind, in, r.options, *format));
+    write_output_file(session.study().root, r.path, scene_figure_file(r.kind, in, r.options, *format));
     return "exported " + r.path;
   } catch (const std::exception& e) {
     return std::string("export failed: ") + e.what();
