@@ -179,19 +179,26 @@ TEST(Reliability, PairsJsonIndicesAreRangeCheckedAndEveryErrorNamesTheFile) {
 }
 
 // --- defect 6: --out replaced a symlink with a regular file
+// The user's own link, outside the study (below it a link is refused: OutputFiles.*).
 TEST(Reliability, OutputThroughASymlinkReplacesTheTarget) {
-  test::TempDir d, elsewhere;
+  test::TempDir d, elsewhere, mine;
   write_tiny_study(d);
   test::write_text(elsewhere / "table.csv", "old\n");
-  fs::create_symlink(elsewhere / "table.csv", d / "link.csv");
-  const auto r = run_ipd_limited("table " + d.path() + " --format csv --out " + d / "link.csv");
+  fs::create_symlink(elsewhere / "table.csv", mine / "link.csv");
+  const auto r = run_ipd_limited("table " + d.path() + " --format csv --out " + mine / "link.csv");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_TRUE(fs::is_symlink(d / "link.csv"));
+  EXPECT_TRUE(fs::is_symlink(mine / "link.csv"));
   EXPECT_TRUE(contains(slurp(elsewhere / "table.csv"), "0.5")) << slurp(elsewhere / "table.csv");
   // A relative link, and a link to a link.
-  fs::create_symlink("link.csv", d / "link2.csv");
-  ASSERT_EQ(run_ipd_limited("table " + d.path() + " --format json --out " + d / "link2.csv").exit_code, 0);
-  EXPECT_TRUE(fs::is_symlink(d / "link2.csv"));
+  fs::create_symlink("link.csv", mine / "link2.csv");
+  ASSERT_EQ(run_ipd_limited("table " + d.path() + " --format json --out " + mine / "link2.csv").exit_code, 0);
+  EXPECT_TRUE(fs::is_symlink(mine / "link2.csv"));
+  EXPECT_EQ(slurp(elsewhere / "table.csv").rfind("{", 0), 0u);
+  // The same link planted in the study: refused, the target untouched.
+  fs::create_symlink(elsewhere / "table.csv", d / "link.csv");
+  const auto planted = run_ipd_limited("table " + d.path() + " --format csv --out " + d / "link.csv");
+  EXPECT_EQ(planted.exit_code, 1);
+  EXPECT_TRUE(contains(planted.err, "link.csv: is a symbolic link; saving through it is refused")) << planted.err;
   EXPECT_EQ(slurp(elsewhere / "table.csv").rfind("{", 0), 0u);
 }
 
