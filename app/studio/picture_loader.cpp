@@ -5,9 +5,21 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "core/picture/picture_size.h"
+#include "core/util/contained_file.h"
+
 namespace ipd::studio {
 
 namespace {
+
+// cv::imread, with a picture over OpenCV's own pixel limit (cv::Exception) read as undecodable.
+cv::Mat decode(const std::string& path, int flags) {
+  try {
+    return cv::imread(path, flags);
+  } catch (const cv::Exception&) {
+    return cv::Mat();
+  }
+}
 
 bool is_jpeg(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -87,12 +99,16 @@ void PictureLoader::run() {
     std::error_code ec;
     if (job.path.empty()) {
       d.error = "no picture for this scene (labels only)";
-    } else if (!std::filesystem::exists(job.path, ec)) {
+    } else if (!std::filesystem::exists(job.path, ec) && !std::filesystem::is_symlink(job.path, ec)) {
       d.error = "missing picture: " + job.path;
+    } else if (const std::string problem = study_file_problem(job.path); !problem.empty()) {
+      d.error = problem;  // a link out of the study is not followed; a FIFO would block this thread for good
+    } else if (const std::string too_large = picture_size_problem(job.path); !too_large.empty()) {
+      d.error = too_large;
     } else {
       // JPEG decodes at 1/4 scale directly (DCT scaling); other formats are reduced after decoding.
       if (job.urgent && is_jpeg(job.path)) {
-        cv::Mat small = cv::imread(job.path, cv::IMREAD_REDUCED_COLOR_4);
+        cv::Mat small = decode(job.path, cv::IMREAD_REDUCED_COLOR_4);
         if (!small.empty()) {
           DecodedPicture p{job.key, {}, small.cols * 4, small.rows * 4, false, {}, job.path};
           cv::cvtColor(small, small, cv::COLOR_BGR2RGBA);
@@ -100,7 +116,7 @@ void PictureLoader::run() {
           deliver(std::move(p));
         }
       }
-      cv::Mat bgr = cv::imread(job.path, cv::IMREAD_COLOR);
+      cv::Mat bgr = decode(job.path, cv::IMREAD_COLOR);
       if (bgr.empty()) {
         d.error = "cannot decode " + job.path;
       } else {

@@ -5,10 +5,12 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
 
 #include "core/util/atomic_file.h"
+#include "core/util/contained_file.h"
 #include "core/util/number_text.h"
 
 namespace fs = std::filesystem;
@@ -151,6 +153,28 @@ LabelFile read_labels(const std::string& path, const LabelParseOptions& options)
     bad.exists = true;
     // IoError's text already starts with the path.
     bad.errors.push_back({path, 0, std::string(e.what()).substr(path.size() + 2)});
+    return bad;
+  }
+}
+
+LabelFile read_labels_beneath(const std::string& root, const std::string& relative, const LabelParseOptions& options) {
+  const std::string path = (std::filesystem::path(root) / relative).string();
+  try {
+    const std::optional<std::string> text = read_file_beneath(root, relative);
+    if (!text) {
+      LabelFile missing;
+      missing.path = path;
+      return missing;
+    }
+    return parse_labels(*text, path, options);
+  } catch (const IoError& e) {
+    LabelFile bad;
+    bad.path = path;
+    bad.exists = true;
+    // The message starts with the path it is about: this file, or a folder on its way.
+    const std::string what = e.what();
+    const bool this_file = what.rfind(path + ": ", 0) == 0;
+    bad.errors.push_back({path, 0, this_file ? what.substr(path.size() + 2) : what});
     return bad;
   }
 }

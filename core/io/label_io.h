@@ -50,6 +50,9 @@ LabelFile parse_labels(const std::string& text, const std::string& file_name, co
 
 // Reads and parses a file. A missing file is not an error (exists = false); an unreadable one is.
 LabelFile read_labels(const std::string& path, const LabelParseOptions& options);
+// The same for root/relative, a file of a study: reached without following a symbolic link below root (a link,
+// the file or a folder on the way, is an error naming it: a study never makes the tool read outside it).
+LabelFile read_labels_beneath(const std::string& root, const std::string& relative, const LabelParseOptions& options);
 
 // Keeps only boxes of `cls` (and their line numbers); cls < 0 keeps all.
 void keep_class(LabelFile* file, int cls);

@@ -46,18 +46,20 @@ StudyLabels load_labels(const Study& study, const std::function<void(int done, i
   // errors are then gathered in file order, so the result does not depend on the thread count.
   struct Job {
     LabelFile* slot;
-    std::string path;
+    std::string path, relative;  // relative: below the study's root, read without following links
     const std::string *domain, *model, *stem;
   };
   static const std::string kGroundTruth;  // the model of a GT file
   std::vector<Job> jobs;
   for (const auto& d : study.domains) {
     for (const auto& stem : d.stems)
-      jobs.push_back({&out.gt[d.name][stem], study.label_path(d.name, stem), &d.name, &kGroundTruth, &stem});
+      jobs.push_back({&out.gt[d.name][stem], study.label_path(d.name, stem), d.name + "/labels/" + stem + ".txt",
+                      &d.name, &kGroundTruth, &stem});
     for (const auto& m : d.models) {
       auto& files = out.predictions[d.name][m];
       for (const auto& stem : d.stems)
-        jobs.push_back({&files[stem], study.prediction_path(d.name, m, stem), &d.name, &m, &stem});
+        jobs.push_back({&files[stem], study.prediction_path(d.name, m, stem),
+                        d.name + "/predictions/" + m + "/" + stem + ".txt", &d.name, &m, &stem});
     }
   }
   std::atomic<int> done{0};
@@ -66,7 +68,8 @@ StudyLabels load_labels(const Study& study, const std::function<void(int done, i
     const Job& j = jobs[k];
     const bool prediction = !j.model->empty();
     if (!reuse || !reuse(*j.domain, *j.model, *j.stem, j.path, j.slot)) {
-      LabelFile f = read_labels(j.path, {prediction ? LabelKind::kPrediction : LabelKind::kGroundTruth});
+      LabelFile f =
+          read_labels_beneath(study.root, j.relative, {prediction ? LabelKind::kPrediction : LabelKind::kGroundTruth});
       keep_class(&f, cls);
       if (prediction) keep_confident(&f, study.config.conf_threshold);
       *j.slot = std::move(f);

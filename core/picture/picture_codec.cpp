@@ -1,5 +1,8 @@
 #include "core/picture/picture_codec.h"
 
+#include "core/picture/picture_size.h"
+
+#include "core/util/contained_file.h"
 #include "core/util/loadable_module.h"
 
 namespace ipd {
@@ -25,8 +28,14 @@ const Codecs& codecs() {
 
 }  // namespace
 
+std::string picture_problem(const std::string& path) {
+  std::string why = study_file_problem(path);  // a link out of the study, or a FIFO that would block
+  return why.empty() ? picture_size_problem(path) : why;
+}
+
 cv::Mat read_picture(const std::string& path, int flags) {
   cv::Mat out;
+  if (!picture_problem(path).empty()) return out;
   codecs().read(&path, flags, &out);
   return out;
 }

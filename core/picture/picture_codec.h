@@ -11,9 +11,15 @@
 
 namespace ipd {
 
-// cv::imread(path, flags): an empty matrix when the file can't be read or decoded. Throws
+// cv::imread(path, flags): an empty matrix when the file can't be read or decoded, is not a regular file (a
+// symbolic link is never followed: study_file_problem) or declares more than kMaxPicturePixels
+// (picture_size.h). Throws
 // std::runtime_error when the codecs module can't be opened.
 cv::Mat read_picture(const std::string& path, int flags);
+
+// Why read_picture would return nothing for `path` before decoding it: a symbolic link, not a regular file, or
+// too many pixels declared; "" when none of these (a picture that still fails to decode is "cannot decode").
+std::string picture_problem(const std::string& path);
 
 // cv::imencode(ext, image, *out, params): false when OpenCV can't encode it. Throws std::runtime_error when
 // the codecs module can't be opened.

@@ -7,8 +7,14 @@
 
 extern "C" {
 
-// Exceptions (OpenCV's cv::Exception) reach the caller as they would from a direct call.
-void ipd_read_picture_v1(const std::string* path, int flags, cv::Mat* out) { *out = cv::imread(*path, flags); }
+// A picture over OpenCV's own pixel limit throws cv::Exception from imread: it reads as one that can't be decoded.
+void ipd_read_picture_v1(const std::string* path, int flags, cv::Mat* out) {
+  try {
+    *out = cv::imread(*path, flags);
+  } catch (const cv::Exception&) {
+    *out = cv::Mat();
+  }
+}
 
 bool ipd_encode_picture_v1(const std::string* ext, const cv::Mat* image, std::vector<uchar>* out,
                            const std::vector<int>* params) {

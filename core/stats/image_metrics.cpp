@@ -152,7 +152,10 @@ StudyPixelMetrics pixel_metrics_all_columns(const StudyLabels& labels, const Cro
         if (im != d->images.end()) {
           m = read_picture(im->second, cv::IMREAD_GRAYSCALE);
           ++decoded;
-          if (m.empty()) scene_problems[s].push_back(fmt::format("{}: can't read the picture", im->second));
+          if (m.empty()) {
+            const std::string why = picture_problem(im->second);
+            scene_problems[s].push_back(why.empty() ? fmt::format("{}: can't read the picture", im->second) : why);
+          }
         }
         it = grey.emplace(domain, m).first;
       }

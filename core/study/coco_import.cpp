@@ -152,6 +152,14 @@ std::map<long, Image> read_images(const json& gt, const std::string& file, std::
     Image img;
     img.index = k - 1;
     img.file = im["file_name"].get<std::string>();
+    // Below --images only: "../x.png" or "/etc/x.png" would take a picture from anywhere into the study.
+    const fs::path name(img.file);
+    if (name.is_absolute() || std::any_of(name.begin(), name.end(), [](const fs::path& p) { return p == ".."; })) {
+      errors->push_back({file, 0,
+                         fmt::format("{}: file_name '{}' leaves the pictures folder; expected a path below --images",
+                                     where, quoted_for_message(img.file))});
+      continue;
+    }
     img.stem = fs::path(img.file).stem().string();
     img.w = im["width"];
     img.h = im["height"];
@@ -213,7 +221,7 @@ struct BoxSink {
   }
 };
 
-// The study's label files, class names and picture links (links to the pictures the user named, never copies).
+// The study's label files, class names and pictures (hard links to the pictures the user named, or copies).
 void write_study(const CocoImportOptions& o, const std::map<long, Image>& images, CocoImportReport* r) {
   const fs::path out(o.out_dir);
   for (const auto& [id, img] : images) {
@@ -227,7 +235,10 @@ void write_study(const CocoImportOptions& o, const std::map<long, Image>& images
       const fs::path dst = out / "images" / fs::path(img.file).filename();
       fs::create_directories(dst.parent_path(), ec);
       fs::remove(dst, ec);
-      fs::create_symlink(src, dst, ec);
+      // A hard link (or a copy across file systems), never a symbolic link: a study's symbolic links are not
+      // followed when it is read, since a study received from someone else could point anywhere.
+      fs::create_hard_link(src, dst, ec);
+      if (ec) fs::copy_file(src, dst, ec);
       if (!ec) ++r->linked_images;
     }
   }

@@ -10,6 +10,7 @@
 
 #include "core/study/study_names.h"
 #include "core/util/atomic_file.h"
+#include "core/util/contained_file.h"
 #include "core/util/json_input.h"
 #include "core/util/json_output.h"
 #include "core/util/number_text.h"
@@ -295,6 +296,16 @@ void check_name(const fs::path& where, const std::string& name, const char* what
                                  printable_name(name, kShownNameBytes), why));
 }
 
+// A study is read only inside itself: a file or folder of it that is a symbolic link (a prediction file, a
+// domain folder, study.yaml) would make the tool read, and count, what lies elsewhere. Checked as the study is
+// scanned (the files are then read without following links: read_labels_beneath).
+void refuse_link(const fs::directory_entry& e) {
+  std::error_code ec;
+  if (e.is_symlink(ec))
+    throw StudyError(printable_name(e.path().string()) +
+                     ": is a symbolic link; reading through it is refused (links inside a study are never followed)");
+}
+
 // Every entry of a directory; one that can't be read is an error, never an empty directory.
 std::vector<fs::directory_entry> list_directory(const fs::path& dir) {
   std::vector<fs::directory_entry> out;
@@ -314,6 +325,7 @@ std::set<std::string> label_stems(const fs::path& dir) {
     const fs::path& p = f.path();
     if (p.filename() == "classes.txt") continue;  // class names (ipd import coco), not a scene
     if (p.extension() == ".txt") {
+      refuse_link(f);
       check_name(p, p.stem().string(), "scene", kMaxStemBytes);
       stems.insert(p.stem().string());
     } else if (lower(p.extension().string()) == ".txt")
@@ -339,11 +351,18 @@ Domain scan_domain(const fs::path& root, const std::string& name, std::set<std::
   d.name = name;
   d.dir = (root / name).string();
   check_name(root / name, name, "domain", kMaxDomainNameBytes);
+  for (const char* folder : {"labels", "images", "predictions"}) {
+    std::error_code ec;
+    refuse_link(fs::directory_entry(root / name / folder, ec));
+  }
   std::set<std::string> stems = label_stems(root / name / "labels");
   if (kind_of(root / name / "images") == FileKind::kDirectory) {
     std::vector<fs::path> pictures;
     for (const auto& f : list_directory(root / name / "images"))
-      if (kImageExtensions.count(lower(f.path().extension().string()))) pictures.push_back(f.path());
+      if (kImageExtensions.count(lower(f.path().extension().string()))) {
+        refuse_link(f);
+        pictures.push_back(f.path());
+      }
     std::sort(pictures.begin(), pictures.end());
     for (const auto& p : pictures) {
       const std::string stem = p.stem().string();
@@ -357,6 +376,7 @@ Domain scan_domain(const fs::path& root, const std::string& name, std::set<std::
   }
   if (kind_of(root / name / "predictions") == FileKind::kDirectory) {
     for (const auto& m : list_directory(root / name / "predictions")) {
+      refuse_link(m);
       if (kind_of(m.path()) != FileKind::kDirectory) continue;
       check_name(m.path(), m.path().filename().string(), "model", kMaxModelNameBytes);
       label_stems(m.path());  // the same rule as labels/: a 0001.TXT there would read as "nothing detected"
@@ -379,19 +399,21 @@ Study open_study(const std::string& root_in) {
   Study s;
   s.root = root.string();
   const fs::path yaml = root / "study.yaml";
-  if (kind_of(yaml) != FileKind::kMissing) {
-    try {
-      s.config = parse_study_config(read_file(yaml.string(), kMaxStudyYamlBytes), yaml.string());
-    } catch (const IoError& e) {
-      throw StudyError(e.what());
-    }
+  try {
+    // Not through a link: a study's settings are its own.
+    if (const auto text = read_file_beneath(root.string(), "study.yaml", kMaxStudyYamlBytes))
+      s.config = parse_study_config(*text, yaml.string());
+  } catch (const IoError& e) {
+    throw StudyError(e.what());
   }
   std::vector<std::string> names;
   for (const auto& e : list_directory(root)) {
     const std::string name = e.path().filename().string();
     if (name == "pairs" || name.empty() || name[0] == '.') continue;
     if (kind_of(e.path()) != FileKind::kDirectory) continue;
-    if (kind_of(e.path() / "labels") == FileKind::kDirectory) names.push_back(name);
+    if (kind_of(e.path() / "labels") != FileKind::kDirectory) continue;
+    refuse_link(e);  // a domain folder that is a link: a domain elsewhere
+    names.push_back(name);
   }
   if (names.empty())
     throw StudyError(root_in + ": no domains found (expected subdirectories like real/labels/ with YOLO label files)");

@@ -200,7 +200,12 @@ std::optional<std::string> read_file_beneath(const std::string& root, const std:
   struct stat st {};
   if (::fstat(fd, &st) != 0) throw IoError(shown + ": cannot read: " + errno_text(errno));
   if (S_ISDIR(st.st_mode)) throw IoError(shown + ": is a directory, expected a file");
-  if (!S_ISREG(st.st_mode)) throw IoError(shown + ": expected a regular file");
+  if (!S_ISREG(st.st_mode))
+    throw IoError(shown + ": is " +
+                  (S_ISFIFO(st.st_mode)   ? "a FIFO"
+                   : S_ISSOCK(st.st_mode) ? "a socket"
+                                          : "a device") +
+                  ", expected a regular file");
   if (static_cast<unsigned long long>(st.st_size) > max_bytes)
     // Rounded up, so a file just over the limit never reads as equal to it (as read_file says it).
     throw IoError(fmt::format("{}: is {:.1f} MB, larger than the {:g} MB limit for this kind of file", shown,
@@ -251,6 +256,17 @@ void write_output_file(const std::string& root, const std::string& path, const s
     return;
   }
   write_file_atomically(path, contents);
+}
+
+std::string study_file_problem(const std::string& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0)
+    return errno == ENOENT ? "" : path + ": cannot be examined: " + errno_text(errno);
+  if (S_ISLNK(st.st_mode)) return link_refused(path, "reading");
+  if (S_ISREG(st.st_mode)) return "";
+  if (S_ISDIR(st.st_mode)) return path + ": is a directory, expected a file";
+  const char* kind = S_ISFIFO(st.st_mode) ? "a FIFO" : S_ISSOCK(st.st_mode) ? "a socket" : "a device";
+  return path + ": is " + kind + ", expected a regular file";
 }
 
 }  // namespace ipd

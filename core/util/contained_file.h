@@ -40,6 +40,11 @@ bool remove_file_beneath(const std::string& root, const std::string& relative, c
 // remove before it changes the first one.
 void check_beneath(const std::string& root, const std::string& relative);
 
+// What keeps `path`, a file a study names (a picture, say), from being read where it is: "PATH: is a symbolic
+// link; ..." (a link is never followed out of a study) or "PATH: is a FIFO, expected a regular file" (which
+// would block the reader forever); "" for a regular file or nothing there. The path is examined, not followed.
+std::string study_file_problem(const std::string& path);
+
 // Reads root/relative (a regular file of at most `max_bytes`); nullopt when it or a folder on the way is
 // missing. Throws IoError naming the path for a symbolic link, a non-regular file, or a read error.
 std::optional<std::string> read_file_beneath(const std::string& root, const std::string& relative,

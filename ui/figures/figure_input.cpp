@@ -118,7 +118,10 @@ void load_pictures(SceneFigureInput& in, const Study& study) {
     const auto it = d->images.find(in.stem);
     if (it == d->images.end()) return;
     picture = read_picture(it->second, cv::IMREAD_COLOR);
-    if (picture.empty()) problem = "cannot decode " + it->second;
+    if (picture.empty()) {
+      problem = picture_problem(it->second);
+      if (problem.empty()) problem = "cannot decode " + it->second;
+    }
   };
   load(in.a, in.picture_a, in.problem_a);
   load(in.b, in.picture_b, in.problem_b);

@@ -148,7 +148,8 @@ TEST(Yolo, CliFillsEveryDomainOfAStudyAndWritesEmptyFiles) {
 }
 
 // A study is untrusted: `real/predictions` linked to a folder elsewhere must not make `ipd detect STUDY
-// --model` write there. Refused before anything is written, in every domain; a model name must be a file name.
+// --model` write there. Refused as the study is read, before anything is written, in every domain; a model name
+// must be a file name.
 TEST(Detect, AStudysLinkedPredictionsFolderIsNotWrittenThrough) {
   test::TempDir d;
   for (const std::string dom : {"real", "synth"}) {
@@ -161,7 +162,7 @@ TEST(Detect, AStudysLinkedPredictionsFolderIsNotWrittenThrough) {
   auto r = test::run_ipd("detect " + d / "study" + " --detector classical --model classical");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "error: " + d / "study/real/predictions" +
-                       ": is a symbolic link; saving through it is refused (links inside a study are never "
+                       ": is a symbolic link; reading through it is refused (links inside a study are never "
                        "followed)\n");
   EXPECT_FALSE(fs::exists(d / "elsewhere/classical"));
   EXPECT_FALSE(fs::exists(d / "study/synth/predictions/classical/a.txt"));  // all domains or none
@@ -207,7 +208,9 @@ TEST(CocoImport, GroundTruthAndResultsToTheStudyLayout) {
   const LabelFile p = read_labels(d / "study/real/predictions/coco-results/a.txt", {LabelKind::kPrediction});
   ASSERT_EQ(p.boxes.size(), 1u);
   EXPECT_DOUBLE_EQ(p.boxes[0].conf, 0.8);
-  EXPECT_TRUE(fs::is_symlink(d / "study/real/images/a.png"));
+  // A hard link (here) or a copy, never a symbolic link: a study's links are not followed when it is read.
+  EXPECT_FALSE(fs::is_symlink(d / "study/real/images/a.png"));
+  EXPECT_TRUE(fs::equivalent(d / "study/real/images/a.png", d / "pics/a.png"));
 }
 
 TEST(CocoImport, EveryBadEntryIsReportedAndNothingWritten) {

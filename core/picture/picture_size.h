@@ -1,0 +1,25 @@
+// A picture's size from its header, before anything is decoded. A PNG of 60 KB can declare 20,000 x 20,000
+// pixels, and decoding it (then the image metrics, ~100 bytes a pixel) would take tens of gigabytes: readers
+// refuse a picture over kMaxPicturePixels first. PNG, JPEG, BMP and WebP headers are read; other formats are
+// left to OpenCV's own limit.
+#pragma once
+
+#include <optional>
+#include <string>
+
+namespace ipd {
+
+inline constexpr long long kMaxPicturePixels = 50'000'000;  // more than the cameras of the studies deliver
+
+struct PictureSize {
+  long long width = 0, height = 0;
+};
+
+// The size a picture's header declares; nullopt when the format is not one of the four or the header is cut.
+std::optional<PictureSize> declared_picture_size(const std::string& path);
+
+// "PATH: declares W x H pixels, over the 50-megapixel limit for a picture" when the header declares more than
+// kMaxPicturePixels; "" otherwise (an unreadable header is the decoder's to report).
+std::string picture_size_problem(const std::string& path);
+
+}  // namespace ipd
