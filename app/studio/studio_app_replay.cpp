@@ -200,6 +200,7 @@ std::vector<std::string> StudioApp::replay_problems() const {
     out.push_back(fmt::format("stopped before line {} (the window was closed)",
                               replay_[std::min(replay_next_, replay_.size() - 1)].line));
   for (const auto& why : worker_.saver().failures()) out.push_back("edit not saved: " + why);
+  for (const auto& why : worker_.command_errors()) out.push_back("failed: " + why);
   if (const int n = worker_.saver().pending(); n > 0)
     out.push_back(fmt::format("{} edit(s) still being saved when the replay ended", n));
   if (const int n = worker_.unsaved_edits(); n > 0)

@@ -89,6 +89,11 @@ std::string StudyWorker::open_error() const {
   return open_error_;
 }
 
+std::vector<std::string> StudyWorker::command_errors() const {
+  std::lock_guard<std::mutex> l(mu_);
+  return command_errors_;
+}
+
 std::vector<std::string> StudyWorker::take_messages() {
   std::lock_guard<std::mutex> l(mu_);
   return std::exchange(messages_, {});
@@ -136,7 +141,7 @@ void StudyWorker::run() {
       if (std::holds_alternative<command::OpenStudy>(c))
         open_error_ = e.what();
       else
-        messages_.push_back(std::string("error: ") + e.what());
+        messages_.push_back(std::string("error: ") + e.what()), command_errors_.push_back(e.what());
     }
     std::lock_guard<std::mutex> l(mu_);
     busy_ = false;

@@ -126,7 +126,9 @@ class StudyWorker {
   OpenProgress progress() const;
   std::string open_error() const;
   std::vector<std::string> take_messages();  // status lines (export finished, save failed, …)
-  bool idle() const;                         // nothing queued or running
+  // Every command that failed (its exception's text), kept for the whole run: a replay that ends with one failed.
+  std::vector<std::string> command_errors() const;
+  bool idle() const;  // nothing queued or running
   // Edits of a read-only study kept only in memory since it was opened or last saved elsewhere.
   int unsaved_edits() const;
   Saver& saver() { return saver_; }
@@ -157,6 +159,7 @@ class StudyWorker {
   OpenProgress progress_;
   std::string open_error_;
   std::vector<std::string> messages_;
+  std::vector<std::string> command_errors_;
   int unsaved_edits_ = 0;
   // Worker-thread only:
   std::unique_ptr<Session> session_;

@@ -53,6 +53,9 @@ SaveJob Session::apply_review_toggle(int pair, int scene, const ReviewToggle& t)
     next->toggle_reviewed(scene);
   else
     next->toggle_checked(scene, t.a, t.b);
+  // The file's text first: a mark it can't hold (a scene name that is not UTF-8, and JSON is) throws here and
+  // changes nothing, so the marks already made are still saved with the next one.
+  if (!next->empty()) (void)review_json(*next, review_scenes(pair));
   reviews_[pair] = std::move(next);
   reaudit(pair, scene);
   last_scene_ = scene;
@@ -64,11 +67,12 @@ SaveJob Session::apply_review_toggle(int pair, int scene, const ReviewToggle& t)
 SaveJob Session::toggle_reviewed(int scene) {
   ReviewToggle t;
   t.kind = ReviewToggle::Kind::kScene;
+  SaveJob job = apply_review_toggle(pair_, scene, t);  // first: a mark that can't be saved is no step to undo
   history_.truncate(undo_pos_);
   const SceneState& s = scenes_[pair_][scene];
   history_.push_back({pair_, scene, s.current, s.current, s.edited, s.edited, t});
   ++undo_pos_;
-  return apply_review_toggle(pair_, scene, t);
+  return job;
 }
 
 std::optional<SaveJob> Session::toggle_checked(int scene, int left, int right) {
@@ -79,10 +83,11 @@ std::optional<SaveJob> Session::toggle_checked(int scene, int left, int right) {
   t.b = swapped_ ? left : right;
   const auto& now = s.current.pairs;
   if (std::find(now.begin(), now.end(), std::make_pair(t.a, t.b)) == now.end()) return std::nullopt;
+  SaveJob job = apply_review_toggle(pair_, scene, t);
   history_.truncate(undo_pos_);
   history_.push_back({pair_, scene, s.current, s.current, s.edited, s.edited, t});
   ++undo_pos_;
-  return apply_review_toggle(pair_, scene, t);
+  return job;
 }
 
 void Session::reload_review(int pair) {

@@ -89,6 +89,27 @@ TEST(SessionReview, ACheckOfAPairEditedAwayIsNotWrittenAndComesBackWithUndo) {
   EXPECT_TRUE(s.audit(0).pairs[2].checked);
 }
 
+// A scene whose name is not UTF-8 can't be written into the review file (JSON): marking it fails and changes
+// nothing, and the other scenes' marks are still saved (the failed mark used to stay in memory and make every
+// later save of the domain pair fail).
+TEST(SessionReview, AMarkTheFileCannotHoldChangesNothing) {
+  test::TempDir d;
+  test::write_review_study(d);
+  const std::string bad = "s\xff3";
+  for (const char* domain : {"real", "synth"})
+    fs::copy_file(d / (std::string(domain) + "/labels/s2.txt"), d / (std::string(domain) + "/labels/" + bad + ".txt"));
+  Session s = open_audited(d.path());
+  int bad_scene = -1;
+  for (int k = 0; k < static_cast<int>(s.scenes().size()); ++k)
+    if (s.scenes()[k].stem == bad) bad_scene = k;
+  ASSERT_GE(bad_scene, 0);
+  EXPECT_THROW(s.toggle_reviewed(bad_scene), std::exception);
+  EXPECT_FALSE(s.reviewed(bad_scene));
+  EXPECT_EQ(s.review_progress().reviewed, 0);
+  EXPECT_FALSE(s.can_undo());
+  EXPECT_EQ(*s.toggle_reviewed(1).contents, "{\"reviewed\":[\"s2\"],\"checked\":[]}\n");
+}
+
 TEST(SessionReview, ReviewedScenesToggleCountAndFilter) {
   test::TempDir d;
   test::write_review_study(d);
