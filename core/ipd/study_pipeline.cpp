@@ -44,6 +44,9 @@ std::optional<std::unordered_set<std::string>> stems_with_pairs_files(const Stud
     std::error_code ec;
     // A link is not listed: every scene is then looked up, and the lookup refuses it (fixed_pairs.h).
     if (fs::is_symlink(fs::path(st.root) / "pairs", ec) || fs::is_symlink(dir, ec)) return std::nullopt;
+    // Nor is a `pairs` that is a file (not "no hand pairs": the lookup says what it is).
+    const fs::file_status pairs = fs::status(fs::path(st.root) / "pairs", ec);
+    if (fs::exists(pairs) && !fs::is_directory(pairs)) return std::nullopt;
     if (!fs::exists(dir, ec)) {
       if (ec) return std::nullopt;
       continue;

@@ -283,6 +283,22 @@ TEST(InputChecks, DemoRefusesADirectoryThatHoldsFiles) {
   EXPECT_TRUE(fs::exists(d / "empty/study.yaml"));
 }
 
+// A file named `pairs` read as "no hand pairs", although a file at pairs/<A>__<B> is an error.
+TEST(InputChecks, AFileInPlaceOfThePairsFolderIsAnError) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  test::write_text(d / "pairs", "");
+  const auto r = test::run_ipd("table " + d.path() + " --bootstrap 0");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(d / "pairs" + ": is a file, expected a folder"), std::string::npos) << r.err;
+}
+
+// A domain listed twice was dropped without a word (and the columns' order changed).
+TEST(InputChecks, StudyYamlDomainsListedTwiceAreAnError) {
+  EXPECT_EQ(test::study_yaml_error("rock_class: 0\ndomains: [real, real, hapke]\n"),
+            "study.yaml:2: domains lists 'real' twice; each domain once, in the order to show");
+}
+
 // study.yaml's registration block: every number is checked where it is written.
 TEST(InputChecks, StudyYamlRegistrationNumbersAreChecked) {
   EXPECT_EQ(test::study_yaml_error("registration:\n  seed: -1\n"),
