@@ -70,8 +70,7 @@ void write_file_atomically(const std::string& path, const std::string& contents,
     fs::create_directories(target.parent_path(), ec);
     if (ec) throw IoError(path + ": cannot create directory " + target.parent_path().string() + ": " + ec.message());
   }
-  std::random_device rd;
-  const std::string tmp = target.string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(rd() & 0xffff);
+  const std::string tmp = (target.parent_path() / temp_name_for(target.filename().string())).string();
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) throw IoError(path + ": cannot write: " + errno_text(errno));
   size_t done = 0;
@@ -173,6 +172,11 @@ std::string read_file(const std::string& path, size_t max_bytes) {
   ::close(fd);
   out.resize(done);
   return out;
+}
+
+std::string temp_name_for(const std::string& name) {
+  std::random_device rd;
+  return name.substr(0, 200) + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(rd() & 0xffff);
 }
 
 bool is_stale_temp_name(const std::string& name) {

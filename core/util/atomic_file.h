@@ -36,5 +36,8 @@ std::string read_file(const std::string& path, size_t max_bytes = kMaxReadBytes)
 int remove_stale_temp_files(const std::string& dir);
 // True for `<name>.tmp-<pid>-<n>` whose writer process is gone.
 bool is_stale_temp_name(const std::string& name);
+// The temp name a writer of `name` (a file name, no folder) uses beside it: `<name>.tmp-<pid>-<n>`, the name cut
+// to 200 bytes so that any name the file system takes (255 bytes) still has a temp name it takes.
+std::string temp_name_for(const std::string& name);
 
 }  // namespace ipd

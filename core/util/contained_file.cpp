@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <random>
 #include <vector>
 
 namespace ipd {
@@ -126,8 +125,7 @@ void write_file_beneath(const std::string& root, const std::string& relative, co
   if (type == S_IFLNK) throw IoError(link_refused(shown, "saving"));
   if (type != 0 && type != S_IFREG) throw IoError(shown + ": is not a regular file; not replaced");
   if (hook) hook("checked");
-  std::random_device rd;
-  const std::string tmp = name + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(rd() & 0xffff);
+  const std::string tmp = temp_name_for(name);
   // O_EXCL | O_NOFOLLOW: a link planted under the temp name is never written through.
   const int fd = ::openat(dir.get(), tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0) throw IoError(shown + ": cannot write: " + errno_text(errno));

@@ -48,6 +48,19 @@ TEST(OutputFiles, BelowAStudyALinkedFolderOrFileIsRefusedAndNothingOutsideChange
   EXPECT_EQ(read_file(study + "/figures/new.svg"), "figure");
 }
 
+// A scene name of 250 bytes (the longest a study takes) makes a pairs file name of 255, the file system's
+// limit: its temp name (name.tmp-PID-N) is cut so the save still works (it failed: "File name too long").
+TEST(OutputFiles, TheLongestNameAStudyTakesIsStillSaved) {
+  test::TempDir d;
+  const std::string name = std::string(250, 's') + ".json";
+  write_file_beneath(d.path(), "pairs/real__synth/" + name, "{}\n");
+  EXPECT_EQ(read_file(d / ("pairs/real__synth/" + name)), "{}\n");
+  write_file_atomically(d / name, "{}\n");
+  EXPECT_EQ(read_file(d / name), "{}\n");
+  EXPECT_EQ(temp_name_for(name).rfind(std::string(200, 's') + ".tmp-", 0), 0u);
+  EXPECT_EQ(std::distance(fs::directory_iterator(d.path()), fs::directory_iterator()), 2);  // no temp left
+}
+
 TEST(OutputFiles, ElsewhereTheUsersPathIsWrittenAsGiven) {
   test::TempDir d;
   fs::create_directories(d / "study");
