@@ -1,6 +1,7 @@
 #include "core/ipd/study_pipeline.h"
 
 #include "core/study/fixed_pairs.h"
+#include "core/study/unused_hand_files.h"
 
 #include <fmt/format.h>
 #include <algorithm>
@@ -44,9 +45,6 @@ std::optional<std::unordered_set<std::string>> stems_with_pairs_files(const Stud
     std::error_code ec;
     // A link is not listed: every scene is then looked up, and the lookup refuses it (fixed_pairs.h).
     if (fs::is_symlink(fs::path(st.root) / "pairs", ec) || fs::is_symlink(dir, ec)) return std::nullopt;
-    // Nor is a `pairs` that is a file (not "no hand pairs": the lookup says what it is).
-    const fs::file_status pairs = fs::status(fs::path(st.root) / "pairs", ec);
-    if (fs::exists(pairs) && !fs::is_directory(pairs)) return std::nullopt;
     if (!fs::exists(dir, ec)) {
       if (ec) return std::nullopt;
       continue;
@@ -238,6 +236,7 @@ PairedStudy pair_study(const StudyLabels& labels, const std::vector<std::pair<st
     }
     out.pairs.push_back(std::move(d));
   }
+  for (Problem& p : unused_hand_files(study)) out.problems.push_back(std::move(p));
   for (size_t c = 0; c < pairs.size(); ++c) {
     const auto listed = stems_with_pairs_files(study, pairs[c].first, pairs[c].second);
     const auto& scenes = out.pairs[c].scenes;
