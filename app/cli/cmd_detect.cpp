@@ -36,8 +36,11 @@ std::vector<Job> jobs_for_dir(const fs::path& images, const fs::path& out) {
   for (const auto& e : fs::directory_iterator(images, ec)) {
     std::string ext = e.path().extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (e.is_regular_file() && kExt.count(ext))
-      jobs.push_back({e.path().string(), (out / (e.path().stem().string() + ".txt")).string(), {}, {}});
+    if (!kExt.count(ext)) continue;
+    // A picture that is not a regular file (a FIFO, a link out of a study) gets no predictions: its scene would
+    // later read as "nothing detected", so it is an error, not a skip.
+    if (const std::string why = study_file_problem(e.path().string()); !why.empty()) throw StudyError(why);
+    jobs.push_back({e.path().string(), (out / (e.path().stem().string() + ".txt")).string(), {}, {}});
   }
   if (ec) throw StudyError(images.string() + ": cannot read the directory: " + ec.message());
   std::sort(jobs.begin(), jobs.end(), [](const Job& a, const Job& b) { return a.picture < b.picture; });

@@ -1,6 +1,7 @@
 // YOLOv5 ONNX inference with known outputs (tiny models written by make_onnx_model.py with Debian's
 // python3-onnx), letterbox un-mapping on a 1936 x 1216 picture, thresholds, NMS, classes; COCO import.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <filesystem>
@@ -176,6 +177,19 @@ TEST(Detect, AStudysLinkedPredictionsFolderIsNotWrittenThrough) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--model"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(d / "study/real/up"));
+}
+
+// A picture that is a FIFO got no predictions and no word ("17 pictures, predictions written"): its scene then
+// read as "nothing detected". An error naming it, and nothing written.
+TEST(Detect, APictureThatIsNotARegularFileIsAnError) {
+  test::TempDir d;
+  fs::create_directories(d / "pics");
+  cv::imwrite(d / "pics/a.png", cv::Mat(60, 80, CV_8UC3, cv::Scalar(9, 9, 9)));
+  ASSERT_EQ(::mkfifo((d / "pics/b.png").c_str(), 0600), 0);
+  const auto r = test::run_ipd("detect " + d / "pics" + " --detector classical --out " + d / "pred");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: " + d / "pics/b.png" + ": is a FIFO, expected a regular file\n");
+  EXPECT_FALSE(fs::exists(d / "pred/a.txt"));
 }
 
 TEST(CocoImport, GroundTruthAndResultsToTheStudyLayout) {
