@@ -99,7 +99,12 @@ int scene_figure(const std::string& kind, const Args& args, const ui::FigureOpti
   RegistrationOptions reg = c.labels.study.config.registration;
   reg.aspect = c.labels.study.aspect();
   ui::SceneFigureInput in = ui::scene_input_from_study(c.labels, c.a, c.b, c.model, c.stem, args.conf, reg);
-  if (kind == "pairs") ui::load_pictures(in, c.labels.study);
+  if (kind == "pairs") {
+    ui::load_pictures(in, c.labels.study);
+    // The figure still comes out (the picture's place says why it is empty): said here too, not only in the PDF.
+    for (const std::string* problem : {&in.problem_a, &in.problem_b})
+      if (!problem->empty()) fmt::print(stderr, "warning: {}\n", *problem);
+  }
   const ui::FontMetrics metrics(o.font_file);
   write_figure(ui::scene_figure(kind, in, o, metrics), metrics, o, c.labels.study.root, args.output.out,
                c.stem + " " + c.a + " vs " + c.b);

@@ -273,6 +273,17 @@ TEST(FigureFiles, SvgIsXmlWithASizeAndTextAsText) {
   EXPECT_NE(svg.find("data:image/jpeg;base64,/9j/"), std::string::npos);  // a JPEG's first bytes, FF D8 FF
 }
 
+// A picture that can't be read leaves its place empty with the reason in the figure, and says it on stderr
+// (the run exited 0 without a word, the reason only inside the PDF).
+TEST(FigureFiles, APictureThatCannotBeReadIsSaidOnStderr) {
+  test::TempDir d;
+  test::write_figure_study(d, true);
+  test::write_text(d / "synth/images/s1.png", "not a picture");
+  const auto r = test::run_ipd("figure pairs " + d.path() + " --out " + d / "p.svg");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.err.find("\nwarning: cannot decode " + d / "synth/images/s1.png" + "\n"), std::string::npos) << r.err;
+}
+
 TEST(FigureFiles, PngWidthIsInchesTimesDpi) {
   test::TempDir d;
   test::write_figure_study(d, true);
