@@ -16,6 +16,7 @@
 #include "core/registration/registration.h"
 #include "core/util/atomic_file.h"
 #include "core/util/json_output.h"
+#include "core/util/number_text.h"
 #include "core/util/parallel.h"
 
 namespace ipd::cli {
@@ -23,11 +24,7 @@ namespace ipd::cli {
 namespace {
 
 // A count rounded to a whole number with thousands separators: 1045000 -> "1,045,000" (not "1.05e+06").
-std::string grouped_count(double n) {
-  std::string digits = fmt::format("{:.0f}", std::abs(n));
-  for (int k = static_cast<int>(digits.size()) - 3; k > 0; k -= 3) digits.insert(static_cast<size_t>(k), ",");
-  return (n < 0 && digits != "0" ? "-" : "") + digits;
-}
+std::string grouped_count(double n) { return grouped_thousands(std::llround(n)); }
 
 // "1 trial", "1,000 trials".
 std::string counted(double n, const char* singular, const char* plural) {

@@ -12,6 +12,7 @@
 #include "core/registration/pairing.h"
 #include "core/registration/registration_frame.h"
 #include "core/registration/registration_recorder.h"
+#include "core/util/number_text.h"
 
 namespace ipd {
 
@@ -270,15 +271,7 @@ double median_nn_distance(const std::vector<Eigen::Vector2d>& p, const Deadline*
   return d[d.size() / 2];
 }
 
-std::string grouped(double n) {
-  const long long v = std::llround(n);
-  std::string digits = std::to_string(v < 0 ? -v : v), out = v < 0 ? "-" : "";
-  for (size_t k = 0; k < digits.size(); ++k) {
-    if (k > 0 && (digits.size() - k) % 3 == 0) out += ',';
-    out += digits[k];
-  }
-  return out;
-}
+std::string grouped(double n) { return grouped_thousands(std::llround(n)); }
 
 std::string count_of(double n, const char* singular, const char* plural) {
   return grouped(n) + " " + (std::llround(n) == 1 ? singular : plural);

@@ -70,4 +70,17 @@ std::string quoted_for_message(std::string_view s) {
   return escape_non_utf8(cut);
 }
 
+std::string grouped_thousands(long long n) {
+  const bool negative = n < 0;
+  // -(n + 1) + 1 in unsigned: the magnitude of the smallest long long too.
+  const std::string digits =
+      std::to_string(negative ? static_cast<unsigned long long>(-(n + 1)) + 1ULL : static_cast<unsigned long long>(n));
+  std::string out = negative ? "-" : "";
+  for (size_t k = 0; k < digits.size(); ++k) {
+    if (k > 0 && (digits.size() - k) % 3 == 0) out += ',';
+    out += digits[k];
+  }
+  return out;
+}
+
 }  // namespace ipd

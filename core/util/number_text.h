@@ -25,4 +25,7 @@ bool is_non_finite_word(std::string_view s);
 // are not UTF-8 as \xHH, so the message stays readable on a terminal and fits in a JSON error object.
 std::string quoted_for_message(std::string_view s);
 
+// A whole number with thousands separators, as every count the tools print: 89700 -> "89,700", -1234 -> "-1,234".
+std::string grouped_thousands(long long n);
+
 }  // namespace ipd

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/util/number_text.h"
 #include "ui/figures/figure_charts.h"
 
 namespace ipd::ui {
@@ -30,7 +31,7 @@ ScoreCurve layout_score_curve(Canvas& c, const TextStyle& st, const ScoreCurveIn
   // The last step's label is centred on the plot's right end: half of it must fit inside the area ("5000" was
   // cut to "500" at the panel's edge).
   const int n = static_cast<int>(in.best.size());
-  const double last_half = c.measure(st, tick_text(std::max(1, n), 1)).x / 2;
+  const double last_half = c.measure(st, grouped_thousands(std::max(1, n))).x / 2;
   out.plot = {area.x0 + label_w + tick + 2, area.y0 + 0.5 * line, area.x1 - std::max(2.0, last_half + 1),
               area.y1 - line - tick - 1};
   if (out.plot.y1 <= out.plot.y0) out.plot.y1 = out.plot.y0 + 1;
@@ -40,17 +41,26 @@ ScoreCurve layout_score_curve(Canvas& c, const TextStyle& st, const ScoreCurveIn
   const auto x_of = [&](double k) { return out.plot.x0 + (n > 1 ? k / (n - 1) : 0.5) * out.plot.width(); };
   for (int k = 0; k < n; ++k)
     if (std::isfinite(in.best[k])) out.points.push_back({x_of(k), y_of(in.best[k])});
-  // Step ticks numbered from 1 (the replay's "step 1 of N"), the last one always shown.
+  // Step ticks numbered from 1 (the replay's "step 1 of N"), with thousands separators as the replay's counts,
+  // the first and the last one always shown.
   const std::vector<double> st_ticks = nice_ticks(1, std::max(1, n), std::max(2, int(out.plot.width() / (6 * line))));
-  for (double s : st_ticks)
-    if (s >= 1 && s <= n && s == std::round(s)) out.step_axis.push_back({s, x_of(s - 1), tick_text(s, 1)});
-  if (n > 0 && (out.step_axis.empty() || out.step_axis.back().value < n)) {
+  const auto step_label = [](double s) { return grouped_thousands(std::llround(s)); };
+  if (n > 0) out.step_axis.push_back({1, x_of(0), "1"});
+  for (double s : st_ticks) {
+    if (!(s > 1 && s <= n && s == std::round(s))) continue;
+    // A tick too close to "1" gives way to it.
+    if (x_of(s - 1) - out.step_axis.front().at < c.measure(st, "1  " + step_label(s)).x) continue;
+    out.step_axis.push_back({s, x_of(s - 1), step_label(s)});
+  }
+  if (n > 1 && out.step_axis.back().value < n) {
     // The last step's label replaces a tick too close to it.
     const double x = x_of(n - 1);
-    const std::string t = tick_text(n, 1);
-    if (!out.step_axis.empty() && x - out.step_axis.back().at < c.measure(st, t + "  " + out.step_axis.back().text).x)
-      out.step_axis.pop_back();
-    out.step_axis.push_back({double(n), x, t});
+    const std::string t = step_label(n);
+    const auto crowded = [&] {
+      return x - out.step_axis.back().at < c.measure(st, t + "  " + out.step_axis.back().text).x;
+    };
+    if (crowded() && out.step_axis.size() > 1) out.step_axis.pop_back();  // "1" stays
+    if (!crowded()) out.step_axis.push_back({double(n), x, t});
   }
   if (in.current >= 0 && in.current < n) out.current_x = x_of(in.current);
   out.direction = score_direction(in.method);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/util/number_text.h"
+
 namespace ipd::ui {
 
 StudioColumns studio_columns(float width, float browser_pref, float stats_pref, float splitter) {
@@ -65,16 +67,7 @@ std::string counted(long n, const char* singular, const char* plural) {
   return thousands(n) + " " + noun;
 }
 
-std::string thousands(long long n) {
-  const bool negative = n < 0;
-  std::string digits = std::to_string(negative ? -(n + 1) + 1ULL : static_cast<unsigned long long>(n));
-  std::string out;
-  for (size_t k = 0; k < digits.size(); ++k) {
-    if (k > 0 && (digits.size() - k) % 3 == 0) out += ',';
-    out += digits[k];
-  }
-  return negative ? "-" + out : out;
-}
+std::string thousands(long long n) { return grouped_thousands(n); }
 
 std::string fixed(double v, int decimals) {
   char buf[64];

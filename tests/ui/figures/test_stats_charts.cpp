@@ -232,18 +232,21 @@ TEST(StatsCharts, CrossTableHeaderSplitsAfterTheMinus) {
 // "higher is better" sat top right, where a rising best-so-far curve ends, and the curve ran through it. The
 // label goes to the corner the curve leaves free, for both directions: no point of the curve (sampled along
 // every segment) falls in the label's box.
-// A recorded search of 5,000 steps: every label, the last step's "5000" centred on the plot's right end
-// included, stays inside the area the curve was given (6 pt a character here: "5000" is 24 wide, so the plot
-// ends 13 short of the area).
+// A recorded search of 5,000 steps: every label, the last step's "5,000" centred on the plot's right end
+// included, stays inside the area the curve was given (6 pt a character here: "5,000" is 30 wide, so the plot
+// ends 16 short of the area). The steps are counted from 1, as the replay's "step 1 of 5,000", with the
+// replay's thousands separators.
 TEST(StatsCharts, ScoreCurveLastStepLabelStaysInsideTheArea) {
   Recorder r;
   const TextStyle st{8, rgb(0, 0, 0), false};
   const std::vector<double> best(5000, 0.5);
   const ScoreCurve curve = layout_score_curve(r, st, {best, 10, RegistrationMethod::kPaper}, {0, 0, 300, 100});
   draw_score_curve(r, st, curve, kColours);
-  EXPECT_DOUBLE_EQ(curve.plot.x1, 287);
+  EXPECT_DOUBLE_EQ(curve.plot.x1, 284);
   ASSERT_FALSE(curve.step_axis.empty());
-  EXPECT_EQ(curve.step_axis.back().text, "5000");
+  EXPECT_EQ(curve.step_axis.back().text, "5,000");
+  EXPECT_EQ(curve.step_axis.front().text, "1");
+  EXPECT_DOUBLE_EQ(curve.step_axis.front().at, curve.plot.x0);
   int texts = 0;
   for (const auto& op : r.ops)
     if (op.kind == "text") {
