@@ -6,9 +6,14 @@
 namespace ipd::ui {
 
 namespace {
-bool is_relation(const std::string& w) { return w == "=" || w == "<" || w == ">" || w == "<=" || w == ">="; }
+// Signs that bind the words on both sides: "p = 0.031", "unpaired 0 / 0".
+bool is_relation(const std::string& w) {
+  return w == "=" || w == "<" || w == ">" || w == "<=" || w == ">=" || w == "/";
+}
 // A whole count such as "8" or "1,000" (not "0.97", not "8," that ends a clause): it counts the word after it.
-bool is_count(const std::string& w) {
+// An opening parenthesis before it is the count's too: "(12 pairs)".
+bool is_count(const std::string& word) {
+  const std::string w = !word.empty() && word.front() == '(' ? word.substr(1) : word;
   return !w.empty() && std::isdigit(static_cast<unsigned char>(w.front())) &&
          std::isdigit(static_cast<unsigned char>(w.back())) && std::all_of(w.begin(), w.end(), [](char ch) {
            return std::isdigit(static_cast<unsigned char>(ch)) || ch == ',';
@@ -38,7 +43,8 @@ std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
     const size_t nl = text.find('\n', start);
     const std::string para = text.substr(start, nl == std::string::npos ? std::string::npos : nl - start);
     std::vector<std::string> words;
-    bool after_relation = false, after_count = false, after_number = false, after_ipd = false, after_delta = false;
+    bool after_relation = false, after_count = false, after_number = false, after_ipd = false, after_delta = false,
+         after_scene = false;
     for (size_t p = 0; p <= para.size();) {
       size_t sp = para.find(' ', p);
       if (sp == std::string::npos) sp = para.size();
@@ -46,17 +52,18 @@ std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
       p = sp + 1;
       if (word.empty() && sp < para.size()) continue;  // runs of spaces
       // A label and its number stay together: "p = 0.031", "p < 0.0001" never break around the sign; so do a
-      // count and the word it counts: "8 scenes", "1,000 trials"; a number and its unit: "0.3 px", "12.5 ms"; an IPD
-      // and its value: "scene IPD 0.0404"; and "delta IPD", ΔIPD spelled in ASCII, is one symbol.
+      // count and the word it counts: "8 scenes", "(12 pairs)"; a number and its unit: "0.3 px", "12.5 ms"; "scene
+      // IPD" and its value: "scene IPD 0.0404"; and "delta IPD", ΔIPD spelled in ASCII, is one symbol.
       const bool glue =
           !words.empty() && (is_relation(word) || after_relation || (after_count && starts_with_letter(word)) ||
                              (after_number && is_unit(word)) || (after_ipd && is_number(word)) ||
-                             (after_delta && word.rfind("IPD", 0) == 0));
+                             ((after_delta || after_scene) && word.rfind("IPD", 0) == 0));
       after_relation = is_relation(word);
       after_count = is_count(word);
       after_number = is_number(word);
       after_ipd = word.size() >= 3 && word.compare(word.size() - 3, 3, "IPD") == 0;
       after_delta = word == "delta";
+      after_scene = word == "scene";
       if (glue)
         words.back() += " " + word;
       else

@@ -22,13 +22,14 @@ StudioColumns studio_columns(float width, float browser_pref, float stats_pref, 
     const float sides = std::max(kMinBrowserWidth + kMinStatsWidth, usable - centre_min);
     if (browser_pref + stats_pref + centre_min <= usable) {
       c.left = browser_pref, c.right = stats_pref;
-    } else if (sides >= stats_pref + std::min(browser_pref, kBrowserKeeps)) {
+    } else if (const float keeps = std::min(browser_pref, kBrowserKeeps); sides >= stats_pref + keeps) {
       // The statistics first: the cross table is the study's result, while the scene list scrolls sideways
       // with the scene name frozen.
       c.right = stats_pref, c.left = sides - stats_pref;
     } else {
-      // Shrink both sides in proportion, then lift the one below its minimum at the other's expense.
-      c.left = sides * browser_pref / (browser_pref + stats_pref);
+      // Shrink both sides in proportion from there (no jump at the boundary), then lift the one below its
+      // minimum at the other's expense.
+      c.left = sides * keeps / (keeps + stats_pref);
       c.right = sides - c.left;
       if (c.left < kMinBrowserWidth) c.left = kMinBrowserWidth, c.right = sides - c.left;
       if (c.right < kMinStatsWidth) c.right = kMinStatsWidth, c.left = sides - c.right;

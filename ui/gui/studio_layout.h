@@ -15,7 +15,8 @@ namespace ipd::ui {
 // preferred widths while the centre keeps at least kCentreShare. Narrower: the browser gives way first, as long as it
 // keeps kBrowserKeeps (the scene name, its IPD and flags; the rest scrolls sideways) and the statistics their
 // width (the cross table is the result: 1280 px shows it whole); narrower still, the side columns shrink in
-// proportion to their preferred widths, down to kMinBrowserWidth / kMinStatsWidth. Below kTwoColumnsBelow the browser
+// proportion from there (kBrowserKeeps : the statistics' width, so no width jumps), down to kMinBrowserWidth /
+// kMinStatsWidth. Below kTwoColumnsBelow the browser
 // and the statistics share one tabbed column (40% of the width). A centre narrower than kTabbedCentreBelow shows the
 // registration panel and the pair table as tabs instead of side by side.
 constexpr float kMinBrowserWidth = 160, kMinStatsWidth = 200, kMinCentreWidth = 320, kBrowserKeeps = 260;

@@ -32,17 +32,21 @@ TEST(StudioColumns, AtTwelveEightyTheBrowserGivesWayToTheStatistics) {
   EXPECT_NEAR(c.centre, 570.6, 1e-3);
   EXPECT_FALSE(c.tabbed_centre);
   // 1200: usable 1188, the centre keeps 534.6 and the sides 653.4, so 253.4 would be left for the browser, under
-  // 260: in proportion again.
-  EXPECT_NEAR(studio_columns(1200, 500, 400, 6).right, 653.4 * 400 / 900, 1e-3);
+  // 260: both shrink in proportion from 260 : 400.
+  EXPECT_NEAR(studio_columns(1200, 500, 400, 6).right, 653.4 * 400 / 660, 1e-3);
+  // No jump at the boundary (the statistics fell from 400 to 300 px between 1236 and 1228 px): each pixel of
+  // window costs the statistics less than a pixel.
+  for (float w = 1000; w < 1600; w += 1)
+    EXPECT_LE(std::abs(studio_columns(w + 1, 500, 400, 6).right - studio_columns(w, 500, 400, 6).right), 1.0f) << w;
 }
 
 TEST(StudioColumns, NarrowerWindowShrinksSidesInProportion) {
-  // 1000: usable 988, the centre keeps 0.45 * 988 = 444.6; the sides share 543.4 as 380:400 -> 264.73 and
-  // 278.67.
+  // 1000: usable 988, the centre keeps 0.45 * 988 = 444.6; the sides' 543.4 can't hold 400 + 260, so they share
+  // it as 260:400 (the browser's floor to the statistics) -> 214.08 and 329.33.
   const StudioColumns c = studio_columns(1000, 380, 400, 6);
   EXPECT_FALSE(c.tabbed_side);
-  EXPECT_NEAR(c.left, 543.4 * 380 / 780, 1e-3);
-  EXPECT_NEAR(c.right, 543.4 * 400 / 780, 1e-3);
+  EXPECT_NEAR(c.left, 543.4 * 260 / 660, 1e-3);
+  EXPECT_NEAR(c.right, 543.4 * 400 / 660, 1e-3);
   EXPECT_NEAR(c.centre, 444.6, 1e-3);
   EXPECT_TRUE(c.tabbed_centre);  // 444.6 < 560: registration and pairs as tabs
 }
@@ -96,7 +100,10 @@ TEST(WrapAtSpaces, NeverBetweenANumberAndItsUnit) {
   EXPECT_EQ(wrap_at_spaces("took 12.5 ms, then", 90, chars), (std::vector<std::string>{"took", "12.5 ms,", "then"}));
   // An IPD and its value: the single-column scene figure's title broke "scene IPD" / "0.0404".
   EXPECT_EQ(wrap_at_spaces("model det-real, scene IPD 0.0404 (12 pairs)", 250, chars),
-            (std::vector<std::string>{"model det-real, scene", "IPD 0.0404 (12 pairs)"}));
+            (std::vector<std::string>{"model det-real,", "scene IPD 0.0404", "(12 pairs)"}));
+  // Nor "0 / 0" (the studio's "unpaired 0 / 0" at 1024 px).
+  EXPECT_EQ(wrap_at_spaces("17 pairs, unpaired 0 / 0", 200, chars),
+            (std::vector<std::string>{"17 pairs, unpaired", "0 / 0"}));
   // A word that merely follows a number is free to wrap.
   EXPECT_EQ(wrap_at_spaces("0.3 pixels", 50, chars), (std::vector<std::string>{"0.3", "pixels"}));
 }
