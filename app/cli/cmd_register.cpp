@@ -70,7 +70,7 @@ nlohmann::json report_json(const Job& job, const RegistrationReport& r) {
   for (const auto& [a, b] : r.pairs) j["pairs"].push_back({a, b});
   for (const auto& c : search_counts(r.method)) j[c.json_key] = r.*c.value;
   j["inliers"] = r.inliers;
-  j["score"] = r.score;
+  j["score"] = has_score(r) ? nlohmann::json(r.score) : nlohmann::json(nullptr);  // null: nothing was scored
   j["stop"] = ipd::to_string(r.stop);
   j["confidence"] = r.confidence;
   j["ambiguous"] = r.ambiguous;
@@ -215,7 +215,8 @@ void print_report_text(const Job& job, RegistrationMethod method_used) {
   for (const auto& c : search_counts(method_used))
     searched += (searched.empty() ? "" : ", ") + counted(r[c.json_key].get<double>(), c.singular, c.plural);
   fmt::print("  method {}: {}, score {}; stopped: {}\n", method, searched,
-             fixed_no_minus_zero(r["score"].get<double>()), r["stop"].get<std::string>());
+             r["score"].is_null() ? std::string("- (nothing scored)") : fixed_no_minus_zero(r["score"].get<double>()),
+             r["stop"].get<std::string>());
   // Two different counts: A centres that land within the gate of some B centre after the alignment,
   // and the one-to-one pairs the method then forms (which the IPD uses).
   fmt::print("  {} within the gate; {} by {}\n", counted(r["inliers"].get<double>(), "centre", "centres"),

@@ -69,6 +69,10 @@ std::string methods_help() {
   return s;
 }
 
+bool has_score(const RegistrationReport& r) {
+  return r.method == RegistrationMethod::kCpd ? r.trials > 0 : r.hypotheses > 0;
+}
+
 const char* ambiguity_reason(Ambiguity a) {
   switch (a) {
     case Ambiguity::kNone:

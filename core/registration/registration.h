@@ -145,6 +145,10 @@ struct RegistrationReport {
   RegistrationTrace trace;  // empty unless options.record_trace
 };
 
+// Whether `score` is a search's measure: false when nothing was scored (no hypothesis, no EM iteration: the time
+// budget ended first, or identical layouts needed no search), where 0 would read as a perfect fit for paper.
+bool has_score(const RegistrationReport& r);
+
 // Registers A's GT boxes onto B's and pairs the rocks. Throws std::invalid_argument for bad options.
 RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<Box>& b,
                                   const RegistrationOptions& options);

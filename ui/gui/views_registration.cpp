@@ -37,7 +37,8 @@ std::string registration_summary(const std::string& a, const std::string& b, con
           ? counted(r.trials, "EM iteration")
           : counted(r.trials, "trial") + ", " + counted(r.hypotheses, "hypothesis", "hypotheses");
   return a + " -> " + b + ": " + to_string(r.method) + ", " + searched + ", " + counted(r.inliers, "inlier") +
-         ", score " + fixed(r.score, 4) + ", confidence " + fixed(r.confidence, 2);
+         ", score " + (has_score(r) ? fixed(r.score, 4) : "- (nothing scored)") + ", confidence " +
+         fixed(r.confidence, 2);
 }
 
 std::string replay_step_line(const TraceStep& step, int k, int steps) {

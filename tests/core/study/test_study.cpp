@@ -391,7 +391,8 @@ TEST(Cli, RegisterListPrintsWhatItsHelpSays) {
 }
 
 // The text report says what each count counts, in plain numbers: centres within the gate vs the pairs the
-// method forms (how), "1 trial" in the singular, thousands separators (no "1.01e+06"), no "-0.00000".
+// method forms (how), "1 trial" in the singular, thousands separators (no "1.01e+06"), no "-0.00000", and no
+// score where nothing was scored (a 0 read as a perfect fit).
 TEST(Cli, RegisterTextSaysWhatEachCountCounts) {
   test::TempDir d;
   write_register_pair(d);
@@ -399,7 +400,8 @@ TEST(Cli, RegisterTextSaysWhatEachCountCounts) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(
       r.out.find(
-          "  method consensus: 0 trials, 0 hypotheses, score 0.00000; stopped: identical layouts (no search needed)\n"),
+          "  method consensus: 0 trials, 0 hypotheses, score - (nothing scored); stopped: identical layouts (no search "
+          "needed)\n"),
       std::string::npos)
       << r.out;
   r = test::run_ipd("register " + d / "r.txt " + d / "r2.txt");
