@@ -295,6 +295,21 @@ TEST(InputChecks, AFileInPlaceOfThePairsFolderIsSaid) {
       << r.err;
 }
 
+// A mistyped command is named: CLI11 said only "A subcommand is required", and "ipd tabel demo" ran ipd demo
+// ("OUT_DIR is required").
+TEST(InputChecks, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
+  auto r = test::run_ipd("tabel demo");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "error: 'tabel' is not a command of ipd; expected one of: table, register, demo, figure, bench, detect, "
+            "import, compare, breakdown, export, metrics\n");
+  r = test::run_ipd("figure pairz study");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "error: 'pairz' is not a command of ipd figure; expected one of: pairs, registration, table, compare, "
+            "distribution, breakdown, gallery\n");
+}
+
 // A domain listed twice was dropped without a word (and the columns' order changed).
 TEST(InputChecks, StudyYamlDomainsListedTwiceAreAnError) {
   EXPECT_EQ(test::study_yaml_error("rock_class: 0\ndomains: [real, real, hapke]\n"),
