@@ -225,9 +225,19 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   // as a strip under it, full width (a column beside it left both too narrow and cut its caption).
   const ImVec2 p0 = ImGui::GetCursorScreenPos(), avail = ImGui::GetContentRegionAvail();
   const float text_h = ImGui::GetTextLineHeightWithSpacing();
-  // Room for the curve and its step axis's labels below it.
+  // Room for the curve, its step axis's labels and its caption below it, as many lines as the caption wraps to
+  // (it took three lines at 1024 px where two were kept, and the curve was squashed to nothing).
+  int news = 0;
+  for (const auto& st : r.trace.steps) news += st.new_best;
+  const std::string caption = "best score so far (" + std::string(score_direction(r.method)) +
+                              "): " + counted(news, "improvement") + " over " + counted(steps, "step") + "; " +
+                              r.trace.stop;
+  const size_t caption_lines = wrap_at_spaces(caption, std::max(40.0f, avail.x), [](const std::string& t) {
+                                 return ImGui::CalcTextSize(t.c_str()).x;
+                               }).size();
   const float curve_h = steps > 0 ? std::clamp(avail.y * 0.25f, 36.0f + text_h, 110.0f + text_h) : 0.0f;
-  const float below = steps > 0 ? curve_h + 2 * text_h + ImGui::GetStyle().ItemSpacing.y : 0.0f;
+  const float below =
+      steps > 0 ? curve_h + (float(caption_lines) + 1) * text_h + ImGui::GetStyle().ItemSpacing.y : 0.0f;
   // At least 80 px for the picture box itself, besides the three legend lines and margins: a short panel
   // scrolls rather than squeezing the rings into one blob (as at 700 x 800).
   const float min_canvas = 3 * ImGui::GetTextLineHeight() + 4 + 2 + 20 + 80;
@@ -298,15 +308,11 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
     curve.method = r.method;
     for (const auto& st : r.trace.steps) curve.best.push_back(st.best_score);
     curve.current = shown >= 0 ? shown : steps - 1;  // the final motion: after the last step
-    int news = 0;
-    for (const auto& st : r.trace.steps) news += st.new_best;
-    // One line of caption (two when the stop reason is long), then the strip.
-    text_disabled_wrapped_at_spaces("best score so far (" + std::string(score_direction(r.method)) +
-                                    "): " + counted(news, "improvement") + " over " + counted(steps, "step") + "; " +
-                                    r.trace.stop);
+    text_disabled_wrapped_at_spaces(caption);        // then the strip
     const ImVec2 c0 = ImGui::GetCursorScreenPos();
-    const ImVec2 csz{avail.x - 4, std::max(30.0f, std::min(curve_h, ImGui::GetContentRegionAvail().y -
-                                                                        8))};  // a margin like the other sides
+    // Never under the height its labels need: a short panel scrolls instead.
+    const ImVec2 csz{avail.x - 4, std::max(36.0f + text_h, std::min(curve_h, ImGui::GetContentRegionAvail().y -
+                                                                                 8))};  // a margin like the other sides
     ImGui::Dummy(csz);
     ImGuiCanvas chart(ImGui::GetWindowDrawList(), c0, 1, {});
     const TextStyle text = gui_text();
