@@ -193,6 +193,15 @@ nlohmann::json distribution_json(const TableCell& c) {
           {"worst", worst}};
 }
 
+// How to read the numbers, under either LaTeX layout: a table in a paper must say it without its caption.
+std::string latex_reading(bool ci, const TableFormatOptions& o) {
+  std::string s =
+      "IPD: mean $|$performance-value difference$|$ over matched rock pairs, lower is better; bold: the "
+      "row's best; --: pair not involving the training domain.";
+  if (ci) s += " " + latex_escape(ci_caption(o)) + ".";
+  return s;
+}
+
 std::string latex_table(const CrossTable& t, const TableFormatOptions& o) {
   const size_t nc = t.columns.size();
   const bool bt = o.booktabs;
@@ -234,6 +243,7 @@ std::string latex_table(const CrossTable& t, const TableFormatOptions& o) {
   }
   if (bt) out += "\\bottomrule\n";
   out += "\\end{tabular}\n";
+  out += "\\par\\smallskip{\\footnotesize " + latex_reading(o.latex_ci && any_ci(t), o) + "\\par}\n";
   for (size_t k = 0; k < notes.size(); ++k)
     out += fmt::format("\\par{{\\footnotesize $^{{{}}}$ {}}}\n", k + 1, latex_escape(notes[k]));
   return out;
@@ -331,10 +341,7 @@ std::string latex_compact_table(const CrossTable& t, const TableFormatOptions& o
       legend += " (trained on " + latex_escape(t.models[r].trained_on) + ")";
     legend += n.rows_by_domain ? ")" : "";
   }
-  legend +=
-      ". IPD: mean $|$performance-value difference$|$ over matched rock pairs, lower is better; bold: the "
-      "row's best; --: pair not involving the training domain.";
-  if (ci) legend += " " + latex_escape(ci_caption(o)) + ".";
+  legend += ". " + latex_reading(ci, o);
   out += "\\par\\smallskip{\\footnotesize " + legend + "\\par}\n";
   for (size_t k = 0; k < notes.size(); ++k)
     out += fmt::format("\\par{{\\footnotesize $^{{{}}}$ {}}}\n", k + 1, latex_escape(notes[k]));

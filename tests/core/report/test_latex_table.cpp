@@ -110,6 +110,12 @@ TEST(LatexTable, ThreeDomainsWithIntervalsFitOneIeeeColumn) {
   }
   // The wide layout is what needs table*: wider than a column, within both.
   const auto wide = test::run_ipd("table " + d.path() + " --format latex --ci --latex-wide");
+  // It says how to read it, as the one-column layout does (it had only % comments).
+  EXPECT_NE(wide.out.find("\\par\\smallskip{\\footnotesize IPD: mean $|$performance-value difference$|$ over "
+                          "matched rock pairs, lower is better; bold: the row's best; --: pair not involving the "
+                          "training domain."),
+            std::string::npos)
+      << wide.out;
   const Compiled c = compile(tex, wide.out);
   EXPECT_GT(c.width_pt, 252);
   EXPECT_LE(c.width_pt, 516);
