@@ -63,9 +63,10 @@ TEST(NoPredictions, NeitherSideLeftIsNotANumber) {
   wide.latex_wide = true;
   const std::string latex_wide = format_table(t, TableFormat::kLatex, wide);
   EXPECT_NE(latex_wide.find("det & --$^{1}$ \\\\"), std::string::npos) << latex_wide;
-  EXPECT_NE(
-      latex_wide.find("\\end{tabular}\n\\par{\\footnotesize $^{1}$ no predictions above 0.95 in real and synth}\n"),
-      std::string::npos)
+  // Below the table and its legend, as in the one-column layout.
+  EXPECT_NE(latex_wide.find("training domain.\\par}\n\\par{\\footnotesize $^{1}$ no predictions above 0.95 in real and "
+                            "synth}\n"),
+            std::string::npos)
       << latex_wide;
   // The table figure marks the cell and says why in its note.
   const ui::TableFigure fig = ui::table_figure_of(t);
