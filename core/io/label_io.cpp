@@ -80,8 +80,11 @@ std::string parse_box(const std::vector<std::string>& f, const LabelParseOptions
       return fmt::format("expected {} in [0, 1] (normalised), found {}", kColumnNames[k], shorten(f[k]));
     }
   }
-  if (v[3] <= 0) return fmt::format("expected w > 0, found {}", shorten(f[3]));
-  if (v[4] <= 0) return fmt::format("expected h > 0, found {}", shorten(f[4]));
+  // Not just > 0: a box of 1e-300 has an area of 0 in doubles, so even its own copy would not overlap it.
+  if (v[3] < kMinBoxSide)
+    return fmt::format("expected w >= {:g} (a millionth of the picture), found {}", kMinBoxSide, shorten(f[3]));
+  if (v[4] < kMinBoxSide)
+    return fmt::format("expected h >= {:g} (a millionth of the picture), found {}", kMinBoxSide, shorten(f[4]));
   box->cx = v[1];
   box->cy = v[2];
   box->w = v[3];

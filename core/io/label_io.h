@@ -22,6 +22,10 @@ struct LabelError {
   int malformed_lines() const { return line > 0 ? 1 : more; }
 };
 constexpr int kMaxListedErrors = 50;
+// A box's sides are at least this (normalised): below, its area underflows and no IoU can pair it, not even with
+// its own copy; a millionth of the picture is far below a pixel of any camera.
+inline constexpr double kMinBoxSide = 1e-6;
+
 // More boxes than this in one file is refused (an error naming the file): pairing and IoU tables grow with
 // the product of two images' rock counts, so 10^6-line files would run for minutes.
 constexpr size_t kMaxBoxesPerFile = 20000;

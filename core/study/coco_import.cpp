@@ -47,6 +47,10 @@ std::string to_box(const json& bbox, const Image& img, Box* out) {
   out->cy = std::clamp((y + h / 2) / img.h, 0.0, 1.0);
   out->w = std::min(w / img.w, 1.0);
   out->h = std::min(h / img.h, 1.0);
+  // The label file could not hold it (it would read "0.000000", which ipd refuses): said here, by its entry.
+  if (out->w < kMinBoxSide || out->h < kMinBoxSide)
+    return fmt::format("expected bbox of at least a millionth of the {}x{} image a side, found {}", img.w, img.h,
+                       describe_json(bbox));
   return {};
 }
 

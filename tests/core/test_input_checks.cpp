@@ -388,6 +388,22 @@ TEST(InputChecks, CocoImagesWhoseLabelsWouldCollideAreRefusedByName) {
   EXPECT_EQ(slurp(d / "study/real/labels/0002.txt"), "0 0.600000 0.600000 0.200000 0.200000\n");
 }
 
+// A box under a millionth of the image a side was written as "0.000000", which ipd then refused in every command:
+// the import names the entry instead.
+TEST(InputChecks, CocoBoxesTooSmallForALabelFileAreNamed) {
+  test::TempDir d;
+  test::write_text(d / "ann.json",
+                   "{\"images\": [{\"id\": 1, \"file_name\": \"a.png\", \"width\": 200, \"height\": 100}],"
+                   " \"categories\": [{\"id\": 3, \"name\": \"rock\"}], \"annotations\": ["
+                   "{\"image_id\": 1, \"category_id\": 3, \"bbox\": [50, 25, 0.0001, 10]}]}");
+  const auto r =
+      test::run_ipd("import coco " + d / "ann.json" + " --images " + d.path() + " --out " + d / "study/real");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, d / "ann.json" +
+                       ": annotations[0]: expected bbox of at least a millionth of the 200x100 image a side, found "
+                       "[50,25,0.0001,10]\nerror: 1 malformed entry; nothing written (--skip-bad-lines skips them)\n");
+}
+
 // With --skip-bad-lines the import skipped a bad entry and wrote the rest, then said "nothing written" and
 // exited 1: a COCO entry has no line, and a line-less error read as an unreadable file.
 TEST(InputChecks, CocoSkippedEntriesAreWarningsAndTheImportSaysItWrote) {

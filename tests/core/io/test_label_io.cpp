@@ -44,7 +44,11 @@ TEST(LabelIo, EveryBadLineIsReportedWithFileLineAndWhat) {
             "a.txt:1: expected a finite number for cx in column 2, found 'nan'");
   EXPECT_EQ(only_error(parse_gt("0 0.5 0.5 inf 0.1\n")),
             "a.txt:1: expected a finite number for w in column 4, found 'inf'");
-  EXPECT_EQ(only_error(parse_gt("0 0.5 0.5 0 0.1\n")), "a.txt:1: expected w > 0, found 0");
+  EXPECT_EQ(only_error(parse_gt("0 0.5 0.5 0 0.1\n")),
+            "a.txt:1: expected w >= 1e-06 (a millionth of the picture), found 0");
+  // Tiny but positive: its area underflows (1e-300 squared is 0), so not even its copy pairs with it.
+  EXPECT_EQ(only_error(parse_gt("0 0.5 0.5 0.1 1e-300\n")),
+            "a.txt:1: expected h >= 1e-06 (a millionth of the picture), found 1e-300");
   EXPECT_EQ(only_error(parse_gt("0 0.5 0.5 0.1 -0.2\n")), "a.txt:1: expected h in [0, 1] (normalised), found -0.2");
   EXPECT_EQ(only_error(parse_gt("1.5 0.5 0.5 0.1 0.1\n")),
             "a.txt:1: expected a non-negative integer class in column 1, found '1.5'");
