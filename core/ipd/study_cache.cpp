@@ -26,7 +26,7 @@ namespace {
 constexpr char kMagic[8] = {'I', 'P', 'D', 'S', 'T', 'U', 'D', 'Y'};
 // Bump when the layout, label parsing or a registration method's results change: 3 for the signature; 4: a
 // report keeps why its registration is ambiguous (Ambiguity), not only whether; 5: answers nothing was compared
-// with are flagged as such (Ambiguity::kUnchecked).
+// with are flagged as such (Ambiguity::kUnchecked, kNoPlausible).
 constexpr std::uint32_t kFormat = 5;
 constexpr size_t kHeaderBytes = kParsedStudyHeaderBytes;
 static_assert(kHeaderBytes == sizeof kMagic + 4 + 8 + CacheSigner::kMacBytes);

@@ -90,8 +90,11 @@ const char* ambiguity_reason(Ambiguity a) {
       return "the search's own best was beaten by a placement scored after it (that one is used), so the search "
              "may have missed a better one";
     case Ambiguity::kUnchecked:
-      return "the alignment used was never compared with another (the time budget ended first, or no plausible "
-             "alignment was found), so nothing singles it out";
+      return "the time budget ended before the alignment used was compared with another, so nothing singles it "
+             "out";
+    case Ambiguity::kNoPlausible:
+      return "no alignment within the scale, rotation and anisotropy bounds was found (the identity is used), so "
+             "nothing singles it out";
   }
   return "";
 }

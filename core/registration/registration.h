@@ -108,15 +108,16 @@ struct RegistrationOptions {
 // so an answer that nothing singles out is flagged, never reported with a confidence it has not earned.
 enum class Ambiguity : std::uint8_t {
   kNone,
-  kRival,       // another alignment fits as well or almost as well (confidence below kAmbiguousBelow)
-  kNoSupport,   // the alignment pairs no rock
-  kFewPairs,    // fewer than 3 rocks paired: too few to fix an affine, any other placement fits as well
-  kDegenerate,  // the paired rocks lie on a line, or the alignment squashes them onto one
-  kBeaten,      // a rival the method scored after its search fitted better; that rival is the answer
-  kUnchecked,   // the answer was never compared with another (the time budget ended first, or nothing plausible
-                // was found): the identity, the largest rocks' alignment or EM's fit, unjudged
+  kRival,        // another alignment fits as well or almost as well (confidence below kAmbiguousBelow)
+  kNoSupport,    // the alignment pairs no rock
+  kFewPairs,     // fewer than 3 rocks paired: too few to fix an affine, any other placement fits as well
+  kDegenerate,   // the paired rocks lie on a line, or the alignment squashes them onto one
+  kBeaten,       // a rival the method scored after its search fitted better; that rival is the answer
+  kUnchecked,    // the time budget ended before the answer was compared with another: the identity, the largest
+                 // rocks' alignment or EM's fit, unjudged
+  kNoPlausible,  // no hypothesis within the bounds was found: the identity, unjudged
 };
-inline constexpr int kAmbiguityCount = 7;  // values of Ambiguity, for the caches' range checks
+inline constexpr int kAmbiguityCount = 8;  // values of Ambiguity, for the caches' range checks
 
 // The reason a flagged registration is ambiguous, worded once for the studio, `ipd register` and `ipd table`.
 inline constexpr const char* kAmbiguousReason =

@@ -38,7 +38,8 @@ struct MethodOutcome {
   // The search's own best lost to a rival scored after it (which is then the answer): flagged kBeaten.
   bool beaten = false;
   // Why the method itself knows its answer is not singled out, whatever the pairs look like (kNone: it does not):
-  // an answer nothing was compared with (kUnchecked), or one left by degenerate samples (kDegenerate).
+  // an answer the time budget left uncompared (kUnchecked), the identity when nothing plausible was found
+  // (kNoPlausible), or one left by degenerate samples (kDegenerate).
   Ambiguity unjudged = Ambiguity::kNone;
   double work = 0;          // point evaluations spent (see RegistrationOptions::work_budget)
   RegistrationTrace trace;  // filled when options.record_trace

@@ -312,7 +312,7 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
                     ? "time budget spent before a plausible affine was found: identity used"
                     : "no plausible affine found: identity used";
     out->confidence = 0;
-    out->unjudged = Ambiguity::kUnchecked;
+    out->unjudged = r.stop == StopReason::kTimeBudget ? Ambiguity::kUnchecked : Ambiguity::kNoPlausible;
   }
   out->trace = recorder.take_trace(describe_stop(r.stop, r.trials, r.hypotheses, r.work, lo.max_work));
   // Counting inliers queries the grid once per A rock: with the budget spent the pairs stand in (set after them).

@@ -181,8 +181,28 @@ TEST(StopRule, AnAnswerTheBudgetLeftUnjudgedIsFlaggedAsNeverCompared) {
     EXPECT_EQ(r.confidence, 0) << to_string(m);
   }
   EXPECT_STREQ(ambiguity_reason(Ambiguity::kUnchecked),
-               "the alignment used was never compared with another (the time budget ended first, or no plausible "
-               "alignment was found), so nothing singles it out");
+               "the time budget ended before the alignment used was compared with another, so nothing singles it "
+               "out");
+}
+
+// Rocks shrunk to 0.3 of their layout where the bounds allow scales of 2 to 3 only (the identity is out of them
+// too): no hypothesis is plausible, the identity is the answer, and it says why rather than "a rival fits as
+// well".
+TEST(StopRule, NoPlausibleAlignmentIsFlaggedAsSuch) {
+  const auto a = test::seven_rocks(0);
+  auto b = a;
+  for (auto& box : b)
+    box.cx = 0.5 + 0.3 * (box.cx - 0.5), box.cy = 0.5 + 0.3 * (box.cy - 0.5), box.w *= 0.3, box.h *= 0.3;
+  RegistrationOptions o;
+  o.consensus.min_scale = 2;
+  o.consensus.max_scale = 3;
+  const auto r = register_rocks(a, b, o);
+  EXPECT_EQ(r.note.rfind("no plausible affine found: identity used", 0), 0u) << r.note;
+  EXPECT_EQ(r.ambiguity, Ambiguity::kNoPlausible);
+  EXPECT_EQ(r.confidence, 0);
+  EXPECT_STREQ(ambiguity_reason(r.ambiguity),
+               "no alignment within the scale, rotation and anisotropy bounds was found (the identity is used), so "
+               "nothing singles it out");
 }
 
 // 300 rocks spread over the picture (over the coarse pass's 160), and the same rocks shifted by 1% of the width
