@@ -29,15 +29,6 @@ void write_tiny_study(const test::TempDir& d) {
   test::write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
 }
 
-std::string open_error(const std::string& root) {
-  try {
-    open_study(root);
-  } catch (const StudyError& e) {
-    return e.what();
-  }
-  return "no error";
-}
-
 std::string slurp(const std::string& path) {
   std::ifstream in(path);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -77,25 +68,26 @@ TEST(InputChecks, LabelFilesInAnotherCaseAreRefusedByName) {
   test::TempDir d;
   write_tiny_study(d);
   test::write_text(d / "real/labels/s2.TXT", "0 0.5 0.5 0.1 0.1\n");
-  EXPECT_EQ(open_error(d.path()),
+  EXPECT_EQ(test::open_study_error(d.path()),
             d / "real/labels/s2.TXT" + ": only lower-case .txt label files are read; rename it to s2.txt");
   fs::rename(d / "real/labels/s2.TXT", d / "real/labels/s1.Txt");
-  EXPECT_EQ(open_error(d.path()), d / "real/labels/s1.Txt" +
-                                      ": s1.txt holds this scene's boxes too, and only lower-case .txt files are "
-                                      "read; remove or merge one of them");
+  EXPECT_EQ(test::open_study_error(d.path()),
+            d / "real/labels/s1.Txt" +
+                ": s1.txt holds this scene's boxes too, and only lower-case .txt files are "
+                "read; remove or merge one of them");
   fs::remove(d / "real/labels/s1.Txt");
   // A prediction file in another case would read as "the detector found nothing" in that scene.
   test::write_text(d / "synth/predictions/det/S1.TXT", "0 0.25 0.2 0.1 0.1 0.8\n");
-  EXPECT_EQ(open_error(d.path()),
+  EXPECT_EQ(test::open_study_error(d.path()),
             d / "synth/predictions/det/S1.TXT" + ": only lower-case .txt label files are read; rename it to S1.txt");
   fs::remove(d / "synth/predictions/det/S1.TXT");
   // Two pictures of one scene: which one is shown depended on the directory's order.
   test::write_text(d / "real/images/s1.png", "");
   test::write_text(d / "real/images/s1.jpg", "");
-  EXPECT_EQ(open_error(d.path()),
+  EXPECT_EQ(test::open_study_error(d.path()),
             d / "real/images/s1.png" + ": s1.jpg is a picture of this scene too; keep one of them");
   fs::remove(d / "real/images/s1.jpg");
-  EXPECT_EQ(open_error(d.path()), "no error");
+  EXPECT_EQ(test::open_study_error(d.path()), "no error");
   // classes.txt (written by ipd import coco) is not a scene.
   test::write_text(d / "real/labels/classes.txt", "rock\n");
   EXPECT_EQ(open_study(d.path()).domain("real")->stems, std::vector<std::string>{"s1"});

@@ -79,6 +79,15 @@ std::string study_yaml_error(const std::string& yaml) {
   return "no error";
 }
 
+std::string open_study_error(const std::string& root) {
+  try {
+    open_study(root);
+  } catch (const StudyError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 void write_review_study(const TempDir& d) {
   const std::string rocks = "0 0.2 0.2 0.1 0.08\n0 0.8 0.25 0.06 0.06\n0 0.3 0.8 0.12 0.1\n0 0.75 0.7 0.08 0.12\n";
   for (const char* stem : {"s1", "s2"})

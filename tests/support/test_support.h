@@ -39,6 +39,8 @@ void write_review_study(const TempDir& d);
 
 // parse_study_config's message for `yaml` read as "study.yaml", or "no error" when it is accepted.
 std::string study_yaml_error(const std::string& yaml);
+// open_study(root)'s StudyError message, or "no error" when the study opens.
+std::string open_study_error(const std::string& root);
 
 struct CommandResult {
   int exit_code = -1;

@@ -22,15 +22,6 @@ std::string refused(const std::string& path) {
   return path + ": is a symbolic link; reading through it is refused (links inside a study are never followed)";
 }
 
-std::string open_error(const std::string& root) {
-  try {
-    open_study(root);
-  } catch (const StudyError& e) {
-    return e.what();
-  }
-  return "opened";
-}
-
 // Each way a study can hold a link, and what it points at: a copy outside the study with other boxes.
 TEST(StudyLinks, EveryLinkedFileOrFolderIsRefusedWhenTheStudyIsRead) {
   struct Case {
@@ -49,7 +40,7 @@ TEST(StudyLinks, EveryLinkedFileOrFolderIsRefusedWhenTheStudyIsRead) {
       fs::create_directory_symlink(outside, inside);
     else
       fs::create_symlink(outside, inside);
-    EXPECT_EQ(open_error(d.path()), refused(inside)) << c.inside;
+    EXPECT_EQ(test::open_study_error(d.path()), refused(inside)) << c.inside;
   }
 }
 
@@ -60,7 +51,7 @@ TEST(StudyLinks, ALinkedPictureIsRefused) {
   fs::create_directories(d / "real/images");
   test::write_text(elsewhere / "s1.png", "not a picture");
   fs::create_symlink(elsewhere / "s1.png", d / "real/images/s1.png");
-  EXPECT_EQ(open_error(d.path()), refused(d / "real/images/s1.png"));
+  EXPECT_EQ(test::open_study_error(d.path()), refused(d / "real/images/s1.png"));
   EXPECT_EQ(study_file_problem(d / "real/images/s1.png"), refused(d / "real/images/s1.png"));
   EXPECT_TRUE(read_picture(d / "real/images/s1.png", cv::IMREAD_COLOR).empty());
 }

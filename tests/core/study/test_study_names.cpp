@@ -16,15 +16,6 @@ namespace fs = std::filesystem;
 namespace ipd {
 namespace {
 
-std::string open_error(const std::string& root) {
-  try {
-    open_study(root);
-  } catch (const StudyError& e) {
-    return e.what();
-  }
-  return "(opened)";
-}
-
 void minimal_study(const test::TempDir& d) {
   test::write_text(d / "real/labels/s0.txt", "0 0.5 0.5 0.1 0.1\n");
   test::write_text(d / "synth/labels/s0.txt", "0 0.5 0.5 0.1 0.1\n");
@@ -50,11 +41,13 @@ TEST(StudyNames, StudyYamlModelThatIsAPathIsRefusedWithFileAndLine) {
   minimal_study(d);
   test::write_text(d / "study.yaml",
                    "rock_class: 0\nmodels:\n  det: {trained_on: real}\n  ../../x: {trained_on: real}\n");
-  EXPECT_EQ(open_error(d.path()), d / "study.yaml" + ":4: model name '../../x' contains a path separator '/'");
+  EXPECT_EQ(test::open_study_error(d.path()),
+            d / "study.yaml" + ":4: model name '../../x' contains a path separator '/'");
   test::write_text(d / "study.yaml", "models:\n  \"..\": {}\n");
-  EXPECT_EQ(open_error(d.path()), d / "study.yaml" + ":2: model name '..' is '..', which names a folder, not a file");
+  EXPECT_EQ(test::open_study_error(d.path()),
+            d / "study.yaml" + ":2: model name '..' is '..', which names a folder, not a file");
   test::write_text(d / "study.yaml", "models:\n  \"a\\x07b\": {}\n");
-  EXPECT_EQ(open_error(d.path()),
+  EXPECT_EQ(test::open_study_error(d.path()),
             d / "study.yaml" + ":2: model name 'a\\x07b' contains a control character (byte 0x07)");
 }
 
@@ -64,22 +57,23 @@ TEST(StudyNames, DomainModelAndSceneNamesFromFoldersAreChecked) {
   // Two 200-character domains would make pairs/<A>__<B>/ longer than a file name can be.
   const std::string long_domain(200, 'd');
   test::write_text(d / long_domain + "/labels/s0.txt", "0 0.5 0.5 0.1 0.1\n");
-  EXPECT_EQ(open_error(d.path()), d / long_domain + ": domain name '" + long_domain.substr(0, 60) + "..." +
-                                      "' is 200 bytes long; at most 120 fit in the file names it becomes part of");
+  EXPECT_EQ(test::open_study_error(d.path()),
+            d / long_domain + ": domain name '" + long_domain.substr(0, 60) + "..." +
+                "' is 200 bytes long; at most 120 fit in the file names it becomes part of");
   fs::remove_all(d / long_domain);
 
   fs::create_directories(d / "real/predictions/det\nx");
-  EXPECT_EQ(open_error(d.path()),
+  EXPECT_EQ(test::open_study_error(d.path()),
             d / "real/predictions/det\\x0ax" + ": model name 'det\\x0ax' contains a control character (byte 0x0a)");
   fs::remove_all(d / "real/predictions");
 
   const std::string long_stem(251, 's');  // "<stem>.txt" fits, "<stem>.json" (its pairs file) would not
   test::write_text(d / "synth/labels/" + long_stem + ".txt", "0 0.5 0.5 0.1 0.1\n");
-  EXPECT_EQ(open_error(d.path()), d / "synth/labels/" + long_stem + ".txt: scene name '" + long_stem.substr(0, 60) +
-                                      "..." +
-                                      "' is 251 bytes long; at most 250 fit in the file names it becomes part of");
+  EXPECT_EQ(test::open_study_error(d.path()),
+            d / "synth/labels/" + long_stem + ".txt: scene name '" + long_stem.substr(0, 60) + "..." +
+                "' is 251 bytes long; at most 250 fit in the file names it becomes part of");
   fs::remove(d / "synth/labels/" + long_stem + ".txt");
-  EXPECT_EQ(open_error(d.path()), "(opened)");
+  EXPECT_EQ(test::open_study_error(d.path()), "no error");
 }
 
 TEST(StudyNames, PairsFilesLargerThanTheCapAreRefusedUnread) {
