@@ -5,8 +5,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/picture/picture_size.h"
-#include "core/util/contained_file.h"
+#include "core/picture/picture_codec.h"
 
 namespace ipd::studio {
 
@@ -101,10 +100,8 @@ void PictureLoader::run() {
       d.error = "no picture for this scene (labels only)";
     } else if (!std::filesystem::exists(job.path, ec) && !std::filesystem::is_symlink(job.path, ec)) {
       d.error = "missing picture: " + job.path;
-    } else if (const std::string problem = study_file_problem(job.path); !problem.empty()) {
-      d.error = problem;  // a link out of the study is not followed; a FIFO would block this thread for good
-    } else if (const std::string too_large = picture_size_problem(job.path); !too_large.empty()) {
-      d.error = too_large;
+    } else if (const std::string problem = picture_problem(job.path); !problem.empty()) {
+      d.error = problem;  // a link out of the study, a FIFO that would block this thread for good, too many pixels
     } else {
       // JPEG decodes at 1/4 scale directly (DCT scaling); other formats are reduced after decoding.
       if (job.urgent && is_jpeg(job.path)) {

@@ -36,6 +36,12 @@ class Fd {
   int fd_;
 };
 
+// "PATH: is a FIFO, expected a regular file" (or a socket, a device), as read_file says it.
+std::string not_regular(const std::string& path, mode_t mode) {
+  const char* kind = S_ISFIFO(mode) ? "a FIFO" : S_ISSOCK(mode) ? "a socket" : "a device";
+  return path + ": is " + kind + ", expected a regular file";
+}
+
 std::string link_refused(const std::string& path, const char* action) {
   return fmt::format("{}: is a symbolic link; {} through it is refused (links inside a study are never followed)", path,
                      action);
@@ -198,12 +204,7 @@ std::optional<std::string> read_file_beneath(const std::string& root, const std:
   struct stat st {};
   if (::fstat(fd, &st) != 0) throw IoError(shown + ": cannot read: " + errno_text(errno));
   if (S_ISDIR(st.st_mode)) throw IoError(shown + ": is a directory, expected a file");
-  if (!S_ISREG(st.st_mode))
-    throw IoError(shown + ": is " +
-                  (S_ISFIFO(st.st_mode)   ? "a FIFO"
-                   : S_ISSOCK(st.st_mode) ? "a socket"
-                                          : "a device") +
-                  ", expected a regular file");
+  if (!S_ISREG(st.st_mode)) throw IoError(not_regular(shown, st.st_mode));
   if (static_cast<unsigned long long>(st.st_size) > max_bytes)
     // Rounded up, so a file just over the limit never reads as equal to it (as read_file says it).
     throw IoError(fmt::format("{}: is {:.1f} MB, larger than the {:g} MB limit for this kind of file", shown,
@@ -263,8 +264,7 @@ std::string study_file_problem(const std::string& path) {
   if (S_ISLNK(st.st_mode)) return link_refused(path, "reading");
   if (S_ISREG(st.st_mode)) return "";
   if (S_ISDIR(st.st_mode)) return path + ": is a directory, expected a file";
-  const char* kind = S_ISFIFO(st.st_mode) ? "a FIFO" : S_ISSOCK(st.st_mode) ? "a socket" : "a device";
-  return path + ": is " + kind + ", expected a regular file";
+  return not_regular(path, st.st_mode);
 }
 
 }  // namespace ipd
