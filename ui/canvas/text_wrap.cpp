@@ -19,9 +19,17 @@ bool is_count(const std::string& word) {
            return std::isdigit(static_cast<unsigned char>(ch)) || ch == ',';
          });
 }
+// Words whose value follows them: "IPD 0.0404", "score 0.0244", "confidence 0.94", "best so far 0.0385".
+bool is_value_label(const std::string& w) {
+  if (w.size() >= 3 && w.compare(w.size() - 3, 3, "IPD") == 0) return true;
+  return w == "score" || w == "confidence" || w == "far";
+}
 bool starts_with_letter(const std::string& w) { return !w.empty() && std::isalpha(static_cast<unsigned char>(w[0])); }
 // Any number, "0.3", "-1.5", "1,000": the unit after it belongs to it.
-bool is_number(const std::string& w) {
+bool is_number(const std::string& word) {
+  // A clause's comma or semicolon after it is not part of it: "score 0.0244, confidence ...".
+  const bool punctuated = !word.empty() && (word.back() == ',' || word.back() == ';');
+  const std::string w = punctuated ? word.substr(0, word.size() - 1) : word;
   return !w.empty() && std::isdigit(static_cast<unsigned char>(w.back())) &&
          std::all_of(w.begin(), w.end(), [](char ch) {
            return std::isdigit(static_cast<unsigned char>(ch)) || ch == ',' || ch == '.' || ch == '-';
@@ -43,7 +51,7 @@ std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
     const size_t nl = text.find('\n', start);
     const std::string para = text.substr(start, nl == std::string::npos ? std::string::npos : nl - start);
     std::vector<std::string> words;
-    bool after_relation = false, after_count = false, after_number = false, after_ipd = false, after_delta = false,
+    bool after_relation = false, after_count = false, after_number = false, after_label = false, after_delta = false,
          after_scene = false;
     for (size_t p = 0; p <= para.size();) {
       size_t sp = para.find(' ', p);
@@ -56,12 +64,12 @@ std::vector<std::string> wrap_at_spaces(const std::string& text, float width,
       // IPD" and its value: "scene IPD 0.0404"; and "delta IPD", ΔIPD spelled in ASCII, is one symbol.
       const bool glue =
           !words.empty() && (is_relation(word) || after_relation || (after_count && starts_with_letter(word)) ||
-                             (after_number && is_unit(word)) || (after_ipd && is_number(word)) ||
+                             (after_number && is_unit(word)) || (after_label && is_number(word)) ||
                              ((after_delta || after_scene) && word.rfind("IPD", 0) == 0));
       after_relation = is_relation(word);
       after_count = is_count(word);
       after_number = is_number(word);
-      after_ipd = word.size() >= 3 && word.compare(word.size() - 3, 3, "IPD") == 0;
+      after_label = is_value_label(word);
       after_delta = word == "delta";
       after_scene = word == "scene";
       if (glue)

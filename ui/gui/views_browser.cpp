@@ -203,7 +203,7 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   draw_selection_chip(s, ui);
   ImGui::TextDisabled("%s of %s%s", thousands(ui.order.size()).c_str(), counted(v.summaries->size(), "scene").c_str(),
                       v.loading.empty() ? "" : " so far (the rest is loading)");
-  ImGui::TextDisabled("%s", review_progress_line(s.review_progress()).c_str());
+  text_disabled_wrapped_at_spaces(review_progress_line(s.review_progress()));  // a narrow column clipped it
   ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
                           ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable;
   // A column narrower than the table's text: scroll sideways rather than squeeze the scene names away.

@@ -79,9 +79,11 @@ TEST(WrapAtSpaces, NeverInsideANumber) {
   // 150 px = 15 characters: "confidence 0.97" is exactly 15 and stays whole.
   EXPECT_EQ(wrap_at_spaces("score 16.8972, confidence 0.97", 150, chars),
             (std::vector<std::string>{"score 16.8972,", "confidence 0.97"}));
-  // 140 px: the number moves to the next line whole (ImGui's own wrap broke it after the point).
+  // 140 px: the numbers stay whole (ImGui's own wrap broke one after the point), "0.97" with its label.
   EXPECT_EQ(wrap_at_spaces("confidence 0.97 delta -0.064", 140, chars),
-            (std::vector<std::string>{"confidence", "0.97 delta", "-0.064"}));
+            (std::vector<std::string>{"confidence 0.97", "delta -0.064"}));
+  // 100 px: "x 16.8972" has no label to keep, so the number alone moves down whole.
+  EXPECT_EQ(wrap_at_spaces("abcdefg x 16.8972", 100, chars), (std::vector<std::string>{"abcdefg x", "16.8972"}));
 }
 
 TEST(WrapAtSpaces, NeverBetweenALabelAndItsNumber) {
@@ -101,6 +103,9 @@ TEST(WrapAtSpaces, NeverBetweenANumberAndItsUnit) {
   // An IPD and its value: the single-column scene figure's title broke "scene IPD" / "0.0404".
   EXPECT_EQ(wrap_at_spaces("model det-real, scene IPD 0.0404 (12 pairs)", 250, chars),
             (std::vector<std::string>{"model det-real,", "scene IPD 0.0404", "(12 pairs)"}));
+  // Nor a score or a confidence from its value (the registration panel at 1236 px).
+  EXPECT_EQ(wrap_at_spaces("15 inliers, score 0.0244, confidence 0.11", 200, chars),
+            (std::vector<std::string>{"15 inliers,", "score 0.0244,", "confidence 0.11"}));
   // Nor "0 / 0" (the studio's "unpaired 0 / 0" at 1024 px).
   EXPECT_EQ(wrap_at_spaces("17 pairs, unpaired 0 / 0", 200, chars),
             (std::vector<std::string>{"17 pairs, unpaired", "0 / 0"}));
