@@ -12,6 +12,7 @@
 #include "core/report/provenance.h"
 #include "core/stats/study_statistics.h"
 #include "core/util/json_output.h"
+#include "core/util/number_text.h"
 
 namespace ipd::cli {
 
@@ -108,7 +109,7 @@ void print_breakdown_text(const std::vector<CellBreakdown>& out, const Breakdown
     std::cout << "\n";
   }
   std::cout << fmt::format("({}{:g}% scene-bootstrap intervals, {} resamples, seed {})\n", ref_note, 100 * boot.level,
-                           boot.resamples, boot.seed);
+                           grouped_thousands(boot.resamples), boot.seed);
   std::cout << provenance_note(provenance) << "\n";
 }
 

@@ -12,6 +12,7 @@
 #include "core/report/provenance.h"
 #include "core/stats/study_statistics.h"
 #include "core/util/json_output.h"
+#include "core/util/number_text.h"
 
 namespace ipd::cli {
 
@@ -128,15 +129,16 @@ void print_comparisons_text(const std::vector<RendererComparison>& results, cons
   const auto tested = [](const RendererComparison& r) { return r.result.scenes >= 2; };
   const bool all_exact =
       std::all_of(results.begin(), results.end(), [&](const auto& r) { return r.result.exact_p || !tested(r); });
-  const std::string test = all_exact ? std::string("exact: every swap pattern of the scenes")
-                                     : fmt::format("{} permutations, exact where 2^scenes ≤ that", co.permutations);
+  const std::string test =
+      all_exact ? std::string("exact: every swap pattern of the scenes")
+                : fmt::format("{} permutations, exact where 2^scenes ≤ that", grouped_thousands(co.permutations));
   if (std::none_of(results.begin(), results.end(), tested))
     std::cout << "(intervals and tests need at least 2 scenes)\n";
   else
     std::cout << fmt::format(
         "({:g}% paired scene-bootstrap interval, {} resamples; sign-flip permutation test, "
         "{}; seed {})\n",
-        100 * co.bootstrap.level, co.bootstrap.resamples, test, co.bootstrap.seed);
+        100 * co.bootstrap.level, grouped_thousands(co.bootstrap.resamples), test, co.bootstrap.seed);
   std::cout << provenance_note(provenance) << "\n";
 }
 

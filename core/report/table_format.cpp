@@ -9,6 +9,7 @@
 #include "core/report/csv.h"
 #include "core/stats/study_statistics.h"
 #include "core/util/json_output.h"
+#include "core/util/number_text.h"
 
 namespace ipd {
 
@@ -104,7 +105,7 @@ std::string ci_text(const TableCell& c) {
 std::string pairs_text(const TableCell& c, const TableFormatOptions& o) {
   if (!c.involves_training_domain || std::isnan(c.ipd)) return {};
   const std::string why = o.resamples > 0 && !has_ci(c) ? no_interval_reason(c) : std::string();
-  return fmt::format(" ({} pairs{}{})", c.pairs, why.empty() ? "" : "; ", why);
+  return fmt::format(" ({} pairs{}{})", grouped_thousands(c.pairs), why.empty() ? "" : "; ", why);
 }
 
 bool any_ci(const CrossTable& t) {
@@ -113,7 +114,7 @@ bool any_ci(const CrossTable& t) {
 
 std::string ci_caption(const TableFormatOptions& o) {
   return fmt::format("[low, high]: {:g}% scene-bootstrap percentile interval ({} resamples of scenes, seed {})",
-                     100 * o.level, o.resamples, o.seed);
+                     100 * o.level, grouped_thousands(o.resamples), o.seed);
 }
 
 std::string number_or_empty(double v) { return std::isnan(v) ? std::string() : fmt::format("{:.6f}", v); }

@@ -21,7 +21,7 @@ struct TableFormatOptions {
   // for up to three domains with intervals: domains abbreviated A, B, C with a legend below, intervals on a
   // second line.
   bool latex_wide = false;
-  // What the intervals are, for the captions: "95% scene-bootstrap interval, 2000 resamples, seed 0".
+  // What the intervals are, for the captions: "95% scene-bootstrap interval, 2,000 resamples, seed 0".
   int resamples = 0;
   double level = 0.95;
   unsigned long long seed = 0;

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "core/report/table_format.h"
+#include "core/util/number_text.h"
 #include "ui/figures/stats_charts.h"
 #include "ui/gui/canvas_imgui.h"
 
@@ -104,8 +105,8 @@ void cell_interval_tooltip(const SessionStatistics* stats, const std::string& mo
   ImGui::BeginTooltip();
   ImGui::Text("IPD(%s, %s) for %s", a.c_str(), b.c_str(), model.c_str());
   ImGui::Text("%s", cell_interval(*c).c_str());
-  ImGui::TextDisabled("%g%% scene-bootstrap interval, %d resamples; se %.4f", 100 * stats->request.bootstrap.level,
-                      stats->request.bootstrap.resamples, c->se);
+  ImGui::TextDisabled("%g%% scene-bootstrap interval, %s resamples; se %.4f", 100 * stats->request.bootstrap.level,
+                      grouped_thousands(stats->request.bootstrap.resamples).c_str(), c->se);
   ImGui::TextDisabled("%s in %s", counted(c->pairs, "pair").c_str(), counted(c->scenes, "scene").c_str());
   ImGui::EndTooltip();
 }

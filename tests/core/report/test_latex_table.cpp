@@ -79,7 +79,7 @@ TEST(LatexTable, CompactLayoutNamesDomainsByLetterWithALegend) {
       r.out.find("{\\footnotesize A: real, B: principled, C: hapke. Rows: the detector trained on A (det-real), B "
                  "(det-principled), C (det-hapke). IPD: mean $|$performance-value difference$|$ over matched rock "
                  "pairs, lower is better; bold: the row's best; --: pair not involving the training domain. "
-                 "[low, high]: 95\\% scene-bootstrap percentile interval (2000 resamples of scenes, seed 0).\\par}"),
+                 "[low, high]: 95\\% scene-bootstrap percentile interval (2,000 resamples of scenes, seed 0).\\par}"),
       std::string::npos)
       << r.out;
   EXPECT_EQ(r.err.find("LaTeX table"), std::string::npos) << r.err;  // it fits: nothing to say
