@@ -156,8 +156,8 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
     // A banner on the always-visible menu bar: hand edits that are not on disk must not go unnoticed.
     ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.75f, 0.1f, 0.1f, 1));
     ImGui::PushStyleColor(ImGuiCol_ButtonHovered, ImVec4(0.9f, 0.2f, 0.2f, 1));
-    const std::string banner =
-        std::to_string(v.failed_saves.size()) + " hand edit(s) NOT SAVED: " + v.failed_saves.front() + "  [Retry]";
+    const std::string banner = thousands(static_cast<long long>(v.failed_saves.size())) +
+                               " hand edit(s) NOT SAVED: " + v.failed_saves.front() + "  [Retry]";
     if (ImGui::Button(banner.c_str())) out.retry_saves = true;
     ImGui::PopStyleColor(2);
   }
@@ -352,7 +352,7 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
     const SceneSummary& m = (*v.summaries)[ui.scene];
     ImGui::Text("scene %s", m.stem.c_str());
     text_wrapped_at_spaces("IPD " + fmt_ipd(m.ipd) + "  (" + counted(m.pairs, "pair") + ", unpaired " +
-                           std::to_string(m.unpaired_a) + " / " + std::to_string(m.unpaired_b) + ")");
+                           thousands(m.unpaired_a) + " / " + thousands(m.unpaired_b) + ")");
     if (!m.no_value_reason.empty())
       text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "no IPD for this scene: " + m.no_value_reason);
     if (m.suspects)

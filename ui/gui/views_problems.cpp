@@ -5,13 +5,12 @@
 
 #include <string>
 
+#include "ui/gui/studio_layout.h"
 #include "ui/gui/views.h"
 
 namespace ipd::ui {
 
-std::string problems_label(size_t count) {
-  return count == 1 ? std::string("1 problem") : std::to_string(count) + " problems";
-}
+std::string problems_label(size_t count) { return counted(static_cast<long>(count), "problem"); }
 
 void draw_problems_window(const StudyView& v, UiState& ui, UiCommands& out) {
   if (!ui.show_problems || !v.problems) return;

@@ -297,12 +297,11 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
     return std::abs(x.a - x.b) > std::abs(y.a - y.b);
   });
   const long excluded_rows = std::count_if(rows.begin(), rows.end(), [](const Row& r) { return r.excluded; });
-  text_wrapped_at_spaces(counted(long(rows.size()) - excluded_rows, "pair") + " counted (" +
-                         std::to_string(excluded_rows) + " excluded), " +
-                         (audit.waits_for_registration
-                              ? std::string("no audit yet: it needs the scene's registration, which is being computed")
-                              : std::to_string(audit.suspects) + " suspect; typical residual " +
-                                    fixed(audit.typical_residual_px, 1) + " px"));
+  text_wrapped_at_spaces(
+      counted(long(rows.size()) - excluded_rows, "pair") + " counted (" + thousands(excluded_rows) + " excluded), " +
+      (audit.waits_for_registration
+           ? std::string("no audit yet: it needs the scene's registration, which is being computed")
+           : thousands(audit.suspects) + " suspect; typical residual " + fixed(audit.typical_residual_px, 1) + " px"));
   const float table_h =
       std::max(60.0f, ImGui::GetContentRegionAvail().y - 2.4f * ImGui::GetTextLineHeightWithSpacing());
   // ScrollX: a pane narrower than the columns scrolls instead of cutting the last ones off.

@@ -191,6 +191,8 @@ TEST(UiWording, CountedNounsThousandsAndNoNegativeZero) {
   EXPECT_EQ(thousands(999), "999");
   EXPECT_EQ(thousands(-1234567), "-1,234,567");
   EXPECT_EQ(thousands(0), "0");
+  EXPECT_EQ(problems_label(1), "1 problem");
+  EXPECT_EQ(problems_label(12345), "12,345 problems");
   EXPECT_EQ(fixed(-0.000001, 5), "0.00000");
   EXPECT_EQ(fixed(-0.0000051, 5), "-0.00001");
   EXPECT_EQ(fixed(-0.064, 3), "-0.064");
