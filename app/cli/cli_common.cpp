@@ -8,6 +8,8 @@
 
 #include <cstdlib>
 
+#include "core/util/study_inputs.h"
+
 namespace ipd::cli {
 
 std::vector<std::string> join_optional_values(int argc, char** argv) {
@@ -32,6 +34,13 @@ CLI::Validator seed_validator() {
         return digits ? std::string() : "must be a whole number >= 0, got " + s;
       },
       "SEED >= 0", "seed");
+}
+
+bool output_is_study_input(const std::string& study, const std::string& out) {
+  if (out.empty()) return false;
+  const std::string problem = study_input_problem(study, out);
+  if (!problem.empty()) fmt::print(stderr, "error: {}\n", problem);
+  return !problem.empty();
 }
 
 bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines) {
