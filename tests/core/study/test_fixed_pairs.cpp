@@ -273,6 +273,8 @@ TEST(FixedPairsBinding, AnEditOfAStaleSceneIsRefusedAndResetDiscardsTheFile) {
     }
   }
   EXPECT_FALSE(s.can_undo());
+  ASSERT_EQ(s.problems().size(), 1u);  // listed while the file is there
+  EXPECT_EQ(s.problems()[0].file, f);
   EXPECT_EQ(s.scenes()[0].current.pairs, before.pairs);
   EXPECT_EQ(read_file(f), kHandPairs);
   // Reset removes the file (checked against what was read) and makes the scene editable again.
@@ -282,6 +284,7 @@ TEST(FixedPairsBinding, AnEditOfAStaleSceneIsRefusedAndResetDiscardsTheFile) {
   run_save_job(discard);
   EXPECT_FALSE(fs::exists(f));
   EXPECT_FALSE(s.scenes()[0].pairs_unusable);
+  for (const Problem& p : s.problems()) EXPECT_NE(p.file, f) << p.to_string();  // no longer listed
   const SaveJob edit = s.apply(0, Edit::pair(1, 0));
   EXPECT_TRUE(edit.contents.has_value());
 }
