@@ -76,7 +76,7 @@ bool StudioApp::replay_view_action(const ReplayAction& a, ui::UiCommands* cmd) {
   if (a.verb == "wait") {
     replay_wait_ = std::atoi(a.args[0].c_str());
   } else if (a.verb == "conf") {
-    cmd->conf_threshold = std::strtof(a.args[0].c_str(), nullptr);
+    cmd->conf_threshold = std::strtod(a.args[0].c_str(), nullptr);  // as `ipd --conf` reads it: 0.3 is 0.3
   } else if (a.verb == "model") {
     cmd->model = a.args[0];
   } else if (a.verb == "domains") {

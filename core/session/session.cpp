@@ -121,6 +121,8 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
     for (const auto& d : st.domains)
       if (!labels_ref.has_predictions(d.name, m.name))
         problems.push_back(missing_predictions_problem(st, m.name, d.name));
+      else if (auto p = missing_prediction_files_problem(labels_ref, m.name, d.name))
+        problems.push_back(std::move(*p));
   problems_ = std::make_shared<const std::vector<Problem>>(std::move(problems));
   cached_ = paired.cached_registrations;
   if (!st.models.empty()) model_ = st.models.front().name;

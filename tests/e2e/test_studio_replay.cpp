@@ -272,6 +272,31 @@ TEST(StudioReplay, ProblemsTheCliReportsArePrintedOnStderr) {
       << err;
 }
 
+// A prediction whose confidence is exactly the threshold is kept, in the studio as by `ipd --conf`: "conf 0.3"
+// is 0.3, not the float 0.30000001 that dropped synth's prediction (IPD 0.5 instead of 0).
+TEST(StudioReplay, AThresholdKeepsAPredictionAtExactlyThatConfidenceAsTheCliDoes) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  const fs::path study = d / "study";
+  for (const std::string domain : {"real", "synth"})
+    test::write_text(study / domain / "labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+  test::write_text(study / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n");
+  test::write_text(study / "synth/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.3\n");
+  test::write_text(d / "actions.txt", "conf 0.3\nwait 3\nexport table " + d / "gui.svg\n");
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, study.string(), d / "actions.txt");
+  ASSERT_EQ(run_in_xvfb(cmd, fmt::format(">{} 2>&1", d / "log.txt"), d.path()), 0) << read_file(d / "log.txt");
+  const auto cli = test::run_ipd("figure table " + study.string() + " --conf 0.3 --out " + d / "cli.svg");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  // The cell's number in both: 0.0000 (both rocks score alike); 0.5000 had synth's prediction been dropped.
+  for (const std::string file : {"gui.svg", "cli.svg"}) {
+    const std::string svg = read_file(d / file);
+    EXPECT_NE(svg.find(">0.0000</text>"), std::string::npos) << file;
+    EXPECT_EQ(svg.find(">0.5000</text>"), std::string::npos) << file;
+  }
+}
+
 // Two scenes: s1 as write_two_rock_study (pairs with |diff| 2/3 and 0), s2 with both sides' predictions on
 // their rocks (|diff| 0 twice). A drag box over |diff| >= 0.5, perf A >= 0.5 holds one pair, in s1: the scene
 // list then shows s1 alone, under the selection's label.
