@@ -128,6 +128,8 @@ bool StudioApp::replay_edit_action(const ReplayAction& a, ui::UiCommands* cmd) {
   } else if (a.verb == "exclude") {
     if (const int l = replay_rock(a, a.args[0], Side::kA); l >= 0)
       cmd->edits.push_back(Edit::toggle_exclude(Side::kA, l));
+  } else if (a.verb == "automatic") {
+    cmd->edits.push_back(Edit::reset());  // the "reset to automatic" button
   } else if (a.verb == "review") {
     cmd->toggle_reviewed = true;
   } else if (a.verb == "suspect") {
