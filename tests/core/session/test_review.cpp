@@ -97,7 +97,9 @@ TEST(SessionReview, ACheckOfAPairEditedAwayIsKeptAndComesBackWithUndo) {
 TEST(SessionReview, AMarkTheFileCannotHoldChangesNothing) {
   test::TempDir d;
   test::write_review_study(d);
-  const std::string bad = "s\xff3";
+  const std::string bad =
+      "s\xff"
+      "3";  // not UTF-8: 0xff alone
   for (const char* domain : {"real", "synth"})
     fs::copy_file(d / (std::string(domain) + "/labels/s2.txt"), d / (std::string(domain) + "/labels/" + bad + ".txt"));
   Session s = open_audited(d.path());
