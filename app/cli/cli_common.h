@@ -15,7 +15,7 @@ constexpr int kOk = 0, kBadInput = 1, kUsage = 2;
 // summary; true when they are fatal: malformed lines unless skipped, and always a file that can't be read.
 bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines);
 
-// Hand pairs that can't be used (a stored rock is no longer in its label file): printed as errors (true:
+// Hand pairs that can't be used (a stored box is no longer in its label file): printed as errors (true:
 // fatal), or with --skip-bad-lines added to `warnings` (printed and in JSON output like the others; null:
 // printed as warnings here) while registration counts for those scenes.
 bool report_unusable_pairs(const std::vector<PairsProblem>& problems, bool skip_bad_lines,

@@ -206,6 +206,9 @@ class Session {
   // but reset is refused with a StudyError naming the file (saving would overwrite the hand pairs with
   // registration's); reset discards the file, the user's explicit choice.
   SaveJob apply(int scene, Edit edit);
+  // Why the scene's hand pairs are not applied, "FILE: WHY", when its pairs file no longer matches its label
+  // files (the view shows registration's pairs and edits are refused); empty otherwise.
+  std::string stale_pairs(int scene) const;
   bool can_undo() const { return undo_pos_ > 0; }
   bool can_redo() const { return undo_pos_ < history_.size(); }
   std::optional<SaveJob> undo();  // nullopt when there is nothing to undo
@@ -262,6 +265,7 @@ class Session {
   std::vector<Problem> load_reviews();  // every domain pair's review file; the marks dropped
   SaveJob set_scene(int pair, int scene, const FixedPairs& pairs, bool edited);
   void refuse_stale_pairs_edit(int pair, int scene) const;
+  std::pair<std::string, std::string> stale_pairs_of(int pair, int scene) const;  // {file, why}; empty: usable
   SaveJob job_for(int pair, int scene, const std::string& root) const;
   void recompute_performance();
   void rebuild_totals();

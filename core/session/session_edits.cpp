@@ -148,9 +148,14 @@ SaveJob Session::set_scene(int pair, int scene, const FixedPairs& fp, bool edite
   return job;
 }
 
-void Session::refuse_stale_pairs_edit(int pair, int scene) const {
+std::string Session::stale_pairs(int scene) const {
+  const auto [file, why] = stale_pairs_of(pair_, scene);
+  return file.empty() ? "" : file + ": " + why;
+}
+
+std::pair<std::string, std::string> Session::stale_pairs_of(int pair, int scene) const {
   const SceneState& s = scenes_[pair][scene];
-  if (!s.pairs_unusable) return;
+  if (!s.pairs_unusable) return {};
   const auto it =
       std::find_if(s.pairs_problems.begin(), s.pairs_problems.end(), [](const PairsProblem& p) { return p.unusable; });
   const std::string file =
@@ -160,6 +165,13 @@ void Session::refuse_stale_pairs_edit(int pair, int scene) const {
                 .string();
   const std::string why =
       it != s.pairs_problems.end() ? it->why_unusable : "its stored rocks are not in the label files";
+  return {file, why};
+}
+
+void Session::refuse_stale_pairs_edit(int pair, int scene) const {
+  const SceneState& s = scenes_[pair][scene];
+  if (!s.pairs_unusable) return;
+  const auto [file, why] = stale_pairs_of(pair, scene);
   // The scene shows registration's pairs, so a save now would replace the hand pairs with them: refused.
   throw StudyError(
       fmt::format("{}: edit refused: this file's hand pairs no longer match the label files ({}), and saving the "

@@ -191,7 +191,9 @@ std::pair<int, int> domain_image_size(const Study& study, const std::string& dom
   const Domain* d = study.domain(domain);
   if (d)
     for (const auto& [stem, path] : d->images) {
-      const cv::Mat m = read_picture(path, cv::IMREAD_UNCHANGED);
+      // As the picture is shown and measured: turned upright by its EXIF orientation, as YOLOv5 labels it
+      // (IMREAD_UNCHANGED keeps a phone photo's sensor orientation, whose width is the upright height).
+      const cv::Mat m = read_picture(path, cv::IMREAD_COLOR);
       if (!m.empty()) return {m.cols, m.rows};
     }
   return {0, 0};

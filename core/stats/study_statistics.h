@@ -79,7 +79,8 @@ struct CellBreakdown {
 // the ref rock's best-IoU prediction ("no detection" bin when nothing overlaps).
 CellBreakdown breakdown_cell(const StudyLabels& labels, const TableCell& cell, const BreakdownOptions& options);
 
-// A domain's picture size: study.yaml's image_size, else the first picture's, else {0, 0}.
+// A domain's picture size: study.yaml's image_size, else the first picture's (upright, after its EXIF
+// orientation), else {0, 0}.
 std::pair<int, int> domain_image_size(const Study& study, const std::string& domain);
 
 }  // namespace ipd

@@ -73,7 +73,7 @@ struct SideInFile {
   std::vector<int> excluded;
   std::optional<std::map<int, StoredBox>> stored;  // nullopt: a file without boxes for this side
   std::map<int, int> moved;                        // file index -> row now
-  std::vector<std::string> lost;                   // "rock 3 (0.6 0.6 0.1 0.1)"
+  std::vector<std::string> lost;                   // "rock 4 (0.6 0.6 0.1 0.1)": 1-based, as the studio shows it
 };
 
 std::map<int, StoredBox> parse_rocks(const nlohmann::json& j, const char* key, const std::string& file) {
@@ -119,7 +119,8 @@ void bind_side(SideInFile* side, const std::set<int>& referenced, const char* ke
       claimed[found] = 1;
       side->moved[i] = found;
     } else {
-      side->lost.push_back(fmt::format("rock {} ({} {} {} {})", i, nlohmann::json(want.cx).dump(),
+      // Numbered from 1, as the studio and the replays number rocks (the file stores 0-based indices).
+      side->lost.push_back(fmt::format("rock {} ({} {} {} {})", i + 1, nlohmann::json(want.cx).dump(),
                                        nlohmann::json(want.cy).dump(), nlohmann::json(want.w).dump(),
                                        nlohmann::json(want.h).dump()));
     }
@@ -131,7 +132,7 @@ std::string moved_list(const SideInFile& s) {
   size_t k = 0;
   for (const auto& [from, to] : s.moved) {
     if (k++ == kMaxListed) return out + ", ...";
-    out += fmt::format("{}{} -> {}", out.empty() ? s.domain + " " : ", ", from, to);
+    out += fmt::format("{}{} -> {}", out.empty() ? s.domain + " rock " : ", ", from + 1, to + 1);
   }
   return out;
 }
@@ -152,7 +153,7 @@ std::optional<PairsProblem> binding_problem(const SideInFile& first, const SideI
     std::string what;
     for (const SideInFile* s : {&first, &second})
       if (!s->lost.empty()) what += (what.empty() ? "" : "; ") + lost_list(*s);
-    const std::string why = "a stored rock is no longer in its label file: " + what;
+    const std::string why = "a stored box is no longer in its label file (moved or deleted): " + what;
     return PairsProblem{file, 0, "hand pairs not used (registration counts instead): " + why, true, why};
   }
   if (first.moved.empty() && second.moved.empty()) return std::nullopt;

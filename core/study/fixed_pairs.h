@@ -52,7 +52,7 @@ struct PairsProblem {
   // The scene's hand pairs are not used (a stored rock is in neither label file row): registration counts
   // instead, and `ipd table` exits 1 unless --skip-bad-lines. False: a warning (rocks found again).
   bool unusable = false;
-  std::string why_unusable;  // when unusable: what no longer matches ("a stored rock is no longer in ...")
+  std::string why_unusable;  // when unusable: what no longer matches ("a stored box is no longer in ...")
   std::string to_string() const { return file + ": " + message; }
 };
 

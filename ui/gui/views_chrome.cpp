@@ -207,9 +207,17 @@ void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out) {
     if (ImGui::SmallButton("Retry")) out.retry_saves = true;
     ImGui::SameLine();
   }
-  if (!ui.status.empty())
+  if (!ui.status.empty()) {
     ImGui::TextUnformatted(("|  " + ui.status).c_str());
-  else
+    // A long message (an edit refused, with its way out) runs past the window's edge: hovering shows it whole.
+    if (ImGui::IsItemHovered()) {
+      ImGui::BeginTooltip();
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40);
+      ImGui::TextUnformatted(ui.status.c_str());
+      ImGui::PopTextWrapPos();
+      ImGui::EndTooltip();
+    }
+  } else
     ImGui::NewLine();
 }
 

@@ -43,7 +43,7 @@ void draw_problems_window(const StudyView& v, UiState& ui, UiCommands& out) {
         out.goto_problem = static_cast<int>(k);
       ImGui::PopID();
       ImGui::TableNextColumn();
-      ImGui::TextWrapped("%s", p.to_string().c_str());
+      text_wrapped_at_spaces(p.to_string());  // never inside a number, as every panel wraps
     }
     ImGui::EndTable();
   }

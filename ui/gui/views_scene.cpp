@@ -115,13 +115,44 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
     out.edits.push_back(Edit::toggle_exclude(ui.selected_left >= 0 ? Side::kA : Side::kB,
                                              ui.selected_left >= 0 ? ui.selected_left : ui.selected_right));
   same_line_if_fits(button_width("reset to automatic"));
-  if (ImGui::Button("reset to automatic")) out.edits.push_back(Edit::reset());
+  // A scene whose hand pairs file no longer matches its labels: reset deletes that file, which undo does not
+  // bring back, so it asks first. Elsewhere reset is an ordinary edit (undo restores the hand pairs).
+  const std::string stale = s.stale_pairs(ui.scene);
+  if (ImGui::Button("reset to automatic")) {
+    if (stale.empty())
+      out.edits.push_back(Edit::reset());
+    else
+      ImGui::OpenPopup("Discard the hand pairs?");
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("%s", stale.empty() ? "Use registration's pairs for this scene (undo brings the hand pairs back)"
+                                          : "Delete this scene's hand pairs file, which no longer matches its labels");
+  if (ImGui::BeginPopupModal("Discard the hand pairs?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36);
+    ImGui::TextUnformatted(("Delete " + stale.substr(0, stale.find(": ")) +
+                            " and use registration's pairs for this scene? Undo does not bring the file back.")
+                               .c_str());
+    ImGui::PopTextWrapPos();
+    if (ImGui::Button("Delete the file")) {
+      out.edits.push_back(Edit::reset());
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGuiKey_Escape)) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
   // Only when it fits: the Help menu says the same.
   const float right_edge = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
   if (ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + ImGui::CalcTextSize("F1: help").x <= right_edge) {
     ImGui::SameLine();
     ImGui::TextDisabled("F1: help");
   }
+  if (!stale.empty())
+    text_coloured_wrapped_at_spaces(
+        {1, 0.55f, 0, 1}, "Hand pairs not applied: " + stale +
+                              ". The scene shows registration's pairs, and edits are refused so that the file is not "
+                              "overwritten. To keep the hand pairs, correct the label file and open the study again; "
+                              "to discard them, \"reset to automatic\".");
 
   // The panes' captions (domain names) and notices ("no picture ... (labels only)") sit in a strip above
   // the pictures, never over rocks or their numbers.

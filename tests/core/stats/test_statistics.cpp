@@ -4,12 +4,14 @@
 #include <fmt/format.h>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <regex>
 
 #include "core/demo/demo_study.h"
 #include "core/session/session_statistics.h"
 #include "core/stats/statistics.h"
 #include "core/stats/study_statistics.h"
+#include "core/study/study.h"
 #include "tests/support/figure_test_study.h"
 #include "tests/support/stats_study.h"
 #include "tests/support/test_support.h"
@@ -412,6 +414,29 @@ TEST(StatsCli, OneSceneSaysNoIntervalAndNoTest) {
   EXPECT_EQ(compare.out.find("significant"), std::string::npos) << compare.out;
   EXPECT_EQ(compare.out.find("= -"), std::string::npos) << compare.out;  // one minus sign: U+2212
   EXPECT_NE(compare.out.find("(intervals and tests need at least 2 scenes)"), std::string::npos) << compare.out;
+}
+
+}  // namespace
+}  // namespace ipd
+
+namespace ipd {
+namespace {
+
+// A 40 x 20 JPEG whose EXIF says "turn 90 degrees clockwise to view" (orientation 6, as a phone held upright
+// writes it): upright it is 20 x 40, as it is shown, measured and labelled (YOLOv5 reads it upright too).
+TEST(StudyStatistics, APicturesSizeIsItsUprightSize) {
+  test::TempDir d;
+  std::vector<unsigned char> jpeg;
+  ASSERT_TRUE(cv::imencode(".jpg", cv::Mat(20, 40, CV_8UC3, cv::Scalar(90, 90, 90)), jpeg));
+  // APP1 "Exif": a little-endian TIFF header and one IFD entry, Orientation (0x0112), SHORT, 1 value: 6.
+  const unsigned char exif[] = {0xff, 0xe1, 0x00, 0x22, 'E', 'x', 'i', 'f', 0, 0, 'I', 'I', 0x2a, 0, 8, 0, 0, 0,
+                                1,    0,    0x12, 0x01, 3,   0,   1,   0,   0, 0, 6,   0,   0,    0, 0, 0, 0, 0};
+  jpeg.insert(jpeg.begin() + 2, std::begin(exif), std::end(exif));
+  test::write_text(d / "real/images/s1.jpg", std::string(jpeg.begin(), jpeg.end()));
+  test::write_text(d / "real/labels/s1.txt", "0 0.5 0.5 0.1 0.1\n");
+  test::write_text(d / "synth/labels/s1.txt", "0 0.5 0.5 0.1 0.1\n");
+  const Study study = open_study(d.path());
+  EXPECT_EQ(domain_image_size(study, "real"), std::make_pair(20, 40));
 }
 
 }  // namespace

@@ -58,7 +58,7 @@ TEST(FixedPairsBinding, ReorderedRowsKeepThePairsOnTheirRocks) {
   EXPECT_EQ(t.pairs_problems[0].line, 0);
   EXPECT_FALSE(t.pairs_problems[0].unusable);
   const std::string message =
-      "1 hand-paired rock(s) changed rows in their label files and were found again by their boxes: real 0 -> 1";
+      "1 hand-paired rock(s) changed rows in their label files and were found again by their boxes: real rock 1 -> 2";
   EXPECT_EQ(t.pairs_problems[0].message, message);
   ASSERT_EQ(t.warnings.size(), 1u);
   EXPECT_EQ(t.warnings[0], f + ": " + message);
@@ -77,7 +77,7 @@ TEST(FixedPairsBinding, AnInsertedRowShiftsNoPair) {
   ASSERT_EQ(t.pairs_problems.size(), 1u);
   EXPECT_EQ(
       t.pairs_problems[0].message,
-      "1 hand-paired rock(s) changed rows in their label files and were found again by their boxes: synth 1 -> 2");
+      "1 hand-paired rock(s) changed rows in their label files and were found again by their boxes: synth rock 2 -> 3");
 }
 
 TEST(FixedPairsBinding, ExcludedRocksAndTheOtherNameOrderAreBoundToo) {
@@ -96,7 +96,7 @@ TEST(FixedPairsBinding, ExcludedRocksAndTheOtherNameOrderAreBoundToo) {
   ASSERT_EQ(t.pairs_problems.size(), 1u);
   EXPECT_EQ(t.pairs_problems[0].message,
             "2 hand-paired rock(s) changed rows in their label files and were found again by their boxes: "
-            "real 0 -> 1, 1 -> 0");
+            "real rock 1 -> 2, 2 -> 1");
 }
 
 TEST(FixedPairsBinding, ARemovedRockMakesTheScenesHandPairsUnusable) {
@@ -116,7 +116,8 @@ TEST(FixedPairsBinding, ARemovedRockMakesTheScenesHandPairsUnusable) {
   ASSERT_EQ(t.pairs_problems.size(), 1u);
   EXPECT_TRUE(t.pairs_problems[0].unusable);
   const std::string message =
-      "hand pairs not used (registration counts instead): a stored rock is no longer in its label file: rock 1 "
+      "hand pairs not used (registration counts instead): a stored box is no longer in its label file (moved or "
+      "deleted): rock 2 "
       "(0.2 0.2 0.1 0.1) of 'synth' (" +
       d / "synth/labels/s1.txt" + ")";
   EXPECT_EQ(t.pairs_problems[0].message, message);
@@ -151,7 +152,7 @@ TEST(FixedPairsBinding, ABoxMovedFarBelowLabelPrecisionIsTheSameRock) {
   ASSERT_EQ(gone.pairs_problems.size(), 1u);
   EXPECT_TRUE(gone.pairs_problems[0].unusable);
   EXPECT_EQ(gone.pairs_problems[0].why_unusable,
-            "a stored rock is no longer in its label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" +
+            "a stored box is no longer in its label file (moved or deleted): rock 2 (0.2 0.2 0.1 0.1) of 'synth' (" +
                 d / "synth/labels/s1.txt" + ")");
 }
 
@@ -166,7 +167,7 @@ TEST(FixedPairsBinding, AMovedRockIsFoundAtTheNearestBoxWithinTheTolerance) {
   ASSERT_EQ(t.pairs_problems.size(), 1u);
   EXPECT_EQ(
       t.pairs_problems[0].message,
-      "1 hand-paired rock(s) changed rows in their label files and were found again by their boxes: synth 1 -> 3");
+      "1 hand-paired rock(s) changed rows in their label files and were found again by their boxes: synth rock 2 -> 4");
 }
 
 TEST(FixedPairsBinding, TheCliExitsOneNamingTheFileUnlessSkipBadLines) {
@@ -175,8 +176,8 @@ TEST(FixedPairsBinding, TheCliExitsOneNamingTheFileUnlessSkipBadLines) {
   const std::string f = d / "pairs/real__synth/s1.json";
   test::write_text(f, kHandPairs);
   const std::string line = f +
-                           ": hand pairs not used (registration counts instead): a stored rock is no longer in its "
-                           "label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" +
+                           ": hand pairs not used (registration counts instead): a stored box is no longer in its "
+                           "label file (moved or deleted): rock 2 (0.2 0.2 0.1 0.1) of 'synth' (" +
                            d / "synth/labels/s1.txt" + ")";
   const auto strict = test::run_ipd("table --no-cache --bootstrap 0 " + d.path());
   EXPECT_EQ(strict.exit_code, 1) << strict.err;
@@ -200,8 +201,8 @@ TEST(FixedPairsBinding, AFigureOfTheSceneSaysSoToo) {
   const auto strict = test::run_ipd("figure registration " + d.path() + " --scene s1 --out " + out);
   EXPECT_EQ(strict.exit_code, 1) << strict.err;
   EXPECT_NE(strict.err.find(f +
-                            ": hand pairs not used (registration counts instead): a stored rock is no longer in "
-                            "its label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" +
+                            ": hand pairs not used (registration counts instead): a stored box is no longer in "
+                            "its label file (moved or deleted): rock 2 (0.2 0.2 0.1 0.1) of 'synth' (" +
                             d / "synth/labels/s1.txt" + ") (pass --skip-bad-lines to draw registration's pairs)\n"),
             std::string::npos)
       << strict.err;
@@ -264,8 +265,8 @@ TEST(FixedPairsBinding, AnEditOfAStaleSceneIsRefusedAndResetDiscardsTheFile) {
     } catch (const StudyError& err) {
       EXPECT_EQ(std::string(err.what()),
                 f +
-                    ": edit refused: this file's hand pairs no longer match the label files (a stored rock is no "
-                    "longer in its label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" +
+                    ": edit refused: this file's hand pairs no longer match the label files (a stored box is no "
+                    "longer in its label file (moved or deleted): rock 2 (0.2 0.2 0.1 0.1) of 'synth' (" +
                     d / "synth/labels/s1.txt" +
                     ")), and saving the edit would overwrite them. To keep them, correct the label file and open "
                     "the study again; to discard them and start from registration's pairs, use \"reset to "
