@@ -16,12 +16,11 @@ BootstrapOptions StudyOptions::bootstrap_options() const {
   BootstrapOptions b;
   b.resamples = bootstrap;
   b.level = level;
-  b.seed = seed >= 0 ? static_cast<std::uint64_t>(seed) : 0;
+  b.seed = seed.value_or(0);
   return b;
 }
 
 std::string StudyOptions::validate() const {
-  if (seed < -1) return fmt::format("--seed: must be a whole number >= 0, got {}", seed);
   if (conf != -1 && !(conf >= 0 && conf <= 1)) return fmt::format("--conf: must be in [0, 1], got {}", conf);
   if (bootstrap < 0) return fmt::format("--bootstrap: must be >= 0 (0: no intervals), got {}", bootstrap);
   if (!(level >= 0.5 && level <= 0.9999)) return fmt::format("--ci: must be in [0.5, 0.9999], got {}", level);
@@ -49,8 +48,10 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
                                          : std::string();
           },
           "MS >= 0"));
-  // -1 stands for "not given": typed, it is as out of range as -5 (which used to mean "study.yaml's seed").
-  cmd->add_option("--seed", o->seed, "Registration and bootstrap seed (default from study.yaml, else 0)")
+  // The whole 64-bit range, as study.yaml's registration.seed: a seed given either way is the same seed.
+  cmd->add_option_function<std::uint64_t>(
+         "--seed", [o](const std::uint64_t& seed) { o->seed = seed; },
+         "Registration and bootstrap seed, 0 to 18446744073709551615 (default from study.yaml, else 0)")
       ->check(seed_validator());
   cmd->add_option("--conf", o->conf,
                   "Drop predictions below this confidence (the GUI slider; default: study.yaml's conf_threshold)")
@@ -95,7 +96,7 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   opt.threads = o.threads;
   opt.registration = study.config.registration;
   if (!o.method.empty()) parse_method(o.method, &opt.registration.method);
-  if (o.seed >= 0) opt.registration.seed = static_cast<std::uint64_t>(o.seed);
+  if (o.seed) opt.registration.seed = *o.seed;
   if (o.budget_ms == 0) opt.registration.time_budget_ms.reset();
   if (o.budget_ms > 0) opt.registration.time_budget_ms = o.budget_ms;
   out.registration_budget_ms = opt.registration.time_budget_ms.value_or(0);
@@ -109,7 +110,7 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   if (report_unusable_pairs(out.table.pairs_problems, o.skip_bad_lines, &out.table.warnings)) return std::nullopt;
   for (const auto& w : out.table.warnings) fmt::print(stderr, "warning: {}\n", w);
   out.bootstrap = o.bootstrap_options();
-  if (o.seed < 0) out.bootstrap.seed = opt.registration.seed;
+  if (!o.seed) out.bootstrap.seed = opt.registration.seed;
   if (with_intervals && o.bootstrap > 0) add_confidence_intervals(&out.table, out.bootstrap, o.threads);
   return out;
 }
