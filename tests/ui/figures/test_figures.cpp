@@ -198,6 +198,12 @@ TEST(Figures, ClearMessagesAndNoFileOnError) {
   r = test::run_ipd("figure pairs " + d.path() + " --font-pt 5 --out " + d / "x.pdf");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "error: --font-pt: 5 is outside 6..72 (nothing smaller than 6 pt on the page)\n");
+  // A width of 0 or -3 drew the default column width without a word, while 0.01 was refused.
+  for (const char* width : {"0", "-3", "0.01"}) {
+    r = test::run_ipd("figure pairs " + d.path() + " --width-in " + width + " --out " + d / "x.pdf");
+    EXPECT_EQ(r.exit_code, 2) << width;
+    EXPECT_EQ(r.err, "error: --width-in: " + std::string(width) + " is not a figure width (1 to 40 inches)\n");
+  }
   r = test::run_ipd("figure pairs " + d.path() + " --font " + d / "nope.ttf" + " --out " + d / "x.pdf");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "error: " + d / "nope.ttf" + ": no such font file\n");
