@@ -56,8 +56,8 @@ int figure_options(const FigureOutputArgs& a, ui::FigureOptions* out) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kUsage;
   }
-  if (std::error_code ec; !std::filesystem::is_regular_file(o.font_file, ec)) {
-    fmt::print(stderr, "error: {}: no such font file\n", o.font_file);
+  if (const std::string problem = ui::font_file_problem(o.font_file); !problem.empty()) {
+    fmt::print(stderr, "error: {}\n", problem);
     return kBadInput;
   }
   *out = o;
