@@ -122,7 +122,8 @@ void create_key(const std::string& path) {
 std::string user_cache_root() {
   const char* xdg = std::getenv("XDG_CACHE_HOME");
   const char* home = std::getenv("HOME");
-  const fs::path base = xdg && *xdg ? fs::path(xdg) : fs::path(home ? home : "/tmp") / ".cache";
+  const bool xdg_usable = xdg && *xdg && fs::path(xdg).is_absolute();
+  const fs::path base = xdg_usable ? fs::path(xdg) : fs::path(home ? home : "/tmp") / ".cache";
   return (base / "ipd-studio").string();
 }
 

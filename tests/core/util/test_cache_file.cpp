@@ -7,7 +7,9 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <cstdlib>
 #include <filesystem>
+#include <optional>
 
 #include "core/ipd/study_cache.h"
 #include "core/registration/registration_cache.h"
@@ -165,6 +167,39 @@ TEST(CacheDir, TempFilesOfKilledWritersAreRemoved) {
   EXPECT_TRUE(fs::exists(d / "study/.ipd-cache/" + alive));           // its writer still runs
   EXPECT_FALSE(fs::is_symlink(d / "study/.ipd-cache/" + dead_link));  // the link itself goes ...
   EXPECT_EQ(read_file(d / "outside"), "precious\n");                  // ... never its target
+}
+
+// Sets an environment variable for one test and restores what was there.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    const char* old = std::getenv(name);
+    if (old) old_ = old;
+    ::setenv(name, value, 1);
+  }
+  ~ScopedEnv() {
+    if (old_)
+      ::setenv(name_, old_->c_str(), 1);
+    else
+      ::unsetenv(name_);
+  }
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+// A relative XDG_CACHE_HOME made ./relcache/ipd-studio/ in whatever folder the program started in; the XDG
+// Base Directory specification calls such a path invalid, to be ignored.
+TEST(CacheSigner, ARelativeXdgCacheHomeIsIgnored) {
+  const ScopedEnv home("HOME", "/home/someone");
+  {
+    const ScopedEnv xdg("XDG_CACHE_HOME", "relcache");
+    EXPECT_EQ(user_cache_root(), "/home/someone/.cache/ipd-studio");
+    EXPECT_EQ(user_key_path(), "/home/someone/.cache/ipd-studio/key");
+  }
+  const ScopedEnv xdg("XDG_CACHE_HOME", "/var/cache/someone");
+  EXPECT_EQ(user_cache_root(), "/var/cache/someone/ipd-studio");
 }
 
 TEST(CacheSigner, KeyIsCreatedPrivateAndSignsOnlyForItsOwner) {
