@@ -22,7 +22,10 @@ BootstrapOptions StudyOptions::bootstrap_options() const {
 
 std::string StudyOptions::validate() const {
   if (conf != -1 && !(conf >= 0 && conf <= 1)) return fmt::format("--conf: must be in [0, 1], got {}", conf);
-  if (bootstrap < 0) return fmt::format("--bootstrap: must be >= 0 (0: no intervals), got {}", bootstrap);
+  // One resample has no spread: it silently gave no interval at all.
+  if (bootstrap < 0 || bootstrap == 1)
+    return fmt::format("--bootstrap: must be 0 (no intervals) or at least 2 (an interval needs two resamples), got {}",
+                       bootstrap);
   if (!(level >= 0.5 && level <= 0.9999)) return fmt::format("--ci: must be in [0.5, 0.9999], got {}", level);
   if (threads < 0) return fmt::format("--threads: must be >= 0 (0: every core), got {}", threads);
   if (!std::isnan(budget_ms) && !(budget_ms >= 0 && std::isfinite(budget_ms)))
@@ -61,7 +64,7 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
   cmd->add_flag("--no-cache", o->no_cache, "Register every scene again (ignore STUDY/.ipd-cache/)");
   cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "Warn about malformed label lines and skip them");
   if (!with_bootstrap) return;
-  cmd->add_option("--bootstrap", o->bootstrap, "Scene-bootstrap resamples for intervals (0: none)")
+  cmd->add_option("--bootstrap", o->bootstrap, "Scene-bootstrap resamples for intervals (0: none; else at least 2)")
       ->check(CLI::NonNegativeNumber)
       ->default_val(2000);
   // A flag with an optional level (`--ci`, `--ci=0.9`; main() turns `--ci 0.9` into `--ci=0.9`), so it

@@ -264,6 +264,14 @@ TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
               0u)
         << r.err;
   }
+  // --bootstrap 1 showed no interval without a word: one resample has no spread.
+  auto one = test::run_ipd("table --bootstrap 1 " + d.path());
+  EXPECT_EQ(one.exit_code, 2);
+  EXPECT_EQ(one.err.rfind(
+                "--bootstrap: must be 0 (no intervals) or at least 2 (an interval needs two resamples), got 1\n", 0),
+            0u)
+      << one.err;
+  EXPECT_EQ(test::run_ipd("table --bootstrap 2 " + d.path()).exit_code, 0);
   // ipd detect: a negative class kept nothing ("no rocks" everywhere), negative threads meant every core.
   auto detect = test::run_ipd("detect " + d.path() + " --detector classical --out " + d / "x" + " --classes 0,-1");
   EXPECT_EQ(detect.exit_code, 2);
