@@ -40,7 +40,7 @@ void declare_breakdown_options(CLI::App* cmd, BreakdownArgs* args) {
                   "size (box area, px²), region (3x3 grid) or confidence (of its best-IoU prediction)")
       ->check(CLI::IsMember({"size", "region", "confidence"}));
   cmd->add_option("--bins", args->bins, "Quantile bins for size and confidence")
-      ->check(CLI::Range(1, 100))
+      ->check(CLI::Range(1, kMaxBreakdownBins))
       ->default_val(4);
   cmd->add_option("--format", args->format, "text, csv, json or markdown")
       ->check(CLI::IsMember({"text", "csv", "json", "markdown"}));

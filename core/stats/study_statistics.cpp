@@ -176,7 +176,8 @@ const char* to_string(BreakdownBy by) {
 }
 
 std::string BreakdownOptions::validate() const {
-  if (bins < 1 || bins > 100) return fmt::format("--bins must be between 1 and 100, not {}", bins);
+  if (bins < 1 || bins > kMaxBreakdownBins)
+    return fmt::format("--bins must be between 1 and {}, not {}", kMaxBreakdownBins, bins);
   return bootstrap.validate();
 }
 

@@ -53,9 +53,14 @@ enum class BreakdownBy { kSize, kRegion, kConfidence };
 bool parse_breakdown_by(const std::string& name, BreakdownBy* out);
 const char* to_string(BreakdownBy by);
 
+// The most quantile bins a breakdown takes, printed (ipd breakdown) or drawn (ipd figure breakdown) alike: a
+// figure draws a row per bin, and 20 rows still fit a column at 8 pt; past that a bin of a study the size of
+// the demo (about 80 pairs a cell) holds too few pairs from too few scenes for an interval.
+constexpr int kMaxBreakdownBins = 20;
+
 struct BreakdownOptions {
   BreakdownBy by = BreakdownBy::kSize;
-  int bins = 4;  // size and confidence: quantile bins; region is always a 3x3 grid
+  int bins = 4;  // size and confidence: quantile bins (1 to kMaxBreakdownBins); region is always a 3x3 grid
   BootstrapOptions bootstrap;
   std::string validate() const;
 };

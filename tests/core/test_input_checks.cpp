@@ -9,6 +9,7 @@
 
 #include "core/report/csv.h"
 #include "core/report/table_format.h"
+#include "core/stats/study_statistics.h"
 #include "core/study/coco_import.h"
 #include "core/study/study.h"
 #include "core/util/errors.h"
@@ -296,6 +297,22 @@ TEST(InputChecks, TheLargestSeedIsTheSameSeedOnTheCommandLineAndInStudyYaml) {
   const auto from_yaml = test::run_ipd("table --format json --bootstrap 10 " + d.path());
   EXPECT_EQ(from_yaml.exit_code, 0) << from_yaml.err;
   EXPECT_EQ(from_yaml.out, given.out);
+}
+
+// ipd breakdown took up to 100 bins, ipd figure breakdown up to 20: one range, so every printed breakdown can
+// be drawn.
+TEST(InputChecks, BreakdownBinsHaveOneRangePrintedOrDrawn) {
+  test::TempDir d;
+  write_tiny_study(d);
+  for (const std::string& command : std::vector<std::string>{"breakdown", "figure breakdown --out " + d / "b.svg"}) {
+    const auto r = test::run_ipd(command + " --bootstrap 0 --bins 21 " + d.path());
+    EXPECT_EQ(r.exit_code, 2) << command;
+    EXPECT_EQ(r.err.rfind("--bins: Value 21 not in range 1 to 20\n", 0), 0u) << command << ": " << r.err;
+    EXPECT_EQ(test::run_ipd(command + " --bootstrap 0 --bins 20 " + d.path()).exit_code, 0) << command;
+  }
+  BreakdownOptions o;
+  o.bins = 21;
+  EXPECT_EQ(o.validate(), "--bins must be between 1 and 20, not 21");
 }
 
 // ipd demo writes a new study: over an existing directory with files (a study with hand pairs, say) it writes
