@@ -100,8 +100,13 @@ void print_breakdown_text(const std::vector<CellBreakdown>& out, const Breakdown
   const std::string ref_note = "bins of the first domain's rock; ";
   const bool md = args.format == "markdown";
   for (const auto& c : out) {
-    std::cout << fmt::format("{}{} ({}), |{} - {}|, by {}:\n", md ? "**" : "", c.model, c.trained_on, c.a, c.b, args.by)
-              << (md ? "**\n\n| bin | IPD [CI] | pairs | scenes |\n|---|---:|---:|---:|\n" : "");
+    std::cout << fmt::format("{}{} ({}), |{} - {}|, by {}:\n", md ? "**" : "", c.model, c.trained_on, c.a, c.b,
+                             args.by);
+    if (c.bins.empty()) {  // no rock pairs: bins of nothing would read "nan–nan"
+      std::cout << (md ? "**\n\n" : "  ") << kNoRockPairsToBin << "\n\n";
+      continue;
+    }
+    std::cout << (md ? "**\n\n| bin | IPD [CI] | pairs | scenes |\n|---|---:|---:|---:|\n" : "");
     for (const auto& b : c.bins)
       std::cout << (md ? fmt::format("| {} | {} | {} | {} |\n", b.label, interval_text(b.ipd), b.pairs, b.scenes)
                        : fmt::format("  {:<22} {:<26} {:>5} pairs {:>4} scenes\n", b.label, interval_text(b.ipd),

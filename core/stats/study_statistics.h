@@ -79,9 +79,13 @@ struct CellBreakdown {
   std::vector<BreakdownBin> bins;
 };
 
-// Needs the cell's per_scene[*].counted and the labels it came from. Size is the ref box's area in pixels
-// (image size from study.yaml or the domain's pictures, else normalised area × 10⁶); confidence is that of
-// the ref rock's best-IoU prediction ("no detection" bin when nothing overlaps).
+// What a breakdown of a cell without rock pairs (no rocks, or none paired) says instead of its bins.
+constexpr const char* kNoRockPairsToBin = "No rock pairs in this cell (no rocks, or none paired): nothing to bin.";
+
+// Needs the cell's per_scene[*].counted and the labels it came from. A cell without counted pairs has no bins;
+// by confidence, pairs none of whose rocks was detected have only the "no detection" bin. Size is the ref box's area in
+// pixels (image size from study.yaml or the domain's pictures, else normalised area × 10⁶); confidence is that of the
+// ref rock's best-IoU prediction ("no detection" bin when nothing overlaps).
 CellBreakdown breakdown_cell(const StudyLabels& labels, const TableCell& cell, const BreakdownOptions& options);
 
 // A domain's picture size: study.yaml's image_size, else the first picture's, else {0, 0}.
