@@ -67,7 +67,8 @@ std::string study_figure_file(const Session& session, const ExportRequest& r, Fi
                                                                           : StudyLabels{session.study(), {}, {}, {}};
   const FontMetrics metrics(r.options.font_file.empty() ? default_font_file() : r.options.font_file);
   DisplayList fig(metrics);
-  const Provenance provenance = session_provenance(session);  // its table has no pairings to count
+  // Its table has no pairings to count: the session's edits, over the domain pairs the figure draws.
+  const Provenance provenance = session_provenance(session, study_figure_domain_pairs(session.study(), sr));
   const std::string title = draw_study_figure(fig, table, labels, sr, r.options, &provenance);
   return render_figure_file(fig, metrics, format, r.options.dpi, title);
 }

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <algorithm>
+#include <array>
 
 #include "ui/figures/figure_charts.h"
 #include "ui/figures/figure_gallery.h"
@@ -34,6 +35,26 @@ std::string pick_model(const CrossTable& t, const std::string& asked, const std:
   return t.models.front().name;
 }
 
+// The reference and the two renderers of a compare figure (defaults: the first three domains).
+std::array<std::string, 3> compare_domains(const Study& st, const StudyFigureRequest& r) {
+  if (st.domains.size() < 3 && (r.ref.empty() || r.a.empty() || r.b.empty()))
+    throw StudyError(st.root + ": compare needs three domains (a reference and two renderers)");
+  const std::string ref = r.ref.empty() ? st.domains[0].name : r.ref;
+  std::vector<std::string> others;
+  for (const auto& d : st.domains)
+    if (d.name != ref) others.push_back(d.name);
+  return {ref, r.a.empty() ? others.at(0) : r.a, r.b.empty() ? others.at(1) : r.b};
+}
+
+// The domain pair of a breakdown or gallery (defaults: the first domain and the next other one).
+std::pair<std::string, std::string> cell_domains(const Study& st, const StudyFigureRequest& r) {
+  if (st.domains.size() < 2)
+    throw StudyError(fmt::format("{}: a {} needs two domains, this study has one", st.root, r.kind));
+  const std::string a = r.a.empty() ? st.domains[0].name : r.a;
+  const std::string b = !r.b.empty() ? r.b : st.domains[0].name == a ? st.domains[1].name : st.domains[0].name;
+  return {a, b};
+}
+
 std::string draw_study_figure_body(DisplayList& fig, const CrossTable& t, const StudyLabels& labels,
                                    const StudyFigureRequest& r, const FigureOptions& o) {
   const Study& st = labels.study;
@@ -43,13 +64,7 @@ std::string draw_study_figure_body(DisplayList& fig, const CrossTable& t, const 
     return "IPD cross table";
   }
   if (r.kind == "compare") {
-    if (st.domains.size() < 3 && (r.ref.empty() || r.a.empty() || r.b.empty()))
-      throw StudyError(st.root + ": compare needs three domains (a reference and two renderers)");
-    const std::string ref = r.ref.empty() ? st.domains[0].name : r.ref;
-    std::vector<std::string> others;
-    for (const auto& d : st.domains)
-      if (d.name != ref) others.push_back(d.name);
-    const std::string a = r.a.empty() ? others.at(0) : r.a, b = r.b.empty() ? others.at(1) : r.b;
+    const auto [ref, a, b] = compare_domains(st, r);
     CompareOptions co;
     co.bootstrap = r.bootstrap;
     co.permutations = r.permutations;
@@ -69,10 +84,7 @@ std::string draw_study_figure_body(DisplayList& fig, const CrossTable& t, const 
     return "Per-scene IPD of " + model;
   }
   if (r.kind != "breakdown" && r.kind != "gallery") throw std::invalid_argument("not a study figure: '" + r.kind + "'");
-  if (st.domains.size() < 2)
-    throw StudyError(fmt::format("{}: a {} needs two domains, this study has one", st.root, r.kind));
-  const std::string a = r.a.empty() ? st.domains[0].name : r.a;
-  const std::string b = !r.b.empty() ? r.b : st.domains[0].name == a ? st.domains[1].name : st.domains[0].name;
+  const auto [a, b] = cell_domains(st, r);
   const std::string model = pick_model(t, r.model, a);
   const TableCell* cell = t.cell(model, a, b);
   if (!cell) throw StudyError(fmt::format("{}: no IPD({}, {}) for model {} in this study", st.root, a, b, model));
@@ -95,10 +107,21 @@ std::string draw_study_figure_body(DisplayList& fig, const CrossTable& t, const 
 
 }  // namespace
 
+DomainPairFilter study_figure_domain_pairs(const Study& st, const StudyFigureRequest& r) {
+  if (st.domains.empty()) return {};
+  if (r.kind == "compare") {
+    const auto [ref, a, b] = compare_domains(st, r);
+    return {{ref, a}, {ref, b}};
+  }
+  if (r.kind == "breakdown" || r.kind == "gallery") return {cell_domains(st, r)};
+  return {};
+}
+
 std::string draw_study_figure(DisplayList& fig, const CrossTable& t, const StudyLabels& labels,
                               const StudyFigureRequest& r, const FigureOptions& o, const Provenance* provenance) {
   const std::string title = draw_study_figure_body(fig, t, labels, r, o);
-  add_provenance(fig, provenance ? *provenance : table_provenance(t, labels), o);
+  add_provenance(fig,
+                 provenance ? *provenance : table_provenance(t, labels, study_figure_domain_pairs(labels.study, r)), o);
   return title;
 }
 
