@@ -36,6 +36,7 @@ int run(const std::string& kind, const StatsArgs& args) {
   r.a = args.a;
   r.b = args.b;
   r.bootstrap = loaded->bootstrap;
+  r.conf_threshold = loaded->conf_threshold;
   r.permutations = args.permutations;
   r.worst = args.worst;
   r.bins = args.bins;

@@ -61,6 +61,7 @@ std::string study_figure_file(const Session& session, const ExportRequest& r, Fi
   sr.a = r.kind == "compare" ? r.a : session.left_domain();
   sr.b = r.kind == "compare" ? r.b : session.right_domain();
   sr.bootstrap.seed = session.study().config.registration.seed;  // as `ipd table` without --seed
+  sr.conf_threshold = session.conf_threshold();
   CrossTable table = session_table(session);
   add_confidence_intervals(&table, sr.bootstrap, 1);
   const StudyLabels labels = r.kind == "breakdown" || r.kind == "gallery" ? thresholded_labels(session)

@@ -27,6 +27,12 @@ void require_number(const TableCell* c) {
         fmt::format("model '{}': IPD({}, {}) is not a number: {}", c->model, c->a, c->b, c->no_value_reason));
 }
 
+// "Predictions with conf ≥ 0.5." after a figure's note when the predictions were cut at a threshold.
+void add_threshold_note(std::string* note, const StudyFigureRequest& r) {
+  if (r.conf_threshold <= 0) return;
+  *note += fmt::format("{}Predictions with conf \u2265 {:g}.", note->empty() ? "" : " ", r.conf_threshold);
+}
+
 std::string pick_model(const CrossTable& t, const std::string& asked, const std::string& domain) {
   if (!asked.empty()) return asked;
   for (const auto& m : t.models)
@@ -60,7 +66,9 @@ std::string draw_study_figure_body(DisplayList& fig, const CrossTable& t, const 
   const Study& st = labels.study;
   if (st.domains.empty()) throw StudyError(st.root + ": the study has no domains");
   if (r.kind == "table") {
-    draw_table_figure(fig, table_figure_of(t, o.ci, r.bootstrap.level), o);
+    TableFigure table = table_figure_of(t, o.ci, r.bootstrap.level);
+    add_threshold_note(&table.note, r);
+    draw_table_figure(fig, table, o);
     return "IPD cross table";
   }
   if (r.kind == "compare") {
@@ -74,13 +82,17 @@ std::string draw_study_figure_body(DisplayList& fig, const CrossTable& t, const 
         require_number(t.cell(m.name, ref, a));
         require_number(t.cell(m.name, ref, b));
       }
-    draw_dot_whisker_chart(fig, compare_chart(t, r.models, ref, a, b, co), o);
+    DotWhiskerChart chart = compare_chart(t, r.models, ref, a, b, co);
+    add_threshold_note(&chart.footnote, r);
+    draw_dot_whisker_chart(fig, chart, o);
     return fmt::format("IPD({0}, {1}) - IPD({0}, {2})", ref, a, b);
   }
   if (r.kind == "distribution") {
     const std::string model = pick_model(t, r.model, st.domains.front().name);
     for (const auto& [a, b] : t.columns) require_number(t.cell(model, a, b));
-    draw_distribution_chart(fig, distribution_chart(t, model, r.worst), o);
+    DistributionChart chart = distribution_chart(t, model, r.worst);
+    add_threshold_note(&chart.footnote, r);
+    draw_distribution_chart(fig, chart, o);
     return "Per-scene IPD of " + model;
   }
   if (r.kind != "breakdown" && r.kind != "gallery") throw std::invalid_argument("not a study figure: '" + r.kind + "'");
@@ -101,7 +113,9 @@ std::string draw_study_figure_body(DisplayList& fig, const CrossTable& t, const 
   bo.bins = r.bins;
   bo.bootstrap = r.bootstrap;
   if (const std::string bad = bo.validate(); !bad.empty()) throw StudyError(bad);
-  draw_dot_whisker_chart(fig, breakdown_chart(breakdown_cell(labels, *cell, bo), bo.bootstrap.level), o);
+  DotWhiskerChart chart = breakdown_chart(breakdown_cell(labels, *cell, bo), bo.bootstrap.level);
+  add_threshold_note(&chart.footnote, r);
+  draw_dot_whisker_chart(fig, chart, o);
   return fmt::format("IPD({}, {}) by {}", a, b, o.by);
 }
 

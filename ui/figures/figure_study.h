@@ -27,6 +27,10 @@ struct StudyFigureRequest {
   int bins = 4;                     // breakdown by size or confidence
   int count = 8;                    // gallery: how many pairs
   GallerySort gallery_sort = GallerySort::kDiff;
+  // The confidence threshold the predictions were cut at (`--conf`, the studio's slider, else study.yaml's):
+  // above 0 the table, compare, distribution and breakdown say it under the figure, as the pairs figure's
+  // caption does ("conf ≥ 0.3"), since their numbers depend on it.
+  double conf_threshold = 0;
 };
 
 // Draws the figure into `out` (options.ci: the table's intervals; options.by: the breakdown's property) and
