@@ -9,6 +9,7 @@
 #include <cstdlib>
 
 #include "core/util/number_text.h"
+#include "core/util/study_inputs.h"
 
 namespace ipd::cli {
 
@@ -34,6 +35,13 @@ CLI::Validator seed_validator() {
         return parse_seed(s, &seed) ? std::string() : std::string("must be ") + kSeedRange + ", got " + s;
       },
       "SEED in [0, 2^64 - 1]", "seed");
+}
+
+bool output_is_study_input(const std::string& study, const std::string& out) {
+  if (out.empty()) return false;
+  const std::string problem = study_input_problem(study, out);
+  if (!problem.empty()) fmt::print(stderr, "error: {}\n", problem);
+  return !problem.empty();
 }
 
 bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines) {

@@ -31,6 +31,11 @@ std::vector<std::string> join_optional_values(int argc, char** argv);
 // a word; "--seed: must be a whole number from 0 to 18446744073709551615, got -5" instead.
 CLI::Validator seed_validator();
 
+// Prints "error: PATH: is one of the study's inputs (...)" and returns true when `out` (an --out) is one of
+// the study's inputs (core/util/study_inputs.h): said before the work, not after it. write_output_file refuses
+// it again when writing, for every caller.
+bool output_is_study_input(const std::string& study, const std::string& out);
+
 // A one-line progress indicator on stderr, only when stderr is a terminal.
 class Progress {
  public:

@@ -130,8 +130,9 @@ void print_comparisons_text(const std::vector<RendererComparison>& results, cons
   const bool all_exact =
       std::all_of(results.begin(), results.end(), [&](const auto& r) { return r.result.exact_p || !tested(r); });
   const std::string test =
-      all_exact ? std::string("exact: every swap pattern of the scenes")
-                : fmt::format("{} permutations, exact where 2^scenes ≤ that", grouped_thousands(co.permutations));
+      co.permutations == 0 ? std::string("not run (--permutations 0)")
+      : all_exact          ? std::string("exact: every swap pattern of the scenes")
+                  : fmt::format("{} permutations, exact where 2^scenes ≤ that", grouped_thousands(co.permutations));
   if (std::none_of(results.begin(), results.end(), tested))
     std::cout << "(intervals and tests need at least 2 scenes)\n";
   else

@@ -12,6 +12,7 @@
 #include "core/detect/yolo.h"
 #include "core/io/label_io.h"
 #include "core/picture/picture_codec.h"
+#include "core/study/file_sets.h"
 #include "core/study/study.h"
 #include "core/study/study_names.h"
 #include "core/util/contained_file.h"
@@ -51,7 +52,31 @@ struct Args {
   std::string input, onnx, out, model, detector = "yolo";
   YoloOptions yolo;
   int threads = 0;
+  bool replace = false;
 };
+
+// A folder the predictions go to, as write_file_beneath / remove_file_beneath take it.
+struct Target {
+  std::string root, relative;
+  std::string dir() const { return relative.empty() ? root : (fs::path(root) / relative).string(); }
+};
+
+// Refused before the first file is written: a folder that already holds label files takes this run's only with
+// --replace, as two runs' files would otherwise mix (the old run's file of a picture this run did not see stays).
+void check_targets(const std::vector<Target>& targets, bool replace) {
+  if (replace) return;
+  std::string held;
+  for (const Target& t : targets) {
+    const std::vector<std::string> files = label_files_in(t.dir());
+    if (files.empty()) continue;
+    held += fmt::format("{}{}: already holds {} label file{} (e.g. {})", held.empty() ? "" : "\n", t.dir(),
+                        files.size(), files.size() == 1 ? "" : "s", files.front());
+  }
+  if (!held.empty())
+    throw StudyError(held +
+                     "\nthe predictions of two runs would mix, so nothing is written (--replace replaces the whole "
+                     "set: the .txt files this run does not write are removed)");
+}
 
 void check_args(const Args& args) {
   if (args.threads < 0)
@@ -67,9 +92,12 @@ void check_args(const Args& args) {
     throw CLI::ValidationError("detect", "--onnx MODEL.onnx is required (or --detector classical)");
 }
 
-std::vector<Job> collect_jobs(const Args& args) {
+// The pictures to detect on, and the folders this run fills (PRED_DIR, or every domain's predictions/NAME, with
+// pictures or not: a replaced set is the model's predictions in the whole study).
+std::vector<Job> collect_jobs(const Args& args, std::vector<Target>* targets) {
   std::vector<Job> jobs;
   if (args.model.empty()) {
+    targets->push_back({args.out, ""});
     if (!fs::is_directory(args.input)) throw StudyError(args.input + ": no such directory of pictures");
     jobs = jobs_for_dir(args.input, args.out);
     if (jobs.empty()) throw StudyError(args.input + ": no pictures (png, jpg, tif, bmp, webp) in this directory");
@@ -78,6 +106,7 @@ std::vector<Job> collect_jobs(const Args& args) {
   const Study st = open_study(args.input);
   for (const auto& d : st.domains) {
     const fs::path relative = fs::path(d.name) / "predictions" / args.model;
+    targets->push_back({st.root, relative.string()});
     for (Job j : jobs_for_dir(fs::path(d.dir) / "images", fs::path(d.dir) / "predictions" / args.model)) {
       j.root = st.root;
       j.relative = (relative / fs::path(j.out).filename()).string();
@@ -92,7 +121,7 @@ std::vector<Job> collect_jobs(const Args& args) {
 
 // Runs the detector on every job, decoding the next batch in parallel while it works; the number of
 // pictures that could not be decoded.
-int detect_all(const std::vector<Job>& jobs, YoloDetector* yolo, int threads) {
+int detect_all(const std::vector<Job>& jobs, YoloDetector* yolo, int threads, std::set<std::string>* written) {
   Progress progress("detecting");
   int failed = 0;
   auto decode = [](const std::string& p) { return read_picture(p, cv::IMREAD_COLOR); };
@@ -122,6 +151,7 @@ int detect_all(const std::vector<Job>& jobs, YoloDetector* yolo, int threads) {
         write_labels(job.out, boxes, LabelKind::kPrediction);
       else
         write_file_beneath(job.root, job.relative, labels_text(boxes, LabelKind::kPrediction));
+      written->insert(job.root.empty() ? fs::path(job.out).filename().string() : job.relative);
       progress.update(static_cast<int>(start + k + 1), static_cast<int>(jobs.size()));
     }
   }
@@ -144,9 +174,14 @@ Runner add_detect_command(CLI::App& app) {
   cmd->add_option("--iou", args->yolo.iou, "NMS IoU threshold");
   cmd->add_option("--classes", args->yolo.classes, "Keep only these classes, e.g. 0,1")->delimiter(',');
   cmd->add_option("--threads", args->threads, "Picture decoding threads (default: all cores)");
+  cmd->add_flag(
+      "--replace", args->replace,
+      "Replace the label files a prediction folder already holds (those this run does not write are removed)");
   return [args]() -> int {
     check_args(*args);
-    const std::vector<Job> jobs = collect_jobs(*args);
+    std::vector<Target> targets;
+    const std::vector<Job> jobs = collect_jobs(*args, &targets);
+    check_targets(targets, args->replace);
     std::unique_ptr<YoloDetector> yolo;
     if (args->detector == "yolo") {
       yolo = std::make_unique<YoloDetector>(args->onnx, args->yolo);  // loaded once, layout checked
@@ -155,7 +190,17 @@ Runner add_detect_command(CLI::App& app) {
     }
     const int threads =
         std::max(1, args->threads > 0 ? args->threads : static_cast<int>(std::thread::hardware_concurrency()));
-    const int failed = detect_all(jobs, yolo.get(), threads);
+    std::set<std::string> written;
+    const int failed = detect_all(jobs, yolo.get(), threads, &written);
+    int removed = 0;
+    if (args->replace)
+      for (const Target& t : targets) {
+        std::set<std::string> keep;
+        for (const std::string& w : written)  // a file name in pictures mode, a path below the study in study mode
+          if (fs::path(w).parent_path() == fs::path(t.relative)) keep.insert(fs::path(w).filename().string());
+        removed += remove_files_not_kept(t.root, t.relative, keep, ".txt");
+      }
+    if (removed > 0) fmt::print("{} label file{} of the earlier run removed\n", removed, removed == 1 ? "" : "s");
     fmt::print("{} pictures, predictions written{}\n", jobs.size() - failed,
                failed ? fmt::format(", {} could not be decoded", failed) : "");
     return failed ? kBadInput : kOk;

@@ -27,6 +27,7 @@ Runner add_export_command(CLI::App& app) {
   rocks->add_flag("--unpaired", args->unpaired, "Also rows for unpaired rocks (partner fields empty)");
   rocks->add_option("--out", args->out, "Write to this file (atomically) instead of stdout");
   return [args]() -> int {
+    if (output_is_study_input(args->study.study, args->out)) return kBadInput;
     auto loaded = load_study_table(args->study, false);
     if (!loaded) return kBadInput;
     if (args->format == "json") require_utf8_names(loaded->labels.study);

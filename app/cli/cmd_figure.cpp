@@ -143,6 +143,7 @@ Runner add_figure_command(CLI::App& app) {
     if (*which != "pairs" && *which != "registration") return stats();
     ui::FigureOptions o;
     if (const int rc = figure_options(args->output, &o)) return rc;
+    if (output_is_study_input(args->study, args->output.out)) return kBadInput;
     return scene_figure(*which, *args, o);
   };
 }

@@ -24,6 +24,7 @@ struct StatsArgs {
 int run(const std::string& kind, const StatsArgs& args) {
   ui::FigureOptions o;
   if (const int rc = figure_options(args.output, &o)) return rc;
+  if (output_is_study_input(args.study.study, args.output.out)) return kBadInput;
   o.ci = args.study.ci_given;
   o.by = args.by;
   auto loaded = load_study_table(args.study, kind != "gallery");  // the gallery shows no intervals

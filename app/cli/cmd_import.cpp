@@ -19,6 +19,8 @@ Runner add_import_command(CLI::App& app) {
   cmd->add_option("--out", o->out_dir, "The domain directory to fill, e.g. STUDY/real")->required();
   cmd->add_option("--model", o->model, "Prediction set name for --results (default coco-results)");
   cmd->add_flag("--skip-bad-lines", o->skip_bad_entries, "Warn about malformed entries and skip them");
+  cmd->add_flag("--replace", o->replace,
+                "Replace the labels, pictures and this prediction set of a domain folder that already holds files");
   return [o]() -> int {
     const CocoImportReport r = import_coco(*o);
     if (!r.collisions.empty()) {
@@ -38,8 +40,14 @@ Runner add_import_command(CLI::App& app) {
     }
     if (!r.errors.empty())
       fmt::print(stderr, "warning: {} malformed entr{} skipped (--skip-bad-lines)\n", r.errors.size(), entries);
-    fmt::print("{} images, {} GT boxes, {} detections, {} classes, {} pictures linked -> {}\n", r.images, r.boxes,
-               r.detections, r.classes.size(), r.linked_images, o->out_dir);
+    for (const auto& m : r.other_prediction_sets)
+      fmt::print(stderr,
+                 "warning: {}/predictions/{}/ is kept as it was; its predictions are of the labels before "
+                 "this import\n",
+                 o->out_dir, m);
+    fmt::print("{} images, {} GT boxes, {} detections, {} classes, {} pictures linked -> {}{}\n", r.images, r.boxes,
+               r.detections, r.categories, r.linked_images, o->out_dir,
+               o->replace ? fmt::format(" ({} old files removed)", r.removed) : "");
     return kOk;
   };
 }

@@ -76,7 +76,7 @@ bool StudioApp::replay_view_action(const ReplayAction& a, ui::UiCommands* cmd) {
   if (a.verb == "wait") {
     replay_wait_ = std::atoi(a.args[0].c_str());
   } else if (a.verb == "conf") {
-    cmd->conf_threshold = std::strtof(a.args[0].c_str(), nullptr);
+    cmd->conf_threshold = std::strtod(a.args[0].c_str(), nullptr);  // as `ipd --conf` reads it: 0.3 is 0.3
   } else if (a.verb == "model") {
     // As `domains`: a name the study lacks fails the replay, rather than showing (and exporting) nothing.
     const auto& models = s.study().models;
@@ -133,6 +133,8 @@ bool StudioApp::replay_edit_action(const ReplayAction& a, ui::UiCommands* cmd) {
   } else if (a.verb == "exclude") {
     if (const int l = replay_rock(a, a.args[0], Side::kA); l >= 0)
       cmd->edits.push_back(Edit::toggle_exclude(Side::kA, l));
+  } else if (a.verb == "automatic") {
+    cmd->edits.push_back(Edit::reset());  // the "reset to automatic" button
   } else if (a.verb == "review") {
     cmd->toggle_reviewed = true;
   } else if (a.verb == "suspect") {

@@ -54,6 +54,7 @@ const std::map<std::string, VerbArguments>& replay_verbs() {
       {"pair", {2, "two rock numbers (left, right)"}},
       {"unpair", {1, "a left rock number"}},
       {"exclude", {1, "a left rock number"}},
+      {"automatic", {0, "nothing"}},
       {"undo", {0, "nothing"}},
       {"redo", {0, "nothing"}},
       {"rerun", {1, "a registration method"}},
@@ -88,7 +89,7 @@ void check_verb_and_count(const ReplayAction& a, Fail fail) {
   const auto it = replay_verbs().find(a.verb);
   if (it == replay_verbs().end())
     fail("unknown action '" + a.verb +
-         "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, undo, "
+         "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, automatic, undo, "
          "redo, rerun, export, screenshot, problems, problem, focus, rocks, select, list, gallery, review, suspect "
          "or check)");
   const bool export_with_kind = a.verb == "export" && a.args.size() == 2;

@@ -208,18 +208,24 @@ void keep_confident(LabelFile* file, double threshold) {
   file->line_of_box.resize(k);
 }
 
-std::string labels_text(const std::vector<Box>& boxes, LabelKind kind) {
+std::string labels_text(const std::vector<Box>& boxes, LabelKind kind, LabelDigits digits) {
   std::string text;
   for (const auto& b : boxes) {
-    text += fmt::format("{} {:.6f} {:.6f} {:.6f} {:.6f}", b.cls, b.cx, b.cy, b.w, b.h);
-    if (kind == LabelKind::kPrediction) text += fmt::format(" {:.4f}", b.conf);
+    if (digits == LabelDigits::kExact) {
+      // fmt's "{}" is the shortest decimal that reads back as the same double.
+      text += fmt::format("{} {} {} {} {}", b.cls, b.cx, b.cy, b.w, b.h);
+      if (kind == LabelKind::kPrediction) text += fmt::format(" {}", b.conf);
+    } else {
+      text += fmt::format("{} {:.6f} {:.6f} {:.6f} {:.6f}", b.cls, b.cx, b.cy, b.w, b.h);
+      if (kind == LabelKind::kPrediction) text += fmt::format(" {:.4f}", b.conf);
+    }
     text += '\n';
   }
   return text;
 }
 
-void write_labels(const std::string& path, const std::vector<Box>& boxes, LabelKind kind) {
-  write_file_atomically(path, labels_text(boxes, kind));
+void write_labels(const std::string& path, const std::vector<Box>& boxes, LabelKind kind, LabelDigits digits) {
+  write_file_atomically(path, labels_text(boxes, kind, digits));
 }
 
 }  // namespace ipd

@@ -64,8 +64,14 @@ void keep_class(LabelFile* file, int cls);
 void keep_confident(LabelFile* file, double threshold);
 
 // Boxes as YOLO txt lines (with confidence for predictions).
-std::string labels_text(const std::vector<Box>& boxes, LabelKind kind);
-// Writes labels_text(boxes, kind) to `path`, atomically.
-void write_labels(const std::string& path, const std::vector<Box>& boxes, LabelKind kind);
+// How labels_text writes numbers. kFixed: as detectors write them, 6 decimals for a box and 4 for a confidence
+// (`ipd detect`, the demo). kExact: the shortest decimal that reads back as the same double, for numbers given
+// in full elsewhere (`ipd import coco`'s scores and boxes): a score of 0.24996 written as 0.2500 passed
+// `--conf 0.25`, and two scores 0.50004 > 0.50001 written as equal changed AP's ranking.
+enum class LabelDigits { kFixed, kExact };
+std::string labels_text(const std::vector<Box>& boxes, LabelKind kind, LabelDigits digits = LabelDigits::kFixed);
+// Writes labels_text(boxes, kind, digits) to `path`, atomically.
+void write_labels(const std::string& path, const std::vector<Box>& boxes, LabelKind kind,
+                  LabelDigits digits = LabelDigits::kFixed);
 
 }  // namespace ipd

@@ -207,7 +207,11 @@ void add_cells(const StudyLabels& labels, const std::vector<bool>& shown, CrossT
         continue;
       }
       for (const auto& d : {a, b}) {
-        if (labels.has_predictions(d, model.name)) continue;
+        if (labels.has_predictions(d, model.name)) {
+          if (warned.insert(model.name + "\n" + d).second)
+            if (auto p = missing_prediction_files_problem(labels, model.name, d)) t->warnings.push_back(p->to_string());
+          continue;
+        }
         cell.missing_predictions = true;
         if (warned.insert(model.name + "\n" + d).second)
           t->warnings.push_back(missing_predictions_problem(study, model.name, d).to_string());

@@ -14,6 +14,7 @@
 #include <unordered_set>
 
 #include "core/registration/registration_cache.h"
+#include "core/util/number_text.h"
 #include "core/util/parallel.h"
 
 namespace fs = std::filesystem;
@@ -183,6 +184,29 @@ Problem missing_predictions_problem(const Study& study, const std::string& model
   p.domain = domain;
   p.message = fmt::format("model '{}' has no predictions for domain '{}' (expected {}/): its cells are empty", model,
                           domain, (fs::path(study.root) / domain / "predictions" / model).string());
+  return p;
+}
+
+std::optional<Problem> missing_prediction_files_problem(const StudyLabels& labels, const std::string& model,
+                                                        const std::string& domain) {
+  const Domain* d = labels.study.domain(domain);
+  if (!d || !labels.has_predictions(domain, model)) return std::nullopt;
+  // Only scenes some other domain has too: a scene without a counterpart is in no IPD (and said so already).
+  std::unordered_set<std::string> elsewhere;
+  for (const Domain& other : labels.study.domains)
+    if (other.name != domain) elsewhere.insert(other.stems.begin(), other.stems.end());
+  std::vector<std::string> missing;
+  for (const std::string& stem : d->stems)
+    if (elsewhere.count(stem) && !labels.predictions_of(domain, model, stem).exists) missing.push_back(stem);
+  if (missing.empty()) return std::nullopt;
+  Problem p;
+  p.domain = domain;
+  if (missing.size() == 1) p.scene = missing.front();
+  p.message = fmt::format(
+      "model '{}' has no prediction file for {} scene(s) of '{}' (in {}/), each read as a picture without "
+      "detections, as YOLOv5 writes no file for one: {}",
+      model, grouped_thousands(static_cast<long long>(missing.size())), domain,
+      (fs::path(labels.study.root) / domain / "predictions" / model).string(), first_three(missing));
   return p;
 }
 

@@ -73,6 +73,13 @@ std::vector<Problem> label_problems(const StudyLabels& labels);
 // A model without a predictions folder for a domain: its cells for that domain are empty.
 Problem missing_predictions_problem(const Study& study, const std::string& model, const std::string& domain);
 
+// Scenes of `domain` whose prediction file of `model` is missing although the model's folder is there: each is
+// read as a picture without detections (YOLOv5 writes no file for one), which can be right or a lost file, so
+// it is said once, with the count and the first scenes. Only scenes another domain has count (the rest are in
+// no IPD). Nothing when every such scene has its file.
+std::optional<Problem> missing_prediction_files_problem(const StudyLabels& labels, const std::string& model,
+                                                        const std::string& domain);
+
 // One scene's registration exactly as pair_study registers it (the study's aspect when `options` leave it at
 // 1.0; through `cache`, which may be null): for a hand-paired scene opened without it. `from_cache` may be null.
 RegistrationReport register_scene(const StudyLabels& labels, const std::string& a, const std::string& b,

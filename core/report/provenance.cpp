@@ -119,7 +119,11 @@ Provenance session_provenance(const Session& session, const DomainPairFilter& on
     if (!counts(only, pairs[c].first, pairs[c].second)) continue;
     const ReviewState& r = session.review_of(static_cast<int>(c));
     p.scenes_reviewed += r.reviewed_scenes;
-    p.pairs_checked += r.checked_pairs();
+    // Checks that are pairs now: one whose pair was edited away is kept in the file but does not apply.
+    const auto& scenes = session.scenes_of(static_cast<int>(c));
+    for (size_t k = 0; k < scenes.size() && k < r.checked.size(); ++k)
+      for (const auto& pair : r.checked[k])
+        p.pairs_checked += std::count(scenes[k].current.pairs.begin(), scenes[k].current.pairs.end(), pair) > 0;
   }
   p.label_fingerprint = label_set_fingerprint(session.study());
   return p;

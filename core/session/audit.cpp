@@ -76,4 +76,17 @@ std::vector<int> pair_numbers(const RockPairs& pairs, size_t rocks, bool left_si
   return number;
 }
 
+PairAuditIndex::PairAuditIndex(const SceneAudit& audit) {
+  for (const PairAudit& p : audit.pairs) {
+    if (p.a < 0) continue;
+    if (static_cast<size_t>(p.a) >= by_a_.size()) by_a_.resize(p.a + 1, nullptr);
+    by_a_[p.a] = &p;
+  }
+}
+
+const PairAudit* PairAuditIndex::find(int a, int b) const {
+  if (a < 0 || static_cast<size_t>(a) >= by_a_.size() || !by_a_[a] || by_a_[a]->b != b) return nullptr;
+  return by_a_[a];
+}
+
 }  // namespace ipd

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "core/study/fixed_pairs.h"
 #include "core/study/study.h"
 #include "core/util/contained_file.h"
 #include "core/util/errors.h"
@@ -22,9 +23,8 @@ constexpr int kMaxJsonDepth = 8;  // {"checked": [{"rock_a": [cx, ...]}]} needs 
 constexpr const char* kExpected =
     "{\"reviewed\": [scene, ...], \"checked\": [{\"scene\": s, \"rock_a\": [cx, cy, w, h], \"rock_b\": [...]}]}";
 
-bool same_box(const Box& b, const std::array<double, 4>& v) {
-  return b.cx == v[0] && b.cy == v[1] && b.w == v[2] && b.h == v[3];
-}
+// The rock's box, within the tolerance fixed pairs use (fixed_pairs.h: kSameRockTolerance).
+bool same_box(const Box& b, const std::array<double, 4>& v) { return same_rock_box(b, v[0], v[1], v[2], v[3]); }
 
 std::array<double, 4> parse_box(const nlohmann::json& j, const char* key, const std::string& file) {
   const bool numbers =
@@ -79,11 +79,14 @@ class ReviewParser {
     for (const auto& v : list) {
       const std::string stem = scene_name(v, "\"reviewed\"");
       const int k = scene_of(stem);
-      if (k < 0)
-        problem(stem, fmt::format("the review mark of scene {} is dropped: {} - {} has no such scene", describe_json(v),
-                                  a_, b_));
-      else if (!out_->state.reviewed[k])
+      if (k < 0) {
+        problem(stem, fmt::format("the review mark of scene {} does not apply now: {} - {} has no such scene (kept in "
+                                  "the file)",
+                                  describe_json(v), a_, b_));
+        out_->state.kept_reviewed.push_back(stem);
+      } else if (!out_->state.reviewed[k]) {
         out_->state.toggle_reviewed(k);
+      }
     }
   }
 
@@ -102,8 +105,10 @@ class ReviewParser {
       const auto box_a = parse_box(c["rock_a"], "rock_a", file_), box_b = parse_box(c["rock_b"], "rock_b", file_);
       const int k = scene_of(stem);
       if (k < 0) {
-        problem(stem, fmt::format("the check of a pair in scene {} is dropped: {} - {} has no such scene",
+        problem(stem, fmt::format("the check of a pair in scene {} does not apply now: {} - {} has no such scene "
+                                  "(kept in the file)",
                                   describe_json(c["scene"]), a_, b_));
+        out_->state.kept_checks.push_back({stem, box_a, box_b});
         continue;
       }
       // The pair of the scene's current pairs whose rocks have these boxes (identical boxes are the same rock).
@@ -114,10 +119,12 @@ class ReviewParser {
           found = true;
           break;
         }
-      if (!found)
-        problem(stem, fmt::format("the check of the pair {} | {} in scene {} is dropped: those rocks are no longer "
-                                  "a pair (look at it again)",
+      if (!found) {
+        problem(stem, fmt::format("the check of the pair {} | {} in scene {} does not apply now: those rocks are "
+                                  "not a pair now (kept in the file: it applies again when they are)",
                                   box_text(box_a), box_text(box_b), describe_json(c["scene"])));
+        out_->state.kept_checks.push_back({stem, box_a, box_b});
+      }
     }
   }
 
@@ -136,7 +143,24 @@ int ReviewState::checked_pairs() const {
 }
 
 bool ReviewState::empty() const {
-  return reviewed_scenes == 0 && std::all_of(checked.begin(), checked.end(), [](const auto& c) { return c.empty(); });
+  return reviewed_scenes == 0 && kept_reviewed.empty() && kept_checks.empty() &&
+         std::all_of(checked.begin(), checked.end(), [](const auto& c) { return c.empty(); });
+}
+
+bool ReviewState::apply_kept_checks(int scene, const std::string& stem, const std::vector<Box>& gt_a,
+                                    const std::vector<Box>& gt_b, const RockPairs& pairs) {
+  const size_t before = kept_checks.size();
+  auto applies = [&](const KeptCheck& k) {
+    if (k.scene != stem) return false;
+    for (const auto& [i, j] : pairs)
+      if (same_box(gt_a.at(i), k.rock_a) && same_box(gt_b.at(j), k.rock_b)) {
+        if (!is_checked(scene, i, j)) toggle_checked(scene, i, j);
+        return true;
+      }
+    return false;
+  };
+  kept_checks.erase(std::remove_if(kept_checks.begin(), kept_checks.end(), applies), kept_checks.end());
+  return kept_checks.size() != before;
 }
 
 bool ReviewState::is_checked(int scene, int a, int b) const {
@@ -185,21 +209,23 @@ std::string review_json(const ReviewState& state, const ReviewScenes& scenes) {
   j["checked"] = nlohmann::ordered_json::array();
   for (size_t k = 0; k < state.reviewed.size(); ++k)
     if (state.reviewed[k]) j["reviewed"].push_back(scenes.stems[k]);
+  for (const std::string& stem : state.kept_reviewed) j["reviewed"].push_back(stem);
+  auto check = [](const std::string& stem, const std::array<double, 4>& a, const std::array<double, 4>& b) {
+    nlohmann::ordered_json c;
+    c["scene"] = stem;
+    c["rock_a"] = a;
+    c["rock_b"] = b;
+    return c;
+  };
+  auto box = [](const Box& b) { return std::array<double, 4>{b.cx, b.cy, b.w, b.h}; };
   for (size_t k = 0; k < state.checked.size(); ++k) {
     const int scene = static_cast<int>(k);
-    const RockPairs& now = scenes.pairs(scene);
-    for (const auto& [a, b] : state.checked[k]) {
-      // A check of a pair since edited away is not written: it was about rocks that are no longer paired.
-      if (std::find(now.begin(), now.end(), std::make_pair(a, b)) == now.end()) continue;
-      const Box& ba = scenes.gt(scene, true).at(a);
-      const Box& bb = scenes.gt(scene, false).at(b);
-      nlohmann::ordered_json c;
-      c["scene"] = scenes.stems[k];
-      c["rock_a"] = {ba.cx, ba.cy, ba.w, ba.h};
-      c["rock_b"] = {bb.cx, bb.cy, bb.w, bb.h};
-      j["checked"].push_back(std::move(c));
-    }
+    // Also a check of a pair edited away since: the user's record, which applies again if the pair comes back.
+    for (const auto& [a, b] : state.checked[k])
+      j["checked"].push_back(
+          check(scenes.stems[k], box(scenes.gt(scene, true).at(a)), box(scenes.gt(scene, false).at(b))));
   }
+  for (const KeptCheck& c : state.kept_checks) j["checked"].push_back(check(c.scene, c.rock_a, c.rock_b));
   return dump_json_output(j) + "\n";
 }
 

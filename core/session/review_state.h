@@ -7,10 +7,14 @@
 //    "checked": [{"scene": "scene_0002", "rock_a": [0.41, 0.52, 0.05, 0.04], "rock_b": [0.43, 0.52, 0.05, 0.04]}]}
 //
 // A checked pair is stored by its two rocks' boxes (cx, cy, w, h, as fixed pairs store them: rows are not
-// stable when a label file is re-exported). When read, a check whose boxes are no longer a current pair of
-// its scene, and a mark of a scene the domain pair does not have, are dropped with a problem listed.
+// stable when a label file is re-exported). When read, a check whose boxes are not a current pair of its
+// scene, and a mark of a scene the domain pair does not have, do not apply now: a problem says so, and they
+// are kept as read and written back with the next save, so a temporary change (another registration
+// method, a typo in a label file) never deletes the user's record; they apply again once read when their
+// pair (or scene) is back.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -22,14 +26,28 @@
 
 namespace ipd {
 
+// A check read from the file that does not apply now (its rocks are not a pair of its scene, or the domain
+// pair has no such scene), kept as read.
+struct KeptCheck {
+  std::string scene;
+  std::array<double, 4> rock_a, rock_b;  // cx, cy, w, h
+};
+
 struct ReviewState {
   std::vector<char> reviewed;      // per scene of the domain pair (the Session's scene order)
   std::vector<RockPairs> checked;  // per scene: (index in A, index in B) of pairs judged correct, sorted
   int reviewed_scenes = 0;
+  // Marks of the file that do not apply now, written back as read (load_review's problems name them).
+  std::vector<std::string> kept_reviewed;  // scenes the domain pair does not have now
+  std::vector<KeptCheck> kept_checks;
 
   explicit ReviewState(size_t scenes = 0) : reviewed(scenes, 0), checked(scenes) {}
   int checked_pairs() const;  // over every scene
-  bool empty() const;         // nothing reviewed, nothing checked: no file is kept
+  bool empty() const;         // nothing reviewed, nothing checked, nothing kept: no file is kept
+  // The kept checks of scene `scene` (named `stem`) whose rocks are one of its (A, B) `pairs` now apply
+  // again: they become checks of those pairs. False when none did.
+  bool apply_kept_checks(int scene, const std::string& stem, const std::vector<Box>& gt_a, const std::vector<Box>& gt_b,
+                         const RockPairs& pairs);
   bool is_checked(int scene, int a, int b) const;
   // Toggles, returning the new state's value.
   bool toggle_reviewed(int scene);
@@ -48,7 +66,7 @@ std::string review_relative_path(const std::string& a, const std::string& b);
 
 struct ReviewRead {
   ReviewState state;
-  std::vector<Problem> problems;    // marks dropped: a scene not in the domain pair, a check not a current pair
+  std::vector<Problem> problems;    // marks kept that don't apply: a scene not in the domain pair, a check not a pair
   std::optional<std::string> text;  // the file as read (nullopt: none), for its DiskVersion
 };
 
@@ -58,8 +76,8 @@ struct ReviewRead {
 ReviewRead load_review(const std::string& study_root, const std::string& a, const std::string& b,
                        const ReviewScenes& scenes);
 
-// The file's text for `state`: reviewed scenes by stem, and every check that is a current pair of its
-// scene, by its rocks' boxes.
+// The file's text for `state`: reviewed scenes by stem, every check by its rocks' boxes (also one whose pair
+// was edited away since: it applies again if the pair comes back), then the kept marks as they were read.
 std::string review_json(const ReviewState& state, const ReviewScenes& scenes);
 
 }  // namespace ipd

@@ -127,6 +127,8 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
     for (const auto& d : st.domains)
       if (!labels_ref.has_predictions(d.name, m.name))
         problems.push_back(missing_predictions_problem(st, m.name, d.name));
+      else if (auto p = missing_prediction_files_problem(labels_ref, m.name, d.name))
+        problems.push_back(std::move(*p));
   problems_ = std::make_shared<const std::vector<Problem>>(std::move(problems));
   cached_ = paired.cached_registrations;
   if (!st.models.empty()) model_ = st.models.front().name;
@@ -357,7 +359,18 @@ void Session::recompute_performance() {
 }
 
 std::vector<Problem> Session::problems() const {
-  std::vector<Problem> out = *problems_;
+  std::vector<Problem> out;
+  // A stale pairs file discarded since opening ("reset to automatic" removed it) is no problem any more.
+  auto discarded = [this](const Problem& p) {
+    if (!p.unusable_pairs) return false;
+    for (size_t k = 0; k < pairs_.size(); ++k)
+      if (pairs_[k].first == p.domain && pairs_[k].second == p.other_domain)
+        for (const SceneState& s : scenes_[k])
+          if (s.stem == p.scene) return !s.pairs_unusable;
+    return false;
+  };
+  for (const Problem& p : *problems_)
+    if (!discarded(p)) out.push_back(p);
   out.insert(out.end(), threshold_problems_.begin(), threshold_problems_.end());
   return out;
 }

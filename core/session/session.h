@@ -83,8 +83,8 @@ struct SceneState {
   bool edited = false;  // current differs from automatic and is saved as fixed pairs
   bool fixed_on_disk = false;
   // Problems of the scene's pairs files found when the study was opened (rocks found again by their
-  // boxes, unusable hand pairs: then the automatic pairs count, `pairs_unusable`, and the file is kept
-  // until the scene is edited).
+  // boxes, unusable hand pairs: then the automatic pairs count, `pairs_unusable`, and the file is kept:
+  // edits of the scene are refused until the user resets it to automatic, which removes the file).
   std::vector<PairsProblem> pairs_problems;
   bool pairs_unusable = false;
   // What this window last read or wrote at pairs/<A>__<B>/<stem>.json and pairs/<B>__<A>/<stem>.json.
@@ -202,6 +202,9 @@ class Session {
   const CowVector<SceneIpd>& contributions_for(const std::string& model, int pair_index) const;
 
   // Edits of one scene; sides refer to the view (left = A unless swapped). Returns the save job.
+  // In a scene whose pairs file no longer matches its label files (SceneState::pairs_unusable) every edit
+  // but reset is refused with a StudyError naming the file (saving would overwrite the hand pairs with
+  // registration's); reset discards the file, the user's explicit choice.
   SaveJob apply(int scene, Edit edit);
   bool can_undo() const { return undo_pos_ > 0; }
   bool can_redo() const { return undo_pos_ < history_.size(); }
@@ -254,8 +257,11 @@ class Session {
   SaveJob review_job(int pair, const std::string& root) const;
   ReviewScenes review_scenes(int pair) const;
   void reload_review(int pair);
+  // A check kept from the review file (it did not apply when read) applies again once its rocks are a pair.
+  void apply_kept_checks(int pair, int scene);
   std::vector<Problem> load_reviews();  // every domain pair's review file; the marks dropped
   SaveJob set_scene(int pair, int scene, const FixedPairs& pairs, bool edited);
+  void refuse_stale_pairs_edit(int pair, int scene) const;
   SaveJob job_for(int pair, int scene, const std::string& root) const;
   void recompute_performance();
   void rebuild_totals();

@@ -138,6 +138,7 @@ SaveJob Session::set_scene(int pair, int scene, const FixedPairs& fp, bool edite
     t.unpaired_a += list[scene].unpaired_a;
     t.unpaired_b += list[scene].unpaired_b;
   }
+  apply_kept_checks(pair, scene);
   reaudit(pair, scene);
   last_scene_ = scene;
   SaveJob job = job_for(pair, scene, labels_->study.root);
@@ -147,7 +148,28 @@ SaveJob Session::set_scene(int pair, int scene, const FixedPairs& fp, bool edite
   return job;
 }
 
+void Session::refuse_stale_pairs_edit(int pair, int scene) const {
+  const SceneState& s = scenes_[pair][scene];
+  if (!s.pairs_unusable) return;
+  const auto it =
+      std::find_if(s.pairs_problems.begin(), s.pairs_problems.end(), [](const PairsProblem& p) { return p.unusable; });
+  const std::string file =
+      it != s.pairs_problems.end()
+          ? it->file
+          : (fs::path(labels_->study.root) / fixed_pairs_relative_path(pairs_[pair].first, pairs_[pair].second, s.stem))
+                .string();
+  const std::string why =
+      it != s.pairs_problems.end() ? it->why_unusable : "its stored rocks are not in the label files";
+  // The scene shows registration's pairs, so a save now would replace the hand pairs with them: refused.
+  throw StudyError(
+      fmt::format("{}: edit refused: this file's hand pairs no longer match the label files ({}), and saving the "
+                  "edit would overwrite them. To keep them, correct the label file and open the study again; to "
+                  "discard them and start from registration's pairs, use \"reset to automatic\" on scene \"{}\"",
+                  file, why, s.stem));
+}
+
 SaveJob Session::apply(int scene, Edit e) {
+  if (e.kind != Edit::Kind::kResetToAutomatic) refuse_stale_pairs_edit(pair_, scene);
   if (e.kind == Edit::Kind::kResetToAutomatic) register_scene(pair_, scene);  // the pairs it goes back to
   const SceneState& s = scenes_[pair_][scene];
   FixedPairs next = s.current;
@@ -192,7 +214,14 @@ SaveJob Session::apply(int scene, Edit e) {
   history_.truncate(undo_pos_);
   history_.push_back({pair_, scene, s.current, next, s.edited, edited, {}});
   ++undo_pos_;
-  return set_scene(pair_, scene, next, edited);
+  SaveJob job = set_scene(pair_, scene, next, edited);
+  if (e.kind == Edit::Kind::kResetToAutomatic) {
+    // The user discarded a pairs file that no longer applied: the job removes it, the scene is editable again.
+    SceneState& reset = scenes_[pair_].edit(scene);
+    reset.pairs_unusable = false;
+    reset.pairs_problems.clear();
+  }
+  return job;
 }
 
 std::optional<SaveJob> Session::undo() {

@@ -90,6 +90,19 @@ std::optional<SaveJob> Session::toggle_checked(int scene, int left, int right) {
   return job;
 }
 
+void Session::apply_kept_checks(int pair, int scene) {
+  const ReviewState& now = *reviews_[pair];
+  const std::string& stem = scenes_[pair][scene].stem;
+  if (std::none_of(now.kept_checks.begin(), now.kept_checks.end(), [&](const KeptCheck& k) { return k.scene == stem; }))
+    return;
+  const auto& [a, b] = pairs_[pair];
+  auto next = std::make_shared<ReviewState>(now);
+  // The file need not be saved for it: it holds the same checks, by the same boxes.
+  if (next->apply_kept_checks(scene, stem, labels_->gt_of(a, stem).boxes, labels_->gt_of(b, stem).boxes,
+                              scenes_[pair][scene].current.pairs))
+    reviews_[pair] = std::move(next);
+}
+
 void Session::reload_review(int pair) {
   const auto& [a, b] = pairs_[pair];
   ReviewRead read = load_review(labels_->study.root, a, b, review_scenes(pair));

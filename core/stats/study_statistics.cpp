@@ -138,8 +138,13 @@ std::string comparison_sentence(const RendererComparison& c, double alpha) {
     numbers += (r.p_value < 1e-4 ? std::string(", p < 0.0001") : fmt::format(", p = {:.2g}", r.p_value)) +
                (r.exact_p ? " (exact)" : "");
   numbers += fmt::format(", {} {}", r.scenes, r.scenes == 1 ? "scene" : "scenes");
+  // Without a test (no permutations asked for) there is no verdict either way: "no significant difference" would
+  // read as a tested null result, even when the interval excludes 0.
+  if (std::isnan(r.p_value))
+    return fmt::format("not tested whether {} or {} is closer to {} for {}: {} (no permutation test was run)", c.a, c.b,
+                       c.ref, c.model, numbers);
   const bool interval_excludes_zero = !r.delta.has_interval() || r.delta.low > 0 || r.delta.high < 0;
-  const bool significant = !std::isnan(r.p_value) && r.p_value < alpha && interval_excludes_zero;
+  const bool significant = r.p_value < alpha && interval_excludes_zero;
   if (!significant)
     return fmt::format("no significant difference between {} and {} in closeness to {} for {}: {}", c.a, c.b, c.ref,
                        c.model, numbers);

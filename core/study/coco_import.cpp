@@ -6,8 +6,10 @@
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <stdexcept>
 
+#include "core/study/file_sets.h"
 #include "core/study/study.h"
 #include "core/util/atomic_file.h"
 #include "core/util/json_input.h"
@@ -112,31 +114,35 @@ CocoImportReport import_coco(const CocoImportOptions& o) {
 
 namespace {
 
-// The "categories" array: YOLO class k is the k-th category by id, named by its "name" (or its id).
+// The "categories" array: each category's YOLO class is its own id, named by its "name" (or its id), so a
+// category has the same class number in every domain whatever else each file lists (numbered by rank, "rock"
+// id 2 was class 1 beside {1: shadow} and class 0 alone, and `rock_class` then picked different things).
 void read_categories(const json& gt, const std::string& file, std::map<long, int>* class_of,
                      std::vector<std::string>* classes) {
-  std::vector<std::pair<long, std::string>> cats;
   std::map<long, size_t> category_at;  // id -> its index in "categories"
   for (const auto& c : gt["categories"]) {
+    const size_t at = category_at.size();
     if (!c.is_object() || !c.contains("id") || !c["id"].is_number_integer())
       throw StudyError(fmt::format("{}: every category needs an integer \"id\", found {}", file, describe_json(c)));
+    const long id = c["id"].get<long>();
     if (c.contains("name") && !c["name"].is_string())
-      throw StudyError(fmt::format("{}: category {}: \"name\" must be a string, found {}", file, c["id"].get<long>(),
-                                   describe_json(c["name"])));
-    cats.emplace_back(c["id"].get<long>(), c.value("name", std::to_string(c["id"].get<long>())));
-    // YOLO class k is the k-th category by id: an id given twice would shift every class after it (so
-    // `rock_class: 0` would select another category), and which name it has would be a guess.
-    const auto [first, fresh] = category_at.emplace(cats.back().first, cats.size() - 1);
+      throw StudyError(
+          fmt::format("{}: category {}: \"name\" must be a string, found {}", file, id, describe_json(c["name"])));
+    if (id < 0 || id > kMaxCocoCategoryId)
+      throw StudyError(
+          fmt::format("{}: categories[{}]: category id {} is not a class number from 0 to {} (the "
+                      "category id becomes the YOLO class, one line of labels/classes.txt each)",
+                      file, at, id, kMaxCocoCategoryId));
+    // An id given twice would make one class two categories, and which name it has would be a guess.
+    const auto [first, fresh] = category_at.emplace(id, at);
     if (!fresh)
       throw StudyError(
           fmt::format("{}: categories[{}]: category id {} appears twice (also categories[{}]); every "
-                      "category needs its own id, since YOLO class numbers follow the ids",
-                      file, cats.size() - 1, cats.back().first, first->second));
-  }
-  std::sort(cats.begin(), cats.end());
-  for (size_t k = 0; k < cats.size(); ++k) {
-    (*class_of)[cats[k].first] = static_cast<int>(k);
-    classes->push_back(cats[k].second);
+                      "category needs its own id, since YOLO class numbers are the ids",
+                      file, at, id, first->second));
+    (*class_of)[id] = static_cast<int>(id);
+    if (classes->size() <= static_cast<size_t>(id)) classes->resize(id + 1);
+    (*classes)[id] = c.value("name", std::to_string(id));
   }
 }
 
@@ -225,14 +231,50 @@ struct BoxSink {
   }
 };
 
+// A domain folder that already holds files takes a new set only when the user asked to replace it.
+void check_out_dir(const CocoImportOptions& o) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(o.out_dir, ec);
+  if (!fs::exists(st)) return;
+  if (!fs::is_directory(fs::status(o.out_dir, ec)))
+    throw StudyError(o.out_dir + ": is not a folder; ipd import coco fills a domain folder");
+  if (fs::is_empty(o.out_dir, ec) && !ec) return;
+  if (o.replace) return;
+  throw StudyError(o.out_dir +
+                   ": already exists and is not an empty directory; its labels, pictures and predictions would mix "
+                   "with the imported ones, so nothing is written (--replace replaces them whole)");
+}
+
+// After a replace: the old set's files the import did not write again, removed; other prediction sets listed.
+void remove_old_set(const CocoImportOptions& o, const std::map<long, Image>& images, CocoImportReport* r) {
+  std::set<std::string> labels = {"classes.txt"}, pictures;
+  for (const auto& [id, img] : images) {
+    labels.insert(img.stem + ".txt");
+    if (!o.images_dir.empty()) pictures.insert(fs::path(img.file).filename().string());
+  }
+  r->removed += remove_files_not_kept(o.out_dir, "labels", labels, ".txt");
+  r->removed += remove_files_not_kept(o.out_dir, "images", pictures, "");
+  if (!o.results.empty())
+    r->removed += remove_files_not_kept(o.out_dir, (fs::path("predictions") / o.model).string(), labels, ".txt");
+  std::error_code ec;
+  const fs::path predictions = fs::path(o.out_dir) / "predictions";
+  for (const auto& e : fs::directory_iterator(predictions, ec)) {
+    const std::string name = e.path().filename().string();
+    if (o.results.empty() || name != o.model) r->other_prediction_sets.push_back(name);
+  }
+  std::sort(r->other_prediction_sets.begin(), r->other_prediction_sets.end());
+}
+
 // The study's label files, class names and pictures (hard links to the pictures the user named, or copies).
+// Scores and boxes are written in full (LabelDigits::kExact): they came as doubles and the thresholds and AP
+// of every command must see the same numbers pycocotools sees.
 void write_study(const CocoImportOptions& o, const std::map<long, Image>& images, CocoImportReport* r) {
   const fs::path out(o.out_dir);
   for (const auto& [id, img] : images) {
-    write_labels((out / "labels" / (img.stem + ".txt")).string(), img.gt, LabelKind::kGroundTruth);
+    write_labels((out / "labels" / (img.stem + ".txt")).string(), img.gt, LabelKind::kGroundTruth, LabelDigits::kExact);
     if (!o.results.empty())
       write_labels((out / "predictions" / o.model / (img.stem + ".txt")).string(), img.predictions,
-                   LabelKind::kPrediction);
+                   LabelKind::kPrediction, LabelDigits::kExact);
     const fs::path src = fs::absolute(fs::path(o.images_dir) / img.file);
     std::error_code ec;
     if (!o.images_dir.empty() && fs::exists(src, ec)) {
@@ -249,17 +291,25 @@ void write_study(const CocoImportOptions& o, const std::map<long, Image>& images
   std::string names;
   for (const auto& c : r->classes) names += c + "\n";
   write_file_atomically((out / "labels" / "classes.txt").string(), names);
+  if (o.replace) remove_old_set(o, images, r);
   r->written = true;
 }
 
 CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   CocoImportReport r;
+  check_out_dir(o);
   const json gt = parse_json_file(o.annotations, "a COCO object {\"images\": [...], \"annotations\": [...], ...}");
   for (const char* key : {"images", "annotations", "categories"})
     if (!gt.is_object() || !gt.contains(key) || !gt[key].is_array())
       throw StudyError(fmt::format("{}: expected a COCO object with an \"{}\" array", o.annotations, key));
   std::map<long, int> class_of;  // category id -> YOLO class
   read_categories(gt, o.annotations, &class_of, &r.classes);
+  r.categories = static_cast<int>(class_of.size());
+  if (const std::string conflict = class_name_conflict(o.out_dir, r.classes); !conflict.empty())
+    throw StudyError(
+        fmt::format("{}: {}; a class number must be the same category in every domain of a study "
+                    "(rock_class picks one number for all), so nothing is written",
+                    o.annotations, conflict));
   std::map<long, Image> images = read_images(gt, o.annotations, &r.errors);
   const BoxSink sink{&images, &class_of, &r};
   size_t k = 0;

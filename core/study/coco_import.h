@@ -9,6 +9,9 @@
 
 namespace ipd {
 
+// The largest category id the import takes: the id is the YOLO class, and labels/classes.txt has a line per class.
+constexpr long kMaxCocoCategoryId = 9999;
+
 struct CocoImportOptions {
   std::string annotations;  // COCO GT: images, annotations, categories
   std::string results;      // optional: [{image_id, category_id, bbox, score}, ...]
@@ -16,6 +19,10 @@ struct CocoImportOptions {
   std::string out_dir;      // the domain directory, e.g. STUDY/real
   std::string model = "coco-results";
   bool skip_bad_entries = false;
+  // A domain folder that already holds files is refused (nothing written) unless this is set; then its labels,
+  // pictures and the `model` prediction set are replaced whole: files of the old set the import does not
+  // write are removed, so two imports never mix.
+  bool replace = false;
 
   // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence.
   std::string validate() const;
@@ -25,16 +32,21 @@ struct CocoImportOptions {
 
 struct CocoImportReport {
   int images = 0, boxes = 0, detections = 0, linked_images = 0;
-  std::vector<std::string> classes;  // YOLO class k = k-th category by id
+  int categories = 0;
+  std::vector<std::string> classes;  // classes[k]: the name of category id k, the YOLO class k ("" for no category)
   std::vector<LabelError> errors;    // all of them; nothing is written when any is fatal
   // Images whose labels would overwrite each other's or the class names (same stem in two folders, an image
   // named classes.png): never skipped, nothing is written while there is one.
   std::vector<std::string> collisions;
   bool written = false;
+  int removed = 0;                                 // files of the replaced set the import did not write again
+  std::vector<std::string> other_prediction_sets;  // predictions/<model>/ folders a replace left as they were
 };
 
-// Throws IoError / StudyError for unreadable or structurally wrong files; entry-level problems are
-// collected in the report (all of them) and, unless skipped, prevent writing anything.
+// Throws IoError / StudyError for unreadable or structurally wrong files, for a domain folder that already
+// holds files (without `replace`) and for a class number a sibling domain's labels/classes.txt gives another
+// category name (naming both files); entry-level problems are collected in the report (all of them) and,
+// unless skipped, prevent writing anything.
 CocoImportReport import_coco(const CocoImportOptions& options);
 
 }  // namespace ipd

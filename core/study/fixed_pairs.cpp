@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -25,6 +26,11 @@ DiskVersion version_of(const std::optional<std::string>& contents) {
   return v;
 }
 
+bool same_rock_box(const Box& b, double cx, double cy, double w, double h) {
+  return std::abs(b.cx - cx) <= kSameRockTolerance && std::abs(b.cy - cy) <= kSameRockTolerance &&
+         std::abs(b.w - w) <= kSameRockTolerance && std::abs(b.h - h) <= kSameRockTolerance;
+}
+
 bool FixedPairsRead::unusable() const {
   return std::any_of(problems.begin(), problems.end(), [](const PairsProblem& p) { return p.unusable; });
 }
@@ -40,7 +46,11 @@ constexpr size_t kMaxListed = 4;   // rocks named in one message
 
 struct StoredBox {
   double cx, cy, w, h;
-  bool matches(const Box& b) const { return b.cx == cx && b.cy == cy && b.w == w && b.h == h; }
+  bool matches(const Box& b) const { return same_rock_box(b, cx, cy, w, h); }
+  // How far `b` is from this box: the largest difference of a coordinate.
+  double distance(const Box& b) const {
+    return std::max({std::abs(b.cx - cx), std::abs(b.cy - cy), std::abs(b.w - w), std::abs(b.h - h)});
+  }
 };
 
 // A rock index >= 0, without narrowing (4294967296 is not 0).
@@ -82,8 +92,9 @@ std::map<int, StoredBox> parse_rocks(const nlohmann::json& j, const char* key, c
   return out;
 }
 
-// Finds each referenced rock of a side with stored boxes: at its row if its box is still there, else at
-// the first free row with exactly its box (identical boxes are interchangeable rocks), else lost.
+// Finds each referenced rock of a side with stored boxes: at its row if its box is still there (within
+// kSameRockTolerance), else at the free row whose box is nearest to it within the tolerance, the first of
+// equals (identical boxes are interchangeable rocks), else lost.
 void bind_side(SideInFile* side, const std::set<int>& referenced, const char* key, const std::string& file) {
   const std::vector<Box>& gt = *side->gt;
   std::vector<char> claimed(gt.size(), 0);
@@ -101,8 +112,9 @@ void bind_side(SideInFile* side, const std::set<int>& referenced, const char* ke
   for (const int i : unplaced) {
     const StoredBox& want = side->stored->at(i);
     int found = -1;
-    for (size_t r = 0; r < gt.size() && found < 0; ++r)
-      if (!claimed[r] && want.matches(gt[r])) found = static_cast<int>(r);
+    for (size_t r = 0; r < gt.size(); ++r)
+      if (!claimed[r] && want.matches(gt[r]) && (found < 0 || want.distance(gt[r]) < want.distance(gt[found])))
+        found = static_cast<int>(r);
     if (found >= 0) {
       claimed[found] = 1;
       side->moved[i] = found;
@@ -140,22 +152,21 @@ std::optional<PairsProblem> binding_problem(const SideInFile& first, const SideI
     std::string what;
     for (const SideInFile* s : {&first, &second})
       if (!s->lost.empty()) what += (what.empty() ? "" : "; ") + lost_list(*s);
-    return PairsProblem{file, 0,
-                        "hand pairs not used (registration counts instead): a stored rock is no longer in its "
-                        "label file: " +
-                            what,
-                        true};
+    const std::string why = "a stored rock is no longer in its label file: " + what;
+    return PairsProblem{file, 0, "hand pairs not used (registration counts instead): " + why, true, why};
   }
   if (first.moved.empty() && second.moved.empty()) return std::nullopt;
   std::string what;
   for (const SideInFile* s : {&first, &second})
     if (!s->moved.empty()) what += (what.empty() ? "" : "; ") + moved_list(*s);
   const size_t n = first.moved.size() + second.moved.size();
-  return PairsProblem{file, 0,
+  return PairsProblem{file,
+                      0,
                       fmt::format("{} hand-paired rock(s) changed rows in their label files and were found again "
                                   "by their boxes: {}",
                                   n, what),
-                      false};
+                      false,
+                      {}};
 }
 
 struct ParsedFile {
@@ -292,8 +303,11 @@ FixedPairsRead load_fixed_pairs(const Study& study, const std::string& a, const 
     if (found) {
       // Both orders exist (e.g. a save interrupted before it removed the old name): the first one counts.
       out.problems.push_back(
-          {shown, 0,
-           fmt::format("ignored: {} holds this scene's pairs too and is read first; remove one", found_path)});
+          {shown,
+           0,
+           fmt::format("ignored: {} holds this scene's pairs too and is read first; remove one", found_path),
+           false,
+           {}});
       break;
     }
     SideInFile sa{a, study.label_path(a, stem), &gt_a, {}, {}, {}, {}};

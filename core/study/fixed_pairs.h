@@ -6,8 +6,9 @@
 // Indices are rock rows of the label files (the first index belongs to the first domain of the folder's
 // name). Each paired or excluded rock's box (cx, cy, w, h, the shortest decimals that read back to the
 // values in its label file) is stored with its index, so the pairs stay on the same rocks when a label file
-// is re-exported with its rows reordered: a rock no longer at its row is found again by exact box match
-// (and a warning says so); a rock no longer in its label file makes the scene's hand pairs unusable.
+// is re-exported with its rows reordered: a rock no longer at its row is found again by its box (and a
+// warning says so); a rock no longer in its label file makes the scene's hand pairs unusable. A box is the
+// same rock when it agrees within kSameRockTolerance (same_rock_box), far below what a label can tell apart.
 // Files without "rocks_a"/"rocks_b" (written before boxes were stored) are read by index and gain the
 // boxes on their next save.
 //
@@ -26,6 +27,16 @@ namespace ipd {
 
 struct Study;
 
+// How far a box may move and still be the same rock, in each of cx, cy, w, h (fractions of the picture).
+// Label files are written with 6 decimals (YOLO's own writer, `ipd demo`, most converters), so re-exporting
+// one, rounding its numbers through float32 (7 significant digits) or a tool that rounds the last digit the
+// other way moves a box by about 1e-6, which must not orphan the hand work stored by box. 1e-5 is ten units
+// of that last decimal: 0.02 pixels across a 1936-pixel picture, while a box edge drawn by hand is placed
+// to about a pixel, so two boxes this close are one rock, never two neighbours.
+constexpr double kSameRockTolerance = 1e-5;
+// True when `b` and (cx, cy, w, h) differ by at most kSameRockTolerance in every coordinate.
+bool same_rock_box(const Box& b, double cx, double cy, double w, double h);
+
 // Hand-fixed pairs for one image pair, oriented as (index in A, index in B).
 struct FixedPairs {
   RockPairs pairs;
@@ -41,6 +52,7 @@ struct PairsProblem {
   // The scene's hand pairs are not used (a stored rock is in neither label file row): registration counts
   // instead, and `ipd table` exits 1 unless --skip-bad-lines. False: a warning (rocks found again).
   bool unusable = false;
+  std::string why_unusable;  // when unusable: what no longer matches ("a stored rock is no longer in ...")
   std::string to_string() const { return file + ": " + message; }
 };
 

@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "core/util/study_inputs.h"
+
 namespace ipd {
 
 namespace {
@@ -249,6 +251,7 @@ std::optional<std::string> path_below(const std::string& root, const std::string
 }
 
 void write_output_file(const std::string& root, const std::string& path, const std::string& contents) {
+  if (const std::string input = study_input_problem(root, path); !input.empty()) throw IoError(input);
   if (const auto rel = path_below(root, path)) {
     std::error_code ec;
     write_file_beneath(std::filesystem::canonical(root, ec).string(), *rel, contents);

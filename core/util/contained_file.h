@@ -26,7 +26,9 @@ void write_file_beneath(const std::string& root, const std::string& relative, co
 // not resolved, which is the point (a link there must not say where a file goes).
 std::optional<std::string> path_below(const std::string& root, const std::string& path);
 
-// Writes `path` atomically: below `root` (a study) as write_file_beneath writes, so a link the study holds
+// Writes `path` atomically, refusing (IoError, nothing written) a path that is one of the study's inputs
+// (study_input_problem, core/util/study_inputs.h): below `root` (a study) as write_file_beneath writes, so a link the
+// study holds
 // (`figures -> /elsewhere`) is refused, never written through; anywhere else it is the user's own path
 // (write_file_atomically: a link the user made there is resolved).
 void write_output_file(const std::string& root, const std::string& path, const std::string& contents);

@@ -437,7 +437,7 @@ TEST(InputChecks, CocoImagesWhoseLabelsWouldCollideAreRefusedByName) {
   r = import_coco(coco_options(d));
   EXPECT_TRUE(r.collisions.empty());
   EXPECT_TRUE(r.written);
-  EXPECT_EQ(slurp(d / "study/real/labels/0002.txt"), "0 0.600000 0.600000 0.200000 0.200000\n");
+  EXPECT_EQ(slurp(d / "study/real/labels/0002.txt"), "3 0.6 0.6 0.2 0.2\n");
 }
 
 // A box under a millionth of the image a side was written as "0.000000", which ipd then refused in every command:
@@ -475,11 +475,11 @@ TEST(InputChecks, CocoSkippedEntriesAreWarningsAndTheImportSaysItWrote) {
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_EQ(r.err, "warning: " + entry + "\nwarning: 1 malformed entry skipped (--skip-bad-lines)\n");
   EXPECT_EQ(r.out, "1 images, 1 GT boxes, 0 detections, 1 classes, 0 pictures linked -> " + d / "study/real" + "\n");
-  EXPECT_EQ(slurp(d / "study/real/labels/a.txt"), "0 0.275000 0.300000 0.050000 0.100000\n");
+  EXPECT_EQ(slurp(d / "study/real/labels/a.txt"), "3 0.275 0.3 0.05 0.1\n");
 }
 
-// Categories 3 and 3 (and 7) made classes 0, 1, 2 with class_of[3] = 1: the rocks became class 1 and
-// `rock_class: 0` dropped them all.
+// Categories 3 and 3 (and 7): which name class 3 has would be a guess (numbered by rank they made classes 0,
+// 1, 2 with class_of[3] = 1, and `rock_class: 0` dropped every rock).
 TEST(InputChecks, CocoDuplicateCategoryIdIsAnError) {
   test::TempDir d;
   test::write_text(
@@ -492,7 +492,7 @@ TEST(InputChecks, CocoDuplicateCategoryIdIsAnError) {
   } catch (const StudyError& e) {
     EXPECT_EQ(std::string(e.what()), d / "ann.json" +
                                          ": categories[2]: category id 3 appears twice (also categories[0]); every "
-                                         "category needs its own id, since YOLO class numbers follow the ids");
+                                         "category needs its own id, since YOLO class numbers are the ids");
   }
   EXPECT_FALSE(fs::exists(d / "study"));
 }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 
 #include "core/session/session.h"
 #include "core/util/atomic_file.h"
@@ -209,6 +210,56 @@ TEST(StudioReplay, FailedSavesAndExportsMakeTheReplayFail) {
   EXPECT_EQ(err.find("could not open the study"), std::string::npos) << err;
 }
 
+// Adds `by` to every box's cx in a label file (written with 6 decimals, as the demo writes them).
+void shift_boxes(const std::string& file, double by) {
+  std::istringstream in(read_file(file));
+  std::string out;
+  int cls = 0;
+  double cx = 0, cy = 0, w = 0, h = 0;
+  while (in >> cls >> cx >> cy >> w >> h)
+    out += fmt::format("{} {:.6f} {:.6f} {:.6f} {:.6f}\n", cls, cx + by, cy, w, h);
+  test::write_text(file, out);
+}
+
+// A pairs file is the user's work. A box moved by 1e-6 (a re-export) is the same rock: the next edit keeps
+// every hand decision. A rock really moved makes the file stale: an edit of the scene is refused, the replay
+// exits 1 naming the file, and the file is untouched until `automatic` discards it.
+TEST(StudioReplay, AStalePairsFileIsNeverOverwrittenByAnEdit) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd(fmt::format("demo {} --labels-only --scenes 2 --rocks 8", d / "study")).exit_code, 0);
+  auto replay = [&](const std::string& actions) {
+    test::write_text(d / "actions.txt", actions);
+    const std::string cmd = fmt::format("XDG_CACHE_HOME={} timeout 120 {} {} --replay {}", d / "cache", studio,
+                                        d / "study", d / "actions.txt");
+    return run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path());
+  };
+  const std::string pairs = d / "study/pairs/real__principled/scene_00001.json";
+  const std::string labels = d / "study/principled/labels/scene_00001.txt";
+  ASSERT_EQ(replay("scene scene_00001\nunpair 1\nexclude 2\n"), 0) << read_file(d / "err.txt");
+  shift_boxes(labels, 1e-6);
+  ASSERT_EQ(replay("scene scene_00001\nexclude 3\n"), 0) << read_file(d / "err.txt");
+  {
+    Session s = Session::open(d / "study");
+    ASSERT_TRUE(s.select_domains("real", "principled"));
+    const SceneState& scene = s.scenes()[s.scene_index("scene_00001")];
+    EXPECT_TRUE(scene.edited);
+    EXPECT_EQ(scene.current.excluded_a, (std::vector<int>{1, 2}));
+    for (const auto& p : scene.current.pairs) EXPECT_NE(p.first, 0);  // left rock 1 still unpaired
+  }
+  shift_boxes(labels, 0.01);
+  const std::string before = read_file(pairs);
+  EXPECT_EQ(replay("scene scene_00001\npair 1 1\n"), 1);
+  EXPECT_EQ(read_file(pairs), before);
+  const std::string err = read_file(d / "err.txt");
+  EXPECT_NE(err.find("error: replay " + d / "actions.txt" + ": failed: " + pairs + ": edit refused: "),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(replay("scene scene_00001\nautomatic\n"), 0) << read_file(d / "err.txt");
+  EXPECT_FALSE(fs::exists(pairs));
+}
+
 TEST(StudioReplay, ProblemsTheCliReportsArePrintedOnStderr) {
   const char* studio = std::getenv("IPD_STUDIO");
   if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
@@ -235,6 +286,31 @@ TEST(StudioReplay, ProblemsTheCliReportsArePrintedOnStderr) {
                      "scene_00003\n"),
             std::string::npos)
       << err;
+}
+
+// A prediction whose confidence is exactly the threshold is kept, in the studio as by `ipd --conf`: "conf 0.3"
+// is 0.3, not the float 0.30000001 that dropped synth's prediction (IPD 0.5 instead of 0).
+TEST(StudioReplay, AThresholdKeepsAPredictionAtExactlyThatConfidenceAsTheCliDoes) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  const fs::path study = d / "study";
+  for (const std::string domain : {"real", "synth"})
+    test::write_text(study / domain / "labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+  test::write_text(study / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n");
+  test::write_text(study / "synth/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.3\n");
+  test::write_text(d / "actions.txt", "conf 0.3\nwait 3\nexport table " + d / "gui.svg\n");
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, study.string(), d / "actions.txt");
+  ASSERT_EQ(run_in_xvfb(cmd, fmt::format(">{} 2>&1", d / "log.txt"), d.path()), 0) << read_file(d / "log.txt");
+  const auto cli = test::run_ipd("figure table " + study.string() + " --conf 0.3 --out " + d / "cli.svg");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  // The cell's number in both: 0.0000 (both rocks score alike); 0.5000 had synth's prediction been dropped.
+  for (const std::string file : {"gui.svg", "cli.svg"}) {
+    const std::string svg = read_file(d / file);
+    EXPECT_NE(svg.find(">0.0000</text>"), std::string::npos) << file;
+    EXPECT_EQ(svg.find(">0.5000</text>"), std::string::npos) << file;
+  }
 }
 
 // Two scenes: s1 as write_two_rock_study (pairs with |diff| 2/3 and 0), s2 with both sides' predictions on

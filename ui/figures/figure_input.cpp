@@ -107,7 +107,10 @@ SceneFigureInput scene_input_from_session(const Session& s, int scene) {
   in.label_fingerprint = label_set_fingerprint(st);
   const ReviewState& review = s.review_of(s.pair_index());
   in.reviewed = review.reviewed.at(scene) != 0;
-  in.pairs_checked = static_cast<int>(review.checked.at(scene).size());
+  // Checks that are pairs now (one whose pair was edited away is kept, but does not apply).
+  const RockPairs& now = state.current.pairs;
+  for (const auto& p : review.checked.at(scene))
+    in.pairs_checked += std::find(now.begin(), now.end(), p) != now.end() ? 1 : 0;
   return in;
 }
 

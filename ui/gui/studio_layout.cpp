@@ -70,6 +70,8 @@ std::string counted(long n, const char* singular, const char* plural) {
 
 std::string thousands(long long n) { return grouped_thousands(n); }
 
+double conf_slider_value(double v) { return std::clamp(std::round(v * 100), 0.0, 100.0) / 100; }
+
 std::string fixed(double v, int decimals) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", decimals, v);

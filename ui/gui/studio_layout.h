@@ -45,5 +45,8 @@ std::string counted(long n, const char* singular, const char* plural = nullptr);
 std::string thousands(long long n);
 // A fixed-point number that never reads "-0.000": a value that rounds to zero prints unsigned.
 std::string fixed(double v, int decimals);
+// The confidence threshold a slider position sets: the two-decimal number the slider shows, as `--conf` and
+// study.yaml would read it (0.3, not the 0.30000001 a float slider holds, which would drop predictions at 0.3).
+double conf_slider_value(double v);
 
 }  // namespace ipd::ui

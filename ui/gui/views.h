@@ -91,7 +91,7 @@ struct UiState {
   // The re-run's time budget in ms: < 0 until edited (then study.yaml's registration.budget_ms is used), 0: none.
   float rerun_budget_ms = -1;
   bool rerun_discarded = false;
-  float conf_threshold = 0.0f;
+  double conf_threshold = 0.0;  // as the slider shows it (conf_slider_value)
   char save_as_dir[512] = "";
   std::string status;
   std::vector<int> order;  // browser_order(), recomputed by the app only when its inputs change
@@ -131,7 +131,7 @@ struct UiCommands {
   bool undo = false, redo = false;
   int goto_scene = -1;
   std::string left_domain, right_domain, model;
-  float conf_threshold = -1;
+  double conf_threshold = -1;
   bool rerun_registration = false;
   bool save_as = false;
   bool export_figures = false;  // Fig. 1 and Fig. 2 of the current view, through `ipd figure`

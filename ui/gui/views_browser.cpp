@@ -196,7 +196,9 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
     }
     ImGui::EndCombo();
   }
-  if (ImGui::SliderFloat("conf >=", &ui.conf_threshold, 0.0f, 1.0f, "%.2f")) out.conf_threshold = ui.conf_threshold;
+  const double lowest = 0, highest = 1;
+  if (ImGui::SliderScalar("conf >=", ImGuiDataType_Double, &ui.conf_threshold, &lowest, &highest, "%.2f"))
+    out.conf_threshold = ui.conf_threshold = conf_slider_value(ui.conf_threshold);
   ImGui::SetNextItemWidth(-1);
   ImGui::InputTextWithHint("##filter", "filter: text, ipd>0.1, suspect, unreviewed", ui.filter, sizeof ui.filter);
   if (!ui.filter_error.empty()) ImGui::TextColored({1, 0.5f, 0.3f, 1}, "%s", ui.filter_error.c_str());

@@ -269,12 +269,11 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   if (!step) {
     // The final pairs: green when the aligned centres agree, orange for suspect pairs.
     const RockPairs& pairs = have_rerun ? v.rerun->pairs : sc.current.pairs;
-    const SceneAudit& audit = s.audit(ui.scene);
+    const PairAuditIndex audit_of(s.audit(ui.scene));
     for (const auto& [i, j] : pairs) {
       if (i >= (int)pa.size() || j >= (int)pb.size()) continue;
-      bool suspect = false;
-      for (const auto& p : audit.pairs)
-        if (p.a == i && p.b == j) suspect = p.suspect;
+      const PairAudit* audit = audit_of.find(i, j);
+      const bool suspect = audit && audit->suspect;
       dl->AddLine(pa[i], pb[j], suspect ? kSuspect : IM_COL32(90, 220, 120, 200), 1.5f);
     }
   }

@@ -276,16 +276,15 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
     bool excluded;  // out of the IPD: listed last, its |diff| not shown as counted
   };
   const SceneAudit& audit = s.audit(ui.scene);
+  const PairAuditIndex audit_of(audit);
   std::vector<Row> rows;
   for (const auto& [l, r] : s.view_pairs(ui.scene)) {
     Row row{l,
             r,
             l < (int)pl.size() ? pl[l] : 0.0,
             r < (int)pr.size() ? pr[r] : 0.0,
-            nullptr,
+            s.swapped() ? audit_of.find(r, l) : audit_of.find(l, r),
             s.excluded(Side::kA, ui.scene, l) || s.excluded(Side::kB, ui.scene, r)};
-    for (const auto& p : audit.pairs)
-      if ((s.swapped() ? p.b : p.a) == l && (s.swapped() ? p.a : p.b) == r) row.audit = &p;
     rows.push_back(row);
   }
   // Suspect pairs first, then by |difference|: what an audit looks at.

@@ -11,6 +11,7 @@
 #include "core/detect/yolo.h"
 #include "core/study/coco_import.h"
 #include "core/study/study.h"
+#include "core/util/atomic_file.h"
 #include "tests/support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -179,6 +180,41 @@ TEST(Detect, AStudysLinkedPredictionsFolderIsNotWrittenThrough) {
   EXPECT_FALSE(fs::exists(d / "study/real/up"));
 }
 
+// A detector run into a folder of label files replaced them without a word: GT labels by predictions
+// (pictures mode, --out STUDY/real/labels), or a model's predictions by a second run that kept the first run's
+// files of pictures it did not see, mixing two runs. Refused, nothing written; --replace replaces the set whole.
+TEST(Detect, AFolderThatHoldsLabelFilesIsReplacedOnlyWhenAskedAndThenWhole) {
+  test::TempDir d;
+  for (const std::string dom : {"real", "synth"}) {
+    test::write_text(d / ("study/" + dom + "/labels/a.txt"), "0 0.5 0.5 0.1 0.1\n");
+    fs::create_directories(d / ("study/" + dom + "/images"));
+    cv::imwrite(d / ("study/" + dom + "/images/a.png"), cv::Mat(200, 300, CV_8UC3, cv::Scalar(9, 9, 9)));
+  }
+  const std::string mix =
+      "the predictions of two runs would mix, so nothing is written (--replace replaces the whole set: the .txt "
+      "files this run does not write are removed)\n";
+  auto r = test::run_ipd("detect " + d / "study/real/images --detector classical --out " + d / "study/real/labels");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: " + d / "study/real/labels" + ": already holds 1 label file (e.g. a.txt)\n" + mix);
+  EXPECT_EQ(read_file(d / "study/real/labels/a.txt"), "0 0.5 0.5 0.1 0.1\n");
+
+  const std::string run = "detect " + d / "study" + " --detector classical --model classical";
+  ASSERT_EQ(test::run_ipd(run).exit_code, 0);
+  test::write_text(d / "study/real/predictions/classical/gone.txt", "0 0.5 0.5 0.1 0.1 0.9\n");
+  test::write_text(d / "study/synth/predictions/classical/notes.md", "mine");
+  r = test::run_ipd(run);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: " + d / "study/real/predictions/classical" + ": already holds 2 label files (e.g. a.txt)\n" +
+                       d / "study/synth/predictions/classical" + ": already holds 1 label file (e.g. a.txt)\n" + mix);
+  EXPECT_TRUE(fs::exists(d / "study/real/predictions/classical/gone.txt"));
+  r = test::run_ipd(run + " --replace");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "1 label file of the earlier run removed\n2 pictures, predictions written\n");
+  EXPECT_FALSE(fs::exists(d / "study/real/predictions/classical/gone.txt"));
+  EXPECT_TRUE(fs::exists(d / "study/real/predictions/classical/a.txt"));
+  EXPECT_EQ(read_file(d / "study/synth/predictions/classical/notes.md"), "mine");  // not a label file
+}
+
 // A picture that is a FIFO got no predictions and no word ("17 pictures, predictions written"): its scene then
 // read as "nothing detected". An error naming it, and nothing written.
 TEST(Detect, APictureThatIsNotARegularFileIsAnError) {
@@ -209,15 +245,17 @@ TEST(CocoImport, GroundTruthAndResultsToTheStudyLayout) {
   o.out_dir = d / "study/real";
   const CocoImportReport r = import_coco(o);
   ASSERT_TRUE(r.errors.empty()) << r.errors[0].to_string();
-  EXPECT_EQ(r.classes, (std::vector<std::string>{"rock", "shadow"}));  // by category id: 3, 7
+  // The class is the category id, whatever else the file lists; unused numbers have no name.
+  EXPECT_EQ(r.classes, (std::vector<std::string>{"", "", "", "rock", "", "", "", "shadow"}));
+  EXPECT_EQ(r.categories, 2);
   EXPECT_EQ(r.linked_images, 1);
   const LabelFile a = read_labels(d / "study/real/labels/a.txt", {});
   ASSERT_EQ(a.boxes.size(), 2u);
-  EXPECT_EQ(a.boxes[0].cls, 0);
+  EXPECT_EQ(a.boxes[0].cls, 3);
   EXPECT_DOUBLE_EQ(a.boxes[0].cx, 0.3);  // (50 + 10) / 200
   EXPECT_DOUBLE_EQ(a.boxes[0].cy, 0.3);  // (25 + 5) / 100
   EXPECT_DOUBLE_EQ(a.boxes[0].w, 0.1);
-  EXPECT_EQ(a.boxes[1].cls, 1);
+  EXPECT_EQ(a.boxes[1].cls, 7);
   EXPECT_TRUE(fs::exists(d / "study/real/labels/b.txt"));  // an image without rocks
   const LabelFile p = read_labels(d / "study/real/predictions/coco-results/a.txt", {LabelKind::kPrediction});
   ASSERT_EQ(p.boxes.size(), 1u);

@@ -1,10 +1,12 @@
 // IPD of a tiny hand-made study, worked out by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/ipd/ipd.h"
 #include "core/report/table_format.h"
+#include "core/session/session.h"
 #include "core/util/atomic_file.h"
 #include "tests/support/test_support.h"
 
@@ -50,6 +52,29 @@ TEST(Ipd, TinyStudyWorkedByHand) {
     ASSERT_EQ(t.warnings.size(), 1u);
     EXPECT_EQ(t.warnings[0], "1 scene(s) of 'real' have no counterpart in 'synth' and are skipped: only_real");
   }
+}
+
+// synth's prediction file of s2 is missing while its folder holds s1's: s2 reads as a picture without
+// detections (real's exact hit on s2's rock against nothing: |1 - 0|), which YOLOv5 would write that way too, so
+// the table counts it and says so, as the studio's Problems list does.
+TEST(Ipd, AMissingPredictionFileIsSaidNotSilentlyReadAsNoDetections) {
+  test::TempDir d;
+  write_tiny_study(d);
+  test::write_text(d / "real/labels/s2.txt", "0 0.4 0.4 0.1 0.1\n");
+  test::write_text(d / "synth/labels/s2.txt", "0 0.4 0.4 0.1 0.1\n");
+  test::write_text(d / "real/predictions/det/s2.txt", "0 0.4 0.4 0.1 0.1 0.9\n");
+  const CrossTable t = table_of(d.path());
+  ASSERT_EQ(t.cells.size(), 1u);
+  EXPECT_NEAR(t.cells[0].ipd, (2.0 / 3 + 1.0 / 3 + 1) / 3, 1e-12);
+  const std::string said = "model 'det' has no prediction file for 1 scene(s) of 'synth' (in " +
+                           d / "synth/predictions/det" +
+                           "/), each read as a picture without detections, as YOLOv5 writes no file for one: s2";
+  ASSERT_EQ(t.warnings.size(), 2u);
+  EXPECT_EQ(t.warnings[1], said);
+  const Session s(load_labels(open_study(d.path())));
+  const auto& problems = s.problems();
+  EXPECT_EQ(std::count_if(problems.begin(), problems.end(), [&](const Problem& p) { return p.to_string() == said; }),
+            1);
 }
 
 TEST(Ipd, ConfidenceThresholdDropsWeakPredictions) {

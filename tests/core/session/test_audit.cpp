@@ -51,6 +51,23 @@ TEST(Audit, ResidualIouSizeRatioAndSuspectsByHand) {
 // floor of 0.0125 x 1000 = 12.5 px: a pairing rule with that floor pairs such a near miss, so the audit with
 // the same floor does not call it "no overlap". 13 px apart they are beyond the floor and are. (The residual
 // rule is held off by a large factor; the default floor is 0, as the pairing rule's.)
+TEST(Audit, APairsAuditIsFoundByItsTwoRocks) {
+  SceneAudit audit;
+  for (const auto& [a, b] : RockPairs{{0, 2}, {3, 1}, {1, 0}}) {
+    PairAudit p;
+    p.a = a, p.b = b;
+    audit.pairs.push_back(p);
+  }
+  const PairAuditIndex index(audit);
+  EXPECT_EQ(index.find(1, 0), &audit.pairs[2]);
+  EXPECT_EQ(index.find(3, 1), &audit.pairs[1]);
+  EXPECT_EQ(index.find(0, 2), &audit.pairs[0]);
+  EXPECT_EQ(index.find(1, 2), nullptr);  // rock 1's pair is (1, 0)
+  EXPECT_EQ(index.find(2, 0), nullptr);  // rock 2 is unpaired
+  EXPECT_EQ(index.find(7, 0), nullptr);
+  EXPECT_EQ(index.find(-1, 0), nullptr);
+}
+
 TEST(Audit, ANearMissWithinTheNoiseFloorIsNotNoOverlap) {
   const std::vector<Box> a{box(0.5, 0.5, 0.01, 0.02)};
   AuditOptions o;

@@ -73,16 +73,18 @@ TEST(SessionReview, CheckingASuspectPairStopsItCountingAndUndoRedoTogglesIt) {
   EXPECT_EQ(s.summary(0).suspects, 2);
 }
 
-// Unpairing a checked pair leaves its check in memory (undo brings the pair and the check back) but the file
-// keeps only checks of current pairs.
-TEST(SessionReview, ACheckOfAPairEditedAwayIsNotWrittenAndComesBackWithUndo) {
+// Unpairing a checked pair leaves its check in memory (undo brings the pair and the check back) and in the
+// file: it is the user's record, and applies again if the pair comes back.
+TEST(SessionReview, ACheckOfAPairEditedAwayIsKeptAndComesBackWithUndo) {
   test::TempDir d;
   test::write_review_study(d);
   Session s = open_audited(d.path());
   s.toggle_checked(0, 2, 3);
   s.apply(0, Edit::unpair(Side::kA, 2));
   EXPECT_EQ(s.summary(0).suspects, 1);  // [3, 2] is left, and not checked
-  EXPECT_EQ(*s.toggle_reviewed(1).contents, "{\"reviewed\":[\"s2\"],\"checked\":[]}\n");
+  EXPECT_EQ(*s.toggle_reviewed(1).contents,
+            "{\"reviewed\":[\"s2\"],\"checked\":[{\"scene\":\"s1\",\"rock_a\":[0.3,"
+            "0.8,0.12,0.1],\"rock_b\":[0.75,0.7,0.08,0.12]}]}\n");
   s.undo();
   s.undo();  // the pair [2, 3] is back, checked
   EXPECT_EQ(s.summary(0).suspects, 1);
@@ -95,7 +97,9 @@ TEST(SessionReview, ACheckOfAPairEditedAwayIsNotWrittenAndComesBackWithUndo) {
 TEST(SessionReview, AMarkTheFileCannotHoldChangesNothing) {
   test::TempDir d;
   test::write_review_study(d);
-  const std::string bad = "s\xff3";
+  const std::string bad =
+      "s\xff"
+      "3";  // not UTF-8: 0xff alone
   for (const char* domain : {"real", "synth"})
     fs::copy_file(d / (std::string(domain) + "/labels/s2.txt"), d / (std::string(domain) + "/labels/" + bad + ".txt"));
   Session s = open_audited(d.path());
@@ -162,21 +166,63 @@ TEST(SessionReview, TheFileRoundTripsByBoxesWhenLabelRowsAreReordered) {
   EXPECT_EQ(moved.summary(0).suspects, 1);
 }
 
-TEST(SessionReview, ACheckWhosePairChangedIsDroppedWithAProblem) {
+// A check whose rocks are not a pair now (another registration method, a label file being fixed) does not
+// apply and says so, but it is the user's record: the next save of another mark writes it back, and it
+// applies again when the pair is back, on opening or after an edit.
+TEST(SessionReview, ACheckWhosePairIsGoneIsKeptAndAppliesAgainWhenThePairComesBack) {
   test::TempDir d;
   test::write_review_study(d);
   test::write_text(d / "review/real__synth.json", kCheckedFile);
-  // The hand pairs are gone: registration pairs 2 with 2, so the checked pair [2, 3] is no longer a pair.
+  const std::string hand = read_file(d / "pairs/real__synth/s1.json");
+  // The hand pairs are gone: registration pairs 2 with 2, so the checked pair [2, 3] is not a pair now.
   fs::remove(d / "pairs/real__synth/s1.json");
-  const Session s = open_audited(d.path());
-  EXPECT_FALSE(s.checked(0, 2, 3));
-  EXPECT_TRUE(s.reviewed(1));
-  ASSERT_EQ(s.problems().size(), 1u);
-  EXPECT_EQ(s.problems()[0].to_string(),
-            d / "review/real__synth.json" +
-                ": the check of the pair (0.3 0.8 0.12 0.1) | (0.75 0.7 0.08 0.12) in scene \"s1\" is dropped: those "
-                "rocks are no longer a pair (look at it again)");
-  EXPECT_EQ(s.problems()[0].scene, "s1");
+  {
+    Session s = open_audited(d.path());
+    EXPECT_FALSE(s.checked(0, 2, 3));
+    EXPECT_TRUE(s.reviewed(1));
+    ASSERT_EQ(s.problems().size(), 1u);
+    EXPECT_EQ(s.problems()[0].to_string(),
+              d / "review/real__synth.json" +
+                  ": the check of the pair (0.3 0.8 0.12 0.1) | (0.75 0.7 0.08 0.12) in scene \"s1\" does not apply "
+                  "now: those rocks are not a pair now (kept in the file: it applies again when they are)");
+    EXPECT_EQ(s.problems()[0].scene, "s1");
+    EXPECT_EQ(s.review_of(0).kept_checks.size(), 1u);
+    // Another scene's mark is saved: the check is written back as read.
+    run_save_job(s.toggle_reviewed(0));
+    EXPECT_EQ(read_file(d / "review/real__synth.json"),
+              "{\"reviewed\":[\"s1\",\"s2\"],\"checked\":[{\"scene\":\"s1\",\"rock_a\":[0.3,0.8,0.12,0.1],"
+              "\"rock_b\":[0.75,0.7,0.08,0.12]}]}\n");
+    // Pairing the two rocks by hand brings the check back at once.
+    s.apply(0, Edit::pair(2, 3));
+    EXPECT_TRUE(s.checked(0, 2, 3));
+    EXPECT_TRUE(s.review_of(0).kept_checks.empty());
+  }
+  test::write_text(d / "pairs/real__synth/s1.json", hand);
+  const Session back = open_audited(d.path());
+  EXPECT_TRUE(back.checked(0, 2, 3));
+  EXPECT_TRUE(back.problems().empty());
+}
+
+// Marks of a scene the domain pair does not have now (its label file moved away for a while) are kept too.
+TEST(SessionReview, MarksOfAMissingSceneAreKeptInTheFile) {
+  test::TempDir d;
+  test::write_review_study(d);
+  test::write_text(d / "review/real__synth.json",
+                   "{\"reviewed\":[\"s3\"],\"checked\":[{\"scene\":\"s3\",\"rock_a\":[0.3,0.8,0.12,0.1],"
+                   "\"rock_b\":[0.75,0.7,0.08,0.12]}]}\n");
+  Session s = open_audited(d.path());
+  ASSERT_EQ(s.problems().size(), 2u);
+  EXPECT_EQ(s.problems()[0].message,
+            "the review mark of scene \"s3\" does not apply now: real - synth has no such scene (kept in the file)");
+  EXPECT_EQ(s.problems()[1].message,
+            "the check of a pair in scene \"s3\" does not apply now: real - synth has no such scene (kept in the "
+            "file)");
+  EXPECT_EQ(s.review_progress().reviewed, 0);
+  EXPECT_EQ(*s.toggle_reviewed(1).contents,
+            "{\"reviewed\":[\"s2\",\"s3\"],\"checked\":[{\"scene\":\"s3\",\"rock_a\":[0.3,0.8,0.12,0.1],"
+            "\"rock_b\":[0.75,0.7,0.08,0.12]}]}\n");
+  // Un-marking the one scene that applies leaves the kept marks: the file stays.
+  EXPECT_TRUE(s.toggle_reviewed(1).contents.has_value());
 }
 
 TEST(SessionReview, ANewerReviewFileOnDiskIsNotOverwritten) {

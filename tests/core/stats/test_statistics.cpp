@@ -245,6 +245,21 @@ TEST(StudyStatistics, CompareWhenBIsA) {
       << comparison_sentence(c);
 }
 
+// No permutations asked for: no p, so no verdict, even with an interval that excludes 0.
+TEST(StudyStatistics, CompareWithoutATestGivesNoVerdict) {
+  test::TempDir d;
+  test::write_stats_study(d.path(), test::StatsStudyVariant::kPrincipledIsReal);
+  const CrossTable t = table_with_intervals(d.path(), 2, 0);
+  CompareOptions o;
+  o.permutations = 0;
+  const RendererComparison c = compare_renderers(t, "det", "real", "principled", "hapke", o);
+  EXPECT_TRUE(std::isnan(c.result.p_value));
+  ASSERT_LT(c.result.delta.high, 0);
+  const std::string s = comparison_sentence(c);
+  EXPECT_EQ(s.rfind("not tested whether principled or hapke is closer to real for det: ΔIPD = −", 0), 0u) << s;
+  EXPECT_NE(s.find(", 12 scenes (no permutation test was run)"), std::string::npos) << s;
+}
+
 TEST(StudyStatistics, CompareWhenAIsTheReference) {
   test::TempDir d;
   test::write_stats_study(d.path(), test::StatsStudyVariant::kPrincipledIsReal);

@@ -3,11 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 #include "core/ipd/ipd.h"
 #include "core/session/session.h"
 #include "core/util/atomic_file.h"
 #include "tests/support/test_support.h"
+
+namespace fs = std::filesystem;
 
 namespace ipd {
 namespace {
@@ -129,6 +132,43 @@ TEST(FixedPairsBinding, ARemovedRockMakesTheScenesHandPairsUnusable) {
   }
 }
 
+// A box that moved far below what a label can tell apart (a re-export rounding the last of its 6 decimals
+// the other way) is the same rock: the hand pairs still count, without a word. Ten units of that decimal
+// (kSameRockTolerance) is the bound; past it the rock is gone.
+TEST(FixedPairsBinding, ABoxMovedFarBelowLabelPrecisionIsTheSameRock) {
+  test::TempDir d;
+  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n0 0.200001 0.2 0.1 0.1\n");
+  test::write_text(d / "pairs/real__synth/s1.json", kHandPairs);
+  const CrossTable t = table_of(d.path());
+  EXPECT_EQ(t.fixed_scenes, 1);
+  EXPECT_EQ(t.cells[0].per_scene[0].counted, (RockPairs{{0, 1}}));
+  EXPECT_TRUE(t.pairs_problems.empty());
+  // 9e-6 in w (within), then 1.1e-5 in h (beyond): unusable, naming the stored box.
+  test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.100009 0.1\n");
+  EXPECT_TRUE(table_of(d.path()).pairs_problems.empty());
+  test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.100011\n");
+  const CrossTable gone = table_of(d.path());
+  ASSERT_EQ(gone.pairs_problems.size(), 1u);
+  EXPECT_TRUE(gone.pairs_problems[0].unusable);
+  EXPECT_EQ(gone.pairs_problems[0].why_unusable,
+            "a stored rock is no longer in its label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" +
+                d / "synth/labels/s1.txt" + ")");
+}
+
+// A rock no longer at its row is found at the free row whose box is nearest to the stored one, not at the
+// first row within the tolerance.
+TEST(FixedPairsBinding, AMovedRockIsFoundAtTheNearestBoxWithinTheTolerance) {
+  test::TempDir d;
+  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n0 0.9 0.9 0.05 0.05\n0 0.200008 0.2 0.1 0.1\n0 0.200001 0.2 0.1 0.1\n");
+  test::write_text(d / "pairs/real__synth/s1.json", kHandPairs);
+  const CrossTable t = table_of(d.path());
+  EXPECT_EQ(t.cells[0].per_scene[0].counted, (RockPairs{{0, 3}}));
+  ASSERT_EQ(t.pairs_problems.size(), 1u);
+  EXPECT_EQ(
+      t.pairs_problems[0].message,
+      "1 hand-paired rock(s) changed rows in their label files and were found again by their boxes: synth 1 -> 3");
+}
+
 TEST(FixedPairsBinding, TheCliExitsOneNamingTheFileUnlessSkipBadLines) {
   test::TempDir d;
   write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n");
@@ -204,6 +244,49 @@ TEST(FixedPairsBinding, TheSessionListsProblemsAndFlagsUnusableScenes) {
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_EQ(problems[0].file, f);
   EXPECT_TRUE(problems[0].unusable);
+}
+
+// An edit of a scene whose pairs file no longer applies would save registration's pairs plus the edit over
+// the hand pairs: it is refused, naming the file and what no longer matches, and the file is untouched.
+// "reset to automatic" is the explicit way to discard it.
+TEST(FixedPairsBinding, AnEditOfAStaleSceneIsRefusedAndResetDiscardsTheFile) {
+  test::TempDir d;
+  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n");
+  const std::string f = d / "pairs/real__synth/s1.json";
+  test::write_text(f, kHandPairs);
+  Session s = Session::open(d.path());
+  const FixedPairs before = s.scenes()[0].current;
+  for (const Edit& e : {Edit::pair(1, 0), Edit::unpair(Side::kA, 0), Edit::toggle_exclude(Side::kB, 0),
+                        Edit::replace(RockPairs{{0, 0}})}) {
+    try {
+      s.apply(0, e);
+      FAIL() << "expected the edit to be refused";
+    } catch (const StudyError& err) {
+      EXPECT_EQ(std::string(err.what()),
+                f +
+                    ": edit refused: this file's hand pairs no longer match the label files (a stored rock is no "
+                    "longer in its label file: rock 1 (0.2 0.2 0.1 0.1) of 'synth' (" +
+                    d / "synth/labels/s1.txt" +
+                    ")), and saving the edit would overwrite them. To keep them, correct the label file and open "
+                    "the study again; to discard them and start from registration's pairs, use \"reset to "
+                    "automatic\" on scene \"s1\"");
+    }
+  }
+  EXPECT_FALSE(s.can_undo());
+  ASSERT_EQ(s.problems().size(), 1u);  // listed while the file is there
+  EXPECT_EQ(s.problems()[0].file, f);
+  EXPECT_EQ(s.scenes()[0].current.pairs, before.pairs);
+  EXPECT_EQ(read_file(f), kHandPairs);
+  // Reset removes the file (checked against what was read) and makes the scene editable again.
+  const SaveJob discard = s.apply(0, Edit::reset());
+  EXPECT_FALSE(discard.contents.has_value());
+  EXPECT_EQ(discard.path, f);
+  run_save_job(discard);
+  EXPECT_FALSE(fs::exists(f));
+  EXPECT_FALSE(s.scenes()[0].pairs_unusable);
+  for (const Problem& p : s.problems()) EXPECT_NE(p.file, f) << p.to_string();  // no longer listed
+  const SaveJob edit = s.apply(0, Edit::pair(1, 0));
+  EXPECT_TRUE(edit.contents.has_value());
 }
 
 TEST(FixedPairsBinding, MalformedStoredRocksNameTheFile) {

@@ -99,6 +99,27 @@ TEST(FigureExport, UnknownKindIsReported) {
   EXPECT_FALSE(fs::exists(d / "x.pdf"));
 }
 
+// The studio's exports go through write_output_file too: its default folder STUDY/figures takes them, a path
+// that is one of the study's inputs (a picture, here) is refused with the reason and the picture kept.
+TEST(FigureExport, AnExportOverOneOfTheStudysInputsIsRefused) {
+  test::TempDir d;
+  test::write_stats_study(d.path(), test::StatsStudyVariant::kDistinct);
+  const Session s = Session::open(d.path());
+  ui::ExportRequest request;
+  request.kind = "compare";
+  request.ref = "real", request.a = "hapke", request.b = "principled";
+  request.path = d / "real/images/s1.pdf";
+  EXPECT_EQ(ui::export_figure(s, request),
+            "export failed: " + request.path +
+                ": is one of the study's inputs (the pictures of domain 'real', real/images/); an output written "
+                "there would replace it, so nothing is written. Outputs go outside study.yaml, pairs/, review/, "
+                ".ipd-cache/ and each domain's labels/, images/ and predictions/ (e.g. into STUDY/figures/)");
+  EXPECT_FALSE(fs::exists(request.path));
+  request.path = d / "figures/compare.pdf";
+  fs::create_directories(d / "figures");
+  EXPECT_EQ(ui::export_figure(s, request), "exported " + request.path);
+}
+
 // The dialog's proposed file names carry what the figure depends on: two views differing only in model or
 // threshold propose different names, so one export never overwrites the other.
 TEST(FigureExport, DefaultNamesNameModelAndThreshold) {

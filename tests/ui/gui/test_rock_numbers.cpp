@@ -32,6 +32,34 @@ TEST(RockNumbers, ABoxAtThePaneTopGetsItsNumberBelow) {
   EXPECT_DOUBLE_EQ(p.labels[0].box.y0, 41);
 }
 
+// The panes ask again every frame and get the kept answer back, but only for the same request: the same box in
+// a pane whose top is lower (the pane scrolled) has no room above any more, and the first pane's answer holds
+// again when it comes back.
+TEST(RockNumbers, AKeptPlacementIsOnlyReusedForTheSameRequest) {
+  const std::vector<RockNumberTag> tags = {{{10, 20, 40, 60}, 16, 13}};
+  for (int round = 0; round < 2; ++round) {
+    EXPECT_EQ(place_rock_numbers(tags, {0, 0, 400, 300}).labels[0].position, LabelPosition::kAbove);
+    EXPECT_EQ(place_rock_numbers(tags, {0, 15, 400, 300}).labels[0].position, LabelPosition::kBelow);
+    std::vector<RockNumberTag> wider = tags;
+    wider[0].height = 25;  // a larger font: 20 - 1 - 25 < 0, no room above in the first pane either
+    EXPECT_EQ(place_rock_numbers(wider, {0, 0, 400, 300}).labels[0].position, LabelPosition::kBelow);
+  }
+}
+
+// The same for confidences: a rock number placed where the confidence would go (`taken`) moves it, and the
+// kept answer for the free pane holds again after.
+TEST(RockNumbers, AKeptConfidencePlacementFollowsWhatIsTaken) {
+  const std::vector<ConfidenceTag> tags = {{{100, 100, 130, 130}, 20, 10, -1}};
+  const LabelRect pane{0, 0, 400, 300};
+  const LabelRect above{100, 89, 120, 99};  // where "above" puts it: y 100 - 1 - 10
+  for (int round = 0; round < 2; ++round) {
+    const LabelPlacement free = place_confidences(tags, {}, {}, pane);
+    EXPECT_EQ(free.labels[0].position, LabelPosition::kAbove);
+    EXPECT_DOUBLE_EQ(free.labels[0].box.y0, 89);
+    EXPECT_NE(place_confidences(tags, {}, {above}, pane).labels[0].position, LabelPosition::kAbove);
+  }
+}
+
 TEST(RockNumbers, DenseSceneNeverStacksNumbers) {
   // 60 rocks of 20 x 20 px on a 10 x 6 grid 24 px apart: every shown number is clear of every other.
   std::vector<RockNumberTag> tags;

@@ -191,6 +191,13 @@ TEST(UiWording, CountedNounsThousandsAndNoNegativeZero) {
   EXPECT_EQ(thousands(999), "999");
   EXPECT_EQ(thousands(-1234567), "-1,234,567");
   EXPECT_EQ(thousands(0), "0");
+  // The slider's threshold is the decimal it shows, exactly as `--conf 0.3` reads it.
+  EXPECT_EQ(conf_slider_value(0.3f), 0.3);
+  EXPECT_EQ(conf_slider_value(0.30000001), 0.3);
+  EXPECT_EQ(conf_slider_value(0.7049), 0.7);
+  EXPECT_EQ(conf_slider_value(0.705), 0.71);
+  EXPECT_EQ(conf_slider_value(1.2), 1.0);
+  EXPECT_EQ(conf_slider_value(-0.1), 0.0);
   EXPECT_EQ(problems_label(1), "1 problem");
   EXPECT_EQ(problems_label(12345), "12,345 problems");
   EXPECT_EQ(fixed(-0.000001, 5), "0.00000");
