@@ -8,6 +8,7 @@
 
 #include <cstdlib>
 
+#include "core/util/number_text.h"
 #include "core/util/study_inputs.h"
 
 namespace ipd::cli {
@@ -30,10 +31,10 @@ std::vector<std::string> join_optional_values(int argc, char** argv) {
 CLI::Validator seed_validator() {
   return CLI::Validator(
       [](std::string& s) {
-        const bool digits = !s.empty() && s.find_first_not_of("0123456789") == std::string::npos;
-        return digits ? std::string() : "must be a whole number >= 0, got " + s;
+        std::uint64_t seed = 0;
+        return parse_seed(s, &seed) ? std::string() : std::string("must be ") + kSeedRange + ", got " + s;
       },
-      "SEED >= 0", "seed");
+      "SEED in [0, 2^64 - 1]", "seed");
 }
 
 bool output_is_study_input(const std::string& study, const std::string& out) {

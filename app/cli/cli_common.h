@@ -26,8 +26,9 @@ bool report_unusable_pairs(const std::vector<PairsProblem>& problems, bool skip_
 // following word that is not a number (the STUDY) stays an argument of its own.
 std::vector<std::string> join_optional_values(int argc, char** argv);
 
-// For --seed: a whole number >= 0. CLI11 reads "-5" into an unsigned seed as 2^64 - 5, a different seed
-// without a word; "--seed: must be a whole number >= 0, got -5" instead.
+// For --seed: parse_seed's range (core/util/number_text.h), the same as study.yaml's registration.seed. CLI11
+// reads "-5" into an unsigned seed as 2^64 - 5, and 2^64 into a signed one as 2^63 - 1: a different seed without
+// a word; "--seed: must be a whole number from 0 to 18446744073709551615, got -5" instead.
 CLI::Validator seed_validator();
 
 // Prints "error: PATH: is one of the study's inputs (...)" and returns true when `out` (an --out) is one of

@@ -40,7 +40,7 @@ void declare_breakdown_options(CLI::App* cmd, BreakdownArgs* args) {
                   "size (box area, px²), region (3x3 grid) or confidence (of its best-IoU prediction)")
       ->check(CLI::IsMember({"size", "region", "confidence"}));
   cmd->add_option("--bins", args->bins, "Quantile bins for size and confidence")
-      ->check(CLI::Range(1, 100))
+      ->check(CLI::Range(1, kMaxBreakdownBins))
       ->default_val(4);
   cmd->add_option("--format", args->format, "text, csv, json or markdown")
       ->check(CLI::IsMember({"text", "csv", "json", "markdown"}));
@@ -100,8 +100,13 @@ void print_breakdown_text(const std::vector<CellBreakdown>& out, const Breakdown
   const std::string ref_note = "bins of the first domain's rock; ";
   const bool md = args.format == "markdown";
   for (const auto& c : out) {
-    std::cout << fmt::format("{}{} ({}), |{} - {}|, by {}:\n", md ? "**" : "", c.model, c.trained_on, c.a, c.b, args.by)
-              << (md ? "**\n\n| bin | IPD [CI] | pairs | scenes |\n|---|---:|---:|---:|\n" : "");
+    std::cout << fmt::format("{}{} ({}), |{} - {}|, by {}:\n", md ? "**" : "", c.model, c.trained_on, c.a, c.b,
+                             args.by);
+    if (c.bins.empty()) {  // no rock pairs: bins of nothing would read "nan–nan"
+      std::cout << (md ? "**\n\n" : "  ") << kNoRockPairsToBin << "\n\n";
+      continue;
+    }
+    std::cout << (md ? "**\n\n| bin | IPD [CI] | pairs | scenes |\n|---|---:|---:|---:|\n" : "");
     for (const auto& b : c.bins)
       std::cout << (md ? fmt::format("| {} | {} | {} | {} |\n", b.label, interval_text(b.ipd), b.pairs, b.scenes)
                        : fmt::format("  {:<22} {:<26} {:>5} pairs {:>4} scenes\n", b.label, interval_text(b.ipd),

@@ -7,6 +7,7 @@
 #include "app/cli/commands.h"
 #include "app/cli/figure_cli.h"
 #include "app/cli/study_options.h"
+#include "core/stats/study_statistics.h"
 #include "ui/figures/figure_study.h"
 
 namespace ipd::cli {
@@ -36,6 +37,7 @@ int run(const std::string& kind, const StatsArgs& args) {
   r.a = args.a;
   r.b = args.b;
   r.bootstrap = loaded->bootstrap;
+  r.conf_threshold = loaded->conf_threshold;
   r.permutations = args.permutations;
   r.worst = args.worst;
   r.bins = args.bins;
@@ -81,7 +83,8 @@ Runner add_figure_stats_commands(CLI::App* fig, std::shared_ptr<std::string> whi
   CLI::App* br = add("breakdown", "IPD of one model and domain pair per bin of rock size, region or confidence");
   br->add_option("--by", args->by, "size, region or confidence")
       ->check(CLI::IsMember({"size", "region", "confidence"}));
-  br->add_option("--bins", args->bins, "Quantile bins for size and confidence")->check(CLI::Range(1, 20));
+  br->add_option("--bins", args->bins, "Quantile bins for size and confidence")
+      ->check(CLI::Range(1, kMaxBreakdownBins));
   br->add_option("--a", args->a, "Reference domain (default: the first)");
   br->add_option("--b", args->b, "Other domain (default: the second)");
   CLI::App* gallery = fig->add_subcommand(

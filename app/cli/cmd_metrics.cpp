@@ -72,9 +72,9 @@ void add_detection_metrics(const Study& study, const StudyOptions& so, const Stu
     }
   }
   *text += fmt::format(
-      "(AP: pycocotools' rules over every detection in the files; precision/recall/F1 at "
-      "confidence >= {:g} and IoU 0.5)\n",
-      threshold);
+      "(AP: pycocotools' rules over the {} most confident detections of each picture; precision/recall/F1 over "
+      "every detection at confidence >= {:g} and IoU 0.5)\n",
+      kCocoMaxDetections, threshold);
 }
 
 // Spearman's rho of per-scene SSIM against per-scene IPD, for each model with predictions in column c: whether
@@ -151,7 +151,8 @@ int run_metrics(const MetricsArgs& args) {
   Study study = open_study_with_conf(so);
   if (args.json) require_utf8_names(study);  // before the work, naming the file
   const double threshold = study.config.conf_threshold;
-  // AP ranks every detection in the files, as pycocotools would be given them; P/R/F1 use the threshold.
+  // AP ranks the detections in the files as pycocotools would be given them (at most kCocoMaxDetections a
+  // picture); P/R/F1 use the threshold.
   Study all_detections = study;
   all_detections.config.conf_threshold = 0;
   const StudyLabels labels = load_labels(all_detections);

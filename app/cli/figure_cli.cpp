@@ -17,7 +17,11 @@ void add_figure_output_options(CLI::App* cmd, FigureOutputArgs* a) {
   cmd->add_option("--out", a->out, "File to write (atomically): .pdf, .svg or .png")->required();
   auto* column = cmd->add_option("--column", a->column, "single (3.5 in) or double (7.16 in)")
                      ->check(CLI::IsMember({"single", "double"}));
-  cmd->add_option("--width-in", a->width_in, "Width in inches (instead of --column)")->excludes(column);
+  // Any typed width is checked (1 to 40 inches): 0 or -3 used to stand for "not given" and drew --column's width.
+  cmd->add_option_function<double>(
+         "--width-in", [a](const double& inches) { a->width_in = inches; },
+         "Width in inches, 1 to 40 (instead of --column)")
+      ->excludes(column);
   cmd->add_option("--font-pt", a->font_pt, "Font size in points (default 8; at least 6)");
   cmd->add_option("--dpi", a->dpi, "PNG resolution (default 300: a single column is 1050 px wide)");
   cmd->add_option("--font", a->font, "TrueType font file (default: DejaVu Sans)");
@@ -41,7 +45,7 @@ int figure_options(const FigureOutputArgs& a, ui::FigureOptions* out) {
   }
   ui::FigureOptions o;
   try {
-    o.width_in = a.width_in > 0 ? a.width_in : a.column == "double" ? ui::kDoubleColumnIn : ui::kSingleColumnIn;
+    o.width_in = a.width_in ? *a.width_in : a.column == "double" ? ui::kDoubleColumnIn : ui::kSingleColumnIn;
     o.font_pt = a.font_pt;
     o.dpi = a.dpi;
     o.layers = a.layers.empty() ? ui::default_layers(o.width_in) : ui::parse_layers(a.layers);
@@ -52,8 +56,8 @@ int figure_options(const FigureOutputArgs& a, ui::FigureOptions* out) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kUsage;
   }
-  if (std::error_code ec; !std::filesystem::is_regular_file(o.font_file, ec)) {
-    fmt::print(stderr, "error: {}: no such font file\n", o.font_file);
+  if (const std::string problem = ui::font_file_problem(o.font_file); !problem.empty()) {
+    fmt::print(stderr, "error: {}\n", problem);
     return kBadInput;
   }
   *out = o;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 
 #include "ui/canvas/canvas.h"
@@ -12,7 +13,8 @@ namespace ipd::cli {
 
 struct FigureOutputArgs {
   std::string out, column = "single", font, layers, crop;
-  double width_in = 0, font_pt = 8, dpi = 300;
+  std::optional<double> width_in;  // --width-in; not given: --column's width
+  double font_pt = 8, dpi = 300;
   bool mkdir = false;  // --mkdir: create --out's folder when it is missing
 };
 void add_figure_output_options(CLI::App* cmd, FigureOutputArgs* args);

@@ -16,14 +16,16 @@ BootstrapOptions StudyOptions::bootstrap_options() const {
   BootstrapOptions b;
   b.resamples = bootstrap;
   b.level = level;
-  b.seed = seed >= 0 ? static_cast<std::uint64_t>(seed) : 0;
+  b.seed = seed.value_or(0);
   return b;
 }
 
 std::string StudyOptions::validate() const {
-  if (seed < -1) return fmt::format("--seed: must be a whole number >= 0, got {}", seed);
   if (conf != -1 && !(conf >= 0 && conf <= 1)) return fmt::format("--conf: must be in [0, 1], got {}", conf);
-  if (bootstrap < 0) return fmt::format("--bootstrap: must be >= 0 (0: no intervals), got {}", bootstrap);
+  // One resample has no spread: it silently gave no interval at all.
+  if (bootstrap < 0 || bootstrap == 1)
+    return fmt::format("--bootstrap: must be 0 (no intervals) or at least 2 (an interval needs two resamples), got {}",
+                       bootstrap);
   if (!(level >= 0.5 && level <= 0.9999)) return fmt::format("--ci: must be in [0.5, 0.9999], got {}", level);
   if (threads < 0) return fmt::format("--threads: must be >= 0 (0: every core), got {}", threads);
   if (!std::isnan(budget_ms) && !(budget_ms >= 0 && std::isfinite(budget_ms)))
@@ -49,8 +51,10 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
                                          : std::string();
           },
           "MS >= 0"));
-  // -1 stands for "not given": typed, it is as out of range as -5 (which used to mean "study.yaml's seed").
-  cmd->add_option("--seed", o->seed, "Registration and bootstrap seed (default from study.yaml, else 0)")
+  // The whole 64-bit range, as study.yaml's registration.seed: a seed given either way is the same seed.
+  cmd->add_option_function<std::uint64_t>(
+         "--seed", [o](const std::uint64_t& seed) { o->seed = seed; },
+         "Registration and bootstrap seed, 0 to 18446744073709551615 (default from study.yaml, else 0)")
       ->check(seed_validator());
   cmd->add_option("--conf", o->conf,
                   "Drop predictions below this confidence (the GUI slider; default: study.yaml's conf_threshold)")
@@ -60,7 +64,7 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
   cmd->add_flag("--no-cache", o->no_cache, "Register every scene again (ignore STUDY/.ipd-cache/)");
   cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "Warn about malformed label lines and skip them");
   if (!with_bootstrap) return;
-  cmd->add_option("--bootstrap", o->bootstrap, "Scene-bootstrap resamples for intervals (0: none)")
+  cmd->add_option("--bootstrap", o->bootstrap, "Scene-bootstrap resamples for intervals (0: none; else at least 2)")
       ->check(CLI::NonNegativeNumber)
       ->default_val(2000);
   // A flag with an optional level (`--ci`, `--ci=0.9`; main() turns `--ci 0.9` into `--ci=0.9`), so it
@@ -95,7 +99,7 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   opt.threads = o.threads;
   opt.registration = study.config.registration;
   if (!o.method.empty()) parse_method(o.method, &opt.registration.method);
-  if (o.seed >= 0) opt.registration.seed = static_cast<std::uint64_t>(o.seed);
+  if (o.seed) opt.registration.seed = *o.seed;
   if (o.budget_ms == 0) opt.registration.time_budget_ms.reset();
   if (o.budget_ms > 0) opt.registration.time_budget_ms = o.budget_ms;
   out.registration_budget_ms = opt.registration.time_budget_ms.value_or(0);
@@ -109,7 +113,7 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   if (report_unusable_pairs(out.table.pairs_problems, o.skip_bad_lines, &out.table.warnings)) return std::nullopt;
   for (const auto& w : out.table.warnings) fmt::print(stderr, "warning: {}\n", w);
   out.bootstrap = o.bootstrap_options();
-  if (o.seed < 0) out.bootstrap.seed = opt.registration.seed;
+  if (!o.seed) out.bootstrap.seed = opt.registration.seed;
   if (with_intervals && o.bootstrap > 0) add_confidence_intervals(&out.table, out.bootstrap, o.threads);
   return out;
 }

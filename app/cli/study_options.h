@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -21,12 +22,12 @@ struct StudyOptions {
   // --budget-ms: each registration's time budget, 0 none; NaN (not given): study.yaml's. Not -1, which typed is
   // as wrong as -5.
   double budget_ms = std::numeric_limits<double>::quiet_NaN();
-  long long seed = -1;    // registration and bootstrap seed; -1: study.yaml's, else 0
-  double conf = -1;       // --conf X: prediction threshold (as the GUI slider); -1: study.yaml's
-  int bootstrap = 2000;   // resamples; 0 = off
-  double level = 0.95;    // --ci LEVEL
-  bool ci_given = false;  // --ci appeared (LaTeX prints intervals)
-  std::string ci_text;    // --ci's text as parsed (level holds its value)
+  std::optional<std::uint64_t> seed;  // registration and bootstrap seed; not given: study.yaml's, else 0
+  double conf = -1;                   // --conf X: prediction threshold (as the GUI slider); -1: study.yaml's
+  int bootstrap = 2000;               // resamples; 0 = off
+  double level = 0.95;                // --ci LEVEL
+  bool ci_given = false;              // --ci appeared (LaTeX prints intervals)
+  std::string ci_text;                // --ci's text as parsed (level holds its value)
   int threads = 0;
   bool skip_bad_lines = false;
   bool no_cache = false;  // --no-cache: register every scene again

@@ -19,6 +19,7 @@
 #include <fstream>
 
 #include "core/util/atomic_file.h"
+#include "core/util/cache_signer.h"
 #include "ui/gui/scene_change.h"
 
 namespace fs = std::filesystem;
@@ -27,11 +28,7 @@ namespace ipd::studio {
 
 namespace {
 
-fs::path cache_home() {
-  const char* xdg = std::getenv("XDG_CACHE_HOME");
-  const char* home = std::getenv("HOME");
-  return (xdg && *xdg ? fs::path(xdg) : fs::path(home ? home : "/tmp") / ".cache") / "ipd-studio";
-}
+fs::path cache_home() { return user_cache_root(); }
 
 std::vector<std::string> read_recent() {
   std::vector<std::string> out;

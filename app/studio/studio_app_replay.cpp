@@ -78,7 +78,12 @@ bool StudioApp::replay_view_action(const ReplayAction& a, ui::UiCommands* cmd) {
   } else if (a.verb == "conf") {
     cmd->conf_threshold = std::strtod(a.args[0].c_str(), nullptr);  // as `ipd --conf` reads it: 0.3 is 0.3
   } else if (a.verb == "model") {
-    cmd->model = a.args[0];
+    // As `domains`: a name the study lacks fails the replay, rather than showing (and exporting) nothing.
+    const auto& models = s.study().models;
+    if (std::none_of(models.begin(), models.end(), [&](const ModelInfo& m) { return m.name == a.args[0]; }))
+      replay_fail(a, fmt::format("'model': the study has no model '{}'", a.args[0]));
+    else
+      cmd->model = a.args[0];
   } else if (a.verb == "domains") {
     if (!s.study().domain(a.args[0]) || !s.study().domain(a.args[1]))
       replay_fail(a, fmt::format("'domains': the study has no domain '{}'",

@@ -59,6 +59,14 @@ std::string label_set_fingerprint(const Study& study) {
 
 namespace {
 // The review marks of column `c` that still apply to the table's scenes and pairs.
+// Whether domain pair (a, b) is one of `only` (either name order), or `only` is empty.
+bool counts(const DomainPairFilter& only, const std::string& a, const std::string& b) {
+  if (only.empty()) return true;
+  for (const auto& [x, y] : only)
+    if ((x == a && y == b) || (x == b && y == a)) return true;
+  return false;
+}
+
 void count_reviews(const CrossTable& table, size_t c, const StudyLabels& labels, Provenance* p) {
   const std::string& a = table.columns[c].first;
   const std::string& b = table.columns[c].second;
@@ -77,9 +85,10 @@ void count_reviews(const CrossTable& table, size_t c, const StudyLabels& labels,
 }
 }  // namespace
 
-Provenance table_provenance(const CrossTable& table, const StudyLabels& labels) {
+Provenance table_provenance(const CrossTable& table, const StudyLabels& labels, const DomainPairFilter& only) {
   Provenance p;
   for (size_t c = 0; c < table.pairings.size() && c < table.columns.size(); ++c) {
+    if (!counts(only, table.columns[c].first, table.columns[c].second)) continue;
     for (const ScenePairing& s : table.pairings[c]) {
       if (!s.fixed) continue;
       ++p.scenes_with_hand_pairs;
@@ -93,10 +102,11 @@ Provenance table_provenance(const CrossTable& table, const StudyLabels& labels) 
   return p;
 }
 
-Provenance session_provenance(const Session& session) {
+Provenance session_provenance(const Session& session, const DomainPairFilter& only) {
   Provenance p;
   const auto& pairs = session.domain_pairs();
-  for (size_t c = 0; c < pairs.size(); ++c)
+  for (size_t c = 0; c < pairs.size(); ++c) {
+    if (!counts(only, pairs[c].first, pairs[c].second)) continue;
     for (const SceneState& s : session.scenes_of(static_cast<int>(c))) {
       if (!s.edited) continue;
       ++p.scenes_with_hand_pairs;
@@ -104,7 +114,9 @@ Provenance session_provenance(const Session& session) {
       p.rocks_excluded += static_cast<int>(s.current.excluded_a.size() + s.current.excluded_b.size());
       p.edited_scenes.push_back({pairs[c].first, pairs[c].second, s.stem});
     }
+  }
   for (size_t c = 0; c < pairs.size(); ++c) {
+    if (!counts(only, pairs[c].first, pairs[c].second)) continue;
     const ReviewState& r = session.review_of(static_cast<int>(c));
     p.scenes_reviewed += r.reviewed_scenes;
     // Checks that are pairs now: one whose pair was edited away is kept in the file but does not apply.

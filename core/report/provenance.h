@@ -38,12 +38,15 @@ struct Provenance {
 // IoError naming the file for a symbolic link or an unreadable file.
 std::string label_set_fingerprint(const Study& study);
 
-// The hand-pair counts of `table`, the review marks of its domain pairs and the fingerprint of the labels.
-// Throws StudyError naming a review file that can't be read.
-Provenance table_provenance(const CrossTable& table, const StudyLabels& labels);
-// The same for ipd-studio's session over every domain pair: its edited scenes (edits not yet saved
-// included), as `ipd table` would count them once they are saved.
-Provenance session_provenance(const Session& session);
+// Domain pairs a number was computed from, in either name order; empty: every domain pair there is.
+using DomainPairFilter = std::vector<std::pair<std::string, std::string>>;
+
+// The hand-pair counts of `table`, the review marks of its domain pairs (those of `only`, when given) and the
+// fingerprint of the labels. Throws StudyError naming a review file that can't be read.
+Provenance table_provenance(const CrossTable& table, const StudyLabels& labels, const DomainPairFilter& only = {});
+// The same for ipd-studio's session over every domain pair (or those of `only`): its edited scenes (edits not
+// yet saved included), as `ipd table` would count them once they are saved.
+Provenance session_provenance(const Session& session, const DomainPairFilter& only = {});
 
 // Every output renders provenance through the two functions below, so a field added to Provenance shows
 // in all of them (tables, compare, breakdown, the rock export, every figure kind and its metadata).

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/report/csv.h"
+#include "core/report/markdown.h"
 #include "core/stats/study_statistics.h"
 #include "core/util/json_output.h"
 #include "core/util/number_text.h"
@@ -492,14 +493,14 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
     }
     case TableFormat::kMarkdown: {
       std::string out = "| Train \\ Eval |";
-      for (const auto& c : t.columns) out += " \\|" + column_title(c) + "\\| |";
+      for (const auto& c : t.columns) out += " \\|" + markdown_cell(column_title(c)) + "\\| |";
       out += "\n|---|";
       for (size_t k = 0; k < nc; ++k) out += "---:|";
       out += "\n";
       const std::vector<std::string> notes = footnotes(t);
       for (size_t r = 0; r < t.models.size(); ++r) {
         const double best = row_best(t, r);
-        out += "| " + row_title(t.models[r]) + " |";
+        out += "| " + markdown_cell(row_title(t.models[r])) + " |";
         for (size_t c = 0; c < nc; ++c) {
           const auto& cell = t.cells[r * nc + c];
           const std::string s = marked_cell_text(cell, "–", notes);

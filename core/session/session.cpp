@@ -38,18 +38,24 @@ void keep_first_scenes(Study* study, size_t n) {
   const std::string last = *std::next(all.begin(), static_cast<long>(n) - 1);
   for (auto& d : study->domains) d.stems.erase(std::upper_bound(d.stems.begin(), d.stems.end(), last), d.stems.end());
 }
+// Temp files of saves that died mid-way (their writer is gone) would otherwise pile up beside the pairs and
+// the review marks: pairs/<A>__<B>/ and review/. Only real folders are tidied (a link in the study is never
+// followed out of it), and only regular files of our temp names (remove_stale_temp_files).
+void remove_stale_saves(const std::string& root) {
+  std::error_code ec;
+  const fs::path pairs = fs::path(root) / "pairs", review = fs::path(root) / "review";
+  if (fs::symlink_status(review, ec).type() == fs::file_type::directory) remove_stale_temp_files(review.string());
+  if (fs::symlink_status(pairs, ec).type() != fs::file_type::directory) return;
+  for (fs::directory_iterator it(pairs, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
+    if (it->symlink_status(ec).type() == fs::file_type::directory) remove_stale_temp_files(it->path().string());
+}
+
 }  // namespace
 
 Session Session::open(const std::string& root, const SessionOptions& options) {
   Study study = open_study(root);
   if (options.first_scenes > 0) keep_first_scenes(&study, options.first_scenes);
-  // Temp files of saves that died mid-way (their writer is gone) would otherwise pile up beside the pairs;
-  // only real folders are tidied (a link in pairs/ is never followed out of the study).
-  std::error_code ec;
-  if (!fs::is_symlink(fs::path(study.root) / "pairs", ec))
-    for (fs::directory_iterator it(fs::path(study.root) / "pairs", ec); !ec && it != fs::directory_iterator();
-         it.increment(ec))
-      if (it->symlink_status(ec).type() == fs::file_type::directory) remove_stale_temp_files(it->path().string());
+  remove_stale_saves(study.root);
   if (options.progress && !options.study_cache_path.empty()) options.progress("reading the study cache", 0, 0);
   StudyCache parsed(options.study_cache_path, study.root);
   StudyLabels labels = parsed.load_labels(study, [&](int done, int total) {

@@ -19,9 +19,13 @@ struct DetectionImage {
 // >= the threshold (a later GT wins a tie); over all images (stable sort by score, images in order)
 // precision is made monotone and read at the 101 recall points 0, 0.01, ..., 1 (0 beyond the last recall).
 // NaN when there is no GT at all (COCO's -1).
-double average_precision(const std::vector<DetectionImage>& images, double iou_threshold, int max_detections = 100);
+// pycocotools' maxDets: AP counts at most this many detections of a picture, its most confident.
+constexpr int kCocoMaxDetections = 100;
+
+double average_precision(const std::vector<DetectionImage>& images, double iou_threshold,
+                         int max_detections = kCocoMaxDetections);
 // The mean over IoU thresholds 0.50, 0.55, ..., 0.95.
-double average_precision_50_95(const std::vector<DetectionImage>& images, int max_detections = 100);
+double average_precision_50_95(const std::vector<DetectionImage>& images, int max_detections = kCocoMaxDetections);
 
 struct DetectionMetrics {
   double ap50 = std::numeric_limits<double>::quiet_NaN(), ap50_95 = std::numeric_limits<double>::quiet_NaN();
@@ -31,7 +35,8 @@ struct DetectionMetrics {
   long true_positives = 0;
 };
 
-// AP over every detection given; precision, recall and F1 over those with conf >= threshold, matched
+// AP over the kCocoMaxDetections most confident detections of each picture; precision, recall and F1 over
+// every detection with conf >= threshold, matched
 // greedily at IoU 0.5 as above (so the counts agree with AP's matching).
 DetectionMetrics detection_metrics(const std::vector<DetectionImage>& images, double conf_threshold);
 

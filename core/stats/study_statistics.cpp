@@ -181,7 +181,8 @@ const char* to_string(BreakdownBy by) {
 }
 
 std::string BreakdownOptions::validate() const {
-  if (bins < 1 || bins > 100) return fmt::format("--bins must be between 1 and 100, not {}", bins);
+  if (bins < 1 || bins > kMaxBreakdownBins)
+    return fmt::format("--bins must be between 1 and {}, not {}", kMaxBreakdownBins, bins);
   return bootstrap.validate();
 }
 
@@ -255,13 +256,15 @@ std::vector<double> make_bins(const std::vector<PairValue>& pairs, const Breakdo
   std::vector<double> present;
   for (const auto& p : pairs)
     if (!std::isnan(p.value)) present.push_back(p.value);
+  if (pairs.empty()) return edges;  // no rock pairs: no bins (quantiles of nothing read "nan–nan")
   if (options.by == BreakdownBy::kRegion) {
     static const char* kRegions[] = {"top-left", "top",         "top-right", "left",        "centre",
                                      "right",    "bottom-left", "bottom",    "bottom-right"};
     for (int k = 0; k < 9; ++k) bins->push_back({kRegions[k], double(k), double(k), {}, 0, 0});
     return edges;
   }
-  const int nbins = options.bins;
+  // Every pair without a detection (by confidence): only the "no detection" bin.
+  const int nbins = present.empty() ? 0 : options.bins;
   edges = quantile_edges(present, nbins);
   const double lo = quantile(present, 0), hi = quantile(present, 1);
   for (int k = 0; k < nbins; ++k) {
@@ -285,7 +288,7 @@ CellBreakdown breakdown_cell(const StudyLabels& labels, const TableCell& cell, c
   CellBreakdown out{cell.model, cell.trained_on, cell.a, cell.b, options.by, {}};
   const std::vector<PairValue> pairs = pair_values(labels, cell, options.by);
   const std::vector<double> edges = make_bins(pairs, options, &out.bins);
-  const int nbins = options.by == BreakdownBy::kRegion ? 9 : options.bins;
+  const int nbins = static_cast<int>(out.bins.size()) - (options.by == BreakdownBy::kConfidence ? 1 : 0);
   auto bin_of = [&](double v) {
     if (std::isnan(v)) return nbins;  // the "no detection" bin
     if (options.by == BreakdownBy::kRegion) return static_cast<int>(v);

@@ -53,9 +53,14 @@ enum class BreakdownBy { kSize, kRegion, kConfidence };
 bool parse_breakdown_by(const std::string& name, BreakdownBy* out);
 const char* to_string(BreakdownBy by);
 
+// The most quantile bins a breakdown takes, printed (ipd breakdown) or drawn (ipd figure breakdown) alike: a
+// figure draws a row per bin, and 20 rows still fit a column at 8 pt; past that a bin of a study the size of
+// the demo (about 80 pairs a cell) holds too few pairs from too few scenes for an interval.
+constexpr int kMaxBreakdownBins = 20;
+
 struct BreakdownOptions {
   BreakdownBy by = BreakdownBy::kSize;
-  int bins = 4;  // size and confidence: quantile bins; region is always a 3x3 grid
+  int bins = 4;  // size and confidence: quantile bins (1 to kMaxBreakdownBins); region is always a 3x3 grid
   BootstrapOptions bootstrap;
   std::string validate() const;
 };
@@ -74,9 +79,13 @@ struct CellBreakdown {
   std::vector<BreakdownBin> bins;
 };
 
-// Needs the cell's per_scene[*].counted and the labels it came from. Size is the ref box's area in pixels
-// (image size from study.yaml or the domain's pictures, else normalised area × 10⁶); confidence is that of
-// the ref rock's best-IoU prediction ("no detection" bin when nothing overlaps).
+// What a breakdown of a cell without rock pairs (no rocks, or none paired) says instead of its bins.
+constexpr const char* kNoRockPairsToBin = "No rock pairs in this cell (no rocks, or none paired): nothing to bin.";
+
+// Needs the cell's per_scene[*].counted and the labels it came from. A cell without counted pairs has no bins;
+// by confidence, pairs none of whose rocks was detected have only the "no detection" bin. Size is the ref box's area in
+// pixels (image size from study.yaml or the domain's pictures, else normalised area × 10⁶); confidence is that of the
+// ref rock's best-IoU prediction ("no detection" bin when nothing overlaps).
 CellBreakdown breakdown_cell(const StudyLabels& labels, const TableCell& cell, const BreakdownOptions& options);
 
 // A domain's picture size: study.yaml's image_size, else the first picture's (upright, after its EXIF

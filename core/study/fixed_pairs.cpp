@@ -197,15 +197,18 @@ RockPairs parse_pair_list(const nlohmann::json& j, const std::string& file, size
   return out;
 }
 
+// A rock listed twice is an error, as a rock paired twice is: it was counted twice ("2 rocks excluded").
 std::vector<int> parse_excluded(const nlohmann::json& j, const char* key, const std::string& file, size_t n) {
   std::vector<int> out;
   if (!j.contains(key)) return out;
   if (!j[key].is_array()) throw StudyError(fmt::format("{}: \"{}\" must be an array of rock indices", file, key));
+  std::set<int> seen;
   for (const auto& v : j[key]) {
     int x = -1;
     if (!as_index(v, &x))
       throw StudyError(
           fmt::format("{}: \"{}\" holds {}, expected a rock index below {}", file, key, describe_json(v), n));
+    if (!seen.insert(x).second) throw StudyError(fmt::format("{}: \"{}\" lists rock {} twice", file, key, x));
     out.push_back(x);
   }
   return out;

@@ -148,11 +148,12 @@ void parse_registration(const YAML::Node& v, const std::string& file, int line, 
         throw StudyError(fmt::format("{}:{}: unknown registration method '{}' (expected {})", file,
                                      r.first.Mark().line + 1, quoted_for_message(name), method_choices()));
     } else if (k == "seed") {
-      // yaml-cpp reads "-1" as 2^64 - 1 for an unsigned type: a negative seed is an error, not a seed.
-      if (r.second.IsScalar() && r.second.Scalar().rfind('-', 0) == 0)
-        throw StudyError(fmt::format("{}:{}: registration.seed must be a whole number >= 0, got {}", file,
-                                     r.first.Mark().line + 1, quoted_for_message(r.second.Scalar())));
-      c->registration.seed = yaml_get<std::uint64_t>(r.second, file, "registration.seed");
+      // parse_seed's range, as --seed's: yaml-cpp reads "-1" as 2^64 - 1 for an unsigned type, and 2^64 is
+      // "the wrong type"; either is an error naming the range.
+      if (!r.second.IsScalar()) yaml_get<std::uint64_t>(r.second, file, "registration.seed");
+      if (!parse_seed(r.second.Scalar(), &c->registration.seed))
+        throw StudyError(fmt::format("{}:{}: registration.seed must be {}, got {}", file, r.first.Mark().line + 1,
+                                     kSeedRange, quoted_for_message(r.second.Scalar())));
     } else if (k == "trials") {
       trials = yaml_get<int>(r.second, file, "registration.trials");
       if (trials < 1)

@@ -195,8 +195,9 @@ int remove_stale_temp_files(const std::string& dir) {
   std::error_code ec;
   for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
     if (!is_stale_temp_name(it->path().filename().string())) continue;
+    // Our writers make regular files: a link (or anything else) of that name is not ours, and stays.
     std::error_code rm;
-    if (it->is_regular_file(rm) && fs::remove(it->path(), rm)) ++removed;
+    if (it->symlink_status(rm).type() == fs::file_type::regular && fs::remove(it->path(), rm)) ++removed;
   }
   return removed;
 }

@@ -31,7 +31,8 @@ FileKind file_kind(const std::string& path);
 constexpr size_t kMaxReadBytes = size_t{1} << 30;
 std::string read_file(const std::string& path, size_t max_bytes = kMaxReadBytes);
 
-// Removes `<name>.tmp-<pid>-<n>` files left in `dir` by writers that died (their process is gone).
+// Removes `<name>.tmp-<pid>-<n>` files left in `dir` by writers that died (their process is gone): regular
+// files only, never through or of a symbolic link (ours are never links).
 // Returns how many were removed; problems are ignored (this is tidying, not a correctness step).
 int remove_stale_temp_files(const std::string& dir);
 // True for `<name>.tmp-<pid>-<n>` whose writer process is gone.

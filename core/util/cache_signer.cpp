@@ -96,8 +96,10 @@ bool read_key(const std::string& path, std::string* key) {
 // Creates the key so that no reader ever sees a partial one: written and synced under a temporary name,
 // then hard-linked to its name (which fails, leaving the other process's key, when two create it at once).
 void create_key(const std::string& path) {
-  std::error_code ec;
-  fs::create_directories(fs::path(path).parent_path(), ec);
+  // The folder's own error (no permission, say): the open below would only say "No such file or directory".
+  const fs::path folder = fs::path(path).parent_path();
+  if (std::error_code ec; !folder.empty() && !fs::create_directories(folder, ec) && ec)
+    throw std::runtime_error(fmt::format("{}: cannot create the folder {}: {}", path, folder.string(), ec.message()));
   const std::string tmp =
       fmt::format("{}.tmp-{}-{}", path, ::getpid(), static_cast<unsigned>(random_bytes(2)[0]) & 0xff);
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
@@ -122,7 +124,8 @@ void create_key(const std::string& path) {
 std::string user_cache_root() {
   const char* xdg = std::getenv("XDG_CACHE_HOME");
   const char* home = std::getenv("HOME");
-  const fs::path base = xdg && *xdg ? fs::path(xdg) : fs::path(home ? home : "/tmp") / ".cache";
+  const bool xdg_usable = xdg && *xdg && fs::path(xdg).is_absolute();
+  const fs::path base = xdg_usable ? fs::path(xdg) : fs::path(home ? home : "/tmp") / ".cache";
   return (base / "ipd-studio").string();
 }
 

@@ -38,7 +38,9 @@ class CacheSigner {
   std::string problem_;
 };
 
-// $XDG_CACHE_HOME (or ~/.cache)/ipd-studio: the user cache directory of every study that can't hold its own.
+// $XDG_CACHE_HOME (or ~/.cache)/ipd-studio: the user cache directory of every study that can't hold its own,
+// ipd-studio's demo study and recent list. A relative $XDG_CACHE_HOME is ignored, as the XDG Base Directory
+// specification says: it would put the cache in whatever folder the program was started from.
 std::string user_cache_root();
 std::string user_key_path();
 

@@ -58,6 +58,21 @@ bool parse_integer(const std::string& s, long long lo, long long hi, long long* 
   return true;
 }
 
+const char* const kSeedRange = "a whole number from 0 to 18446744073709551615";
+
+bool parse_seed(const std::string& s, std::uint64_t* out) {
+  if (s.empty()) return false;
+  std::uint64_t v = 0;
+  for (const char c : s) {
+    if (c < '0' || c > '9') return false;
+    const auto digit = static_cast<std::uint64_t>(c - '0');
+    if (v > (UINT64_MAX - digit) / 10) return false;  // v * 10 + digit would wrap
+    v = v * 10 + digit;
+  }
+  *out = v;
+  return true;
+}
+
 bool is_non_finite_word(std::string_view s) {
   if (!s.empty() && (s[0] == '+' || s[0] == '-')) s.remove_prefix(1);
   std::string w;

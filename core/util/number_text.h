@@ -3,6 +3,7 @@
 // zero-filled block after a crash) read as 0.20 and "5x" as 5.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -17,6 +18,13 @@ bool parse_decimal(const std::string& s, double* out);
 
 // [-] digits within [lo, hi]; false for anything else (a sign alone, "5x", a value out of range).
 bool parse_integer(const std::string& s, long long lo, long long hi, long long* out);
+
+// A seed, the one range of every seed the tools take (--seed, study.yaml's registration.seed): digits only,
+// 0 to 2^64 - 1, the whole range of the generators' 64-bit seed. False for a sign, "5x" or a larger value,
+// which used to be clamped or wrapped into another seed without a word.
+bool parse_seed(const std::string& s, std::uint64_t* out);
+// What parse_seed accepts, for messages: "a whole number from 0 to 18446744073709551615".
+extern const char* const kSeedRange;
 
 // "nan", "-inf", "Infinity": a number, but not a finite one (said so, rather than "not a number").
 bool is_non_finite_word(std::string_view s);

@@ -9,6 +9,7 @@
 
 #include "core/report/csv.h"
 #include "core/report/table_format.h"
+#include "core/stats/study_statistics.h"
 #include "core/study/coco_import.h"
 #include "core/study/study.h"
 #include "core/util/errors.h"
@@ -58,6 +59,17 @@ TEST(NumberText, TheWholeTextIsTheNumber) {
   EXPECT_FALSE(parse_integer("-", -5, 5, &n));
   EXPECT_FALSE(parse_integer("99999999999999999999", 1, 100, &n));
   EXPECT_EQ(quoted_for_message(std::string("a\0b\x1b\xff", 5)), "a\\x00b\\x1B\\xFF");
+  std::uint64_t seed = 7;
+  EXPECT_TRUE(parse_seed("18446744073709551615", &seed));
+  EXPECT_EQ(seed, 18446744073709551615ull);
+  EXPECT_TRUE(parse_seed("0", &seed));
+  EXPECT_EQ(seed, 0u);
+  EXPECT_FALSE(parse_seed("18446744073709551616", &seed));
+  EXPECT_FALSE(parse_seed("99999999999999999999", &seed));
+  EXPECT_FALSE(parse_seed("-1", &seed));
+  EXPECT_FALSE(parse_seed("+1", &seed));
+  EXPECT_FALSE(parse_seed("", &seed));
+  EXPECT_EQ(seed, 0u);  // untouched by a refusal
 }
 
 // --- label files in another case ----------------------------------------------------------------------------
@@ -231,7 +243,11 @@ TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
       {"--threads -1", "--threads: must be >= 0 (0: every core), got -1"},
       {"--image-size 0,10", "--image-size: width and height must be positive, got 0,10"},
       // CLI11 read -5 into the unsigned seed as 2^64 - 5: another seed, without a word.
-      {"--seed -5", "--seed: must be a whole number >= 0, got -5"},
+      {"--seed -5", "--seed: must be a whole number from 0 to 18446744073709551615, got -5"},
+      // And 2^64 as 2^64 - 1.
+      {"--seed 18446744073709551616",
+       "--seed: must be a whole number from 0 to 18446744073709551615, got "
+       "18446744073709551616"},
   };
   for (const auto& [option, message] : cases) {
     const auto r = test::run_ipd("register" + pair + " " + option);
@@ -244,8 +260,19 @@ TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
   for (const char* seed : {"-5", "-1"}) {
     const auto r = test::run_ipd("table --seed " + std::string(seed) + " " + d.path());
     EXPECT_EQ(r.exit_code, 2) << seed;
-    EXPECT_EQ(r.err.rfind("--seed: must be a whole number >= 0, got " + std::string(seed) + "\n", 0), 0u) << r.err;
+    EXPECT_EQ(r.err.rfind(
+                  "--seed: must be a whole number from 0 to 18446744073709551615, got " + std::string(seed) + "\n", 0),
+              0u)
+        << r.err;
   }
+  // --bootstrap 1 showed no interval without a word: one resample has no spread.
+  auto one = test::run_ipd("table --bootstrap 1 " + d.path());
+  EXPECT_EQ(one.exit_code, 2);
+  EXPECT_EQ(one.err.rfind(
+                "--bootstrap: must be 0 (no intervals) or at least 2 (an interval needs two resamples), got 1\n", 0),
+            0u)
+      << one.err;
+  EXPECT_EQ(test::run_ipd("table --bootstrap 2 " + d.path()).exit_code, 0);
   // ipd detect: a negative class kept nothing ("no rocks" everywhere), negative threads meant every core.
   auto detect = test::run_ipd("detect " + d.path() + " --detector classical --out " + d / "x" + " --classes 0,-1");
   EXPECT_EQ(detect.exit_code, 2);
@@ -256,6 +283,36 @@ TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
   const auto demo = test::run_ipd("demo " + d / "demo" + " --seed -3");
   EXPECT_EQ(demo.exit_code, 2);
   EXPECT_FALSE(fs::exists(d / "demo"));
+}
+
+// One seed range everywhere: --seed 2^64 - 1 was read as 2^63 - 1 by the study commands, so it gave other
+// intervals than the same seed in study.yaml.
+TEST(InputChecks, TheLargestSeedIsTheSameSeedOnTheCommandLineAndInStudyYaml) {
+  test::TempDir d;
+  write_tiny_study(d);
+  const auto given = test::run_ipd("table --format json --bootstrap 10 --seed 18446744073709551615 " + d.path());
+  EXPECT_EQ(given.exit_code, 0) << given.err;
+  EXPECT_NE(given.out.find("\"seed\": 18446744073709551615"), std::string::npos) << given.out;
+  test::write_text(d / "study.yaml", "registration:\n  seed: 18446744073709551615\n");
+  const auto from_yaml = test::run_ipd("table --format json --bootstrap 10 " + d.path());
+  EXPECT_EQ(from_yaml.exit_code, 0) << from_yaml.err;
+  EXPECT_EQ(from_yaml.out, given.out);
+}
+
+// ipd breakdown took up to 100 bins, ipd figure breakdown up to 20: one range, so every printed breakdown can
+// be drawn.
+TEST(InputChecks, BreakdownBinsHaveOneRangePrintedOrDrawn) {
+  test::TempDir d;
+  write_tiny_study(d);
+  for (const std::string& command : std::vector<std::string>{"breakdown", "figure breakdown --out " + d / "b.svg"}) {
+    const auto r = test::run_ipd(command + " --bootstrap 0 --bins 21 " + d.path());
+    EXPECT_EQ(r.exit_code, 2) << command;
+    EXPECT_EQ(r.err.rfind("--bins: Value 21 not in range 1 to 20\n", 0), 0u) << command << ": " << r.err;
+    EXPECT_EQ(test::run_ipd(command + " --bootstrap 0 --bins 20 " + d.path()).exit_code, 0) << command;
+  }
+  BreakdownOptions o;
+  o.bins = 21;
+  EXPECT_EQ(o.validate(), "--bins must be between 1 and 20, not 21");
 }
 
 // ipd demo writes a new study: over an existing directory with files (a study with hand pairs, say) it writes
@@ -311,7 +368,10 @@ TEST(InputChecks, StudyYamlDomainsListedTwiceAreAnError) {
 // study.yaml's registration block: every number is checked where it is written.
 TEST(InputChecks, StudyYamlRegistrationNumbersAreChecked) {
   EXPECT_EQ(test::study_yaml_error("registration:\n  seed: -1\n"),
-            "study.yaml:2: registration.seed must be a whole number >= 0, got -1");
+            "study.yaml:2: registration.seed must be a whole number from 0 to 18446744073709551615, got -1");
+  EXPECT_EQ(test::study_yaml_error("registration:\n  seed: 18446744073709551616\n"),
+            "study.yaml:2: registration.seed must be a whole number from 0 to 18446744073709551615, got "
+            "18446744073709551616");
   EXPECT_EQ(
       test::study_yaml_error("registration:\n  gate: 0\n"),
       "study.yaml:2: registration.gate must be a number > 0 (a fraction of the rocks' spread; default 0.2), got 0");

@@ -143,6 +143,22 @@ TEST(StudioReplay, DomainsTheStudyLacksFailTheReplay) {
       << read_file(d / "log.txt");
 }
 
+// A model the study lacks was accepted (exit 0) and figures were exported for it; it fails as a domain does.
+TEST(StudioReplay, AModelTheStudyLacksFailsTheReplay) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd(fmt::format("demo {} --scenes 2 --rocks 8", d / "study")).exit_code, 0);
+  test::write_text(d / "actions.txt", "model det-real\nmodel nothere\nexport table " + d / "table.svg\n");
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d / "study", d / "actions.txt");
+  EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">{} 2>&1", d / "log.txt"), d.path()), 1);
+  EXPECT_FALSE(fs::exists(d / "table.svg"));
+  EXPECT_NE(read_file(d / "log.txt").find(d / "actions.txt" + ":2: 'model': the study has no model 'nothere'\n"),
+            std::string::npos)
+      << read_file(d / "log.txt");
+}
+
 TEST(StudioReplay, AStudyThatCannotBeOpenedSaysWhyOnStderr) {
   const char* studio = std::getenv("IPD_STUDIO");
   if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";

@@ -52,6 +52,37 @@ std::string default_font_file() {
   return "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 }
 
+std::string font_file_problem(const std::string& font_file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::file_type type = fs::status(font_file, ec).type();
+  const char* what = nullptr;
+  switch (type) {
+    case fs::file_type::regular:
+      return "";
+    case fs::file_type::not_found:
+      return font_file + ": no such font file";
+    case fs::file_type::directory:
+      what = "a directory";
+      break;
+    case fs::file_type::character:
+      what = "a character device";
+      break;
+    case fs::file_type::block:
+      what = "a block device";
+      break;
+    case fs::file_type::fifo:
+      what = "a FIFO";
+      break;
+    case fs::file_type::socket:
+      what = "a socket";
+      break;
+    default:  // none, unknown: it could not be examined (no permission on a folder above it, say)
+      return font_file + ": cannot examine the font file: " + (ec ? ec.message() : std::string("unknown type"));
+  }
+  return font_file + ": is " + what + ", not a font file (expected a TrueType or OpenType font)";
+}
+
 namespace {
 
 // One FreeType library for the process (FreeType faces must not outlive it); creating faces is serialised.
@@ -92,12 +123,12 @@ struct FontMetrics::Impl {
 };
 
 FontMetrics::FontMetrics(const std::string& font_file) : impl_(std::make_unique<Impl>()), file_(font_file) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(font_file, ec)) throw std::runtime_error(font_file + ": no such font file");
+  if (const std::string problem = font_file_problem(font_file); !problem.empty()) throw std::runtime_error(problem);
   impl_->regular = load_face(font_file, false);
   // DejaVuSans.ttf -> DejaVuSans-Bold.ttf when it exists; otherwise an emboldened regular face.
   std::filesystem::path p(font_file);
   const std::filesystem::path bold = p.parent_path() / (p.stem().string() + "-Bold" + p.extension().string());
+  std::error_code ec;
   if (std::filesystem::is_regular_file(bold, ec)) bold_file_ = bold.string();
   impl_->bold = bold_file_.empty() ? load_face(font_file, true) : load_face(bold_file_, false);
   impl_->surface = cairo_image_surface_create(CAIRO_FORMAT_A8, 1, 1);

@@ -84,6 +84,10 @@ class FontMetrics {
   std::string file_, bold_file_;
 };
 
+// "" when `font_file` is a regular file (whether it holds a font is FreeType's to say), else what is wrong,
+// naming the file: "no such font file", or what is there instead ("is a character device, not a font file").
+std::string font_file_problem(const std::string& font_file);
+
 // The default figure font: DejaVu Sans from fonts-dejavu-core (or assets/fonts/ when present).
 std::string default_font_file();
 

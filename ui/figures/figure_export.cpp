@@ -61,13 +61,15 @@ std::string study_figure_file(const Session& session, const ExportRequest& r, Fi
   sr.a = r.kind == "compare" ? r.a : session.left_domain();
   sr.b = r.kind == "compare" ? r.b : session.right_domain();
   sr.bootstrap.seed = session.study().config.registration.seed;  // as `ipd table` without --seed
+  sr.conf_threshold = session.conf_threshold();
   CrossTable table = session_table(session);
   add_confidence_intervals(&table, sr.bootstrap, 1);
   const StudyLabels labels = r.kind == "breakdown" || r.kind == "gallery" ? thresholded_labels(session)
                                                                           : StudyLabels{session.study(), {}, {}, {}};
   const FontMetrics metrics(r.options.font_file.empty() ? default_font_file() : r.options.font_file);
   DisplayList fig(metrics);
-  const Provenance provenance = session_provenance(session);  // its table has no pairings to count
+  // Its table has no pairings to count: the session's edits, over the domain pairs the figure draws.
+  const Provenance provenance = session_provenance(session, study_figure_domain_pairs(session.study(), sr));
   const std::string title = draw_study_figure(fig, table, labels, sr, r.options, &provenance);
   return render_figure_file(fig, metrics, format, r.options.dpi, title);
 }

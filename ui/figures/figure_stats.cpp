@@ -119,6 +119,7 @@ DotWhiskerChart breakdown_chart(const CellBreakdown& b, double level) {
   ch.non_negative = true;
   for (const BreakdownBin& bin : b.bins)
     ch.rows.push_back({bin.label, bin.ipd.estimate, bin.ipd.low, bin.ipd.high, fmt::format("{} pairs", bin.pairs)});
+  if (b.bins.empty()) ch.footnote = kNoRockPairsToBin;
   return ch;
 }
 

@@ -27,6 +27,10 @@ struct StudyFigureRequest {
   int bins = 4;                     // breakdown by size or confidence
   int count = 8;                    // gallery: how many pairs
   GallerySort gallery_sort = GallerySort::kDiff;
+  // The confidence threshold the predictions were cut at (`--conf`, the studio's slider, else study.yaml's):
+  // above 0 the table, compare, distribution and breakdown say it under the figure, as the pairs figure's
+  // caption does ("conf ≥ 0.3"), since their numbers depend on it.
+  double conf_threshold = 0;
 };
 
 // Draws the figure into `out` (options.ci: the table's intervals; options.by: the breakdown's property) and
@@ -35,8 +39,14 @@ struct StudyFigureRequest {
 // breakdown reads rock sizes and confidences from them, the gallery boxes; the gallery reads the pictures).
 // The provenance of `table` goes into the figure (figure_provenance.h). Throws StudyError for a missing
 // cell or domain.
-// `provenance` (optional): what the figure says about hand edits; null: table_provenance of `table`, which
-// needs the table's pairings (a session's table has none: pass session_provenance).
+// `provenance` (optional): what the figure says about hand edits; null: table_provenance of `table` over the
+// domain pairs the figure draws (study_figure_domain_pairs), which needs the table's pairings (a session's
+// table has none: pass session_provenance over the same domain pairs).
+// The domain pairs whose numbers a figure shows, so its provenance counts the hand pairs of those alone:
+// compare (ref, a) and (ref, b), breakdown and gallery their cell's pair; empty (every pair) for the rest.
+// Throws StudyError as the figure would for domains it can't resolve.
+DomainPairFilter study_figure_domain_pairs(const Study& study, const StudyFigureRequest& request);
+
 std::string draw_study_figure(DisplayList& out, const CrossTable& table, const StudyLabels& labels,
                               const StudyFigureRequest& request, const FigureOptions& options,
                               const Provenance* provenance = nullptr);

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/session/session.h"
+#include "core/util/atomic_file.h"
 #include "tests/support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -102,6 +103,26 @@ TEST(SaveOrder, StaleTempFilesOfDeadWritersAreRemoved) {
   EXPECT_FALSE(fs::exists(d / "s1.json.tmp-4194305-77"));
   EXPECT_TRUE(fs::exists(d / ("s2.json.tmp-" + std::to_string(::getpid()) + "-5")));
   EXPECT_TRUE(fs::exists(d / "s3.json"));
+}
+
+// The review marks' temp files of an interrupted save were never removed (only the pairs folders were
+// tidied). Opening the study removes ours whose writer is gone, in review/ and pairs/<A>__<B>/; a live
+// writer's stays, and so does a link of such a name (not ours), its target untouched.
+TEST(SaveOrder, OpeningAStudyRemovesStaleTempFilesOfReviewMarksAndPairs) {
+  test::TempDir d, elsewhere;
+  test::write_two_rock_study(d);
+  const std::string live = "real__synth.json.tmp-" + std::to_string(::getpid()) + "-2";
+  test::write_text(d / "review/real__synth.json.tmp-4194305-1", "{\"reviewed\": [");
+  test::write_text(d / ("review/" + live), "a live writer's");
+  test::write_text(elsewhere / "precious.json", "keep\n");
+  fs::create_symlink(elsewhere / "precious.json", d / "review/other.json.tmp-4194305-3");
+  test::write_text(d / "pairs/real__synth/s1.json.tmp-4194305-4", "{\"pairs\": [");
+  const Session s = Session::open(d.path());
+  EXPECT_FALSE(fs::exists(d / "review/real__synth.json.tmp-4194305-1"));
+  EXPECT_FALSE(fs::exists(d / "pairs/real__synth/s1.json.tmp-4194305-4"));
+  EXPECT_TRUE(fs::exists(d / ("review/" + live)));
+  EXPECT_TRUE(fs::is_symlink(d / "review/other.json.tmp-4194305-3"));
+  EXPECT_EQ(read_file(elsewhere / "precious.json"), "keep\n");
 }
 
 }  // namespace

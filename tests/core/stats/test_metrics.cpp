@@ -72,6 +72,29 @@ void test_pair(cv::Mat* a, cv::Mat* b) {
     }
 }
 
+// The footnote said AP was over "every detection" while pycocotools' cap of 100 a picture applies: one GT, 100
+// detections far from it at 0.9 and the exact one at 0.1. AP ranks only the first 100 (AP 0); precision,
+// recall and F1 count all 101 (1 of 101 true, the one GT found).
+TEST(Metrics, ApCountsTheHundredMostConfidentDetectionsOfAPictureAndThePrintedNoteSaysSo) {
+  DetectionImage im;
+  im.gt = {box(0.5, 0.5, 0.1, 0.1)};
+  for (int k = 0; k < 100; ++k) im.detections.push_back(box(0.05 + 0.001 * k, 0.05, 0.01, 0.01, 0.9));
+  im.detections.push_back(box(0.5, 0.5, 0.1, 0.1, 0.1));
+  const DetectionMetrics m = detection_metrics({im}, 0);
+  EXPECT_EQ(m.ap50, 0.0);
+  EXPECT_EQ(m.detections, 101);
+  EXPECT_NEAR(m.precision, 1.0 / 101, 1e-15);
+  EXPECT_EQ(m.recall, 1.0);
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  const auto r = test::run_ipd("metrics " + d.path() + " --bootstrap 0");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("(AP: pycocotools' rules over the 100 most confident detections of each picture; "
+                       "precision/recall/F1 over every detection at confidence >= 0 and IoU 0.5)\n"),
+            std::string::npos)
+      << r.out;
+}
+
 TEST(Metrics, SsimAndPsnrAgreeWithScikitImage) {
   cv::Mat a, b;
   test_pair(&a, &b);

@@ -416,6 +416,40 @@ TEST(StatsCli, OneSceneSaysNoIntervalAndNoTest) {
   EXPECT_NE(compare.out.find("(intervals and tests need at least 2 scenes)"), std::string::npos) << compare.out;
 }
 
+// A cell without rocks had four "nan–nan px²" bins of 0 pairs; it has none, and says so. By confidence, pairs
+// none of whose rocks was found have only the "no detection" bin (no quantiles of nothing).
+TEST(StudyStatistics, ABreakdownWithoutRockPairsHasNoBins) {
+  test::TempDir d;
+  test::write_text(d / "real/labels/s1.txt", "");
+  test::write_text(d / "synth/labels/s1.txt", "");
+  test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n");
+  test::write_text(d / "synth/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n");
+  StudyLabels labels = load_labels(open_study(d.path()));
+  CrossTable t = compute_cross_table(labels, {});
+  for (auto by : {BreakdownBy::kSize, BreakdownBy::kRegion, BreakdownBy::kConfidence}) {
+    BreakdownOptions o;
+    o.by = by;
+    EXPECT_TRUE(breakdown_cell(labels, t.cells.at(0), o).bins.empty()) << to_string(by);
+  }
+  const auto r = test::run_ipd("breakdown --bootstrap 0 " + d.path());
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, r.out.find("\n\n")),
+            "det (), |real - synth|, by size:\n  No rock pairs in this cell (no rocks, or none paired): nothing to "
+            "bin.");
+  // Two rocks paired, neither detected on the reference side: only "no detection".
+  test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+  test::write_text(d / "synth/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+  test::write_text(d / "real/predictions/det/s1.txt", "0 0.9 0.9 0.05 0.05 0.9\n");
+  labels = load_labels(open_study(d.path()));
+  t = compute_cross_table(labels, {});
+  BreakdownOptions o;
+  o.by = BreakdownBy::kConfidence;
+  const CellBreakdown b = breakdown_cell(labels, t.cells.at(0), o);
+  ASSERT_EQ(b.bins.size(), 1u);
+  EXPECT_EQ(b.bins[0].label, "no detection");
+  EXPECT_EQ(b.bins[0].pairs, 2);
+}
+
 }  // namespace
 }  // namespace ipd
 

@@ -314,5 +314,28 @@ TEST(FixedPairsBinding, MalformedStoredRocksNameTheFile) {
   }
 }
 
+// A rock excluded twice read as "2 rocks excluded": an error naming the file, as a rock paired twice is.
+TEST(FixedPairsBinding, ARockListedTwiceIsAnErrorAsARockPairedTwiceIs) {
+  test::TempDir d;
+  write_study(d, kReal, kSynth);
+  const std::string f = d / "pairs/real__synth/s1.json";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {R"({"pairs": [], "excluded_a": [0, 0]})", "\"excluded_a\" lists rock 0 twice"},
+      {R"({"pairs": [], "excluded_b": [1, 0, 1]})", "\"excluded_b\" lists rock 1 twice"},
+      {R"({"pairs": [[0, 1], [0, 0]]})", "pair 2 [0, 0] uses a rock that is already paired"},
+  };
+  for (const auto& [text, why] : cases) {
+    test::write_text(f, text);
+    try {
+      table_of(d.path());
+      ADD_FAILURE() << "expected an error for " << text;
+    } catch (const StudyError& e) {
+      EXPECT_EQ(std::string(e.what()), f + ": " + why);
+    }
+  }
+  test::write_text(f, R"({"pairs": [], "excluded_a": [1, 0]})");
+  EXPECT_EQ(table_of(d.path()).pairings[0][0].excluded_a, (std::vector<int>{0, 1}));
+}
+
 }  // namespace
 }  // namespace ipd

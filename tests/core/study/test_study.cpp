@@ -124,7 +124,8 @@ TEST(Study, MessagesQuoteAtMostFortyCharactersOfTheFile) {
   EXPECT_EQ(test::study_yaml_error("registration: {method: " + long_word + "}\n"),
             "study.yaml:1: unknown registration method '" + shown + "' (expected consensus, paper or cpd)");
   EXPECT_EQ(test::study_yaml_error("registration: {seed: -" + long_word + "}\n"),
-            "study.yaml:1: registration.seed must be a whole number >= 0, got -" + std::string(36, 'r') + "...");
+            "study.yaml:1: registration.seed must be a whole number from 0 to 18446744073709551615, got -" +
+                std::string(36, 'r') + "...");
   EXPECT_EQ(test::study_yaml_error("registration: {gate: " + long_word + "}\n"),
             "study.yaml:1: registration.gate has the wrong type");
 }

@@ -7,7 +7,9 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <cstdlib>
 #include <filesystem>
+#include <optional>
 
 #include "core/ipd/study_cache.h"
 #include "core/registration/registration_cache.h"
@@ -165,6 +167,74 @@ TEST(CacheDir, TempFilesOfKilledWritersAreRemoved) {
   EXPECT_TRUE(fs::exists(d / "study/.ipd-cache/" + alive));           // its writer still runs
   EXPECT_FALSE(fs::is_symlink(d / "study/.ipd-cache/" + dead_link));  // the link itself goes ...
   EXPECT_EQ(read_file(d / "outside"), "precious\n");                  // ... never its target
+}
+
+// Sets an environment variable for one test and restores what was there.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    const char* old = std::getenv(name);
+    if (old) old_ = old;
+    ::setenv(name, value, 1);
+  }
+  ~ScopedEnv() {
+    if (old_)
+      ::setenv(name_, old_->c_str(), 1);
+    else
+      ::unsetenv(name_);
+  }
+
+ private:
+  const char* name_;
+  std::optional<std::string> old_;
+};
+
+// A relative XDG_CACHE_HOME made ./relcache/ipd-studio/ in whatever folder the program started in; the XDG
+// Base Directory specification calls such a path invalid, to be ignored.
+TEST(CacheSigner, ARelativeXdgCacheHomeIsIgnored) {
+  const ScopedEnv home("HOME", "/home/someone");
+  {
+    const ScopedEnv xdg("XDG_CACHE_HOME", "relcache");
+    EXPECT_EQ(user_cache_root(), "/home/someone/.cache/ipd-studio");
+    EXPECT_EQ(user_key_path(), "/home/someone/.cache/ipd-studio/key");
+  }
+  const ScopedEnv xdg("XDG_CACHE_HOME", "/var/cache/someone");
+  EXPECT_EQ(user_cache_root(), "/var/cache/someone/ipd-studio");
+}
+
+// A cache folder that can't be made (no permission) was reported as "No such file or directory", the open of
+// the key's temp file in it; the folder's own error is named. Run as an unprivileged user in a child when the
+// tests run as root, whom permissions don't stop.
+TEST(CacheSigner, AFolderThatCannotBeMadeIsReportedWithItsOwnError) {
+  test::TempDir d;
+  fs::create_directories(d / "ro");
+  const fs::perms read_and_enter = fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                   fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec;
+  fs::permissions(d.path(), read_and_enter | fs::perms::owner_write);  // the child may enter, not write
+  fs::permissions(d / "ro", read_and_enter);
+  int pipe_fds[2];
+  ASSERT_EQ(::pipe(pipe_fds), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::close(pipe_fds[0]);
+    if (::geteuid() == 0 && ::setuid(65534) != 0) ::_exit(2);
+    const CacheSigner signer(d / "ro/ipd-studio/key");
+    const std::string problem = signer.problem();
+    const bool written = ::write(pipe_fds[1], problem.data(), problem.size()) == static_cast<ssize_t>(problem.size());
+    ::_exit(written ? 0 : 3);
+  }
+  ::close(pipe_fds[1]);
+  std::string problem;
+  char buf[512];
+  for (ssize_t n; (n = ::read(pipe_fds[0], buf, sizeof buf)) > 0;) problem.append(buf, static_cast<size_t>(n));
+  ::close(pipe_fds[0]);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_EQ(problem,
+            d / "ro/ipd-studio/key" + ": cannot create the folder " + d / "ro/ipd-studio" + ": Permission denied");
+  fs::permissions(d / "ro", fs::perms::owner_all);
 }
 
 TEST(CacheSigner, KeyIsCreatedPrivateAndSignsOnlyForItsOwner) {

@@ -4,10 +4,14 @@
 
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
+#include "core/report/provenance.h"
+#include "core/session/session.h"
 #include "tests/support/pdf_text.h"
 #include "tests/support/test_support.h"
 #include "ui/canvas/png_text.h"
+#include "ui/figures/figure_export.h"
 #include "ui/figures/figure_provenance.h"
 
 namespace ipd {
@@ -98,6 +102,35 @@ TEST(FigureProvenance, AutomaticStudyKeepsTheFingerprintInTheMetadataOnly) {
   // The chunk is valid PNG: ImageMagick reads it back.
   const auto id = test::run_command("identify -verbose '" + (d / "t.png") + "'");
   EXPECT_NE(id.out.find(std::string("Description: ") + kAutomatic), std::string::npos) << id.out << id.err;
+}
+
+// A breakdown of synth vs other reported real vs synth's hand pairs (the whole table's), while
+// `ipd breakdown` of that cell said "no hand pairs": a figure counts the hand pairs of what it draws, from the
+// command line and from the studio alike.
+TEST(FigureProvenance, ACellsFigureCountsTheHandPairsOfItsCellOnly) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  test::write_text(d / "other/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "other/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
+  write_hand_pairs(d);
+  const std::string fingerprint = "Label files " + label_set_fingerprint(open_study(d.path())) + "; ";
+  const std::string none = fingerprint + "no hand pairs (every pair from registration).";
+  const std::string edited = fingerprint + "hand pairs in 1 scene (1 pair set by hand, 1 rock excluded).";
+  // (The gallery takes its cell from --domains, which limits the table to that pair as well.)
+  for (const auto& [a, b, note] : {std::make_tuple("synth", "other", none), std::make_tuple("real", "synth", edited)}) {
+    const std::string out = d / ("breakdown-" + std::string(a) + ".svg");
+    const auto r = test::run_ipd("figure breakdown " + d.path() + " --bootstrap 0 --no-cache --a " + a + " --b " + b +
+                                 " --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(read_bytes(out).find("<desc>" + note + "</desc>"), std::string::npos) << a << " " << b;
+  }
+  Session s = Session::open(d.path());
+  ASSERT_TRUE(s.select_domains("synth", "other"));
+  ui::ExportRequest req;
+  req.kind = "breakdown";
+  req.path = d / "studio.svg";
+  EXPECT_EQ(ui::export_figure(s, req), "exported " + req.path);
+  EXPECT_NE(read_bytes(req.path).find("<desc>" + none + "</desc>"), std::string::npos);
 }
 
 // add_provenance on its own: the page grows by the note, which sits below the old bottom margin.

@@ -226,6 +226,28 @@ TEST(FigureStats, DistributionLeavesOutPairsWithoutTheTrainingDomain) {
   EXPECT_EQ(ch.rows[1].values, std::vector<double>{0.05});
 }
 
+// A table or distribution exported at --conf 0.5 (or the studio's slider) did not say so, while the pairs
+// figure's caption does ("conf ≥ 0.3"): every study figure whose numbers depend on it says it under the figure.
+TEST(FigureStats, AThresholdOnThePredictionsIsSaidUnderTheFigure) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  const std::string said = "Predictions with conf \u2265 0.5.";
+  for (const std::string kind : {"table", "distribution", "breakdown"}) {
+    SCOPED_TRACE(kind);
+    ASSERT_EQ(test::run_ipd("figure " + kind + " " + d.path() + " --conf 0.5 --out " + d / "f.pdf").exit_code, 0);
+    EXPECT_NE(test::pdf_words(d / "f.pdf").find(said), std::string::npos) << test::pdf_words(d / "f.pdf");
+    ASSERT_EQ(test::run_ipd("figure " + kind + " " + d.path() + " --out " + d / "g.pdf").exit_code, 0);
+    EXPECT_EQ(test::pdf_words(d / "g.pdf").find("Predictions with conf"), std::string::npos);
+  }
+  Session s = Session::open(d.path());
+  s.set_conf_threshold(0.5);
+  ui::ExportRequest req;
+  req.kind = "table";
+  req.path = d / "studio.pdf";
+  ASSERT_EQ(ui::export_figure(s, req), "exported " + req.path);
+  EXPECT_NE(test::pdf_words(req.path).find(said), std::string::npos) << test::pdf_words(req.path);
+}
+
 TEST(FigureStats, NiceTicks) {
   // 0.13 / 6 = 0.0217 -> step 0.025 (the next of 1, 2, 2.5, 5 x 10^k).
   expect_ticks(ui::nice_ticks(0, 0.13, 6), {0, 0.025, 0.05, 0.075, 0.1, 0.125});

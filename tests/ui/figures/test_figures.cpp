@@ -198,9 +198,22 @@ TEST(Figures, ClearMessagesAndNoFileOnError) {
   r = test::run_ipd("figure pairs " + d.path() + " --font-pt 5 --out " + d / "x.pdf");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err, "error: --font-pt: 5 is outside 6..72 (nothing smaller than 6 pt on the page)\n");
+  // A width of 0 or -3 drew the default column width without a word, while 0.01 was refused.
+  for (const char* width : {"0", "-3", "0.01"}) {
+    r = test::run_ipd("figure pairs " + d.path() + " --width-in " + width + " --out " + d / "x.pdf");
+    EXPECT_EQ(r.exit_code, 2) << width;
+    EXPECT_EQ(r.err, "error: --width-in: " + std::string(width) + " is not a figure width (1 to 40 inches)\n");
+  }
   r = test::run_ipd("figure pairs " + d.path() + " --font " + d / "nope.ttf" + " --out " + d / "x.pdf");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "error: " + d / "nope.ttf" + ": no such font file\n");
+  // A path that exists but is no regular file was "no such font file" too: what is there is named.
+  r = test::run_ipd("figure pairs " + d.path() + " --font /dev/zero --out " + d / "x.pdf");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: /dev/zero: is a character device, not a font file (expected a TrueType or OpenType font)\n");
+  r = test::run_ipd("figure pairs " + d.path() + " --font " + d.path() + " --out " + d / "x.pdf");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: " + d.path() + ": is a directory, not a font file (expected a TrueType or OpenType font)\n");
   EXPECT_FALSE(fs::exists(d / "x.pdf"));
   // --out into a folder that does not exist: a usage error naming it, nothing created; --mkdir creates it.
   r = test::run_ipd("figure table " + d.path() + " --out " + d / "figs/t.png");
