@@ -280,12 +280,28 @@ void write_study(const CocoImportOptions& o, const std::map<long, Image>& images
     if (!o.images_dir.empty() && fs::exists(src, ec)) {
       const fs::path dst = out / "images" / fs::path(img.file).filename();
       fs::create_directories(dst.parent_path(), ec);
-      fs::remove(dst, ec);
+      // Re-importing with --images the domain's own images/ folder: the picture is already in place (removing
+      // the destination first would delete the only copy).
+      if (fs::equivalent(src, dst, ec)) {
+        ++r->linked_images;
+        continue;
+      }
       // A hard link (or a copy across file systems), never a symbolic link: a study's symbolic links are not
-      // followed when it is read, since a study received from someone else could point anywhere.
-      fs::create_hard_link(src, dst, ec);
-      if (ec) fs::copy_file(src, dst, ec);
-      if (!ec) ++r->linked_images;
+      // followed when it is read, since a study received from someone else could point anywhere. Made under a
+      // temporary name and renamed over the old picture, so a failure leaves the old one in place.
+      const fs::path tmp = dst.parent_path() / (".import-" + dst.filename().string());
+      fs::remove(tmp, ec);
+      ec.clear();
+      fs::create_hard_link(src, tmp, ec);
+      if (ec) {
+        ec.clear();
+        fs::copy_file(src, tmp, ec);
+      }
+      if (!ec) fs::rename(tmp, dst, ec);
+      if (ec)
+        fs::remove(tmp, ec);
+      else
+        ++r->linked_images;
     }
   }
   std::string names;

@@ -129,5 +129,22 @@ TEST(CocoImport, ADomainFolderWithFilesIsReplacedOnlyWhenAskedAndThenWhole) {
   EXPECT_EQ(test::run_ipd(import_args(d, "gt.json", "synth")).exit_code, 0);
 }
 
+// Corrected annotations imported again with --images the domain's own images/ folder: each picture is its own
+// source, and removing the destination before linking it deleted the only copy (exit 0, "0 pictures linked").
+TEST(CocoImport, ReimportingFromTheDomainsOwnPicturesKeepsThem) {
+  test::TempDir d;
+  test::write_text(d / "gt.json", ground_truth("[{\"id\": 2, \"name\": \"rock\"}]"));
+  test::write_text(d / "study/real/images/s1.png", "picture");
+  const std::string args = "import coco " + d / "gt.json" + " --images " + d / "study/real/images" + " --out " +
+                           d / "study/real" + " --replace";
+  const auto r = test::run_ipd(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_file(d / "study/real/images/s1.png"), "picture");
+  EXPECT_EQ(fs::directory_iterator(d / "study/real/images")->path().filename(), "s1.png");  // and nothing else
+  EXPECT_EQ(std::distance(fs::directory_iterator(d / "study/real/images"), fs::directory_iterator()), 1);
+  EXPECT_NE(r.out.find("1 pictures linked"), std::string::npos) << r.out;
+  EXPECT_EQ(read_file(d / "study/real/labels/s1.txt"), "2 0.5 0.5 0.2 0.2\n");
+}
+
 }  // namespace
 }  // namespace ipd
