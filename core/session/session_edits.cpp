@@ -238,6 +238,9 @@ SaveJob Session::apply(int scene, Edit e) {
 
 std::optional<SaveJob> Session::undo() {
   if (!can_undo()) return std::nullopt;
+  // Undo writes the scene's pairs too: a file that went stale since (reloaded) is refused as an edit is.
+  if (history_[undo_pos_ - 1].review.kind == ReviewToggle::Kind::kNone)
+    refuse_stale_pairs_edit(history_[undo_pos_ - 1].pair, history_[undo_pos_ - 1].scene);
   const HistoryEntry h = history_[--undo_pos_];
   pair_ = h.pair;
   if (h.review.kind != ReviewToggle::Kind::kNone) return apply_review_toggle(h.pair, h.scene, h.review);
@@ -246,6 +249,8 @@ std::optional<SaveJob> Session::undo() {
 
 std::optional<SaveJob> Session::redo() {
   if (!can_redo()) return std::nullopt;
+  if (history_[undo_pos_].review.kind == ReviewToggle::Kind::kNone)
+    refuse_stale_pairs_edit(history_[undo_pos_].pair, history_[undo_pos_].scene);
   const HistoryEntry h = history_[undo_pos_++];
   pair_ = h.pair;
   if (h.review.kind != ReviewToggle::Kind::kNone) return apply_review_toggle(h.pair, h.scene, h.review);

@@ -290,6 +290,26 @@ TEST(FixedPairsBinding, AnEditOfAStaleSceneIsRefusedAndResetDiscardsTheFile) {
   EXPECT_TRUE(edit.contents.has_value());
 }
 
+// Undo and redo write the scene's pairs as an edit does: once the file went stale (a reload after its rock left
+// the label file) they are refused too, and the file stays as it is.
+TEST(FixedPairsBinding, UndoAndRedoOfAStaleSceneAreRefusedAsEditsAre) {
+  test::TempDir d;
+  write_study(d, kReal, kSynth);
+  const std::string f = d / "pairs/real__synth/s1.json";
+  test::write_text(f, kHandPairs);
+  Session s = Session::open(d.path());
+  run_save_job(s.apply(0, Edit::toggle_exclude(Side::kB, 1)));
+  // Another program writes the file with a synth rock at (0.3, 0.3), which the label file does not have.
+  const std::string stale =
+      R"({"pairs": [[0, 1]], "rocks_a": [[0, 0.2, 0.2, 0.1, 0.1]], "rocks_b": [[1, 0.3, 0.3, 0.1, 0.1]]})";
+  test::write_text(f, stale);
+  s.reload_scene(0, "s1");
+  ASSERT_TRUE(s.scenes()[0].pairs_unusable);
+  EXPECT_THROW(s.undo(), StudyError);
+  EXPECT_TRUE(s.can_undo());
+  EXPECT_EQ(read_file(f), stale);
+}
+
 TEST(FixedPairsBinding, MalformedStoredRocksNameTheFile) {
   test::TempDir d;
   write_study(d, kReal, kSynth);
