@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "core/util/number_text.h"
+
 namespace ipd::ui {
 
 namespace {
@@ -59,6 +61,9 @@ DotWhiskerChart compare_chart(const CrossTable& table, const std::vector<std::st
   if (max_scenes < 2)
     ch.footnote =
         fmt::format("{} scene present in all three domains: no interval, no test (they need at least 2).", max_scenes);
+  else if (options.permutations == 0)  // no p-values, so no verdict: the rows' sentences say "not tested"
+    ch.footnote =
+        fmt::format("No permutation test was run (0 permutations); {} scenes present in all three domains.", n);
   else if (random_rows == 0 && exact_rows > 0)
     ch.footnote = fmt::format(
         "Sign-flip permutation test, exact (every swap pattern) over the {} scenes present in "
@@ -68,12 +73,12 @@ DotWhiskerChart compare_chart(const CrossTable& table, const std::vector<std::st
     ch.footnote = fmt::format(
         "Sign-flip permutation test ({} permutations) over the {} scenes present in all three "
         "domains.",
-        options.permutations, n);
+        grouped_thousands(options.permutations), n);
   else
     ch.footnote = fmt::format(
         "Sign-flip permutation test over the {} scenes present in all three domains: exact "
         "where 2^scenes \u2264 {}, else {} random permutations.",
-        n, options.permutations, options.permutations);
+        n, grouped_thousands(options.permutations), grouped_thousands(options.permutations));
   if (!skipped.empty()) {
     std::string names;
     for (const auto& s : skipped) names += (names.empty() ? "" : ", ") + s;

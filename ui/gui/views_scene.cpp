@@ -138,7 +138,8 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
       ImGui::CloseCurrentPopup();
     }
     ImGui::SameLine();
-    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGuiKey_Escape)) ImGui::CloseCurrentPopup();
+    // ImGui 1.86 indexes keys by the backend's codes: Escape is GetKeyIndex(ImGuiKey_Escape), as the other dialogs ask.
+    if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) ImGui::CloseCurrentPopup();
     ImGui::EndPopup();
   }
   // Only when it fits: the Help menu says the same.

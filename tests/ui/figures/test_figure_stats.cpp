@@ -50,6 +50,11 @@ TEST(FigureStats, CompareShowsTheDeltaAndItsTest) {
   ASSERT_EQ(few.exit_code, 0) << few.err;
   EXPECT_NE(pdf_words(d / "c3.pdf").find("test (3 permutations) over the 2 scenes"), std::string::npos)
       << pdf_words(d / "c3.pdf");
+  // No permutations: no p-value, and the footnote says no test was run (not "0 permutations" of a test).
+  const auto none =
+      test::run_ipd("figure compare " + d.path() + " --bootstrap 200 --permutations 0 --out " + d / "c0.pdf");
+  ASSERT_EQ(none.exit_code, 0) << none.err;
+  EXPECT_NE(pdf_words(d / "c0.pdf").find("No permutation test was run"), std::string::npos) << pdf_words(d / "c0.pdf");
 }
 
 TEST(FigureStats, TableWithIntervalsDistributionAndBreakdown) {
