@@ -97,6 +97,16 @@ void check_args(const Args& args) {
 std::vector<Job> collect_jobs(const Args& args, std::vector<Target>* targets) {
   std::vector<Job> jobs;
   if (args.model.empty()) {
+    // A domain's labels/ (beside its images/, or in a folder with study.yaml) is ground truth: detections written
+    // there would become it, --replace or not. A study's predictions go to <domain>/predictions/NAME.
+    fs::path out = fs::absolute(args.out).lexically_normal();
+    if (out.filename().empty()) out = out.parent_path();
+    std::error_code ec;
+    if (out.filename() == "labels" && (fs::is_directory(out.parent_path() / "images", ec) ||
+                                       fs::exists(out.parent_path().parent_path() / "study.yaml", ec)))
+      throw StudyError(args.out +
+                       ": is a domain's ground-truth labels; detections written there would replace them, so nothing "
+                       "is written (a study's predictions: ipd detect STUDY --model NAME)");
     targets->push_back({args.out, ""});
     if (!fs::is_directory(args.input)) throw StudyError(args.input + ": no such directory of pictures");
     jobs = jobs_for_dir(args.input, args.out);

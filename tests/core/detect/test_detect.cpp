@@ -193,9 +193,18 @@ TEST(Detect, AFolderThatHoldsLabelFilesIsReplacedOnlyWhenAskedAndThenWhole) {
   const std::string mix =
       "the predictions of two runs would mix, so nothing is written (--replace replaces the whole set: the .txt "
       "files this run does not write are removed)\n";
-  auto r = test::run_ipd("detect " + d / "study/real/images --detector classical --out " + d / "study/real/labels");
+  test::write_text(d / "pred/a.txt", "0 0.5 0.5 0.1 0.1 0.9\n");
+  auto r = test::run_ipd("detect " + d / "study/real/images --detector classical --out " + d / "pred");
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err, "error: " + d / "study/real/labels" + ": already holds 1 label file (e.g. a.txt)\n" + mix);
+  EXPECT_EQ(r.err, "error: " + d / "pred" + ": already holds 1 label file (e.g. a.txt)\n" + mix);
+  EXPECT_EQ(read_file(d / "pred/a.txt"), "0 0.5 0.5 0.1 0.1 0.9\n");
+  // Beside images/ it is ground truth: refused even with --replace (the GT would be gone).
+  r = test::run_ipd("detect " + d / "study/real/images --detector classical --replace --out " +
+                    d / "study/real/labels");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: " + d / "study/real/labels" +
+                       ": is a domain's ground-truth labels; detections written there would replace them, so nothing "
+                       "is written (a study's predictions: ipd detect STUDY --model NAME)\n");
   EXPECT_EQ(read_file(d / "study/real/labels/a.txt"), "0 0.5 0.5 0.1 0.1\n");
 
   const std::string run = "detect " + d / "study" + " --detector classical --model classical";
