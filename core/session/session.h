@@ -206,9 +206,9 @@ class Session {
   // but reset is refused with a StudyError naming the file (saving would overwrite the hand pairs with
   // registration's); reset discards the file, the user's explicit choice.
   SaveJob apply(int scene, Edit edit);
-  // Why the scene's hand pairs are not applied, "FILE: WHY", when its pairs file no longer matches its label
-  // files (the view shows registration's pairs and edits are refused); empty otherwise.
-  std::string stale_pairs(int scene) const;
+  // The scene's pairs file and why its hand pairs are not applied, when it no longer matches its label files
+  // (the view shows registration's pairs and edits are refused); {"", ""} otherwise.
+  std::pair<std::string, std::string> stale_pairs(int scene) const { return stale_pairs_of(pair_, scene); }
   bool can_undo() const { return undo_pos_ > 0; }
   bool can_redo() const { return undo_pos_ < history_.size(); }
   std::optional<SaveJob> undo();  // nullopt when there is nothing to undo

@@ -148,11 +148,6 @@ SaveJob Session::set_scene(int pair, int scene, const FixedPairs& fp, bool edite
   return job;
 }
 
-std::string Session::stale_pairs(int scene) const {
-  const auto [file, why] = stale_pairs_of(pair_, scene);
-  return file.empty() ? "" : file + ": " + why;
-}
-
 std::pair<std::string, std::string> Session::stale_pairs_of(int pair, int scene) const {
   const SceneState& s = scenes_[pair][scene];
   if (!s.pairs_unusable) return {};

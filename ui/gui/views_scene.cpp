@@ -117,21 +117,22 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
   same_line_if_fits(button_width("reset to automatic"));
   // A scene whose hand pairs file no longer matches its labels: reset deletes that file, which undo does not
   // bring back, so it asks first. Elsewhere reset is an ordinary edit (undo restores the hand pairs).
-  const std::string stale = s.stale_pairs(ui.scene);
+  const auto [stale_file, stale_why] = s.stale_pairs(ui.scene);
+  const bool stale = !stale_file.empty();
   if (ImGui::Button("reset to automatic")) {
-    if (stale.empty())
+    if (!stale)
       out.edits.push_back(Edit::reset());
     else
       ImGui::OpenPopup("Discard the hand pairs?");
   }
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s", stale.empty() ? "Use registration's pairs for this scene (undo brings the hand pairs back)"
-                                          : "Delete this scene's hand pairs file, which no longer matches its labels");
+    ImGui::SetTooltip("%s", !stale ? "Use registration's pairs for this scene (undo brings the hand pairs back)"
+                                   : "Delete this scene's hand pairs file, which no longer matches its labels");
   if (ImGui::BeginPopupModal("Discard the hand pairs?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36);
-    ImGui::TextUnformatted(("Delete " + stale.substr(0, stale.find(": ")) +
-                            " and use registration's pairs for this scene? Undo does not bring the file back.")
-                               .c_str());
+    ImGui::TextUnformatted(
+        ("Delete " + stale_file + " and use registration's pairs for this scene? Undo does not bring the file back.")
+            .c_str());
     ImGui::PopTextWrapPos();
     if (ImGui::Button("Delete the file")) {
       out.edits.push_back(Edit::reset());
@@ -148,9 +149,9 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
     ImGui::SameLine();
     ImGui::TextDisabled("F1: help");
   }
-  if (!stale.empty())
+  if (stale)
     text_coloured_wrapped_at_spaces(
-        {1, 0.55f, 0, 1}, "Hand pairs not applied: " + stale +
+        {1, 0.55f, 0, 1}, "Hand pairs not applied: " + stale_file + ": " + stale_why +
                               ". The scene shows registration's pairs, and edits are refused so that the file is not "
                               "overwritten. To keep the hand pairs, correct the label file and open the study again; "
                               "to discard them, \"reset to automatic\".");
