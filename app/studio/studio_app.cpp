@@ -103,6 +103,30 @@ void StudioApp::adopt_snapshot() {
   }
 }
 
+// Edits, undo and redo, review marks: each says in the status line what was sent (a refusal comes back later
+// and replaces it).
+void StudioApp::submit_edits(const ui::UiCommands& cmd) {
+  const Session& s = *snap_->session;
+  for (const auto& e : cmd.edits) {
+    ui_.status = ui::edit_status(s, ui_.scene, e);
+    worker_.submit(command::ApplyEdit{ui_.scene, e});
+  }
+  if (cmd.undo) worker_.submit(command::Undo{});
+  if (cmd.redo) worker_.submit(command::Redo{});
+  // The status line says what a toggle did: else "suspect pair 3 in scene_02" stays up after `C` checked it.
+  if (cmd.toggle_reviewed && !s.scenes().empty()) {
+    worker_.submit(command::ToggleReviewed{ui_.scene});
+    ui_.status = fmt::format("{} {}", s.scenes()[ui_.scene].stem,
+                             s.reviewed(ui_.scene) ? "no longer marked reviewed" : "marked reviewed");
+  }
+  if (cmd.check_left >= 0 && !s.scenes().empty()) {
+    worker_.submit(command::ToggleChecked{ui_.scene, cmd.check_left, cmd.check_right});
+    ui_.status = fmt::format(
+        "pair {} | {} in {} {}", cmd.check_left + 1, cmd.check_right + 1, s.scenes()[ui_.scene].stem,
+        s.checked(ui_.scene, cmd.check_left, cmd.check_right) ? "no longer checked as correct" : "checked as correct");
+  }
+}
+
 void StudioApp::goto_scene(int scene) { ui::enter_scene(ui_, scene); }
 
 void StudioApp::apply(const ui::UiCommands& cmd) {
@@ -152,21 +176,7 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
   if (cmd.goto_problem >= 0 && cmd.goto_problem < static_cast<int>(problems_.size()))
     goto_problem(problems_[cmd.goto_problem]);
   if (cmd.goto_pair_scene >= 0) goto_pair(cmd.goto_pair_scene, cmd.goto_pair_left, cmd.goto_pair_right);
-  for (const auto& e : cmd.edits) worker_.submit(command::ApplyEdit{ui_.scene, e});
-  if (cmd.undo) worker_.submit(command::Undo{});
-  if (cmd.redo) worker_.submit(command::Redo{});
-  // The status line says what a toggle did: else "suspect pair 3 in scene_02" stays up after `C` checked it.
-  if (cmd.toggle_reviewed && !s.scenes().empty()) {
-    worker_.submit(command::ToggleReviewed{ui_.scene});
-    ui_.status = fmt::format("{} {}", s.scenes()[ui_.scene].stem,
-                             s.reviewed(ui_.scene) ? "no longer marked reviewed" : "marked reviewed");
-  }
-  if (cmd.check_left >= 0 && !s.scenes().empty()) {
-    worker_.submit(command::ToggleChecked{ui_.scene, cmd.check_left, cmd.check_right});
-    ui_.status = fmt::format(
-        "pair {} | {} in {} {}", cmd.check_left + 1, cmd.check_right + 1, s.scenes()[ui_.scene].stem,
-        s.checked(ui_.scene, cmd.check_left, cmd.check_right) ? "no longer checked as correct" : "checked as correct");
-  }
+  submit_edits(cmd);
   if (cmd.next_suspect) next_suspect();
   if (cmd.save_as && ui_.save_as_dir[0]) {
     worker_.submit(command::SaveAllTo{ui_.save_as_dir});

@@ -37,6 +37,7 @@ class StudioApp {
 
  private:
   void apply(const ui::UiCommands& cmd);  // the one place commands take effect
+  void submit_edits(const ui::UiCommands& cmd);
   void adopt_snapshot();
   // The frame's parts (studio_app_frame.cpp).
   ui::StudyView study_view();

@@ -1,5 +1,7 @@
 #include "ui/gui/scene_change.h"
 
+#include <fmt/format.h>
+
 #include "ui/gui/pane_zoom.h"
 
 namespace ipd::ui {
@@ -21,6 +23,29 @@ void show_scene_of_edit(UiState& ui, int scene) {
   if (scene != ui.scene) return enter_scene(ui, scene);
   // "scene_00038 marked reviewed" is no longer true once that mark is undone.
   ui.status.clear();
+}
+
+std::string edit_status(const Session& s, int scene, const Edit& edit) {
+  if (scene < 0 || scene >= static_cast<int>(s.scenes().size())) return "";
+  const std::string& stem = s.scenes()[scene].stem;
+  // Rocks are numbered from 1 and named by their domain, as the pictures and the pair table show them.
+  auto rock = [&](Side side, int index) {
+    return fmt::format("{} rock {}", side == Side::kA ? s.left_domain() : s.right_domain(), index + 1);
+  };
+  switch (edit.kind) {
+    case Edit::Kind::kPair:
+      return fmt::format("paired {} with {} in {}", rock(Side::kA, edit.a), rock(Side::kB, edit.b), stem);
+    case Edit::Kind::kUnpair:
+      return fmt::format("unpaired {} in {}", rock(edit.side, edit.a), stem);
+    case Edit::Kind::kToggleExclude:
+      return fmt::format("{} {} in {}", rock(edit.side, edit.a),
+                         s.excluded(edit.side, scene, edit.a) ? "counted again" : "excluded from the IPD", stem);
+    case Edit::Kind::kResetToAutomatic:
+      return stem + " reset to the automatic pairs";
+    case Edit::Kind::kReplacePairs:
+      return fmt::format("{} paired as the re-run registration pairs it", stem);
+  }
+  return "";
 }
 
 }  // namespace ipd::ui

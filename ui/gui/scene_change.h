@@ -12,5 +12,8 @@ void enter_scene(UiState& ui, int scene);
 // view only the status line, about the action undone, is cleared (undoing a review mark keeps the selected pair,
 // the zoom and the replay).
 void show_scene_of_edit(UiState& ui, int scene);
+// What the status line says when an edit of `scene` is sent, before the session applies it: the line about
+// the last action (a refused edit's reason, say) no longer applies. A refusal replaces it when it comes back.
+std::string edit_status(const Session& s, int scene, const Edit& edit);
 
 }  // namespace ipd::ui

@@ -3,6 +3,8 @@
 
 #include "ui/gui/scene_change.h"
 
+#include "tests/support/test_support.h"
+
 namespace ipd::ui {
 namespace {
 
@@ -56,6 +58,24 @@ TEST(SceneChange, AnEditOfTheSceneInViewKeepsSelectionZoomAndReplay) {
   EXPECT_EQ(ui.scene, 5);
   EXPECT_EQ(ui.selected_left, -1);
   EXPECT_FLOAT_EQ(ui.left_view.zoom, 1.0f);
+}
+
+// The status line speaks of the edit just sent (a refusal of an earlier one no longer applies), rocks
+// numbered from 1 and named by their domain as the pictures show them; the swapped view names its own left.
+TEST(SceneChange, TheStatusLineSaysWhichEditWasSent) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  Session s = Session::open(d.path());
+  EXPECT_EQ(edit_status(s, 0, Edit::pair(0, 1)), "paired real rock 1 with synth rock 2 in s1");
+  EXPECT_EQ(edit_status(s, 0, Edit::unpair(Side::kB, 0)), "unpaired synth rock 1 in s1");
+  EXPECT_EQ(edit_status(s, 0, Edit::toggle_exclude(Side::kA, 1)), "real rock 2 excluded from the IPD in s1");
+  s.apply(0, Edit::toggle_exclude(Side::kA, 1));
+  EXPECT_EQ(edit_status(s, 0, Edit::toggle_exclude(Side::kA, 1)), "real rock 2 counted again in s1");
+  EXPECT_EQ(edit_status(s, 0, Edit::reset()), "s1 reset to the automatic pairs");
+  EXPECT_EQ(edit_status(s, 0, Edit::replace({{0, 1}})), "s1 paired as the re-run registration pairs it");
+  EXPECT_EQ(edit_status(s, 1, Edit::reset()), "");  // no such scene
+  ASSERT_TRUE(s.select_domains("synth", "real"));
+  EXPECT_EQ(edit_status(s, 0, Edit::unpair(Side::kA, 0)), "unpaired synth rock 1 in s1");
 }
 
 }  // namespace
