@@ -122,17 +122,7 @@ PipelineScene pair_one(const StudyLabels& labels, const std::string& a, const st
     s.version_ba = read.version_ba;
     s.pairs_unusable = read.unusable();
     s.fixed = std::move(read.pairs);
-    for (const PairsProblem& w : read.problems) {
-      Problem q;
-      q.file = w.file;
-      q.line = w.line;
-      q.message = w.message;
-      q.unusable_pairs = w.unusable;
-      q.domain = a;
-      q.other_domain = b;
-      q.scene = stem;
-      problems->push_back(std::move(q));
-    }
+    for (const PairsProblem& w : read.problems) problems->push_back(pairs_file_problem(w, a, b, stem));
     p.pairs_problems = std::move(read.problems);
   }
   if (!s.fixed || register_fixed) {

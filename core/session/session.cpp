@@ -360,17 +360,22 @@ void Session::recompute_performance() {
 
 std::vector<Problem> Session::problems() const {
   std::vector<Problem> out;
-  // A stale pairs file discarded since opening ("reset to automatic" removed it) is no problem any more.
-  auto discarded = [this](const Problem& p) {
-    if (!p.unusable_pairs) return false;
+  // The pairs files' problems as the scenes hold them now, where opening listed them: "reset to automatic"
+  // discards a stale file, and a reload (after a save conflict) can find the file on disk stale.
+  bool pairs_files_listed = false;
+  auto list_pairs_files = [&] {
+    pairs_files_listed = true;
     for (size_t k = 0; k < pairs_.size(); ++k)
-      if (pairs_[k].first == p.domain && pairs_[k].second == p.other_domain)
-        for (const SceneState& s : scenes_[k])
-          if (s.stem == p.scene) return !s.pairs_unusable;
-    return false;
+      for (const SceneState& s : scenes_[k])
+        for (const PairsProblem& w : s.pairs_problems)
+          out.push_back(pairs_file_problem(w, pairs_[k].first, pairs_[k].second, s.stem));
   };
   for (const Problem& p : *problems_)
-    if (!discarded(p)) out.push_back(p);
+    if (!p.pairs_file)
+      out.push_back(p);
+    else if (!pairs_files_listed)
+      list_pairs_files();
+  if (!pairs_files_listed) list_pairs_files();
   out.insert(out.end(), threshold_problems_.begin(), threshold_problems_.end());
   return out;
 }

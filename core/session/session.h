@@ -147,7 +147,8 @@ class Session {
   const StudyLabels& labels() const { return *labels_; }
   int cached_registrations() const { return cached_; }
   // What the engine found wrong with the study's data while opening it (study_pipeline.h).
-  // Opening's problems, then those of the current threshold (a domain without predictions for a model).
+  // Opening's problems (its pairs files' as they are now: see Problem::pairs_file), then those of the current
+  // threshold (a domain without predictions for a model).
   std::vector<Problem> problems() const;  // scenes whose registration came from the cache
   const StudyCacheStats& study_cache_stats() const { return study_cache_stats_; }  // Session::open only
   const std::vector<std::pair<std::string, std::string>>& domain_pairs() const { return pairs_; }

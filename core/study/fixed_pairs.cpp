@@ -363,4 +363,17 @@ void write_fixed_pairs(const Study& study, const std::string& a, const std::stri
   write_file_beneath(study.root, fixed_pairs_relative_path(a, b, stem), fixed_pairs_json(fp, gt_a, gt_b));
 }
 
+Problem pairs_file_problem(const PairsProblem& w, const std::string& a, const std::string& b, const std::string& stem) {
+  Problem q;
+  q.file = w.file;
+  q.line = w.line;
+  q.message = w.message;
+  q.unusable_pairs = w.unusable;
+  q.pairs_file = true;
+  q.domain = a;
+  q.other_domain = b;
+  q.scene = stem;
+  return q;
+}
+
 }  // namespace ipd

@@ -22,6 +22,7 @@
 
 #include "core/geometry/geometry.h"
 #include "core/registration/registration.h"
+#include "core/study/problem.h"
 
 namespace ipd {
 
@@ -55,6 +56,9 @@ struct PairsProblem {
   std::string why_unusable;  // when unusable: what no longer matches ("a stored box is no longer in ...")
   std::string to_string() const { return file + ": " + message; }
 };
+
+// The problem of scene `stem`'s pairs file of the domain pair (a, b), for the study's problem list.
+Problem pairs_file_problem(const PairsProblem& w, const std::string& a, const std::string& b, const std::string& stem);
 
 // What a pairs file held when read: a content hash, so a save can tell whether someone else changed it
 // since (present = false: there was no file).

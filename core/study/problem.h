@@ -20,6 +20,9 @@ struct Problem {
   // A pairs file whose hand pairs can't be used (a stored rock is gone): registration counts instead, and
   // `ipd table` stops unless --skip-bad-lines.
   bool unusable_pairs = false;
+  // A problem of a scene's hand-pairs file: the studio lists these files' problems as they are now (a reset
+  // discards a stale file; a reload can find one stale), not as they were at opening.
+  bool pairs_file = false;
   // "FILE:LINE: message", "FILE: message" or "message", as the CLI prints it after "warning: ".
   std::string to_string() const;
 };

@@ -303,8 +303,15 @@ TEST(FixedPairsBinding, UndoAndRedoOfAStaleSceneAreRefusedAsEditsAre) {
   const std::string stale =
       R"({"pairs": [[0, 1]], "rocks_a": [[0, 0.2, 0.2, 0.1, 0.1]], "rocks_b": [[1, 0.3, 0.3, 0.1, 0.1]]})";
   test::write_text(f, stale);
+  EXPECT_TRUE(s.problems().empty());
   s.reload_scene(0, "s1");
   ASSERT_TRUE(s.scenes()[0].pairs_unusable);
+  // The Problems window lists the file that went stale after opening, as it lists one stale at opening.
+  ASSERT_EQ(s.problems().size(), 1u);
+  EXPECT_EQ(s.problems()[0].file, f);
+  EXPECT_EQ(s.problems()[0].scene, "s1");
+  EXPECT_TRUE(s.problems()[0].unusable_pairs);
+  EXPECT_NE(s.problems()[0].message.find("no longer in its label file"), std::string::npos) << s.problems()[0].message;
   EXPECT_THROW(s.undo(), StudyError);
   EXPECT_TRUE(s.can_undo());
   EXPECT_EQ(read_file(f), stale);
