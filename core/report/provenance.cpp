@@ -90,6 +90,8 @@ Provenance table_provenance(const CrossTable& table, const StudyLabels& labels, 
   for (size_t c = 0; c < table.pairings.size() && c < table.columns.size(); ++c) {
     if (!counts(only, table.columns[c].first, table.columns[c].second)) continue;
     for (const ScenePairing& s : table.pairings[c]) {
+      p.scenes_with_stale_hand_pairs += std::any_of(s.pairs_problems.begin(), s.pairs_problems.end(),
+                                                    [](const PairsProblem& w) { return w.unusable; });
       if (!s.fixed) continue;
       ++p.scenes_with_hand_pairs;
       p.pairs_set_by_hand += static_cast<int>(s.pairs.size());
@@ -108,6 +110,7 @@ Provenance session_provenance(const Session& session, const DomainPairFilter& on
   for (size_t c = 0; c < pairs.size(); ++c) {
     if (!counts(only, pairs[c].first, pairs[c].second)) continue;
     for (const SceneState& s : session.scenes_of(static_cast<int>(c))) {
+      p.scenes_with_stale_hand_pairs += s.pairs_unusable;
       if (!s.edited) continue;
       ++p.scenes_with_hand_pairs;
       p.pairs_set_by_hand += static_cast<int>(s.current.pairs.size());
@@ -139,6 +142,9 @@ std::string provenance_note(const Provenance& p) {
   if (p.scenes_reviewed > 0 || p.pairs_checked > 0)
     note += fmt::format("; {} reviewed, {} checked as correct", plural(p.scenes_reviewed, "scene", "scenes"),
                         plural(p.pairs_checked, "pair", "pairs"));
+  if (p.scenes_with_stale_hand_pairs > 0)
+    note += fmt::format("; stale hand pairs not used in {} (registration counts there)",
+                        plural(p.scenes_with_stale_hand_pairs, "scene", "scenes"));
   return note + ".";
 }
 
@@ -151,6 +157,7 @@ nlohmann::ordered_json provenance_json(const Provenance& p) {
           {"rocks_excluded", p.rocks_excluded},
           {"scenes_reviewed", p.scenes_reviewed},
           {"pairs_checked", p.pairs_checked},
+          {"scenes_with_stale_hand_pairs", p.scenes_with_stale_hand_pairs},
           {"edited_scenes", edited}};
 }
 
@@ -164,7 +171,9 @@ std::vector<std::pair<std::string, std::string>> provenance_csv_fields(const Pro
   return out;
 }
 
-bool provenance_edited(const Provenance& p) { return p.scenes_with_hand_pairs > 0 || p.rocks_excluded > 0; }
+bool provenance_edited(const Provenance& p) {
+  return p.scenes_with_hand_pairs > 0 || p.rocks_excluded > 0 || p.scenes_with_stale_hand_pairs > 0;
+}
 
 Provenance scene_provenance(bool fixed, int pairs, int rocks_excluded, std::string label_fingerprint) {
   Provenance p;

@@ -27,6 +27,10 @@ struct Provenance {
   // reviewed, and pairs checked as correct that are still pairs of their scenes.
   int scenes_reviewed = 0;
   int pairs_checked = 0;
+  // Scenes whose pairs file no longer matches their label files (a stored rock moved or deleted): their hand
+  // pairs are not used and registration counts there (`ipd table --skip-bad-lines`; the studio until the
+  // file is reset). A reader must know that an edit was dropped, not only that none counted.
+  int scenes_with_stale_hand_pairs = 0;
   std::string label_fingerprint;
   std::vector<EditedScene> edited_scenes;  // in column and scene order
 };
@@ -53,11 +57,13 @@ Provenance session_provenance(const Session& session, const DomainPairFilter& on
 
 // The text footnote: "Label files 1a2b3c4d5e6f; hand pairs in 2 scenes (5 pairs set by hand, 1 rock
 // excluded)." or "Label files 1a2b3c4d5e6f; no hand pairs (every pair from registration).", with "; 12 scenes
-// reviewed, 3 pairs checked as correct" before the full stop when anything was reviewed or checked.
+// reviewed, 3 pairs checked as correct" before the full stop when anything was reviewed or checked, and
+// "; stale hand pairs not used in 1 scene (registration counts there)" when a pairs file was set aside.
 std::string provenance_note(const Provenance& p);
 
 // The machine-readable form, keys in a fixed order: label_fingerprint, scenes_with_hand_pairs,
-// pairs_set_by_hand, rocks_excluded, edited_scenes (an array of {a, b, stem}).
+// pairs_set_by_hand, rocks_excluded, scenes_reviewed, pairs_checked, scenes_with_stale_hand_pairs,
+// edited_scenes (an array of {a, b, stem}).
 nlohmann::ordered_json provenance_json(const Provenance& p);
 
 // The scalar members of provenance_json as CSV columns (name, value), in the same order: repeated on every
@@ -65,8 +71,9 @@ nlohmann::ordered_json provenance_json(const Provenance& p);
 // read.csv on a '#' inside a name).
 std::vector<std::pair<std::string, std::string>> provenance_csv_fields(const Provenance& p);
 
-// Whether any number may differ from the automatic result: a pair set by hand or a rock left out. Figures
-// print the note in the figure only then (the fingerprint always goes into their metadata).
+// Whether any number may differ from the automatic result (a pair set by hand or a rock left out), or hand
+// pairs were set aside as stale. Figures print the note in the figure only then (the fingerprint always goes
+// into their metadata).
 bool provenance_edited(const Provenance& p);
 
 // The provenance of one scene's pairs (the scene figures): one scene with hand pairs when `fixed`.

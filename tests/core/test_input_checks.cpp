@@ -216,7 +216,7 @@ TEST(InputChecks, TableCsvQuotesNamesWithCommas) {
   EXPECT_EQ(r.out.substr(0, nl),
             "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,"
             "reason,label_fingerprint,scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded,scenes_reviewed,"
-            "pairs_checked");
+            "pairs_checked,scenes_with_stale_hand_pairs");
   const std::string row = r.out.substr(nl + 1);  // the provenance columns end it: fingerprint, no hand edits
   EXPECT_EQ(row.substr(0, 51), "\"det,v2\",real,real,synth,0.500000,2,0,0,1,true,,,,,") << row;
   EXPECT_EQ(row.substr(row.size() - 7), ",0,0,0\n") << row;

@@ -80,8 +80,9 @@ TEST(Provenance, TableCsvMarkdownAndLatexCarryIt) {
   EXPECT_EQ(
       r.out,
       "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,"
-      "reason,label_fingerprint,scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded,scenes_reviewed,pairs_checked\n"
-      "det,,real,synth,0.666667,1,0,1,1,true,,,,,d189a61c07b5,1,1,1,0,0\n");
+      "reason,label_fingerprint,scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded,scenes_reviewed,pairs_checked,"
+      "scenes_with_stale_hand_pairs\n"
+      "det,,real,synth,0.666667,1,0,1,1,true,,,,,d189a61c07b5,1,1,1,0,0,0\n");
   r = test::run_ipd("table " + d.path() + " --format markdown --no-cache --bootstrap 0");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string note = "Label files d189a61c07b5; hand pairs in 1 scene (1 pair set by hand, 1 rock excluded).";
@@ -116,8 +117,9 @@ TEST(Provenance, CompareAndBreakdownCarryIt) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.substr(0, r.out.find('\n')),
             "model,trained_on,a,b,bin,low,high,ipd,ci_low,ci_high,pairs,scenes,label_fingerprint,"
-            "scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded,scenes_reviewed,pairs_checked");
-  EXPECT_NE(r.out.find(",c46076aa055d,1,1,1,0,0\n"), std::string::npos) << r.out;
+            "scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded,scenes_reviewed,pairs_checked,"
+            "scenes_with_stale_hand_pairs");
+  EXPECT_NE(r.out.find(",c46076aa055d,1,1,1,0,0,0\n"), std::string::npos) << r.out;
   r = test::run_ipd("breakdown " + d.path() + " --domains real,synth --bins 1 --bootstrap 0 --no-cache --format json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out).at("provenance").at("rocks_excluded"), 1);
@@ -136,11 +138,11 @@ TEST(Provenance, RockExportRowsSayHandAndExcluded) {
   EXPECT_EQ(r.out,
             "model,trained_on,a,b,scene,index_a,index_b,perf_a,perf_b,diff,cx_a,cy_a,w_a,h_a,cx_b,cy_b,w_b,h_b,"
             "residual_px,source,excluded,label_fingerprint,scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded,"
-            "scenes_reviewed,pairs_checked\n"
+            "scenes_reviewed,pairs_checked,scenes_with_stale_hand_pairs\n"
             "det,,real,synth,s1,0,1,1,0.333333333333,0.666666666667,0.2,0.2,0.1,0.1,0.2,0.2,0.1,0.1,,hand,false,"
-            "d189a61c07b5,1,1,1,0,0\n"
-            "det,,real,synth,s1,1,,0,,,0.6,0.6,0.1,0.1,,,,,,hand,true,d189a61c07b5,1,1,1,0,0\n"
-            "det,,real,synth,s1,,0,,0,,,,,,0.6,0.6,0.1,0.1,,hand,false,d189a61c07b5,1,1,1,0,0\n");
+            "d189a61c07b5,1,1,1,0,0,0\n"
+            "det,,real,synth,s1,1,,0,,,0.6,0.6,0.1,0.1,,,,,,hand,true,d189a61c07b5,1,1,1,0,0,0\n"
+            "det,,real,synth,s1,,0,,0,,,,,,0.6,0.6,0.1,0.1,,hand,false,d189a61c07b5,1,1,1,0,0,0\n");
   r = test::run_ipd("export rocks " + d.path() + " --unpaired --no-cache --format json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json rows = nlohmann::json::parse(r.out);
@@ -162,7 +164,8 @@ TEST(Provenance, CsvFieldsFollowTheJsonAndEditedMeansAHandPairOrAnExcludedRock) 
                                               {"pairs_set_by_hand", "0"},
                                               {"rocks_excluded", "0"},
                                               {"scenes_reviewed", "0"},
-                                              {"pairs_checked", "0"}}));
+                                              {"pairs_checked", "0"},
+                                              {"scenes_with_stale_hand_pairs", "0"}}));
   p = scene_provenance(true, 4, 1, "0123456789ab");
   EXPECT_TRUE(provenance_edited(p));
   EXPECT_EQ(provenance_note(p),
@@ -193,6 +196,36 @@ TEST(Provenance, ReviewFilesCountReviewedScenesAndCheckedPairs) {
   const auto bad = test::run_ipd("table " + d.path() + " --no-cache");
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find(d / "review/real__synth.json: invalid JSON"), std::string::npos) << bad.err;
+}
+
+// A pairs file whose stored rock left its label file is set aside (`--skip-bad-lines`: registration counts
+// there); the note says so, so "no hand pairs" never hides an edit that was dropped, and figures print it.
+TEST(Provenance, StaleHandPairsSetAsideAreCounted) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  write_hand_pairs(d);
+  test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.3 0.2 0.1 0.1\n");  // rock 1 moved
+  const auto r = test::run_ipd("table " + d.path() + " --format json --no-cache --skip-bad-lines");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json p = nlohmann::json::parse(r.out).at("provenance");
+  EXPECT_EQ(p.at("scenes_with_hand_pairs"), 0);
+  EXPECT_EQ(p.at("scenes_with_stale_hand_pairs"), 1);
+  EXPECT_NE(r.err.find("; no hand pairs (every pair from registration); stale hand pairs not used in 1 scene "
+                       "(registration counts there).\n"),
+            std::string::npos)
+      << r.err;
+  // The studio counts the same, until "reset to automatic" discards the file.
+  Session session = Session::open(d.path());
+  EXPECT_EQ(session_provenance(session).scenes_with_stale_hand_pairs, 1);
+  EXPECT_EQ(session_provenance(session).scenes_with_hand_pairs, 0);
+  session.apply(0, Edit::reset());
+  EXPECT_EQ(session_provenance(session).scenes_with_stale_hand_pairs, 0);
+  Provenance q;
+  q.scenes_with_stale_hand_pairs = 2;
+  EXPECT_TRUE(provenance_edited(q));
+  EXPECT_EQ(provenance_note(q),
+            "Label files ; no hand pairs (every pair from registration); stale hand pairs not used in 2 scenes "
+            "(registration counts there).");
 }
 
 TEST(Provenance, NoteCountsInPlural) {
