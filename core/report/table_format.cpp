@@ -8,6 +8,7 @@
 
 #include "core/report/csv.h"
 #include "core/report/markdown.h"
+#include "core/report/table_cells.h"
 #include "core/stats/study_statistics.h"
 #include "core/util/json_output.h"
 #include "core/util/number_text.h"
@@ -52,101 +53,12 @@ bool parse_table_format(const std::string& name, TableFormat* out) {
   return false;
 }
 
+using namespace table_cells;
+
 namespace {
-
-std::string column_title(const std::pair<std::string, std::string>& c) { return c.first + " - " + c.second; }
-std::string row_title(const ModelInfo& m) {
-  return m.trained_on.empty() ? m.name : fmt::format("{} ({})", m.name, m.trained_on);
-}
-
-// "–" for cells that don't involve the training domain (as the paper), "n/a" when nothing was measured.
-std::string cell_text(const TableCell& c, const char* dash) {
-  if (!c.involves_training_domain) return dash;
-  if (std::isnan(c.ipd)) return "n/a";
-  return fmt::format("{:.4f}", c.ipd);
-}
-
-// The distinct reasons of cells that are not a number (TableCell::no_value_reason), in cell order: cell k's
-// footnote is its reason's position + 1.
-std::vector<std::string> footnotes(const CrossTable& t) {
-  std::vector<std::string> out;
-  for (const auto& c : t.cells)
-    if (c.involves_training_domain && !c.no_value_reason.empty() &&
-        std::find(out.begin(), out.end(), c.no_value_reason) == out.end())
-      out.push_back(c.no_value_reason);
-  return out;
-}
-
-int footnote_of(const std::vector<std::string>& notes, const TableCell& c) {
-  if (!c.involves_training_domain || c.no_value_reason.empty()) return 0;
-  return static_cast<int>(std::find(notes.begin(), notes.end(), c.no_value_reason) - notes.begin()) + 1;
-}
-
-// The text of a cell: a number, or "–" with the mark of its footnote when it is not one for a reason.
-std::string marked_cell_text(const TableCell& c, const char* dash, const std::vector<std::string>& notes) {
-  const int k = footnote_of(notes, c);
-  return k > 0 ? no_value_mark(k) : cell_text(c, dash);
-}
-
-std::string footnote_lines(const std::vector<std::string>& notes) {
-  std::string out;
-  for (size_t k = 0; k < notes.size(); ++k) out += footnote_mark(static_cast<int>(k) + 1) + " " + notes[k] + "\n";
-  return out;
-}
-
-bool has_ci(const TableCell& c) { return !std::isnan(c.ci_low) && !std::isnan(c.ci_high); }
-
-// " [0.214, 0.238]" when the cell has an interval and is shown.
-std::string ci_text(const TableCell& c) {
-  if (!c.involves_training_domain || std::isnan(c.ipd) || !has_ci(c)) return {};
-  return fmt::format(" [{:.3f}, {:.3f}]", c.ci_low, c.ci_high);
-}
-
-// " (15 pairs)", " (15 pairs; 1 scene: no interval)" when intervals were asked for and the cell can't have one.
-std::string pairs_text(const TableCell& c, const TableFormatOptions& o) {
-  if (!c.involves_training_domain || std::isnan(c.ipd)) return {};
-  const std::string why = o.resamples > 0 && !has_ci(c) ? no_interval_reason(c) : std::string();
-  return fmt::format(" ({} pairs{}{})", grouped_thousands(c.pairs), why.empty() ? "" : "; ", why);
-}
-
-bool any_ci(const CrossTable& t) {
-  return std::any_of(t.cells.begin(), t.cells.end(), [](const TableCell& c) { return has_ci(c); });
-}
-
-std::string ci_caption(const TableFormatOptions& o) {
-  return fmt::format("[low, high]: {:g}% scene-bootstrap percentile interval ({} resamples of scenes, seed {})",
-                     100 * o.level, grouped_thousands(o.resamples), o.seed);
-}
 
 std::string number_or_empty(double v) { return std::isnan(v) ? std::string() : fmt::format("{:.6f}", v); }
 nlohmann::json number_or_null(double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); }
-
-// The best (lowest) shown value of a row, bolded in Markdown and LaTeX as the paper does.
-double row_best(const CrossTable& t, size_t row) {
-  double best = INFINITY;
-  for (size_t c = 0; c < t.columns.size(); ++c) {
-    const auto& cell = t.cells[row * t.columns.size() + c];
-    if (cell.involves_training_domain && !std::isnan(cell.ipd)) best = std::min(best, cell.ipd);
-  }
-  return best;
-}
-
-std::string latex_escape(const std::string& s) {
-  std::string o;
-  for (char ch : s) {
-    if (ch == '\\')
-      o += "\\textbackslash{}";
-    else if (ch == '~')
-      o += "\\textasciitilde{}";
-    else if (ch == '^')
-      o += "\\textasciicircum{}";
-    else if (ch == '_' || ch == '&' || ch == '%' || ch == '#' || ch == '$' || ch == '{' || ch == '}')
-      o += std::string("\\") + ch;
-    else
-      o += ch;
-  }
-  return o;
-}
 
 std::string text_table(const CrossTable& t, const TableFormatOptions& o) {
   std::vector<std::vector<std::string>> grid;
@@ -195,186 +107,6 @@ nlohmann::json distribution_json(const TableCell& c) {
           {"worst", worst}};
 }
 
-// How to read the numbers, under either LaTeX layout: a table in a paper must say it without its caption.
-std::string latex_reading(bool ci, const TableFormatOptions& o) {
-  std::string s =
-      "IPD: mean $|$performance-value difference$|$ over matched rock pairs, lower is better; bold: the "
-      "row's best; --: pair not involving the training domain.";
-  if (ci) s += " " + latex_escape(ci_caption(o)) + ".";
-  return s;
-}
-
-std::string latex_table(const CrossTable& t, const TableFormatOptions& o) {
-  const size_t nc = t.columns.size();
-  const bool bt = o.booktabs;
-  const char* rule = bt ? "" : "\\hline\n";
-  std::string out = "% IPD cross table, generated by `ipd table --format latex`\n";
-  if (o.latex_ci && any_ci(t)) out += "% " + ci_caption(o) + "\n";
-  if (bt) {
-    out += "% needs \\usepackage{booktabs}\n\\begin{tabular}{l";
-    for (size_t k = 0; k < nc; ++k) out += "c";
-    out += "}\n\\toprule\n";
-    out += fmt::format(" & \\multicolumn{{{}}}{{c}}{{$\\downarrow$ Instance Performance Difference (IPD)}} \\\\\n", nc);
-    out += fmt::format("\\cmidrule(lr){{2-{}}}\n", nc + 1);
-  } else {
-    out += "\\begin{tabular}{|c|";
-    for (size_t k = 0; k < nc; ++k) out += "c|";
-    out += "}\n\\hline\n";
-    out += fmt::format(
-        " & \\multicolumn{{{}}}{{c|}}{{$\\downarrow$ Instance Performance Difference (IPD)}} \\\\\n\\hline\n", nc);
-  }
-  out += "Train\\textbackslash Eval";
-  // Single bars: the paper's \| prints a double bar (a norm), not an absolute value.
-  for (const auto& c : t.columns) out += " & $|$" + latex_escape(c.first) + " $-$ " + latex_escape(c.second) + "$|$";
-  out += " \\\\\n";
-  out += bt ? "\\midrule\n" : rule;
-  const std::vector<std::string> notes = footnotes(t);
-  for (size_t r = 0; r < t.models.size(); ++r) {
-    const double best = row_best(t, r);
-    out += latex_escape(row_title(t.models[r]));
-    for (size_t c = 0; c < nc; ++c) {
-      const auto& cell = t.cells[r * nc + c];
-      const int note = footnote_of(notes, cell);
-      // an en dash in LaTeX, as the text table's "–"
-      const std::string s = note > 0 ? fmt::format("--$^{{{}}}$", note) : cell_text(cell, "--");
-      out += " & " + (cell.involves_training_domain && cell.ipd == best ? "\\textbf{" + s + "}" : s);
-      if (o.latex_ci) out += ci_text(cell);
-    }
-    out += " \\\\\n";
-    if (!bt) out += rule;
-  }
-  if (bt) out += "\\bottomrule\n";
-  out += "\\end{tabular}\n";
-  out += "\\par\\smallskip{\\footnotesize " + latex_reading(o.latex_ci && any_ci(t), o) + "\\par}\n";
-  for (size_t k = 0; k < notes.size(); ++k)
-    out += fmt::format("\\par{{\\footnotesize $^{{{}}}$ {}}}\n", k + 1, latex_escape(notes[k]));
-  return out;
-}
-
-// The compact LaTeX layout (TableFormatOptions::latex_wide): domains as letters in study order, rows named
-// by their training domain's letter when that is unambiguous (else M1, M2, ...), intervals on a second
-// line, the legend below the tabular (it wraps to the column).
-struct CompactNames {
-  std::vector<std::string> domains;  // A, B, C, ... -> name
-  std::vector<std::string> rows;     // per model
-  bool rows_by_domain = false;
-};
-
-std::string letter(size_t k) { return k < 26 ? std::string(1, char('A' + k)) : fmt::format("D{}", k + 1); }
-
-CompactNames compact_names(const CrossTable& t) {
-  CompactNames n;
-  const auto index = [&](const std::string& d) {
-    const auto it = std::find(n.domains.begin(), n.domains.end(), d);
-    if (it != n.domains.end()) return size_t(it - n.domains.begin());
-    n.domains.push_back(d);
-    return n.domains.size() - 1;
-  };
-  for (const auto& [a, b] : t.columns) index(a), index(b);
-  std::vector<std::string> trained;
-  for (const ModelInfo& m : t.models) trained.push_back(m.trained_on);
-  std::vector<std::string> sorted = trained;
-  std::sort(sorted.begin(), sorted.end());
-  n.rows_by_domain = !t.models.empty() && std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end() &&
-                     std::all_of(trained.begin(), trained.end(), [&](const std::string& d) {
-                       return std::find(n.domains.begin(), n.domains.end(), d) != n.domains.end();
-                     });
-  for (size_t r = 0; r < t.models.size(); ++r)
-    n.rows.push_back(n.rows_by_domain ? letter(index(trained[r])) : fmt::format("M{}", r + 1));
-  return n;
-}
-
-std::string compact_column(const CompactNames& n, const std::pair<std::string, std::string>& c) {
-  const auto letter_of = [&](const std::string& d) {
-    return letter(size_t(std::find(n.domains.begin(), n.domains.end(), d) - n.domains.begin()));
-  };
-  return "$|$" + letter_of(c.first) + "$-$" + letter_of(c.second) + "$|$";
-}
-
-std::string compact_interval(const TableCell& c) {
-  if (!c.involves_training_domain || std::isnan(c.ipd) || !has_ci(c)) return {};
-  return fmt::format("{{[}}{:.3f}, {:.3f}{{]}}", c.ci_low, c.ci_high);  // braced: "[" after \\ is an argument
-}
-
-std::string latex_compact_table(const CrossTable& t, const TableFormatOptions& o) {
-  const size_t nc = t.columns.size();
-  const bool bt = o.booktabs, ci = o.latex_ci && any_ci(t);
-  const CompactNames n = compact_names(t);
-  std::string out = "% IPD cross table, generated by `ipd table --format latex` (one column; --latex-wide: table*)\n";
-  if (ci) out += "% " + ci_caption(o) + "\n";
-  if (bt) out += "% needs \\usepackage{booktabs}\n";
-  out += bt ? "\\begin{tabular}{@{}l" + std::string(nc, 'c') + "@{}}\n\\toprule\n" : "\\begin{tabular}{|l|";
-  if (!bt) {
-    for (size_t k = 0; k < nc; ++k) out += "c|";
-    out += "}\n\\hline\n";
-  }
-  out += fmt::format("Train & \\multicolumn{{{}}}{{c{}}}{{$\\downarrow$ IPD}} \\\\\n", nc, bt ? "" : "|");
-  out += bt ? fmt::format("\\cmidrule(lr){{2-{}}}\n", nc + 1) : "";
-  for (const auto& c : t.columns) out += " & " + compact_column(n, c);
-  out += " \\\\\n";
-  out += bt ? "\\midrule\n" : "\\hline\n";
-  const std::vector<std::string> notes = footnotes(t);
-  for (size_t r = 0; r < t.models.size(); ++r) {
-    const double best = row_best(t, r);
-    out += n.rows[r];
-    for (size_t c = 0; c < nc; ++c) {
-      const auto& cell = t.cells[r * nc + c];
-      const int note = footnote_of(notes, cell);  // a cell that is not a number says why below
-      const std::string s = note > 0 ? fmt::format("--$^{{{}}}$", note) : cell_text(cell, "--");
-      out += " & " + (cell.involves_training_domain && cell.ipd == best ? "\\textbf{" + s + "}" : s);
-    }
-    out += " \\\\\n";
-    if (ci) {
-      for (size_t c = 0; c < nc; ++c) out += " & " + compact_interval(t.cells[r * nc + c]);
-      out += " \\\\\n";
-    }
-    if (!bt) out += "\\hline\n";
-  }
-  out += bt ? "\\bottomrule\n\\end{tabular}\n" : "\\end{tabular}\n";
-  // The legend: what the letters stand for, what the rows are, what the numbers mean.
-  std::string legend;
-  for (size_t k = 0; k < n.domains.size(); ++k)
-    legend += (k ? ", " : "") + letter(k) + ": " + latex_escape(n.domains[k]);
-  legend += n.rows_by_domain ? ". Rows: the detector trained on " : ". Rows: ";
-  for (size_t r = 0; r < t.models.size(); ++r) {
-    legend += (r ? (n.rows_by_domain ? ", " : "; ") : "") + n.rows[r] + (n.rows_by_domain ? " (" : ": ") +
-              latex_escape(t.models[r].name);
-    if (!n.rows_by_domain && !t.models[r].trained_on.empty())
-      legend += " (trained on " + latex_escape(t.models[r].trained_on) + ")";
-    legend += n.rows_by_domain ? ")" : "";
-  }
-  legend += ". " + latex_reading(ci, o);
-  out += "\\par\\smallskip{\\footnotesize " + legend + "\\par}\n";
-  for (size_t k = 0; k < notes.size(); ++k)
-    out += fmt::format("\\par{{\\footnotesize $^{{{}}}$ {}}}\n", k + 1, latex_escape(notes[k]));
-  return out;
-}
-
-// Computer Modern Roman 10 pt advance widths (cmr10/cmbx10, points), enough to tell a table's width within
-// a few points.
-double cm_width(const std::string& s, bool bold) {
-  double w = 0;
-  for (unsigned char ch : s) {
-    if (ch >= '0' && ch <= '9')
-      w += bold ? 5.75 : 5.0;
-    else if (ch == '.' || ch == ',' || ch == '[' || ch == ']' || ch == '|' || ch == ':' || ch == ';')
-      w += 2.78;
-    else if (ch == ' ')
-      w += 3.33;
-    else if (ch == '(' || ch == ')')
-      w += 3.89;
-    else if (ch == '-')
-      w += 3.33;
-    else if (ch >= 'A' && ch <= 'Z')
-      w += bold ? 8.3 : 7.3;
-    else if ((ch & 0xC0) == 0x80)
-      continue;  // UTF-8 continuation
-    else
-      w += bold ? 5.6 : 4.9;  // lower case and the rest, on average
-  }
-  return w;
-}
-
 std::string csv_table(const CrossTable& t, const TableFormatOptions& o) {
   std::string out =
       "model,trained_on,a,b,ipd,pairs,unpaired_a,unpaired_b,scenes,involves_training_domain,ci_low,ci_high,se,"
@@ -406,38 +138,6 @@ std::string csv_table(const CrossTable& t, const TableFormatOptions& o) {
 }
 
 }  // namespace
-
-double latex_table_width_pt(const CrossTable& t, const TableFormatOptions& o) {
-  const size_t nc = t.columns.size();
-  const double sep = 12, rule = 0.4;  // 2 \tabcolsep, one vertical rule
-  const bool ci = o.latex_ci && any_ci(t);
-  const CompactNames n = compact_names(t);
-  std::vector<double> w(nc + 1, 0);
-  const auto fit = [&](size_t col, double v) { w[col] = std::max(w[col], v); };
-  const double minus = 7.78 + 2 * 2.22;  // $-$ with its binary spacing
-  fit(0, cm_width(o.latex_wide ? "Train\\Eval" : "Train", false));
-  for (size_t c = 0; c < nc; ++c) {
-    const auto& [a, b] = t.columns[c];
-    fit(c + 1, o.latex_wide ? cm_width("||" + a + b, false) + minus : 2 * 2.78 + 2 * 7.3 + minus);
-  }
-  for (size_t r = 0; r < t.models.size(); ++r) {
-    fit(0, cm_width(o.latex_wide ? row_title(t.models[r]) : n.rows[r], false));
-    for (size_t c = 0; c < nc; ++c) {
-      const TableCell& cell = t.cells[r * nc + c];
-      const double value = cm_width(cell_text(cell, "--"), cell.involves_training_domain);
-      const double interval = ci ? cm_width(ci_text(cell), false) : 0;
-      fit(c + 1, o.latex_wide ? value + (o.latex_ci ? interval : 0) : std::max(value, interval - 3.33));
-    }
-  }
-  double total = o.booktabs ? -sep : (nc + 2) * rule;  // booktabs' @{} drops the outer padding
-  for (double v : w) total += v + sep;
-  // The spanning "IPD" header widens the value columns when it is the wider.
-  const double header =
-      o.latex_wide ? cm_width("Instance Performance Difference (IPD)", false) + 10 : cm_width("IPD", false) + 10;
-  double values = 0;
-  for (size_t c = 1; c <= nc; ++c) values += w[c] + sep;
-  return total + std::max(0.0, header + sep - values);
-}
 
 std::string TableFormatOptions::validate() const {
   if (resamples < 0) return fmt::format("resamples must be >= 0 (0: no intervals), got {}", resamples);
@@ -517,9 +217,9 @@ std::string format_table(const CrossTable& t, TableFormat format, const TableFor
       return out;
     }
     case TableFormat::kLatex: {
-      std::string out = o.latex_wide ? latex_table(t, o) : latex_compact_table(t, o);
+      std::string out = latex_cross_table(t, o);
       // A footnote line under the table: it wraps to the column like the legend.
-      if (o.provenance) out += "\\par{\\footnotesize " + latex_escape(provenance_note(*o.provenance)) + "\\par}\n";
+      if (o.provenance) out += "\\par{\\footnotesize " + latex_text(provenance_note(*o.provenance)) + "\\par}\n";
       return out;
     }
   }
