@@ -120,12 +120,34 @@ class ReviewParser {
           break;
         }
       if (!found) {
-        problem(stem, fmt::format("the check of the pair {} | {} in scene {} does not apply now: those rocks are "
-                                  "not a pair now (kept in the file: it applies again when they are)",
-                                  box_text(box_a), box_text(box_b), describe_json(c["scene"])));
+        problem(stem, kept_check_message(k, box_a, box_b, describe_json(c["scene"])));
         out_->state.kept_checks.push_back({stem, box_a, box_b});
       }
     }
+  }
+
+  // Why a check does not apply, in the words of the panes: rocks by their number from 1 when both are in the
+  // label files (not a pair now), else which box is no longer there (a label file was edited).
+  std::string kept_check_message(int k, const std::array<double, 4>& box_a, const std::array<double, 4>& box_b,
+                                 const std::string& scene) const {
+    const int i = rock_of(scenes_.gt(k, true), box_a), j = rock_of(scenes_.gt(k, false), box_b);
+    if (i >= 0 && j >= 0)
+      return fmt::format(
+          "the check of the pair {} rock {} | {} rock {} in scene {} does not apply now: those rocks "
+          "are not a pair now (kept in the file: it applies again when they are)",
+          a_, i + 1, b_, j + 1, scene);
+    std::string gone;
+    if (i < 0) gone = fmt::format("{}'s box {}", a_, box_text(box_a));
+    if (j < 0) gone += fmt::format("{}{}'s box {}", gone.empty() ? "" : " and ", b_, box_text(box_b));
+    return fmt::format(
+        "the check of the pair {} | {} in scene {} does not apply now: {} {} no longer in its label "
+        "file (moved or deleted; kept in the file: it applies again if the box comes back)",
+        box_text(box_a), box_text(box_b), scene, gone, i < 0 && j < 0 ? "are" : "is");
+  }
+  static int rock_of(const std::vector<Box>& gt, const std::array<double, 4>& box) {
+    for (size_t r = 0; r < gt.size(); ++r)
+      if (same_box(gt[r], box)) return static_cast<int>(r);
+    return -1;
   }
 
   std::string file_;

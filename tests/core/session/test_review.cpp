@@ -183,8 +183,8 @@ TEST(SessionReview, ACheckWhosePairIsGoneIsKeptAndAppliesAgainWhenThePairComesBa
     ASSERT_EQ(s.problems().size(), 1u);
     EXPECT_EQ(s.problems()[0].to_string(),
               d / "review/real__synth.json" +
-                  ": the check of the pair (0.3 0.8 0.12 0.1) | (0.75 0.7 0.08 0.12) in scene \"s1\" does not apply "
-                  "now: those rocks are not a pair now (kept in the file: it applies again when they are)");
+                  ": the check of the pair real rock 3 | synth rock 4 in scene \"s1\" does not apply now: those rocks "
+                  "are not a pair now (kept in the file: it applies again when they are)");
     EXPECT_EQ(s.problems()[0].scene, "s1");
     EXPECT_EQ(s.review_of(0).kept_checks.size(), 1u);
     // Another scene's mark is saved: the check is written back as read.
@@ -201,6 +201,24 @@ TEST(SessionReview, ACheckWhosePairIsGoneIsKeptAndAppliesAgainWhenThePairComesBa
   const Session back = open_audited(d.path());
   EXPECT_TRUE(back.checked(0, 2, 3));
   EXPECT_TRUE(back.problems().empty());
+}
+
+// A check whose box left its label file (a typo being fixed, a rock deleted) says which box is gone rather
+// than "not a pair now", and is kept the same way.
+TEST(SessionReview, ACheckWhoseBoxLeftItsLabelFileSaysWhichBox) {
+  test::TempDir d;
+  test::write_review_study(d);
+  test::write_text(d / "review/real__synth.json", kCheckedFile);
+  test::write_text(d / "synth/labels/s1.txt",
+                   "0 0.2 0.2 0.1 0.08\n0 0.8 0.25 0.06 0.06\n0 0.3 0.8 0.12 0.1\n0 0.75 0.7 0.08 0.13\n");
+  fs::remove(d / "pairs/real__synth/s1.json");
+  const Session s = open_audited(d.path());
+  ASSERT_EQ(s.problems().size(), 1u);
+  EXPECT_EQ(s.problems()[0].message,
+            "the check of the pair (0.3 0.8 0.12 0.1) | (0.75 0.7 0.08 0.12) in scene \"s1\" does not apply now: "
+            "synth's box (0.75 0.7 0.08 0.12) is no longer in its label file (moved or deleted; kept in the file: it "
+            "applies again if the box comes back)");
+  EXPECT_EQ(s.review_of(0).kept_checks.size(), 1u);
 }
 
 // Marks of a scene the domain pair does not have now (its label file moved away for a while) are kept too.
