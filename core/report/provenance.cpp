@@ -124,9 +124,12 @@ Provenance session_provenance(const Session& session, const DomainPairFilter& on
     p.scenes_reviewed += r.reviewed_scenes;
     // Checks that are pairs now: one whose pair was edited away is kept in the file but does not apply.
     const auto& scenes = session.scenes_of(static_cast<int>(c));
-    for (size_t k = 0; k < scenes.size() && k < r.checked.size(); ++k)
-      for (const auto& pair : r.checked[k])
-        p.pairs_checked += std::count(scenes[k].current.pairs.begin(), scenes[k].current.pairs.end(), pair) > 0;
+    for (size_t k = 0; k < scenes.size() && k < r.checked.size(); ++k) {
+      if (r.checked[k].empty()) continue;
+      RockPairs now = scenes[k].current.pairs;  // sorted once: a dense scene has thousands of pairs and checks
+      std::sort(now.begin(), now.end());
+      for (const auto& pair : r.checked[k]) p.pairs_checked += std::binary_search(now.begin(), now.end(), pair);
+    }
   }
   p.label_fingerprint = label_set_fingerprint(session.study());
   return p;

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "core/report/provenance.h"
 #include "core/session/scene_filter.h"
 #include "core/session/session.h"
 #include "core/util/atomic_file.h"
@@ -219,6 +220,21 @@ TEST(SessionReview, ACheckWhoseBoxLeftItsLabelFileSaysWhichBox) {
             "synth's box (0.75 0.7 0.08 0.12) is no longer in its label file (moved or deleted; kept in the file: it "
             "applies again if the box comes back)");
   EXPECT_EQ(s.review_of(0).kept_checks.size(), 1u);
+}
+
+// The studio's figures count a check only while its rocks are a pair: unpairing them takes it out of the count
+// (the check stays in the file).
+TEST(SessionReview, ProvenanceCountsAChecksOnlyWhileItsRocksAreAPair) {
+  test::TempDir d;
+  test::write_review_study(d);
+  test::write_text(d / "review/real__synth.json", kCheckedFile);
+  Session s = open_audited(d.path());
+  ASSERT_TRUE(s.checked(0, 2, 3));
+  EXPECT_EQ(session_provenance(s).pairs_checked, 1);
+  s.apply(0, Edit::unpair(Side::kA, 2));
+  EXPECT_EQ(session_provenance(s).pairs_checked, 0);
+  s.undo();
+  EXPECT_EQ(session_provenance(s).pairs_checked, 1);
 }
 
 // Marks of a scene the domain pair does not have now (its label file moved away for a while) are kept too.
