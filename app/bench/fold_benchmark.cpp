@@ -81,7 +81,8 @@ void print_fold_report(const std::vector<LabelPair>& pairs, const std::vector<Mi
   fmt::print("{:<5} {:<11} {:<15} {:<8} {:>6} {:>7} {:>8} {:>7} {:>8} {:>9} {:>8} {:>7}\n", "fold", "side", "terrains",
              "tier", "cases", "F1", "ceiling", "gap", "strict", "s.ceiling", "s.gap", "ms med");
   std::vector<BandCounts> bands(tiers.size()), ceiling_bands(tiers.size());
-  std::vector<double> worst_gap(tiers.size(), 0.0), worst_ms(tiers.size(), 0.0);
+  std::vector<double> worst_gap(tiers.size(), 0.0), worst_ms(tiers.size(), 0.0), sum_gap(tiers.size(), 0.0);
+  int validation_sides = 0;
   for (const auto& fold : benchmark_folds())
     for (bool validation : {false, true}) {
       const auto subset = fold_pairs(pairs, fold, validation);
@@ -101,6 +102,8 @@ void print_fold_report(const std::vector<LabelPair>& pairs, const std::vector<Mi
         }
         if (!validation) continue;
         worst_gap[t] = std::max(worst_gap[t], s.ceiling - s.f1);
+        sum_gap[t] += s.ceiling - s.f1;
+        validation_sides += t == 0;
         worst_ms[t] = std::max(worst_ms[t], s.ms_median);
       }
     }
@@ -129,9 +132,13 @@ void print_fold_report(const std::vector<LabelPair>& pairs, const std::vector<Mi
     const std::string recall = bands_on_tuning ? fmt::format("recall < 30 px on the tuning sides {:.4f}", small_recall)
                                                : fmt::format("recall < 30 px {:.4f} (goal 0.97: {})", small_recall,
                                                              verdict(small_recall >= 0.97));
-    fmt::print("  {}: worst validation gap {:.4f} (goal {}: {}), {}, worst median {:.3f} ms/pair (goal 0.5: {})\n",
-               tiers[t].name, worst_gap[t], gap_goal, verdict(worst_gap[t] <= gap_goal), recall, worst_ms[t],
-               verdict(worst_ms[t] <= 0.5));
+    // Judged on the worst fold; the folds' mean (every case of every validation side) is shown beside it, as a
+    // 300-case side's gap moves by several thousandths with the seed.
+    fmt::print(
+        "  {}: worst validation gap {:.4f} (goal {}: {}; mean of the folds {:.4f}), {}, worst median {:.3f} ms/pair "
+        "(goal 0.5: {})\n",
+        tiers[t].name, worst_gap[t], gap_goal, verdict(worst_gap[t] <= gap_goal),
+        validation_sides > 0 ? sum_gap[t] / validation_sides : 0.0, recall, worst_ms[t], verdict(worst_ms[t] <= 0.5));
   }
 }
 
