@@ -108,6 +108,10 @@ void StudioApp::adopt_snapshot() {
 void StudioApp::submit_edits(const ui::UiCommands& cmd) {
   const Session& s = *snap_->session;
   for (const auto& e : cmd.edits) {
+    if (std::string same = ui::unchanged_by_edit(s, ui_.scene, e); !same.empty()) {
+      ui_.status = std::move(same);  // nothing to save: the scene must not turn into a hand-edited one
+      continue;
+    }
     ui_.status = ui::edit_status(s, ui_.scene, e);
     worker_.submit(command::ApplyEdit{ui_.scene, e});
   }

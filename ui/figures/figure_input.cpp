@@ -72,6 +72,8 @@ SceneFigureInput scene_input_from_study(const StudyLabels& labels, const std::st
     std::sort(in.pairs.begin(), in.pairs.end());
   }
   in.pairs_fixed = p.fixed;
+  in.pairs_stale =
+      std::any_of(p.pairs_problems.begin(), p.pairs_problems.end(), [](const PairsProblem& w) { return w.unusable; });
   in.method = to_string(p.registration.method);
   in.affine = (p.fixed || swapped) ? affine_of_pairs(in) : p.registration.affine;
   if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
@@ -100,6 +102,7 @@ SceneFigureInput scene_input_from_session(const Session& s, int scene) {
   for (int k = 0; k < int(in.gt_b.size()); ++k)
     if (s.excluded(Side::kB, scene, k)) in.excluded_b.push_back(k);
   in.pairs_fixed = state.edited;
+  in.pairs_stale = state.pairs_unusable;
   in.method = to_string(state.automatic.registration.method);
   in.affine = (state.edited || s.swapped()) ? affine_of_pairs(in) : state.automatic.registration.affine;
   const Study& st = s.study();
@@ -140,6 +143,7 @@ void draw_scene_figure(DisplayList& out, const std::string& kind, const SceneFig
   // The scene's own edits: its pairs when set by hand, the rocks it leaves out; and its review marks.
   const int excluded = static_cast<int>(in.excluded_a.size() + in.excluded_b.size());
   Provenance p = scene_provenance(in.pairs_fixed, static_cast<int>(in.pairs.size()), excluded, in.label_fingerprint);
+  p.scenes_with_stale_hand_pairs = in.pairs_stale ? 1 : 0;
   p.scenes_reviewed = in.reviewed ? 1 : 0;
   p.pairs_checked = in.pairs_checked;
   add_provenance(out, p, o);

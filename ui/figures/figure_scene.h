@@ -19,7 +19,10 @@ struct SceneFigureInput {
   std::vector<Box> gt_a, gt_b, pred_a, pred_b;
   RockPairs pairs;  // (index in a, index in b), in pair-number order
   std::vector<int> excluded_a, excluded_b;
-  bool pairs_fixed = false;            // by hand (file or GUI edit) rather than registration
+  bool pairs_fixed = false;  // by hand (file or GUI edit) rather than registration
+  // The scene's pairs file no longer matches its label files: its hand pairs are set aside (registration's
+  // are drawn), and the figure's note says so.
+  bool pairs_stale = false;
   Affine2 affine = identity_affine();  // a -> b, for Fig. 2
   std::string method;                  // registration method, for Fig. 2's title
   cv::Mat picture_a, picture_b;        // BGR, empty when there is none

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <utility>
+
 #include "ui/gui/pane_zoom.h"
 
 namespace ipd::ui {
@@ -23,6 +26,21 @@ void show_scene_of_edit(UiState& ui, int scene) {
   if (scene != ui.scene) return enter_scene(ui, scene);
   // "scene_00038 marked reviewed" is no longer true once that mark is undone.
   ui.status.clear();
+}
+
+std::string unchanged_by_edit(const Session& s, int scene, const Edit& edit) {
+  if (scene < 0 || scene >= static_cast<int>(s.scenes().size())) return "";
+  const SceneState& sc = s.scenes()[scene];
+  if (edit.kind == Edit::Kind::kPair) {
+    const RockPairs pairs = s.view_pairs(scene);
+    if (std::binary_search(pairs.begin(), pairs.end(), std::make_pair(edit.a, edit.b)) &&
+        !s.excluded(Side::kA, scene, edit.a) && !s.excluded(Side::kB, scene, edit.b))
+      return fmt::format("{} rock {} and {} rock {} are a pair already in {}: nothing changed", s.left_domain(),
+                         edit.a + 1, s.right_domain(), edit.b + 1, sc.stem);
+  }
+  if (edit.kind == Edit::Kind::kResetToAutomatic && !sc.edited && !sc.pairs_unusable)
+    return sc.stem + " has the automatic pairs already: nothing changed";
+  return "";
 }
 
 std::string edit_status(const Session& s, int scene, const Edit& edit) {

@@ -12,6 +12,7 @@
 #include "tests/support/test_support.h"
 #include "ui/canvas/png_text.h"
 #include "ui/figures/figure_export.h"
+#include "ui/figures/figure_input.h"
 #include "ui/figures/figure_provenance.h"
 
 namespace ipd {
@@ -83,6 +84,23 @@ TEST(FigureProvenance, SceneFiguresCarryTheScenesReviewMarks) {
               std::string::npos)
         << test::pdf_text(out).all();
   }
+}
+
+// A scene whose hand pairs are set aside as stale (a stored rock left its label file) is drawn with
+// registration's pairs; its figure says so, from the command line and from the studio alike.
+TEST(FigureProvenance, ASceneWithStaleHandPairsSaysTheyWereNotUsed) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  write_hand_pairs(d);
+  test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.3 0.2 0.1 0.1\n");  // synth rock 2 moved
+  const std::string out = d / "pairs.pdf";
+  const auto r = test::run_ipd("figure pairs " + d.path() + " --skip-bad-lines --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(test::pdf_words(out).find("stale hand pairs not used in 1 scene (registration counts there)."),
+            std::string::npos)
+      << test::pdf_words(out);
+  const Session s = Session::open(d.path());
+  EXPECT_TRUE(ui::scene_input_from_session(s, 0).pairs_stale);
 }
 
 // Nothing edited: no note on the page, the fingerprint in the metadata of PDF, SVG and PNG alike.

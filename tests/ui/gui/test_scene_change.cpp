@@ -78,5 +78,34 @@ TEST(SceneChange, TheStatusLineSaysWhichEditWasSent) {
   EXPECT_EQ(edit_status(s, 0, Edit::unpair(Side::kA, 0)), "unpaired synth rock 1 in s1");
 }
 
+// An edit that changes nothing is not sent: pairing two partners again, or resetting a scene that has the
+// automatic pairs, would write a pairs file and make the scene count as edited by hand.
+TEST(SceneChange, AnEditThatChangesNothingIsSaidAndNotSent) {
+  test::TempDir d;
+  test::write_two_rock_study(d);  // automatic pairs (0, 1), (1, 0)
+  Session s = Session::open(d.path());
+  EXPECT_EQ(unchanged_by_edit(s, 0, Edit::pair(0, 1)),
+            "real rock 1 and synth rock 2 are a pair already in s1: nothing changed");
+  EXPECT_EQ(unchanged_by_edit(s, 0, Edit::pair(0, 0)), "");
+  EXPECT_EQ(unchanged_by_edit(s, 0, Edit::reset()), "s1 has the automatic pairs already: nothing changed");
+  EXPECT_EQ(unchanged_by_edit(s, 0, Edit::unpair(Side::kA, 0)), "");
+  s.apply(0, Edit::toggle_exclude(Side::kA, 0));  // an excluded rock paired again is counted again: a change
+  EXPECT_EQ(unchanged_by_edit(s, 0, Edit::pair(0, 1)), "");
+  EXPECT_EQ(unchanged_by_edit(s, 0, Edit::reset()), "");  // the scene is edited now
+  // The view's own orientation: synth 1 | real 2 is the pair real 2 | synth 1; real rock 1 is the excluded one.
+  ASSERT_TRUE(s.select_domains("synth", "real"));
+  EXPECT_EQ(unchanged_by_edit(s, 0, Edit::pair(0, 1)),
+            "synth rock 1 and real rock 2 are a pair already in s1: nothing changed");
+  EXPECT_EQ(unchanged_by_edit(s, 0, Edit::pair(1, 0)), "");
+  // A stale pairs file (its stored synth rock left the label file) shows registration's pairs, unedited:
+  // reset still goes through, as it discards the file.
+  test::write_text(
+      d / "pairs/real__synth/s1.json",
+      R"({"pairs": [[0, 1]], "rocks_a": [[0, 0.2, 0.2, 0.1, 0.1]], "rocks_b": [[1, 0.3, 0.3, 0.1, 0.1]]})");
+  const Session stale = Session::open(d.path());
+  ASSERT_TRUE(stale.scenes()[0].pairs_unusable);
+  EXPECT_EQ(unchanged_by_edit(stale, 0, Edit::reset()), "");
+}
+
 }  // namespace
 }  // namespace ipd::ui
