@@ -90,8 +90,12 @@ void StudioApp::adopt_snapshot() {
   }
   if (snap_->jump_serial != jump_serial_) {
     jump_serial_ = snap_->jump_serial;
-    if (snap_->jump_to_scene >= 0 && snap_->jump_to_scene < static_cast<int>(s.scenes().size()))
+    if (snap_->jump_to_scene >= 0 && snap_->jump_to_scene < static_cast<int>(s.scenes().size())) {
       ui::show_scene_of_edit(ui_, snap_->jump_to_scene);
+      // Said, so a jump to another scene is not a mystery.
+      if (!history_verb_.empty())
+        ui_.status = fmt::format("{} in {}", history_verb_, s.scenes()[snap_->jump_to_scene].stem);
+    }
   }
   if (new_rerun) {
     const int steps = static_cast<int>(snap_->rerun->trace.steps.size());
@@ -115,8 +119,16 @@ void StudioApp::submit_edits(const ui::UiCommands& cmd) {
     ui_.status = ui::edit_status(s, ui_.scene, e);
     worker_.submit(command::ApplyEdit{ui_.scene, e});
   }
-  if (cmd.undo) worker_.submit(command::Undo{});
-  if (cmd.redo) worker_.submit(command::Redo{});
+  if (cmd.undo) {
+    worker_.submit(command::Undo{});
+    history_verb_ = "undid the last change";
+    if (!s.can_undo()) ui_.status = "nothing to undo";
+  }
+  if (cmd.redo) {
+    worker_.submit(command::Redo{});
+    history_verb_ = "redid the change undone last";
+    if (!s.can_redo()) ui_.status = "nothing to redo";
+  }
   // The status line says what a toggle did: else "suspect pair 3 in scene_02" stays up after `C` checked it.
   if (cmd.toggle_reviewed && !s.scenes().empty()) {
     worker_.submit(command::ToggleReviewed{ui_.scene});

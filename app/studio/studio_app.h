@@ -85,6 +85,7 @@ class StudioApp {
   std::vector<Problem> problems_, picture_problems_;
   std::string pending_scene_;   // a problem's scene, shown once the worker has switched to its domain pair
   std::string pending_status_;  // and the problem, on the status line then
+  std::string history_verb_;    // "undid the last change", for the status line once the worker has undone it
   long order_version_ = -1;
   std::string order_filter_;
   int order_sort_ = -1;

@@ -130,11 +130,15 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
                                    : "Delete this scene's hand pairs file, which no longer matches its labels");
   if (ImGui::BeginPopupModal("Discard the hand pairs?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36);
-    ImGui::TextUnformatted(
-        ("Delete " + stale_file + " and use registration's pairs for this scene? Undo does not bring the file back.")
-            .c_str());
+    // A read-only window deletes nothing: the reset is kept in this window only.
+    const std::string question =
+        s.read_only() ? "Use registration's pairs for this scene? This window is read-only (" + s.read_only_reason() +
+                            "): " + stale_file + " stays on disk, and the reset is kept in this window only."
+                      : "Delete " + stale_file +
+                            " and use registration's pairs for this scene? Undo does not bring the file back.";
+    ImGui::TextUnformatted(question.c_str());
     ImGui::PopTextWrapPos();
-    if (ImGui::Button("Delete the file")) {
+    if (ImGui::Button(s.read_only() ? "Use registration's pairs" : "Delete the file")) {
       out.edits.push_back(Edit::reset());
       ImGui::CloseCurrentPopup();
     }
