@@ -38,6 +38,15 @@ std::string unchanged_by_edit(const Session& s, int scene, const Edit& edit) {
       return fmt::format("{} rock {} and {} rock {} are a pair already in {}: nothing changed", s.left_domain(),
                          edit.a + 1, s.right_domain(), edit.b + 1, sc.stem);
   }
+  if (edit.kind == Edit::Kind::kUnpair) {
+    const RockPairs pairs = s.view_pairs(scene);
+    const bool paired = std::any_of(pairs.begin(), pairs.end(), [&](const auto& p) {
+      return (edit.side == Side::kA ? p.first : p.second) == edit.a;
+    });
+    if (!paired)
+      return fmt::format("{} rock {} is in no pair in {}: nothing changed",
+                         edit.side == Side::kA ? s.left_domain() : s.right_domain(), edit.a + 1, sc.stem);
+  }
   if (edit.kind == Edit::Kind::kResetToAutomatic && !sc.edited && !sc.pairs_unusable)
     return sc.stem + " has the automatic pairs already: nothing changed";
   return "";
@@ -46,15 +55,37 @@ std::string unchanged_by_edit(const Session& s, int scene, const Edit& edit) {
 std::string edit_status(const Session& s, int scene, const Edit& edit) {
   if (scene < 0 || scene >= static_cast<int>(s.scenes().size())) return "";
   const std::string& stem = s.scenes()[scene].stem;
-  // Rocks are numbered from 1 and named by their domain, as the pictures and the pair table show them.
-  auto rock = [&](Side side, int index) {
+  const RockPairs pairs = s.view_pairs(scene);  // (left, right); a pair is shown numbered by its left rock
+  auto partner = [&](Side side, int index) {
+    for (const auto& [l, r] : pairs)
+      if ((side == Side::kA ? l : r) == index) return side == Side::kA ? r : l;
+    return -1;
+  };
+  auto name = [&](Side side, int index) {
     return fmt::format("{} rock {}", side == Side::kA ? s.left_domain() : s.right_domain(), index + 1);
   };
+  // A rock as the pictures show it: its number, and for a right rock in a pair, the pair's number it carries.
+  auto rock = [&](Side side, int index) {
+    const int other = side == Side::kB ? partner(side, index) : -1;
+    return other >= 0 ? fmt::format("{} (pair {})", name(side, index), other + 1) : name(side, index);
+  };
   switch (edit.kind) {
-    case Edit::Kind::kPair:
-      return fmt::format("paired {} with {} in {}", rock(Side::kA, edit.a), rock(Side::kB, edit.b), stem);
-    case Edit::Kind::kUnpair:
-      return fmt::format("unpaired {} in {}", rock(edit.side, edit.a), stem);
+    case Edit::Kind::kPair: {
+      // The rocks' old partners are left unpaired: said, as the pictures show them as "x" rocks now.
+      std::string released;
+      if (const int r = partner(Side::kA, edit.a); r >= 0 && r != edit.b) released = name(Side::kB, r);
+      if (const int l = partner(Side::kB, edit.b); l >= 0 && l != edit.a)
+        released += (released.empty() ? "" : " and ") + name(Side::kA, l);
+      return fmt::format("pair {} is now {} | {} in {}{}", edit.a + 1, name(Side::kA, edit.a), name(Side::kB, edit.b),
+                         stem, released.empty() ? "" : "; " + released + " unpaired");
+    }
+    case Edit::Kind::kUnpair: {
+      const int other = partner(edit.side, edit.a);
+      if (other < 0) return fmt::format("{} is in no pair in {}", name(edit.side, edit.a), stem);
+      const int left = edit.side == Side::kA ? edit.a : other, right = edit.side == Side::kA ? other : edit.a;
+      return fmt::format("pair {} unpaired in {} ({} | {})", left + 1, stem, name(Side::kA, left),
+                         name(Side::kB, right));
+    }
     case Edit::Kind::kToggleExclude:
       return fmt::format("{} {} in {}", rock(edit.side, edit.a),
                          s.excluded(edit.side, scene, edit.a) ? "counted again" : "excluded from the IPD", stem);

@@ -60,22 +60,30 @@ TEST(SceneChange, AnEditOfTheSceneInViewKeepsSelectionZoomAndReplay) {
   EXPECT_FLOAT_EQ(ui.left_view.zoom, 1.0f);
 }
 
-// The status line speaks of the edit just sent (a refusal of an earlier one no longer applies), rocks
-// numbered from 1 and named by their domain as the pictures show them; the swapped view names its own left.
+// The status line speaks of the edit just sent (a refusal of an earlier one no longer applies), in the
+// pictures' terms: rocks numbered from 1 and named by their domain, a pair by its left rock's number (the number
+// both pictures show on it), and the partners an edit leaves unpaired. The swapped view names its own left.
 TEST(SceneChange, TheStatusLineSaysWhichEditWasSent) {
   test::TempDir d;
-  test::write_two_rock_study(d);
+  test::write_two_rock_study(d);  // real 1 | synth 2 is pair 1, real 2 | synth 1 is pair 2
   Session s = Session::open(d.path());
-  EXPECT_EQ(edit_status(s, 0, Edit::pair(0, 1)), "paired real rock 1 with synth rock 2 in s1");
-  EXPECT_EQ(edit_status(s, 0, Edit::unpair(Side::kB, 0)), "unpaired synth rock 1 in s1");
+  EXPECT_EQ(edit_status(s, 0, Edit::pair(0, 1)), "pair 1 is now real rock 1 | synth rock 2 in s1");
+  EXPECT_EQ(edit_status(s, 0, Edit::pair(0, 0)),
+            "pair 1 is now real rock 1 | synth rock 1 in s1; synth rock 2 and real rock 2 unpaired");
+  EXPECT_EQ(edit_status(s, 0, Edit::unpair(Side::kB, 0)), "pair 2 unpaired in s1 (real rock 2 | synth rock 1)");
   EXPECT_EQ(edit_status(s, 0, Edit::toggle_exclude(Side::kA, 1)), "real rock 2 excluded from the IPD in s1");
+  EXPECT_EQ(edit_status(s, 0, Edit::toggle_exclude(Side::kB, 0)), "synth rock 1 (pair 2) excluded from the IPD in s1");
   s.apply(0, Edit::toggle_exclude(Side::kA, 1));
   EXPECT_EQ(edit_status(s, 0, Edit::toggle_exclude(Side::kA, 1)), "real rock 2 counted again in s1");
   EXPECT_EQ(edit_status(s, 0, Edit::reset()), "s1 reset to the automatic pairs");
   EXPECT_EQ(edit_status(s, 0, Edit::replace({{0, 1}})), "s1 paired as the re-run registration pairs it");
   EXPECT_EQ(edit_status(s, 1, Edit::reset()), "");  // no such scene
   ASSERT_TRUE(s.select_domains("synth", "real"));
-  EXPECT_EQ(edit_status(s, 0, Edit::unpair(Side::kA, 0)), "unpaired synth rock 1 in s1");
+  EXPECT_EQ(edit_status(s, 0, Edit::unpair(Side::kA, 0)), "pair 1 unpaired in s1 (synth rock 1 | real rock 2)");
+  s.apply(0, Edit::unpair(Side::kA, 0));
+  EXPECT_EQ(edit_status(s, 0, Edit::unpair(Side::kA, 0)), "synth rock 1 is in no pair in s1");
+  EXPECT_EQ(unchanged_by_edit(s, 0, Edit::unpair(Side::kA, 0)), "synth rock 1 is in no pair in s1: nothing changed");
+  EXPECT_EQ(unchanged_by_edit(s, 0, Edit::unpair(Side::kB, 0)), "");
 }
 
 // An edit that changes nothing is not sent: pairing two partners again, or resetting a scene that has the
