@@ -73,7 +73,7 @@ struct SideInFile {
   std::vector<int> excluded;
   std::optional<std::map<int, StoredBox>> stored;  // nullopt: a file without boxes for this side
   std::map<int, int> moved;                        // file index -> row now
-  std::vector<std::string> lost;                   // "rock 4 (0.6 0.6 0.1 0.1)": 1-based, as the studio shows it
+  std::vector<std::string> lost;                   // "the box saved from line 4 (0.6 0.6 0.1 0.1)"
 };
 
 std::map<int, StoredBox> parse_rocks(const nlohmann::json& j, const char* key, const std::string& file) {
@@ -119,10 +119,11 @@ void bind_side(SideInFile* side, const std::set<int>& referenced, const char* ke
       claimed[found] = 1;
       side->moved[i] = found;
     } else {
-      // Numbered from 1, as the studio and the replays number rocks (the file stores 0-based indices).
-      side->lost.push_back(fmt::format("rock {} ({} {} {} {})", i + 1, nlohmann::json(want.cx).dump(),
-                                       nlohmann::json(want.cy).dump(), nlohmann::json(want.w).dump(),
-                                       nlohmann::json(want.h).dump()));
+      // By the label file's line it was saved from (the file stores 0-based indices) and its box: the panes show
+      // a right rock in a pair by its pair's number, so "rock 15" alone would point at another box.
+      side->lost.push_back(fmt::format("the box saved from line {} ({} {} {} {})", i + 1,
+                                       nlohmann::json(want.cx).dump(), nlohmann::json(want.cy).dump(),
+                                       nlohmann::json(want.w).dump(), nlohmann::json(want.h).dump()));
     }
   }
 }

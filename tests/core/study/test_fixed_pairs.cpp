@@ -117,7 +117,7 @@ TEST(FixedPairsBinding, ARemovedRockMakesTheScenesHandPairsUnusable) {
   EXPECT_TRUE(t.pairs_problems[0].unusable);
   const std::string message =
       "hand pairs not used (registration counts instead): a stored box is no longer in its label file (moved or "
-      "deleted): rock 2 "
+      "deleted): the box saved from line 2 "
       "(0.2 0.2 0.1 0.1) of 'synth' (" +
       d / "synth/labels/s1.txt" + ")";
   EXPECT_EQ(t.pairs_problems[0].message, message);
@@ -152,7 +152,8 @@ TEST(FixedPairsBinding, ABoxMovedFarBelowLabelPrecisionIsTheSameRock) {
   ASSERT_EQ(gone.pairs_problems.size(), 1u);
   EXPECT_TRUE(gone.pairs_problems[0].unusable);
   EXPECT_EQ(gone.pairs_problems[0].why_unusable,
-            "a stored box is no longer in its label file (moved or deleted): rock 2 (0.2 0.2 0.1 0.1) of 'synth' (" +
+            "a stored box is no longer in its label file (moved or deleted): the box saved from line 2 (0.2 0.2 0.1 "
+            "0.1) of 'synth' (" +
                 d / "synth/labels/s1.txt" + ")");
 }
 
@@ -177,7 +178,7 @@ TEST(FixedPairsBinding, TheCliExitsOneNamingTheFileUnlessSkipBadLines) {
   test::write_text(f, kHandPairs);
   const std::string line = f +
                            ": hand pairs not used (registration counts instead): a stored box is no longer in its "
-                           "label file (moved or deleted): rock 2 (0.2 0.2 0.1 0.1) of 'synth' (" +
+                           "label file (moved or deleted): the box saved from line 2 (0.2 0.2 0.1 0.1) of 'synth' (" +
                            d / "synth/labels/s1.txt" + ")";
   const auto strict = test::run_ipd("table --no-cache --bootstrap 0 " + d.path());
   EXPECT_EQ(strict.exit_code, 1) << strict.err;
@@ -200,11 +201,12 @@ TEST(FixedPairsBinding, AFigureOfTheSceneSaysSoToo) {
   const std::string out = d / "fig.svg";
   const auto strict = test::run_ipd("figure registration " + d.path() + " --scene s1 --out " + out);
   EXPECT_EQ(strict.exit_code, 1) << strict.err;
-  EXPECT_NE(strict.err.find(f +
-                            ": hand pairs not used (registration counts instead): a stored box is no longer in "
-                            "its label file (moved or deleted): rock 2 (0.2 0.2 0.1 0.1) of 'synth' (" +
-                            d / "synth/labels/s1.txt" + ") (pass --skip-bad-lines to draw registration's pairs)\n"),
-            std::string::npos)
+  EXPECT_NE(
+      strict.err.find(f +
+                      ": hand pairs not used (registration counts instead): a stored box is no longer in "
+                      "its label file (moved or deleted): the box saved from line 2 (0.2 0.2 0.1 0.1) of 'synth' (" +
+                      d / "synth/labels/s1.txt" + ") (pass --skip-bad-lines to draw registration's pairs)\n"),
+      std::string::npos)
       << strict.err;
   const auto lenient = test::run_ipd("figure registration " + d.path() + " --scene s1 --skip-bad-lines --out " + out);
   EXPECT_EQ(lenient.exit_code, 0) << lenient.err;
@@ -263,14 +265,15 @@ TEST(FixedPairsBinding, AnEditOfAStaleSceneIsRefusedAndResetDiscardsTheFile) {
       s.apply(0, e);
       FAIL() << "expected the edit to be refused";
     } catch (const StudyError& err) {
-      EXPECT_EQ(std::string(err.what()),
-                f +
-                    ": edit refused: this file's hand pairs no longer match the label files (a stored box is no "
-                    "longer in its label file (moved or deleted): rock 2 (0.2 0.2 0.1 0.1) of 'synth' (" +
-                    d / "synth/labels/s1.txt" +
-                    ")), and saving the edit would overwrite them. To keep them, correct the label file and open "
-                    "the study again; to discard them and start from registration's pairs, use \"reset to "
-                    "automatic\" on scene \"s1\"");
+      EXPECT_EQ(
+          std::string(err.what()),
+          f +
+              ": edit refused: this file's hand pairs no longer match the label files (a stored box is no "
+              "longer in its label file (moved or deleted): the box saved from line 2 (0.2 0.2 0.1 0.1) of 'synth' (" +
+              d / "synth/labels/s1.txt" +
+              ")), and saving the edit would overwrite them. To keep them, correct the label file and open "
+              "the study again; to discard them and start from registration's pairs, use \"reset to "
+              "automatic\" on scene \"s1\"");
     }
   }
   EXPECT_FALSE(s.can_undo());
