@@ -153,12 +153,26 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
     ImGui::SameLine();
     ImGui::TextDisabled("F1: help");
   }
-  if (stale)
+  if (stale) {
+    // Short above the pictures (five wrapped lines at 1280 px left them thumbnail-sized); the whole on hover.
+    ImGui::BeginGroup();  // one item for the hover, however many lines it wraps to
     text_coloured_wrapped_at_spaces(
-        {1, 0.55f, 0, 1}, "Hand pairs not applied: " + stale_file + ": " + stale_why +
-                              ". The scene shows registration's pairs, and edits are refused so that the file is not "
-                              "overwritten. To keep the hand pairs, correct the label file and open the study again; "
-                              "to discard them, \"reset to automatic\".");
+        {1, 0.55f, 0, 1},
+        "Hand pairs not applied: the pairs file no longer matches the labels; registration's "
+        "pairs are shown and edits are refused (hover for why and the ways out).");
+    ImGui::EndGroup();
+    if (ImGui::IsItemHovered()) {
+      ImGui::BeginTooltip();
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40);
+      ImGui::TextUnformatted((stale_file + ": " + stale_why +
+                              ".\n\nThe scene shows registration's pairs, and edits are refused so that the file is "
+                              "not overwritten. To keep the hand pairs, correct the label file and open the study "
+                              "again; to discard them, \"reset to automatic\".")
+                                 .c_str());
+      ImGui::PopTextWrapPos();
+      ImGui::EndTooltip();
+    }
+  }
 
   // The panes' captions (domain names) and notices ("no picture ... (labels only)") sit in a strip above
   // the pictures, never over rocks or their numbers.
