@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
   }
   std::unique_ptr<ipd::studio::StudioWindow> window;
   try {
-    window = std::make_unique<ipd::studio::StudioWindow>(o.width, o.height, o.headless(), o.exe_dir);
+    window = std::make_unique<ipd::studio::StudioWindow>(o.width, o.height, o.headless(),
+                                                         !o.headless() && !o.size_given, o.exe_dir);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;

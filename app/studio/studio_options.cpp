@@ -48,6 +48,7 @@ int parse_studio_options(int argc, char** argv, StudioOptions* o) {
   } catch (const CLI::ParseError& e) {
     return cli.exit(e);
   }
+  o->size_given = cli.count("--size") + cli.count("--height") > 0;
   o->exe_dir = std::filesystem::path(argv[0]).parent_path().string();
   return -1;
 }

@@ -18,6 +18,9 @@ struct StudioOptions {
   std::string replay;    // --replay FILE
   std::size_t texture_budget_mb = 512;
   int width = 1600, height = 900;  // the window
+  // --size or --height given: the window is that size even past the screen. Otherwise an interactive window
+  // shrinks to the screen's work area (a 1280 x 800 laptop cut off the right column and the status bar).
+  bool size_given = false;
 
   // A run that ends by itself (screenshot or replay): no vsync, every frame finished before it is timed.
   bool headless() const { return !screenshot.empty() || !replay.empty(); }

@@ -1,5 +1,7 @@
 #include "app/studio/studio_window.h"
 
+#include <algorithm>
+
 #define GL_GLEXT_PROTOTYPES
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
@@ -51,8 +53,14 @@ double wall_ms() {
 
 }  // namespace
 
-StudioWindow::StudioWindow(int width, int height, bool headless, const std::string& exe_dir) : headless_(headless) {
+StudioWindow::StudioWindow(int width, int height, bool headless, bool fit_to_screen, const std::string& exe_dir)
+    : headless_(headless) {
   if (!glfwInit()) throw std::runtime_error("cannot initialise GLFW (no display? run under xvfb-run)");
+  if (GLFWmonitor* monitor = fit_to_screen ? glfwGetPrimaryMonitor() : nullptr) {
+    int x = 0, y = 0, w = 0, h = 0;
+    glfwGetMonitorWorkarea(monitor, &x, &y, &w, &h);
+    if (w >= 320 && h >= 240) width = std::min(width, w), height = std::min(height, h);
+  }
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
   window_ = glfwCreateWindow(width, height, "IPD Studio", nullptr, nullptr);

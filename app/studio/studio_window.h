@@ -13,7 +13,8 @@ namespace ipd::studio {
 class StudioWindow {
  public:
   // Throws std::runtime_error (no display, no OpenGL 3). `exe_dir` helps find the font.
-  StudioWindow(int width, int height, bool headless, const std::string& exe_dir);
+  // `fit_to_screen`: width x height at most the primary monitor's work area.
+  StudioWindow(int width, int height, bool headless, bool fit_to_screen, const std::string& exe_dir);
   ~StudioWindow();
   StudioWindow(const StudioWindow&) = delete;
   StudioWindow& operator=(const StudioWindow&) = delete;
