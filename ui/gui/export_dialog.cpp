@@ -146,14 +146,19 @@ std::optional<ExportRequest> draw_export_dialog(ExportDialogState& st, const Exp
   ImGui::InputText("file name", st.name, sizeof st.name);
   const std::string path = (std::filesystem::path(st.dir) / (std::string(st.name) + exts[st.format])).string();
   ImGui::TextDisabled("writes %s", path.c_str());
-  ImGui::TextDisabled("same figure as: ipd figure %s ... --conf <slider> (edits included)", kFigureKinds[st.kind]);
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec))  // said before it happens: an export replaces the file of that name
+    ImGui::TextColored({1, 0.55f, 0, 1}, "replaces the file of that name");
+  ImGui::TextDisabled("same figure as: ipd figure %s ... --conf %.2f (edits included)", kFigureKinds[st.kind],
+                      ctx.conf_threshold);
   if (ImGui::Button("Export") && st.name[0]) {
     out = export_request(st, ctx, path);
     st.open = false;
     ImGui::CloseCurrentPopup();
   }
   ImGui::SameLine();
-  if (ImGui::Button("Cancel")) {
+  // ImGui 1.86 indexes keys by the backend's codes: Escape is GetKeyIndex(ImGuiKey_Escape), as the other dialogs ask.
+  if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
     st.open = false;
     ImGui::CloseCurrentPopup();
   }
