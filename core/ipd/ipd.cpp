@@ -113,7 +113,10 @@ SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, co
 }
 
 namespace {
-std::string above(double threshold) { return threshold > 0 ? fmt::format(" above {:g}", threshold) : std::string(); }
+// A prediction at exactly the threshold is kept (conf >= T), so "above T" would be a shade wrong.
+std::string above(double threshold) {
+  return threshold > 0 ? fmt::format(" at or above {:g}", threshold) : std::string();
+}
 }  // namespace
 
 std::string no_predictions_reason(long na, long nb, const std::string& a, const std::string& b, double threshold) {

@@ -90,7 +90,7 @@ struct TableCell {
   bool involves_training_domain = true;  // false: computed, but shown as "–" like the paper
   bool missing_predictions = false;
   // Why the cell is not a number although both domains have prediction sets (no_predictions_reason):
-  // "no predictions above 0.98 in real and principled". Shown beside its "–"; empty for a number.
+  // "no predictions at or above 0.98 in real and principled". Shown beside its "–"; empty for a number.
   std::string no_value_reason;
   std::vector<SceneIpd> per_scene;
 };
@@ -99,11 +99,11 @@ struct TableCell {
 // the class filter and the confidence threshold) in the scenes compared, every rock's performance value is 0
 // on both sides and IPD 0 would say "identical" about two empty prediction sets, so there is no number. One
 // side without predictions is a number (every rock there missed: a real, if alarming, gap) and a warning.
-// Returns the reason ("no predictions above 0.98 in real and principled", "no predictions in real and
+// Returns the reason ("no predictions at or above 0.98 in real and principled", "no predictions in real and
 // principled" without a threshold), or "" when either side has predictions.
 std::string no_predictions_reason(long predictions_a, long predictions_b, const std::string& a, const std::string& b,
                                   double threshold);
-// The warning when only `domain` has none: "model 'det' has no predictions above 0.98 in 'real' (its scenes
+// The warning when only `domain` has none: "model 'det' has no predictions at or above 0.98 in 'real' (its scenes
 // compared with 'principled'): every rock there counts as missed, as a detector that found nothing".
 std::string one_side_without_predictions(const std::string& model, const std::string& domain, const std::string& other,
                                          double threshold);

@@ -414,13 +414,16 @@ void Session::rebuild_totals() {
       const long na = shown_predictions(a, m.name, static_cast<int>(p)),
                  nb = shown_predictions(b, m.name, static_cast<int>(p));
       t.no_value_reason = no_predictions_reason(na, nb, a, b, effective_threshold());
-      if (!t.no_value_reason.empty()) {  // listed too: the Problems window says why a cell has no number
+      // Listed too, for the cells the table shows (those of the training domain; `ipd table` footnotes them): the
+      // Problems window says why a cell has no number.
+      const bool shown = m.trained_on.empty() || m.trained_on == a || m.trained_on == b;
+      if (!t.no_value_reason.empty() && shown) {
         Problem q;
         q.domain = a;
         q.other_domain = b;
         q.message = fmt::format("model '{}': IPD({}, {}) is not a number: {}", m.name, a, b, t.no_value_reason);
         threshold_problems_.push_back(std::move(q));
-      } else if (na == 0 || nb == 0) {
+      } else if (t.no_value_reason.empty() && (na == 0 || nb == 0)) {
         Problem q;
         q.domain = na == 0 ? a : b;
         q.other_domain = na == 0 ? b : a;

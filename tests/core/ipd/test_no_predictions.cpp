@@ -35,7 +35,7 @@ TEST(NoPredictions, NeitherSideLeftIsNotANumber) {
   ASSERT_EQ(t.cells.size(), 1u);
   const TableCell& c = t.cells[0];
   EXPECT_TRUE(std::isnan(c.ipd));  // not 0.0000: every rock's value is 0 on both sides
-  EXPECT_EQ(c.no_value_reason, "no predictions above 0.95 in real and synth");
+  EXPECT_EQ(c.no_value_reason, "no predictions at or above 0.95 in real and synth");
   EXPECT_EQ(c.pairs, 2);  // the pairs are still there, only the number is not
   BootstrapOptions b;
   b.resamples = 100;
@@ -46,17 +46,17 @@ TEST(NoPredictions, NeitherSideLeftIsNotANumber) {
   EXPECT_EQ(format_table(t, TableFormat::kText),
             "train \\ eval (IPD, lower is better)  |real - synth|\n"
             "det                                  –¹\n"
-            "¹ no predictions above 0.95 in real and synth\n");
+            "¹ no predictions at or above 0.95 in real and synth\n");
   const std::string csv = format_table(t, TableFormat::kCsv);
   EXPECT_EQ(csv.substr(csv.find('\n') + 1),
-            "det,,real,synth,,2,0,0,1,true,,,,no predictions above 0.95 in real and synth\n");
+            "det,,real,synth,,2,0,0,1,true,,,,no predictions at or above 0.95 in real and synth\n");
   const std::string json = format_table(t, TableFormat::kJson);
   EXPECT_NE(json.find("\"ipd\": null"), std::string::npos) << json;
-  EXPECT_NE(json.find("\"reason\": \"no predictions above 0.95 in real and synth\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"reason\": \"no predictions at or above 0.95 in real and synth\""), std::string::npos) << json;
   // The one-column layout (rows as letters, legend below) and the wide one both mark the cell and say why.
   const std::string latex = format_table(t, TableFormat::kLatex);
   EXPECT_NE(latex.find("M1 & --$^{1}$ \\\\"), std::string::npos) << latex;
-  EXPECT_NE(latex.find("\\par}\n\\par{\\footnotesize $^{1}$ no predictions above 0.95 in real and synth}\n"),
+  EXPECT_NE(latex.find("\\par}\n\\par{\\footnotesize $^{1}$ no predictions at or above 0.95 in real and synth}\n"),
             std::string::npos)
       << latex;
   TableFormatOptions wide;
@@ -64,19 +64,19 @@ TEST(NoPredictions, NeitherSideLeftIsNotANumber) {
   const std::string latex_wide = format_table(t, TableFormat::kLatex, wide);
   EXPECT_NE(latex_wide.find("det & --$^{1}$ \\\\"), std::string::npos) << latex_wide;
   // Below the table and its legend, as in the one-column layout.
-  EXPECT_NE(latex_wide.find("training domain.\\par}\n\\par{\\footnotesize $^{1}$ no predictions above 0.95 in real and "
+  EXPECT_NE(latex_wide.find("training domain.\\par}\n\\par{\\footnotesize $^{1}$ no predictions at or above 0.95 in real and "
                             "synth}\n"),
             std::string::npos)
       << latex_wide;
   // The table figure marks the cell and says why in its note.
   const ui::TableFigure fig = ui::table_figure_of(t);
   EXPECT_EQ(fig.rows.at(0).at(1), "\u2013\u00b9");
-  EXPECT_NE(fig.note.find("\u2013\u00b9: not a number, no predictions above 0.95 in real and synth."),
+  EXPECT_NE(fig.note.find("\u2013\u00b9: not a number, no predictions at or above 0.95 in real and synth."),
             std::string::npos)
       << fig.note;
   const std::string md = format_table(t, TableFormat::kMarkdown);
   EXPECT_NE(md.find("| det | –¹ |"), std::string::npos) << md;
-  EXPECT_NE(md.find("\n¹ no predictions above 0.95 in real and synth\n"), std::string::npos) << md;
+  EXPECT_NE(md.find("\n¹ no predictions at or above 0.95 in real and synth\n"), std::string::npos) << md;
 }
 
 TEST(NoPredictions, CompareRefusesACellWithoutANumber) {
@@ -90,7 +90,7 @@ TEST(NoPredictions, CompareRefusesACellWithoutANumber) {
     FAIL() << "compared two empty prediction sets";
   } catch (const StudyError& e) {
     EXPECT_STREQ(e.what(),
-                 "model 'det': IPD(real, synth) is not a number: no predictions above 0.95 in real and synth");
+                 "model 'det': IPD(real, synth) is not a number: no predictions at or above 0.95 in real and synth");
   }
   // Nor is it broken down by rock size (every bin would read 0).
   try {
@@ -98,7 +98,7 @@ TEST(NoPredictions, CompareRefusesACellWithoutANumber) {
     FAIL() << "broke down two empty prediction sets";
   } catch (const StudyError& e) {
     EXPECT_STREQ(e.what(),
-                 "model 'det': IPD(real, synth) is not a number: no predictions above 0.95 in real and synth");
+                 "model 'det': IPD(real, synth) is not a number: no predictions at or above 0.95 in real and synth");
   }
 }
 
@@ -111,7 +111,7 @@ TEST(NoPredictions, OneSideWithoutPredictionsIsANumberAndAWarning) {
   EXPECT_EQ(t.cells[0].no_value_reason, "");
   ASSERT_EQ(t.warnings.size(), 1u);
   EXPECT_EQ(t.warnings[0],
-            "model 'det' has no predictions above 0.85 in 'synth' (its scenes compared with 'real'): "
+            "model 'det' has no predictions at or above 0.85 in 'synth' (its scenes compared with 'real'): "
             "every rock there counts as missed, as a detector that found nothing");
 }
 
@@ -134,19 +134,33 @@ TEST(NoPredictions, TheSessionSaysWhyItsCellHasNoNumber) {
   EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);  // the tiny study worked by hand (test_ipd.cpp)
   s.set_conf_threshold(0.95);                 // the slider: nothing is left on either side
   EXPECT_TRUE(std::isnan(s.totals().ipd()));
-  EXPECT_EQ(s.totals().no_value_reason, "no predictions above 0.95 in real and synth");
-  EXPECT_EQ(s.summary(0).no_value_reason, "no predictions above 0.95 in real and synth");
+  EXPECT_EQ(s.totals().no_value_reason, "no predictions at or above 0.95 in real and synth");
+  EXPECT_EQ(s.summary(0).no_value_reason, "no predictions at or above 0.95 in real and synth");
   EXPECT_TRUE(std::isnan(s.summary(0).ipd));
   ASSERT_EQ(s.problems().size(), 1u);  // the Problems window says why the cell has no number
   EXPECT_EQ(s.problems()[0].to_string(),
-            "model 'det': IPD(real, synth) is not a number: no predictions above 0.95 in real and synth");
+            "model 'det': IPD(real, synth) is not a number: no predictions at or above 0.95 in real and synth");
   s.set_conf_threshold(0.85);
   EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
   ASSERT_EQ(s.problems().size(), 1u);
   EXPECT_EQ(s.problems()[0].to_string(),
-            "model 'det' has no predictions above 0.85 in 'synth' (its scenes compared "
+            "model 'det' has no predictions at or above 0.85 in 'synth' (its scenes compared "
             "with 'real'): every rock there counts as missed, as a detector that found nothing");
   EXPECT_EQ(s.summary(0).no_value_reason, "");
+}
+
+// The Problems window lists the cells the table shows: a cell without the model's training domain is dashed in
+// every table, so its missing number is no problem to fix.
+TEST(NoPredictions, TheSessionListsOnlyCellsTheTableShows) {
+  test::TempDir d;
+  write_study(d, "models: {det: {trained_on: real}}\n");
+  test::write_text(d / "other/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "other/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
+  Session s(load_labels(open_study(d.path())));
+  s.set_conf_threshold(0.95);
+  std::vector<std::string> cells;
+  for (const Problem& p : s.problems()) cells.push_back(p.domain + " " + p.other_domain);
+  EXPECT_EQ(cells, (std::vector<std::string>{"real other", "real synth"}));  // not "other synth"
 }
 
 }  // namespace
@@ -162,12 +176,12 @@ TEST(NoPredictions, FiguresSayThereIsNoNumber) {
   auto r = test::run_ipd("figure pairs " + d / "s" + " --scene scene_00001 --conf 0.999 --out " + d / "p.pdf");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string words = test::pdf_words(d / "p.pdf");
-  EXPECT_NE(words.find("IPD not a number (no predictions above 0.999 in real and principled)"), std::string::npos)
+  EXPECT_NE(words.find("IPD not a number (no predictions at or above 0.999 in real and principled)"), std::string::npos)
       << words;
   for (const char* kind : {"distribution", "compare"}) {
     r = test::run_ipd(std::string("figure ") + kind + " " + d / "s" + " --conf 0.999 --out " + d / "f.pdf");
     EXPECT_EQ(r.exit_code, 1) << kind;
-    EXPECT_NE(r.err.find("': IPD(real, principled) is not a number: no predictions above 0.999 in real and principled"),
+    EXPECT_NE(r.err.find("': IPD(real, principled) is not a number: no predictions at or above 0.999 in real and principled"),
               std::string::npos)
         << kind << ": " << r.err;
   }

@@ -355,12 +355,12 @@ TEST(EmptyHistogram, SaysWhyThereIsNoBar) {
   SceneSummary paired;
   paired.pairs = 12;
   paired.ipd = std::nan("");
-  paired.no_value_reason = "no predictions above 0.98 in real and principled";
-  EXPECT_EQ(empty_histogram_text({none, paired}), "no per-scene IPD: no predictions above 0.98 in real and principled");
+  paired.no_value_reason = "no predictions at or above 0.98 in real and principled";
+  EXPECT_EQ(empty_histogram_text({none, paired}), "no per-scene IPD: no predictions at or above 0.98 in real and principled");
   SceneSummary plain;
   plain.pairs = 3;
   EXPECT_EQ(empty_histogram_text({plain, paired}),
-            "no per-scene IPD: no predictions above 0.98 in real and principled");
+            "no per-scene IPD: no predictions at or above 0.98 in real and principled");
   EXPECT_EQ(empty_histogram_text({plain}), "no scene with an IPD");
 }
 
