@@ -122,7 +122,8 @@ void print_comparisons_text(const std::vector<RendererComparison>& results, cons
   for (const auto& r : results) {
     std::cout << comparison_sentence(r) << "\n";
     if (!std::isnan(r.result.delta_common))
-      std::cout << fmt::format("  over the {} ref rocks paired in both: ΔIPD = {}\n", r.result.pairs_common,
+      std::cout << fmt::format("  over the {} ref rocks paired in both: ΔIPD = {}\n",
+                               grouped_thousands(r.result.pairs_common),
                                minus_number(r.result.delta_common, 4));  // the sentence's minus sign
   }
   // A row of fewer than 2 scenes has neither interval nor test (its sentence says so).
