@@ -218,9 +218,13 @@ SaveJob Session::apply(int scene, Edit e) {
       break;
   }
   std::sort(next.pairs.begin(), next.pairs.end());
-  history_.truncate(undo_pos_);
-  history_.push_back({pair_, scene, s.current, next, s.edited, edited, {}});
-  ++undo_pos_;
+  // Discarding a stale pairs file is no step undo can take back: the scene showed registration's pairs before
+  // and after, and the file is gone (the dialog says so). An entry would "undo" by changing nothing.
+  if (!(e.kind == Edit::Kind::kResetToAutomatic && s.pairs_unusable)) {
+    history_.truncate(undo_pos_);
+    history_.push_back({pair_, scene, s.current, next, s.edited, edited, {}});
+    ++undo_pos_;
+  }
   SaveJob job = set_scene(pair_, scene, next, edited);
   if (e.kind == Edit::Kind::kResetToAutomatic) {
     // The user discarded a pairs file that no longer applied: the job removes it, the scene is editable again.

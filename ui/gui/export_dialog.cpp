@@ -31,6 +31,7 @@ ExportViewContext export_view_context(const Session& s, const UiState& ui, const
                                 : (std::filesystem::path(s.study().root) / "figures").string();
   if (ui.scene >= 0 && ui.scene < int(s.scenes().size())) {
     c.scene = ui.scene;
+    c.scene_stale = !s.stale_pairs(ui.scene).first.empty();
     c.base_name = s.scenes()[ui.scene].stem + "_" + s.left_domain() + "_" + s.right_domain();
   }
   c.model = s.model();
@@ -149,8 +150,8 @@ std::optional<ExportRequest> draw_export_dialog(ExportDialogState& st, const Exp
   std::error_code ec;
   if (std::filesystem::exists(path, ec))  // said before it happens: an export replaces the file of that name
     ImGui::TextColored({1, 0.55f, 0, 1}, "replaces the file of that name");
-  ImGui::TextDisabled("same figure as: ipd figure %s ... --conf %.2f (edits included)", kFigureKinds[st.kind],
-                      ctx.conf_threshold);
+  ImGui::TextDisabled("same figure as: ipd figure %s ... --conf %.2f%s (edits included)", kFigureKinds[st.kind],
+                      ctx.conf_threshold, ctx.scene_stale ? " --skip-bad-lines" : "");
   if (ImGui::Button("Export") && st.name[0]) {
     out = export_request(st, ctx, path);
     st.open = false;

@@ -37,6 +37,7 @@ struct ExportViewContext {
   CanvasView view;                     // zoom and pan of the left picture
   int image_w = 0, image_h = 0;
   int scene = -1;
+  bool scene_stale = false;  // its pairs file no longer matches its labels: the CLI needs --skip-bad-lines
 };
 
 // The context of the session's current view (scene, layers, zoom, the comparison the statistics panel

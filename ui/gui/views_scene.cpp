@@ -126,8 +126,11 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
       ImGui::OpenPopup("Discard the hand pairs?");
   }
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("%s", !stale ? "Use registration's pairs for this scene (undo brings the hand pairs back)"
-                                   : "Delete this scene's hand pairs file, which no longer matches its labels");
+    ImGui::SetTooltip("%s",
+                      !stale ? "Use registration's pairs for this scene (undo brings the hand pairs back)"
+                      : s.read_only()
+                          ? "Use registration's pairs for this scene (read-only: its stale pairs file stays on disk)"
+                          : "Delete this scene's hand pairs file, which no longer matches its labels");
   if (ImGui::BeginPopupModal("Discard the hand pairs?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     ImGui::PushTextWrapPos(ImGui::GetFontSize() * 36);
     // A read-only window deletes nothing: the reset is kept in this window only.

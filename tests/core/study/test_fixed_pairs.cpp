@@ -288,6 +288,7 @@ TEST(FixedPairsBinding, AnEditOfAStaleSceneIsRefusedAndResetDiscardsTheFile) {
   run_save_job(discard);
   EXPECT_FALSE(fs::exists(f));
   EXPECT_FALSE(s.scenes()[0].pairs_unusable);
+  EXPECT_FALSE(s.can_undo());  // nothing to take back: the scene showed these pairs before, and the file is gone
   for (const Problem& p : s.problems()) EXPECT_NE(p.file, f) << p.to_string();  // no longer listed
   const SaveJob edit = s.apply(0, Edit::pair(1, 0));
   EXPECT_TRUE(edit.contents.has_value());
