@@ -64,9 +64,10 @@ TEST(NoPredictions, NeitherSideLeftIsNotANumber) {
   const std::string latex_wide = format_table(t, TableFormat::kLatex, wide);
   EXPECT_NE(latex_wide.find("det & --$^{1}$ \\\\"), std::string::npos) << latex_wide;
   // Below the table and its legend, as in the one-column layout.
-  EXPECT_NE(latex_wide.find("training domain.\\par}\n\\par{\\footnotesize $^{1}$ no predictions at or above 0.95 in real and "
-                            "synth}\n"),
-            std::string::npos)
+  EXPECT_NE(
+      latex_wide.find("training domain.\\par}\n\\par{\\footnotesize $^{1}$ no predictions at or above 0.95 in real and "
+                      "synth}\n"),
+      std::string::npos)
       << latex_wide;
   // The table figure marks the cell and says why in its note.
   const ui::TableFigure fig = ui::table_figure_of(t);
@@ -181,8 +182,9 @@ TEST(NoPredictions, FiguresSayThereIsNoNumber) {
   for (const char* kind : {"distribution", "compare"}) {
     r = test::run_ipd(std::string("figure ") + kind + " " + d / "s" + " --conf 0.999 --out " + d / "f.pdf");
     EXPECT_EQ(r.exit_code, 1) << kind;
-    EXPECT_NE(r.err.find("': IPD(real, principled) is not a number: no predictions at or above 0.999 in real and principled"),
-              std::string::npos)
+    EXPECT_NE(
+        r.err.find("': IPD(real, principled) is not a number: no predictions at or above 0.999 in real and principled"),
+        std::string::npos)
         << kind << ": " << r.err;
   }
 }

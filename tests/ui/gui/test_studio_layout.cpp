@@ -356,7 +356,8 @@ TEST(EmptyHistogram, SaysWhyThereIsNoBar) {
   paired.pairs = 12;
   paired.ipd = std::nan("");
   paired.no_value_reason = "no predictions at or above 0.98 in real and principled";
-  EXPECT_EQ(empty_histogram_text({none, paired}), "no per-scene IPD: no predictions at or above 0.98 in real and principled");
+  EXPECT_EQ(empty_histogram_text({none, paired}),
+            "no per-scene IPD: no predictions at or above 0.98 in real and principled");
   SceneSummary plain;
   plain.pairs = 3;
   EXPECT_EQ(empty_histogram_text({plain, paired}),
