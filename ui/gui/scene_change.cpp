@@ -2,9 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
-#include <utility>
-
 #include "ui/gui/pane_zoom.h"
 
 namespace ipd::ui {
@@ -28,25 +25,31 @@ void show_scene_of_edit(UiState& ui, int scene) {
   ui.status.clear();
 }
 
+namespace {
+
+// The partner of a rock of the view's `side` among the view's (left, right) pairs, or -1.
+int view_partner(const RockPairs& pairs, Side side, int rock) {
+  for (const auto& [l, r] : pairs)
+    if ((side == Side::kA ? l : r) == rock) return side == Side::kA ? r : l;
+  return -1;
+}
+
+std::string rock_name(const Session& s, Side side, int rock) {
+  return fmt::format("{} rock {}", side == Side::kA ? s.left_domain() : s.right_domain(), rock + 1);
+}
+
+}  // namespace
+
 std::string unchanged_by_edit(const Session& s, int scene, const Edit& edit) {
   if (scene < 0 || scene >= static_cast<int>(s.scenes().size())) return "";
   const SceneState& sc = s.scenes()[scene];
-  if (edit.kind == Edit::Kind::kPair) {
-    const RockPairs pairs = s.view_pairs(scene);
-    if (std::binary_search(pairs.begin(), pairs.end(), std::make_pair(edit.a, edit.b)) &&
-        !s.excluded(Side::kA, scene, edit.a) && !s.excluded(Side::kB, scene, edit.b))
-      return fmt::format("{} rock {} and {} rock {} are a pair already in {}: nothing changed", s.left_domain(),
-                         edit.a + 1, s.right_domain(), edit.b + 1, sc.stem);
-  }
-  if (edit.kind == Edit::Kind::kUnpair) {
-    const RockPairs pairs = s.view_pairs(scene);
-    const bool paired = std::any_of(pairs.begin(), pairs.end(), [&](const auto& p) {
-      return (edit.side == Side::kA ? p.first : p.second) == edit.a;
-    });
-    if (!paired)
-      return fmt::format("{} rock {} is in no pair in {}: nothing changed",
-                         edit.side == Side::kA ? s.left_domain() : s.right_domain(), edit.a + 1, sc.stem);
-  }
+  const RockPairs pairs = s.view_pairs(scene);
+  if (edit.kind == Edit::Kind::kPair && view_partner(pairs, Side::kA, edit.a) == edit.b &&
+      !s.excluded(Side::kA, scene, edit.a) && !s.excluded(Side::kB, scene, edit.b))
+    return fmt::format("{} and {} are a pair already in {}: nothing changed", rock_name(s, Side::kA, edit.a),
+                       rock_name(s, Side::kB, edit.b), sc.stem);
+  if (edit.kind == Edit::Kind::kUnpair && view_partner(pairs, edit.side, edit.a) < 0)
+    return fmt::format("{} is in no pair in {}: nothing changed", rock_name(s, edit.side, edit.a), sc.stem);
   if (edit.kind == Edit::Kind::kResetToAutomatic && !sc.edited && !sc.pairs_unusable)
     return sc.stem + " has the automatic pairs already: nothing changed";
   return "";
@@ -56,14 +59,8 @@ std::string edit_status(const Session& s, int scene, const Edit& edit) {
   if (scene < 0 || scene >= static_cast<int>(s.scenes().size())) return "";
   const std::string& stem = s.scenes()[scene].stem;
   const RockPairs pairs = s.view_pairs(scene);  // (left, right); a pair is shown numbered by its left rock
-  auto partner = [&](Side side, int index) {
-    for (const auto& [l, r] : pairs)
-      if ((side == Side::kA ? l : r) == index) return side == Side::kA ? r : l;
-    return -1;
-  };
-  auto name = [&](Side side, int index) {
-    return fmt::format("{} rock {}", side == Side::kA ? s.left_domain() : s.right_domain(), index + 1);
-  };
+  auto partner = [&](Side side, int index) { return view_partner(pairs, side, index); };
+  auto name = [&](Side side, int index) { return rock_name(s, side, index); };
   // A rock as the pictures show it: its number, and for a right rock in a pair, the pair's number it carries.
   auto rock = [&](Side side, int index) {
     const int other = side == Side::kB ? partner(side, index) : -1;
