@@ -44,6 +44,11 @@ bool output_is_study_input(const std::string& study, const std::string& out) {
   return !problem.empty();
 }
 
+void report_class_notes(const StudyLabels& labels) {
+  for (const std::string& n : labels.study.classes.notes) fmt::print(stderr, "note: {}\n", n);
+  for (const std::string& w : labels.class_warnings) fmt::print(stderr, "warning: {}\n", w);
+}
+
 bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines) {
   if (errors.empty()) return false;
   // A file that can't be read (dangling link, no permission, a FIFO) is never skipped: its rocks would

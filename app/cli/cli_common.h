@@ -14,6 +14,9 @@ constexpr int kOk = 0, kBadInput = 1, kUsage = 2;
 // Prints the label errors (`FILE:LINE: ...`, at most kMaxListedErrors per file and a count of the rest) and a
 // summary; true when they are fatal: malformed lines unless skipped, and always a file that can't be read.
 bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines);
+// Prints to stderr, once each, how label sets' class numbers were mapped by name and which prediction sets look
+// class-shifted ("note: ..." / "warning: ...").
+void report_class_notes(const StudyLabels& labels);
 
 // Hand pairs that can't be used (a stored box is no longer in its label file): printed as errors (true:
 // fatal), or with --skip-bad-lines added to `warnings` (printed and in JSON output like the others; null:

@@ -9,6 +9,7 @@
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 #include "app/cli/figure_cli.h"
+#include "app/cli/study_options.h"
 #include "core/io/label_io.h"
 #include "core/ipd/ipd.h"
 #include "core/util/atomic_file.h"
@@ -22,6 +23,8 @@ struct Args {
   std::string study, scene, a, b, model;
   double conf = 0;
   bool skip_bad_lines = false;
+  std::string class_word;
+  std::vector<std::string> class_map;
   FigureOutputArgs output;
 };
 
@@ -41,10 +44,14 @@ StudyLabels confident_labels(const StudyLabels& labels, const std::string& model
 }
 
 Chosen resolve(const Args& args, bool needs_scene) {
-  Chosen f{load_labels(open_study(args.study)), {}, {}, {}, {}};
+  Study study = open_study(args.study);
+  apply_class_options(args.class_word, args.class_map, &study);
+  Chosen f{load_labels(study), {}, {}, {}, {}};
   const Study& st = f.labels.study;
   if (report_label_errors(f.labels.errors, args.skip_bad_lines))
     throw StudyError(st.root + ": malformed label lines (listed above)");
+  require_class_choice(f.labels);
+  report_class_notes(f.labels);
   if (st.domains.size() < 2) throw StudyError(st.root + ": a figure needs two domains, this study has one");
   f.a = args.a.empty() ? st.domains[0].name : args.a;
   f.b = args.b.empty() ? (st.domains[0].name == f.a ? st.domains[1].name : st.domains[0].name) : args.b;
@@ -131,6 +138,7 @@ Runner add_figure_command(CLI::App& app) {
     cmd->add_option("--crop", args->output.crop, "X0,Y0,X1,Y1: a region of the pictures, normalised to 0..1");
     cmd->add_option("--conf", args->conf, "Hide predictions below this confidence")->check(CLI::Range(0.0, 1.0));
     cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
+    add_class_options(cmd, &args->class_word, &args->class_map);
     add_figure_output_options(cmd, &args->output);
     cmd->callback([which, name] { *which = name; });
   };

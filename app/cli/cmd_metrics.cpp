@@ -45,6 +45,10 @@ void declare_metrics_options(CLI::App* cmd, MetricsArgs* args) {
   cmd->add_flag("--images", args->images, "Also SSIM and PSNR of each scene pair's pictures (B warped onto A)");
 }
 
+// One row: JSON always names the class; the text names it beside the domain only when there are several.
+void add_metrics_row(const std::string& model, const std::string& domain, const std::string& cls, bool several,
+                     const DetectionMetrics& r, nlohmann::ordered_json* j, std::string* text);
+
 // AP and precision / recall / F1 of each chosen model on each chosen domain, as JSON rows and text lines.
 void add_detection_metrics(const Study& study, const StudyOptions& so, const StudyLabels& labels, double threshold,
                            nlohmann::ordered_json* j, std::string* text) {
@@ -53,28 +57,58 @@ void add_detection_metrics(const Study& study, const StudyOptions& so, const Stu
     for (const auto& d : study.domains) {
       if (!so.domains.empty() && std::find(so.domains.begin(), so.domains.end(), d.name) == so.domains.end()) continue;
       if (!labels.has_predictions(d.name, m.name)) continue;
-      std::vector<DetectionImage> images;
-      for (const auto& stem : d.stems)
-        images.push_back({labels.gt_of(d.name, stem).boxes, labels.predictions_of(d.name, m.name, stem).boxes});
-      const DetectionMetrics r = detection_metrics(images, threshold);
-      (*j)["metrics"].push_back({{"model", m.name},
-                                 {"domain", d.name},
-                                 {"ap50", number(r.ap50)},
-                                 {"ap50_95", number(r.ap50_95)},
-                                 {"precision", number(r.precision)},
-                                 {"recall", number(r.recall)},
-                                 {"f1", number(r.f1)},
-                                 {"gt", r.gt},
-                                 {"detections", r.detections}});
-      *text += fmt::format("{:<24} {:<12} {:>7} {:>9} {:>9} {:>7} {:>7} {:>6} {:>6}\n", m.name, d.name,
-                           fixed(r.ap50, 4), fixed(r.ap50_95, 4), fixed(r.precision, 4), fixed(r.recall, 4),
-                           fixed(r.f1, 4), r.gt, r.detections);
+      // Per class, as pycocotools evaluates per category; class-blind (--class all) adds the mean over classes.
+      std::vector<int> classes;
+      if (labels.study.config.rock_class == kAllClasses)
+        for (const auto& [cls, n] : labels.gt_boxes_by_class) classes.push_back(cls);
+      else
+        classes.push_back(labels.study.config.rock_class);
+      double sum50 = 0, sum5095 = 0;
+      int counted = 0;
+      for (int cls : classes) {
+        std::vector<DetectionImage> images;
+        for (const auto& stem : d.stems) {
+          DetectionImage im{labels.gt_of(d.name, stem).boxes, labels.predictions_of(d.name, m.name, stem).boxes};
+          if (classes.size() > 1) {
+            auto other = [cls](const Box& b) { return b.cls != cls; };
+            im.gt.erase(std::remove_if(im.gt.begin(), im.gt.end(), other), im.gt.end());
+            im.detections.erase(std::remove_if(im.detections.begin(), im.detections.end(), other), im.detections.end());
+          }
+          images.push_back(std::move(im));
+        }
+        const DetectionMetrics r = detection_metrics(images, threshold);
+        if (std::isfinite(r.ap50)) sum50 += r.ap50, sum5095 += r.ap50_95, ++counted;
+        add_metrics_row(m.name, d.name, cls < 0 ? std::string() : labels.study.classes.name_of(cls), classes.size() > 1,
+                        r, j, text);
+      }
+      if (classes.size() > 1) {
+        DetectionMetrics mean;
+        if (counted > 0) mean.ap50 = sum50 / counted, mean.ap50_95 = sum5095 / counted;
+        add_metrics_row(m.name, d.name, "mean", true, mean, j, text);
+      }
     }
   }
   *text += fmt::format(
-      "(AP: pycocotools' rules over the {} most confident detections of each picture; precision/recall/F1 over "
-      "every detection at confidence >= {:g} and IoU 0.5)\n",
-      kCocoMaxDetections, threshold);
+      "(class {}; AP: pycocotools' rules over the {} most confident detections of each picture, within a class; "
+      "precision/recall/F1 over every detection at confidence >= {:g} and IoU 0.5)\n",
+      class_statement(labels), kCocoMaxDetections, threshold);
+}
+
+void add_metrics_row(const std::string& model, const std::string& domain, const std::string& cls, bool several,
+                     const DetectionMetrics& r, nlohmann::ordered_json* j, std::string* text) {
+  (*j)["metrics"].push_back({{"model", model},
+                             {"domain", domain},
+                             {"class", cls},
+                             {"ap50", number(r.ap50)},
+                             {"ap50_95", number(r.ap50_95)},
+                             {"precision", number(r.precision)},
+                             {"recall", number(r.recall)},
+                             {"f1", number(r.f1)},
+                             {"gt", r.gt},
+                             {"detections", r.detections}});
+  *text += fmt::format("{:<24} {:<12} {:>7} {:>9} {:>9} {:>7} {:>7} {:>6} {:>6}\n", model,
+                       several ? domain + " " + cls : domain, fixed(r.ap50, 4), fixed(r.ap50_95, 4),
+                       fixed(r.precision, 4), fixed(r.recall, 4), fixed(r.f1, 4), r.gt, r.detections);
 }
 
 // Spearman's rho of per-scene SSIM against per-scene IPD, for each model with predictions in column c: whether
@@ -157,6 +191,8 @@ int run_metrics(const MetricsArgs& args) {
   all_detections.config.conf_threshold = 0;
   const StudyLabels labels = load_labels(all_detections);
   if (report_label_errors(labels.errors, so.skip_bad_lines)) return kBadInput;
+  require_class_choice(labels);
+  report_class_notes(labels);
   nlohmann::ordered_json j;
   j["conf_threshold"] = threshold;
   j["metrics"] = nlohmann::ordered_json::array();

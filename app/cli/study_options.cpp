@@ -61,6 +61,7 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--threads", o->threads, "Worker threads (0: every core); results don't depend on it")
       ->check(CLI::NonNegativeNumber);
+  add_class_options(cmd, &o->class_word, &o->class_map);
   cmd->add_flag("--no-cache", o->no_cache, "Register every scene again (ignore STUDY/.ipd-cache/)");
   cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "Warn about malformed label lines and skip them");
   if (!with_bootstrap) return;
@@ -78,10 +79,48 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
       });
 }
 
+void add_class_options(CLI::App* cmd, std::string* class_word, std::vector<std::string>* class_map) {
+  cmd->add_option("--class", *class_word,
+                  "The class every number is about: a name from classes.txt or study.yaml, a class number, or 'all' "
+                  "for a class-blind number (default: study.yaml's rock_class; required when the labels hold more "
+                  "than one class)");
+  cmd->add_option("--class-map", *class_map,
+                  "FROM:TO, repeatable: prediction class FROM is the study's class TO, for prediction sets without "
+                  "a classes.txt whose numbers are shifted (e.g. 0:1 for YOLO predictions beside 1-based CVAT labels)")
+      ->delimiter(',');
+}
+
+void apply_class_options(const std::string& class_word, const std::vector<std::string>& class_map, Study* study) {
+  std::map<int, int> from_to;
+  for (const std::string& m : class_map) {
+    const auto colon = m.find(':');
+    int from = -1, to = -1;
+    try {
+      if (colon != std::string::npos) {
+        size_t used = 0;
+        from = std::stoi(m.substr(0, colon), &used);
+        if (used != colon) from = -1;
+        const std::string rest = m.substr(colon + 1);
+        to = std::stoi(rest, &used);
+        if (used != rest.size()) to = -1;
+      }
+    } catch (const std::exception&) {
+      from = to = -1;
+    }
+    if (from < 0 || to < 0 || from > 1000 || to > 1000)
+      throw CLI::ValidationError(
+          fmt::format("--class-map: expected FROM:TO with class numbers 0 to 1000, got '{}'", m));
+    from_to[from] = to;
+  }
+  apply_prediction_class_map(from_to, study->domains, &study->classes);
+  if (!class_word.empty()) study->config.rock_class = study->classes.resolve(class_word);
+}
+
 Study open_study_with_conf(const StudyOptions& o) {
   if (const std::string bad = o.validate(); !bad.empty()) throw CLI::ValidationError(bad);
   Study study = open_study(o.study);
   if (o.conf >= 0) study.config.conf_threshold = o.conf;
+  apply_class_options(o.class_word, o.class_map, &study);
   return study;
 }
 
@@ -91,6 +130,8 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   StudyCache parsed(o.no_cache ? std::string() : parsed_study_cache_path(study.root), study.root);
   LoadedStudy out{parsed.load_labels(study), {}, study.config.conf_threshold, 0, {}};
   if (report_label_errors(out.labels.errors, o.skip_bad_lines)) return std::nullopt;
+  require_class_choice(out.labels);
+  report_class_notes(out.labels);
   RegistrationCache registration(o.no_cache ? std::string() : registration_cache_dir(study.root));
   parsed.hand_registrations_to(registration);
   TableOptions opt;

@@ -1,5 +1,6 @@
 // Options shared by the commands that compute IPD from a study (table, compare, breakdown, metrics, export):
-// STUDY, --model, --domains, --method, --seed, --conf, --bootstrap, --ci, --threads, --skip-bad-lines.
+// STUDY, --model, --domains, --class, --class-map, --method, --seed, --conf, --bootstrap, --ci, --threads,
+// --skip-bad-lines.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -30,7 +31,9 @@ struct StudyOptions {
   std::string ci_text;                // --ci's text as parsed (level holds its value)
   int threads = 0;
   bool skip_bad_lines = false;
-  bool no_cache = false;  // --no-cache: register every scene again
+  bool no_cache = false;               // --no-cache: register every scene again
+  std::string class_word;              // --class NAME|NUMBER|all; empty: study.yaml's rock_class
+  std::vector<std::string> class_map;  // --class-map FROM:TO (prediction class FROM is the study's TO)
 
   BootstrapOptions bootstrap_options() const;
   // Empty when every value is in range (or the "not given" value), else "--option: what is wrong": a value
@@ -53,7 +56,11 @@ struct LoadedStudy {
 // shown_cells_only: TableOptions::shown_cells_only (for a table that prints "–" where no model trained).
 std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, bool shown_cells_only = false);
 
-// Opens the study and applies --conf (for commands that read labels themselves).
+// Opens the study and applies --conf, --class and --class-map (for commands that read labels themselves).
 Study open_study_with_conf(const StudyOptions& o);
+// Applies --class and --class-map to an open study (StudyError for a class it does not know).
+void apply_class_options(const std::string& class_word, const std::vector<std::string>& class_map, Study* study);
+// Adds --class and --class-map to a command that has no other study option.
+void add_class_options(CLI::App* cmd, std::string* class_word, std::vector<std::string>* class_map);
 
 }  // namespace ipd::cli

@@ -47,7 +47,7 @@ StudioApp::StudioApp(StudioOptions o) : o_(std::move(o)), textures_(gl_textures(
   if (demo) o_.study = (cache_home() / "demo-study").string();
   ui_.recent = read_recent();
   ui_.browse_dir = fs::absolute(o_.study).parent_path().string();
-  worker_.submit(command::OpenStudy{o_.study, demo});
+  worker_.submit(command::OpenStudy{o_.study, demo, {}});
 }
 
 void StudioApp::adopt_snapshot() {
@@ -159,9 +159,11 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
     }
     if (fs::is_directory(path, ec)) ui_.browse_dir = path;  // a folder, not a study: show what is in it
   }
-  if (!cmd.open_study.empty()) {
-    o_.study = cmd.open_study;
-    worker_.submit(command::OpenStudy{cmd.open_study});
+  if (!cmd.open_study.empty() || (!cmd.class_word.empty() && snap_)) {
+    // Another class is another study's worth of numbers: the study is opened again, showing that class.
+    const std::string dir = cmd.open_study.empty() ? snap_->session->study().root : cmd.open_study;
+    o_.study = dir;
+    worker_.submit(command::OpenStudy{dir, false, cmd.class_word});
     snap_.reset();
     ui_.order.clear();
     traced_.clear();
@@ -357,6 +359,7 @@ int StudioApp::print_stats() const {
                                p.cached, snap_ ? snap_->summaries->size() * snap_->session->domain_pairs().size() : 0,
                                p.study_cache.state, p.study_cache.files_reused, p.study_cache.files_parsed));
   if (!o_.screenshot.empty()) fmt::print("{}\n", o_.screenshot);
+  if (snap_) fmt::print(stderr, "class: {}\n", class_statement(snap_->session->labels()));
   // What the Problems window lists, for scripted runs to see (as `ipd table` prints its warnings).
   for (const Problem& p : problems_) fmt::print(stderr, "warning: {}\n", p.to_string());
   // Scripted runs (--screenshot, --replay) exit 1 on a study that can't be opened: say why on stderr too.

@@ -77,6 +77,13 @@ bool StudioApp::replay_view_action(const ReplayAction& a, ui::UiCommands* cmd) {
     replay_wait_ = std::atoi(a.args[0].c_str());
   } else if (a.verb == "conf") {
     cmd->conf_threshold = std::strtod(a.args[0].c_str(), nullptr);  // as `ipd --conf` reads it: 0.3 is 0.3
+  } else if (a.verb == "class") {
+    try {
+      s.study().classes.resolve(a.args[0]);
+      cmd->class_word = a.args[0];
+    } catch (const StudyError& e) {
+      replay_fail(a, fmt::format("'class': {}", e.what()));
+    }
   } else if (a.verb == "model") {
     // As `domains`: a name the study lacks fails the replay, rather than showing (and exporting) nothing.
     const auto& models = s.study().models;

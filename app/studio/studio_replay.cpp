@@ -48,6 +48,7 @@ const std::map<std::string, VerbArguments>& replay_verbs() {
   static const std::map<std::string, VerbArguments> verbs = {
       {"wait", {1, "a frame count"}},
       {"conf", {1, "a threshold in [0, 1]"}},
+      {"class", {1, "a class name, number or all"}},
       {"model", {1, "a model name"}},
       {"domains", {2, "two domain names"}},
       {"scene", {1, "next, prev or a scene name"}},

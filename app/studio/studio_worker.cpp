@@ -218,6 +218,7 @@ void StudyWorker::open(const command::OpenStudy& c) {
                                       : "the study's lock can't be taken: " + held_by;
   SessionOptions o;
   o.cache_dir = registration_cache_dir(c.dir);
+  o.class_word = c.class_word;
   o.progress = [&](const char* stage, int done, int total) {
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::lock_guard<std::mutex> l(mu_);

@@ -57,7 +57,8 @@ struct OpenProgress {
 namespace command {
 struct OpenStudy {
   std::string dir;
-  bool demo = false;  // write the built-in demo study into `dir` first when it has none
+  bool demo = false;       // write the built-in demo study into `dir` first when it has none
+  std::string class_word;  // the class to show (SessionOptions::class_word); empty: the study's
 };
 struct ApplyEdit {
   int scene = -1;

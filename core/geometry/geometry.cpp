@@ -34,6 +34,7 @@ PerformanceValues performance_values(const std::vector<Box>& gt, const std::vect
   pv.best_prediction.assign(gt.size(), -1);
   for (size_t i = 0; i < gt.size(); ++i) {
     for (size_t j = 0; j < pred.size(); ++j) {
+      if (pred[j].cls != gt[i].cls) continue;  // a shadow prediction never scores a rock (COCO: per category)
       const double v = iou(gt[i], pred[j]);
       if (v > pv.value[i]) {
         pv.value[i] = v;

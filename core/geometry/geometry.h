@@ -31,8 +31,9 @@ struct IouTable {
 };
 IouTable iou_table(const std::vector<Box>& gt, const std::vector<Box>& pred);
 
-// The paper's performance-value: per GT rock, the best IoU over the predictions (0 when there are none),
-// and which prediction gave it (-1 when none overlaps).
+// The paper's performance-value: per GT rock, the best IoU over the predictions of its own class (0 when there
+// are none; the COCO convention, so a shadow prediction over a rock never scores it), and which prediction gave
+// it (-1 when none overlaps; the first of equal best IoUs).
 struct PerformanceValues {
   std::vector<double> value;
   std::vector<int> best_prediction;

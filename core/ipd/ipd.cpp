@@ -70,7 +70,9 @@ StudyLabels load_labels(const Study& study, const std::function<void(int done, i
     if (!reuse || !reuse(*j.domain, *j.model, *j.stem, j.path, j.slot)) {
       LabelFile f =
           read_labels_beneath(study.root, j.relative, {prediction ? LabelKind::kPrediction : LabelKind::kGroundTruth});
-      keep_class(&f, cls);
+      const std::string set = prediction ? *j.domain + "/predictions/" + *j.model : *j.domain + "/labels";
+      map_label_classes(&f, study.classes, study.classes.id_map(*j.domain, *j.model), set + "/classes.txt");
+      if (cls >= 0) keep_class(&f, cls);
       if (prediction) keep_confident(&f, study.config.conf_threshold);
       *j.slot = std::move(f);
     }
@@ -78,6 +80,7 @@ StudyLabels load_labels(const Study& study, const std::function<void(int done, i
     if (progress && (d % 256 == 0 || d == total)) progress(d, total);
   });
   for (const Job& j : jobs) out.errors.insert(out.errors.end(), j.slot->errors.begin(), j.slot->errors.end());
+  settle_class(&out);
   return out;
 }
 

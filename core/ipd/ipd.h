@@ -23,6 +23,12 @@ struct StudyLabels {
   // domain -> model -> stem -> predictions; a model absent here has no predictions for that domain
   ByDomainModelStem<LabelFile> predictions;
   std::vector<LabelError> errors;
+  // The class: study.config.rock_class is the class every number is about (settle_class), `requested_class` what
+  // study.yaml or --class asked for; GT boxes per class as read; why a class must be chosen ("" when it needn't).
+  int requested_class = kNoClassChosen;
+  std::map<int, long> gt_boxes_by_class;
+  std::string class_choice_needed;
+  std::vector<std::string> class_warnings;  // prediction sets whose class numbers look shifted
 
   const LabelFile& gt_of(const std::string& domain, const std::string& stem) const;
   const LabelFile& predictions_of(const std::string& domain, const std::string& model, const std::string& stem) const;
@@ -38,6 +44,19 @@ using LabelReuse = std::function<bool(const std::string& domain, const std::stri
 // `progress` (optional) is called from worker threads with files read so far.
 StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress = {},
                         const LabelReuse& reuse = {});
+
+// Every number is about one class (as pycocotools evaluates per category). Counts the GT boxes of each class;
+// when none was asked for and the ground truth holds one class, that class is chosen (predictions of others are
+// dropped); when it holds more, class_choice_needed says so, listing the classes and their box counts.
+void settle_class(StudyLabels* labels);
+std::string class_choice_message(const StudyLabels& labels);
+// Throws StudyError(class_choice_needed) when a class must be chosen: no output may mix classes unasked.
+void require_class_choice(const StudyLabels& labels);
+// The class a number is about, for provenance: "rock (class 0)", "class 2", "all classes (class-blind: --class all)".
+std::string class_statement(const StudyLabels& labels);
+// Prediction sets whose boxes detect (IoU >= 0.5) GT of one other class far more than GT of their own class: the
+// signature of class numbers shifted between two tools, with the --class-map that would undo it.
+std::vector<std::string> shifted_class_warnings(const StudyLabels& labels);
 
 // How the rocks of one image pair were paired.
 struct ScenePairing {

@@ -27,7 +27,7 @@ constexpr char kMagic[8] = {'I', 'P', 'D', 'S', 'T', 'U', 'D', 'Y'};
 // Bump when the layout, label parsing or a registration method's results change: 3 for the signature; 4: a
 // report keeps why its registration is ambiguous (Ambiguity), not only whether; 5: answers nothing was compared
 // with are flagged as such (Ambiguity::kUnchecked, kNoPlausible).
-constexpr std::uint32_t kFormat = 5;
+constexpr std::uint32_t kFormat = 6;
 constexpr size_t kHeaderBytes = kParsedStudyHeaderBytes;
 static_assert(kHeaderBytes == sizeof kMagic + 4 + 8 + CacheSigner::kMacBytes);
 
@@ -251,7 +251,8 @@ struct StudyCache::Contents {
     FileStamp stamp;
     LabelFile file;
   };
-  int rock_class = -1;
+  int rock_class = -1;     // the class asked for (files are stored with it applied, when it is a class)
+  std::string class_maps;  // StudyClasses::map_key(): files are stored renumbered into the study's classes
   double conf_threshold = 0;
   std::unordered_map<std::string, Entry> labels;  // entry_key -> file as parsed
   RegistrationEntries registrations;
@@ -312,6 +313,7 @@ StudyCache::StudyCache(std::string path, const std::string& study_root)
     if (r.str() != study_root) throw std::runtime_error("another study");
     auto c = std::make_unique<Contents>();
     c->rock_class = r.pod<std::int32_t>();
+    c->class_maps = r.str();
     c->conf_threshold = r.pod<double>();
     const auto files = r.pod<std::uint64_t>();
     c->labels.reserve(files);
@@ -342,7 +344,8 @@ StudyCache::~StudyCache() = default;
 
 StudyLabels StudyCache::load_labels(const Study& study, const std::function<void(int done, int total)>& progress) {
   Contents& c = *contents_;
-  c.filters_match = c.rock_class == study.config.rock_class && c.conf_threshold == study.config.conf_threshold;
+  c.filters_match = c.rock_class == study.config.rock_class && c.class_maps == study.classes.map_key() &&
+                    c.conf_threshold == study.config.conf_threshold;
   std::atomic<int> reused{0}, parsed{0};
   StudyLabels labels =
       ipd::load_labels(study, progress,
@@ -393,7 +396,8 @@ void StudyCache::save(const StudyLabels& labels, const RegistrationCache& regist
   w.out.reserve(kHeaderBytes + files * 1500);
   w.out.resize(kHeaderBytes);  // filled in below, once the payload's size and checksum are known
   w.str(root_);
-  w.pod<std::int32_t>(labels.study.config.rock_class);
+  w.pod<std::int32_t>(labels.requested_class);
+  w.str(labels.study.classes.map_key());
   w.pod<double>(labels.study.config.conf_threshold);
   w.pod<std::uint64_t>(files);
   auto put = [&](const std::string& key, const LabelFile& f) {

@@ -16,9 +16,9 @@
 //    of its parse, with the same size and inode, is the one change a stamp can miss;
 //  - registrations are keyed by the same content hash as the entry files (registration_cache.h), so a
 //    changed label file or option simply misses.
-// Label files are stored as load_labels() returns them (class and confidence filters applied): the
-// filters are part of the header, and a run with other filters (`ipd table --conf`) parses again. The
-// file is rewritten (atomically) only when something changed.
+// Label files are stored as load_labels() returns them (classes renumbered, class and confidence filters
+// applied): the class asked for, the class maps and the threshold are part of the header, and a run with other filters
+// (`ipd table --conf`) parses again. The file is rewritten (atomically) only when something changed.
 #pragma once
 
 #include <functional>
@@ -33,7 +33,7 @@ namespace ipd {
 
 // The file's layout: magic "IPDSTUDY", format (u32), payload size (u64), then the HMAC-SHA-256 of the payload
 // signed as kParsedStudySignature (which names the format too, so no other signed cache passes for one).
-inline constexpr const char* kParsedStudySignature = "parsed study 3";
+inline constexpr const char* kParsedStudySignature = "parsed study 4";
 inline constexpr size_t kParsedStudyHeaderBytes = 8 + 4 + 8 + 32;
 
 // What a label file looked like when it was parsed.

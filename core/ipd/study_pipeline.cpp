@@ -166,6 +166,9 @@ std::vector<Problem> label_problems(const StudyLabels& labels) {
     for (const std::string& m : d.models)
       for (const std::string& stem : d.stems) add(labels.predictions_of(d.name, m, stem), d.name, stem);
   }
+  // How class numbers were read, and prediction sets whose numbers look shifted: the studio lists them too.
+  for (const std::string& note : labels.study.classes.notes) out.push_back({{}, 0, {}, {}, {}, note});
+  for (const std::string& warning : labels.class_warnings) out.push_back({{}, 0, {}, {}, {}, warning});
   return out;
 }
 

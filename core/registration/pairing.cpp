@@ -180,6 +180,7 @@ PairingRule pairing_rule(const RegistrationOptions& o) {
 }
 
 double pair_weight(const Box& moved_a, const Box& b, const PairingRule& rule) {
+  if (moved_a.cls != b.cls) return 0;  // a rock pairs only with a rock of its class
   const double overlap = iou(moved_a, b);
   if (overlap > rule.min_iou) return overlap;
   const double small = std::min(moved_a.area(), b.area()), large = std::max(moved_a.area(), b.area());

@@ -50,7 +50,7 @@ struct PairingRule {
 PairingRule pairing_rule(const RegistrationOptions& o);
 
 // The rule's weight for one pair of boxes already in B's frame: the IoU when above min_iou, a near miss's weight
-// in (0, min_iou] (more the closer), 0 when they are no pair.
+// in (0, min_iou] (more the closer), 0 when they are no pair (always for two classes).
 double pair_weight(const Box& moved_a, const Box& b, const PairingRule& rule);
 
 // Maps A's boxes by `a_to_b` (normalised image coordinates) and assigns them one-to-one to B's boxes under

@@ -430,6 +430,11 @@ RegistrationReport register_rocks_until(const std::vector<Box>& a, const std::ve
     out.note += (out.note.empty() ? "" : "; ") + std::string("non-finite affine replaced by identity");
   }
   r.pairs = std::move(out.pairs);
+  // Registration may align every box, but a rock pairs only with a rock of its class (the paper's mutual nearest
+  // centres know no class; pair_weight already keeps the overlap rules within one).
+  r.pairs.erase(std::remove_if(r.pairs.begin(), r.pairs.end(),
+                               [&](const std::pair<int, int>& p) { return a[p.first].cls != b[p.second].cls; }),
+                r.pairs.end());
   std::sort(r.pairs.begin(), r.pairs.end());
   r.trials = out.trials;
   r.hypotheses = out.hypotheses;

@@ -101,6 +101,8 @@ Provenance table_provenance(const CrossTable& table, const StudyLabels& labels, 
     count_reviews(table, c, labels, &p);
   }
   p.label_fingerprint = label_set_fingerprint(labels.study);
+  p.class_name = provenance_class(labels);
+  if (!p.class_name.empty()) p.class_maps = labels.study.classes.notes;
   return p;
 }
 
@@ -132,6 +134,8 @@ Provenance session_provenance(const Session& session, const DomainPairFilter& on
     }
   }
   p.label_fingerprint = label_set_fingerprint(session.study());
+  p.class_name = provenance_class(session.labels());
+  if (!p.class_name.empty()) p.class_maps = session.study().classes.notes;
   return p;
 }
 
@@ -148,20 +152,35 @@ std::string provenance_note(const Provenance& p) {
   if (p.scenes_with_stale_hand_pairs > 0)
     note += fmt::format("; stale hand pairs not used in {} (registration counts there)",
                         plural(p.scenes_with_stale_hand_pairs, "scene", "scenes"));
-  return note + ".";
+  note += ".";
+  return p.class_name.empty() ? note : fmt::format("Class {}. {}", p.class_name, note);
+}
+
+std::string provenance_class(const StudyLabels& labels) {
+  const int cls = labels.study.config.rock_class;
+  const bool named = std::any_of(labels.study.classes.names.begin(), labels.study.classes.names.end(),
+                                 [](const std::string& n) { return !n.empty(); });
+  if (!named && cls != kAllClasses && cls <= 0) return {};
+  return class_statement(labels);
 }
 
 nlohmann::ordered_json provenance_json(const Provenance& p) {
   nlohmann::ordered_json edited = nlohmann::ordered_json::array();
   for (const EditedScene& e : p.edited_scenes) edited.push_back({{"a", e.a}, {"b", e.b}, {"stem", e.stem}});
-  return {{"label_fingerprint", p.label_fingerprint},
-          {"scenes_with_hand_pairs", p.scenes_with_hand_pairs},
-          {"pairs_set_by_hand", p.pairs_set_by_hand},
-          {"rocks_excluded", p.rocks_excluded},
-          {"scenes_reviewed", p.scenes_reviewed},
-          {"pairs_checked", p.pairs_checked},
-          {"scenes_with_stale_hand_pairs", p.scenes_with_stale_hand_pairs},
-          {"edited_scenes", edited}};
+  nlohmann::ordered_json j = {{"label_fingerprint", p.label_fingerprint}};
+  if (!p.class_name.empty()) {
+    j["class"] = p.class_name;
+    j["class_maps"] = p.class_maps;
+  }
+  nlohmann::ordered_json rest = {{"scenes_with_hand_pairs", p.scenes_with_hand_pairs},
+                                 {"pairs_set_by_hand", p.pairs_set_by_hand},
+                                 {"rocks_excluded", p.rocks_excluded},
+                                 {"scenes_reviewed", p.scenes_reviewed},
+                                 {"pairs_checked", p.pairs_checked},
+                                 {"scenes_with_stale_hand_pairs", p.scenes_with_stale_hand_pairs},
+                                 {"edited_scenes", edited}};
+  for (const auto& [key, value] : rest.items()) j[key] = value;
+  return j;
 }
 
 std::vector<std::pair<std::string, std::string>> provenance_csv_fields(const Provenance& p) {

@@ -32,6 +32,10 @@ struct Provenance {
   // file is reset). A reader must know that an edit was dropped, not only that none counted.
   int scenes_with_stale_hand_pairs = 0;
   std::string label_fingerprint;
+  // The class the numbers are about ("rock (class 0)", "all classes (class-blind: --class all)") and how label
+  // sets' class numbers were mapped by name; empty for a study whose one class has no name (nothing to tell).
+  std::string class_name;
+  std::vector<std::string> class_maps;
   std::vector<EditedScene> edited_scenes;  // in column and scene order
 };
 
@@ -55,13 +59,15 @@ Provenance session_provenance(const Session& session, const DomainPairFilter& on
 // Every output renders provenance through the two functions below, so a field added to Provenance shows
 // in all of them (tables, compare, breakdown, the rock export, every figure kind and its metadata).
 
-// The text footnote: "Label files 1a2b3c4d5e6f; hand pairs in 2 scenes (5 pairs set by hand, 1 rock
-// excluded)." or "Label files 1a2b3c4d5e6f; no hand pairs (every pair from registration).", with "; 12 scenes
-// reviewed, 3 pairs checked as correct" before the full stop when anything was reviewed or checked, and
+// The text footnote, "Class rock (class 0). " first when class_name is set: "Label files 1a2b3c4d5e6f; hand pairs in 2
+// scenes (5 pairs set by hand, 1 rock excluded)." or "Label files 1a2b3c4d5e6f; no hand pairs (every pair from
+// registration).", with "; 12 scenes reviewed, 3 pairs checked as correct" before the full stop when anything was
+// reviewed or checked, and
 // "; stale hand pairs not used in 1 scene (registration counts there)" when a pairs file was set aside.
 std::string provenance_note(const Provenance& p);
 
-// The machine-readable form, keys in a fixed order: label_fingerprint, scenes_with_hand_pairs,
+// The machine-readable form, keys in a fixed order: label_fingerprint, class and class_maps (when class_name is
+// set), scenes_with_hand_pairs,
 // pairs_set_by_hand, rocks_excluded, scenes_reviewed, pairs_checked, scenes_with_stale_hand_pairs,
 // edited_scenes (an array of {a, b, stem}).
 nlohmann::ordered_json provenance_json(const Provenance& p);
@@ -70,6 +76,10 @@ nlohmann::ordered_json provenance_json(const Provenance& p);
 // row, so any CSV reader keeps them without options (comment rows need pandas' comment='#' and break R's
 // read.csv on a '#' inside a name).
 std::vector<std::pair<std::string, std::string>> provenance_csv_fields(const Provenance& p);
+
+// The class statement provenance carries for `labels` (Provenance::class_name): empty when the study names no
+// class, reads one unnamed class and is not class-blind.
+std::string provenance_class(const StudyLabels& labels);
 
 // Whether any number may differ from the automatic result (a pair set by hand or a rock left out), or hand
 // pairs were set aside as stale. Figures print the note in the figure only then (the fingerprint always goes

@@ -13,6 +13,14 @@
 
 namespace ipd {
 
+namespace {
+// A class by name where a file names it, else by number: what a reader of the rows groups by.
+std::string class_word(const StudyLabels& labels, int cls) {
+  const auto& names = labels.study.classes.names;
+  return cls >= 0 && static_cast<size_t>(cls) < names.size() && !names[cls].empty() ? names[cls] : std::to_string(cls);
+}
+}  // namespace
+
 std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& table, const RockExportOptions& options) {
   std::vector<RockRow> rows;
   const size_t nc = table.columns.size();
@@ -48,6 +56,7 @@ std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& tabl
         r.diff = std::abs(r.perf_a - r.perf_b);
         r.box_a = ga[r.index_a];
         r.box_b = gb[r.index_b];
+        r.cls = class_word(labels, r.box_a.cls);
         if (!audit.pairs.empty()) r.residual_px = audit.pairs[p].residual_px;
         rows.push_back(std::move(r));
       }
@@ -64,6 +73,7 @@ std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& tabl
         r.excluded = listed(pairing.excluded_a, i);
         r.perf_a = pa.value[i];
         r.box_a = ga[i];
+        r.cls = class_word(labels, r.box_a.cls);
         rows.push_back(std::move(r));
       }
       for (size_t j = 0; j < gb.size(); ++j) {
@@ -73,6 +83,7 @@ std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& tabl
         r.excluded = listed(pairing.excluded_b, j);
         r.perf_b = pb.value[j];
         r.box_b = gb[j];
+        r.cls = class_word(labels, r.box_b.cls);
         rows.push_back(std::move(r));
       }
     }
@@ -81,9 +92,9 @@ std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& tabl
 }
 
 namespace {
-const char* const kColumns[] = {"model",  "trained_on", "a",    "b",    "scene",       "index_a", "index_b",
-                                "perf_a", "perf_b",     "diff", "cx_a", "cy_a",        "w_a",     "h_a",
-                                "cx_b",   "cy_b",       "w_b",  "h_b",  "residual_px", "source",  "excluded"};
+const char* const kColumns[] = {
+    "model", "trained_on", "a",   "b",   "scene", "class", "index_a", "index_b", "perf_a",      "perf_b", "diff",
+    "cx_a",  "cy_a",       "w_a", "h_a", "cx_b",  "cy_b",  "w_b",     "h_b",     "residual_px", "source", "excluded"};
 
 std::string num(double v) { return std::isnan(v) ? std::string() : fmt::format("{:.12g}", v); }
 std::string field(const std::string& s) { return csv_field(s); }
@@ -103,8 +114,8 @@ std::string rock_rows_csv(const std::vector<RockRow>& rows, const Provenance* pr
     auto box = [&](bool has, const Box& x) {
       return has ? fmt::format("{},{},{},{}", num(x.cx), num(x.cy), num(x.w), num(x.h)) : std::string(",,,");
     };
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}{}\n", field(r.model), field(r.trained_on),
-                       field(r.a), field(r.b), field(r.scene), a ? std::to_string(r.index_a) : "",
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}{}\n", field(r.model), field(r.trained_on),
+                       field(r.a), field(r.b), field(r.scene), field(r.cls), a ? std::to_string(r.index_a) : "",
                        b ? std::to_string(r.index_b) : "", num(r.perf_a), num(r.perf_b), num(r.diff), box(a, r.box_a),
                        box(b, r.box_b), num(r.residual_px), r.source, r.excluded ? "true" : "false", tail);
   }
@@ -128,6 +139,7 @@ std::string rock_rows_json(const std::vector<RockRow>& rows, const Provenance* p
                    {"a", r.a},
                    {"b", r.b},
                    {"scene", r.scene},
+                   {"class", r.cls},
                    {"index_a", a ? nlohmann::ordered_json(r.index_a) : nlohmann::ordered_json(nullptr)},
                    {"index_b", b ? nlohmann::ordered_json(r.index_b) : nlohmann::ordered_json(nullptr)},
                    {"perf_a", n(r.perf_a)},

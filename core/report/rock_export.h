@@ -14,6 +14,7 @@ namespace ipd {
 
 struct RockRow {
   std::string model, trained_on, a, b, scene;
+  std::string cls;                 // the rocks' class: its name, or its number where no file names it
   int index_a = -1, index_b = -1;  // 0-based rock indices; -1: no rock on that side (an unpaired row)
   double perf_a = std::numeric_limits<double>::quiet_NaN(), perf_b = std::numeric_limits<double>::quiet_NaN();
   double diff = std::numeric_limits<double>::quiet_NaN();         // |perf_a - perf_b|, NaN on unpaired rows

@@ -56,18 +56,43 @@ Session Session::open(const std::string& root, const SessionOptions& options) {
   Study study = open_study(root);
   if (options.first_scenes > 0) keep_first_scenes(&study, options.first_scenes);
   remove_stale_saves(study.root);
+  if (!options.class_word.empty()) study.config.rock_class = study.classes.resolve(options.class_word);
+  // A window shows one class: with none chosen, the first the study names (rocks, as a rule) rather than a refusal.
+  std::string class_note;
+  const std::vector<std::string>& names = study.classes.names;
+  const long named = std::count_if(names.begin(), names.end(), [](const std::string& n) { return !n.empty(); });
+  if (study.config.rock_class == kNoClassChosen && named > 1)
+    for (size_t k = 0; k < names.size() && study.config.rock_class == kNoClassChosen; ++k)
+      if (!names[k].empty()) study.config.rock_class = static_cast<int>(k);
   if (options.progress && !options.study_cache_path.empty()) options.progress("reading the study cache", 0, 0);
-  StudyCache parsed(options.study_cache_path, study.root);
-  StudyLabels labels = parsed.load_labels(study, [&](int done, int total) {
-    if (options.progress) options.progress("label files", done, total);
-  });
+  auto parsed = std::make_unique<StudyCache>(options.study_cache_path, study.root);
+  auto load = [&]() {
+    return parsed->load_labels(study, [&](int done, int total) {
+      if (options.progress) options.progress("label files", done, total);
+    });
+  };
+  StudyLabels labels = load();
+  if (!labels.class_choice_needed.empty()) {  // classes without names: the lowest number present
+    study.config.rock_class = labels.gt_boxes_by_class.begin()->first;
+    parsed = std::make_unique<StudyCache>(options.study_cache_path, study.root);
+    labels = load();
+  }
+  if (named > 1 || labels.requested_class != study.config.rock_class || labels.requested_class == kAllClasses ||
+      labels.gt_boxes_by_class.size() > 1) {
+    std::string all;
+    for (size_t k = 0; k < names.size(); ++k)
+      if (!names[k].empty()) all += (all.empty() ? "" : ", ") + names[k];
+    class_note = fmt::format("showing {}{}; the class menu picks another", class_statement(labels),
+                             all.empty() ? "" : " of " + all);
+  }
   RegistrationCache registration(options.cache_dir);
-  parsed.hand_registrations_to(registration);
+  parsed->hand_registrations_to(registration);
   SessionOptions with_cache = options;
   with_cache.registration_cache = &registration;
   Session session(std::move(labels), with_cache);
-  parsed.save(session.labels(), registration);
-  session.study_cache_stats_ = parsed.stats();
+  parsed->save(session.labels(), registration);
+  session.study_cache_stats_ = parsed->stats();
+  session.class_note_ = class_note;
   return session;
 }
 

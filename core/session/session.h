@@ -117,6 +117,9 @@ struct SessionOptions {
   const RegistrationCache* registration_cache = nullptr;
   // Called from worker threads while opening: stage ("labels", "registration"), done, total.
   std::function<void(const char* stage, int done, int total)> progress;
+  // Session::open: the class to show (a name, a number or "all"); empty: study.yaml's rock_class, else the first
+  // class the study names, else the ground truth's lowest class when it holds more than one (class_note says so).
+  std::string class_word;
 
   // Always empty: every value here is usable (null and empty mean "none"; any scene count is a cut), and the
   // registration options check themselves where a scene is registered.
@@ -145,6 +148,9 @@ class Session {
 
   const Study& study() const { return labels_->study; }
   const StudyLabels& labels() const { return *labels_; }
+  // Which class is shown and why, when the study holds more than one: "showing rock (class 0) of rock, shadow;
+  // the class menu picks another"; empty for a study with one class.
+  const std::string& class_note() const { return class_note_; }
   int cached_registrations() const { return cached_; }
   // What the engine found wrong with the study's data while opening it (study_pipeline.h).
   // Opening's problems (its pairs files' as they are now: see Problem::pairs_file), then those of the current
@@ -278,6 +284,7 @@ class Session {
   Side pair_side(Side view_side) const;  // view side -> side of the domain pair
   const std::string& domain_of(Side view_side) const;
 
+  std::string class_note_;
   std::shared_ptr<const StudyLabels> labels_;
   std::vector<std::pair<std::string, std::string>> pairs_;
   RegistrationOptions registration_;  // what register_scene registers with, and its cache

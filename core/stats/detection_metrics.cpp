@@ -34,7 +34,7 @@ ImageMatches match_image(const DetectionImage& im, double threshold, int max_det
     double best = std::min(threshold, 1 - 1e-10);
     int m = -1;
     for (size_t g = 0; g < im.gt.size(); ++g) {
-      if (gt_taken[g]) continue;
+      if (gt_taken[g] || im.gt[g].cls != im.detections[d].cls) continue;  // per category, as COCOeval
       const double v = iou(im.detections[d], im.gt[g]);
       if (v < best) continue;
       best = v;

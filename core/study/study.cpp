@@ -225,8 +225,25 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
     const YAML::Node& v = kv.second;
     const int line = kv.first.Mark().line + 1;
     if (key == "rock_class") {
-      c.rock_class = yaml_get<int>(v, file, "rock_class");
-      if (c.rock_class < 0) throw StudyError(fmt::format("{}:{}: rock_class must be >= 0", file, line));
+      // A class number, or a name that the study's classes resolve (study_classes.h).
+      const std::string word = yaml_get<std::string>(v, file, "rock_class");
+      const bool number = !word.empty() && word.find_first_not_of("+-0123456789") == std::string::npos;
+      if (number) {
+        c.rock_class = yaml_get<int>(v, file, "rock_class");
+        if (c.rock_class < 0) throw StudyError(fmt::format("{}:{}: rock_class must be >= 0", file, line));
+      } else {
+        c.rock_class_word = word;
+        c.rock_class_line = line;
+      }
+    } else if (key == "classes") {
+      c.class_names = yaml_get<std::vector<std::string>>(v, file, "classes");
+      for (size_t k = 0; k < c.class_names.size(); ++k) {
+        if (c.class_names[k].empty()) continue;  // "" keeps a number unnamed (a 1-based export's 0)
+        if (std::find(c.class_names.begin(), c.class_names.begin() + static_cast<long>(k), c.class_names[k]) !=
+            c.class_names.begin() + static_cast<long>(k))
+          throw StudyError(fmt::format("{}:{}: classes lists '{}' twice; each class once, at its number", file, line,
+                                       quoted_for_message(c.class_names[k])));
+      }
     } else if (key == "conf_threshold") {
       c.conf_threshold = yaml_get<double>(v, file, "conf_threshold");
       if (!(c.conf_threshold >= 0 && c.conf_threshold <= 1))
@@ -252,8 +269,8 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
       parse_registration(v, file, line, &c);
     } else {
       throw StudyError(
-          fmt::format("{}:{}: unknown setting '{}' (expected rock_class, conf_threshold, image_size, domains, models, "
-                      "registration)",
+          fmt::format("{}:{}: unknown setting '{}' (expected rock_class, classes, conf_threshold, image_size, domains, "
+                      "models, registration)",
                       file, line, quoted_for_message(key)));
     }
   }
@@ -455,6 +472,18 @@ Study open_study(const std::string& root_in) {
   };
   std::stable_sort(s.models.begin(), s.models.end(),
                    [&](const auto& x, const auto& y) { return dom_rank(x) < dom_rank(y); });
+  try {
+    s.classes = read_study_classes(s.root, s.config, s.domains);
+  } catch (const IoError& e) {
+    throw StudyError(e.what());
+  }
+  if (!s.config.rock_class_word.empty()) {
+    try {
+      s.config.rock_class = s.classes.resolve(s.config.rock_class_word);
+    } catch (const StudyError& e) {
+      throw StudyError(fmt::format("{}:{}: rock_class: {}", yaml.string(), s.config.rock_class_line, e.what()));
+    }
+  }
   return s;
 }
 

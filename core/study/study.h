@@ -16,6 +16,7 @@
 #include "core/io/label_io.h"
 #include "core/registration/registration.h"
 #include "core/study/fixed_pairs.h"
+#include "core/study/study_classes.h"
 #include "core/util/errors.h"
 
 namespace ipd {
@@ -26,7 +27,12 @@ struct ModelInfo {
 };
 
 struct StudyConfig {
-  int rock_class = -1;                            // -1: every class counts
+  // The class every number is about: a class number, kNoClassChosen (refused when the labels hold more than one
+  // class) or kAllClasses (study_classes.h); `rock_class` in study.yaml, `--class` on the command line.
+  int rock_class = -1;
+  std::vector<std::string> class_names;  // study.yaml's `classes`, by class number; empty when not given
+  std::string rock_class_word;           // `rock_class: rock` (a name), resolved once the classes are read
+  int rock_class_line = 0;
   double conf_threshold = 0;                      // predictions below this are dropped
   int image_width = 0, image_height = 0;          // for labels-only studies; 0 when unknown
   std::vector<std::string> domain_order;          // optional preferred order
@@ -50,6 +56,7 @@ struct Study {
   StudyConfig config;
   std::vector<Domain> domains;
   std::vector<ModelInfo> models;  // union over domains and config, sorted by training-domain order
+  StudyClasses classes;           // the class names and each label set's numbering (study_classes.h)
 
   const Domain* domain(const std::string& name) const;
   std::string label_path(const std::string& domain, const std::string& stem) const;

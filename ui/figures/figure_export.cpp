@@ -64,8 +64,11 @@ std::string study_figure_file(const Session& session, const ExportRequest& r, Fi
   sr.conf_threshold = session.conf_threshold();
   CrossTable table = session_table(session);
   add_confidence_intervals(&table, sr.bootstrap, 1);
-  const StudyLabels labels = r.kind == "breakdown" || r.kind == "gallery" ? thresholded_labels(session)
-                                                                          : StudyLabels{session.study(), {}, {}, {}};
+  StudyLabels labels;
+  if (r.kind == "breakdown" || r.kind == "gallery")
+    labels = thresholded_labels(session);
+  else
+    labels.study = session.study();
   const FontMetrics metrics(r.options.font_file.empty() ? default_font_file() : r.options.font_file);
   DisplayList fig(metrics);
   // Its table has no pairings to count: the session's edits, over the domain pairs the figure draws.

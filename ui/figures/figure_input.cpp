@@ -78,6 +78,7 @@ SceneFigureInput scene_input_from_study(const StudyLabels& labels, const std::st
   in.affine = (p.fixed || swapped) ? affine_of_pairs(in) : p.registration.affine;
   if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
   in.label_fingerprint = label_set_fingerprint(st);
+  in.class_name = provenance_class(labels);
   read_scene_review(labels, swapped ? b : a, swapped ? a : b, stem, p.pairs, in);
   return in;
 }
@@ -108,6 +109,7 @@ SceneFigureInput scene_input_from_session(const Session& s, int scene) {
   const Study& st = s.study();
   if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
   in.label_fingerprint = label_set_fingerprint(st);
+  in.class_name = provenance_class(s.labels());
   const ReviewState& review = s.review_of(s.pair_index());
   in.reviewed = review.reviewed.at(scene) != 0;
   // Checks that are pairs now (one whose pair was edited away is kept, but does not apply).
@@ -144,6 +146,7 @@ void draw_scene_figure(DisplayList& out, const std::string& kind, const SceneFig
   const int excluded = static_cast<int>(in.excluded_a.size() + in.excluded_b.size());
   Provenance p = scene_provenance(in.pairs_fixed, static_cast<int>(in.pairs.size()), excluded, in.label_fingerprint);
   p.scenes_with_stale_hand_pairs = in.pairs_stale ? 1 : 0;
+  p.class_name = in.class_name;
   p.scenes_reviewed = in.reviewed ? 1 : 0;
   p.pairs_checked = in.pairs_checked;
   add_provenance(out, p, o);

@@ -147,7 +147,9 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
       double best_iou = 0;
       if (in.gt)
         for (size_t j = 0; j < in.gt->size(); ++j)
-          if (const double v = iou((*in.gt)[j], (*in.predictions)[p.prediction]); v > best_iou)
+          if ((*in.gt)[j].cls != (*in.predictions)[p.prediction].cls)
+            continue;
+          else if (const double v = iou((*in.gt)[j], (*in.predictions)[p.prediction]); v > best_iou)
             best_iou = v, matched = static_cast<int>(j);
       tags.push_back({{p.q0.x, p.q0.y, p.q1.x, p.q1.y}, ext.x + 2, ext.y, matched});
     }

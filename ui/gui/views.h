@@ -137,6 +137,7 @@ struct UiCommands {
   bool export_figures = false;  // Fig. 1 and Fig. 2 of the current view, through `ipd figure`
   bool export_dialog = false;   // File > Export figure… (the figure dialog hook)
   std::string open_study;       // File > Open study… / Recent
+  std::string class_word;       // the class menu: the study opened again showing this class
   std::string open_typed_path;  // Enter in the Open dialog's path field: opened when it is a study
   bool retry_saves = false;
   std::string keep_mine, keep_theirs;     // a conflict's key: the version the user keeps

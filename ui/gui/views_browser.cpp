@@ -158,6 +158,31 @@ static void draw_selection_chip(const Session& s, UiState& ui) {
   ImGui::TextUnformatted(ui.selection_label.c_str());
 }
 
+namespace {
+// The class every number of the window is about: the study's named classes, the classes its ground truth holds and
+// "all classes" (class-blind); shown only where there is a choice, with why this class is the one shown.
+void draw_class_menu(const Session& s, UiCommands& out) {
+  const StudyLabels& labels = s.labels();
+  const StudyClasses& classes = s.study().classes;
+  std::vector<int> choices;
+  for (size_t k = 0; k < classes.names.size(); ++k)
+    if (!classes.names[k].empty()) choices.push_back(static_cast<int>(k));
+  for (const auto& [cls, n] : labels.gt_boxes_by_class)
+    if (std::find(choices.begin(), choices.end(), cls) == choices.end()) choices.push_back(cls);
+  if (choices.size() < 2 && s.class_note().empty()) return;
+  const int shown = s.study().config.rock_class;
+  if (ImGui::BeginCombo("class", class_statement(labels).c_str())) {
+    for (int cls : choices)
+      if (ImGui::Selectable(classes.describe(cls).c_str(), cls == shown) && cls != shown)
+        out.class_word = std::to_string(cls);
+    if (ImGui::Selectable("all classes (class-blind)", shown == kAllClasses) && shown != kAllClasses)
+      out.class_word = "all";
+    ImGui::EndCombo();
+  }
+  if (!s.class_note().empty()) text_disabled_wrapped_at_spaces(s.class_note());
+}
+}  // namespace
+
 void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   const Session& s = *v.session;
   const Study& st = s.study();
@@ -196,6 +221,7 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
     }
     ImGui::EndCombo();
   }
+  draw_class_menu(s, out);
   const double lowest = 0, highest = 1;
   if (ImGui::SliderScalar("conf >=", ImGuiDataType_Double, &ui.conf_threshold, &lowest, &highest, "%.2f"))
     out.conf_threshold = ui.conf_threshold = conf_slider_value(ui.conf_threshold);

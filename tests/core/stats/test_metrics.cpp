@@ -155,7 +155,7 @@ TEST(Metrics, ExportRowsReproduceTheTable) {
   EXPECT_EQ(unpaired, 6 + 6);  // s03 of real-hapke: 6 rocks a side left unpaired by hand
   const std::string csv = rock_rows_csv(rows);
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
-            "model,trained_on,a,b,scene,index_a,index_b,perf_a,perf_b,diff,cx_a,cy_a,w_a,h_a,cx_b,cy_b,w_b,h_b,"
+            "model,trained_on,a,b,scene,class,index_a,index_b,perf_a,perf_b,diff,cx_a,cy_a,w_a,h_a,cx_b,cy_b,w_b,h_b,"
             "residual_px,source,excluded");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), static_cast<long>(rows.size()) + 1);
 }
