@@ -89,7 +89,7 @@ void add_detection_metrics(const Study& study, const StudyOptions& so, const Stu
     }
   }
   *text += fmt::format(
-      "(class {}; AP: pycocotools' rules over the {} most confident detections of each picture, within a class; "
+      "({}; AP: pycocotools' rules over the {} most confident detections of each picture, within a class; "
       "precision/recall/F1 over every detection at confidence >= {:g} and IoU 0.5)\n",
       class_statement(labels), kCocoMaxDetections, threshold);
 }

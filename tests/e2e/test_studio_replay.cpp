@@ -402,3 +402,30 @@ TEST(StudioReplay, RockViewActionsNameTheirArguments) {
 
 }  // namespace
 }  // namespace ipd
+
+namespace ipd {
+namespace {
+// A study of rocks and shadows (classes.txt names both): the window shows the first named class and says which on
+// stderr; the replay verb `class shadow` opens it again showing shadows.
+TEST(StudioReplay, TheClassVerbSwitchesTheClassShown) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  const std::string gt = "0 0.2 0.2 0.1 0.1\n1 0.25 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n0 0.4 0.8 0.1 0.1\n";
+  for (const char* domain : {"real", "synth"}) {
+    test::write_text(d / (std::string("study/") + domain + "/labels/s1.txt"), gt);
+    test::write_text(d / (std::string("study/") + domain + "/predictions/det/s1.txt"), "0 0.2 0.2 0.1 0.1 0.9\n");
+  }
+  test::write_text(d / "study/real/labels/classes.txt", "rock\nshadow\n");
+  test::write_text(d / "rocks.txt", "wait 3\n");
+  test::write_text(d / "shadows.txt", "class shadow\nwait 3\n");
+  for (const auto& [actions, expected] : {std::pair<std::string, std::string>{"rocks.txt", "class: rock (class 0)\n"},
+                                          {"shadows.txt", "class: shadow (class 1)\n"}}) {
+    const std::string cmd =
+        fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d / "study", d / actions);
+    EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">{} 2>&1", d / "log.txt"), d.path()), 0) << read_file(d / "log.txt");
+    EXPECT_NE(read_file(d / "log.txt").find(expected), std::string::npos) << read_file(d / "log.txt");
+  }
+}
+}  // namespace
+}  // namespace ipd

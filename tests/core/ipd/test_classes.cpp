@@ -43,6 +43,18 @@ TEST(Classes, BoxesOfTwoClassesAreNeverAPair) {
   EXPECT_EQ(pair_weight(of_class(0, 0.5, 0.5, 0.1, 0.1), of_class(1, 0.5, 0.5, 0.1, 0.1), rule), 0.0);
 }
 
+// The paper's mutual nearest centres know no class: a shadow at a rock's place is still no pair.
+TEST(Classes, ThePaperMethodPairsNoTwoClasses) {
+  const std::vector<Box> a = {of_class(0, 0.2, 0.2, 0.05, 0.05), of_class(0, 0.5, 0.7, 0.05, 0.05),
+                              of_class(0, 0.8, 0.3, 0.05, 0.05), of_class(1, 0.4, 0.4, 0.05, 0.05)};
+  std::vector<Box> b = a;
+  b[3] = of_class(0, 0.401, 0.4, 0.05, 0.05);  // a rock where A has a shadow (not the same layout)
+  RegistrationOptions o;
+  o.method = RegistrationMethod::kPaper;
+  const RegistrationReport r = register_rocks(a, b, o);
+  EXPECT_EQ(r.pairs, (RockPairs{{0, 0}, {1, 1}, {2, 2}}));
+}
+
 // Real and synth have the same layout: rocks R1 (0.2, 0.2) and R2 (0.6, 0.6), shadow S1 (0.25, 0.2) beside R1.
 // det in real: a shadow box exactly on R1 (IoU 1 with R1, 1/3 with S1) and a rock box 0.025 below R1 (IoU 0.6);
 // R2 missed. det in synth finds all three exactly. Rock IPD (|0.6 - 1| + |0 - 1|) / 2 = 0.7; shadow IPD

@@ -89,8 +89,8 @@ TEST(Metrics, ApCountsTheHundredMostConfidentDetectionsOfAPictureAndThePrintedNo
   test::write_two_rock_study(d);
   const auto r = test::run_ipd("metrics " + d.path() + " --bootstrap 0");
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("(AP: pycocotools' rules over the 100 most confident detections of each picture; "
-                       "precision/recall/F1 over every detection at confidence >= 0 and IoU 0.5)\n"),
+  EXPECT_NE(r.out.find("(class 0; AP: pycocotools' rules over the 100 most confident detections of each picture, "
+                       "within a class; precision/recall/F1 over every detection at confidence >= 0 and IoU 0.5)\n"),
             std::string::npos)
       << r.out;
 }
