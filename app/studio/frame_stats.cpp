@@ -18,6 +18,15 @@ std::string FrameStats::summary(const char* name, std::vector<double> v) {
                      v[std::min(v.size() - 1, v.size() * 95 / 100)], v.back(), v.size(), over);
 }
 
+std::string FrameStats::picture_line() const {
+  if (picture_px_.size() != 6) return {};
+  const auto& p = picture_px_;
+  const double window = double(p[4]) * p[5];
+  const double share = window > 0 ? (double(p[0]) * p[1] + double(p[2]) * p[3]) / window : 0;
+  return fmt::format("picture_px left={:.0f}x{:.0f} right={:.0f}x{:.0f} window={:.0f}x{:.0f} share={:.3f}", p[0], p[1],
+                     p[2], p[3], p[4], p[5], share);
+}
+
 void FrameStats::print(bool frames, const std::string& open_note) const {
   auto line = [](const std::string& s) {
     if (!s.empty()) fmt::print("{}\n", s);
@@ -26,6 +35,7 @@ void FrameStats::print(bool frames, const std::string& open_note) const {
     fmt::print("open_ms={:.0f} (first content on screen) loaded_ms={:.0f} (whole study; {})\n", content_ms_, loaded_ms_,
                open_note);
   if (frames) line(summary("frame_ms", frame_ms_)), line(summary("ui_cpu_ms", frame_cpu_ms_));
+  if (frames) line(picture_line());
   line(summary("scene_ms", scene_ms_));
   // Measurements, as frame_ms: only when asked for.
   if (frames) line(summary("edit_ms", edit_ms_)), line(summary("edit_cpu_ms", edit_cpu_ms_));

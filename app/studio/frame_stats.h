@@ -32,6 +32,12 @@ class FrameStats {
   void content_shown() { mark(&content_ms_); }
   void study_loaded() { mark(&loaded_ms_); }
   bool content_was_shown() const { return content_ms_ >= 0; }
+  // The last frame's pictures on screen (left, right: width and height in pixels) and the window's size.
+  void set_picture_px(float left_w, float left_h, float right_w, float right_h, float window_w, float window_h) {
+    picture_px_ = {left_w, left_h, right_w, right_h, window_w, window_h};
+  }
+  // `picture_px left=WxH right=WxH window=WxH share=S` (S: the two pictures' part of the window's area).
+  std::string picture_line() const;
 
   // `NAME median=X p95=Y max=Z n=N over_50ms=K` (empty without values).
   static std::string summary(const char* name, std::vector<double> values);
@@ -46,6 +52,7 @@ class FrameStats {
   std::vector<double> frame_ms_, frame_cpu_ms_, scene_ms_, edit_ms_, edit_cpu_ms_, export_frame_ms_, export_ui_cpu_ms_;
   double content_ms_ = -1;  // start to the first frame showing the study (a first look at big studies)
   double loaded_ms_ = -1;   // start to the first frame with the whole study in
+  std::vector<float> picture_px_;
 };
 
 }  // namespace ipd::studio

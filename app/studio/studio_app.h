@@ -69,6 +69,10 @@ class StudioApp {
   bool replay_output_action(const ReplayAction& a);
   void replay_fail(const ReplayAction& a, const std::string& why);  // reports it and ends the replay, failed
   int replay_rock(const ReplayAction& a, const std::string& number, Side side);  // 0-based; -1: none (failed)
+  bool replay_input_action(const ReplayAction& a, ui::UiCommands* cmd);          // click, dialog, type, key
+  // `type` and `key`: a key pressed on one frame, its character and its release on the next.
+  bool release_typed_key();  // true when a key was let go (the frame is taken)
+  void press_next_typed_key();
 
   StudioOptions o_;
   StudyWorker worker_;
@@ -113,6 +117,9 @@ class StudioApp {
   std::vector<ReplayAction> replay_;
   size_t replay_next_ = 0;
   int replay_wait_ = 0;
+  std::string typing_;       // characters still to type ('\n' Enter, '\x1b' Esc, '\t' Tab)
+  int typed_key_ = -1;       // the key pressed last frame (an index of ImGuiIO::KeysDown)
+  unsigned typed_char_ = 0;  // and the character it sends
   std::string screenshot_now_;
 };
 

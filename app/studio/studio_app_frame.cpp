@@ -71,6 +71,7 @@ void StudioApp::frame() {
   ui::UiCommands cmd;
   if (!replay_.empty() && replay_next_ <= replay_.size()) replay_step();
   const ImGuiViewport* vp = ImGui::GetMainViewport();
+  ui_.picture_px[0] = ui_.picture_px[1] = ImVec2{};  // set again by the panes when they are drawn
   ImGui::SetNextWindowPos(vp->WorkPos);
   ImGui::SetNextWindowSize(vp->WorkSize);
   ImGui::Begin("IPD Studio", nullptr,
@@ -79,7 +80,8 @@ void StudioApp::frame() {
   ui::StudyView v = study_view();
   const Session* s = v.session;
   ui::draw_menu_bar(v, ui_, cmd);
-  const float status_h = 2 * ImGui::GetFrameHeightWithSpacing();  // separator + status line, never clipped
+  // The status line and the separator above it, never clipped (the line's own height and the spacing around).
+  const float status_h = ImGui::GetFrameHeightWithSpacing() + 2 * ImGui::GetStyle().ItemSpacing.y;
   const float h = ImGui::GetContentRegionAvail().y - status_h;
   if (const std::string error = worker_.open_error(); !error.empty())
     draw_open_error(error, h);
@@ -102,6 +104,8 @@ void StudioApp::frame() {
     if (auto request = ui::draw_export_dialog(export_dialog_, ui::export_view_context(*s, ui_, stats_ui_)))
       export_figure(*request);
   ImGui::End();
+  stats_out_.set_picture_px(ui_.picture_px[0].x, ui_.picture_px[0].y, ui_.picture_px[1].x, ui_.picture_px[1].y,
+                            vp->Size.x, vp->Size.y);
   apply(cmd);
   textures_.end_frame();
 }

@@ -1,9 +1,12 @@
 // StudioApp's replay (--replay, studio_replay.h): one scripted action per frame, the rock view's verbs,
 // and what a finished replay left undone.
 #include <fmt/format.h>
+#include <imgui.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
+#include <cstring>
 
 #include "app/studio/studio_app.h"
 #include "core/util/atomic_file.h"
@@ -190,9 +193,70 @@ bool StudioApp::replay_output_action(const ReplayAction& a) {
   return true;
 }
 
+bool StudioApp::replay_input_action(const ReplayAction& a, ui::UiCommands* cmd) {
+  if (a.verb == "click") {
+    if (const int l = replay_rock(a, a.args[0], Side::kA); l >= 0) ui_.selected_left = l, ui_.selected_right = -1;
+  } else if (a.verb == "dialog") {
+    const std::string& d = a.args[0];  // checked by parse_replay
+    if (d == "open") ui_.show_open = true;
+    if (d == "export") cmd->export_dialog = true;
+    if (d == "goto") ui_.show_goto = true, ui_.goto_text[0] = 0;
+    if (d == "help") ui_.show_help = true;
+    if (d == "search") ui_.focus_field = ui::UiState::Field::kSearch;
+    if (d == "saveas") ui_.focus_field = ui::UiState::Field::kSaveAs;
+  } else if (a.verb == "type") {
+    for (size_t k = 0; k < a.args.size(); ++k) typing_ += (k ? " " : "") + a.args[k];
+  } else if (a.verb == "key") {
+    typing_ += a.args[0] == "enter" ? '\n' : a.args[0] == "escape" ? '\x1b' : '\t';
+  } else {
+    return false;
+  }
+  return true;
+}
+
+bool StudioApp::release_typed_key() {
+  if (typed_key_ < 0) return false;
+  ImGuiIO& io = ImGui::GetIO();
+  // GLFW sends the character after the key: this frame's widgets read it while the key shows as pressed.
+  if (typed_char_) io.AddInputCharacter(typed_char_);
+  io.KeysDown[typed_key_] = false;
+  typed_key_ = -1, typed_char_ = 0;
+  return true;
+}
+
+void StudioApp::press_next_typed_key() {
+  const char c = typing_.front();
+  typing_.erase(0, 1);
+  ImGuiIO& io = ImGui::GetIO();
+  // GLFW's key codes, which ImGui 1.86's GLFW backend indexes KeysDown by: a printable key is its unshifted
+  // ASCII character (letters upper case); Enter, Esc and Tab come from the backend's key map.
+  int key = -1;
+  if (c == '\n')
+    key = io.KeyMap[ImGuiKey_Enter];
+  else if (c == '\x1b')
+    key = io.KeyMap[ImGuiKey_Escape];
+  else if (c == '\t')
+    key = io.KeyMap[ImGuiKey_Tab];
+  else if (std::isalpha(static_cast<unsigned char>(c)))
+    key = std::toupper(static_cast<unsigned char>(c));
+  else if (c && std::strchr(" ',-./0123456789;=[\\]`", c))
+    key = c;
+  typed_char_ = c == '\n' || c == '\x1b' || c == '\t' ? 0 : static_cast<unsigned char>(c);
+  if (key < 0) {  // a shifted character (_, ?, ~ ...): its character alone
+    io.AddInputCharacter(typed_char_);
+    typed_char_ = 0;
+    return;
+  }
+  io.KeysDown[key] = true;  // seen as pressed by the next frame's NewFrame
+  typed_key_ = key;
+}
+
 bool StudioApp::replay_step() {
+  // A key typed last frame is let go whatever else waits: held longer, it would repeat.
+  if (release_typed_key()) return false;
   if (replay_wait_ > 0) return --replay_wait_, false;
   if (!snap_ || !worker_.idle() || worker_.snapshot() != snap_ || worker_.saver().pending() > 0) return false;
+  if (!typing_.empty()) return press_next_typed_key(), false;
   // The Rock pairs window's pairs are of this snapshot and list before the next action acts on them.
   if (ui_.show_rock_view && !rock_points_.current(snap_, ui::rock_view_scenes(ui_, rock_view_))) return false;
   if (replay_next_ >= replay_.size()) {
@@ -202,7 +266,8 @@ bool StudioApp::replay_step() {
   const ReplayAction& a = replay_[replay_next_++];
   ui::UiCommands cmd;
   // parse_replay accepted only known verbs, each of exactly one group.
-  if (!replay_view_action(a, &cmd) && !replay_edit_action(a, &cmd)) replay_output_action(a);
+  if (!replay_view_action(a, &cmd) && !replay_edit_action(a, &cmd) && !replay_input_action(a, &cmd))
+    replay_output_action(a);
   apply(cmd);
   return true;
 }

@@ -25,6 +25,32 @@ void StudioOptions::check() const {
     throw std::invalid_argument("studio options: " + problem);
 }
 
+std::string parse_window_size(const std::string& text, int* width, int* height) {
+  // W, or WxH (also WXH and W×H's ASCII spellings): each the whole number, in the window's range.
+  auto number = [](const std::string& t, int lo, int hi, int* out) {
+    if (t.empty() || t.size() > 6 || t.find_first_not_of("0123456789") != std::string::npos) return false;
+    const int v = std::stoi(t);
+    if (v < lo || v > hi) return false;
+    *out = v;
+    return true;
+  };
+  const size_t x = text.find_first_of("xX");
+  int w = 0, h = 0;
+  if (x == std::string::npos) {
+    if (!number(text, 320, 10000, &w))
+      return fmt::format("--size: expected a width from 320 to 10000, or WIDTHxHEIGHT (e.g. 1280x720), got '{}'", text);
+    *width = w;
+    return {};
+  }
+  if (!number(text.substr(0, x), 320, 10000, &w) || !number(text.substr(x + 1), 240, 10000, &h))
+    return fmt::format(
+        "--size: expected WIDTHxHEIGHT with a width from 320 to 10000 and a height from 240 to 10000 (e.g. "
+        "1280x720), got '{}'",
+        text);
+  *width = w, *height = h;
+  return {};
+}
+
 int parse_studio_options(int argc, char** argv, StudioOptions* o) {
   CLI::App cli{"ipd-studio: inspect and fix rock pairs, IPD live"};
   cli.set_version_flag("--version", std::string("ipd-studio ") + ipd::version(), "Print the version and exit");
@@ -41,10 +67,14 @@ int parse_studio_options(int argc, char** argv, StudioOptions* o) {
       ->check(CLI::Range(1, 1000000));
   cli.add_option("--replay", o->replay, "Run the actions of this file, one per frame, then exit (see docs/gui.md)");
   cli.add_option("--texture-budget-mb", o->texture_budget_mb, "Texture cache size")->check(CLI::Range(16, 65536));
-  cli.add_option("--size", o->width, "Window width")->check(CLI::Range(320, 10000));
-  cli.add_option("--height", o->height, "Window height")->check(CLI::Range(240, 10000));
+  std::string size;
+  cli.add_option("--size", size, "Window size: WIDTHxHEIGHT (e.g. 1280x720), or the width alone");
+  cli.add_option("--height", o->height, "Window height (or give it in --size)")->check(CLI::Range(240, 10000));
   try {
     cli.parse(argc, argv);
+    if (!size.empty())
+      if (const std::string why = parse_window_size(size, &o->width, &o->height); !why.empty())
+        throw CLI::ValidationError(why);
   } catch (const CLI::ParseError& e) {
     return cli.exit(e);
   }

@@ -34,6 +34,9 @@ struct StudioOptions {
 
 // Parses the command line into `o`. Returns -1 to go on, else the exit code (0 after --help, 2 for bad
 // arguments, with CLI11's message printed).
+// --size's value: "1280x720" sets both, "1280" the width alone; returns why it is refused (empty: accepted).
+std::string parse_window_size(const std::string& text, int* width, int* height);
+
 int parse_studio_options(int argc, char** argv, StudioOptions* o);
 
 }  // namespace ipd::studio

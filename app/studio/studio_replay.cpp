@@ -71,6 +71,10 @@ const std::map<std::string, VerbArguments>& replay_verbs() {
       {"review", {0, "nothing"}},
       {"suspect", {0, "nothing"}},
       {"check", {2, "two rock numbers of a pair (left, right), or nothing for the selected pair"}},
+      {"click", {1, "a left rock number"}},
+      {"dialog", {1, "open, export, goto, help, search or saveas"}},
+      {"type", {1, "the text to type"}},
+      {"key", {1, "enter, escape or tab"}},
   };
   return verbs;
 }
@@ -91,12 +95,14 @@ void check_verb_and_count(const ReplayAction& a, Fail fail) {
   if (it == replay_verbs().end())
     fail("unknown action '" + a.verb +
          "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, automatic, undo, "
-         "redo, rerun, export, screenshot, problems, problem, focus, rocks, select, list, gallery, review, suspect "
-         "or check)");
+         "redo, rerun, export, screenshot, problems, problem, focus, rocks, select, list, gallery, review, suspect, "
+         "check, click, dialog, type or key)");
   const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
   const bool gallery_options = a.verb == "gallery" && (a.args.size() == 2 || a.args.size() == 4);
   const bool check_selected = a.verb == "check" && a.args.empty();
-  if (static_cast<int>(a.args.size()) != it->second.count && !export_with_kind && !gallery_options && !check_selected)
+  const bool typed_words = a.verb == "type" && !a.args.empty();  // typed with one space between them
+  if (static_cast<int>(a.args.size()) != it->second.count && !export_with_kind && !gallery_options && !check_selected &&
+      !typed_words)
     fail("'" + a.verb + "' takes " + it->second.what + ", got " + std::to_string(a.args.size()) + " argument(s)");
 }
 
@@ -110,8 +116,13 @@ void check_argument_values(const ReplayAction& a, Fail fail) {
       fail("'" + a.verb + "': expected a number >= 1, got '" + quoted_for_message(w) + "'");
   };
   if (a.verb == "wait" || a.verb == "problem" || a.verb == "pair" || a.verb == "unpair" || a.verb == "exclude" ||
-      a.verb == "check")
+      a.verb == "check" || a.verb == "click")
     for (const auto& w : a.args) positive(w);
+  static const std::vector<std::string> kDialogs = {"open", "export", "goto", "help", "search", "saveas"};
+  if (a.verb == "dialog" && std::find(kDialogs.begin(), kDialogs.end(), a.args[0]) == kDialogs.end())
+    fail("'dialog': expected open, export, goto, help, search or saveas, got '" + quoted_for_message(a.args[0]) + "'");
+  if (a.verb == "key" && a.args[0] != "enter" && a.args[0] != "escape" && a.args[0] != "tab")
+    fail("'key': expected enter, escape or tab, got '" + quoted_for_message(a.args[0]) + "'");
   // One domain against itself has no gap to measure: the studio would keep the domains it shows.
   if (a.verb == "domains" && a.args[0] == a.args[1])
     fail("'domains': expected two different domains, got '" + quoted_for_message(a.args[0]) + "' twice");

@@ -219,6 +219,9 @@ void add_cells(const StudyLabels& labels, const std::vector<bool>& shown, CrossT
           continue;
         }
         cell.missing_predictions = true;
+        // The table's footnote for its "n/a" (the warning on stderr says where the folder was looked for).
+        cell.no_value_reason +=
+            (cell.no_value_reason.empty() ? "no predictions of " + model.name + " for " : " and ") + d;
         if (warned.insert(model.name + "\n" + d).second)
           t->warnings.push_back(missing_predictions_problem(study, model.name, d).to_string());
       }

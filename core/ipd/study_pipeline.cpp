@@ -140,6 +140,19 @@ RegistrationOptions with_study_aspect(const Study& study, RegistrationOptions re
 
 }  // namespace
 
+Problem square_pictures_problem(const Study& study, const RegistrationOptions& options) {
+  Problem p;
+  const bool pictures =
+      std::any_of(study.domains.begin(), study.domains.end(), [](const Domain& d) { return !d.images.empty(); });
+  if (options.aspect || study.config.image_width > 0 || pictures) return p;
+  p.file = (std::filesystem::path(study.root) / "study.yaml").string();
+  p.message =
+      "no image_size and no pictures: registration takes the pictures as square (aspect 1), so its angles and "
+      "distances are not the pictures' pixels and the pairs can differ from those of the real aspect; add "
+      "'image_size: [WIDTH, HEIGHT]' (the pictures' size in pixels), as ipd register --image-size takes it";
+  return p;
+}
+
 RegistrationReport register_scene(const StudyLabels& labels, const std::string& a, const std::string& b,
                                   const std::string& stem, const RegistrationOptions& options,
                                   const RegistrationCache* cache, bool* from_cache) {
@@ -263,6 +276,8 @@ PairedStudy pair_study(const StudyLabels& labels, const std::vector<std::pair<st
     }
   }
   const RegistrationOptions reg = with_study_aspect(study, options.registration);
+  if (Problem p = square_pictures_problem(study, options.registration); !jobs.empty() && !p.message.empty())
+    out.problems.push_back(std::move(p));
   const auto start = std::chrono::steady_clock::now();
   std::atomic<int> done{0};
   const int total = static_cast<int>(jobs.size());

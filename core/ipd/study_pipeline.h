@@ -68,6 +68,10 @@ struct PairedStudy {
 
 // Every problem of the study's label and prediction files (malformed lines, unreadable files), in the order
 // the files were read (each domain's GT, then its prediction sets), each with its domain and scene.
+// A labels-only study whose study.yaml gives no image_size registers its scenes as square pictures: said once
+// (study.yaml's problem, for ipd table's stderr and ipd-studio's Problems window), as ipd register says it
+// without --image-size. Empty message when the aspect is known (image_size, or options.aspect given).
+Problem square_pictures_problem(const Study& study, const RegistrationOptions& options);
 std::vector<Problem> label_problems(const StudyLabels& labels);
 
 // A model without a predictions folder for a domain: its cells for that domain are empty.

@@ -148,6 +148,7 @@ TEST(InputChecks, Utf8IsCheckedStrictly) {
 TEST(InputChecks, NamesThatAreNotUtf8AreRefusedInJsonNamingTheFile) {
   test::TempDir d;
   write_tiny_study(d);
+  test::write_text(d / "study.yaml", "image_size: [1000, 1000]\n");  // square pictures, said so
   const std::string latin1 = "Ger\xF6lle";
   for (const char* dom : {"real", "synth"}) {
     fs::rename(std::string(d / dom) + "/labels/s1.txt", std::string(d / dom) + "/labels/" + latin1 + ".txt");

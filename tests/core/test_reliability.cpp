@@ -260,6 +260,7 @@ TEST(Reliability, DuplicateKeysAndExtraDocumentsInStudyYaml) {
 TEST(Reliability, PairsInBothNameOrdersWarnAndTheFirstCounts) {
   test::TempDir d;
   write_tiny_study(d);
+  test::write_text(d / "study.yaml", "image_size: [1000, 1000]\n");            // square pictures, said so
   test::write_text(d / "pairs/real__synth/s1.json", "{\"pairs\": [[0, 1]]}");  // IPD 2/3
   test::write_text(d / "pairs/synth__real/s1.json", "{\"pairs\": [[0, 0]]}");  // would be IPD 1/3
   const CrossTable t = compute_cross_table(load_labels(open_study(d.path())), {});

@@ -100,6 +100,7 @@ void write_review_study(const TempDir& d) {
              "0.25, 0.06, 0.06], [2, 0.3, 0.8, 0.12, 0.1], [3, 0.75, 0.7, 0.08, 0.12]], "
              "\"rocks_b\": [[0, 0.2, 0.2, 0.1, 0.08], [1, 0.8, 0.25, 0.06, 0.06], [2, 0.3, 0.8, 0.12, 0.1], [3, "
              "0.75, 0.7, 0.08, 0.12]]}\n");
+  write_text(d / "study.yaml", "image_size: [1000, 1000]\n");  // square pictures, said so
 }
 
 }  // namespace ipd::test

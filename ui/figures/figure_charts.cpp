@@ -130,9 +130,12 @@ void draw_dot_whisker_chart(DisplayList& out, const DotWhiskerChart& ch, const F
       if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
   }
   if (ch.zero_line) lo = std::min(lo, 0.0), hi = std::max(hi, 0.0);
+  // A quantity that cannot be negative (IPD) is read as a length from 0, as the studio's panel draws it: its
+  // axis and ticks start at 0 even when every value lies far from it (0.22 to 0.28, say).
+  if (ch.non_negative && std::isfinite(lo) && lo >= 0) lo = 0;
   if (!std::isfinite(lo)) lo = 0, hi = 1;
   const double pad = (hi - lo) * 0.05 + 1e-9;
-  // A quantity that cannot be negative (IPD) gets an axis from 0, not from a padding below it.
+  // Not from a padding below 0 either.
   const double axis_lo = ch.non_negative && lo >= 0 ? std::max(0.0, lo - pad) : lo - pad;
   const double lw_labels = label_width(out, body, labels, W);
   double lw_notes = 0;

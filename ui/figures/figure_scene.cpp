@@ -85,6 +85,29 @@ std::string title_of(const SceneFigureInput& in, const SceneNumbers& n) {
                      in.pairs_fixed ? ", pairs fixed by hand" : "");
 }
 
+}  // namespace
+
+PtRect place_notice(const PtRect& panel, Pt size, const std::vector<PtRect>& boxes, double inset) {
+  const double left = panel.x0 + inset, right = panel.x1 - inset - size.x, top = panel.y0 + inset,
+               bottom = panel.y1 - inset - size.y, mid_x = (panel.x0 + panel.x1 - size.x) / 2,
+               mid_y = (panel.y0 + panel.y1 - size.y) / 2;
+  const Pt corners[] = {{mid_x, top},    {mid_x, bottom}, {left, top},    {right, top},  {left, bottom},
+                        {right, bottom}, {left, mid_y},   {right, mid_y}, {mid_x, mid_y}};
+  PtRect best{};
+  double least = INFINITY;
+  for (const Pt& p : corners) {
+    const PtRect at{p.x, p.y, p.x + size.x, p.y + size.y};
+    double covered = 0;
+    for (const PtRect& b : boxes)
+      covered += std::max(0.0, std::min(at.x1, b.x1) - std::max(at.x0, b.x0)) *
+                 std::max(0.0, std::min(at.y1, b.y1) - std::max(at.y0, b.y0));
+    if (covered < least) least = covered, best = at;
+  }
+  return best;
+}
+
+namespace {
+
 // The picture of one side of Fig. 1 (or a notice naming why there is none) and its boxes: GT solid and
 // light on a dark halo, predictions dashed and dark on a light halo (figure_common.h: greyscale and
 // colour-vision safe). Returns the notice's box, which labels keep off (empty rect with a picture).
@@ -98,10 +121,14 @@ PtRect draw_side_boxes(Canvas& c, const PanelMap& m, const cv::Mat& picture, con
     c.fill_rect(P, rgb(70, 70, 76));
     const TextStyle st = style(secondary_pt(o.font_pt), rgb(255, 200, 120));
     const std::string text = problem.empty() ? "no picture" : problem;
-    const Pt centre{(P.x0 + P.x1) / 2, (P.y0 + P.y1) / 2};
-    c.text(centre, Anchor::kCentre, st, text);
-    const Pt size = c.measure(st, text);
-    notice = text_box(centre, Anchor::kCentre, size.x, size.y);
+    // Where it crosses the fewest boxes (the rocks are what the figure is for), not over the middle rocks.
+    std::vector<PtRect> boxes;
+    PtRect r;
+    for (const auto* list : {&gt, &pred})
+      for (const Box& b : *list)
+        if (m.box(b, r)) boxes.push_back(r);
+    notice = place_notice(P, c.measure(st, text), boxes, 0.3 * o.font_pt);
+    c.text({notice.x0, notice.y0}, Anchor::kTopLeft, st, text);
   } else {
     Crop covered;
     const FigurePicture pixels = crop_picture(picture, m.crop, &covered);

@@ -47,6 +47,11 @@ struct PairsLayout {
   PtRect left, right;
 };
 // Draws the figure into `out` and sets its page size (width from the options, height from the content).
+// Where a labels-only panel's notice ("no picture") goes: of the panel's top, bottom, corners, sides and middle
+// (`inset` inside its edge), the first place whose text box of `size` covers the least area of `boxes` (the
+// rocks' boxes on the page), so the notice is never drawn across rocks when a place clear of them exists.
+PtRect place_notice(const PtRect& panel, Pt size, const std::vector<PtRect>& boxes, double inset);
+
 PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, const FigureOptions& options);
 void draw_registration_figure(DisplayList& out, const SceneFigureInput& in, const FigureOptions& options);
 

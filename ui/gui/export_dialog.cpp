@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "ui/gui/views.h"
+
 namespace ipd::ui {
 
 Crop crop_of_view(const CanvasView& view) {
@@ -143,8 +145,9 @@ std::optional<ExportRequest> draw_export_dialog(ExportDialogState& st, const Exp
   } else {
     ImGui::TextDisabled("model %s, IPD(%s, %s)", ctx.model.c_str(), ctx.left.c_str(), ctx.right.c_str());
   }
-  ImGui::InputText("folder", st.dir, sizeof st.dir);
-  ImGui::InputText("file name", st.name, sizeof st.name);
+  keep_keyboard_after_enter(ImGui::InputText("folder", st.dir, sizeof st.dir, ImGuiInputTextFlags_EnterReturnsTrue));
+  keep_keyboard_after_enter(
+      ImGui::InputText("file name", st.name, sizeof st.name, ImGuiInputTextFlags_EnterReturnsTrue));
   const std::string path = (std::filesystem::path(st.dir) / (std::string(st.name) + exts[st.format])).string();
   ImGui::TextDisabled("writes %s", path.c_str());
   std::error_code ec;

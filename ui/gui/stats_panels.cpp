@@ -66,6 +66,17 @@ std::string empty_histogram_text(const std::vector<SceneSummary>& summaries) {
   return "no scene with an IPD";
 }
 
+std::string cell_totals_line(double ipd, long pairs, const std::vector<SceneSummary>& summaries) {
+  const long with_pairs =
+      std::count_if(summaries.begin(), summaries.end(), [](const SceneSummary& m) { return m.pairs > 0; });
+  const long without = static_cast<long>(summaries.size()) - with_pairs;
+  std::string line = fmt_ipd(ipd) + " over " + counted(pairs, "pair") + " in " + histogram_scenes_text(with_pairs);
+  if (without > 0) line += " (" + counted(without, "scene") + " without pairs)";
+  return line;
+}
+
+std::string histogram_scenes_text(size_t scenes) { return counted(scenes, "scene") + " with pairs"; }
+
 HistogramBins histogram_bins(const std::vector<double>& values, int bins) {
   HistogramBins h;
   if (values.empty() || bins < 1) return h;
@@ -216,7 +227,7 @@ void draw_histogram(const StudyView& v, const SessionStatistics* stats, bool com
     const std::string filter = fmt::format("ipd>={:g} ipd{}{:g}", b.lo, last ? "<=" : "<", b.hi);
     if (clicked && filter.size() < sizeof ui.filter) std::snprintf(ui.filter, sizeof ui.filter, "%s", filter.c_str());
   }
-  const std::string scenes = counted(values.size(), "scene") + (computing ? " (updating...)" : "");
+  const std::string scenes = histogram_scenes_text(values.size()) + (computing ? " (updating...)" : "");
   if (current_stem.empty() || std::isnan(in.current))
     text_disabled_wrapped_at_spaces(scenes);
   else

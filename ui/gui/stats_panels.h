@@ -46,6 +46,11 @@ HistogramBins histogram_bins(const std::vector<double>& values, int bins);
 // Why the per-scene IPD histogram has no bar, from the scene list's summaries: no scene has pairs, or scenes
 // have pairs but no IPD (SceneSummary::no_value_reason, e.g. no predictions left above the threshold).
 std::string empty_histogram_text(const std::vector<SceneSummary>& summaries);
+// The IPD panel's line for the domain pair in view: "0.0295 over 69 pairs in 5 scenes" counts the scenes with
+// pairs, as the per-scene histogram does (a scene without pairs has no IPD and no bar), and names the others.
+std::string cell_totals_line(double ipd, long pairs, const std::vector<SceneSummary>& summaries);
+// The histogram's caption: "5 scenes with pairs".
+std::string histogram_scenes_text(size_t scenes);
 
 // The studio's charts draw on the figure canvas in window pixels: text at the GUI font's size, the theme's
 // colours.

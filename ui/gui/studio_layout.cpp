@@ -48,6 +48,21 @@ StudioColumns focus_columns(float width, float splitter) {
   return c;
 }
 
+PicturePanes picture_panes(float width, float height, float aspect, float gap, float caption_line) {
+  if (!(aspect > 0)) aspect = 1.6f;
+  auto fitted = [&](PicturePanes p) {
+    p.pane_w = std::max(0.0f, p.pane_w), p.pane_h = std::max(0.0f, p.pane_h);
+    p.picture_w = std::min(p.pane_w, p.pane_h * aspect);
+    p.picture_h = p.picture_w / aspect;
+    return p;
+  };
+  // Side by side: one caption line above both.
+  const PicturePanes beside = fitted({false, (width - gap) / 2, height - caption_line});
+  // Stacked: a caption line above each.
+  const PicturePanes stacked = fitted({true, width, (height - gap) / 2 - caption_line});
+  return stacked.picture_w * stacked.picture_h > beside.picture_w * beside.picture_h ? stacked : beside;
+}
+
 std::string spell_missing_glyphs(std::string text, const std::function<bool(char32_t)>& has_glyph) {
   struct Spelling {
     char32_t glyph;

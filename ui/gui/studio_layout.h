@@ -35,6 +35,16 @@ StudioColumns studio_columns(float width, float browser_pref, float stats_pref, 
 constexpr float kFocusStrip = 28;
 StudioColumns focus_columns(float width, float splitter);
 
+// The two pictures in a pane of `width` x `height` (below the toolbar): side by side, each under a caption line,
+// or stacked, each under its own caption line, whichever shows the pictures (of `aspect` = width / height)
+// larger. `pane_w` x `pane_h` is each picture's pane; `picture_w` x `picture_h` the picture fitted in it.
+struct PicturePanes {
+  bool stacked = false;
+  float pane_w = 0, pane_h = 0;
+  float picture_w = 0, picture_h = 0;
+};
+PicturePanes picture_panes(float width, float height, float aspect, float gap, float caption_line);
+
 // `text` with what the GUI font has no glyph for (`has_glyph`: ImFont::FindGlyphNoFallback) spelled in ASCII:
 // "ΔIPD" -> "delta IPD" without U+0394, the typographic minus "−" -> "-" without U+2212; kept otherwise.
 std::string spell_missing_glyphs(std::string text, const std::function<bool(char32_t)>& has_glyph);

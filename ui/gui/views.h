@@ -104,6 +104,10 @@ struct UiState {
   std::string filter_error;
   // Chrome: menus and dialogs.
   bool show_help = false, show_goto = false, show_open = false, show_quit = false;
+  // A text field outside the dialogs to take the keyboard on the next frame (Ctrl+F: the scene list's filter).
+  enum class Field { kNone, kSearch, kSaveAs };
+  Field focus_field = Field::kNone;
+  ImVec2 picture_px[2] = {};  // the pictures' parts on screen, left and right (--frame-stats' picture_px)
   char goto_text[128] = "";
   std::string browse_dir;                      // the Open study… browser's directory
   std::vector<std::string> browse_dirs;        // its subdirectories (listed by the app when browse_dir changes)
@@ -222,6 +226,15 @@ std::pair<int, int> selected_pair(const Session& s, const UiState& ui);
 std::string review_progress_line(const Session::ReviewProgress& p);
 // Keyboard shortcuts that act on the whole window.
 void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out);
+// Shortcuts act only when the keyboard is nobody else's: no text field is active and no dialog (modal or
+// popup) is open. A letter typed into a dialog, even one whose field lost focus, never edits the study.
+bool shortcuts_may_act();
+// After a single-line text field drawn with ImGuiInputTextFlags_EnterReturnsTrue, given what it returned:
+// Enter (which ends the edit) gives the keyboard straight back to the field, so the letters typed after a
+// rejected entry go into it, not to the shortcuts. Esc or a click elsewhere still leaves it.
+void keep_keyboard_after_enter(bool entered);
+// Before a text field: it takes the keyboard when `ui.focus_field` asks for `field`.
+void take_keyboard_if_asked(UiState& ui, UiState::Field field);
 // Every shortcut, for the help window (and docs/gui.md).
 const std::vector<std::pair<const char*, const char*>>& shortcut_list();
 

@@ -226,7 +226,10 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   if (ImGui::SliderScalar("conf >=", ImGuiDataType_Double, &ui.conf_threshold, &lowest, &highest, "%.2f"))
     out.conf_threshold = ui.conf_threshold = conf_slider_value(ui.conf_threshold);
   ImGui::SetNextItemWidth(-1);
-  ImGui::InputTextWithHint("##filter", "filter: text, ipd>0.1, suspect, unreviewed", ui.filter, sizeof ui.filter);
+  take_keyboard_if_asked(ui, UiState::Field::kSearch);
+  keep_keyboard_after_enter(ImGui::InputTextWithHint("##filter", "filter: text, ipd>0.1, suspect, unreviewed (Ctrl+F)",
+                                                     ui.filter, sizeof ui.filter,
+                                                     ImGuiInputTextFlags_EnterReturnsTrue));
   if (!ui.filter_error.empty()) ImGui::TextColored({1, 0.5f, 0.3f, 1}, "%s", ui.filter_error.c_str());
   draw_selection_chip(s, ui);
   ImGui::TextDisabled("%s of %s%s", thousands(ui.order.size()).c_str(), counted(v.summaries->size(), "scene").c_str(),

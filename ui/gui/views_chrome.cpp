@@ -93,6 +93,7 @@ const std::vector<std::pair<const char*, const char*>>& shortcut_list() {
       {"R", "the scene is reviewed (again: not reviewed)"},
       {"Ctrl+G", "go to a scene by name"},
       {"Ctrl+O", "open another study"},
+      {"Ctrl+F", "type in the scene list's filter (Esc leaves it)"},
       {"wheel", "zoom at the cursor"},
       {"drag", "pan (both pictures when sync zoom is on)"},
       {"F", "fit the picture to its pane"},
@@ -273,6 +274,7 @@ void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out) {
     if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
     const bool enter = ImGui::InputTextWithHint("##goto", "scene name (or part of it)", ui.goto_text,
                                                 sizeof ui.goto_text, ImGuiInputTextFlags_EnterReturnsTrue);
+    keep_keyboard_after_enter(enter);  // a name that matches nothing stays in the field, to be corrected
     int first = -1, shown = 0;
     if (v.session && ui.goto_text[0]) {
       const auto& scenes = v.session->scenes();
@@ -297,9 +299,11 @@ void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out) {
       ImGui::SetKeyboardFocusHere();
     }
     ImGui::SetNextItemWidth(-FLT_MIN);
-    if (ImGui::InputTextWithHint("##openpath", "type or paste a study folder's path; Enter opens it", ui.open_path,
-                                 sizeof ui.open_path, ImGuiInputTextFlags_EnterReturnsTrue))
-      out.open_typed_path = ui.open_path;
+    const bool entered =
+        ImGui::InputTextWithHint("##openpath", "type or paste a study folder's path; Enter opens it", ui.open_path,
+                                 sizeof ui.open_path, ImGuiInputTextFlags_EnterReturnsTrue);
+    if (entered) out.open_typed_path = ui.open_path;
+    keep_keyboard_after_enter(entered);  // a path that is not a study stays in the field, to be corrected
     if (!ui.open_error.empty()) {
       ImGui::PushStyleColor(ImGuiCol_Text, ImVec4{1, 0.4f, 0.3f, 1});
       text_wrapped_at_spaces(ui.open_error);
@@ -366,9 +370,24 @@ std::string review_progress_line(const Session::ReviewProgress& p) {
          counted(p.suspects_left, "suspect pair") + " left";
 }
 
+bool shortcuts_may_act() {
+  return !ImGui::GetIO().WantTextInput &&
+         !ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId | ImGuiPopupFlags_AnyPopupLevel);
+}
+
+void keep_keyboard_after_enter(bool entered) {
+  if (entered) ImGui::SetKeyboardFocusHere(-1);
+}
+
+void take_keyboard_if_asked(UiState& ui, UiState::Field field) {
+  if (ui.focus_field != field) return;
+  ImGui::SetKeyboardFocusHere();
+  ui.focus_field = UiState::Field::kNone;
+}
+
 void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out) {
   ImGuiIO& io = ImGui::GetIO();
-  if (io.WantTextInput) return;
+  if (!shortcuts_may_act()) return;
   const bool ctrl = io.KeyCtrl;
   if (pressed(kKeyF1) || (!ctrl && io.InputQueueCharacters.contains('?'))) ui.show_help = true;
   if (ctrl && pressed('O')) ui.show_open = true;
@@ -377,6 +396,7 @@ void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out) {
   if (ctrl && pressed('Z')) out.undo = true;
   if (ctrl && pressed('Y')) out.redo = true;
   if (ctrl && pressed('G')) ui.show_goto = true, ui.goto_text[0] = 0;
+  if (ctrl && pressed('F')) ui.focus_field = UiState::Field::kSearch;
   if (ctrl) return;
   const std::vector<int>& order = ui.order;
   const auto pos = std::find(order.begin(), order.end(), ui.scene);

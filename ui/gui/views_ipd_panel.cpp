@@ -42,8 +42,7 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
   if (!t.no_value_reason.empty())  // two empty prediction sets are not a perfect match: say why there is no number
     text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "– (not a number): " + t.no_value_reason);
   else
-    ImGui::Text("%s over %s in %s", fmt_ipd(t.ipd()).c_str(), counted(t.pairs, "pair").c_str(),
-                counted(t.scenes, "scene").c_str());
+    text_wrapped_at_spaces(cell_totals_line(t.ipd(), t.pairs, *v.summaries));
   ImGui::Separator();
   ImGui::TextUnformatted("Cross table (lower is better)");
   const auto& pairs = s.domain_pairs();
@@ -125,7 +124,12 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
   same_line_if_fits(button_width("export figures"));
   if (ImGui::Button("export figures")) out.export_figures = true;
   if (s.read_only()) {
-    ImGui::InputTextWithHint("##saveas", "directory for the edited pairs", ui.save_as_dir, sizeof ui.save_as_dir);
+    take_keyboard_if_asked(ui, UiState::Field::kSaveAs);
+    const bool entered =
+        ImGui::InputTextWithHint("##saveas", "directory for the edited pairs; Enter saves", ui.save_as_dir,
+                                 sizeof ui.save_as_dir, ImGuiInputTextFlags_EnterReturnsTrue);
+    if (entered) out.save_as = true;
+    keep_keyboard_after_enter(entered);
     ImGui::SameLine();
     if (ImGui::Button("save as")) out.save_as = true;
   }

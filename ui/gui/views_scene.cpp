@@ -83,7 +83,7 @@ float scene_toolbar_width() {
   const ImGuiStyle& st = ImGui::GetStyle();
   const float box = ImGui::GetFrameHeight() + st.ItemInnerSpacing.x;
   float w = -st.ItemSpacing.x;
-  for (const char* c : {"GT", "predictions", "numbers", "confidence", "sync zoom"})
+  for (const char* c : {"GT", "pred.", "numbers", "conf.", "sync zoom"})
     w += box + ImGui::CalcTextSize(c).x + st.ItemSpacing.x;
   for (const char* b : {"unpair (U)", "exclude (X)", "reset to automatic"}) w += button_width(b) + st.ItemSpacing.x;
   return w;
@@ -98,12 +98,15 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
   // The toolbar wraps onto a second line in a narrow window rather than running off its edge.
   const float box = ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x;
   ImGui::Checkbox("GT", &ui.layers.gt);
-  same_line_if_fits(box + ImGui::CalcTextSize("predictions").x);
-  ImGui::Checkbox("predictions", &ui.layers.predictions);
+  // Short labels keep the toolbar on one line above the pictures (the View menu and the tooltips say them whole).
+  same_line_if_fits(box + ImGui::CalcTextSize("pred.").x);
+  ImGui::Checkbox("pred.", &ui.layers.predictions);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("predictions (red, dashed; the best-IoU one emphasised)");
   same_line_if_fits(box + ImGui::CalcTextSize("numbers").x);
   ImGui::Checkbox("numbers", &ui.layers.indices);
-  same_line_if_fits(box + ImGui::CalcTextSize("confidence").x);
-  ImGui::Checkbox("confidence", &ui.layers.confidences);
+  same_line_if_fits(box + ImGui::CalcTextSize("conf.").x);
+  ImGui::Checkbox("conf.", &ui.layers.confidences);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("the predictions' confidences");
   same_line_if_fits(box + ImGui::CalcTextSize("sync zoom").x);
   ImGui::Checkbox("sync zoom", &ui.sync_views);
   same_line_if_fits(button_width("unpair (U)"));
@@ -178,10 +181,16 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
   }
 
   // The panes' captions (domain names) and notices ("no picture ... (labels only)") sit in a strip above
-  // the pictures, never over rocks or their numbers.
+  // the pictures, never over rocks or their numbers. The pictures go side by side or stacked, whichever shows
+  // them larger in the space left (picture_panes).
   const float line = ImGui::GetTextLineHeightWithSpacing();
   const float gap = 6;
-  const float pane_w = (ImGui::GetContentRegionAvail().x - gap) * 0.5f;
+  const ImVec2 avail0 = ImGui::GetContentRegionAvail();
+  const int iw = left.width > 0 ? left.width : s.study().config.image_width;
+  const int ih = left.height > 0 ? left.height : s.study().config.image_height;
+  const float aspect = iw > 0 && ih > 0 ? float(iw) / ih : 1.6f;
+  const float item_gap = ImGui::GetStyle().ItemSpacing.y;
+  PicturePanes panes = picture_panes(avail0.x, avail0.y - 2 * item_gap, aspect, gap, line);
   const float spacer = ImGui::CalcTextSize("  ").x;
   auto notice = [](const Picture& pic) { return !pic.texture && !pic.placeholder.empty(); };
   // A notice that does not fit beside its caption goes under it, wrapped at spaces to the pane's width.
@@ -192,14 +201,15 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
     const Picture& pic = k == 0 ? left : right;
     const std::string caption = k == 0 ? s.left_domain() : s.right_domain();
     if (!notice(pic)) continue;
-    if (measure(caption) + spacer + measure(pic.placeholder) > pane_w) below = true;
-    notice_lines = std::max(notice_lines, wrap_at_spaces(pic.placeholder, pane_w, measure).size());
+    if (measure(caption) + spacer + measure(pic.placeholder) > panes.pane_w) below = true;
+    notice_lines = std::max(notice_lines, wrap_at_spaces(pic.placeholder, panes.pane_w, measure).size());
   }
   const float strip = below ? (1 + notice_lines) * line : line;
-  const ImVec2 strip0 = ImGui::GetCursorScreenPos();
-  for (int k = 0; k < 2; ++k) {
+  if (strip > line) panes = picture_panes(avail0.x, avail0.y - 2 * item_gap, aspect, gap, strip);
+  const float pane_w = panes.pane_w;
+  // One pane's caption strip at `at`.
+  auto draw_strip = [&](int k, ImVec2 at) {
     const Picture& pic = k == 0 ? left : right;
-    const ImVec2 at{strip0.x + k * (pane_w + gap), strip0.y};
     ImDrawList* sl = ImGui::GetWindowDrawList();
     sl->PushClipRect(at, {at.x + pane_w, at.y + strip}, true);
     const std::string caption = k == 0 ? s.left_domain() : s.right_domain();
@@ -212,10 +222,14 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
         sl->AddText({at.x, y}, IM_COL32(255, 200, 120, 255), l.c_str()), y += line;
     }
     sl->PopClipRect();
+  };
+  if (!panes.stacked) {
+    const ImVec2 strip0 = ImGui::GetCursorScreenPos();
+    for (int k = 0; k < 2; ++k) draw_strip(k, {strip0.x + k * (pane_w + gap), strip0.y});
+    ImGui::Dummy({2 * pane_w + gap, strip - item_gap});
   }
-  ImGui::Dummy({2 * pane_w + gap, strip - ImGui::GetStyle().ItemSpacing.y});
-  const ImVec2 avail = ImGui::GetContentRegionAvail();
-  const ImVec2 size{pane_w, std::max(50.0f, avail.y)};
+  // As tall as the fitted picture, so it sits right under its caption (no band between them in the focus view).
+  const ImVec2 size{pane_w, std::max(50.0f, std::min(panes.pane_h, std::ceil(panes.picture_h)))};
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   Placement placed[2];
@@ -223,6 +237,10 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
   ImVec2 origin[2];
   for (int k = 0; k < 2; ++k) {
     const Side side = k == 0 ? Side::kA : Side::kB;
+    if (panes.stacked) {
+      draw_strip(k, ImGui::GetCursorScreenPos());
+      ImGui::Dummy({pane_w, strip - item_gap});
+    }
     const ImVec2 p0 = ImGui::GetCursorScreenPos();
     origin[k] = p0;
     ImGui::InvisibleButton(k == 0 ? "##left" : "##right", size);
@@ -239,14 +257,19 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
     const int hit = draw_side(dl, p0, size, view, in, ui.layers, mouse);
     in.caption = caption, in.placeholder = placeholder;
     placed[k] = place(p0, size, in.image_w, in.image_h, view);
+    // The picture's part on screen (clipped to its pane when zoomed in), for --frame-stats' picture_px.
+    ui.picture_px[k] = {std::max(0.0f, std::min(placed[k].origin.x + placed[k].size.x, p0.x + size.x) -
+                                           std::max(placed[k].origin.x, p0.x)),
+                        std::max(0.0f, std::min(placed[k].origin.y + placed[k].size.y, p0.y + size.y) -
+                                           std::max(placed[k].origin.y, p0.y))};
     int& hover = k == 0 ? ui.hover_left : ui.hover_right;
     hover = hovered_area ? hit : -1;
     if (hovered_area) {
       const CanvasView before = view;
       const float wheel = ImGui::GetIO().MouseWheel;
       if (wheel != 0) zoom_at(view, std::pow(1.2f, wheel), mouse, p0, size, in.image_w, in.image_h);
-      if (!ImGui::GetIO().WantTextInput && ImGui::IsKeyPressed('F', false)) view = CanvasView{};
-      if (!ImGui::GetIO().WantTextInput && ImGui::IsKeyPressed('1', false) && in.image_w > 0) {
+      if (shortcuts_may_act() && ImGui::IsKeyPressed('F', false) && !ImGui::GetIO().KeyCtrl) view = CanvasView{};
+      if (shortcuts_may_act() && ImGui::IsKeyPressed('1', false) && in.image_w > 0) {
         const float fit_w = place(p0, size, in.image_w, in.image_h, CanvasView{}).size.x;
         zoom_at(view, in.image_w / fit_w / view.zoom, mouse, p0, size, in.image_w, in.image_h);
       }
@@ -298,7 +321,7 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
         ImGui::EndTooltip();
       }
     }
-    if (k == 0) ImGui::SameLine(0, gap);
+    if (k == 0 && !panes.stacked) ImGui::SameLine(0, gap);
   }
   // Lines across the panes: suspect pairs, and the replayed hypothesis' sample (partners in order).
   const ImVec2 clip0 = origin[0], clip1{origin[1].x + size.x, origin[1].y + size.y};

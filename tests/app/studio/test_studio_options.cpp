@@ -32,5 +32,33 @@ TEST(StudioOptions, NameTheBadField) {
   }
 }
 
+TEST(StudioOptions, SizeTakesWidthByHeightOrTheWidthAlone) {
+  int w = 1600, h = 900;
+  EXPECT_EQ(parse_window_size("1280x720", &w, &h), "");
+  EXPECT_EQ(w, 1280);
+  EXPECT_EQ(h, 720);
+  EXPECT_EQ(parse_window_size("1920X1080", &w, &h), "");
+  EXPECT_EQ(w, 1920);
+  EXPECT_EQ(h, 1080);
+  EXPECT_EQ(parse_window_size("1000", &w, &h), "");  // the width alone keeps the height
+  EXPECT_EQ(w, 1000);
+  EXPECT_EQ(h, 1080);
+  EXPECT_EQ(parse_window_size("320x240", &w, &h), "");  // the smallest window
+  EXPECT_EQ(w, 320);
+  EXPECT_EQ(h, 240);
+  const std::string pair_rule =
+      "--size: expected WIDTHxHEIGHT with a width from 320 to 10000 and a height from 240 to 10000 (e.g. 1280x720), "
+      "got ";
+  EXPECT_EQ(parse_window_size("1280x200", &w, &h), pair_rule + "'1280x200'");
+  EXPECT_EQ(parse_window_size("319x240", &w, &h), pair_rule + "'319x240'");
+  EXPECT_EQ(parse_window_size("1280x", &w, &h), pair_rule + "'1280x'");
+  EXPECT_EQ(parse_window_size("1280x720x2", &w, &h), pair_rule + "'1280x720x2'");
+  EXPECT_EQ(parse_window_size("1280 x 720", &w, &h), pair_rule + "'1280 x 720'");
+  EXPECT_EQ(parse_window_size("12.5", &w, &h),
+            "--size: expected a width from 320 to 10000, or WIDTHxHEIGHT (e.g. 1280x720), got '12.5'");
+  EXPECT_EQ(w, 320);  // a refused size changes nothing
+  EXPECT_EQ(h, 240);
+}
+
 }  // namespace
 }  // namespace ipd::studio

@@ -23,7 +23,7 @@ void write_tiny_study(const test::TempDir& d, const std::string& yaml = "") {
   test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
   test::write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
   test::write_text(d / "real/labels/only_real.txt", "0 0.5 0.5 0.1 0.1\n");
-  if (!yaml.empty()) test::write_text(d / "study.yaml", yaml);
+  test::write_text(d / "study.yaml", yaml + "image_size: [1000, 1000]\n");  // square pictures, said so
 }
 
 CrossTable table_of(const std::string& root, RegistrationMethod method = RegistrationMethod::kConsensus) {

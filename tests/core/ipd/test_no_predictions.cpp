@@ -23,7 +23,7 @@ void write_study(const test::TempDir& d, const std::string& yaml) {
   test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
   test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
   test::write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
-  test::write_text(d / "study.yaml", yaml);
+  test::write_text(d / "study.yaml", yaml + "image_size: [1000, 1000]\n");
 }
 
 CrossTable table_of(const std::string& root) { return compute_cross_table(load_labels(open_study(root)), {}); }
@@ -201,6 +201,22 @@ TEST(NoPredictions, CompareNamesTheDomainWithoutPredictions) {
   const auto r = test::run_ipd("compare " + d / "s" + " --model det-real --ref real --a principled --b hapke");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("model 'det-real' has no predictions for hapke\n"), std::string::npos) << r.err;
+}
+
+// A model without a predictions folder for one domain: its cells there are not a number, marked and
+// footnoted under ipd table (never a bare "n/a" left unexplained).
+TEST(NoPredictions, ACellOfAModelWithoutPredictionsForADomainIsFootnoted) {
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd("demo " + d / "s" + " --labels-only --scenes 2 --rocks 8").exit_code, 0);
+  std::filesystem::remove_all(d / "s/hapke/predictions/det-real");
+  const auto r = test::run_ipd("table " + d / "s" + " --bootstrap 0");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("n/a"), std::string::npos) << r.out;
+  const size_t row = r.out.find("\ndet-real (real)");
+  ASSERT_NE(row, std::string::npos) << r.out;
+  const std::string line = r.out.substr(row + 1, r.out.find('\n', row + 1) - row - 1);
+  EXPECT_NE(line.find("–¹"), std::string::npos) << line;
+  EXPECT_NE(r.out.find("\n¹ no predictions of det-real for hapke\n"), std::string::npos) << r.out;
 }
 }  // namespace
 }  // namespace ipd

@@ -2,10 +2,12 @@
 // pairs and report problems through it, so they can't disagree.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/ipd/study_pipeline.h"
 #include "core/session/session.h"
+#include "core/util/atomic_file.h"
 #include "tests/support/test_support.h"
 
 namespace ipd {
@@ -20,6 +22,7 @@ void write_study(const test::TempDir& d) {
   test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
   test::write_text(d / "real/labels/only_real.txt", "0 0.5 0.5 0.1 0.1\n");
   test::write_text(d / "pairs/synth__real/s1.json", R"({"pairs": [[1, 0]]})");
+  test::write_text(d / "study.yaml", "image_size: [1000, 1000]\n");  // square pictures, said so
 }
 
 TEST(StudyPipeline, FixedScenesAreRegisteredOnlyWhenAsked) {
@@ -54,7 +57,7 @@ TEST(StudyPipeline, FixedScenesAreRegisteredOnlyWhenAsked) {
 // that have it, not one per pair; a scene only one domain has is its own problem.
 TEST(StudyPipeline, AMissingSceneIsOneProblemOverItsDomainPairs) {
   test::TempDir d;
-  test::write_text(d / "study.yaml", "domains: [real, principled, hapke]\n");
+  test::write_text(d / "study.yaml", "domains: [real, principled, hapke]\nimage_size: [1000, 1000]\n");
   for (const std::string dom : {"real", "principled", "hapke"})
     test::write_text(d / (dom + "/labels/s1.txt"), "0 0.2 0.2 0.1 0.1\n");
   test::write_text(d / "real/labels/s2.txt", "0 0.2 0.2 0.1 0.1\n");
@@ -173,6 +176,34 @@ TEST(StudyPipeline, TheSessionListsSkippedLinesAndMissingPredictions) {
   EXPECT_EQ(problems[2].to_string(), "model 'det' has no predictions for domain 'synth' (expected " +
                                          d / "synth/predictions/det" + "/): its cells are empty");
   EXPECT_EQ(problems[2].domain, "synth");
+}
+
+// A labels-only study whose study.yaml gives no image_size registers its scenes as square pictures, which can
+// change its pairs: ipd table says so once (not once per scene or domain pair) and the studio lists it once.
+TEST(StudyPipeline, ALabelsOnlyStudyWithoutImageSizeIsWarnedOnce) {
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd("demo " + d / "s" + " --labels-only --scenes 3 --rocks 8").exit_code, 0);
+  const std::string with_size = read_file(d / "s/study.yaml");
+  ASSERT_NE(with_size.find("image_size: [960, 600]\n"), std::string::npos) << with_size;
+  std::string without = with_size;
+  without.erase(without.find("image_size: [960, 600]\n"), std::string("image_size: [960, 600]\n").size());
+  test::write_text(d / "s/study.yaml", without);
+  const std::string warning = "warning: " + d / "s/study.yaml" +
+                              ": no image_size and no pictures: registration takes the pictures as square (aspect "
+                              "1), so its angles and distances are not the pictures' pixels and the pairs can "
+                              "differ from those of the real aspect; add 'image_size: [WIDTH, HEIGHT]' (the "
+                              "pictures' size in pixels), as ipd register --image-size takes it\n";
+  const auto r = test::run_ipd("table " + d / "s" + " --bootstrap 0");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, warning);  // once, for three domain pairs of three scenes
+  const Session session(load_labels(open_study(d / "s")));
+  const auto& problems = session.problems();
+  EXPECT_EQ(std::count_if(problems.begin(), problems.end(),
+                          [](const Problem& p) { return p.message.rfind("no image_size", 0) == 0; }),
+            1);
+  // With the size back, no word.
+  test::write_text(d / "s/study.yaml", with_size);
+  EXPECT_EQ(test::run_ipd("table " + d / "s" + " --bootstrap 0").err, "");
 }
 
 }  // namespace

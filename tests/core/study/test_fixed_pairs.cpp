@@ -27,6 +27,7 @@ void write_study(const test::TempDir& d, const std::string& real, const std::str
   test::write_text(d / "synth/labels/s1.txt", synth);
   test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
   test::write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
+  test::write_text(d / "study.yaml", "image_size: [1000, 1000]\n");  // square pictures, said so
 }
 
 CrossTable table_of(const std::string& root) { return compute_cross_table(load_labels(open_study(root)), {}); }

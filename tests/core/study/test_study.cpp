@@ -19,6 +19,7 @@ namespace {
 void write_three_domain_study(const test::TempDir& d) {
   test::write_text(d / "study.yaml",
                    "domains: [real, principled, hapke]\n"
+                   "image_size: [1000, 1000]\n"
                    "models:\n  det-real: {trained_on: real}\n  det-principled: {trained_on: principled}\n"
                    "  det-hapke: {trained_on: hapke}\n");
   for (const std::string dom : {"real", "principled", "hapke"}) {

@@ -184,6 +184,23 @@ TEST(FigurePrint, TheNoPictureNoticeCoversNoLabel) {
   }
 }
 
+// The notice goes where it crosses no rock: the top middle when it is clear, else the bottom middle, else the
+// first clear corner; panel 100 x 60 pt, notice 30 x 6 pt, 2 pt inside the edge.
+TEST(FigurePrint, TheNoPictureNoticeIsPlacedOffTheRocks) {
+  const ui::PtRect panel{0, 0, 100, 60};
+  const ui::Pt size{30, 6};
+  auto at = [&](const std::vector<ui::PtRect>& boxes) {
+    const ui::PtRect r = ui::place_notice(panel, size, boxes, 2);
+    return fmt::format("{} {} {} {}", r.x0, r.y0, r.x1, r.y1);
+  };
+  EXPECT_EQ(at({}), "35 2 65 8");                                // (100 - 30) / 2 = 35, 2 below the top
+  EXPECT_EQ(at({{30, 0, 70, 20}}), "35 52 65 58");               // a rock at the top middle: the bottom middle
+  EXPECT_EQ(at({{33, 0, 67, 60}}), "2 2 32 8");                  // a column of rocks in the middle: top left
+  EXPECT_EQ(at({{33, 0, 67, 60}, {0, 0, 32, 9}}), "68 2 98 8");  // and one at top left: top right
+  // Rocks everywhere: the place that covers the least of them (top left: 2 x 6 of the wide box only).
+  EXPECT_EQ(at({{30, 0, 100, 60}, {0, 9, 30, 60}}), "2 2 32 8");
+}
+
 TEST(FigurePrint, FootnotesSuggestOnlyWhatHelps) {
   test::TempDir d;
   DemoStudyOptions demo;

@@ -168,6 +168,31 @@ TEST(FigureStats, AnIpdAxisStartsAtZero) {
   EXPECT_GT(zero_at(padded), zero_at(fig) + 0.5);
 }
 
+// An IPD axis starts at 0 even when every value lies far from it (a breakdown's bins at 0.22 to 0.28): the
+// "0.00" tick sits at the axis' left end (row labels' edge + 0.6 font sizes) and the estimates lie in the
+// right part of the axis, as lengths from 0.
+TEST(FigureStats, AnIpdAxisStartsAtZeroWhenTheDataLieFarFromIt) {
+  ui::DotWhiskerChart ch;
+  ch.title = "t", ch.axis_label = "IPD";
+  ch.rows = {{"a", 0.25, 0.22, 0.28, ""}, {"b", 0.24, 0.23, 0.26, ""}};
+  ch.non_negative = true;
+  const ui::FontMetrics metrics(ui::default_font_file());
+  ui::FigureOptions o;
+  ui::DisplayList fig(metrics);
+  ui::draw_dot_whisker_chart(fig, ch, o);
+  double label_right = 0, zero_x = -1, tick_020_x = -1;
+  for (const auto& t : fig.texts()) {
+    if (t.text == "a" || t.text == "b") label_right = std::max(label_right, t.box.x1);
+    if (t.text == "0.00" || t.text == "0.0") zero_x = (t.box.x0 + t.box.x1) / 2;
+    if (t.text == "0.20" || t.text == "0.2") tick_020_x = (t.box.x0 + t.box.x1) / 2;
+  }
+  EXPECT_NEAR(zero_x, label_right + 0.6 * 8, 0.01) << ::testing::PrintToString(chart_texts(fig));
+  ASSERT_GT(tick_020_x, 0) << ::testing::PrintToString(chart_texts(fig));
+  // The axis runs from 0 to 0.28 + 5% of 0.28 = 0.294 (or its last tick): 0.20 lies past two thirds of it.
+  const double axis_w = tick_020_x - zero_x;
+  EXPECT_GT(axis_w, 0.5 * (o.width_pt() - zero_x));
+}
+
 // Padding never adds a whole tick step: ΔIPD from -0.0955 to 0 padded by 5% reaches -0.1003, and the axis
 // ran to -0.2 (ticks -0.2, -0.1, 0.0) in a single column; now it ends just past the tick -0.1.
 TEST(FigureStats, AxisPaddingDoesNotAddATickStep) {

@@ -13,6 +13,28 @@
 namespace ipd::ui {
 namespace {
 
+// The pictures stack when that shows them larger: a centre 880 x 760 px with 16:10 pictures (gap 6, caption
+// lines 20): side by side each pane is 437 x 740, the picture 437 x 273.1 (119,355 px²); stacked each pane is
+// 880 x ((760 - 6) / 2 - 20 = 357), the picture 571.2 x 357 (203,918 px²). A 1584 px wide focus view puts them
+// side by side: panes 789 x 740, pictures 789 x 493.1 (389,076 px², against the same 203,918 stacked).
+TEST(PicturePanes, TheLargerOfSideBySideAndStacked) {
+  const PicturePanes centre = picture_panes(880, 760, 1.6f, 6, 20);
+  EXPECT_TRUE(centre.stacked);
+  EXPECT_FLOAT_EQ(centre.pane_w, 880);
+  EXPECT_FLOAT_EQ(centre.pane_h, 357);
+  EXPECT_FLOAT_EQ(centre.picture_w, 571.2f);
+  EXPECT_FLOAT_EQ(centre.picture_h, 357);
+  const PicturePanes focus = picture_panes(1584, 760, 1.6f, 6, 20);
+  EXPECT_FALSE(focus.stacked);
+  EXPECT_FLOAT_EQ(focus.pane_w, 789);
+  EXPECT_FLOAT_EQ(focus.pane_h, 740);
+  EXPECT_FLOAT_EQ(focus.picture_w, 789);
+  EXPECT_FLOAT_EQ(focus.picture_h, 493.125f);
+  const PicturePanes tiny = picture_panes(10, 10, 1.6f, 6, 20);  // nothing fits: empty, never negative
+  EXPECT_GE(tiny.picture_w, 0);
+  EXPECT_GE(tiny.picture_h, 0);
+}
+
 TEST(StudioColumns, WideWindowKeepsPreferredSideWidths) {
   // 1600 - 2*6 = 1588 usable; 380 + 400 + max(320, 0.45 * 1588 = 714.6) = 1494.6 fits.
   const StudioColumns c = studio_columns(1600, 380, 400, 6);
@@ -363,6 +385,19 @@ TEST(EmptyHistogram, SaysWhyThereIsNoBar) {
   EXPECT_EQ(empty_histogram_text({plain, paired}),
             "no per-scene IPD: no predictions at or above 0.98 in real and principled");
   EXPECT_EQ(empty_histogram_text({plain}), "no scene with an IPD");
+}
+
+// The panel's count of scenes and the histogram's agree: both count the scenes with pairs (a scene whose rocks
+// all went unpaired has no IPD and no bar), and the panel names the rest.
+TEST(IpdPanel, CountsTheScenesWithPairsAsTheHistogramDoes) {
+  SceneSummary a, b, none;
+  a.pairs = 40, b.pairs = 29;
+  EXPECT_EQ(cell_totals_line(0.0295, 69, {a, none, b}),
+            "0.0295 over 69 pairs in 2 scenes with pairs (1 scene without pairs)");
+  EXPECT_EQ(cell_totals_line(0.0295, 69, {a, b}), "0.0295 over 69 pairs in 2 scenes with pairs");
+  EXPECT_EQ(histogram_scenes_text(2), "2 scenes with pairs");
+  EXPECT_EQ(cell_totals_line(std::nan(""), 0, {none}),
+            "n/a over 0 pairs in 0 scenes with pairs (1 scene without pairs)");
 }
 
 }  // namespace
