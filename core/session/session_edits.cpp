@@ -86,19 +86,22 @@ void run_save_job(const SaveJob& job, const WriteStepHook& hook) {
   check_beneath(job.root, rel);
   for (const auto& p : job.also_remove) check_beneath(job.root, relative_to(job.root, p));
   check_expected(job);
+  // Checked again right before the rename (or the removal): an edit by an editor, a script or a sync client
+  // that lands while the temp file is written and synced (seconds on a slow disk) is a conflict, not lost.
+  const Recheck recheck = [&] { check_expected(job); };
   // `path` is the name order read_fixed_pairs tries first: while it exists, the other one doesn't count.
   if (job.contents) {
-    write_file_beneath(job.root, rel, *job.contents, hook);
+    write_file_beneath(job.root, rel, *job.contents, hook, recheck);
     for (const auto& p : job.also_remove) {
-      remove_file_beneath(job.root, relative_to(job.root, p));
+      remove_file_beneath(job.root, relative_to(job.root, p), {}, recheck);
       if (hook) hook("other removed");
     }
   } else {
     for (const auto& p : job.also_remove) {
-      remove_file_beneath(job.root, relative_to(job.root, p));
+      remove_file_beneath(job.root, relative_to(job.root, p), {}, recheck);
       if (hook) hook("other removed");
     }
-    remove_file_beneath(job.root, rel);
+    remove_file_beneath(job.root, rel, {}, recheck);
     if (hook) hook("removed");
   }
 }
