@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -114,6 +115,7 @@ class StudioApp {
   size_t replay_next_ = 0;
   int replay_wait_ = 0;
   std::string screenshot_now_;
+  std::future<void> recent_write_;  // the recent-studies list being written (waited for before the next)
 };
 
 }  // namespace ipd::studio
