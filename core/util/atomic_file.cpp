@@ -192,7 +192,7 @@ bool is_stale_temp_name(const std::string& name) {
   return pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;  // the writer is gone
 }
 
-int remove_stale_temp_files_at(int dir_fd) {
+int remove_stale_temp_files_at(int dir_fd, bool links_too) {
   const int fd = ::dup(dir_fd);
   if (fd < 0) return 0;
   DIR* d = ::fdopendir(fd);
@@ -209,7 +209,9 @@ int remove_stale_temp_files_at(int dir_fd) {
   for (const auto& name : stale) {
     // Our writers make regular files: a link (or anything else) of that name is not ours, and stays.
     struct stat st {};
-    if (::fstatat(dir_fd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0 || !S_ISREG(st.st_mode)) continue;
+    if (::fstatat(dir_fd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0 ||
+        !(S_ISREG(st.st_mode) || (links_too && S_ISLNK(st.st_mode))))
+      continue;
     if (::unlinkat(dir_fd, name.c_str(), 0) == 0) ++removed;  // a link swapped in meanwhile goes, never its target
   }
   return removed;

@@ -215,6 +215,6 @@ bool CacheDir::write(const std::string& rel, const std::string& contents,
   return true;
 }
 
-int CacheDir::remove_stale_temp_files() const { return remove_stale_temp_files_at(fd_); }
+int CacheDir::remove_stale_temp_files() const { return remove_stale_temp_files_at(fd_, true); }
 
 }  // namespace ipd

@@ -131,6 +131,39 @@ void write_all(int fd, const std::string& contents, const std::string& shown) {
   if (::fsync(fd) != 0) throw IoError(shown + ": cannot write: " + errno_text(errno));
 }
 
+// Reads the open regular file `fd` whole (at most `max_bytes`), named `shown` in errors.
+std::string read_open_file(int fd, const std::string& shown, size_t max_bytes) {
+  std::string out;
+  char buf[65536];
+  for (;;) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw IoError(shown + ": cannot read: " + errno_text(errno));
+    }
+    if (n == 0) break;
+    if (out.size() + static_cast<size_t>(n) > max_bytes)
+      throw IoError(fmt::format("{}: grew beyond the {} MB limit for this kind of file while being read", shown,
+                                max_bytes >> 20));
+    out.append(buf, static_cast<size_t>(n));
+  }
+  return out;
+}
+
+// Runs `recheck` with what `name` in the open folder `dir` holds now (nullopt: missing); a link or anything
+// but a regular file is not read, and not checked: the rename replaces it, never following it.
+void run_recheck(int dir, const std::string& name, const std::string& shown, const Recheck& recheck) {
+  const int fd = ::openat(dir, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT) recheck(std::nullopt);
+    return;
+  }
+  const Fd file(fd);
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return;
+  recheck(read_open_file(fd, shown, kMaxReadBytes));
+}
+
 }  // namespace
 
 void write_file_beneath(const std::string& root, const std::string& relative, const std::string& contents,
@@ -163,7 +196,7 @@ void write_file_beneath(const std::string& root, const std::string& relative, co
   if (hook) hook("temp written");
   if (recheck) {
     try {
-      recheck();
+      run_recheck(dir.get(), name, shown, recheck);
     } catch (...) {
       ::unlinkat(dir.get(), tmp.c_str(), 0);
       throw;
@@ -193,7 +226,7 @@ bool remove_file_beneath(const std::string& root, const std::string& relative, c
   if (type == S_IFLNK) throw IoError(link_refused(shown, "deleting"));
   if (type == S_IFDIR) throw IoError(shown + ": is a folder, expected a file; not removed");
   if (hook) hook("checked");
-  if (recheck) recheck();
+  if (recheck) run_recheck(dir.get(), name, shown, recheck);
   // unlinkat removes a name in this folder; should a link have been swapped in, the link goes, not its target.
   if (::unlinkat(dir.get(), name.c_str(), 0) != 0) {
     if (errno == ENOENT) return false;
@@ -234,21 +267,7 @@ std::optional<std::string> read_file_beneath(const std::string& root, const std:
     // Rounded up, so a file just over the limit never reads as equal to it (as read_file says it).
     throw IoError(fmt::format("{}: is {:.1f} MB, larger than the {:g} MB limit for this kind of file", shown,
                               std::ceil(st.st_size * 10 / 1048576.0) / 10, max_bytes / 1048576.0));
-  std::string out;
-  char buf[65536];
-  for (;;) {
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throw IoError(shown + ": cannot read: " + errno_text(errno));
-    }
-    if (n == 0) break;
-    if (out.size() + static_cast<size_t>(n) > max_bytes)
-      throw IoError(fmt::format("{}: grew beyond the {} MB limit for this kind of file while being read", shown,
-                                max_bytes >> 20));
-    out.append(buf, static_cast<size_t>(n));
-  }
-  return out;
+  return read_open_file(fd, shown, max_bytes);
 }
 
 int remove_stale_temp_files_beneath(const std::string& root, const std::string& relative, const WriteStepHook& hook) {

@@ -20,9 +20,11 @@ namespace ipd {
 // creating missing folders. Refuses with IoError "PATH: is a symbolic link; ..." when a folder below root
 // or the file itself is one. `hook` steps: "folder opened", "checked", "temp written", "renamed",
 // "directory synced". `recheck`, when given, runs after the temp file is written and right before the
-// rename: it throws to refuse the replacement (the temp file is removed, the file left as it is), so a check
-// of what the file holds is made as late as it can be, not before a slow write.
-using Recheck = std::function<void()>;
+// rename with what the file holds now, read through the folder already opened (nullopt: missing): it throws to
+// refuse the replacement (the temp file is removed, the file left as it is), so a check of what the file holds
+// is made as late as it can be, not before a slow write. A link or other non-file found there is not read: it
+// is replaced, never followed.
+using Recheck = std::function<void(const std::optional<std::string>& now)>;
 void write_file_beneath(const std::string& root, const std::string& relative, const std::string& contents,
                         const WriteStepHook& hook = {}, const Recheck& recheck = {});
 
