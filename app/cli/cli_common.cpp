@@ -54,7 +54,7 @@ bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_li
   // A file that can't be read (dangling link, no permission, a FIFO) is never skipped: its rocks would
   // silently count as none.
   const bool file_problems =
-      std::any_of(errors.begin(), errors.end(), [](const LabelError& e) { return e.malformed_lines() == 0; });
+      std::any_of(errors.begin(), errors.end(), [](const LabelError& e) { return e.unusable_file(); });
   long lines = 0;
   for (const auto& e : errors) {
     lines += e.malformed_lines();

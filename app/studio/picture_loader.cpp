@@ -11,15 +11,6 @@ namespace ipd::studio {
 
 namespace {
 
-// cv::imread, with a picture over OpenCV's own pixel limit (cv::Exception) read as undecodable.
-cv::Mat decode(const std::string& path, int flags) {
-  try {
-    return cv::imread(path, flags);
-  } catch (const cv::Exception&) {
-    return cv::Mat();
-  }
-}
-
 bool is_jpeg(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
@@ -53,15 +44,15 @@ PictureLoader::~PictureLoader() {
   for (auto& t : threads_) t.join();
 }
 
-void PictureLoader::request(const std::string& key, const std::string& path, bool urgent) {
+void PictureLoader::request(const std::string& key, const std::string& path, bool urgent, const std::string& root) {
   {
     std::lock_guard<std::mutex> l(mu_);
     queue_.erase(std::remove_if(queue_.begin(), queue_.end(), [&](const Job& q) { return q.key == key; }),
                  queue_.end());
     if (urgent)
-      queue_.push_front({key, path, true});
+      queue_.push_front({key, path, root, true});
     else
-      queue_.push_back({key, path, false});
+      queue_.push_back({key, path, root, false});
   }
   cv_.notify_one();
 }
@@ -95,17 +86,23 @@ void PictureLoader::run() {
     d.key = job.key;
     d.full = true;
     d.path = job.path;
+    PictureBytes file;
+    if (!job.path.empty()) {
+      const std::filesystem::path p(job.path);
+      // Read once, beneath the study (or the picture's own folder): never through a link, never waiting on a FIFO.
+      file = read_study_picture_bytes(job.root.empty() ? p.parent_path().string() : job.root, job.path);
+    }
     std::error_code ec;
     if (job.path.empty()) {
       d.error = "no picture for this scene (labels only)";
     } else if (!std::filesystem::exists(job.path, ec) && !std::filesystem::is_symlink(job.path, ec)) {
       d.error = "missing picture: " + job.path;
-    } else if (const std::string problem = picture_problem(job.path); !problem.empty()) {
-      d.error = problem;  // a link out of the study, a FIFO that would block this thread for good, too many pixels
+    } else if (!file.problem.empty()) {
+      d.error = file.problem;  // a link out of the study, a FIFO that would block this thread for good, too many pixels
     } else {
       // JPEG decodes at 1/4 scale directly (DCT scaling); other formats are reduced after decoding.
       if (job.urgent && is_jpeg(job.path)) {
-        cv::Mat small = decode(job.path, cv::IMREAD_REDUCED_COLOR_4);
+        cv::Mat small = decode_picture(file.bytes, cv::IMREAD_REDUCED_COLOR_4);
         if (!small.empty()) {
           DecodedPicture p{job.key, {}, small.cols * 4, small.rows * 4, false, {}, job.path};
           cv::cvtColor(small, small, cv::COLOR_BGR2RGBA);
@@ -113,7 +110,7 @@ void PictureLoader::run() {
           deliver(std::move(p));
         }
       }
-      cv::Mat bgr = decode(job.path, cv::IMREAD_COLOR);
+      cv::Mat bgr = decode_picture(file.bytes, cv::IMREAD_COLOR);
       if (bgr.empty()) {
         d.error = "cannot decode " + job.path;
       } else {

@@ -25,7 +25,9 @@ class PictureLoader {
   explicit PictureLoader(int threads = 2, int max_width = 2048);
   ~PictureLoader();
   // Urgent requests go first and get a reduced preview; a key already queued moves to the front.
-  void request(const std::string& key, const std::string& path, bool urgent);
+  // `root`: the study the picture belongs to, which it is read beneath (picture_codec.h: read_study_picture);
+  // empty: the picture's own folder.
+  void request(const std::string& key, const std::string& path, bool urgent, const std::string& root = "");
   std::vector<DecodedPicture> take_ready();
   bool idle();
 
@@ -35,7 +37,7 @@ class PictureLoader {
   std::mutex mu_;
   std::condition_variable cv_;
   struct Job {
-    std::string key, path;
+    std::string key, path, root;
     bool urgent;
   };
   std::deque<Job> queue_;

@@ -1,5 +1,6 @@
 #include "app/studio/studio_app.h"
 
+#include "app/studio/recent_studies.h"
 #include "app/studio/study_folder.h"
 
 #include "app/studio/studio_gl_textures.h"
@@ -16,7 +17,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 
 #include "core/util/atomic_file.h"
 #include "core/util/cache_signer.h"
@@ -28,14 +28,14 @@ namespace ipd::studio {
 
 namespace {
 
-fs::path cache_home() { return user_cache_root(); }
+// The user cache when it can be used safely (usable_user_cache_root), else "" and why in *why.
+std::string cache_home(std::string* why = nullptr) { return usable_user_cache_root(why); }
 
-std::vector<std::string> read_recent() {
-  std::vector<std::string> out;
-  std::ifstream in(cache_home() / "recent.txt");
-  for (std::string line; std::getline(in, line) && out.size() < 10;)
-    if (!line.empty()) out.push_back(line);
-  return out;
+// Where the demo study goes without a user cache: a fresh private folder (mkdtemp), never a shared name.
+std::string private_demo_folder() {
+  std::string templ = (fs::temp_directory_path() / "ipd-studio-demo-XXXXXX").string();
+  if (!::mkdtemp(templ.data())) return "";
+  return (fs::path(templ) / "demo-study").string();
 }
 
 }  // namespace
@@ -44,8 +44,11 @@ StudioApp::StudioApp(StudioOptions o) : o_(std::move(o)), textures_(gl_textures(
   o_.check();
   if (!o_.replay.empty()) replay_ = parse_replay(read_file(o_.replay), o_.replay);
   const bool demo = o_.study.empty();
-  if (demo) o_.study = (cache_home() / "demo-study").string();
-  ui_.recent = read_recent();
+  std::string no_cache;
+  const std::string cache = cache_home(&no_cache);
+  if (demo) o_.study = cache.empty() ? private_demo_folder() : (fs::path(cache) / "demo-study").string();
+  if (cache.empty()) fmt::print(stderr, "warning: {}; the recent-studies list is not kept\n", no_cache);
+  ui_.recent = read_recent_studies(cache);
   ui_.browse_dir = fs::absolute(o_.study).parent_path().string();
   worker_.submit(command::OpenStudy{o_.study, demo, {}});
 }
@@ -63,17 +66,16 @@ void StudioApp::adopt_snapshot() {
   problems_ = s.problems();
   problems_.insert(problems_.end(), picture_problems_.begin(), picture_problems_.end());
   if (first) {
-    // Remember the study among the recent ones (written by the saver thread, atomically).
-    auto& r = ui_.recent;
-    r.erase(std::remove(r.begin(), r.end(), s.study().root), r.end());
-    r.insert(r.begin(), s.study().root);
-    if (r.size() > 10) r.resize(10);
-    std::string text;
-    for (const auto& x : r) text += x + "\n";
-    SaveJob recent;  // in the user's cache, written as given (no study root to stay inside)
-    recent.path = (cache_home() / "recent.txt").string();
-    recent.contents = text;
-    worker_.saver().submit(std::move(recent));
+    // Remember the study among the recent ones, written off the UI thread. Not an edit: a list that can't be
+    // written is a warning, never an edit reported lost.
+    ui_.recent = with_recent_study(ui_.recent, s.study().root);
+    if (recent_write_.valid()) recent_write_.wait();
+    recent_write_ = std::async(std::launch::async, [list = ui_.recent] {
+      std::string why;
+      const std::string cache = cache_home(&why);
+      const std::string failed = save_recent_studies(cache, list, why);
+      if (!failed.empty() && why.empty()) fmt::print(stderr, "warning: {}\n", failed);  // no cache: said at start
+    });
     // A scripted run has no banner to read: say on stderr that its edits will not be saved, and why.
     if (s.read_only() && (!o_.replay.empty() || !o_.screenshot.empty()))
       fmt::print(stderr, "note: {}: read-only{}{}: edits stay in memory\n", s.study().root,

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -121,6 +122,7 @@ class StudioApp {
   int typed_key_ = -1;       // the key pressed last frame (an index of ImGuiIO::KeysDown)
   unsigned typed_char_ = 0;  // and the character it sends
   std::string screenshot_now_;
+  std::future<void> recent_write_;  // the recent-studies list being written (waited for before the next)
 };
 
 }  // namespace ipd::studio

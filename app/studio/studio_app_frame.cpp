@@ -39,7 +39,8 @@ std::string describe_pairs_file(const std::optional<std::string>& text) {
 ui::Picture StudioApp::picture(const std::string& domain, const std::string& stem, bool urgent, bool* full) {
   const Domain* d = snap_->session->study().domain(domain);
   const auto img = d->images.find(stem);
-  const TextureRef t = textures_.get(domain + "/" + stem, img == d->images.end() ? "" : img->second, urgent, loader_);
+  const TextureRef t = textures_.get(domain + "/" + stem, img == d->images.end() ? "" : img->second, urgent, loader_,
+                                     snap_->session->study().root);
   if (full) *full = t.full;
   return ui::Picture{t.id ? reinterpret_cast<ImTextureID>(t.id) : nullptr, t.width, t.height, t.placeholder};
 }

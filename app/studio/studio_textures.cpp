@@ -7,7 +7,8 @@ TextureCache::~TextureCache() {
     if (e.id) backend_->destroy(e.id);
 }
 
-TextureRef TextureCache::get(const std::string& key, const std::string& path, bool urgent, PictureLoader& loader) {
+TextureRef TextureCache::get(const std::string& key, const std::string& path, bool urgent, PictureLoader& loader,
+                             const std::string& root) {
   auto it = entries_.find(key);
   if (it == entries_.end()) {
     Entry e;
@@ -20,7 +21,7 @@ TextureRef TextureCache::get(const std::string& key, const std::string& path, bo
   Entry& e = it->second;
   // Ask again when a prefetched picture becomes the current one (it jumps the queue).
   if (!e.requested || (urgent && !e.urgent && !e.id && e.error.empty())) {
-    loader.request(key, path, urgent);
+    loader.request(key, path, urgent, root);
     e.requested = true;
     e.urgent = urgent;
   }

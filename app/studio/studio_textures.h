@@ -40,7 +40,8 @@ class TextureCache {
   TextureCache(const TextureCache&) = delete;
   TextureCache& operator=(const TextureCache&) = delete;
   // The texture for `key`, requesting it from `loader` when absent (path empty: labels-only scene).
-  TextureRef get(const std::string& key, const std::string& path, bool urgent, PictureLoader& loader);
+  TextureRef get(const std::string& key, const std::string& path, bool urgent, PictureLoader& loader,
+                 const std::string& root = "");
   void upload(DecodedPicture&& d);  // from PictureLoader::take_ready()
   void end_frame();                 // evicts least recently used textures over the budget
   std::size_t bytes() const { return bytes_; }

@@ -149,7 +149,7 @@ LabelFile read_labels(const std::string& path, const LabelParseOptions& options)
       missing.path = path;
       return missing;
     }
-    return parse_labels(read_file(path), path, options);
+    return parse_labels(read_file(path, kMaxLabelFileBytes), path, options);
   } catch (const IoError& e) {
     LabelFile bad;
     bad.path = path;
@@ -163,7 +163,7 @@ LabelFile read_labels(const std::string& path, const LabelParseOptions& options)
 LabelFile read_labels_beneath(const std::string& root, const std::string& relative, const LabelParseOptions& options) {
   const std::string path = (std::filesystem::path(root) / relative).string();
   try {
-    const std::optional<std::string> text = read_file_beneath(root, relative);
+    const std::optional<std::string> text = read_file_beneath(root, relative, kMaxLabelFileBytes);
     if (!text) {
       LabelFile missing;
       missing.path = path;

@@ -20,6 +20,9 @@ struct LabelError {
   int more = 0;
   std::string to_string() const;
   int malformed_lines() const { return line > 0 ? 1 : more; }
+  // The file itself can't be used (a FIFO, a link, no permission, over kMaxLabelFileBytes or kMaxBoxesPerFile):
+  // every command and ipd-studio refuse the study then, since its rocks would silently count as none.
+  bool unusable_file() const { return malformed_lines() == 0; }
 };
 constexpr int kMaxListedErrors = 50;
 // A box's sides are at least this (normalised): below, its area underflows and no IoU can pair it, not even with
@@ -29,6 +32,10 @@ inline constexpr double kMinBoxSide = 1e-6;
 // More boxes than this in one file is refused (an error naming the file): pairing and IoU tables grow with
 // the product of two images' rock counts, so 10^6-line files would run for minutes.
 constexpr size_t kMaxBoxesPerFile = 20000;
+// A label file larger than this is refused unread (its size and the limit named), as pairs files are: 20,000
+// boxes written with every digit (~60 bytes a line) are 1.2 MB, and parsing takes about 4 bytes of memory per
+// byte of file, so 16 MB bounds a file at ~64 MB where an unbounded one (a sparse 1 GiB file costs no disk) took 4 GB.
+constexpr size_t kMaxLabelFileBytes = size_t{16} << 20;
 
 struct LabelFile {
   std::string path;

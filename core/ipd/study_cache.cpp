@@ -1,12 +1,12 @@
 #include "core/ipd/study_cache.h"
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -238,6 +238,7 @@ FileStamp stamp_of(const std::string& path) {
 
 std::string parsed_study_cache_path(const std::string& study_root) {
   const fs::path dir = study_cache_dir(study_root);
+  if (dir.empty()) return "";  // no cache that can be used safely
   if (dir.filename() == ".ipd-cache") return (dir / "parsed-study.bin").string();
   // The user directory is shared by every read-only study: one file per study path.
   std::error_code ec;
@@ -262,18 +263,11 @@ struct StudyCache::Contents {
   bool filters_match = false;
 };
 
-StudyCache::StudyCache(std::string path, const std::string& study_root)
+StudyCache::StudyCache(std::string path, const std::string& study_root, const std::function<void(const char*)>& hook)
     : path_(std::move(path)), root_(study_root), contents_(std::make_unique<Contents>()) {
   stats_.state = "missing";
   if (path_.empty()) return;
-  // Mapped, not read: no 200 MB buffer to allocate, clear and copy into.
-  struct Mapping {
-    const char* data = nullptr;
-    size_t size = 0;
-    ~Mapping() {
-      if (data) ::munmap(const_cast<char*>(data), size);
-    }
-  } map;
+  std::string file;
   // Reached without following links (a study may bring a .ipd-cache whose entries point anywhere).
   const fs::path where(path_);
   const auto dir = CacheDir::open(where.parent_path().string(), false);
@@ -288,16 +282,26 @@ StudyCache::StudyCache(std::string path, const std::string& study_root)
       stats_.state = "unreadable";
       return;
     }
-    map.size = static_cast<size_t>(st.st_size);
-    void* p = map.size > 0 ? ::mmap(nullptr, map.size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0) : MAP_FAILED;
+    if (hook) hook("opened");
+    // Read, not mapped: a file shortened meanwhile reads short (and is then "truncated"), never a crash.
+    file.resize(static_cast<size_t>(st.st_size));
+    size_t done = 0;
+    bool read_error = false;
+    while (done < file.size()) {
+      const ssize_t n = ::read(fd, file.data() + done, file.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      read_error = n < 0;
+      if (n <= 0) break;
+      done += static_cast<size_t>(n);
+    }
     ::close(fd);
-    if (p == MAP_FAILED) {
-      stats_.state = map.size > 0 ? "unreadable" : "ignored: truncated";
+    if (read_error) {
+      stats_.state = "unreadable";
       return;
     }
-    map.data = static_cast<const char*>(p);
+    file.resize(done);
   }
-  const std::string_view bytes(map.data, map.size);
+  const std::string_view bytes(file);
   try {
     if (bytes.size() < kHeaderBytes || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
       throw std::runtime_error("not a parsed-study cache");

@@ -60,8 +60,12 @@ struct StudyCacheStats {
 
 class StudyCache {
  public:
-  // Reads `path` (empty: no cache; every call below then just parses). An unusable file is ignored.
-  explicit StudyCache(std::string path, const std::string& study_root);
+  // Reads `path` (empty: no cache; every call below then just parses). An unusable file is ignored. The file
+  // is read into memory through one descriptor (it is verified whole anyway), never mapped: anyone who can
+  // write the study could shorten a mapped file, and the next access would crash the program (SIGBUS).
+  // `hook` step: "opened" (after the file was opened, before it is read; tests shorten it there).
+  explicit StudyCache(std::string path, const std::string& study_root,
+                      const std::function<void(const char*)>& hook = {});
   ~StudyCache();
   StudyCache(const StudyCache&) = delete;
   StudyCache& operator=(const StudyCache&) = delete;

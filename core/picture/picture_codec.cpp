@@ -1,5 +1,9 @@
 #include "core/picture/picture_codec.h"
 
+#include <filesystem>
+#include <optional>
+#include <utility>
+
 #include "core/picture/picture_size.h"
 
 #include "core/util/contained_file.h"
@@ -10,7 +14,7 @@ namespace ipd {
 namespace {
 
 struct Codecs {
-  ReadPictureFn read = nullptr;
+  DecodePictureFn decode = nullptr;
   EncodePictureFn encode = nullptr;
 };
 
@@ -19,7 +23,7 @@ const Codecs& codecs() {
   static const Codecs c = [] {
     void* m = open_module(kPictureCodecsModule);
     Codecs out;
-    out.read = reinterpret_cast<ReadPictureFn>(module_symbol(m, kPictureCodecsModule, kReadPictureSymbol));
+    out.decode = reinterpret_cast<DecodePictureFn>(module_symbol(m, kPictureCodecsModule, kDecodePictureSymbol));
     out.encode = reinterpret_cast<EncodePictureFn>(module_symbol(m, kPictureCodecsModule, kEncodePictureSymbol));
     return out;
   }();
@@ -28,15 +32,63 @@ const Codecs& codecs() {
 
 }  // namespace
 
+namespace {
+
+// The folder a picture the user named is read beneath (its own) and its name there.
+std::pair<std::string, std::string> own_folder(const std::string& path) {
+  const std::filesystem::path p(path);
+  return {p.has_parent_path() ? p.parent_path().string() : std::string("."), p.filename().string()};
+}
+
+// The picture's bytes and "", or "" and why they can't be read.
+std::pair<std::string, std::string> picture_file(const std::string& root, const std::optional<std::string>& rel,
+                                                 const std::string& path, const WriteStepHook& hook) {
+  if (!rel) return {"", path + ": is not inside " + root};
+  try {
+    std::optional<std::string> bytes = read_file_beneath(root, *rel, kMaxPictureBytes, hook);
+    if (!bytes) return {"", path + ": no such file"};
+    if (std::string why = picture_size_problem_of(path, *bytes); !why.empty()) return {"", why};
+    return {std::move(*bytes), ""};
+  } catch (const IoError& e) {
+    return {"", e.what()};  // a link, a FIFO (never waited on), a folder, too large
+  }
+}
+
+}  // namespace
+
+PictureBytes read_study_picture_bytes(const std::string& root, const std::string& path, const WriteStepHook& hook) {
+  auto [bytes, problem] = picture_file(root, path_below(root, path), path, hook);
+  return {std::move(bytes), std::move(problem)};
+}
+
+cv::Mat decode_picture(const std::string& bytes, int flags) {
+  cv::Mat out;
+  codecs().decode(&bytes, flags, &out);
+  return out;
+}
+
+PictureRead read_study_picture(const std::string& root, const std::string& path, int flags, const WriteStepHook& hook) {
+  PictureRead out;
+  auto [bytes, problem] = picture_file(root, path_below(root, path), path, hook);
+  if (!problem.empty()) {
+    out.problem = std::move(problem);
+    return out;
+  }
+  codecs().decode(&bytes, flags, &out.image);
+  if (out.image.empty()) out.problem = "cannot decode " + path;
+  return out;
+}
+
 std::string picture_problem(const std::string& path) {
-  std::string why = study_file_problem(path);  // a link out of the study, or a FIFO that would block
-  return why.empty() ? picture_size_problem(path) : why;
+  const auto [folder, name] = own_folder(path);
+  return picture_file(folder, name, path, {}).second;
 }
 
 cv::Mat read_picture(const std::string& path, int flags) {
+  const auto [folder, name] = own_folder(path);
+  auto [bytes, problem] = picture_file(folder, name, path, {});
   cv::Mat out;
-  if (!picture_problem(path).empty()) return out;
-  codecs().read(&path, flags, &out);
+  if (problem.empty()) codecs().decode(&bytes, flags, &out);
   return out;
 }
 

@@ -7,10 +7,16 @@
 
 extern "C" {
 
-// A picture over OpenCV's own pixel limit throws cv::Exception from imread: it reads as one that can't be decoded.
-void ipd_read_picture_v1(const std::string* path, int flags, cv::Mat* out) {
+// A picture over OpenCV's own pixel limit throws cv::Exception from imdecode: it reads as one that can't be
+// decoded.
+void ipd_decode_picture_v1(const std::string* bytes, int flags, cv::Mat* out) {
   try {
-    *out = cv::imread(*path, flags);
+    if (bytes->empty()) {
+      *out = cv::Mat();
+      return;
+    }
+    const cv::Mat raw(1, static_cast<int>(bytes->size()), CV_8UC1, const_cast<char*>(bytes->data()));
+    *out = cv::imdecode(raw, flags);
   } catch (const cv::Exception&) {
     *out = cv::Mat();
   }
@@ -23,5 +29,5 @@ bool ipd_encode_picture_v1(const std::string* ext, const cv::Mat* image, std::ve
 }
 
 // The entry points must have the types the loader casts them to.
-static_assert(std::is_same_v<decltype(&ipd_read_picture_v1), ipd::ReadPictureFn>);
+static_assert(std::is_same_v<decltype(&ipd_decode_picture_v1), ipd::DecodePictureFn>);
 static_assert(std::is_same_v<decltype(&ipd_encode_picture_v1), ipd::EncodePictureFn>);

@@ -2,9 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdint>
-#include <fstream>
-#include <vector>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+
+#include "core/util/contained_file.h"
 
 namespace ipd {
 
@@ -20,35 +24,33 @@ std::int32_t le32(const unsigned char* p) {
 
 // JPEG: the first start-of-frame marker (SOF0..SOF15 but DHT, JPG and DAC) after the segments before it
 // (EXIF and its thumbnail may come first), read segment by segment.
-std::optional<PictureSize> jpeg_size(std::ifstream& in) {
-  unsigned char m[4];
-  in.seekg(2);
-  for (int segments = 0; segments < 10000 && in.read(reinterpret_cast<char*>(m), 4); ++segments) {
+std::optional<PictureSize> jpeg_size(const std::string& bytes) {
+  const auto* b = reinterpret_cast<const unsigned char*>(bytes.data());
+  size_t at = 2;
+  for (int segments = 0; segments < 10000 && at + 4 <= bytes.size(); ++segments) {
+    const unsigned char* m = b + at;
     if (m[0] != 0xff) return std::nullopt;
     const int marker = m[1];
     const std::uint32_t length = be16(m + 2);
     if (marker >= 0xc0 && marker <= 0xcf && marker != 0xc4 && marker != 0xc8 && marker != 0xcc) {
-      unsigned char f[5];
-      if (!in.read(reinterpret_cast<char*>(f), 5)) return std::nullopt;
+      if (at + 9 > bytes.size()) return std::nullopt;
+      const unsigned char* f = m + 4;
       return PictureSize{be16(f + 3), be16(f + 1)};
     }
     if (length < 2) return std::nullopt;
-    in.seekg(length - 2, std::ios::cur);
+    at += 2 + length;
   }
   return std::nullopt;
 }
 
 }  // namespace
 
-std::optional<PictureSize> declared_picture_size(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+std::optional<PictureSize> declared_picture_size_of(const std::string& bytes) {
+  if (bytes.size() < 4) return std::nullopt;
   unsigned char h[32] = {};
-  if (!in.read(reinterpret_cast<char*>(h), sizeof h)) {
-    if (in.gcount() < 4) return std::nullopt;
-    in.clear();
-  }
+  std::memcpy(h, bytes.data(), std::min(bytes.size(), sizeof h));
   if (h[0] == 0x89 && h[1] == 'P' && h[2] == 'N' && h[3] == 'G') return PictureSize{be32(h + 16), be32(h + 20)};
-  if (h[0] == 0xff && h[1] == 0xd8) return jpeg_size(in);
+  if (h[0] == 0xff && h[1] == 0xd8) return jpeg_size(bytes);
   if (h[0] == 'B' && h[1] == 'M') return PictureSize{std::abs(le32(h + 18)), std::abs(le32(h + 22))};
   if (h[0] == 'R' && h[1] == 'I' && h[2] == 'F' && h[3] == 'F' && h[8] == 'W' && h[9] == 'E' && h[10] == 'B') {
     const std::string chunk(reinterpret_cast<const char*>(h + 12), 4);
@@ -62,11 +64,33 @@ std::optional<PictureSize> declared_picture_size(const std::string& path) {
   return std::nullopt;
 }
 
-std::string picture_size_problem(const std::string& path) {
-  const auto size = declared_picture_size(path);
+std::string picture_size_problem_of(const std::string& path, const std::string& bytes) {
+  const auto size = declared_picture_size_of(bytes);
   if (!size || size->width * size->height <= kMaxPicturePixels) return "";
   return fmt::format("{}: declares {} x {} pixels, over the {}-megapixel limit for a picture", path, size->width,
                      size->height, kMaxPicturePixels / 1'000'000);
 }
+
+namespace {
+
+// The bytes of the picture `path`, read through its folder's descriptor (the file itself never followed);
+// "" when it can't be read (the decoder's to report).
+std::string picture_bytes(const std::string& path) {
+  const std::filesystem::path p(path);
+  const std::string folder = p.has_parent_path() ? p.parent_path().string() : std::string(".");
+  try {
+    return read_file_beneath(folder, p.filename().string(), kMaxPictureBytes).value_or("");
+  } catch (const IoError&) {
+    return "";
+  }
+}
+
+}  // namespace
+
+std::optional<PictureSize> declared_picture_size(const std::string& path) {
+  return declared_picture_size_of(picture_bytes(path));
+}
+
+std::string picture_size_problem(const std::string& path) { return picture_size_problem_of(path, picture_bytes(path)); }
 
 }  // namespace ipd

@@ -89,11 +89,12 @@ std::string study_cache_dir(const std::string& study_root) {
   const fs::path own = fs::path(study_root) / ".ipd-cache";
   const bool exists = fs::exists(own, ec);
   if (exists ? ::access(own.c_str(), W_OK) == 0 : ::access(study_root.c_str(), W_OK) == 0) return own.string();
-  return user_cache_root();
+  return usable_user_cache_root();  // "" (no cache) when it can't be used safely
 }
 
 std::string registration_cache_dir(const std::string& study_root) {
-  return (fs::path(study_cache_dir(study_root)) / "registration").string();
+  const std::string dir = study_cache_dir(study_root);
+  return dir.empty() ? "" : (fs::path(dir) / "registration").string();
 }
 
 void RegistrationCache::preload(RegistrationEntries entries) { memory_->preloaded = std::move(entries); }

@@ -12,6 +12,7 @@
 #include "core/ipd/study_pipeline.h"
 #include "core/registration/registration_cache.h"
 #include "core/util/atomic_file.h"
+#include "core/util/contained_file.h"
 #include "core/util/parallel.h"
 
 namespace fs = std::filesystem;
@@ -40,14 +41,17 @@ void keep_first_scenes(Study* study, size_t n) {
 }
 // Temp files of saves that died mid-way (their writer is gone) would otherwise pile up beside the pairs and
 // the review marks: pairs/<A>__<B>/ and review/. Only real folders are tidied (a link in the study is never
-// followed out of it), and only regular files of our temp names (remove_stale_temp_files).
+// followed out of it: each folder is opened beneath the study, listed and tidied through its descriptor), and
+// only regular files of our temp names (remove_stale_temp_files_beneath).
 void remove_stale_saves(const std::string& root) {
-  std::error_code ec;
-  const fs::path pairs = fs::path(root) / "pairs", review = fs::path(root) / "review";
-  if (fs::symlink_status(review, ec).type() == fs::file_type::directory) remove_stale_temp_files(review.string());
-  if (fs::symlink_status(pairs, ec).type() != fs::file_type::directory) return;
-  for (fs::directory_iterator it(pairs, ec); !ec && it != fs::directory_iterator(); it.increment(ec))
-    if (it->symlink_status(ec).type() == fs::file_type::directory) remove_stale_temp_files(it->path().string());
+  remove_stale_temp_files_beneath(root, "review");
+  std::vector<std::string> pair_folders;
+  try {
+    pair_folders = folders_beneath(root, "pairs");
+  } catch (const IoError&) {
+    return;  // pairs/ is a link or unreadable: the study's scan says so; tidying is no place to stop
+  }
+  for (const std::string& f : pair_folders) remove_stale_temp_files_beneath(root, "pairs/" + f);
 }
 
 }  // namespace
@@ -72,19 +76,22 @@ Session Session::open(const std::string& root, const SessionOptions& options) {
     });
   };
   StudyLabels labels = load();
-  if (!labels.class_choice_needed.empty()) {  // classes without names: the lowest number present
+  const bool unnamed_classes = !labels.class_choice_needed.empty();
+  if (unnamed_classes) {  // classes without names: the lowest number present
     study.config.rock_class = labels.gt_boxes_by_class.begin()->first;
     parsed = std::make_unique<StudyCache>(options.study_cache_path, study.root);
     labels = load();
   }
-  if (named > 1 || labels.requested_class != study.config.rock_class || labels.requested_class == kAllClasses ||
-      labels.gt_boxes_by_class.size() > 1) {
+  if (named > 1 || unnamed_classes || labels.requested_class == kAllClasses) {
     std::string all;
     for (size_t k = 0; k < names.size(); ++k)
       if (!names[k].empty()) all += (all.empty() ? "" : ", ") + names[k];
     class_note = fmt::format("showing {}{}; the class menu picks another", class_statement(labels),
                              all.empty() ? "" : " of " + all);
   }
+  // The rule every command keeps (LabelError::unusable_file): a label file that can't be read stops the study.
+  for (const LabelError& e : labels.errors)
+    if (e.unusable_file()) throw StudyError(e.to_string() + " (every rock of the file would count as missing)");
   RegistrationCache registration(options.cache_dir);
   parsed->hand_registrations_to(registration);
   SessionOptions with_cache = options;

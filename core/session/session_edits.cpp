@@ -61,6 +61,24 @@ void check_expected(const SaveJob& job) {
   }
 }
 
+// The check of the job's k-th file (0: `path`, then `also_remove`) made right before it is replaced or removed,
+// on what it holds then: a SaveConflict when that is neither what this window last saw nor the job's result.
+Recheck recheck_of(const SaveJob& job, size_t k) {
+  if (job.expected.size() <= k) return {};
+  return [&job, k](const std::optional<std::string>& text) {
+    const DiskVersion now = version_of(text);
+    const DiskVersion target = k == 0 ? version_of(job.contents) : DiskVersion{};
+    if (now == job.expected[k] || now == target) return;
+    const std::string& path = k == 0 ? job.path : job.also_remove[k - 1];
+    std::vector<DiskVersion> observed = job.expected;
+    observed[k] = now;
+    throw SaveConflict(fmt::format("{}: changed on disk since this window read it (another window or program saved "
+                                   "it); not overwritten: keep one version",
+                                   path),
+                       path, text, observed);
+  };
+}
+
 void run_unchecked_save_job(const SaveJob& job, const WriteStepHook& hook) {
   if (job.contents) {
     write_file_atomically(job.path, *job.contents, hook);
@@ -86,19 +104,24 @@ void run_save_job(const SaveJob& job, const WriteStepHook& hook) {
   check_beneath(job.root, rel);
   for (const auto& p : job.also_remove) check_beneath(job.root, relative_to(job.root, p));
   check_expected(job);
+  // Checked again right before the rename (or the removal): an edit by an editor, a script or a sync client
+  // that lands while the temp file is written and synced (seconds on a slow disk) is a conflict, not lost.
   // `path` is the name order read_fixed_pairs tries first: while it exists, the other one doesn't count.
+  const Recheck recheck = recheck_of(job, 0);
   if (job.contents) {
-    write_file_beneath(job.root, rel, *job.contents, hook);
-    for (const auto& p : job.also_remove) {
-      remove_file_beneath(job.root, relative_to(job.root, p));
+    write_file_beneath(job.root, rel, *job.contents, hook, recheck);
+    for (size_t k = 0; k < job.also_remove.size(); ++k) {
+      const std::string& p = job.also_remove[k];
+      remove_file_beneath(job.root, relative_to(job.root, p), {}, recheck_of(job, k + 1));
       if (hook) hook("other removed");
     }
   } else {
-    for (const auto& p : job.also_remove) {
-      remove_file_beneath(job.root, relative_to(job.root, p));
+    for (size_t k = 0; k < job.also_remove.size(); ++k) {
+      const std::string& p = job.also_remove[k];
+      remove_file_beneath(job.root, relative_to(job.root, p), {}, recheck_of(job, k + 1));
       if (hook) hook("other removed");
     }
-    remove_file_beneath(job.root, rel);
+    remove_file_beneath(job.root, rel, {}, recheck);
     if (hook) hook("removed");
   }
 }

@@ -1,6 +1,7 @@
 #include "core/session/study_lock.h"
 
 #include <fcntl.h>
+#include <pwd.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -57,39 +58,76 @@ std::unique_ptr<StudyLock> StudyLock::try_acquire(const std::string& root, std::
     *held_by = why;
     return nullptr;
   }
-  const int fd = ::openat(cache, "lock", O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
-  const int err = errno;
+  // The study folder's own lock: a window whose .ipd-cache was deleted still holds it.
+  const int folder = ::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (folder < 0 || ::flock(folder, LOCK_EX | LOCK_NB) != 0) {
+    const int err = errno;
+    const int note = ::openat(cache, "lock", O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    *held_by = folder < 0  ? fmt::format("{}: cannot open the study folder: {}", root, std::strerror(err))
+               : note >= 0 ? holder_of(note)
+                           : std::string("another window");
+    if (note >= 0) ::close(note);
+    if (folder >= 0) ::close(folder);
+    ::close(cache);
+    return nullptr;
+  }
+  int fd = ::openat(cache, "lock", O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+  int err = errno;
+  bool note_writable = true;
+  if (fd < 0 && err == EACCES) {
+    // Another user's lock file: locked read-only (flock needs no write access), its note left as it is.
+    fd = ::openat(cache, "lock", O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    err = errno;
+    note_writable = false;
+  }
   ::close(cache);
-  if (fd < 0) {
-    *held_by = err == ELOOP ? fmt::format("{}/.ipd-cache/lock: is a symbolic link; no lock is taken through it", root)
-                            : fmt::format("{}/.ipd-cache/lock: cannot open: {}", root, std::strerror(err));
+  const auto refuse = [&](std::string message) {
+    *held_by = std::move(message);
+    if (fd >= 0) ::close(fd);
+    ::close(folder);  // releases the folder's lock
     return nullptr;
-  }
+  };
+  if (fd < 0)
+    return refuse(err == ELOOP
+                      ? fmt::format("{}/.ipd-cache/lock: is a symbolic link; no lock is taken through it", root)
+                      : fmt::format("{}/.ipd-cache/lock: cannot open: {}", root, std::strerror(err)));
   struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    *held_by = fmt::format("{}/.ipd-cache/lock: is not a regular file", root);
-    ::close(fd);
-    return nullptr;
-  }
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode))
+    return refuse(fmt::format("{}/.ipd-cache/lock: is not a regular file", root));
+  // The holder's note is written into the lock file: were it a hard link to a file elsewhere (a study is
+  // untrusted), that file would lose its contents. Ours has one name.
+  if (st.st_nlink > 1)
+    return refuse(fmt::format(
+        "{}/.ipd-cache/lock: has {} names (a hard link to another file); no lock is taken through it (delete "
+        "it: the study's .ipd-cache may be deleted)",
+        root, static_cast<unsigned long long>(st.st_nlink)));
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-    *held_by = errno == EWOULDBLOCK ? holder_of(fd)
-                                    : fmt::format("{}/.ipd-cache/lock: cannot lock: {}", root, std::strerror(errno));
-    ::close(fd);
-    return nullptr;
+    if (errno != EWOULDBLOCK)
+      return refuse(fmt::format("{}/.ipd-cache/lock: cannot lock: {}", root, std::strerror(errno)));
+    std::string holder = holder_of(fd);
+    if (st.st_uid != ::geteuid()) {
+      const passwd* pw = ::getpwuid(st.st_uid);
+      holder += fmt::format(" (user {})", pw ? pw->pw_name : std::to_string(st.st_uid));
+    }
+    return refuse(holder);
   }
-  char host[256] = {};
-  if (::gethostname(host, sizeof host - 1) != 0) std::strcpy(host, "this machine");
-  const std::string text = fmt::format("pid {} on {}\n", ::getpid(), host);
-  // Only for the message another window shows: a failure here leaves the lock held all the same.
-  const bool noted =
-      ::ftruncate(fd, 0) == 0 && ::pwrite(fd, text.data(), text.size(), 0) == static_cast<ssize_t>(text.size());
-  (void)noted;
-  return std::unique_ptr<StudyLock>(new StudyLock(fd));
+  if (note_writable) {
+    char host[256] = {};
+    if (::gethostname(host, sizeof host - 1) != 0) std::strcpy(host, "this machine");
+    const std::string text = fmt::format("pid {} on {}\n", ::getpid(), host);
+    // Only for the message another window shows: a failure here leaves the lock held all the same.
+    const bool noted =
+        ::ftruncate(fd, 0) == 0 && ::pwrite(fd, text.data(), text.size(), 0) == static_cast<ssize_t>(text.size());
+    (void)noted;
+  }
+  return std::unique_ptr<StudyLock>(new StudyLock(fd, folder));
 }
 
 StudyLock::~StudyLock() {
   ::flock(fd_, LOCK_UN);
   ::close(fd_);
+  ::flock(folder_fd_, LOCK_UN);
+  ::close(folder_fd_);
 }
 
 }  // namespace ipd

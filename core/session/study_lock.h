@@ -1,7 +1,10 @@
-// One writer per study: ipd-studio holds an advisory lock (flock) on STUDY/.ipd-cache/lock while it may
-// save hand pairs, so a second window on the same study opens read-only and says who holds it, instead of
-// the two overwriting each other's edits. The file holds "pid <pid> on <host>" of the holder (for that
-// message only: the kernel's lock, released when the holder exits or crashes, is what counts).
+// One writer per study: ipd-studio holds an advisory lock (flock) on the study folder itself and on
+// STUDY/.ipd-cache/lock while it may save hand pairs, so a second window on the same study opens read-only and
+// says who holds it, instead of the two overwriting each other's edits. The folder's lock is what a deleted
+// .ipd-cache (which may be deleted at any time) can't take away; the file holds "pid <pid> on <host>" of the
+// holder (for the message only: the kernel's locks, released when the holder exits or crashes, are what
+// count). A lock file another user created is taken read-only when its holder is gone: a stale lock is stale
+// whoever made it.
 // `ipd table` never writes pairs and takes no lock.
 #pragma once
 
@@ -21,8 +24,8 @@ class StudyLock {
   StudyLock& operator=(const StudyLock&) = delete;
 
  private:
-  explicit StudyLock(int fd) : fd_(fd) {}
-  int fd_;
+  StudyLock(int fd, int folder_fd) : fd_(fd), folder_fd_(folder_fd) {}
+  int fd_, folder_fd_;
 };
 
 }  // namespace ipd

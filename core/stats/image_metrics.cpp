@@ -150,12 +150,10 @@ StudyPixelMetrics pixel_metrics_all_columns(const StudyLabels& labels, const Cro
         const auto im = d->images.find(stem);
         cv::Mat m;
         if (im != d->images.end()) {
-          m = read_picture(im->second, cv::IMREAD_GRAYSCALE);
+          PictureRead read = read_study_picture(labels.study.root, im->second, cv::IMREAD_GRAYSCALE);
+          m = std::move(read.image);
           ++decoded;
-          if (m.empty()) {
-            const std::string why = picture_problem(im->second);
-            scene_problems[s].push_back(why.empty() ? fmt::format("{}: can't read the picture", im->second) : why);
-          }
+          if (m.empty()) scene_problems[s].push_back(read.problem);
         }
         it = grey.emplace(domain, m).first;
       }
@@ -196,8 +194,8 @@ std::vector<ScenePixelMetrics> pixel_metrics(const StudyLabels& labels, const Cr
     const ScenePairing& p = pairings[k];
     const auto ia = da->images.find(p.stem), ib = db->images.find(p.stem);
     if (ia == da->images.end() || ib == db->images.end()) return;
-    const cv::Mat ga = read_picture(ia->second, cv::IMREAD_GRAYSCALE),
-                  gb = read_picture(ib->second, cv::IMREAD_GRAYSCALE);
+    const cv::Mat ga = read_study_picture(labels.study.root, ia->second, cv::IMREAD_GRAYSCALE).image,
+                  gb = read_study_picture(labels.study.root, ib->second, cv::IMREAD_GRAYSCALE).image;
     if (ga.empty() || gb.empty()) {
       std::lock_guard<std::mutex> lock(mu);
       problems->push_back(fmt::format("{}: can't read the picture", ga.empty() ? ia->second : ib->second));

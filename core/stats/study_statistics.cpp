@@ -194,7 +194,7 @@ std::pair<int, int> domain_image_size(const Study& study, const std::string& dom
     for (const auto& [stem, path] : d->images) {
       // As the picture is shown and measured: turned upright by its EXIF orientation, as YOLOv5 labels it
       // (IMREAD_UNCHANGED keeps a phone photo's sensor orientation, whose width is the upright height).
-      const cv::Mat m = read_picture(path, cv::IMREAD_COLOR);
+      const cv::Mat m = read_study_picture(study.root, path, cv::IMREAD_COLOR).image;
       if (!m.empty()) return {m.cols, m.rows};
     }
   return {0, 0};

@@ -12,6 +12,7 @@
 #include "core/study/file_sets.h"
 #include "core/study/study.h"
 #include "core/util/atomic_file.h"
+#include "core/util/contained_file.h"
 #include "core/util/json_input.h"
 #include "core/util/number_text.h"
 
@@ -236,6 +237,8 @@ void check_out_dir(const CocoImportOptions& o) {
   std::error_code ec;
   const fs::file_status st = fs::symlink_status(o.out_dir, ec);
   if (!fs::exists(st)) return;
+  if (fs::is_symlink(st))
+    throw StudyError(o.out_dir + ": is a symbolic link; the import replaces a folder, never through a link");
   if (!fs::is_directory(fs::status(o.out_dir, ec)))
     throw StudyError(o.out_dir + ": is not a folder; ipd import coco fills a domain folder");
   if (fs::is_empty(o.out_dir, ec) && !ec) return;
@@ -245,69 +248,89 @@ void check_out_dir(const CocoImportOptions& o) {
                    "with the imported ones, so nothing is written (--replace replaces them whole)");
 }
 
-// After a replace: the old set's files the import did not write again, removed; other prediction sets listed.
-void remove_old_set(const CocoImportOptions& o, const std::map<long, Image>& images, CocoImportReport* r) {
-  std::set<std::string> labels = {"classes.txt"}, pictures;
-  for (const auto& [id, img] : images) {
-    labels.insert(img.stem + ".txt");
-    if (!o.images_dir.empty()) pictures.insert(fs::path(img.file).filename().string());
+// What the folder being replaced holds besides the new set, moved into the new folder as it is (other
+// prediction sets, a picture the import names but could not find, files of other kinds), and the old set's
+// files the import did not write again, counted (they go with the old folder). The import replaces its own
+// set, nothing else; a folder of the set that is a link is replaced, never listed or written through.
+void carry_over(const CocoImportOptions& o, const StagedFolder& staged, const std::set<std::string>& written_labels,
+                const std::set<std::string>& pictures, const std::set<std::string>& written_pictures,
+                CocoImportReport* r) {
+  const auto entries = [&](const std::string& rel) {
+    try {
+      return entries_beneath(staged.parent(), rel.empty() ? staged.target_name() : staged.target_inside(rel));
+    } catch (const IoError&) {
+      return std::vector<FolderEntry>{};  // a link (or unreadable): replaced whole
+    }
+  };
+  const auto carry = [&](const std::string& rel) {
+    rename_beneath(staged.parent(), staged.target_inside(rel), staged.inside(rel));
+  };
+  const std::string own_predictions = o.results.empty() ? std::string() : "predictions/" + o.model;
+  for (const FolderEntry& e : entries(""))
+    if (e.name != "labels" && e.name != "images" && e.name != "predictions") carry(e.name);
+  for (const FolderEntry& e : entries("predictions")) {
+    if ("predictions/" + e.name == own_predictions) continue;
+    r->other_prediction_sets.push_back(e.name);
+    carry("predictions/" + e.name);
   }
-  r->removed += remove_files_not_kept(o.out_dir, "labels", labels, ".txt");
-  r->removed += remove_files_not_kept(o.out_dir, "images", pictures, "");
-  if (!o.results.empty())
-    r->removed += remove_files_not_kept(o.out_dir, (fs::path("predictions") / o.model).string(), labels, ".txt");
-  std::error_code ec;
-  const fs::path predictions = fs::path(o.out_dir) / "predictions";
-  for (const auto& e : fs::directory_iterator(predictions, ec)) {
-    const std::string name = e.path().filename().string();
-    if (o.results.empty() || name != o.model) r->other_prediction_sets.push_back(name);
-  }
-  std::sort(r->other_prediction_sets.begin(), r->other_prediction_sets.end());
+  struct Set {
+    std::string folder;
+    const std::set<std::string>* keep;
+    const std::set<std::string>* written;
+    std::string suffix;
+  };
+  std::vector<Set> sets = {{"labels", &written_labels, &written_labels, ".txt"},
+                           {"images", &pictures, &written_pictures, ""}};
+  if (!own_predictions.empty()) sets.push_back({own_predictions, &written_labels, &written_labels, ".txt"});
+  for (const Set& set : sets)
+    for (const FolderEntry& e : entries(set.folder)) {
+      if (set.written->count(e.name)) continue;  // the new file replaces it
+      const bool has_suffix = e.name.size() >= set.suffix.size() &&
+                              e.name.compare(e.name.size() - set.suffix.size(), set.suffix.size(), set.suffix) == 0;
+      if (!e.folder && !set.keep->count(e.name) && has_suffix)
+        ++r->removed;  // the old set's: it goes with the old folder
+      else
+        carry(set.folder + "/" + e.name);
+    }
 }
 
-// The study's label files, class names and pictures (hard links to the pictures the user named, or copies).
-// Scores and boxes are written in full (LabelDigits::kExact): they came as doubles and the thresholds and AP
-// of every command must see the same numbers pycocotools sees.
+// The study's label files, class names and pictures (hard links to the pictures the user named, or copies),
+// written into a new folder beside the domain folder and renamed in (StagedFolder): nothing is written into
+// the folder being replaced, so none of its links is written through. Scores and boxes are written in full
+// (LabelDigits::kExact): they came as doubles and the thresholds and AP of every command must see the same
+// numbers pycocotools sees.
 void write_study(const CocoImportOptions& o, const std::map<long, Image>& images, CocoImportReport* r) {
-  const fs::path out(o.out_dir);
+  StagedFolder staged(o.out_dir);
+  const std::string& root = staged.parent();
+  std::set<std::string> labels = {"classes.txt"}, pictures, written_pictures;
   for (const auto& [id, img] : images) {
-    write_labels((out / "labels" / (img.stem + ".txt")).string(), img.gt, LabelKind::kGroundTruth, LabelDigits::kExact);
+    labels.insert(img.stem + ".txt");
+    write_file_beneath(root, staged.inside("labels/" + img.stem + ".txt"),
+                       labels_text(img.gt, LabelKind::kGroundTruth, LabelDigits::kExact));
     if (!o.results.empty())
-      write_labels((out / "predictions" / o.model / (img.stem + ".txt")).string(), img.predictions,
-                   LabelKind::kPrediction, LabelDigits::kExact);
+      write_file_beneath(root, staged.inside("predictions/" + o.model + "/" + img.stem + ".txt"),
+                         labels_text(img.predictions, LabelKind::kPrediction, LabelDigits::kExact));
+    if (o.images_dir.empty()) continue;
+    const std::string name = fs::path(img.file).filename().string();
+    pictures.insert(name);
     const fs::path src = fs::absolute(fs::path(o.images_dir) / img.file);
     std::error_code ec;
-    if (!o.images_dir.empty() && fs::exists(src, ec)) {
-      const fs::path dst = out / "images" / fs::path(img.file).filename();
-      fs::create_directories(dst.parent_path(), ec);
-      // Re-importing with --images the domain's own images/ folder: the picture is already in place (removing
-      // the destination first would delete the only copy).
-      if (fs::equivalent(src, dst, ec)) {
-        ++r->linked_images;
-        continue;
-      }
-      // A hard link (or a copy across file systems), never a symbolic link: a study's symbolic links are not
-      // followed when it is read, since a study received from someone else could point anywhere. Made under a
-      // temporary name and renamed over the old picture, so a failure leaves the old one in place.
-      const fs::path tmp = dst.parent_path() / (".import-" + dst.filename().string());
-      fs::remove(tmp, ec);
-      ec.clear();
-      fs::create_hard_link(src, tmp, ec);
-      if (ec) {
-        ec.clear();
-        fs::copy_file(src, tmp, ec);
-      }
-      if (!ec) fs::rename(tmp, dst, ec);
-      if (ec)
-        fs::remove(tmp, ec);
-      else
-        ++r->linked_images;
+    if (!fs::exists(src, ec)) continue;
+    // A hard link (or a copy across file systems), never a symbolic link: a study's symbolic links are not
+    // followed when it is read, since a study received from someone else could point anywhere.
+    try {
+      link_file_beneath(root, staged.inside("images/" + name), src.string());
+      written_pictures.insert(name);
+      ++r->linked_images;
+    } catch (const IoError&) {
     }
   }
   std::string names;
   for (const auto& c : r->classes) names += c + "\n";
-  write_file_atomically((out / "labels" / "classes.txt").string(), names);
-  if (o.replace) remove_old_set(o, images, r);
+  write_file_beneath(root, staged.inside("labels/classes.txt"), names);
+  if (staged.target_exists()) carry_over(o, staged, labels, pictures, written_pictures, r);
+  std::sort(r->other_prediction_sets.begin(), r->other_prediction_sets.end());
+  staged.commit();
   r->written = true;
 }
 

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <filesystem>
 
@@ -12,6 +14,52 @@
 namespace fs = std::filesystem;
 
 namespace ipd {
+
+StagedFolder::StagedFolder(const std::string& target) {
+  const fs::path t = fs::absolute(target).lexically_normal();
+  const fs::path clean = t.has_filename() ? t : t.parent_path();
+  parent_ = clean.parent_path().string();
+  name_ = clean.filename().string();
+  std::error_code ec;
+  if (fs::is_symlink(clean, ec))
+    throw StudyError(clean.string() + ": is a symbolic link; the import replaces a folder, never through a link");
+  fs::create_directories(parent_, ec);  // the study folder the user named, made when it is new
+  if (ec) throw StudyError(fmt::format("{}: cannot create the folder: {}", parent_, ec.message()));
+  const std::string base = "." + name_.substr(0, 200) + ".import-" + std::to_string(::getpid()) + "-";
+  for (unsigned n = 0;; ++n) {
+    temp_ = base + std::to_string(n);
+    try {
+      make_folder_beneath(parent_, temp_);
+      return;
+    } catch (const IoError&) {
+      if (n >= 100) throw;  // a stale one of that name: the next number
+    }
+  }
+}
+
+StagedFolder::~StagedFolder() {
+  try {
+    remove_tree_beneath(parent_, temp_);
+  } catch (const IoError&) {
+  }
+}
+
+bool StagedFolder::target_exists() const {
+  std::error_code ec;
+  return fs::exists(fs::symlink_status(fs::path(parent_) / name_, ec));
+}
+
+void StagedFolder::commit() {
+  std::error_code ec;
+  const fs::path target = fs::path(parent_) / name_;
+  if (!target_exists()) {
+    rename_beneath(parent_, temp_, name_);
+  } else {
+    if (fs::is_symlink(target, ec))
+      throw StudyError(target.string() + ": is a symbolic link; the import replaces a folder, never through a link");
+    exchange_beneath(parent_, temp_, name_);  // temp_ now names what was there, removed by the destructor
+  }
+}
 
 std::vector<std::string> label_files_in(const std::string& dir) {
   std::vector<std::string> out;

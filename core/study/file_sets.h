@@ -12,6 +12,30 @@
 
 namespace ipd {
 
+// A folder written whole beside its target (`.<name>.import-<pid>-<n>` in the same parent) and renamed in, so
+// the target is never written into and a link in it (`labels -> /x`) never written through: ipd import fills
+// it through contained_file.h's writers (parent() as the root, inside() the names), then commit() swaps it
+// with the target in one step (renameat2 RENAME_EXCHANGE; a plain rename when there is none) and removes
+// what was there through descriptors. Not committed, it is removed when it goes out of scope.
+class StagedFolder {
+ public:
+  // Refuses (StudyError) a target that is a symbolic link: the import replaces a folder, never through one.
+  explicit StagedFolder(const std::string& target);
+  ~StagedFolder();
+  StagedFolder(const StagedFolder&) = delete;
+  StagedFolder& operator=(const StagedFolder&) = delete;
+  const std::string& parent() const { return parent_; }
+  // `inside` (a path below the new folder, "labels/s1.txt") as written beneath parent(); and the target's.
+  std::string inside(const std::string& rel) const { return temp_ + "/" + rel; }
+  std::string target_inside(const std::string& rel) const { return name_ + "/" + rel; }
+  const std::string& target_name() const { return name_; }
+  bool target_exists() const;
+  void commit();
+
+ private:
+  std::string parent_, name_, temp_;
+};
+
 // The label files (`*.txt`, regular files or links) directly in `dir`, sorted; none when `dir` is missing.
 // Throws StudyError when `dir` exists but can't be listed.
 std::vector<std::string> label_files_in(const std::string& dir);

@@ -127,7 +127,14 @@ void parse_models(const YAML::Node& v, const std::string& file, int line, StudyC
     if (const std::string why = file_name_problem(name, kMaxModelNameBytes); !why.empty())
       throw StudyError(fmt::format("{}:{}: model name '{}' {}", file, m.first.Mark().line + 1,
                                    printable_name(name, kShownNameBytes), why));
-    if (!m.second.IsMap() && !m.second.IsNull())
+    // `det:` with nothing after it (a line cut short, a value forgotten) would silently drop the model's
+    // training domain: an unknown one is said with `{}`.
+    if (m.second.IsNull())
+      throw StudyError(
+          fmt::format("{}:{}: models.{} has no value; expected its settings like {{trained_on: real}} "
+                      "({{}} when the training domain is unknown)",
+                      file, m.first.Mark().line + 1, quoted_for_message(name)));
+    if (!m.second.IsMap())
       throw StudyError(fmt::format("{}:{}: models.{} must be a mapping like {{trained_on: real}}", file,
                                    m.first.Mark().line + 1, quoted_for_message(name)));
     c->trained_on[name] = parse_model_settings(m.second, file, name);
@@ -441,6 +448,11 @@ Study open_study(const std::string& root_in) {
   }
   if (names.empty())
     throw StudyError(root_in + ": no domains found (expected subdirectories like real/labels/ with YOLO label files)");
+  if (names.size() > kMaxDomains)
+    throw StudyError(
+        fmt::format("{}: {} domains, more than the {} a study may hold (every pair of domains is "
+                    "compared; 1,000 one-scene domains take 24 s and 1 GB)",
+                    root_in, names.size(), kMaxDomains));
   for (const auto& want : s.config.domain_order)
     if (std::find(names.begin(), names.end(), want) == names.end())
       throw StudyError(fmt::format("{}: study.yaml lists domain '{}' but there is no {}/labels/ directory", root_in,

@@ -82,6 +82,9 @@ SceneMatch match_scenes(const Domain& a, const Domain& b);
 // and the limit (never read into memory). A pairs file of a 20,000-rock scene is under 2 MB and its JSON
 // document takes about 25 times its size while parsed, so 8 MB bounds that at ~200 MB; study.yaml is a few KB.
 constexpr size_t kMaxPairsFileBytes = size_t{8} << 20;
+// A study holds at most this many domains: every pair of them is compared (4,950 pairs at the limit); more is
+// refused when the study is opened, naming the count and the limit.
+constexpr size_t kMaxDomains = 100;
 constexpr size_t kMaxStudyYamlBytes = size_t{1} << 20;
 
 }  // namespace ipd

@@ -1,5 +1,6 @@
 #include "core/util/atomic_file.h"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -11,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <random>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -190,15 +192,36 @@ bool is_stale_temp_name(const std::string& name) {
   return pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;  // the writer is gone
 }
 
-int remove_stale_temp_files(const std::string& dir) {
-  int removed = 0;
-  std::error_code ec;
-  for (auto it = fs::directory_iterator(dir, ec); !ec && it != fs::directory_iterator(); it.increment(ec)) {
-    if (!is_stale_temp_name(it->path().filename().string())) continue;
-    // Our writers make regular files: a link (or anything else) of that name is not ours, and stays.
-    std::error_code rm;
-    if (it->symlink_status(rm).type() == fs::file_type::regular && fs::remove(it->path(), rm)) ++removed;
+int remove_stale_temp_files_at(int dir_fd, bool links_too) {
+  const int fd = ::dup(dir_fd);
+  if (fd < 0) return 0;
+  DIR* d = ::fdopendir(fd);
+  if (!d) {
+    ::close(fd);
+    return 0;
   }
+  ::rewinddir(d);  // the duplicate shares its position with dir_fd, which an earlier listing may have moved
+  std::vector<std::string> stale;
+  while (const dirent* e = ::readdir(d))
+    if (is_stale_temp_name(e->d_name)) stale.emplace_back(e->d_name);
+  ::closedir(d);
+  int removed = 0;
+  for (const auto& name : stale) {
+    // Our writers make regular files: a link (or anything else) of that name is not ours, and stays.
+    struct stat st {};
+    if (::fstatat(dir_fd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) != 0 ||
+        !(S_ISREG(st.st_mode) || (links_too && S_ISLNK(st.st_mode))))
+      continue;
+    if (::unlinkat(dir_fd, name.c_str(), 0) == 0) ++removed;  // a link swapped in meanwhile goes, never its target
+  }
+  return removed;
+}
+
+int remove_stale_temp_files(const std::string& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+  if (fd < 0) return 0;
+  const int removed = remove_stale_temp_files_at(fd);
+  ::close(fd);
   return removed;
 }
 

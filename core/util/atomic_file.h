@@ -32,9 +32,15 @@ constexpr size_t kMaxReadBytes = size_t{1} << 30;
 std::string read_file(const std::string& path, size_t max_bytes = kMaxReadBytes);
 
 // Removes `<name>.tmp-<pid>-<n>` files left in `dir` by writers that died (their process is gone): regular
-// files only, never through or of a symbolic link (ours are never links).
-// Returns how many were removed; problems are ignored (this is tidying, not a correctness step).
+// files only, never through or of a symbolic link (ours are never links); `dir` itself is opened without
+// following a link. Returns how many were removed; problems are ignored (this is tidying, not a correctness
+// step). Inside a study use remove_stale_temp_files_beneath (contained_file.h).
 int remove_stale_temp_files(const std::string& dir);
+// The same in the open folder `dir_fd`: listed with fdopendir on a duplicate of it, each name examined with
+// fstatat and removed with unlinkat relative to it, so the folder is never looked up by name again.
+// `links_too`: a link of such a name is removed as well (itself, never its target): in a cache folder,
+// whose every entry is ours to remove.
+int remove_stale_temp_files_at(int dir_fd, bool links_too = false);
 // True for `<name>.tmp-<pid>-<n>` whose writer process is gone.
 bool is_stale_temp_name(const std::string& name);
 // The temp name a writer of `name` (a file name, no folder) uses beside it: `<name>.tmp-<pid>-<n>`, the name cut

@@ -215,23 +215,6 @@ bool CacheDir::write(const std::string& rel, const std::string& contents,
   return true;
 }
 
-int CacheDir::remove_stale_temp_files() const {
-  const int fd = ::dup(fd_);
-  if (fd < 0) return 0;
-  DIR* d = ::fdopendir(fd);
-  if (!d) {
-    ::close(fd);
-    return 0;
-  }
-  ::rewinddir(d);  // the duplicate shares its position with fd_, which an earlier listing left at the end
-  std::vector<std::string> stale;
-  while (const dirent* e = ::readdir(d))
-    if (is_stale_temp_name(e->d_name)) stale.emplace_back(e->d_name);
-  ::closedir(d);
-  int removed = 0;
-  for (const auto& name : stale)
-    if (::unlinkat(fd_, name.c_str(), 0) == 0) ++removed;  // a link is removed itself, never its target
-  return removed;
-}
+int CacheDir::remove_stale_temp_files() const { return remove_stale_temp_files_at(fd_, true); }
 
 }  // namespace ipd

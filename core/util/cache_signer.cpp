@@ -4,6 +4,7 @@
 #include <openssl/crypto.h>
 #include <openssl/evp.h>
 #include <openssl/params.h>
+#include <pwd.h>
 #include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -122,11 +123,40 @@ void create_key(const std::string& path) {
 }  // namespace
 
 std::string user_cache_root() {
+  const auto absolute = [](const char* p) { return p && *p && fs::path(p).is_absolute(); };
   const char* xdg = std::getenv("XDG_CACHE_HOME");
+  if (absolute(xdg)) return (fs::path(xdg) / "ipd-studio").string();
   const char* home = std::getenv("HOME");
-  const bool xdg_usable = xdg && *xdg && fs::path(xdg).is_absolute();
-  const fs::path base = xdg_usable ? fs::path(xdg) : fs::path(home ? home : "/tmp") / ".cache";
-  return (base / "ipd-studio").string();
+  if (!absolute(home)) {
+    const passwd* pw = ::getpwuid(::getuid());
+    home = pw ? pw->pw_dir : nullptr;
+  }
+  if (!absolute(home)) return "";
+  return (fs::path(home) / ".cache" / "ipd-studio").string();
+}
+
+std::string usable_user_cache_root(std::string* why) {
+  std::string problem;
+  const std::string root = user_cache_root();
+  struct stat st {};
+  std::error_code ec;
+  if (root.empty()) {
+    problem = "no user cache: XDG_CACHE_HOME and HOME are unset and this user has no home folder";
+  } else if (fs::create_directories(fs::path(root).parent_path(), ec); ec) {
+    problem = fmt::format("{}: cannot create the folder: {}", fs::path(root).parent_path().string(), ec.message());
+  } else if (::mkdir(root.c_str(), 0700) != 0 && errno != EEXIST) {
+    problem = fmt::format("{}: cannot create the folder: {}", root, std::strerror(errno));
+  } else if (::lstat(root.c_str(), &st) != 0) {
+    problem = fmt::format("{}: cannot examine: {}", root, std::strerror(errno));
+  } else if (S_ISLNK(st.st_mode)) {
+    problem = fmt::format("{}: is a symbolic link; the user cache is not used", root);
+  } else if (!S_ISDIR(st.st_mode)) {
+    problem = fmt::format("{}: is not a folder; the user cache is not used", root);
+  } else if (st.st_uid != ::geteuid()) {
+    problem = fmt::format("{}: belongs to another user (uid {}); the user cache is not used", root, st.st_uid);
+  }
+  if (why) *why = problem;
+  return problem.empty() ? root : "";
 }
 
 std::string user_key_path() { return (fs::path(user_cache_root()) / "key").string(); }
@@ -136,6 +166,7 @@ std::string build_identity() { return std::string("ipd-studio " IPD_VERSION " ")
 CacheSigner::CacheSigner(const std::string& key_path) {
   std::string file_key;
   try {
+    if (key_path.empty()) throw std::runtime_error("no user cache for the key");
     if (!read_key(key_path, &file_key)) {
       create_key(key_path);
       if (!read_key(key_path, &file_key)) throw std::runtime_error(key_path + ": vanished after it was created");
@@ -150,8 +181,11 @@ CacheSigner::CacheSigner(const std::string& key_path) {
 
 const CacheSigner& CacheSigner::instance() {
   static const CacheSigner signer = [] {
-    CacheSigner s(user_key_path());
-    if (!s.persistent()) std::fprintf(stderr, "%s; caches written now serve this run only\n", s.problem().c_str());
+    std::string why;
+    const std::string root = usable_user_cache_root(&why);
+    CacheSigner s(root.empty() ? std::string() : (fs::path(root) / "key").string());
+    if (!s.persistent())
+      std::fprintf(stderr, "%s; caches written now serve this run only\n", (root.empty() ? why : s.problem()).c_str());
     return s;
   }();
   return signer;

@@ -40,9 +40,15 @@ class CacheSigner {
 
 // $XDG_CACHE_HOME (or ~/.cache)/ipd-studio: the user cache directory of every study that can't hold its own,
 // ipd-studio's demo study and recent list. A relative $XDG_CACHE_HOME is ignored, as the XDG Base Directory
-// specification says: it would put the cache in whatever folder the program was started from.
+// specification says: it would put the cache in whatever folder the program was started from. With neither
+// variable set (a service, `env -i`), the home folder the password database gives this user
+// (getpwuid(getuid())); "" when there is none either: never a folder other users can create first (/tmp).
 std::string user_cache_root();
 std::string user_key_path();
+// user_cache_root() made ready to use: created with mode 0700 when missing, and refused ("" and why in *why)
+// when there is none, or it is a symbolic link, not a folder, or owned by another user (who could then read
+// the key and plant links in it). Callers then keep no user cache and say so.
+std::string usable_user_cache_root(std::string* why = nullptr);
 
 // What identifies this build in the key: version and compiler (a different compiler or version may give
 // different registration results for the same cache key).

@@ -1,12 +1,15 @@
 #include "core/util/contained_file.h"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <vector>
@@ -99,6 +102,14 @@ Fd open_folders(const std::string& root, const std::vector<std::string>& parts, 
   return dir;
 }
 
+// The folder root/relative itself, opened beneath root without following a link; an Fd of -1 when missing.
+Fd open_folder(const std::string& root, const std::string& relative, const char* action) {
+  std::vector<std::string> parts = split_relative(root, relative);
+  parts.emplace_back();  // open_folders opens every part but the last
+  std::string shown;
+  return open_folders(root, parts, false, action, &shown);
+}
+
 // What the last part is, examined without following it: 0 when missing, else st_mode's type bits.
 mode_t type_at(int dir, const std::string& name, const std::string& shown) {
   struct stat st {};
@@ -120,10 +131,43 @@ void write_all(int fd, const std::string& contents, const std::string& shown) {
   if (::fsync(fd) != 0) throw IoError(shown + ": cannot write: " + errno_text(errno));
 }
 
+// Reads the open regular file `fd` whole (at most `max_bytes`), named `shown` in errors.
+std::string read_open_file(int fd, const std::string& shown, size_t max_bytes) {
+  std::string out;
+  char buf[65536];
+  for (;;) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw IoError(shown + ": cannot read: " + errno_text(errno));
+    }
+    if (n == 0) break;
+    if (out.size() + static_cast<size_t>(n) > max_bytes)
+      throw IoError(fmt::format("{}: grew beyond the {} MB limit for this kind of file while being read", shown,
+                                max_bytes >> 20));
+    out.append(buf, static_cast<size_t>(n));
+  }
+  return out;
+}
+
+// Runs `recheck` with what `name` in the open folder `dir` holds now (nullopt: missing); a link or anything
+// but a regular file is not read, and not checked: the rename replaces it, never following it.
+void run_recheck(int dir, const std::string& name, const std::string& shown, const Recheck& recheck) {
+  const int fd = ::openat(dir, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) {
+    if (errno == ENOENT) recheck(std::nullopt);
+    return;
+  }
+  const Fd file(fd);
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return;
+  recheck(read_open_file(fd, shown, kMaxReadBytes));
+}
+
 }  // namespace
 
 void write_file_beneath(const std::string& root, const std::string& relative, const std::string& contents,
-                        const WriteStepHook& hook) {
+                        const WriteStepHook& hook, const Recheck& recheck) {
   const std::vector<std::string> parts = split_relative(root, relative);
   std::string shown;
   const Fd dir = open_folders(root, parts, true, "saving", &shown);
@@ -150,6 +194,14 @@ void write_file_beneath(const std::string& root, const std::string& relative, co
     throw IoError(shown + ": cannot write: " + why);
   }
   if (hook) hook("temp written");
+  if (recheck) {
+    try {
+      run_recheck(dir.get(), name, shown, recheck);
+    } catch (...) {
+      ::unlinkat(dir.get(), tmp.c_str(), 0);
+      throw;
+    }
+  }
   // renameat replaces whatever is at `name` now (even a link swapped in after the check) without following it.
   if (::renameat(dir.get(), tmp.c_str(), dir.get(), name.c_str()) != 0) {
     const std::string why = errno_text(errno);
@@ -161,7 +213,8 @@ void write_file_beneath(const std::string& root, const std::string& relative, co
   if (hook) hook("directory synced");
 }
 
-bool remove_file_beneath(const std::string& root, const std::string& relative, const WriteStepHook& hook) {
+bool remove_file_beneath(const std::string& root, const std::string& relative, const WriteStepHook& hook,
+                         const Recheck& recheck) {
   const std::vector<std::string> parts = split_relative(root, relative);
   std::string shown;
   const Fd dir = open_folders(root, parts, false, "deleting", &shown);
@@ -173,6 +226,7 @@ bool remove_file_beneath(const std::string& root, const std::string& relative, c
   if (type == S_IFLNK) throw IoError(link_refused(shown, "deleting"));
   if (type == S_IFDIR) throw IoError(shown + ": is a folder, expected a file; not removed");
   if (hook) hook("checked");
+  if (recheck) run_recheck(dir.get(), name, shown, recheck);
   // unlinkat removes a name in this folder; should a link have been swapped in, the link goes, not its target.
   if (::unlinkat(dir.get(), name.c_str(), 0) != 0) {
     if (errno == ENOENT) return false;
@@ -190,11 +244,13 @@ void check_beneath(const std::string& root, const std::string& relative) {
     throw IoError(link_refused(shown, "saving"));
 }
 
-std::optional<std::string> read_file_beneath(const std::string& root, const std::string& relative, size_t max_bytes) {
+std::optional<std::string> read_file_beneath(const std::string& root, const std::string& relative, size_t max_bytes,
+                                             const WriteStepHook& hook) {
   const std::vector<std::string> parts = split_relative(root, relative);
   std::string shown;
   const Fd dir = open_folders(root, parts, false, "reading", &shown);
   if (dir.get() < 0) return std::nullopt;
+  if (hook) hook("folder opened");
   // O_NONBLOCK: a FIFO must not make open() hang; O_NOFOLLOW: a link is refused, not followed.
   const int fd = ::openat(dir.get(), parts.back().c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
@@ -211,21 +267,125 @@ std::optional<std::string> read_file_beneath(const std::string& root, const std:
     // Rounded up, so a file just over the limit never reads as equal to it (as read_file says it).
     throw IoError(fmt::format("{}: is {:.1f} MB, larger than the {:g} MB limit for this kind of file", shown,
                               std::ceil(st.st_size * 10 / 1048576.0) / 10, max_bytes / 1048576.0));
-  std::string out;
-  char buf[65536];
-  for (;;) {
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throw IoError(shown + ": cannot read: " + errno_text(errno));
-    }
-    if (n == 0) break;
-    if (out.size() + static_cast<size_t>(n) > max_bytes)
-      throw IoError(fmt::format("{}: grew beyond the {} MB limit for this kind of file while being read", shown,
-                                max_bytes >> 20));
-    out.append(buf, static_cast<size_t>(n));
+  return read_open_file(fd, shown, max_bytes);
+}
+
+int remove_stale_temp_files_beneath(const std::string& root, const std::string& relative, const WriteStepHook& hook) {
+  try {
+    const Fd dir = open_folder(root, relative, "deleting");
+    if (dir.get() < 0) return 0;
+    if (hook) hook("folder opened");
+    return remove_stale_temp_files_at(dir.get());
+  } catch (const IoError&) {
+    return 0;  // a link, or a folder that can't be opened: tidying, not a correctness step
   }
+}
+
+namespace {
+
+// The entries of the open folder `dir`, sorted by name.
+std::vector<FolderEntry> list_entries(int dir, const std::string& shown) {
+  std::vector<FolderEntry> out;
+  const int fd = ::dup(dir);
+  DIR* d = fd < 0 ? nullptr : ::fdopendir(fd);
+  if (!d) {
+    if (fd >= 0) ::close(fd);
+    throw IoError(fmt::format("{}: cannot list the folder: {}", shown, errno_text(errno)));
+  }
+  ::rewinddir(d);
+  while (const dirent* e = ::readdir(d)) {
+    const std::string name = e->d_name;
+    if (name == "." || name == "..") continue;
+    struct stat st {};
+    const bool folder = ::fstatat(dir, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISDIR(st.st_mode);
+    out.push_back({name, folder});
+  }
+  ::closedir(d);
+  std::sort(out.begin(), out.end(), [](const FolderEntry& x, const FolderEntry& y) { return x.name < y.name; });
   return out;
+}
+
+// Removes everything in the open folder `dir`, depth first, never following a link.
+void empty_folder(int dir, const std::string& shown) {
+  for (const FolderEntry& e : list_entries(dir, shown)) {
+    const std::string inner = shown + "/" + e.name;
+    if (e.folder) {
+      const Fd sub(::openat(dir, e.name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+      if (sub.get() < 0) throw IoError(fmt::format("{}: cannot open the folder: {}", inner, errno_text(errno)));
+      empty_folder(sub.get(), inner);
+    }
+    if (::unlinkat(dir, e.name.c_str(), e.folder ? AT_REMOVEDIR : 0) != 0 && errno != ENOENT)
+      throw IoError(fmt::format("{}: cannot remove: {}", inner, errno_text(errno)));
+  }
+}
+
+}  // namespace
+
+std::vector<FolderEntry> entries_beneath(const std::string& root, const std::string& relative) {
+  const Fd dir = open_folder(root, relative, "reading");
+  if (dir.get() < 0) return {};
+  return list_entries(dir.get(), root + "/" + relative);
+}
+
+std::vector<std::string> folders_beneath(const std::string& root, const std::string& relative) {
+  std::vector<std::string> out;
+  for (const FolderEntry& e : entries_beneath(root, relative))
+    if (e.folder) out.push_back(e.name);
+  return out;
+}
+
+void make_folder_beneath(const std::string& root, const std::string& relative) {
+  const std::vector<std::string> parts = split_relative(root, relative);
+  std::string shown;
+  const Fd dir = open_folders(root, parts, true, "saving", &shown);
+  if (::mkdirat(dir.get(), parts.back().c_str(), 0755) != 0)
+    throw IoError(fmt::format("{}: cannot create the folder: {}", shown, errno_text(errno)));
+}
+
+void rename_beneath(const std::string& root, const std::string& from, const std::string& to) {
+  const std::vector<std::string> a = split_relative(root, from), b = split_relative(root, to);
+  std::string shown_a, shown_b;
+  const Fd dir_a = open_folders(root, a, false, "moving", &shown_a);
+  const Fd dir_b = open_folders(root, b, true, "moving", &shown_b);
+  if (dir_a.get() < 0 || ::renameat(dir_a.get(), a.back().c_str(), dir_b.get(), b.back().c_str()) != 0)
+    throw IoError(
+        fmt::format("{}: cannot move to {}: {}", shown_a, shown_b, errno_text(dir_a.get() < 0 ? ENOENT : errno)));
+}
+
+void exchange_beneath(const std::string& root, const std::string& a, const std::string& b) {
+  const std::vector<std::string> pa = split_relative(root, a), pb = split_relative(root, b);
+  std::string shown_a, shown_b;
+  const Fd dir_a = open_folders(root, pa, false, "moving", &shown_a);
+  const Fd dir_b = open_folders(root, pb, false, "moving", &shown_b);
+  if (dir_a.get() < 0 || dir_b.get() < 0 ||
+      ::renameat2(dir_a.get(), pa.back().c_str(), dir_b.get(), pb.back().c_str(), RENAME_EXCHANGE) != 0)
+    throw IoError(fmt::format("{}: cannot be swapped with {}: {}", shown_a, shown_b, errno_text(errno)));
+}
+
+void remove_tree_beneath(const std::string& root, const std::string& relative) {
+  const std::vector<std::string> parts = split_relative(root, relative);
+  std::string shown;
+  const Fd dir = open_folders(root, parts, false, "deleting", &shown);
+  if (dir.get() < 0) return;
+  const mode_t type = type_at(dir.get(), parts.back(), shown);
+  if (type == 0) return;
+  if (type == S_IFDIR) {
+    const Fd sub(::openat(dir.get(), parts.back().c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+    if (sub.get() < 0) throw IoError(fmt::format("{}: cannot open the folder: {}", shown, errno_text(errno)));
+    empty_folder(sub.get(), shown);
+  }
+  if (::unlinkat(dir.get(), parts.back().c_str(), type == S_IFDIR ? AT_REMOVEDIR : 0) != 0 && errno != ENOENT)
+    throw IoError(fmt::format("{}: cannot remove: {}", shown, errno_text(errno)));
+}
+
+void link_file_beneath(const std::string& root, const std::string& relative, const std::string& source) {
+  const std::vector<std::string> parts = split_relative(root, relative);
+  std::string shown;
+  const Fd dir = open_folders(root, parts, true, "saving", &shown);
+  if (::linkat(AT_FDCWD, source.c_str(), dir.get(), parts.back().c_str(), 0) == 0) return;
+  if (errno != EXDEV && errno != EPERM && errno != EMLINK)
+    throw IoError(fmt::format("{}: cannot link {} there: {}", shown, source, errno_text(errno)));
+  write_file_beneath(root, relative, read_file(source));  // another file system: a copy
 }
 
 namespace {

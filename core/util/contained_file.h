@@ -7,8 +7,10 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/util/atomic_file.h"
 
@@ -17,9 +19,14 @@ namespace ipd {
 // Replaces root/relative with `contents` atomically (temp file, fsync, rename, fsync of the folder),
 // creating missing folders. Refuses with IoError "PATH: is a symbolic link; ..." when a folder below root
 // or the file itself is one. `hook` steps: "folder opened", "checked", "temp written", "renamed",
-// "directory synced".
+// "directory synced". `recheck`, when given, runs after the temp file is written and right before the
+// rename with what the file holds now, read through the folder already opened (nullopt: missing): it throws to
+// refuse the replacement (the temp file is removed, the file left as it is), so a check of what the file holds
+// is made as late as it can be, not before a slow write. A link or other non-file found there is not read: it
+// is replaced, never followed.
+using Recheck = std::function<void(const std::optional<std::string>& now)>;
 void write_file_beneath(const std::string& root, const std::string& relative, const std::string& contents,
-                        const WriteStepHook& hook = {});
+                        const WriteStepHook& hook = {}, const Recheck& recheck = {});
 
 // Where `path` lies below `root`: its path relative to root when it is below root (written as given, or below
 // root's real path when root is itself a link), nullopt when it is elsewhere. Lexical: links below root are
@@ -34,13 +41,48 @@ std::optional<std::string> path_below(const std::string& root, const std::string
 void write_output_file(const std::string& root, const std::string& path, const std::string& contents);
 
 // Removes root/relative durably (fsync of its folder); false when it was not there. Refuses (IoError) a
-// symbolic link, whether the file or a folder on the way. `hook` steps: "folder opened", "checked".
-bool remove_file_beneath(const std::string& root, const std::string& relative, const WriteStepHook& hook = {});
+// symbolic link, whether the file or a folder on the way. `hook` steps: "folder opened", "checked";
+// `recheck` as write_file_beneath's, right before the removal.
+bool remove_file_beneath(const std::string& root, const std::string& relative, const WriteStepHook& hook = {},
+                         const Recheck& recheck = {});
 
 // Checks that the folders of root/relative are real folders (or missing) and the file is not a link,
 // without changing anything ("saving through it is refused"): a save checks every file it will write or
 // remove before it changes the first one.
 void check_beneath(const std::string& root, const std::string& relative);
+
+// Removes the temp files of dead writers (remove_stale_temp_files_at) in the folder root/relative, opened
+// beneath root without following a link (a folder that is one, or is swapped for one after a check, is never
+// listed or deleted in). Returns how many were removed; 0 when the folder is missing, a link or unreadable.
+// `hook` step: "folder opened" (tests swap the folder there).
+int remove_stale_temp_files_beneath(const std::string& root, const std::string& relative,
+                                    const WriteStepHook& hook = {});
+
+// The entries of the folder root/relative (opened beneath root, listed with fdopendir, each examined with
+// fstatat without following it), sorted by name; empty when it is missing. Throws IoError for a link on the
+// way or at root/relative itself, as read_file_beneath.
+struct FolderEntry {
+  std::string name;
+  bool folder = false;  // a real folder; a link to one is not
+  bool operator==(const FolderEntry& o) const { return name == o.name && folder == o.folder; }
+};
+std::vector<FolderEntry> entries_beneath(const std::string& root, const std::string& relative);
+// The names of the real folders among them.
+std::vector<std::string> folders_beneath(const std::string& root, const std::string& relative);
+
+// Creates the folder root/relative, which must not exist (its parents are created; none may be a link).
+void make_folder_beneath(const std::string& root, const std::string& relative);
+// Moves root/from to root/to (renameat between the two folders' descriptors; to's folders are created): the
+// entry itself moves, a link as a link. Throws IoError naming both.
+void rename_beneath(const std::string& root, const std::string& from, const std::string& to);
+// Swaps root/a and root/b in one step (renameat2 RENAME_EXCHANGE): a reader sees one or the other, whole.
+void exchange_beneath(const std::string& root, const std::string& a, const std::string& b);
+// Removes root/relative and everything in it, through descriptors: a link inside is removed itself, its
+// target never listed or touched. Nothing there: nothing done.
+void remove_tree_beneath(const std::string& root, const std::string& relative);
+// Puts the file `source` (a path the user named) at root/relative: a hard link, or a copy through the
+// descriptor layer when it is on another file system.
+void link_file_beneath(const std::string& root, const std::string& relative, const std::string& source);
 
 // What keeps `path`, a file a study names (a picture, say), from being read where it is: "PATH: is a symbolic
 // link; ..." (a link is never followed out of a study) or "PATH: is a FIFO, expected a regular file" (which
@@ -48,8 +90,10 @@ void check_beneath(const std::string& root, const std::string& relative);
 std::string study_file_problem(const std::string& path);
 
 // Reads root/relative (a regular file of at most `max_bytes`); nullopt when it or a folder on the way is
-// missing. Throws IoError naming the path for a symbolic link, a non-regular file, or a read error.
+// missing. Throws IoError naming the path for a symbolic link, a non-regular file, or a read error. The file is
+// opened once (O_NOFOLLOW|O_NONBLOCK: a FIFO never blocks), checked with fstat and read through that
+// descriptor. `hook` step: "folder opened" (before the file is opened; tests swap the file there).
 std::optional<std::string> read_file_beneath(const std::string& root, const std::string& relative,
-                                             size_t max_bytes = kMaxReadBytes);
+                                             size_t max_bytes = kMaxReadBytes, const WriteStepHook& hook = {});
 
 }  // namespace ipd

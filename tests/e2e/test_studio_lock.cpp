@@ -40,5 +40,27 @@ TEST(StudioReplay, ASecondWindowOpensReadOnlyNamingTheHolderAndSavesNothing) {
   EXPECT_FALSE(fs::exists(d / "study/pairs/real__principled/scene_00002.json"));
 }
 
+// A recent-studies list that can't be written (here a folder of its name) is no lost edit: the replay's edit
+// is saved, the warning says what failed, and the run exits 0.
+TEST(StudioReplay, AnUnwritableRecentStudiesListIsAWarningNotALostEdit) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd(fmt::format("demo {} --labels-only --scenes 3 --rocks 12", d / "study")).exit_code, 0);
+  fs::create_directories(d / "cache/ipd-studio/recent.txt");
+  test::write_text(d / "actions.txt", "scene scene_00002\npair 2 3\n");
+  const std::string cmd = fmt::format("XDG_CACHE_HOME={} {} {} --replay {}; echo exit $?", d / "cache", studio,
+                                      d / "study", d / "actions.txt");
+  std::system(fmt::format("xvfb-run -a -s '-screen 0 1280x800x24' sh -c '{}' >{} 2>&1", cmd, d / "log.txt").c_str());
+  const std::string log = read_file(d / "log.txt");
+  EXPECT_NE(log.find("warning: the recent-studies list was not saved: " + d / "cache/ipd-studio/recent.txt" +
+                     ": is not a regular file; not replaced\n"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(log.find("edit not saved"), std::string::npos) << log;
+  EXPECT_NE(log.find("exit 0"), std::string::npos) << log;
+  EXPECT_TRUE(fs::exists(d / "study/pairs/real__principled/scene_00002.json"));
+}
+
 }  // namespace
 }  // namespace ipd

@@ -124,7 +124,7 @@ void load_gallery_pictures(GalleryInput& in, const Study& study) {
     const auto it = d->images.find(stem);
     if (it == d->images.end()) return;
     auto [at, fresh] = read.try_emplace({domain, stem});
-    if (fresh) at->second = read_picture(it->second, cv::IMREAD_COLOR);
+    if (fresh) at->second = read_study_picture(study.root, it->second, cv::IMREAD_COLOR).image;
     if (at->second.empty()) {
       c.problem = "cannot decode " + it->second;
       return;

@@ -125,11 +125,9 @@ void load_pictures(SceneFigureInput& in, const Study& study) {
     if (!d) return;
     const auto it = d->images.find(in.stem);
     if (it == d->images.end()) return;
-    picture = read_picture(it->second, cv::IMREAD_COLOR);
-    if (picture.empty()) {
-      problem = picture_problem(it->second);
-      if (problem.empty()) problem = "cannot decode " + it->second;
-    }
+    PictureRead read = read_study_picture(study.root, it->second, cv::IMREAD_COLOR);
+    picture = std::move(read.image);
+    problem = std::move(read.problem);
   };
   load(in.a, in.picture_a, in.problem_a);
   load(in.b, in.picture_b, in.problem_b);

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 #include <filesystem>
@@ -88,6 +89,23 @@ TEST(StudyCache, ReopenReusesEveryFileAndReadsTheSame) {
   EXPECT_EQ(again.stats.files_parsed, 0);
   EXPECT_FALSE(again.stats.written);  // nothing changed: not rewritten
   EXPECT_EQ(again.labels, fresh);
+}
+
+// Shortened in place while it is being read (anyone who can write the study can): read into memory, the
+// file reads short and is ignored; a mapped file would have crashed the program (SIGBUS) at the next access.
+TEST(StudyCache, ACacheShortenedWhileItIsReadIsIgnoredWithoutACrash) {
+  test::TempDir d;
+  write_study(d);
+  const std::string fresh = dump(load_labels(open_study(d.path())));
+  open_cached(d.path());
+  const std::string path = parsed_study_cache_path(d.path());
+  const size_t size = read_file(path).size();
+  const Study study = open_study(d.path());
+  StudyCache cache(path, study.root, [&](const char* step) {
+    if (std::string(step) == "opened") ASSERT_EQ(::truncate(path.c_str(), static_cast<off_t>(size / 2)), 0);
+  });
+  EXPECT_EQ(cache.stats().state, "ignored: truncated");
+  EXPECT_EQ(dump(cache.load_labels(study)), fresh);
 }
 
 TEST(StudyCache, TruncatedOrFlippedCacheIsIgnoredAndRebuilt) {

@@ -92,6 +92,46 @@ TEST(SaveConflict, AHandEditOfTheFileOrTheOtherNameOrderIsNotLost) {
   EXPECT_EQ(read_file(d / "pairs/synth__real/s1.json"), "{\"pairs\": [[1, 0]]}\n");
 }
 
+// A hand edit that lands while the save writes and syncs its temp file (seconds on a slow or network disk) is
+// found by the check made right before the rename: a conflict, the hand edit kept.
+TEST(SaveConflict, AHandEditLandingWhileTheSaveIsWrittenIsNotLost) {
+  test::TempDir d;
+  write_study(d);
+  Session s = Session::open(d.path());
+  const std::string hand = "{\"pairs\": [[1, 1]]}\n";
+  try {
+    run_save_job(s.apply(0, Edit::pair(0, 0)), [&](const char* step) {
+      if (std::string(step) == "temp written") test::write_text(d / "pairs/real__synth/s1.json", hand);
+    });
+    FAIL() << "expected a conflict";
+  } catch (const SaveConflict& e) {
+    EXPECT_EQ(std::string(e.what()), conflict_message(d / "pairs/real__synth/s1.json"));
+  }
+  EXPECT_EQ(read_file(d / "pairs/real__synth/s1.json"), hand);
+  // No temp file is left beside it.
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(d / "pairs/real__synth")) files += e.is_regular_file() ? 1 : 0;
+  EXPECT_EQ(files, 1);
+}
+
+// The same for the review marks' file.
+TEST(SaveConflict, AHandEditOfTheReviewFileLandingWhileTheSaveIsWrittenIsNotLost) {
+  test::TempDir d;
+  write_study(d);
+  Session s = Session::open(d.path());
+  const std::string hand = "{\"reviewed\": [\"s1\"]}\n";
+  const SaveJob job = s.toggle_reviewed(0);
+  try {
+    run_save_job(job, [&](const char* step) {
+      if (std::string(step) == "temp written") test::write_text(job.path, hand);
+    });
+    FAIL() << "expected a conflict";
+  } catch (const SaveConflict& e) {
+    EXPECT_EQ(std::string(e.what()), conflict_message(job.path));
+  }
+  EXPECT_EQ(read_file(job.path), hand);
+}
+
 TEST(SaveConflict, TheSaverKeepsConflictsForTheUserAndQueuedJobsKeepTheirExpectations) {
   test::TempDir d;
   write_study(d);

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "core/study/coco_import.h"
 #include "core/util/atomic_file.h"
@@ -144,6 +146,44 @@ TEST(CocoImport, ReimportingFromTheDomainsOwnPicturesKeepsThem) {
   EXPECT_EQ(std::distance(fs::directory_iterator(d / "study/real/images"), fs::directory_iterator()), 1);
   EXPECT_NE(r.out.find("1 pictures linked"), std::string::npos) << r.out;
   EXPECT_EQ(read_file(d / "study/real/labels/s1.txt"), "2 0.5 0.5 0.2 0.2\n");
+}
+
+// A received study whose domain holds links (`labels -> X`, `images -> Y`, `predictions/det -> Z`): --replace
+// writes the new set into a folder beside the domain and renames it in, so the links are replaced, and nothing
+// in X, Y or Z is written, replaced or removed. A domain folder that is itself a link is refused.
+TEST(CocoImport, ReplacingADomainNeverWritesThroughItsLinks) {
+  test::TempDir d, x, y, z;
+  test::write_text(d / "gt.json", ground_truth("[{\"id\": 2, \"name\": \"rock\"}]"));
+  test::write_text(d / "res.json",
+                   "[{\"image_id\": 1, \"category_id\": 2, \"bbox\": [40, 40, 20, 20], \"score\": 0.9}]");
+  test::write_text(d / "s1.png", "picture");
+  for (const test::TempDir* t : {&x, &y, &z}) test::write_text(*t / "s1.txt", "precious\n");
+  test::write_text(x / "classes.txt", "precious\n");
+  test::write_text(y / "s1.png", "precious\n");
+  fs::create_directories(d / "study/real/predictions");
+  fs::create_directory_symlink(x.path(), d / "study/real/labels");
+  fs::create_directory_symlink(y.path(), d / "study/real/images");
+  fs::create_directory_symlink(z.path(), d / "study/real/predictions/det");
+  const auto r =
+      test::run_ipd(import_args(d, "gt.json", "real") + " --results " + d / "res.json" + " --model det --replace");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const std::string& f : {x / "s1.txt", x / "classes.txt", y / "s1.txt", y / "s1.png", z / "s1.txt"})
+    EXPECT_EQ(read_file(f), "precious\n") << f;
+  EXPECT_FALSE(fs::is_symlink(d / "study/real/labels"));
+  EXPECT_FALSE(fs::is_symlink(d / "study/real/predictions/det"));
+  EXPECT_EQ(read_file(d / "study/real/labels/s1.txt"), "2 0.5 0.5 0.2 0.2\n");
+  EXPECT_EQ(read_file(d / "study/real/images/s1.png"), "picture");
+  EXPECT_EQ(read_file(d / "study/real/predictions/det/s1.txt"), "2 0.5 0.5 0.2 0.2 0.9\n");
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(d / "study")) names.push_back(e.path().filename().string());
+  EXPECT_EQ(names, std::vector<std::string>{"real"});  // the staging folder and the old domain are gone
+  // The domain folder itself a link: refused before anything is written.
+  fs::create_directory_symlink(x.path(), d / "study/synth");
+  const auto s = test::run_ipd(import_args(d, "gt.json", "synth") + " --replace");
+  EXPECT_EQ(s.exit_code, 1);
+  EXPECT_EQ(s.err, "error: " + d / "study/synth" +
+                       ": is a symbolic link; the import replaces a folder, never through a link\n");
+  EXPECT_EQ(read_file(x / "s1.txt"), "precious\n");
 }
 
 }  // namespace

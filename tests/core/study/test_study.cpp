@@ -148,10 +148,15 @@ TEST(Study, ModelSettingsAreCheckedAtEveryLevel) {
             "trained on (leave the setting out when it is unknown)");
   EXPECT_EQ(test::study_yaml_error("registration: {method: cpd, sed: 3}\n"),
             "study.yaml:1: unknown registration setting 'sed' (expected method, seed, trials, gate, budget_ms)");
-  // What stays allowed: a model with no settings (training domain unknown) and a quoted domain named null.
-  const StudyConfig c = parse_study_config("models: {a: , b: {}, c: {trained_on: 'null'}}\n", "study.yaml");
-  EXPECT_EQ(c.trained_on.at("a"), "");
-  EXPECT_EQ(c.trained_on.at("b"), "");
+  // An entry without a value (`det-principled:`, a line cut short) would silently drop its training domain.
+  EXPECT_EQ(test::study_yaml_error("models:\n  det-real: {trained_on: real}\n  det-principled:\n"),
+            "study.yaml:3: models.det-principled has no value; expected its settings like {trained_on: real} ({} "
+            "when the training domain is unknown)");
+  EXPECT_EQ(test::study_yaml_error("models: {a: , b: {}}\n"),
+            "study.yaml:1: models.a has no value; expected its settings like {trained_on: real} ({} when the "
+            "training domain is unknown)");
+  // What stays allowed: a model with empty settings (training domain unknown) and a quoted domain named null.
+  const StudyConfig c = parse_study_config("models: {b: {}, c: {trained_on: 'null'}}\n", "study.yaml");
   EXPECT_EQ(c.trained_on.at("c"), "null");
 }
 
