@@ -31,7 +31,6 @@ class FrameStats {
   // The first call of each records the time since the program started.
   void content_shown() { mark(&content_ms_); }
   void study_loaded() { mark(&loaded_ms_); }
-  bool content_was_shown() const { return content_ms_ >= 0; }
 
   // `NAME median=X p95=Y max=Z n=N over_50ms=K` (empty without values).
   static std::string summary(const char* name, std::vector<double> values);
