@@ -104,6 +104,8 @@ struct UiState {
   std::string filter_error;
   // Chrome: menus and dialogs.
   bool show_help = false, show_goto = false, show_open = false, show_quit = false;
+  // The key index of F1 (the window's backend maps it: ImGui 1.86 names no F keys); -1: only '?' opens the help.
+  int help_key = -1;
   char goto_text[128] = "";
   std::string browse_dir;                      // the Open study… browser's directory
   std::vector<std::string> browse_dirs;        // its subdirectories (listed by the app when browse_dir changes)
