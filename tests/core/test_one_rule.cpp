@@ -56,7 +56,7 @@ TEST(OneRule, EngineStudioFiguresAndMetricsKeepTheSamePredictions) {
   EXPECT_NEAR(s.performance(Side::kA, 0).value[1], 1.0 / 3.0, 1e-12);
   EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
 
-  const SceneFigureInput in = scene_input_from_study(labels, "real", "synth", "det", "s1", 0.0, {});
+  const ui::SceneFigureInput in = ui::scene_input_from_study(labels, "real", "synth", "det", "s1", 0.0, {});
   EXPECT_EQ(in.pred_a.size(), 2u);
 
   DetectionImage im;
