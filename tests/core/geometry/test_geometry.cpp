@@ -61,12 +61,12 @@ TEST(PerformanceValue, LaterBetterPredictionWinsOverFirstOverlapping) {
   const std::vector<Box> pred = {box(0.9, 0.9, 0.05, 0.05, 0.99), box(0.5, 0.5, 0.4, 0.4, 0.95),
                                  box(0.5, 0.5, 0.2, 0.2, 0.5), box(0.6, 0.5, 0.2, 0.2, 0.9)};
   const PerformanceValues pv = performance_values(gt, pred);
-  EXPECT_DOUBLE_EQ(pv.value[0], 1.0);
+  EXPECT_NEAR(pv.value[0], 1.0, 1e-12);
   EXPECT_EQ(pv.best_prediction[0], 2);  // neither the first overlapping (1) nor the last (3)
   // The same predictions in another order give the same value: the order of a predictions file is no rule.
   const std::vector<Box> reversed(pred.rbegin(), pred.rend());
   const PerformanceValues rv = performance_values(gt, reversed);
-  EXPECT_DOUBLE_EQ(rv.value[0], 1.0);
+  EXPECT_NEAR(rv.value[0], 1.0, 1e-12);
   EXPECT_EQ(rv.best_prediction[0], 1);
 }
 
@@ -81,7 +81,7 @@ TEST(PerformanceValue, EachRockTakesItsOwnBestPrediction) {
   const PerformanceValues pv = performance_values(gt, pred);
   EXPECT_NEAR(pv.value[0], 0.5, 1e-12);  // not the first overlapping prediction's 1/3
   EXPECT_EQ(pv.best_prediction[0], 1);
-  EXPECT_DOUBLE_EQ(pv.value[1], 1.0);  // not the first overlapping prediction's 1/2
+  EXPECT_NEAR(pv.value[1], 1.0, 1e-12);  // not the first overlapping prediction's 1/2
   EXPECT_EQ(pv.best_prediction[1], 2);
 }
 
