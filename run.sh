@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")"
 
 packages=(
-  cmake g++ make pkg-config
+  cmake g++ make pkg-config ccache
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev libopencv-dnn-dev python3-onnx
   libeigen3-dev libssl-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libfmt-dev libgtest-dev
   python3-numpy
@@ -27,7 +27,11 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+# Every build goes through ccache: a rebuild of the same sources (another build directory, another clone of the
+# project, a CI run after a local build) compiles only what changed. CCACHE_BASEDIR makes the paths in the
+# compiler commands relative to the clone, so clones at different paths share the cache.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache >/dev/null
 cmake --build build -j"$jobs"
 
 if [ "${1:-}" = "test" ]; then

@@ -14,9 +14,9 @@
 #include "app/bench/registration_runs.h"
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
-#include "app/data_files.h"
 #include "core/report/csv.h"
 #include "core/util/atomic_file.h"
+#include "core/util/data_files.h"
 #include "core/util/parallel.h"
 
 namespace ipd::cli {

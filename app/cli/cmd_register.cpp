@@ -137,19 +137,15 @@ struct RegisterArgs {
   double budget_ms = 0, max_rotation = 0, max_anisotropy = 0;
   bool json = false, skip_bad_lines = false;
 
-  // Empty when every option given is in range, else "--option: what is wrong". A value out of range is an
-  // error, never the default (`--max-rotation -5` used to run with 30 degrees).
+  // Empty when every option the registration options do not check themselves is in range, else "--option:
+  // what is wrong". A value out of range is an error, never the default. --trials, --max-rotation and
+  // --max-anisotropy are checked by RegistrationOptions::validate (registration_options).
   std::string validate(const CLI::App& cmd) const {
     auto given = [&](const char* flag) { return cmd.count(flag) > 0; };
-    if (given("--trials") && trials < 1) return fmt::format("--trials: must be at least 1, got {}", trials);
     if (given("--class") && cls < 0)
       return fmt::format("--class: must be a class number >= 0 (leave it out for every class), got {}", cls);
     if (given("--budget-ms") && !(budget_ms >= 0 && std::isfinite(budget_ms)))
       return fmt::format("--budget-ms: must be a number of milliseconds >= 0 (0: no limit), got {}", budget_ms);
-    if (given("--max-rotation") && !(max_rotation > 0 && max_rotation <= 180))
-      return fmt::format("--max-rotation: must be in (0, 180] degrees, got {}", max_rotation);
-    if (given("--max-anisotropy") && !(max_anisotropy >= 1 && std::isfinite(max_anisotropy)))
-      return fmt::format("--max-anisotropy: must be a ratio >= 1 (1: no stretch allowed), got {}", max_anisotropy);
     if (image_size.size() == 2 && (image_size[0] <= 0 || image_size[1] <= 0))
       return fmt::format("--image-size: width and height must be positive, got {},{}", image_size[0], image_size[1]);
     if (given("--threads") && threads < 0)
@@ -189,16 +185,24 @@ void declare_register_options(CLI::App* cmd, RegisterArgs* args) {
   cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
 }
 
-// The registration the options ask for; throws CLI::ValidationError naming what is out of range.
+// The registration the options ask for; throws CLI::ValidationError naming what is out of range. The ranges
+// are the options' own (RegistrationOptions::validate): each option given is checked as it is set, so the
+// error names it ("--max-rotation: max_rotation_deg must be in (0, 180], got -5").
 RegistrationOptions registration_options(const RegisterArgs& args, const CLI::App& cmd) {
   if (const std::string bad = args.validate(cmd); !bad.empty()) throw CLI::ValidationError(bad);
   RegistrationOptions opt;
   parse_method(args.method, &opt.method);
   opt.seed = args.seed;
-  if (cmd.count("--trials") > 0) opt.trials() = args.trials;
+  auto set = [&](const char* flag, auto apply) {
+    if (cmd.count(flag) == 0) return;
+    apply();
+    if (const std::string bad = opt.validate(); !bad.empty())
+      throw CLI::ValidationError(fmt::format("{}: {}", flag, bad));
+  };
+  set("--trials", [&] { opt.trials() = args.trials; });
+  set("--max-rotation", [&] { opt.consensus.max_rotation_deg = args.max_rotation; });
+  set("--max-anisotropy", [&] { opt.consensus.max_anisotropy = args.max_anisotropy; });
   if (args.budget_ms > 0) opt.time_budget_ms = args.budget_ms;  // 0: no limit
-  if (cmd.count("--max-rotation") > 0) opt.consensus.max_rotation_deg = args.max_rotation;
-  if (cmd.count("--max-anisotropy") > 0) opt.consensus.max_anisotropy = args.max_anisotropy;
   if (args.image_size.size() == 2) opt.aspect = static_cast<double>(args.image_size[0]) / args.image_size[1];
   const std::string bad = opt.validate();
   if (!bad.empty()) throw CLI::ValidationError("register", bad);

@@ -17,7 +17,7 @@ void add_figure_output_options(CLI::App* cmd, FigureOutputArgs* a) {
   cmd->add_option("--out", a->out, "File to write (atomically): .pdf, .svg or .png")->required();
   auto* column = cmd->add_option("--column", a->column, "single (3.5 in) or double (7.16 in)")
                      ->check(CLI::IsMember({"single", "double"}));
-  // Any typed width is checked (1 to 40 inches): 0 or -3 used to stand for "not given" and drew --column's width.
+  // Any typed width is checked (1 to 40 inches): 0 or -3 is an error, never "not given" (--column's width).
   cmd->add_option_function<double>(
          "--width-in", [a](const double& inches) { a->width_in = inches; },
          "Width in inches, 1 to 40 (instead of --column)")

@@ -1,7 +1,5 @@
 #include "app/cli/offscreen_renderer.h"
 
-#include "app/data_files.h"
-
 #include <GL/osmesa.h>
 #include <backends/imgui_impl_opengl2.h>
 
@@ -26,15 +24,6 @@ struct OffscreenRenderer::Impl {
   ImFont* bold = nullptr;
   ImVector<ImWchar> ranges;  // the atlas's glyphs: must live until the atlas is built
 };
-
-std::string figure_font_file() {
-  for (const std::string& p : {find_data_file("fonts/DejaVuSans.ttf", IPD_ASSETS_DIR),
-                               std::string("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")}) {
-    std::error_code ec;
-    if (std::filesystem::exists(p, ec)) return p;
-  }
-  return {};
-}
 
 OffscreenRenderer::OffscreenRenderer(int width, int height, float font_px, const std::string& font_file,
                                      const std::string& bold_file, const std::string& glyph_text)

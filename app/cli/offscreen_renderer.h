@@ -36,9 +36,6 @@ class OffscreenRenderer {
   std::unique_ptr<Impl> impl_;
 };
 
-// The font figures use: assets/fonts/ first, then Debian's DejaVu Sans; empty for ImGui's built-in one.
-std::string figure_font_file();
-
 // A figure as PNG bytes through OSMesa and ImGui's draw list (the raster path): width = width_pt / 72 * dpi.
 std::string render_png(const ui::DisplayList& figure, const ui::FontMetrics& metrics, double dpi);
 

@@ -22,10 +22,10 @@ BootstrapOptions StudyOptions::bootstrap_options() const {
 
 std::string StudyOptions::validate() const {
   if (conf != -1 && !(conf >= 0 && conf <= 1)) return fmt::format("--conf: must be in [0, 1], got {}", conf);
-  // One resample has no spread: it silently gave no interval at all.
-  if (bootstrap < 0 || bootstrap == 1)
-    return fmt::format("--bootstrap: must be 0 (no intervals) or at least 2 (an interval needs two resamples), got {}",
-                       bootstrap);
+  // The resamples' rule is the engine's own (BootstrapOptions::validate).
+  BootstrapOptions resamples;
+  resamples.resamples = bootstrap;
+  if (const std::string bad = resamples.validate(); !bad.empty()) return "--bootstrap: " + bad;
   if (!(level >= 0.5 && level <= 0.9999)) return fmt::format("--ci: must be in [0.5, 0.9999], got {}", level);
   if (threads < 0) return fmt::format("--threads: must be >= 0 (0: every core), got {}", threads);
   if (!std::isnan(budget_ms) && !(budget_ms >= 0 && std::isfinite(budget_ms)))

@@ -31,7 +31,6 @@ class FrameStats {
   // The first call of each records the time since the program started.
   void content_shown() { mark(&content_ms_); }
   void study_loaded() { mark(&loaded_ms_); }
-  bool content_was_shown() const { return content_ms_ >= 0; }
   // The last frame's pictures on screen (left, right: width and height in pixels) and the window's size.
   void set_picture_px(float left_w, float left_h, float right_w, float right_h, float window_w, float window_h) {
     picture_px_ = {left_w, left_h, right_w, right_h, window_w, window_h};

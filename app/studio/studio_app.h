@@ -34,6 +34,8 @@ class StudioApp {
   std::string after_render(double frame_ms, double ui_cpu_ms);
   bool done() const { return done_; }
   void request_quit() { ui_.show_quit = true; }
+  // The window backend's key index of F1, which opens the shortcuts (StudioWindow::help_key).
+  void set_help_key(int key) { ui_.help_key = key; }
   int print_stats() const;  // prints frame_ms / scene_ms; returns the exit code
 
  private:

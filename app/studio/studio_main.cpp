@@ -21,12 +21,13 @@ int main(int argc, char** argv) {
   }
   std::unique_ptr<ipd::studio::StudioWindow> window;
   try {
-    window = std::make_unique<ipd::studio::StudioWindow>(o.width, o.height, o.headless(),
-                                                         !o.headless() && !o.size_given, o.exe_dir);
+    window =
+        std::make_unique<ipd::studio::StudioWindow>(o.width, o.height, o.headless(), !o.headless() && !o.size_given);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;
   }
+  app->set_help_key(ipd::studio::StudioWindow::help_key());
   while (!app->done()) {
     const ipd::studio::FrameClock clock;
     if (window->begin_frame()) app->request_quit();

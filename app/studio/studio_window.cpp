@@ -16,8 +16,8 @@
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
-#include "app/data_files.h"
 #include "core/util/atomic_file.h"
+#include "ui/canvas/canvas.h"
 
 namespace fs = std::filesystem;
 
@@ -25,19 +25,17 @@ namespace ipd::studio {
 
 namespace {
 
-void load_font(const std::string& exe_dir) {
-  // A font from assets/ if one was put there, else Debian's DejaVu (fonts-dejavu-core), else ImGui's own.
-  for (const std::string& p :
-       {find_data_file("fonts/DejaVuSans.ttf", IPD_ASSETS_DIR), exe_dir + "/../../assets/fonts/DejaVuSans.ttf",
-        std::string("/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf")}) {
-    std::error_code ec;
-    // Latin-1 plus the typography core labels use: Δ, thin space and dashes (U+2009..2027: en dash in
-    // ranges), superscript digits (footnote marks past ³), minus, ≤ ≥. ImGui's default ranges stop at U+00FF
-    // and draw the rest as '?'.
-    static const ImWchar kRanges[] = {0x0020, 0x00FF, 0x0394, 0x0394, 0x2009, 0x2027, 0x2070,
-                                      0x2079, 0x2212, 0x2212, 0x2264, 0x2265, 0};
-    if (fs::exists(p, ec) && ImGui::GetIO().Fonts->AddFontFromFileTTF(p.c_str(), 15.0f, nullptr, kRanges)) return;
-  }
+void load_font() {
+  // The figures' font (ui::default_font_file: assets/fonts/ if one was put there, else Debian's DejaVu from
+  // fonts-dejavu-core), else ImGui's own.
+  const std::string font = ui::default_font_file();
+  std::error_code ec;
+  // Latin-1 plus the typography core labels use: Δ, thin space and dashes (U+2009..2027: en dash in
+  // ranges), superscript digits (footnote marks past ³), minus, ≤ ≥. ImGui's default ranges stop at U+00FF
+  // and draw the rest as '?'.
+  static const ImWchar kRanges[] = {0x0020, 0x00FF, 0x0394, 0x0394, 0x2009, 0x2027, 0x2070,
+                                    0x2079, 0x2212, 0x2212, 0x2264, 0x2265, 0};
+  if (fs::exists(font, ec) && ImGui::GetIO().Fonts->AddFontFromFileTTF(font.c_str(), 15.0f, nullptr, kRanges)) return;
   ImGui::GetIO().Fonts->AddFontDefault();
 }
 
@@ -53,8 +51,7 @@ double wall_ms() {
 
 }  // namespace
 
-StudioWindow::StudioWindow(int width, int height, bool headless, bool fit_to_screen, const std::string& exe_dir)
-    : headless_(headless) {
+StudioWindow::StudioWindow(int width, int height, bool headless, bool fit_to_screen) : headless_(headless) {
   if (!glfwInit()) throw std::runtime_error("cannot initialise GLFW (no display? run under xvfb-run)");
   if (GLFWmonitor* monitor = fit_to_screen ? glfwGetPrimaryMonitor() : nullptr) {
     int x = 0, y = 0, w = 0, h = 0;
@@ -76,13 +73,15 @@ StudioWindow::StudioWindow(int width, int height, bool headless, bool fit_to_scr
   ImGui::StyleColorsDark();
   ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;
   ImGui::GetStyle().Colors[ImGuiCol_ChildBg] = ImVec4(0, 0, 0, 0);
-  load_font(exe_dir);
+  load_font();
   // Before ImGui's backend, which calls the callback it finds installed before setting a key's state.
   glfwSetWindowUserPointer(window_, this);
   glfwSetKeyCallback(window_, &StudioWindow::on_key);
   ImGui_ImplGlfw_InitForOpenGL(window_, true);
   ImGui_ImplOpenGL3_Init("#version 130");
 }
+
+int StudioWindow::help_key() { return GLFW_KEY_F1; }
 
 StudioWindow::~StudioWindow() {
   ImGui_ImplOpenGL3_Shutdown();

@@ -12,9 +12,11 @@ namespace ipd::studio {
 
 class StudioWindow {
  public:
-  // Throws std::runtime_error (no display, no OpenGL 3). `exe_dir` helps find the font.
+  // Throws std::runtime_error (no display, no OpenGL 3).
   // `fit_to_screen`: width x height at most the primary monitor's work area.
-  StudioWindow(int width, int height, bool headless, bool fit_to_screen, const std::string& exe_dir);
+  StudioWindow(int width, int height, bool headless, bool fit_to_screen);
+  // F1 as the GLFW backend indexes ImGui's KeysDown (by GLFW key codes).
+  static int help_key();
   ~StudioWindow();
   StudioWindow(const StudioWindow&) = delete;
   StudioWindow& operator=(const StudioWindow&) = delete;

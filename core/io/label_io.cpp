@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "core/geometry/confidence_threshold.h"
 #include "core/util/atomic_file.h"
 #include "core/util/contained_file.h"
 #include "core/util/number_text.h"
@@ -196,10 +197,9 @@ void keep_class(LabelFile* file, int cls) {
 }
 
 void keep_confident(LabelFile* file, double threshold) {
-  if (threshold <= 0) return;
   size_t k = 0;
   for (size_t i = 0; i < file->boxes.size(); ++i) {
-    if (file->boxes[i].conf < threshold) continue;
+    if (!kept_at_threshold(file->boxes[i], threshold)) continue;
     file->boxes[k] = file->boxes[i];
     file->line_of_box[k] = file->line_of_box[i];
     ++k;

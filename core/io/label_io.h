@@ -67,7 +67,7 @@ LabelFile read_labels_beneath(const std::string& root, const std::string& relati
 
 // Keeps only boxes of `cls` (and their line numbers); cls < 0 keeps all.
 void keep_class(LabelFile* file, int cls);
-// Drops predictions below a confidence threshold.
+// Drops the predictions a confidence threshold does not keep (kept_at_threshold).
 void keep_confident(LabelFile* file, double threshold);
 
 // Boxes as YOLO txt lines (with confidence for predictions).

@@ -35,8 +35,9 @@ constexpr double kCpdMaxPairs = 16e6;
 // the placements most rock pairs agree on under its linear part, each refined. A constant confidence would
 // read 1.0 even when it paired 2 of 17 rocks. An alignment that aligns nothing gets 0. A rival that fits better
 // replaces EM's answer (`*found`, `*beaten`): an alignment a scored rival beats is never handed out.
-double cpd_confidence(const RegistrationFrame& f, Affine2* found, bool* beaten, const SearchRecorder& recorder) {
-  const double gate = std::clamp(0.3 * median_nn_distance(f.b), 0.02, 0.2);
+// `gate`: consensus_gate, the consensus method's own.
+double cpd_confidence(const RegistrationFrame& f, double gate, Affine2* found, bool* beaten,
+                      const SearchRecorder& recorder) {
   const Bounds any{1e-3, 1e3, M_PI, 1e6};  // cpd's affine is not held to the consensus bounds
   SupportMeasurer support(f, gate, any);
   const double best = support.score(*found);
@@ -259,12 +260,12 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   // Each EM step weighs every (A, B) pair: the work budget bounds the number of steps (at least one).
   const double budget = work_budget(o, f.a.size(), f.b.size()), per_step = static_cast<double>(m) * n;
   const int allowed = static_cast<int>(std::clamp(std::floor(budget / per_step), 1.0, 1e9));
-  // Trace: one step per EM iteration; inliers within the consensus gate (0.3 of B's rock spacing).
-  // B's spacing reads the deadline (a millisecond on 5,000 rocks): cut short, EM does not start, and the
-  // recorder's gate, used only after EM, is never read.
+  // Trace: one step per EM iteration; inliers within the consensus gate (consensus_gate), which also measures
+  // the confidence. B's spacing reads the deadline (a millisecond on 5,000 rocks): cut short, EM does not start,
+  // and the gate, used only after EM, is never read.
+  const double gate = consensus_gate(f, o, deadline);
   SearchRecorder recorder(
-      f, std::clamp(0.3 * median_nn_distance(f.b, &deadline), 0.02, 0.2), o.record_trace, [](double s) { return s; },
-      nullptr);
+      f, gate, o.record_trace, [](double s) { return s; }, nullptr);
   const int it = run_em(f, x, y, o, deadline, allowed, per_step, recorder, &fit, &out);
   out.trials = it;
   out.hypotheses = it;
@@ -282,7 +283,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
     out.unjudged = Ambiguity::kUnchecked;
     add_note(&out.note, "time budget spent: EM's alignment, not judged against rival placements");
   } else {
-    out.confidence = cpd_confidence(f, &out.affine_normalised, &out.beaten, recorder);
+    out.confidence = cpd_confidence(f, gate, &out.affine_normalised, &out.beaten, recorder);
   }
   if (out.beaten) {
     out.note = "a shifted placement fitted better than EM's alignment: used";

@@ -9,8 +9,6 @@ namespace ipd {
 
 std::string RobustLoopOptions::validate() const {
   if (max_trials < 0) return fmt::format("max_trials must be at least 0, got {}", max_trials);
-  if (!(time_budget_ms >= 0) || !std::isfinite(time_budget_ms))
-    return fmt::format("time_budget_ms must be a number >= 0 (0: no limit), got {}", time_budget_ms);
   if (!(max_work >= 0)) return fmt::format("max_work must be >= 0 (0: no limit), got {}", max_work);
   if (!(work_per_model >= 0) || !std::isfinite(work_per_model))
     return fmt::format("work_per_model must be a number >= 0, got {}", work_per_model);

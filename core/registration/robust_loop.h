@@ -16,7 +16,6 @@
 #pragma once
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <string>
 #include <type_traits>
@@ -78,7 +77,8 @@ inline int compute_num_trials(int num_inliers, int num_points, int sample_size, 
 
 struct RobustLoopOptions {
   int max_trials = 1000;
-  double time_budget_ms = 0.0;  // 0: no limit
+  // No time: a loop under a time budget draws from a DeadlineSampler, which stops at the registration's
+  // Deadline (set-up included), the one clock of a budget.
   // Work bound: each scored model costs `work_per_model` units (e.g. the points it maps); the loop stops
   // before the total would pass `max_work`. 0: no limit.
   double max_work = 0.0, work_per_model = 1.0;
@@ -110,8 +110,6 @@ template <typename Model, typename Sample, typename Sampler, typename Estimator,
 RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, Scorer& scorer,
                                         const RobustLoopOptions& options, Observer&& observer = Observer()) {
   options.check();
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
   RobustLoopResult<Model> r;
   std::vector<Model> models;
   Sample sample;
@@ -119,13 +117,6 @@ RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, 
     if (r.trials >= options.max_trials) {
       r.stop = StopReason::kMaxTrials;
       break;
-    }
-    if (options.time_budget_ms > 0 && (r.trials & 15) == 0 && r.trials > 0) {
-      const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-      if (ms > options.time_budget_ms) {
-        r.stop = StopReason::kTimeBudget;
-        break;
-      }
     }
     if (!sampler.next(&sample)) {
       r.stop = StopReason::kExhausted;

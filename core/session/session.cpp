@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 
+#include "core/geometry/confidence_threshold.h"
 #include "core/ipd/study_pipeline.h"
 #include "core/registration/registration_cache.h"
 #include "core/util/atomic_file.h"
@@ -379,8 +380,7 @@ void Session::recompute_performance() {
       for (const auto& stem : d.stems) slots.emplace_back(&perf_of[stem], &shown_of[stem]);
       parallel_for(d.stems.size(), 0, [&](size_t k) {
         std::vector<Box>& shown = *slots[k].second;
-        for (const auto& p : labels_->predictions_of(d.name, m.name, d.stems[k]).boxes)
-          if (p.conf >= conf_threshold_) shown.push_back(p);
+        shown = predictions_kept(labels_->predictions_of(d.name, m.name, d.stems[k]).boxes, conf_threshold_);
         *slots[k].first = performance_values(labels_->gt_of(d.name, d.stems[k]).boxes, shown);
       });
     }

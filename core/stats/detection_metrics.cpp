@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "core/geometry/confidence_threshold.h"
+
 namespace ipd {
 
 namespace {
@@ -98,8 +100,7 @@ DetectionMetrics detection_metrics(const std::vector<DetectionImage>& images, do
   for (const auto& im : images) {
     DetectionImage kept;
     kept.gt = im.gt;
-    for (const auto& d : im.detections)
-      if (d.conf >= conf_threshold) kept.detections.push_back(d);
+    kept.detections = predictions_kept(im.detections, conf_threshold);
     m.gt += static_cast<long>(kept.gt.size());
     m.detections += static_cast<long>(kept.detections.size());
     const ImageMatches r = match_image(kept, 0.5, -1);

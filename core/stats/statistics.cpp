@@ -80,7 +80,12 @@ void FixedIndexSource::draw(std::uint32_t bound, std::vector<std::uint32_t>* out
 }
 
 std::string BootstrapOptions::validate() const {
-  if (resamples < 0) return fmt::format("the number of bootstrap resamples must be >= 0, not {}", resamples);
+  // One resample has no spread: it would give no interval at all, without a word.
+  if (resamples < 0 || resamples == 1)
+    return fmt::format(
+        "the number of bootstrap resamples must be 0 (no intervals) or at least 2 (an interval needs two "
+        "resamples), not {}",
+        resamples);
   if (!(level > 0 && level < 1))
     return fmt::format("the interval level must be between 0 and 1 (e.g. 0.95), not {}", level);
   return {};

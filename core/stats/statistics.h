@@ -71,7 +71,7 @@ class FixedIndexSource : public IndexSource {
 };
 
 struct BootstrapOptions {
-  int resamples = 2000;  // 0: no bootstrap (intervals stay NaN)
+  int resamples = 2000;  // 0: no bootstrap (intervals stay NaN); 1 is refused (one resample has no spread)
   double level = 0.95;   // central interval, in (0, 1)
   std::uint64_t seed = 0;
   // Empty when usable; otherwise what is wrong, in one sentence.

@@ -20,8 +20,8 @@ bool parse_decimal(const std::string& s, double* out);
 bool parse_integer(const std::string& s, long long lo, long long hi, long long* out);
 
 // A seed, the one range of every seed the tools take (--seed, study.yaml's registration.seed): digits only,
-// 0 to 2^64 - 1, the whole range of the generators' 64-bit seed. False for a sign, "5x" or a larger value,
-// which used to be clamped or wrapped into another seed without a word.
+// 0 to 2^64 - 1, the whole range of the generators' 64-bit seed. False for a sign, "5x" or a larger value:
+// such a value is never clamped or wrapped into another seed.
 bool parse_seed(const std::string& s, std::uint64_t* out);
 // What parse_seed accepts, for messages: "a whole number from 0 to 18446744073709551615".
 extern const char* const kSeedRange;

@@ -1,8 +1,8 @@
 // Which paths of a study are its inputs, so that no output (`--out`, a figure the studio exports) replaces one.
 //
-// A table written to `STUDY/real/labels/scene_01.txt` or an export to `STUDY/pairs/real__synth/s1.json` used to
-// replace the file without a word, and the next table was computed from it. The inputs are the study's layout
-// (study-format.md): `study.yaml`, everything under `pairs/`, `review/` and `.ipd-cache/`, and everything under
+// A table written to `STUDY/real/labels/scene_01.txt` or an export to `STUDY/pairs/real__synth/s1.json` would
+// replace the file, and the next table would be computed from it: such a write is refused. The inputs are the study's
+// layout (study-format.md): `study.yaml`, everything under `pairs/`, `review/` and `.ipd-cache/`, and everything under
 // a top-level folder's `labels/`, `images/` and `predictions/` (a domain's, or one such a write would create).
 #pragma once
 

@@ -1,6 +1,6 @@
-// Inputs that used to give exit 0 and a wrong or silently changed number: label files in another case,
-// duplicate JSON keys, names that are not UTF-8, CSV fields with commas, options out of range (COCO imports:
-// test_coco_input_checks.cpp). Each is an error naming the file (and line) now.
+// Inputs that could give a wrong or silently changed number: label files in another case, duplicate JSON keys,
+// names that are not UTF-8, CSV fields with commas, options out of range (COCO imports:
+// test_coco_input_checks.cpp). Each is an error naming the file (and line).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -220,17 +220,20 @@ TEST(InputChecks, TableCsvQuotesNamesWithCommas) {
 
 // --- options out of range ------------------------------------------------------------------------------------
 
-// `--max-rotation -5` and `--max-anisotropy 0` ran with the defaults (30 degrees, 2), exit 0.
+// An option out of range is an error naming the option, never the default; the registration options' ranges are
+// theirs (RegistrationOptions::validate), named after the option given.
 TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
   test::TempDir d;
   write_tiny_study(d);
   const std::string pair = " " + d / "real/labels/s1.txt" + " " + d / "synth/labels/s1.txt";
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"--max-rotation -5", "--max-rotation: must be in (0, 180] degrees, got -5"},
-      {"--max-rotation 0", "--max-rotation: must be in (0, 180] degrees, got 0"},
-      {"--max-rotation 181", "--max-rotation: must be in (0, 180] degrees, got 181"},
-      {"--max-anisotropy 0", "--max-anisotropy: must be a ratio >= 1 (1: no stretch allowed), got 0"},
-      {"--max-anisotropy 0.5", "--max-anisotropy: must be a ratio >= 1 (1: no stretch allowed), got 0.5"},
+      {"--max-rotation -5", "--max-rotation: max_rotation_deg must be in (0, 180], got -5"},
+      {"--max-rotation 0", "--max-rotation: max_rotation_deg must be in (0, 180], got 0"},
+      {"--max-rotation 181", "--max-rotation: max_rotation_deg must be in (0, 180], got 181"},
+      {"--max-anisotropy 0", "--max-anisotropy: max_anisotropy must be a number >= 1, got 0"},
+      {"--max-anisotropy 0.5", "--max-anisotropy: max_anisotropy must be a number >= 1, got 0.5"},
+      {"--trials 0", "--trials: consensus.max_hypotheses must be at least 1, got 0"},
+      {"--method cpd --trials 0", "--trials: cpd.iterations must be at least 1, got 0"},
       {"--budget-ms -1", "--budget-ms: must be a number of milliseconds >= 0 (0: no limit), got -1"},
       {"--class -2", "--class: must be a class number >= 0 (leave it out for every class), got -2"},
       {"--threads -1", "--threads: must be >= 0 (0: every core), got -1"},
@@ -258,11 +261,12 @@ TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
               0u)
         << r.err;
   }
-  // --bootstrap 1 showed no interval without a word: one resample has no spread.
+  // --bootstrap 1 is refused (one resample has no spread), with the engine's own words.
   auto one = test::run_ipd("table --bootstrap 1 " + d.path());
   EXPECT_EQ(one.exit_code, 2);
-  EXPECT_EQ(one.err.rfind(
-                "--bootstrap: must be 0 (no intervals) or at least 2 (an interval needs two resamples), got 1\n", 0),
+  EXPECT_EQ(one.err.rfind("--bootstrap: the number of bootstrap resamples must be 0 (no intervals) or at least 2 (an "
+                          "interval needs two resamples), not 1\n",
+                          0),
             0u)
       << one.err;
   EXPECT_EQ(test::run_ipd("table --bootstrap 2 " + d.path()).exit_code, 0);

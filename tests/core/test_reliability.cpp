@@ -46,7 +46,7 @@ std::string slurp(const std::string& path) {
 
 bool contains(const std::string& hay, const std::string& needle) { return hay.find(needle) != std::string::npos; }
 
-// --- defect 2: a pairs file nested 70,000 deep crashed (recursive dump() in the message)
+// --- a pairs file nested 70,000 deep is an error naming the file, not a stack overflow (no recursive dump())
 TEST(Reliability, DeeplyNestedPairsJsonIsAnErrorNotACrash) {
   test::TempDir d;
   write_tiny_study(d);
@@ -58,7 +58,7 @@ TEST(Reliability, DeeplyNestedPairsJsonIsAnErrorNotACrash) {
                        ": JSON nested deeper than 16 levels at byte 26: expected {\"pairs\": [[i, j], ...]}\n");
 }
 
-// --- defect 4: an error examining a file is not "missing"
+// --- an error examining a file (a dangling or looping link, an unreadable folder) is reported, never "missing"
 TEST(Reliability, DanglingOrLoopingLabelLinksAreErrorsNotEmptyImages) {
   for (const bool loop : {false, true}) {
     test::TempDir d;
@@ -133,7 +133,7 @@ TEST(Reliability, UnreadableLabelsDirectoryIsAnError) {
   EXPECT_EQ(r.err, "error: " + d / "real/labels" + ": cannot read the directory: Permission denied\n");
 }
 
-// --- defect 3: a FIFO blocked forever, /dev/zero ended in bad_alloc with no file name
+// --- only regular files are read: a FIFO does not block, /dev/zero is refused with the file's name
 TEST(Reliability, OnlyRegularFilesAreRead) {
   test::TempDir d;
   write_tiny_study(d);
@@ -151,7 +151,7 @@ TEST(Reliability, OnlyRegularFilesAreRead) {
   EXPECT_THROW(read_file(d / "pairs.json"), IoError);
 }
 
-// --- defect 5: integers narrowed silently, 1e309 gave a bare message
+// --- pairs JSON indices are range-checked integers, and every error (1e309 too) names the file
 TEST(Reliability, PairsJsonIndicesAreRangeCheckedAndEveryErrorNamesTheFile) {
   test::TempDir d;
   write_tiny_study(d);
@@ -180,7 +180,7 @@ TEST(Reliability, PairsJsonIndicesAreRangeCheckedAndEveryErrorNamesTheFile) {
   }
 }
 
-// --- defect 6: --out replaced a symlink with a regular file
+// --- --out through a symbolic link writes its target; the link stays a link
 // The user's own link, outside the study (below it a link is refused: OutputFiles.*).
 TEST(Reliability, OutputThroughASymlinkReplacesTheTarget) {
   test::TempDir d, elsewhere, mine;
@@ -204,7 +204,7 @@ TEST(Reliability, OutputThroughASymlinkReplacesTheTarget) {
   EXPECT_EQ(slurp(elsewhere / "table.csv").rfind("{", 0), 0u);
 }
 
-// --- defect 8: BOM, huge tokens, millions of bad lines
+// --- label files: a byte order mark is read, huge tokens are shortened in messages, bad lines are counted
 TEST(Reliability, ByteOrderMarkIsAccepted) {
   const LabelFile f = parse_labels(
       "\xEF\xBB\xBF"
@@ -244,7 +244,7 @@ TEST(Reliability, ManyBadLinesListFiftyAndCountTheRest) {
   EXPECT_TRUE(contains(r.err, "warning: 1000 malformed line(s) skipped")) << r.err.substr(r.err.size() - 300);
 }
 
-// --- defect 10: nothing silent in study.yaml or the pairs directory
+// --- nothing silent in study.yaml or the pairs directory: duplicate keys, extra documents, two name orders
 TEST(Reliability, DuplicateKeysAndExtraDocumentsInStudyYaml) {
   EXPECT_EQ(test::study_yaml_error("rock_class: 0\nconf_threshold: 0.2\nrock_class: 1\n"),
             "study.yaml:3: duplicate setting 'rock_class' (first given on line 1)");
@@ -270,7 +270,7 @@ TEST(Reliability, PairsInBothNameOrdersWarnAndTheFirstCounts) {
                                " holds this scene's pairs too and is read first; remove one");
 }
 
-// --- defect 11: an exception in a worker called std::terminate
+// --- an exception in a worker thread reaches the caller (never std::terminate)
 TEST(Reliability, ParallelForRethrowsTheFirstExceptionOnTheCaller) {
   for (const int threads : {1, 2, 4}) {
     std::atomic<int> ran{0};
@@ -289,7 +289,7 @@ TEST(Reliability, ParallelForRethrowsTheFirstExceptionOnTheCaller) {
   EXPECT_THROW(parallel_for(3, 2, [](size_t) { throw IoError("x: cannot read"); }), IoError);
 }
 
-// --- defect 3: the assignment is rectangular (no square padding); it must stay optimal
+// --- the optimal assignment on a rectangular IoU table (no square padding) matches brute force
 TEST(Reliability, RectangularAssignmentMatchesBruteForce) {
   std::mt19937 g(21);
   for (int round = 0; round < 200; ++round) {
@@ -321,7 +321,7 @@ TEST(Reliability, RectangularAssignmentMatchesBruteForce) {
   }
 }
 
-// --- "tests that can fail": the registration Rng must use its seed, and results must not depend on threads
+// --- the registration Rng uses its seed, and results do not depend on the thread count
 std::vector<Box> scattered_rocks(int n, unsigned seed, double jitter) {
   std::mt19937 g(seed);
   std::uniform_real_distribution<double> u(0.1, 0.9), e(-jitter, jitter);

@@ -173,8 +173,8 @@ TEST(StudioReplay, AStudyThatCannotBeOpenedSaysWhyOnStderr) {
       << err;
 }
 
-// Scripted runs must end and say what went wrong: a replay on a study that can't be opened used to wait
-// forever for the study (`timeout` turns a hang into 124, not 1).
+// Scripted runs must end and say what went wrong: a replay on a study that can't be opened exits 1, it does not
+// wait for the study forever (`timeout` turns a hang into 124, not 1).
 TEST(StudioReplay, AReplayOnAStudyThatCannotBeOpenedExits1) {
   const char* studio = std::getenv("IPD_STUDIO");
   if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";

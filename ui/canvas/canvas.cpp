@@ -9,6 +9,8 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "core/util/data_files.h"
+
 namespace ipd::ui {
 
 PtRect text_box(Pt at, Anchor anchor, double w, double h) {
@@ -45,11 +47,8 @@ PtRect text_box(Pt at, Anchor anchor, double w, double h) {
 }
 
 std::string default_font_file() {
-#ifdef IPD_ASSETS_DIR
-  const std::string bundled = IPD_ASSETS_DIR "/fonts/DejaVuSans.ttf";
-  if (std::error_code ec; std::filesystem::exists(bundled, ec)) return bundled;
-#endif
-  return "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+  const std::string bundled = find_data_file("fonts/DejaVuSans.ttf", IPD_ASSETS_DIR);
+  return bundled.empty() ? "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf" : bundled;
 }
 
 std::string font_file_problem(const std::string& font_file) {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "core/geometry/affine_estimator.h"
+#include "core/geometry/confidence_threshold.h"
 #include "core/picture/picture_codec.h"
 #include "core/report/provenance.h"
 #include "core/session/review_state.h"
@@ -26,13 +27,6 @@ Affine2 affine_of_pairs(const SceneFigureInput& in) {
   for (const auto& [i, j] : in.pairs) src.push_back(in.gt_a[i].centre()), dst.push_back(in.gt_b[j].centre());
   Affine2 m;
   return affine_least_squares_trimmed(src, dst, &m) ? m : identity_affine();
-}
-
-std::vector<Box> above(const std::vector<Box>& boxes, double threshold) {
-  std::vector<Box> out;
-  for (const Box& b : boxes)
-    if (b.conf >= threshold) out.push_back(b);
-  return out;
 }
 
 // The review marks of scene `stem` of the domain pair (a, b) in the study's order, against its pairs now.
@@ -59,8 +53,8 @@ SceneFigureInput scene_input_from_study(const StudyLabels& labels, const std::st
   in.gt_a = labels.gt_of(a, stem).boxes;
   in.gt_b = labels.gt_of(b, stem).boxes;
   if (!model.empty()) {
-    in.pred_a = above(labels.predictions_of(a, model, stem).boxes, conf_threshold);
-    in.pred_b = above(labels.predictions_of(b, model, stem).boxes, conf_threshold);
+    in.pred_a = predictions_kept(labels.predictions_of(a, model, stem).boxes, conf_threshold);
+    in.pred_b = predictions_kept(labels.predictions_of(b, model, stem).boxes, conf_threshold);
   }
   const bool swapped = domain_rank(st, a) > domain_rank(st, b);
   const ScenePairing p = pair_scene(labels, swapped ? b : a, swapped ? a : b, stem, registration);

@@ -108,6 +108,8 @@ struct UiState {
   enum class Field { kNone, kSearch, kSaveAs };
   Field focus_field = Field::kNone;
   ImVec2 picture_px[2] = {};  // the pictures' parts on screen, left and right (--frame-stats' picture_px)
+  // The key index of F1 (the window's backend maps it: ImGui 1.86 names no F keys); -1: only '?' opens the help.
+  int help_key = -1;
   char goto_text[128] = "";
   std::string browse_dir;                      // the Open study… browser's directory
   std::vector<std::string> browse_dirs;        // its subdirectories (listed by the app when browse_dir changes)

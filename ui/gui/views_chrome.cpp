@@ -69,8 +69,6 @@ namespace {
 
 bool pressed(int key) { return ImGui::IsKeyPressed(key, true); }
 
-constexpr int kKeyF1 = 290;  // GLFW_KEY_F1: the GLFW backend indexes KeysDown by GLFW key codes
-
 bool unsaved(const StudyView& v) {
   if (v.pending_saves > 0 || !v.failed_saves.empty()) return true;
   // A read-only study's edits are lost on quitting unless 'save as' wrote them since (the scenes stay
@@ -389,7 +387,8 @@ void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out) {
   ImGuiIO& io = ImGui::GetIO();
   if (!shortcuts_may_act()) return;
   const bool ctrl = io.KeyCtrl;
-  if (pressed(kKeyF1) || (!ctrl && io.InputQueueCharacters.contains('?'))) ui.show_help = true;
+  if ((ui.help_key >= 0 && pressed(ui.help_key)) || (!ctrl && io.InputQueueCharacters.contains('?')))
+    ui.show_help = true;
   if (ctrl && pressed('O')) ui.show_open = true;
   if (ctrl && pressed('Q')) ui.show_quit = true;
   if (!v.session || v.session->scenes().empty()) return;

@@ -38,17 +38,6 @@ Bounds hypothesis_bounds(const RegistrationOptions& o) {
                 (c.max_rotation_deg + kTuning.bound_slack_deg) * M_PI / 180.0, c.max_anisotropy};
 }
 
-// The gate: the user's, or a fraction of the typical spacing of B's rocks within bounds of the layout's spread
-// (normalised units, so shifting or scaling a layout within the picture keeps it), and not under a fraction of
-// the picture's width (two labellings put a rock's centre up to ~1% of the width apart however close the rocks
-// are) unless that is over half the spacing.
-double consensus_gate(const RegistrationFrame& f, const RegistrationOptions& o, const Deadline& deadline) {
-  if (o.consensus.inlier_gate) return *o.consensus.inlier_gate / f.spread;
-  const double spacing = median_nn_distance(f.b, &deadline);
-  return std::max(std::clamp(kTuning.gate_of_spacing * spacing, kTuning.gate_min, kTuning.gate_max),
-                  std::min(kTuning.min_gate_of_width / f.spread, kTuning.max_floor_of_spacing * spacing));
-}
-
 // Whether the second look runs: an unconfirmed search on a set small enough to enumerate its rock pairs.
 bool second_look_applies(const RegistrationFrame& f, StopReason stop) {
   const double na = static_cast<double>(f.a.size()), nb = static_cast<double>(f.b.size());
@@ -321,6 +310,17 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
 }
 
 }  // namespace
+
+// The gate: the user's, or a fraction of the typical spacing of B's rocks within bounds of the layout's spread
+// (normalised units, so shifting or scaling a layout within the picture keeps it), and not under a fraction of
+// the picture's width (two labellings put a rock's centre up to ~1% of the width apart however close the rocks
+// are) unless that is over half the spacing.
+double consensus_gate(const RegistrationFrame& f, const RegistrationOptions& o, const Deadline& deadline) {
+  if (o.consensus.inlier_gate) return *o.consensus.inlier_gate / f.spread;
+  const double spacing = median_nn_distance(f.b, &deadline);
+  return std::max(std::clamp(kTuning.gate_of_spacing * spacing, kTuning.gate_min, kTuning.gate_max),
+                  std::min(kTuning.min_gate_of_width / f.spread, kTuning.max_floor_of_spacing * spacing));
+}
 
 MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<Box>& boxes_a,
                                  const std::vector<Box>& boxes_b, const RegistrationOptions& o,

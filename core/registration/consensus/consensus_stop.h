@@ -24,8 +24,9 @@ struct ConsensusCounts {
 // is believed); or it is beyond chance and holds half the smaller side.
 bool consensus_cannot_be_beaten(const ConsensusCounts& c);
 
-// The chance that a wrong affine drops one A rock within the gate of some B rock: B's gate discs over the area
-// B spans (doubled, as rocks cluster), at most kTuning.max_chance.
+// The chance that a wrong affine drops one A rock within the gate of some B rock: the area of B's gate discs
+// (n pi gate^2, overlaps not removed) over the area of B's bounding box (at least n gate^2), at most
+// kTuning.max_chance. Clustered rocks are not weighed more: the chance is this ratio, not a multiple of it.
 double chance_of_agreement(const std::vector<Eigen::Vector2d>& b, double gate2);
 
 // A consensus of `inliers` of `a_rocks` that chance (`chance` per rock) would give less often than

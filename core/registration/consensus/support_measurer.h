@@ -14,6 +14,10 @@
 
 namespace ipd::detail {
 
+// What the soft consensus calls close, in normalised units (consensus_registration.cpp): the consensus
+// registration's inlier gate, and the gate cpd's confidence is measured with.
+double consensus_gate(const RegistrationFrame& f, const RegistrationOptions& o, const Deadline& deadline);
+
 class SupportMeasurer {
  public:
   // `gate`: the inlier distance in normalised units; hypotheses outside `bounds` score -inf.

@@ -53,6 +53,50 @@ TEST(Iou, TableAndPerformanceValues) {
   EXPECT_EQ(none.value, std::vector<double>(3, 0.0));
 }
 
+// The performance value is the best IoU over all predictions, wherever the best one stands in the list: a
+// prediction that overlaps first but less must not set the value.
+TEST(PerformanceValue, LaterBetterPredictionWinsOverFirstOverlapping) {
+  const std::vector<Box> gt = {box(0.5, 0.5, 0.2, 0.2)};
+  // IoUs in list order: 0 (far away), 1/4 (contains the rock), 1 (exact), 1/3 (shifted by half a width).
+  const std::vector<Box> pred = {box(0.9, 0.9, 0.05, 0.05, 0.99), box(0.5, 0.5, 0.4, 0.4, 0.95),
+                                 box(0.5, 0.5, 0.2, 0.2, 0.5), box(0.6, 0.5, 0.2, 0.2, 0.9)};
+  const PerformanceValues pv = performance_values(gt, pred);
+  EXPECT_NEAR(pv.value[0], 1.0, 1e-12);
+  EXPECT_EQ(pv.best_prediction[0], 2);  // neither the first overlapping (1) nor the last (3)
+  // The same predictions in another order give the same value: the order of a predictions file is no rule.
+  const std::vector<Box> reversed(pred.rbegin(), pred.rend());
+  const PerformanceValues rv = performance_values(gt, reversed);
+  EXPECT_NEAR(rv.value[0], 1.0, 1e-12);
+  EXPECT_EQ(rv.best_prediction[0], 1);
+}
+
+// Each GT rock takes its own best, over all predictions: one prediction may overlap both rocks and be the best
+// of neither (rock 1) or of one (rock 0).
+TEST(PerformanceValue, EachRockTakesItsOwnBestPrediction) {
+  const std::vector<Box> gt = {box(0.3, 0.5, 0.2, 0.2), box(0.5, 0.5, 0.2, 0.2)};  // x 0.2..0.4 and 0.4..0.6
+  // pred 0 (x 0.1..0.3): rock 0 intersection 0.1 x 0.2 = 0.02, union 0.06 -> 1/3; rock 1 disjoint -> 0.
+  // pred 1 (x 0.2..0.6, area 0.08) contains each rock: 0.04 / 0.08 -> 1/2 for both.
+  // pred 2 is rock 1 exactly -> 1 (rock 0: touching edges, 0).
+  const std::vector<Box> pred = {box(0.2, 0.5, 0.2, 0.2), box(0.4, 0.5, 0.4, 0.2), box(0.5, 0.5, 0.2, 0.2)};
+  const PerformanceValues pv = performance_values(gt, pred);
+  EXPECT_NEAR(pv.value[0], 0.5, 1e-12);  // not the first overlapping prediction's 1/3
+  EXPECT_EQ(pv.best_prediction[0], 1);
+  EXPECT_NEAR(pv.value[1], 1.0, 1e-12);  // not the first overlapping prediction's 1/2
+  EXPECT_EQ(pv.best_prediction[1], 2);
+}
+
+// Ties: two predictions with the same IoU (a duplicate detection) -- the value is that IoU, and the earlier
+// index is kept (a later prediction replaces the best only when it is strictly better), whatever the
+// confidences.
+TEST(PerformanceValue, TieKeepsTheEarlierPredictionWhateverTheConfidence) {
+  const std::vector<Box> gt = {box(0.5, 0.5, 0.2, 0.2)};
+  const std::vector<Box> pred = {box(0.1, 0.1, 0.05, 0.05, 0.99), box(0.6, 0.5, 0.2, 0.2, 0.3),
+                                 box(0.6, 0.5, 0.2, 0.2, 0.9)};
+  const PerformanceValues pv = performance_values(gt, pred);
+  EXPECT_NEAR(pv.value[0], 1.0 / 3.0, 1e-12);
+  EXPECT_EQ(pv.best_prediction[0], 1);
+}
+
 TEST(Affine, ComposeInvertInterpolate) {
   Affine2 m;
   m << 1.1, 0.2, 0.05, -0.1, 0.9, -0.02;

@@ -93,8 +93,8 @@ TEST(SessionReview, ACheckOfAPairEditedAwayIsKeptAndComesBackWithUndo) {
 }
 
 // A scene whose name is not UTF-8 can't be written into the review file (JSON): marking it fails and changes
-// nothing, and the other scenes' marks are still saved (the failed mark used to stay in memory and make every
-// later save of the domain pair fail).
+// nothing, and the other scenes' marks are still saved (a failed mark kept in memory would make every later
+// save of the domain pair fail).
 TEST(SessionReview, AMarkTheFileCannotHoldChangesNothing) {
   test::TempDir d;
   test::write_review_study(d);

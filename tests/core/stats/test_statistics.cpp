@@ -154,9 +154,9 @@ TEST(Statistics, PairedComparisonWorkedByHand) {
   // Now scene 1 also favours a strongly: b (0.9, 1). Δ = 0.3/3 - 1.7/3. Only no-swap and all-swap
   // permutations reach |Δ|: two of the four below, p = (1 + 2) / 5.
   scenes[1].b = {0.9, 1};
-  FixedIndexSource boot2({{0, 1}});
+  FixedIndexSource boot2({{0, 1}, {1, 0}});  // two resamples: the fewest that give an interval
   FixedIndexSource perm2({{0, 0}, {1, 0}, {0, 1}, {1, 1}});
-  o.bootstrap.resamples = 1;
+  o.bootstrap.resamples = 2;
   o.permutations = 4;
   const Comparison c2 = compare_paired(scenes, o, boot2, perm2);
   EXPECT_NEAR(c2.delta.estimate, (0.3 - 1.7) / 3, 1e-15);

@@ -1,6 +1,5 @@
-// COCO imports that used to give exit 0 and lost or changed labels: images whose label files would collide,
-// boxes too small for a label file, skipped entries, a category id given twice. Each is an error or a
-// warning naming the file now.
+// COCO imports that could lose or change labels: images whose label files would collide, boxes too small for a
+// label file, skipped entries, a category id given twice. Each is an error or a warning naming the file.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -1,5 +1,5 @@
 // An output never replaces one of the study's inputs: a table written over a label file, an export over a hand
-// pairs file or a figure over a picture used to exit 0 and change the next table without a word.
+// pairs file or a figure over a picture is an error (exit 1), so the next table is computed from the inputs.
 #include <gtest/gtest.h>
 
 #include <filesystem>
