@@ -105,7 +105,7 @@ Session Session::open(const std::string& root, const SessionOptions& options) {
 }
 
 Session::Session(StudyLabels labels, const RegistrationOptions* registration)
-    : Session(std::move(labels), SessionOptions{registration, {}, {}, 0, nullptr, {}}) {}
+    : Session(std::move(labels), SessionOptions{registration, {}, {}, 0, nullptr, {}, {}}) {}
 
 Session::Session(StudyLabels labels, const SessionOptions& options)
     : labels_(std::make_shared<const StudyLabels>(std::move(labels))) {

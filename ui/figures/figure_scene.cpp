@@ -211,11 +211,10 @@ SideLabels side_labels(const PanelMap& m, const std::vector<Box>& gt, const std:
       // it sits on too): the only GT box its confidence may lie on.
       int matched = -1;
       double matched_iou = 0;
-      for (size_t j = 0; j < gt.size(); ++j)
-        if (gt[j].cls != pred[k].cls)
-          continue;
-        else if (const double v = iou(gt[j], pred[k]); v > matched_iou)
-          matched = int(j), matched_iou = v;
+      for (size_t j = 0; j < gt.size(); ++j) {
+        if (gt[j].cls != pred[k].cls) continue;  // a rock matches its own class
+        if (const double v = iou(gt[j], pred[k]); v > matched_iou) matched = int(j), matched_iou = v;
+      }
       Label l{fmt::format("{:.2f}", pred[k].conf), style(secondary_pt(o.font_pt), kPredTextC), r, true, 1};
       for (size_t j = 0; j < gt.size(); ++j)
         if (int(j) != matched) l.keep_off.push_back(m.raw(gt[j]));

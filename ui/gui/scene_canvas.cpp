@@ -146,11 +146,11 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
       int matched = -1;  // the GT box of highest IoU with the prediction
       double best_iou = 0;
       if (in.gt)
-        for (size_t j = 0; j < in.gt->size(); ++j)
-          if ((*in.gt)[j].cls != (*in.predictions)[p.prediction].cls)
-            continue;
-          else if (const double v = iou((*in.gt)[j], (*in.predictions)[p.prediction]); v > best_iou)
+        for (size_t j = 0; j < in.gt->size(); ++j) {
+          if ((*in.gt)[j].cls != (*in.predictions)[p.prediction].cls) continue;  // a rock matches its own class
+          if (const double v = iou((*in.gt)[j], (*in.predictions)[p.prediction]); v > best_iou)
             best_iou = v, matched = static_cast<int>(j);
+        }
       tags.push_back({{p.q0.x, p.q0.y, p.q1.x, p.q1.y}, ext.x + 2, ext.y, matched});
     }
     const LabelPlacement placed_conf = place_confidences(tags, gt_rects, number_rects, {a0.x, a0.y, a1.x, a1.y});

@@ -33,7 +33,7 @@ std::string open_small_study(const TempDir& d, StudyWorker& w) {
   o.labels_only = true;
   const std::string dir = d / "study";
   write_demo_study(dir, o);
-  w.submit(command::OpenStudy{dir});
+  w.submit(command::OpenStudy{dir, false, {}});
   wait_done(w);
   return dir;
 }
@@ -54,7 +54,7 @@ TEST(StudyWorker, OpensAStudyAndPublishesItsScenes) {
 TEST(StudyWorker, AStudyThatCannotBeOpenedLeavesTheReason) {
   TempDir d;
   StudyWorker w;
-  w.submit(command::OpenStudy{d / "nowhere"});
+  w.submit(command::OpenStudy{d / "nowhere", false, {}});
   wait_done(w);
   EXPECT_FALSE(w.snapshot());
   EXPECT_NE(w.open_error().find("nowhere"), std::string::npos) << w.open_error();
