@@ -109,7 +109,7 @@ void require_class_choice(const StudyLabels& labels) {
 
 std::string class_statement(const StudyLabels& labels) {
   const int cls = labels.study.config.rock_class;
-  if (cls == kAllClasses) return "all classes (class-blind: --class all)";
+  if (cls == kAllClasses) return "all, class-blind (--class all)";
   if (cls == kNoClassChosen) return "no class (no ground truth boxes)";
   return labels.study.classes.describe(cls);
 }

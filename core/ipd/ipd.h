@@ -52,7 +52,7 @@ void settle_class(StudyLabels* labels);
 std::string class_choice_message(const StudyLabels& labels);
 // Throws StudyError(class_choice_needed) when a class must be chosen: no output may mix classes unasked.
 void require_class_choice(const StudyLabels& labels);
-// The class a number is about, for provenance: "rock (class 0)", "class 2", "all classes (class-blind: --class all)".
+// The class a number is about, for provenance: "rock (class 0)", "class 2", "all, class-blind (--class all)".
 std::string class_statement(const StudyLabels& labels);
 // Prediction sets whose boxes detect (IoU >= 0.5) GT of one other class far more than GT of their own class: the
 // signature of class numbers shifted between two tools, with the --class-map that would undo it.

@@ -32,7 +32,7 @@ struct Provenance {
   // file is reset). A reader must know that an edit was dropped, not only that none counted.
   int scenes_with_stale_hand_pairs = 0;
   std::string label_fingerprint;
-  // The class the numbers are about ("rock (class 0)", "all classes (class-blind: --class all)") and how label
+  // The class the numbers are about ("rock (class 0)", "all, class-blind (--class all)") and how label
   // sets' class numbers were mapped by name; empty for a study whose one class has no name (nothing to tell).
   std::string class_name;
   std::vector<std::string> class_maps;

@@ -30,12 +30,17 @@ int StudyClasses::resolve(const std::string& word) const {
   if (word == "all") return kAllClasses;
   for (size_t k = 0; k < names.size(); ++k)
     if (!names[k].empty() && names[k] == word) return static_cast<int>(k);
-  if (!word.empty() && word.size() <= 6 &&
-      std::all_of(word.begin(), word.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    return std::stoi(word);
   std::string known;
   for (size_t k = 0; k < names.size(); ++k)
     if (!names[k].empty()) known += fmt::format("{}{} ({})", known.empty() ? "" : ", ", names[k], k);
+  if (!word.empty() && word.size() <= 6 &&
+      std::all_of(word.begin(), word.end(), [](char c) { return c >= '0' && c <= '9'; })) {
+    const int cls = std::stoi(word);
+    // Where the study names its classes, a number none names has no boxes: every cell would be empty.
+    if (known.empty() || (static_cast<size_t>(cls) < names.size() && !names[cls].empty())) return cls;
+    throw StudyError(fmt::format("no class {} among the study's classes {} ({}); or 'all' for a class-blind number",
+                                 cls, known, named_by));
+  }
   throw StudyError(fmt::format("no class named '{}'; {}; or 'all' for a class-blind number", quoted_for_message(word),
                                known.empty() ? "this study's label sets name no classes (give labels/classes.txt or "
                                                "study.yaml's classes), so choose a class number"

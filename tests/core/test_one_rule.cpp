@@ -109,7 +109,9 @@ TEST(OneRule, StudioCellsAreTheEngineCells) {
       ASSERT_NE(e, nullptr);
       const CellTotals c = s.totals_for(model, static_cast<int>(p));
       EXPECT_EQ(std::isnan(c.ipd()), std::isnan(e->ipd));
-      if (!std::isnan(e->ipd)) EXPECT_NEAR(c.ipd(), e->ipd, 1e-12);
+      if (!std::isnan(e->ipd)) {
+        EXPECT_NEAR(c.ipd(), e->ipd, 1e-12);
+      }
       if (e->missing_predictions) {
         ++missing;
         continue;

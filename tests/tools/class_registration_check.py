@@ -20,17 +20,7 @@ import tempfile
 W, H = 1936, 1216
 
 
-def read(path):
-    out = []
-    for line in open(path):
-        p = line.split()
-        if len(p) != 5:
-            continue
-        try:
-            out.append((int(p[0]), *map(float, p[1:])))
-        except ValueError:
-            continue
-    return out
+from yolo_txt import read_boxes as read
 
 
 def truth(cx, cy):

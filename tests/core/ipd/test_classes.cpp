@@ -226,7 +226,7 @@ TEST(Classes, ProvenanceNamesTheClass) {
   Study all = open_study(d.path());
   all.config.rock_class = kAllClasses;
   const StudyLabels blind = load_labels(all);
-  EXPECT_EQ(provenance_class(blind), "all classes (class-blind: --class all)");
+  EXPECT_EQ(provenance_class(blind), "all, class-blind (--class all)");
 }
 
 TEST(Classes, AnUnknownClassWordListsTheClasses) {
@@ -240,6 +240,15 @@ TEST(Classes, AnUnknownClassWordListsTheClasses) {
     EXPECT_STREQ(e.what(),
                  "no class named 'boulder'; the study's classes are rock (0), shadow (1), by name or number; or 'all' "
                  "for a class-blind number");
+  }
+  // A number the study's names leave unnamed has no boxes: refused, not an empty table.
+  try {
+    study.classes.resolve("2");
+    FAIL() << "accepted";
+  } catch (const StudyError& e) {
+    EXPECT_STREQ(e.what(),
+                 "no class 2 among the study's classes rock (0), shadow (1) (real/labels/classes.txt); or 'all' for a "
+                 "class-blind number");
   }
 }
 

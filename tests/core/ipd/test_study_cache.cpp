@@ -102,7 +102,9 @@ TEST(StudyCache, ACacheShortenedWhileItIsReadIsIgnoredWithoutACrash) {
   const size_t size = read_file(path).size();
   const Study study = open_study(d.path());
   StudyCache cache(path, study.root, [&](const char* step) {
-    if (std::string(step) == "opened") ASSERT_EQ(::truncate(path.c_str(), static_cast<off_t>(size / 2)), 0);
+    if (std::string(step) == "opened") {
+      ASSERT_EQ(::truncate(path.c_str(), static_cast<off_t>(size / 2)), 0);
+    }
   });
   EXPECT_EQ(cache.stats().state, "ignored: truncated");
   EXPECT_EQ(dump(cache.load_labels(study)), fresh);
