@@ -159,20 +159,20 @@ constexpr size_t kMappedClasses = 1024;
 
 void map_label_classes(LabelFile* file, const StudyClasses& classes, const std::vector<int>* map,
                        const std::string& names_file) {
-  std::vector<Box> kept;
-  std::vector<int> lines;
-  kept.reserve(file->boxes.size());
-  lines.reserve(file->boxes.size());
+  // Nothing to renumber and no names to check against (a study without classes.txt): every label file of it.
+  if (!map && classes.named_by.empty()) return;
+  size_t kept = 0;  // boxes are renumbered and compacted in place: no copy of a file whose classes are all named
   int listed = 0;
   for (size_t k = 0; k < file->boxes.size(); ++k) {
-    Box b = file->boxes[k];
+    Box& b = file->boxes[k];
     const int own = b.cls;
     if (map) b.cls = own >= 0 && static_cast<size_t>(own) < map->size() ? (*map)[own] : -1;
     const bool named = b.cls >= 0 && (classes.named_by.empty() || (static_cast<size_t>(b.cls) < classes.names.size() &&
                                                                    !classes.names[b.cls].empty()));
     if (named) {
-      kept.push_back(b);
-      lines.push_back(file->line_of_box[k]);
+      file->boxes[kept] = b;
+      file->line_of_box[kept] = file->line_of_box[k];
+      ++kept;
       continue;
     }
     // A number nobody named would be read as whatever class the study gives that number: refused, line by line.
@@ -186,8 +186,8 @@ void map_label_classes(LabelFile* file, const StudyClasses& classes, const std::
   }
   if (listed > kMaxListedErrors)
     file->errors.push_back({file->path, 0, "class numbers left unnamed", listed - kMaxListedErrors});
-  file->boxes = std::move(kept);
-  file->line_of_box = std::move(lines);
+  file->boxes.resize(kept);
+  file->line_of_box.resize(kept);
 }
 
 void apply_prediction_class_map(const std::map<int, int>& from_to, const std::vector<Domain>& domains,
