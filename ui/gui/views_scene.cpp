@@ -18,6 +18,9 @@ int replay_step(const RegistrationReport& r, float position) {
 
 namespace {
 
+// What a rock's number is: its box IoU, or its mask IoU in the segment task (the words every view uses).
+const char* iou_word(const Session& s) { return s.study().config.task == Task::kSegment ? "mask IoU" : "IoU"; }
+
 // The replayed step's sample on one view side (the replay is in the domain pair's A/B orientation).
 std::vector<int> replay_sample(const StudyView& v, const UiState& ui, Side side) {
   if (!v.rerun || !ui.replay.playing) return {};
@@ -298,15 +301,16 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
       if (hit >= 0) {
         const auto& pv_self = s.performance(side, ui.scene).value;
         ImGui::BeginTooltip();
-        ImGui::Text("%s rock %d: IoU %.3f", in.caption.c_str(), hit + 1,
+        const char* iou = iou_word(s);
+        ImGui::Text("%s rock %d: %s %.3f", in.caption.c_str(), hit + 1, iou,
                     hit < (int)pv_self.size() ? pv_self[hit] : 0.0);
         for (const auto& [l, r] : s.view_pairs(ui.scene)) {
           if ((k == 0 ? l : r) != hit) continue;
           const int other = k == 0 ? r : l;
           const auto& pv_other = s.performance(k == 0 ? Side::kB : Side::kA, ui.scene).value;
           const double o = other < (int)pv_other.size() ? pv_other[other] : 0.0;
-          ImGui::Text("pair %d; partner: %s rock %d: IoU %.3f", l + 1,
-                      (k == 0 ? s.right_domain() : s.left_domain()).c_str(), other + 1, o);
+          ImGui::Text("pair %d; partner: %s rock %d: %s %.3f", l + 1,
+                      (k == 0 ? s.right_domain() : s.left_domain()).c_str(), other + 1, iou, o);
           ImGui::Text("|difference| %.3f", std::abs(pv_self[hit] - o));
           for (const auto& p : s.audit(ui.scene).pairs) {
             const int pl = s.swapped() ? p.b : p.a, pr = s.swapped() ? p.a : p.b;
@@ -387,13 +391,16 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
           ImVec2(0, table_h))) {
     ImGui::TableSetupScrollFreeze(1, 1);  // the pair stays in view when the table scrolls sideways
     const std::string partner = "its partner in " + s.right_domain();
-    const std::string iou_l = "IoU of the left rock (" + s.left_domain() + ") with its best prediction";
-    const std::string iou_r = "IoU of the right rock (" + s.right_domain() + ") with its best prediction";
+    const bool masks = s.study().config.task == Task::kSegment;
+    const std::string iou = iou_word(s);
+    const std::string iou_l = iou + " of the left rock (" + s.left_domain() + ") with its best prediction";
+    const std::string iou_r = iou + " of the right rock (" + s.right_domain() + ") with its best prediction";
+    const std::string diff = "|" + iou + " L - " + iou + " R|: the pair's share of the IPD";
     setup_text_columns({{"pair", "99 x", "the pair, named by its left rock (x: excluded)"},
                         {"R#", "99", partner.c_str()},
-                        {"IoU L", "0.000", iou_l.c_str()},
-                        {"IoU R", "0.000", iou_r.c_str()},
-                        {"|diff|", "0.000", "|IoU L - IoU R|: the pair's share of the IPD"},
+                        {masks ? "mIoU L" : "IoU L", "0.000", iou_l.c_str()},
+                        {masks ? "mIoU R" : "IoU R", "0.000", iou_r.c_str()},
+                        {"|diff|", "0.000", diff.c_str()},
                         {"res px", "999.9", "residual after the registration affine, pixels"},
                         {"size", "0.00", "box-size ratio, aligned left / right (suspect outside 0.5-2)"}},
                        /*sortable=*/false);  // no sort arrow to leave room for: narrower, so more columns fit
@@ -462,7 +469,7 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
     if (n + excluded > 0 && ImGui::CollapsingHeader(header)) {
       for (size_t i = 0; i < gt.size(); ++i) {
         if (paired[i]) continue;
-        ImGui::BulletText("rock %zu: IoU %.2f%s", i + 1, i < pv.size() ? pv[i] : 0.0,
+        ImGui::BulletText("rock %zu: %s %.2f%s", i + 1, iou_word(s), i < pv.size() ? pv[i] : 0.0,
                           s.excluded(side, ui.scene, static_cast<int>(i)) ? "  (excluded)" : "");
       }
     } else if (n + excluded == 0) {
