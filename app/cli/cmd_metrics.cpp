@@ -91,8 +91,11 @@ void add_detection_metrics(const Study& study, const StudyOptions& so, const Stu
   }
   *text += fmt::format(
       "({}; AP: pycocotools' rules over the {} most confident detections of each picture, within a class; "
-      "precision/recall/F1 over every detection at confidence >= {:g} and IoU 0.5)\n",
-      class_statement(labels), kCocoMaxDetections, threshold);
+      "precision/recall/F1 over every detection at confidence >= {:g} and IoU 0.5{})\n",
+      class_statement(labels), kCocoMaxDetections, threshold,
+      labels.study.config.task == Task::kSegment ? "; every IoU a mask IoU (task segment, pycocotools' iouType "
+                                                   "'segm')"
+                                                 : "");
 }
 
 void add_metrics_row(const std::string& model, const std::string& domain, const std::string& cls, bool several,
@@ -196,6 +199,7 @@ int run_metrics(const MetricsArgs& args) {
   report_class_notes(labels);
   nlohmann::ordered_json j;
   j["conf_threshold"] = threshold;
+  j["task"] = task_name(labels.study.config.task);  // box or mask IoU: the same keys hold either
   j["metrics"] = nlohmann::ordered_json::array();
   std::string text = fmt::format("{:<24} {:<12} {:>7} {:>9} {:>9} {:>7} {:>7} {:>6} {:>6}\n", "model", "domain", "AP50",
                                  "AP50:95", "precision", "recall", "F1", "GT", "dets");

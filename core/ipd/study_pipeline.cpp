@@ -121,6 +121,8 @@ PipelineScene pair_one(const StudyLabels& labels, const std::string& a, const st
     s.version_ab = read.version_ab;
     s.version_ba = read.version_ba;
     s.pairs_unusable = read.unusable();
+    s.pairs_other_class = read.other_class;
+    s.pairs_other_class_file = read.other_class_file;
     s.fixed = std::move(read.pairs);
     for (const PairsProblem& w : read.problems) problems->push_back(pairs_file_problem(w, a, b, stem));
     p.pairs_problems = std::move(read.problems);

@@ -40,8 +40,10 @@ struct PipelineScene {
   // The registration's pairs (registration meaningful unless the scene has fixed pairs and
   // register_fixed_scenes was off); never fixed.
   ScenePairing automatic;
-  std::optional<FixedPairs> fixed;     // the pairs file's, when there is one and it can be used
-  bool pairs_unusable = false;         // a pairs file whose stored rocks are gone: registration counts
+  std::optional<FixedPairs> fixed;  // the pairs file's, when there is one and it can be used
+  bool pairs_unusable = false;      // a pairs file whose stored rocks are gone: registration counts
+  int pairs_other_class = -1;       // the pairs file is another class's hand work (fixed_pairs.h), or -1
+  std::string pairs_other_class_file;
   DiskVersion version_ab, version_ba;  // the pairs files as read (a save checks nobody changed them since)
 
   // What counts for the IPD: the fixed pairs when there are some, else the automatic ones.

@@ -51,9 +51,9 @@ void settle_task(StudyLabels* labels) {
     counts += fmt::format("{}{} of {} predictions (first: {})", counts.empty() ? "" : " and ", pred.without,
                           pred.with + pred.without, pred.first_without);
   labels->task_needs_outlines = fmt::format(
-      "{}: task segment scores each instance by mask IoU, but {} are boxes without an outline (a YOLO-seg line "
+      "{}: task segment scores each instance by mask IoU, but {} {} without an outline (a YOLO-seg line "
       "`class x1 y1 ... xn yn`); give them outlines, or use --task detect for box IoU",
-      labels->study.root, counts);
+      labels->study.root, counts, gt.without + pred.without == 1 ? "is a box" : "are boxes");
 }
 
 void require_choices(const StudyLabels& labels) {

@@ -97,6 +97,9 @@ Session Session::open(const std::string& root, const SessionOptions& options) {
   if (!labels.task_needs_outlines.empty()) throw StudyError(labels.task_needs_outlines);
   if (labels.study.config.task == Task::kSegment)
     class_note = "mask IoU (task segment)" + (class_note.empty() ? "" : "; " + class_note);
+  else if (!labels.task_note.empty())  // outlines drawn, boxes scored: said where the numbers are
+    class_note = "box IoU: outlines read as their boxes (task: segment in study.yaml for mask IoU)" +
+                 (class_note.empty() ? "" : "; " + class_note);
   RegistrationCache registration(options.cache_dir);
   parsed->hand_registrations_to(registration);
   SessionOptions with_cache = options;
@@ -139,6 +142,8 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
       s.disk_ab = d.scenes[k].version_ab;
       s.disk_ba = d.scenes[k].version_ba;
       s.pairs_unusable = d.scenes[k].pairs_unusable;
+      s.pairs_other_class = d.scenes[k].pairs_other_class;
+      s.pairs_other_class_file = d.scenes[k].pairs_other_class_file;
       s.pairs_problems = s.automatic.pairs_problems;
       if (d.scenes[k].fixed) {
         s.current = std::move(*d.scenes[k].fixed);

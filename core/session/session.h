@@ -87,6 +87,10 @@ struct SceneState {
   // edits of the scene are refused until the user resets it to automatic, which removes the file).
   std::vector<PairsProblem> pairs_problems;
   bool pairs_unusable = false;
+  // The scene's pairs file holds another class's hand pairs (-1: it doesn't): registration counts here and
+  // edits are refused, since saving them would overwrite that class's work.
+  int pairs_other_class = -1;
+  std::string pairs_other_class_file;
   // What this window last read or wrote at pairs/<A>__<B>/<stem>.json and pairs/<B>__<A>/<stem>.json.
   DiskVersion disk_ab, disk_ba;
 };
@@ -272,6 +276,8 @@ class Session {
   std::vector<Problem> load_reviews();  // every domain pair's review file; the marks dropped
   SaveJob set_scene(int pair, int scene, const FixedPairs& pairs, bool edited);
   void refuse_stale_pairs_edit(int pair, int scene) const;
+  // Throws StudyError when the scene's pairs file is another class's (SceneState::pairs_other_class).
+  void refuse_other_class_edit(int pair, int scene) const;
   std::pair<std::string, std::string> stale_pairs_of(int pair, int scene) const;  // {file, why}; empty: usable
   SaveJob job_for(int pair, int scene, const std::string& root) const;
   void recompute_performance();

@@ -134,7 +134,8 @@ SaveJob Session::job_for(int pair, int scene, const std::string& root) const {
   job.path = (fs::path(root) / fixed_pairs_relative_path(a, b, s.stem)).string();
   job.also_remove.push_back((fs::path(root) / fixed_pairs_relative_path(b, a, s.stem)).string());
   if (s.edited)
-    job.contents = fixed_pairs_json(s.current, labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes);
+    job.contents = fixed_pairs_json(s.current, labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes,
+                                    pairs_file_class(labels_->study));
   if (root == labels_->study.root) job.expected = {s.disk_ab, s.disk_ba};
   job.pair = pair;
   job.stem = s.stem;
@@ -186,7 +187,20 @@ std::pair<std::string, std::string> Session::stale_pairs_of(int pair, int scene)
   return {file, why};
 }
 
+void Session::refuse_other_class_edit(int pair, int scene) const {
+  const SceneState& s = scenes_[pair][scene];
+  if (s.pairs_other_class == kNoClassChosen) return;
+  const StudyClasses& c = labels_->study.classes;
+  const std::string theirs = s.pairs_other_class == kAllClasses ? "all" : c.name_of(s.pairs_other_class);
+  throw StudyError(
+      fmt::format("{}: edit refused: this scene's hand pairs are of {}, and saving an edit made while showing {} would "
+                  "overwrite them; choose {} in the class menu to edit them",
+                  s.pairs_other_class_file, s.pairs_other_class == kAllClasses ? "all classes" : theirs,
+                  class_statement(*labels_), theirs));
+}
+
 void Session::refuse_stale_pairs_edit(int pair, int scene) const {
+  refuse_other_class_edit(pair, scene);
   const SceneState& s = scenes_[pair][scene];
   if (!s.pairs_unusable) return;
   const auto [file, why] = stale_pairs_of(pair, scene);
@@ -200,6 +214,7 @@ void Session::refuse_stale_pairs_edit(int pair, int scene) const {
 
 SaveJob Session::apply(int scene, Edit e) {
   if (e.kind != Edit::Kind::kResetToAutomatic) refuse_stale_pairs_edit(pair_, scene);
+  refuse_other_class_edit(pair_, scene);  // reset too: it would remove the other class's file
   if (e.kind == Edit::Kind::kResetToAutomatic) register_scene(pair_, scene);  // the pairs it goes back to
   const SceneState& s = scenes_[pair_][scene];
   FixedPairs next = s.current;
@@ -315,6 +330,8 @@ void Session::reload_scene(int pair, const std::string& stem) {
   s.disk_ba = read.version_ba;
   s.fixed_on_disk = edited;
   s.pairs_unusable = read.unusable();
+  s.pairs_other_class = read.other_class;
+  s.pairs_other_class_file = read.other_class_file;
   s.pairs_problems = std::move(read.problems);
 }
 

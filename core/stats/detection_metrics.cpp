@@ -100,6 +100,7 @@ DetectionMetrics detection_metrics(const std::vector<DetectionImage>& images, do
   for (const auto& im : images) {
     DetectionImage kept;
     kept.gt = im.gt;
+    kept.task = im.task;  // precision and recall match as AP does: by mask IoU in the segment task
     kept.detections = predictions_kept(im.detections, conf_threshold);
     m.gt += static_cast<long>(kept.gt.size());
     m.detections += static_cast<long>(kept.detections.size());

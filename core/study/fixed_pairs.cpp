@@ -174,6 +174,7 @@ std::optional<PairsProblem> binding_problem(const SideInFile& first, const SideI
 struct ParsedFile {
   RockPairs pairs;  // file order
   SideInFile first, second;
+  std::optional<int> cls;  // the class the pairs are of ("class": N or "all"); none: every class
 };
 
 // `n1`, `n2`: the rocks in the label files now, for messages (a stored index may exceed them when the rock
@@ -237,12 +238,22 @@ ParsedFile parse_file(const std::string& text, const std::string& file, size_t n
   const nlohmann::json j = parse_json_input(text, file, "{\"pairs\": [[i, j], ...]}", kMaxJsonDepth);
   if (!j.is_object() || !j.contains("pairs") || !j["pairs"].is_array())
     throw StudyError(file + ": expected an object with a \"pairs\" array, like {\"pairs\": [[0, 2], [1, 0]]}");
-  static const std::set<std::string> kKeys = {"pairs", "excluded_a", "excluded_b", "rocks_a", "rocks_b"};
+  static const std::set<std::string> kKeys = {"pairs", "excluded_a", "excluded_b", "rocks_a", "rocks_b", "class"};
   for (const auto& item : j.items())
     if (!kKeys.count(item.key()))
-      throw StudyError(fmt::format("{}: unknown key \"{}\" (expected pairs, excluded_a, excluded_b, rocks_a, rocks_b)",
-                                   file, item.key().size() > 40 ? item.key().substr(0, 37) + "..." : item.key()));
+      throw StudyError(
+          fmt::format("{}: unknown key \"{}\" (expected pairs, excluded_a, excluded_b, rocks_a, rocks_b, class)", file,
+                      item.key().size() > 40 ? item.key().substr(0, 37) + "..." : item.key()));
   ParsedFile f;
+  if (j.contains("class")) {
+    const nlohmann::json& c = j["class"];
+    if (c.is_string() && c.get<std::string>() == "all")
+      f.cls = kAllClasses;
+    else if (c.is_number_integer() && c.get<long long>() >= 0 && c.get<long long>() <= INT_MAX)
+      f.cls = c.get<int>();
+    else
+      throw StudyError(file + ": \"class\" must be a class number >= 0 or \"all\" (the class its pairs are of)");
+  }
   f.pairs = parse_pair_list(j["pairs"], file, n1, n2);
   f.first.excluded = parse_excluded(j, "excluded_a", file, n1);
   f.second.excluded = parse_excluded(j, "excluded_b", file, n2);
@@ -252,9 +263,16 @@ ParsedFile parse_file(const std::string& text, const std::string& file, size_t n
 }
 
 // Reads one pairs file and binds it to the rocks now in the label files; nullopt in `out` when unusable.
+// `cls`: the class the study's numbers are about; a file of another class sets `other_class` and gives nothing.
 std::optional<FixedPairs> parse_fixed_pairs(const std::string& text, const std::string& file, bool swapped,
-                                            SideInFile first, SideInFile second, std::vector<PairsProblem>* problems) {
+                                            SideInFile first, SideInFile second, int cls, int* other_class,
+                                            std::vector<PairsProblem>* problems) {
   ParsedFile f = parse_file(text, file, first.gt->size(), second.gt->size());
+  // Hand pairs of another class index another class's rocks: not this class's pairs, and no problem of them.
+  if (f.cls && cls != kNoClassChosen && *f.cls != cls) {
+    *other_class = *f.cls;
+    return std::nullopt;
+  }
   f.first.domain = first.domain, f.first.label_file = first.label_file, f.first.gt = first.gt;
   f.second.domain = second.domain, f.second.label_file = second.label_file, f.second.gt = second.gt;
   check_unbound_ranges(f, file);
@@ -314,8 +332,10 @@ FixedPairsRead load_fixed_pairs(const Study& study, const std::string& a, const 
     }
     SideInFile sa{a, study.label_path(a, stem), &gt_a, {}, {}, {}, {}};
     SideInFile sb{b, study.label_path(b, stem), &gt_b, {}, {}, {}, {}};
-    out.pairs = swapped ? parse_fixed_pairs(*text, shown, true, sb, sa, &out.problems)
-                        : parse_fixed_pairs(*text, shown, false, sa, sb, &out.problems);
+    const int cls = study.config.rock_class;
+    out.pairs = swapped ? parse_fixed_pairs(*text, shown, true, sb, sa, cls, &out.other_class, &out.problems)
+                        : parse_fixed_pairs(*text, shown, false, sa, sb, cls, &out.other_class, &out.problems);
+    if (out.other_class != kNoClassChosen) out.other_class_file = shown;
     found = true;
     found_path = shown;
   }
@@ -333,8 +353,19 @@ std::optional<FixedPairs> read_fixed_pairs(const Study& study, const std::string
   return std::move(r.pairs);
 }
 
-std::string fixed_pairs_json(const FixedPairs& fp, const std::vector<Box>& gt_a, const std::vector<Box>& gt_b) {
+std::optional<int> pairs_file_class(const Study& study) {
+  const int cls = study.config.rock_class;
+  if (cls == kNoClassChosen) return std::nullopt;
+  const auto& names = study.classes.names;
+  const long named = std::count_if(names.begin(), names.end(), [](const std::string& n) { return !n.empty(); });
+  if (cls == kAllClasses || cls > 0 || named > 1) return cls;
+  return std::nullopt;
+}
+
+std::string fixed_pairs_json(const FixedPairs& fp, const std::vector<Box>& gt_a, const std::vector<Box>& gt_b,
+                             std::optional<int> cls) {
   nlohmann::json j;
+  if (cls) j["class"] = *cls == kAllClasses ? nlohmann::json("all") : nlohmann::json(*cls);
   j["pairs"] = nlohmann::json::array();
   std::set<int> rocks_a(fp.excluded_a.begin(), fp.excluded_a.end()),
       rocks_b(fp.excluded_b.begin(), fp.excluded_b.end());
@@ -361,7 +392,8 @@ std::string fixed_pairs_json(const FixedPairs& fp, const std::vector<Box>& gt_a,
 
 void write_fixed_pairs(const Study& study, const std::string& a, const std::string& b, const std::string& stem,
                        const FixedPairs& fp, const std::vector<Box>& gt_a, const std::vector<Box>& gt_b) {
-  write_file_beneath(study.root, fixed_pairs_relative_path(a, b, stem), fixed_pairs_json(fp, gt_a, gt_b));
+  write_file_beneath(study.root, fixed_pairs_relative_path(a, b, stem),
+                     fixed_pairs_json(fp, gt_a, gt_b, pairs_file_class(study)));
 }
 
 Problem pairs_file_problem(const PairsProblem& w, const std::string& a, const std::string& b, const std::string& stem) {

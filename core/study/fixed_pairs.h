@@ -12,6 +12,10 @@
 // Files without "rocks_a"/"rocks_b" (written before boxes were stored) are read by index and gain the
 // boxes on their next save.
 //
+// "class": N (or "all") says which class's rocks the indices are of, in a study with more than one class: read
+// with another class chosen, the file is another class's hand work, not this class's pairs (nor a problem), and
+// ipd-studio refuses edits of that scene rather than overwrite it. A file without "class" holds for every class.
+//
 // Nothing below the study is followed through a symbolic link (contained_file.h).
 #pragma once
 
@@ -75,6 +79,9 @@ struct FixedPairsRead {
   std::optional<FixedPairs> pairs;     // nullopt: no file, or unusable (see problems)
   std::vector<PairsProblem> problems;  // in file order: rocks found again, unusable, both name orders
   DiskVersion version_ab, version_ba;  // pairs/<a>__<b>/<stem>.json and pairs/<b>__<a>/<stem>.json
+  // The file holds another class's hand pairs (kNoClassChosen: it doesn't): `pairs` is then empty.
+  int other_class = -1;
+  std::string other_class_file;
   bool unusable() const;
 };
 
@@ -91,8 +98,12 @@ std::optional<FixedPairs> read_fixed_pairs(const Study& study, const std::string
                                            const std::string& stem, const std::vector<Box>& gt_a,
                                            const std::vector<Box>& gt_b, std::vector<std::string>* warnings = nullptr);
 
-// The file's text, with each paired or excluded rock's box from `gt_a`/`gt_b`.
-std::string fixed_pairs_json(const FixedPairs& pairs, const std::vector<Box>& gt_a, const std::vector<Box>& gt_b);
+// The class a pairs file written now is of: the chosen class in a study where another could be chosen (more
+// than one named class, a class number above 0, or class-blind), else none (the file holds for every class).
+std::optional<int> pairs_file_class(const Study& study);
+// The file's text, with each paired or excluded rock's box from `gt_a`/`gt_b`, and "class" when `cls` is set.
+std::string fixed_pairs_json(const FixedPairs& pairs, const std::vector<Box>& gt_a, const std::vector<Box>& gt_b,
+                             std::optional<int> cls);
 
 // The file name of a scene's pairs below the study root: "pairs/<a>__<b>/<stem>.json".
 std::string fixed_pairs_relative_path(const std::string& a, const std::string& b, const std::string& stem);

@@ -25,6 +25,7 @@ GalleryCrop crop_of(const std::vector<Box>& gt, const std::vector<Box>& pred, in
   GalleryCrop c;
   c.rock = rock;
   c.perf = perf;
+  c.mask = task == Task::kSegment;
   c.gt = gt[rock];
   const int best = performance_values(gt, pred, task).best_prediction[rock];
   if (best >= 0) c.pred = pred[best], c.has_pred = true;
@@ -61,12 +62,29 @@ void draw_crop(Canvas& c, const PtRect& panel, const GalleryCrop& g, double font
     c.image({g.pixels}, on_panel(panel, g.region, g.covered.x0, g.covered.y0, g.covered.x1, g.covered.y1));
   const double lw = std::max(0.35, font_pt * 0.07), dash = std::max(1.5, 4 * lw);
   const auto box = [&](const Box& b) { return on_panel(panel, g.region, b.x0(), b.y0(), b.x1(), b.y1()); };
-  if (g.has_pred) {
+  // An instance with an outline is drawn as its outline: the mask its performance value is about.
+  const auto outline = [&](const Outline& o) {
+    std::vector<Pt> q;
+    for (const Eigen::Vector2d& p : o.points) {
+      const PtRect r = on_panel(panel, g.region, p.x(), p.y(), p.x(), p.y());
+      q.push_back({r.x0, r.y0});
+    }
+    return q;
+  };
+  if (g.has_pred && g.pred.outline) {
+    dashed_polygon(c, outline(*g.pred.outline), kLightHalo, 1.5 * lw * kHaloRatio, dash);
+    dashed_polygon(c, outline(*g.pred.outline), kPredC, 1.5 * lw, dash);
+  } else if (g.has_pred) {
     dashed_rect(c, box(g.pred), kLightHalo, 1.5 * lw * kHaloRatio, dash);
     dashed_rect(c, box(g.pred), kPredC, 1.5 * lw, dash);
   }
-  c.rect(box(g.gt), kDarkHalo, 1.5 * lw * kHaloRatio);
-  c.rect(box(g.gt), kGtC, 1.5 * lw);
+  if (g.gt.outline) {
+    c.polyline(outline(*g.gt.outline), kDarkHalo, 1.5 * lw * kHaloRatio, true);
+    c.polyline(outline(*g.gt.outline), kGtC, 1.5 * lw, true);
+  } else {
+    c.rect(box(g.gt), kDarkHalo, 1.5 * lw * kHaloRatio);
+    c.rect(box(g.gt), kGtC, 1.5 * lw);
+  }
   c.pop_clip();
   c.rect(panel, kGrey, 0.4);
 }
@@ -76,7 +94,8 @@ void draw_crop(Canvas& c, const PtRect& panel, const GalleryCrop& g, double font
 double draw_caption(Canvas& c, const PtRect& panel, const GalleryCrop& g, const TextStyle& st) {
   const Pt at{panel.x0, panel.y1 + 0.15 * st.size_pt};
   const double h = draw_wrapped(c, at, st, fmt::format("rock {}", g.rock + 1), panel.width());
-  return h + draw_wrapped(c, {at.x, at.y + h}, st, fmt::format("perf {:.3f}", g.perf), panel.width());
+  return h + draw_wrapped(c, {at.x, at.y + h}, st, fmt::format("{} {:.3f}", g.mask ? "mask IoU" : "perf", g.perf),
+                          panel.width());
 }
 
 }  // namespace

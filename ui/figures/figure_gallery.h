@@ -23,6 +23,7 @@ namespace ipd::ui {
 struct GalleryCrop {
   int rock = -1;  // 0-based; printed from 1 as the studio numbers rocks
   double perf = 0;
+  bool mask = false;  // perf is a mask IoU (task segment): said so under the crop
   Box gt, pred;
   bool has_pred = false;
   Crop region;

@@ -85,8 +85,9 @@ std::string title_of(const SceneFigureInput& in, const SceneNumbers& n) {
   const std::string value = !none.empty()       ? "not a number (" + none + ")"
                             : std::isnan(n.ipd) ? std::string("n/a")
                                                 : fmt::format("{:.4f}", n.ipd);
-  return fmt::format("{}: {} vs {}, model {}, scene IPD {} ({} pair{}){}{}", in.stem, in.a, in.b,
-                     in.model.empty() ? "none" : in.model, value, n.pairs, n.pairs == 1 ? "" : "s",
+  return fmt::format("{}: {} vs {}, model {}, scene IPD{} {} ({} pair{}){}{}", in.stem, in.a, in.b,
+                     in.model.empty() ? "none" : in.model, in.task == Task::kSegment ? " (mask IoU)" : "", value,
+                     n.pairs, n.pairs == 1 ? "" : "s",
                      in.conf_threshold > 0 ? fmt::format(", conf \u2265 {:g}", in.conf_threshold) : "",
                      in.pairs_fixed ? ", pairs fixed by hand" : "");
 }

@@ -8,6 +8,7 @@
 #include "core/ipd/ipd.h"
 #include "core/registration/pairing.h"
 #include "core/report/provenance.h"
+#include "core/session/session.h"
 #include "core/study/study.h"
 #include "core/util/errors.h"
 #include "tests/support/test_support.h"
@@ -249,6 +250,49 @@ TEST(Classes, AnUnknownClassWordListsTheClasses) {
     EXPECT_STREQ(e.what(),
                  "no class 2 among the study's classes rock (0), shadow (1) (real/labels/classes.txt); or 'all' for a "
                  "class-blind number");
+  }
+}
+
+}  // namespace
+}  // namespace ipd
+
+namespace ipd {
+namespace {
+
+// Hand pairs are of the class they were made under: a rock scene's pairs file says "class": 0, counts for rocks,
+// is no pairs (and no problem) for shadows, and an edit made while showing shadows is refused rather than
+// overwrite the rocks' hand work.
+TEST(Classes, HandPairsOfOneClassAreNotAnotherClasssPairs) {
+  test::TempDir d;
+  write_two_class_study(d);
+  SessionOptions rocks;
+  rocks.class_word = "rock";
+  {
+    Session s = Session::open(d.path(), rocks);
+    const SaveJob job = s.apply(0, Edit::unpair(Side::kA, 0));  // R1 out: the rock IPD is R2's |0 - 1| = 1
+    ASSERT_TRUE(job.contents.has_value());
+    EXPECT_EQ(job.contents->rfind("{\"class\":0,\"pairs\":[[1,1]]", 0), 0u) << *job.contents;
+    run_save_job(job);
+  }
+  EXPECT_NEAR(ipd_for(d, "rock"), 1.0, 1e-12);
+  Study study = open_study(d.path());
+  study.config.rock_class = study.classes.resolve("shadow");
+  const StudyLabels labels = load_labels(study);
+  const CrossTable shadows = compute_cross_table(labels, {});
+  EXPECT_NEAR(shadows.cell("det", "real", "synth")->ipd, 2.0 / 3, 1e-12);
+  EXPECT_EQ(shadows.fixed_scenes, 0);
+  EXPECT_TRUE(shadows.pairs_problems.empty());
+  SessionOptions shadow;
+  shadow.class_word = "shadow";
+  Session s = Session::open(d.path(), shadow);
+  try {
+    s.apply(0, Edit::reset());
+    FAIL() << "an edit under shadows overwrote the rocks' hand pairs";
+  } catch (const StudyError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              d / "pairs/real__synth/s1.json" +
+                  ": edit refused: this scene's hand pairs are of rock, and saving an edit made while showing "
+                  "shadow (class 1) would overwrite them; choose rock in the class menu to edit them");
   }
 }
 

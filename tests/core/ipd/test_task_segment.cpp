@@ -93,7 +93,7 @@ TEST(TaskSegment, ABoxWithoutAnOutlineIsRefusedNamingWhereItIs) {
     EXPECT_EQ(std::string(e.what()),
               d.path() + ": task segment scores each instance by mask IoU, but 1 of 5 predictions (first: " +
                   (d / "synth/predictions/det/s1.txt") +
-                  ":1) are boxes without an outline (a YOLO-seg line `class x1 y1 ... xn yn`); give them outlines, "
+                  ":1) is a box without an outline (a YOLO-seg line `class x1 y1 ... xn yn`); give them outlines, "
                   "or use --task detect for box IoU");
   }
 }
@@ -125,6 +125,22 @@ TEST(TaskSegment, MaskApMatchesDetectionsByMaskIou) {
   EXPECT_NEAR(average_precision(masks, 0.75), 0.0, 1e-12);
   EXPECT_NEAR(average_precision_50_95(masks), 0.5, 1e-12);
   EXPECT_NEAR(average_precision_50_95(boxes), 1.0, 1e-12);
+}
+
+// Precision and recall at IoU 0.5 match as AP does. A notch 0.3 wide and 0.293 deep leaves 0.0721 of the square's
+// 0.16: mask IoU 0.450625 against the bounding square (no match at 0.5), box IoU 1 (a match).
+TEST(TaskSegment, PrecisionAndRecallMatchByMaskIouToo) {
+  const LabelFile gt = parse_labels("0 0 0 0.4 0 0.4 0.4 0.35 0.4 0.35 0.107 0.05 0.107 0.05 0.4 0 0.4\n", "a.txt",
+                                    {LabelKind::kGroundTruth});
+  const LabelFile det = parse_labels("0 0 0 0.4 0 0.4 0.4 0 0.4 0.9\n", "p.txt", {LabelKind::kPrediction});
+  ASSERT_TRUE(gt.errors.empty() && det.errors.empty());
+  ASSERT_NEAR(mask_iou(*gt.boxes[0].outline, *det.boxes[0].outline), 0.450625, 1e-12);
+  const DetectionMetrics masks = detection_metrics({{gt.boxes, det.boxes, Task::kSegment}}, 0.25);
+  EXPECT_EQ(masks.true_positives, 0);
+  EXPECT_NEAR(masks.recall, 0.0, 1e-12);
+  const DetectionMetrics boxes = detection_metrics({{gt.boxes, det.boxes, Task::kDetect}}, 0.25);
+  EXPECT_EQ(boxes.true_positives, 1);
+  EXPECT_NEAR(boxes.recall, 1.0, 1e-12);
 }
 
 }  // namespace
