@@ -20,6 +20,7 @@ Runner add_bench_command(CLI::App& app);
 Runner add_detect_command(CLI::App& app);
 Runner add_import_command(CLI::App& app);
 Runner add_compare_command(CLI::App& app);
+Runner add_rank_command(CLI::App& app);
 Runner add_breakdown_command(CLI::App& app);
 Runner add_export_command(CLI::App& app);
 Runner add_metrics_command(CLI::App& app);

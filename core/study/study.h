@@ -33,9 +33,13 @@ struct StudyConfig {
   std::vector<std::string> class_names;  // study.yaml's `classes`, by class number; empty when not given
   std::string rock_class_word;           // `rock_class: rock` (a name), resolved once the classes are read
   int rock_class_line = 0;
-  double conf_threshold = 0;                      // predictions below this are dropped
-  int image_width = 0, image_height = 0;          // for labels-only studies; 0 when unknown
-  std::vector<std::string> domain_order;          // optional preferred order
+  double conf_threshold = 0;              // predictions below this are dropped
+  int image_width = 0, image_height = 0;  // for labels-only studies; 0 when unknown
+  std::vector<std::string> domain_order;  // optional preferred order
+  // study.yaml's `domains:` as a mapping: each domain's numbers (`params: {w: 0.30}`), by name in the file's
+  // order, e.g. the renderer setting a variant was rendered with (ipd rank, ipd figure sweep). A domain given no
+  // params, or the list form, has none.
+  std::map<std::string, std::vector<std::pair<std::string, double>>> domain_params;
   std::map<std::string, std::string> trained_on;  // model -> domain
   RegistrationOptions registration;
 };
