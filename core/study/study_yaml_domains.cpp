@@ -15,7 +15,7 @@ std::string node_kind(const YAML::Node& n) {
   if (n.IsNull()) return "nothing";
   if (n.IsSequence()) return "a list";
   if (n.IsMap()) return "a mapping";
-  return quoted_for_message(n.Scalar());
+  return "'" + quoted_for_message(n.Scalar()) + "'";
 }
 
 // Twice is a typo (the second was meant to be another domain), not an order: said, never dropped.
