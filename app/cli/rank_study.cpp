@@ -46,6 +46,9 @@ void add_rank_options(CLI::App* cmd, RankArgs* args) {
 
 std::optional<RankedStudy> rank_study(const RankArgs& args) {
   StudyOptions so = args.study;
+  if (!so.domains.empty())
+    throw CLI::ValidationError(
+        "--domains: a ranking's domains are --ref and --candidates (default: every other domain)");
   const Study study = open_study_with_conf(so);
   RankOptions ro;
   ro.domains = resolve_rank_domains(study, args.ref, args.candidates);
