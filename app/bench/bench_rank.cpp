@@ -88,6 +88,7 @@ int run_rank_bench(const RankBenchOptions& o) {
   // One pair's table twice: in a study of that pair alone, and in the variants study (which parses every
   // domain's label files, whatever --domains chooses).
   const fs::path pair = scratch / "pair";
+  fs::create_directories(pair);
   for (const std::string& d : {std::string("real"), first}) fs::copy(study / d, pair / d, fs::copy_options::recursive);
   write_file_atomically((pair / "study.yaml").string(), variant_study_yaml(v, 1));
   const double pair_ms =
