@@ -130,6 +130,33 @@ Colour shade(double v, double lo, double hi) {
   return rgb(mix(247, 24), mix(251, 48), mix(255, 107));
 }
 
+// The interval between the points as a grey band, filled in thin vertical strips (the canvas fills rectangles,
+// not polygons), with its edges drawn.
+template <typename ToX, typename ToY>
+void draw_band(Canvas& out, const SweepChart& ch, ToX&& X, ToY&& Y, double lw) {
+  std::vector<Pt> upper, lower;
+  for (const auto& p : ch.points)
+    if (std::isfinite(p.low) && std::isfinite(p.high))
+      upper.push_back({X(p.x), Y(p.high)}), lower.push_back({X(p.x), Y(p.low)});
+  if (upper.size() >= 2) {
+    const Colour band = rgb(200, 200, 200);
+    for (size_t i = 0; i + 1 < upper.size(); ++i) {
+      const int strips = std::max(1, static_cast<int>((upper[i + 1].x - upper[i].x) / 0.5));
+      for (int s = 0; s < strips; ++s) {
+        const double t0 = static_cast<double>(s) / strips, t1 = static_cast<double>(s + 1) / strips;
+        const double xa = upper[i].x + (upper[i + 1].x - upper[i].x) * t0;
+        const double xb = upper[i].x + (upper[i + 1].x - upper[i].x) * t1;
+        const double tm = 0.5 * (t0 + t1);
+        const double ya = upper[i].y + (upper[i + 1].y - upper[i].y) * tm;
+        const double yb = lower[i].y + (lower[i + 1].y - lower[i].y) * tm;
+        out.fill_rect({xa, ya, xb + 0.05, yb}, band);
+      }
+    }
+    out.polyline(upper, kGrey, lw * 0.7, false);
+    out.polyline(lower, kGrey, lw * 0.7, false);
+  }
+}
+
 void draw_line_sweep(DisplayList& out, const SweepChart& ch, const FigureOptions& o, double y) {
   const double W = o.width_pt(), F = o.font_pt;
   const TextStyle body = style(F, kInk), small = style(secondary_pt(F), kInk);
@@ -159,28 +186,7 @@ void draw_line_sweep(DisplayList& out, const SweepChart& ch, const FigureOptions
   auto Y = [&](double v) { return bottom - (v - lo) / (hi - lo) * (bottom - top); };
   draw_value_axis(out, x0, top, bottom, lo, hi, yt, x1, o);
   const double lw = std::max(0.4, F * 0.08);
-  // The band: the interval between the points, drawn as thin vertical strips (a filled polygon per segment).
-  std::vector<Pt> upper, lower;
-  for (const auto& p : ch.points)
-    if (std::isfinite(p.low) && std::isfinite(p.high))
-      upper.push_back({X(p.x), Y(p.high)}), lower.push_back({X(p.x), Y(p.low)});
-  if (upper.size() >= 2) {
-    const Colour band = rgb(200, 200, 200);
-    for (size_t i = 0; i + 1 < upper.size(); ++i) {
-      const int strips = std::max(1, static_cast<int>((upper[i + 1].x - upper[i].x) / 0.5));
-      for (int s = 0; s < strips; ++s) {
-        const double t0 = static_cast<double>(s) / strips, t1 = static_cast<double>(s + 1) / strips;
-        const double xa = upper[i].x + (upper[i + 1].x - upper[i].x) * t0;
-        const double xb = upper[i].x + (upper[i + 1].x - upper[i].x) * t1;
-        const double tm = 0.5 * (t0 + t1);
-        const double ya = upper[i].y + (upper[i + 1].y - upper[i].y) * tm;
-        const double yb = lower[i].y + (lower[i + 1].y - lower[i].y) * tm;
-        out.fill_rect({xa, ya, xb + 0.05, yb}, band);
-      }
-    }
-    out.polyline(upper, kGrey, lw * 0.7, false);
-    out.polyline(lower, kGrey, lw * 0.7, false);
-  }
+  draw_band(out, ch, X, Y, lw);
   std::vector<Pt> line;
   for (const auto& p : ch.points) line.push_back({X(p.x), Y(p.ipd)});
   out.polyline(line, kInk, lw * 1.5, false);
