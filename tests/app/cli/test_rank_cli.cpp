@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "tests/support/test_support.h"
@@ -68,6 +70,41 @@ TEST(RankCli, JsonNamesTheBestItsGroupAndHolm) {
   const auto group = j["best_group"].get<std::vector<std::string>>();
   EXPECT_NE(std::find(group.begin(), group.end(), "ambient-025"), group.end());
   EXPECT_EQ(std::find(group.begin(), group.end(), "ambient-100"), group.end());
+}
+
+}  // namespace
+}  // namespace ipd
+
+namespace ipd {
+namespace {
+
+// The class every number is about is chosen as `ipd table` chooses it: the same refusal when the labels hold two
+// classes and none was chosen, the same --class.
+TEST(RankCli, ClassChoiceIsTheTables) {
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd("demo " + d.path() + " --variants 2 --scenes 3").exit_code, 0);
+  test::write_text(d / "study.yaml",
+                   "domains: {real: {}, ambient-000: {params: {ambient: 0}}, ambient-100: {params: "
+                   "{ambient: 1}}}\nmodels: {det-real: {trained_on: real}}\nimage_size: [960, 600]\n");
+  for (const auto& e : fs::directory_iterator(d / "real/labels")) {
+    std::string text;
+    {
+      std::ifstream in(e.path());
+      text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    test::write_text(e.path().string(), text + "1 0.5 0.5 0.05 0.05\n");
+  }
+  const auto table = test::run_ipd("table " + d.path());
+  const auto rank = test::run_ipd("rank " + d.path() + " --ref real");
+  EXPECT_EQ(table.exit_code, 1);
+  EXPECT_EQ(rank.exit_code, table.exit_code);
+  EXPECT_EQ(rank.err, table.err);
+  const auto chosen = test::run_ipd("rank " + d.path() + " --ref real --class 0");
+  EXPECT_EQ(chosen.exit_code, 0) << chosen.err;
+  // The same provenance note as the table's for that class.
+  const auto table_chosen = test::run_ipd("table " + d.path() + " --class 0");
+  const std::string note = table_chosen.out.substr(table_chosen.out.rfind("Label files"));
+  EXPECT_NE(chosen.out.find(note), std::string::npos) << chosen.out;
 }
 
 }  // namespace
