@@ -274,10 +274,13 @@ Runner add_bench_command(CLI::App& app) {
   bench->get_subcommands({}).back()->callback([which] { *which = "study"; });
   auto budget = std::make_shared<Runner>(add_bench_budget(bench));
   bench->get_subcommands({}).back()->callback([which] { *which = "budget"; });
+  auto rank = std::make_shared<Runner>(add_bench_rank(bench));
+  bench->get_subcommands({}).back()->callback([which] { *which = "rank"; });
   CLI::App* cmd = bench->add_subcommand("registration", "Registration run time against pair F1 and transform error");
   declare_registration_bench_options(cmd, args.get());
-  return [args, edits, bootstrap, study, budget, which]() -> int {
+  return [args, edits, bootstrap, study, budget, rank, which]() -> int {
     if (*which == "edits") return (*edits)();
+    if (*which == "rank") return (*rank)();
     if (*which == "budget") return (*budget)();
     if (*which == "bootstrap") return (*bootstrap)();
     if (*which == "study") return (*study)();

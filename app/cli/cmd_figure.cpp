@@ -148,7 +148,9 @@ Runner add_figure_command(CLI::App& app) {
       "confidence)");
   add("registration", "Fig. 2: GT centres before and after registration, lines between partners");
   const Runner stats = add_figure_stats_commands(fig, which);
-  return [args, which, stats]() -> int {
+  const Runner sweep = add_figure_sweep_command(fig, which);
+  return [args, which, stats, sweep]() -> int {
+    if (*which == "sweep") return sweep();
     if (*which != "pairs" && *which != "registration") return stats();
     ui::FigureOptions o;
     if (const int rc = figure_options(args->output, &o)) return rc;

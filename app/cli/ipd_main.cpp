@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   add(ipd::cli::add_detect_command);
   add(ipd::cli::add_import_command);
   add(ipd::cli::add_compare_command);
+  add(ipd::cli::add_rank_command);
   add(ipd::cli::add_breakdown_command);
   add(ipd::cli::add_export_command);
   add(ipd::cli::add_metrics_command);

@@ -132,7 +132,8 @@ Study open_study_with_conf(const StudyOptions& o) {
   return study;
 }
 
-std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, bool shown_cells_only) {
+std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, bool shown_cells_only,
+                                            const std::string& only_pairs_with) {
   const Study study = open_study_with_conf(o);
   // The GUI's parsed-study cache (study_cache.h): unchanged label files and registrations are read back.
   StudyCache parsed(o.no_cache ? std::string() : parsed_study_cache_path(study.root), study.root);
@@ -155,6 +156,7 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   opt.cache_dir = registration.dir();
   opt.registration_cache = &registration;
   opt.shown_cells_only = shown_cells_only;
+  opt.only_pairs_with = only_pairs_with;
   Progress progress("registering");
   opt.progress = [&](int d, int t) { progress.update(d, t); };
   out.table = compute_cross_table(out.labels, opt);

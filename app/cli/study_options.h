@@ -54,8 +54,10 @@ struct LoadedStudy {
   double registration_budget_ms = 0;  // the time budget each registration had (0: none)
   BootstrapOptions bootstrap;         // as used: the seed is --seed, else the study's registration seed
 };
-// shown_cells_only: TableOptions::shown_cells_only (for a table that prints "–" where no model trained).
-std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, bool shown_cells_only = false);
+// shown_cells_only: TableOptions::shown_cells_only (for a table that prints "–" where no model trained);
+// only_pairs_with: TableOptions::only_pairs_with (a ranking registers only its reference's domain pairs).
+std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, bool shown_cells_only = false,
+                                            const std::string& only_pairs_with = "");
 
 // Opens the study and applies --conf, --class and --class-map (for commands that read labels themselves).
 Study open_study_with_conf(const StudyOptions& o);

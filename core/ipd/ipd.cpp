@@ -264,6 +264,8 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
   const Study& study = labels.study;
   for (const auto& d : options.domains)
     if (!study.domain(d)) throw StudyError(fmt::format("{}: no domain '{}' in this study", study.root, d));
+  if (!options.only_pairs_with.empty() && !study.domain(options.only_pairs_with))
+    throw StudyError(fmt::format("{}: no domain '{}' in this study", study.root, options.only_pairs_with));
   CrossTable t;
   t.models = chosen_models(study, options.models);
   t.columns = domain_pairs(study, options.domains);
@@ -286,6 +288,9 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
         return make_table_cell(m, column.first, column.second).involves_training_domain;
       });
     }
+    if (!options.only_pairs_with.empty())
+      shown[c] =
+          shown[c] && (t.columns[c].first == options.only_pairs_with || t.columns[c].second == options.only_pairs_with);
     if (shown[c]) to_pair.push_back(t.columns[c]);
   }
   PairedStudy paired = pair_study(labels, to_pair, po);

@@ -174,6 +174,10 @@ struct TableOptions {
   // the text, Markdown and LaTeX tables print "–" for the others, so registering them is wasted work. The
   // hidden columns' cells then have no scenes and no value (CSV and JSON print every cell: leave this off).
   bool shown_cells_only = false;
+  // Register only the domain pairs that include this domain: a ranking against one reference (core/rank) reads
+  // the (reference, candidate) cells and never a candidate-vs-candidate one, whose cells then have no scenes and
+  // no value. Empty: every pair (or the shown ones).
+  std::string only_pairs_with;
 
   // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence. The
   // registration options check themselves where a scene is registered (a fully cached table needs none).

@@ -122,6 +122,12 @@ std::string minus_number(double v, int digits) {
   return (v < 0 && s.find_first_not_of("0.") != std::string::npos ? "−" : "") + s;
 }
 
+bool significant_difference(const Comparison& c, double p, double alpha) {
+  if (std::isnan(p) || std::isnan(c.delta.estimate)) return false;
+  const bool interval_excludes_zero = !c.delta.has_interval() || c.delta.low > 0 || c.delta.high < 0;
+  return p < alpha && interval_excludes_zero;
+}
+
 std::string comparison_sentence(const RendererComparison& c, double alpha) {
   const Comparison& r = c.result;
   const auto num = minus_number;
@@ -143,9 +149,7 @@ std::string comparison_sentence(const RendererComparison& c, double alpha) {
   if (std::isnan(r.p_value))
     return fmt::format("not tested whether {} or {} is closer to {} for {}: {} (no permutation test was run)", c.a, c.b,
                        c.ref, c.model, numbers);
-  const bool interval_excludes_zero = !r.delta.has_interval() || r.delta.low > 0 || r.delta.high < 0;
-  const bool significant = r.p_value < alpha && interval_excludes_zero;
-  if (!significant)
+  if (!significant_difference(r, r.p_value, alpha))
     return fmt::format("no significant difference between {} and {} in closeness to {} for {}: {}", c.a, c.b, c.ref,
                        c.model, numbers);
   const bool a_closer = r.delta.estimate < 0;

@@ -40,10 +40,16 @@ struct RendererComparison {
 // or the model has no predictions for one of the domains.
 RendererComparison compare_renderers(const CrossTable& table, const std::string& model, const std::string& ref,
                                      const std::string& a, const std::string& b, const CompareOptions& options);
+// The significance level of a comparison's verdict when none is given (ipd compare's sentence, ipd rank's --level).
+constexpr double kSignificanceLevel = 0.05;
+// The verdict rule of a comparison at significance level `alpha`, given its p-value `p` (the comparison's own, or
+// one corrected for multiple tests): a difference is significant when p < alpha and the paired interval excludes
+// 0 (or there is no interval). No p-value (no test run) is never significant.
+bool significant_difference(const Comparison& c, double p, double alpha);
 // One plain sentence, e.g. "principled is closer to real than hapke for det-real: ΔIPD = -0.0896
 // [-0.112, -0.069], p = 0.0005, 40 scenes"; "no significant difference ..." when p >= alpha or the
 // interval contains 0.
-std::string comparison_sentence(const RendererComparison& c, double alpha = 0.05);
+std::string comparison_sentence(const RendererComparison& c, double alpha = kSignificanceLevel);
 // `v` with `digits` decimals and a typographic minus (U+2212), as in print and in comparison_sentence;
 // never a minus on a number that rounds to zero ("0.0000", not "−0.0000"); "n/a" for NaN.
 std::string minus_number(double v, int digits);

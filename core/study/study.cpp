@@ -9,6 +9,7 @@
 #include <set>
 
 #include "core/study/study_names.h"
+#include "core/study/study_yaml_domains.h"
 #include "core/util/atomic_file.h"
 #include "core/util/contained_file.h"
 #include "core/util/json_input.h"
@@ -268,13 +269,7 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
       if (c.image_width <= 0 || c.image_height <= 0)
         throw StudyError(fmt::format("{}:{}: image_size must be positive", file, line));
     } else if (key == "domains") {
-      c.domain_order = yaml_get<std::vector<std::string>>(v, file, "domains");
-      // Twice is a typo (the second was meant to be another domain), not an order: said, never dropped.
-      for (size_t k = 0; k < c.domain_order.size(); ++k)
-        if (std::find(c.domain_order.begin(), c.domain_order.begin() + k, c.domain_order[k]) !=
-            c.domain_order.begin() + k)
-          throw StudyError(fmt::format("{}:{}: domains lists '{}' twice; each domain once, in the order to show", file,
-                                       line, quoted_for_message(c.domain_order[k])));
+      parse_study_domains(v, file, line, &c);
     } else if (key == "models") {
       parse_models(v, file, line, &c);
     } else if (key == "registration") {

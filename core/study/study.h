@@ -37,8 +37,12 @@ struct StudyConfig {
   // What a performance value is: a box's IoU (detect, the paper) or an outline's mask IoU (segment);
   // `task` in study.yaml, `--task` on the command line.
   Task task = Task::kDetect;
-  int image_width = 0, image_height = 0;          // for labels-only studies; 0 when unknown
-  std::vector<std::string> domain_order;          // optional preferred order
+  int image_width = 0, image_height = 0;  // for labels-only studies; 0 when unknown
+  std::vector<std::string> domain_order;  // optional preferred order
+  // study.yaml's `domains:` as a mapping: each domain's numbers (`params: {w: 0.30}`), by name in the file's
+  // order, e.g. the renderer setting a variant was rendered with (ipd rank, ipd figure sweep). A domain given no
+  // params, or the list form, has none.
+  std::map<std::string, std::vector<std::pair<std::string, double>>> domain_params;
   std::map<std::string, std::string> trained_on;  // model -> domain
   RegistrationOptions registration;
 };

@@ -348,12 +348,12 @@ TEST(InputChecks, AnUnknownCommandIsNamedWithTheCommandsThereAre) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err,
             "error: 'tabel' is not a command of ipd; expected one of: table, register, demo, figure, bench, detect, "
-            "import, compare, breakdown, export, metrics\n");
+            "import, compare, rank, breakdown, export, metrics\n");
   r = test::run_ipd("figure pairz study");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err,
             "error: 'pairz' is not a command of ipd figure; expected one of: pairs, registration, table, compare, "
-            "distribution, breakdown, gallery\n");
+            "distribution, breakdown, gallery, sweep\n");
 }
 
 // A domain listed twice was dropped without a word (and the columns' order changed).

@@ -16,6 +16,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <thread>
 
@@ -343,12 +344,15 @@ TEST(ReceivedStudy, NoCodeOpensOrRemovesAFileByNameOutsideTheListedPlaces) {
                                             "std::filesystem::remove",
                                             "std::filesystem::rename",
                                             "fopen("};
-  const std::map<std::string, std::string> allowed = {
+  const std::set<std::pair<std::string, std::string>> allowed = {
       // run_unchecked_save_job: a save job without a study root is a path the user gave ('save as').
       {"core/session/session_edits.cpp", "fs::remove("},
       // The benchmarks' own scratch folders, made by mkdtemp.
       {"app/bench/bench_study.cpp", "fs::remove_all("},
       {"app/bench/registration_runs.cpp", "fs::remove_all("},
+      // The variants study bench rank writes into its scratch folder, a variant moved out and back in.
+      {"app/bench/bench_rank.cpp", "fs::remove_all("},
+      {"app/bench/bench_rank.cpp", "fs::rename("},
   };
   std::vector<std::string> found;
   for (const char* top : {"core", "ui", "app"})
@@ -367,9 +371,7 @@ TEST(ReceivedStudy, NoCodeOpensOrRemovesAFileByNameOutsideTheListedPlaces) {
         if (code == std::string::npos || line.compare(code, 2, "//") == 0) continue;
         for (const std::string& call : by_name) {
           if (line.find(call) == std::string::npos) continue;
-          const auto it = allowed.find(rel);
-          if (it == allowed.end() || it->second != call)
-            found.push_back(rel + ":" + std::to_string(line_no) + ": " + call);
+          if (!allowed.count({rel, call})) found.push_back(rel + ":" + std::to_string(line_no) + ": " + call);
         }
       }
     }

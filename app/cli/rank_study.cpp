@@ -1,0 +1,74 @@
+#include "app/cli/rank_study.h"
+
+#include <fmt/format.h>
+
+#include "core/util/number_text.h"
+
+namespace ipd::cli {
+
+namespace {
+
+// The one model a ranking is for: --model, else the study's model trained on the reference when there is one.
+std::string ranked_model(const Study& study, const std::vector<std::string>& models, const std::string& ref) {
+  if (models.size() > 1)
+    throw CLI::ValidationError(fmt::format(
+        "--model: a ranking is for one model (the detector that scores every setting), got {}", models.size()));
+  if (models.size() == 1) return models.front();
+  std::vector<std::string> on_ref, all;
+  for (const auto& m : study.models) {
+    all.push_back(m.name);
+    if (m.trained_on == ref) on_ref.push_back(m.name);
+  }
+  if (on_ref.size() == 1) return on_ref.front();
+  if (all.size() == 1) return all.front();
+  std::string list;
+  for (const auto& m : all) list += (list.empty() ? "" : ", ") + quoted_for_message(m);
+  throw StudyError(fmt::format("{}: give --model: {} model{} trained on '{}' (the study's models: {})", study.root,
+                               on_ref.empty() ? "no" : "more than one", on_ref.empty() ? " is" : "s are",
+                               quoted_for_message(ref), list.empty() ? "none" : list));
+}
+
+}  // namespace
+
+void add_rank_options(CLI::App* cmd, RankArgs* args) {
+  add_study_options(cmd, &args->study, true);
+  cmd->add_option("--ref", args->ref, "Reference domain, e.g. real (default: the study's first)");
+  cmd->add_option("--candidates", args->candidates,
+                  "Candidate domains to rank (comma-separated; default: every other domain)")
+      ->delimiter(',');
+  cmd->add_option("--level", args->level,
+                  "Significance level of the Holm-corrected comparisons with the best (default 0.05, as ipd compare)")
+      ->check(CLI::Range(0.0001, 0.5));
+  cmd->add_option("--permutations", args->permutations, "Permutations for each p-value (0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->default_val(2000);
+}
+
+std::optional<RankedStudy> rank_study(const RankArgs& args) {
+  StudyOptions so = args.study;
+  if (!so.domains.empty())
+    throw CLI::ValidationError(
+        "--domains: a ranking's domains are --ref and --candidates (default: every other domain)");
+  const Study study = open_study_with_conf(so);
+  RankOptions ro;
+  ro.domains = resolve_rank_domains(study, args.ref, args.candidates);
+  ro.model = ranked_model(study, so.models, ro.domains.ref);
+  ro.level = args.level;
+  so.models = {ro.model};
+  so.domains = ro.domains.candidates;
+  so.domains.insert(so.domains.begin(), ro.domains.ref);
+  auto loaded = load_study_table(so, true, false, ro.domains.ref);
+  if (!loaded) return std::nullopt;
+  ro.compare.bootstrap = loaded->bootstrap;
+  ro.compare.permutations = args.permutations;
+  if (const auto e = ro.validate(); !e.empty()) throw CLI::ValidationError(e);
+  RankedStudy out{std::move(*loaded), {}, {}};
+  out.ranking = rank_candidates(out.loaded.labels, out.loaded.table, ro);
+  // Which label files and hand edits the numbers come from: over the (ref, candidate) pairs the ranking read.
+  DomainPairFilter pairs;
+  for (const auto& c : ro.domains.candidates) pairs.emplace_back(ro.domains.ref, c);
+  out.provenance = table_provenance(out.loaded.table, out.loaded.labels, pairs);
+  return out;
+}
+
+}  // namespace ipd::cli

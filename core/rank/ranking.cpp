@@ -1,0 +1,136 @@
+#include "core/rank/ranking.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/rank/holm.h"
+#include "core/util/number_text.h"
+
+namespace ipd {
+
+namespace {
+
+std::string domain_list(const Study& study) {
+  std::string out;
+  for (const auto& d : study.domains) out += (out.empty() ? "" : ", ") + quoted_for_message(d.name);
+  return out;
+}
+
+void require_domain(const Study& study, const std::string& name, const char* role) {
+  if (!study.domain(name))
+    throw StudyError(fmt::format("{}: no domain '{}' in this study ({}; the study's domains: {})", study.root,
+                                 quoted_for_message(name), role, domain_list(study)));
+}
+
+// Why a candidate's cell has no IPD to rank; "" when it has one.
+std::string unranked_reason(const TableCell& cell, const std::string& ref, const std::string& candidate) {
+  if (cell.missing_predictions) return cell.no_value_reason;  // "no predictions of det-real for hapke"
+  if (cell.per_scene.empty())
+    return fmt::format("shares no scenes with {} (no label file stem is in both {}/labels/ and {}/labels/)", ref, ref,
+                       candidate);
+  if (!cell.no_value_reason.empty()) return cell.no_value_reason;  // "no predictions at or above 0.98 in ..."
+  if (cell.pairs == 0)
+    return fmt::format("no rock pairs with {} in its {} shared scene{} (no rocks, or none paired)", ref, cell.scenes,
+                       cell.scenes == 1 ? "" : "s");
+  return "";
+}
+
+}  // namespace
+
+RankDomains resolve_rank_domains(const Study& study, const std::string& ref,
+                                 const std::vector<std::string>& candidates) {
+  RankDomains out;
+  out.ref = ref.empty() && !study.domains.empty() ? study.domains.front().name : ref;
+  require_domain(study, out.ref, "--ref");
+  for (const std::string& c : candidates) {
+    require_domain(study, c, "--candidates");
+    if (c == out.ref)
+      throw StudyError(fmt::format("{}: '{}' is the reference (--ref) and cannot also be a candidate", study.root,
+                                   quoted_for_message(c)));
+    if (std::count(out.candidates.begin(), out.candidates.end(), c))
+      throw StudyError(fmt::format("{}: --candidates names '{}' twice", study.root, quoted_for_message(c)));
+    out.candidates.push_back(c);
+  }
+  if (candidates.empty())
+    for (const auto& d : study.domains)
+      if (d.name != out.ref) out.candidates.push_back(d.name);
+  if (out.candidates.empty())
+    throw StudyError(fmt::format("{}: nothing to rank: the study has no domain other than the reference '{}'",
+                                 study.root, quoted_for_message(out.ref)));
+  return out;
+}
+
+std::string RankOptions::validate() const {
+  if (!(level > 0 && level < 1))
+    return fmt::format("the significance level must be between 0 and 1 (e.g. 0.05), not {}", level);
+  return compare.validate();
+}
+
+Ranking rank_candidates(const StudyLabels& labels, const CrossTable& table, const RankOptions& options) {
+  if (const auto e = options.validate(); !e.empty()) throw std::invalid_argument("rank options: " + e);
+  const Study& study = labels.study;
+  const auto model = std::find_if(table.models.begin(), table.models.end(),
+                                  [&](const ModelInfo& m) { return m.name == options.model; });
+  if (model == table.models.end())
+    throw StudyError(fmt::format("{}: no model '{}' in the table", study.root, quoted_for_message(options.model)));
+  Ranking out;
+  out.model = model->name;
+  out.trained_on = model->trained_on;
+  out.ref = options.domains.ref;
+  out.options = options;
+  for (const std::string& d : options.domains.candidates) {
+    const TableCell* cell = table.cell(out.model, out.ref, d);
+    if (!cell)
+      throw StudyError(fmt::format("no IPD cell for model '{}' and domains '{}' and '{}'", out.model, out.ref, d));
+    if (std::string why = unranked_reason(*cell, out.ref, d); !why.empty()) {
+      out.unranked.push_back({d, std::move(why)});
+      continue;
+    }
+    RankedCandidate r;
+    r.domain = d;
+    if (const auto p = study.config.domain_params.find(d); p != study.config.domain_params.end()) r.params = p->second;
+    r.ipd = cell->ipd;
+    r.ci_low = cell->ci_low;
+    r.ci_high = cell->ci_high;
+    r.se = cell->se;
+    r.pairs = cell->pairs;
+    r.scenes = cell->scenes;
+    const size_t column =
+        static_cast<size_t>(std::find(table.columns.begin(), table.columns.end(), std::make_pair(cell->a, cell->b)) -
+                            table.columns.begin());
+    if (column < table.pairings.size())
+      r.no_predictions_at_threshold = count_predictions(labels, d, out.model, table.pairings[column]) == 0;
+    out.ranked.push_back(std::move(r));
+  }
+  if (out.ranked.empty()) {
+    std::string why;
+    for (const auto& u : out.unranked) why += fmt::format("\n  {}: {}", u.domain, u.reason);
+    throw StudyError(
+        fmt::format("{}: no candidate can be ranked against {} for {}:{}", study.root, out.ref, out.model, why));
+  }
+  std::stable_sort(out.ranked.begin(), out.ranked.end(),
+                   [](const RankedCandidate& x, const RankedCandidate& y) { return x.ipd < y.ipd; });
+  const std::string& best = out.ranked.front().domain;
+  std::vector<double> raw(out.ranked.size(), std::nan(""));
+  for (size_t k = 0; k < out.ranked.size(); ++k) {
+    RankedCandidate& r = out.ranked[k];
+    r.rank = static_cast<int>(k) + 1;
+    if (k == 0) continue;
+    r.vs_best = compare_renderers(table, out.model, out.ref, r.domain, best, options.compare);
+    raw[k] = r.vs_best->result.p_value;
+  }
+  const std::vector<double> adjusted = holm_adjusted(raw);
+  out.tests = static_cast<int>(std::count_if(raw.begin(), raw.end(), [](double p) { return !std::isnan(p); }));
+  for (size_t k = 0; k < out.ranked.size(); ++k) {
+    RankedCandidate& r = out.ranked[k];
+    r.p_holm = adjusted[k];
+    // Not shown to differ from the best: the best itself, and every candidate compare's verdict rule, on the Holm
+    // p-value, cannot tell from it (an untested one included: nothing separates it from the best).
+    r.in_best_group = k == 0 || !significant_difference(r.vs_best->result, r.p_holm, options.level);
+  }
+  return out;
+}
+
+}  // namespace ipd
