@@ -1,16 +1,60 @@
-// `ipd import coco ANNOTATIONS.json [--results RESULTS.json] --images DIR --out STUDY/<domain>`.
+// `ipd import coco ANNOTATIONS.json [--results RESULTS.json] --images DIR --out STUDY/<domain>`,
+// `ipd import yolo SRC --out STUDY/<domain> [--split NAME]` and
+// `ipd import predictions SRC --out STUDY/<domain> --model M [--gt COCO.json] [--no-conf]`.
 #include <fmt/format.h>
 
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 #include "core/study/coco_import.h"
+#include "core/study/yolo_import.h"
 
 namespace ipd::cli {
+
+namespace {
+
+Runner add_yolo(CLI::App* imp) {
+  auto o = std::make_shared<YoloImportOptions>();
+  CLI::App* cmd = imp->add_subcommand(
+      "yolo", "A YOLO dataset (data.yaml, images/ + labels/, CVAT YOLO 1.1, Label Studio, Roboflow) as one domain");
+  cmd->add_option("SRC", o->source, "data.yaml, or the dataset's folder")->required();
+  cmd->add_option("--out", o->out_dir, "The domain directory to fill, e.g. STUDY/real")->required();
+  cmd->add_option("--split", o->split, "Import this split only (train, val, test, ...); default: every split");
+  cmd->add_flag("--replace", o->replace, "Replace the labels and pictures of a domain folder that already holds files");
+  return [o, cmd]() -> int {
+    if (!cmd->parsed()) return -1;
+    const YoloImportReport r = import_yolo(*o);
+    for (const auto& e : r.errors) fmt::print(stderr, "{}\n", e.to_string());
+    if (!r.written) {
+      fmt::print(stderr, "error: {} problem{} in the source's label files; nothing written\n", r.errors.size(),
+                 r.errors.size() == 1 ? "" : "s");
+      return kBadInput;
+    }
+    for (const auto& m : r.kept_prediction_sets)
+      fmt::print(stderr,
+                 "warning: {}/predictions/{}/ is kept as it was; its predictions are of the labels before "
+                 "this import\n",
+                 o->out_dir, m);
+    const YoloSource& s = r.source;
+    for (const auto& n : s.renamings) fmt::print("{}\n", n);
+    std::string splits;
+    for (const auto& x : s.splits) splits += (splits.empty() ? "" : ", ") + (x.empty() ? std::string("-") : x);
+    fmt::print(
+        "{} ({}{}): {} scenes ({} without a label file: no objects), {} GT boxes, {} classes{}, {} pictures "
+        "linked -> {}\n",
+        s.layout, o->split.empty() ? "splits " : "split ", o->split.empty() ? splits : o->split, r.scenes,
+        r.without_label_file, r.boxes, s.class_names.size(),
+        s.names_file.empty() ? " (no names file)" : " from " + s.names_file, r.linked_images, o->out_dir);
+    return kOk;
+  };
+}
+
+}  // namespace
 
 Runner add_import_command(CLI::App& app) {
   auto o = std::make_shared<CocoImportOptions>();
   CLI::App* imp = app.add_subcommand("import", "Bring labels from other formats into the study layout");
   imp->require_subcommand(1);
+  const Runner yolo = add_yolo(imp);
   CLI::App* cmd = imp->add_subcommand("coco", "COCO ground truth (and detection results) to YOLO txt");
   cmd->add_option("ANNOTATIONS", o->annotations, "COCO instances JSON (images, annotations, categories)")->required();
   cmd->add_option("--results", o->results, "COCO detection results JSON [{image_id, category_id, bbox, score}]");
@@ -21,7 +65,8 @@ Runner add_import_command(CLI::App& app) {
   cmd->add_flag("--skip-bad-lines", o->skip_bad_entries, "Warn about malformed entries and skip them");
   cmd->add_flag("--replace", o->replace,
                 "Replace the labels, pictures and this prediction set of a domain folder that already holds files");
-  return [o]() -> int {
+  return [o, cmd, yolo]() -> int {
+    if (!cmd->parsed()) return yolo();
     const CocoImportReport r = import_coco(*o);
     if (!r.collisions.empty()) {
       for (const auto& c : r.collisions) fmt::print(stderr, "{}\n", c);

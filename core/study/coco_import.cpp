@@ -232,22 +232,6 @@ struct BoxSink {
   }
 };
 
-// A domain folder that already holds files takes a new set only when the user asked to replace it.
-void check_out_dir(const CocoImportOptions& o) {
-  std::error_code ec;
-  const fs::file_status st = fs::symlink_status(o.out_dir, ec);
-  if (!fs::exists(st)) return;
-  if (fs::is_symlink(st))
-    throw StudyError(o.out_dir + ": is a symbolic link; the import replaces a folder, never through a link");
-  if (!fs::is_directory(fs::status(o.out_dir, ec)))
-    throw StudyError(o.out_dir + ": is not a folder; ipd import coco fills a domain folder");
-  if (fs::is_empty(o.out_dir, ec) && !ec) return;
-  if (o.replace) return;
-  throw StudyError(o.out_dir +
-                   ": already exists and is not an empty directory; its labels, pictures and predictions would mix "
-                   "with the imported ones, so nothing is written (--replace replaces them whole)");
-}
-
 // What the folder being replaced holds besides the new set, moved into the new folder as it is (other
 // prediction sets, a picture the import names but could not find, files of other kinds), and the old set's
 // files the import did not write again, counted (they go with the old folder). The import replaces its own
@@ -336,7 +320,7 @@ void write_study(const CocoImportOptions& o, const std::map<long, Image>& images
 
 CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   CocoImportReport r;
-  check_out_dir(o);
+  check_domain_folder(o.out_dir, o.replace, "ipd import coco");
   const json gt = parse_json_file(o.annotations, "a COCO object {\"images\": [...], \"annotations\": [...], ...}");
   for (const char* key : {"images", "annotations", "categories"})
     if (!gt.is_object() || !gt.contains(key) || !gt[key].is_array())

@@ -36,6 +36,11 @@ class StagedFolder {
   std::string parent_, name_, temp_;
 };
 
+// A domain folder an import fills takes a new set only when the user asked to replace it: a folder that holds
+// files is refused (StudyError, nothing written) unless `replace`; a link or a file there always is. `command`
+// names the import in the message ("ipd import coco").
+void check_domain_folder(const std::string& out_dir, bool replace, const std::string& command);
+
 // The label files (`*.txt`, regular files or links) directly in `dir`, sorted; none when `dir` is missing.
 // Throws StudyError when `dir` exists but can't be listed.
 std::vector<std::string> label_files_in(const std::string& dir);
