@@ -6,6 +6,7 @@
 #include "app/cli/cli_common.h"
 #include "app/cli/commands.h"
 #include "core/study/coco_import.h"
+#include "core/study/prediction_import.h"
 #include "core/study/yolo_import.h"
 
 namespace ipd::cli {
@@ -20,8 +21,7 @@ Runner add_yolo(CLI::App* imp) {
   cmd->add_option("--out", o->out_dir, "The domain directory to fill, e.g. STUDY/real")->required();
   cmd->add_option("--split", o->split, "Import this split only (train, val, test, ...); default: every split");
   cmd->add_flag("--replace", o->replace, "Replace the labels and pictures of a domain folder that already holds files");
-  return [o, cmd]() -> int {
-    if (!cmd->parsed()) return -1;
+  return [o]() -> int {
     const YoloImportReport r = import_yolo(*o);
     for (const auto& e : r.errors) fmt::print(stderr, "{}\n", e.to_string());
     if (!r.written) {
@@ -48,13 +48,45 @@ Runner add_yolo(CLI::App* imp) {
   };
 }
 
+Runner add_predictions(CLI::App* imp) {
+  auto o = std::make_shared<PredictionImportOptions>();
+  CLI::App* cmd = imp->add_subcommand(
+      "predictions", "One model's detections for a domain already imported: a YOLOv5/v8 run or COCO results");
+  cmd->add_option("SRC", o->source, "A run folder (runs/detect/exp), its labels/ folder, or a COCO results .json")
+      ->required();
+  cmd->add_option("--out", o->out_dir, "The domain directory, e.g. STUDY/real (its labels/ must be there)")->required();
+  cmd->add_option("--model", o->model, "The prediction set's name: predictions/<model>/")->required();
+  cmd->add_option("--gt", o->gt, "With COCO results: the COCO annotations file whose image ids they use");
+  cmd->add_flag("--no-conf", o->no_conf, "Read a run written without confidences with confidence 1");
+  cmd->add_flag("--skip-bad-lines", o->skip_bad_entries, "COCO results: warn about malformed entries and skip them");
+  cmd->add_flag("--replace", o->replace, "Replace this model's prediction set of the domain");
+  return [o]() -> int {
+    const PredictionImportReport r = import_predictions(*o);
+    for (const auto& e : r.errors) fmt::print(stderr, "{}{}\n", r.written ? "warning: " : "", e.to_string());
+    if (!r.written) {
+      fmt::print(stderr, "error: {} problem{} in the predictions; nothing written\n", r.errors.size(),
+                 r.errors.size() == 1 ? "" : "s");
+      return kBadInput;
+    }
+    if (r.conf_one)
+      fmt::print(stderr, "warning: {}: no confidences in the run; every box is read with confidence 1 (--no-conf)\n",
+                 r.folder);
+    fmt::print(
+        "{} {}: {} files, {} detections{}; {} scenes without a file written empty (no detections){} -> "
+        "{}/predictions/{}\n",
+        r.kind, r.folder, r.files, r.detections,
+        r.renamed ? fmt::format(" ({} names mapped back to the scene's)", r.renamed) : "", r.no_detection_files,
+        o->replace ? fmt::format(" ({} old files removed)", r.removed) : "", o->out_dir, o->model);
+    return kOk;
+  };
+}
+
 }  // namespace
 
 Runner add_import_command(CLI::App& app) {
   auto o = std::make_shared<CocoImportOptions>();
   CLI::App* imp = app.add_subcommand("import", "Bring labels from other formats into the study layout");
   imp->require_subcommand(1);
-  const Runner yolo = add_yolo(imp);
   CLI::App* cmd = imp->add_subcommand("coco", "COCO ground truth (and detection results) to YOLO txt");
   cmd->add_option("ANNOTATIONS", o->annotations, "COCO instances JSON (images, annotations, categories)")->required();
   cmd->add_option("--results", o->results, "COCO detection results JSON [{image_id, category_id, bbox, score}]");
@@ -65,8 +97,12 @@ Runner add_import_command(CLI::App& app) {
   cmd->add_flag("--skip-bad-lines", o->skip_bad_entries, "Warn about malformed entries and skip them");
   cmd->add_flag("--replace", o->replace,
                 "Replace the labels, pictures and this prediction set of a domain folder that already holds files");
-  return [o, cmd, yolo]() -> int {
-    if (!cmd->parsed()) return yolo();
+  const Runner yolo = add_yolo(imp), predictions = add_predictions(imp);
+  const std::vector<std::pair<CLI::App*, Runner>> others = {{imp->get_subcommand("yolo"), yolo},
+                                                            {imp->get_subcommand("predictions"), predictions}};
+  return [o, cmd, others]() -> int {
+    for (const auto& [sub, run] : others)
+      if (sub && sub->parsed()) return run();
     const CocoImportReport r = import_coco(*o);
     if (!r.collisions.empty()) {
       for (const auto& c : r.collisions) fmt::print(stderr, "{}\n", c);

@@ -10,10 +10,12 @@
 #include <stdexcept>
 
 #include "core/study/file_sets.h"
+#include "core/study/prediction_import.h"
 #include "core/study/study.h"
 #include "core/util/atomic_file.h"
 #include "core/util/contained_file.h"
 #include "core/util/json_input.h"
+#include "core/util/json_output.h"
 #include "core/util/number_text.h"
 
 namespace fs = std::filesystem;
@@ -94,6 +96,7 @@ std::string CocoImportOptions::validate() const {
   if (annotations.empty()) return "annotations must name the COCO instances file, got an empty path";
   if (out_dir.empty()) return "out_dir must name the domain directory to fill, got an empty path";
   if (!results.empty() && model.empty()) return "model must name the prediction set when results are given, got \"\"";
+  if (predictions_only && results.empty()) return "predictions_only needs the results file, got an empty path";
   return {};
 }
 
@@ -318,9 +321,42 @@ void write_study(const CocoImportOptions& o, const std::map<long, Image>& images
   r->written = true;
 }
 
+// A model's results joining a domain that is there: only predictions/<model>/ is written, a file per scene.
+void write_prediction_set_only(const CocoImportOptions& o, const std::map<long, Image>& images, CocoImportReport* r) {
+  const std::vector<std::string> scenes = domain_scenes(o.out_dir);
+  const std::set<std::string> known(scenes.begin(), scenes.end());
+  std::map<std::string, std::string> files;
+  std::vector<std::string> unknown;
+  for (const auto& [id, img] : images) {
+    if (!known.count(img.stem)) {
+      unknown.push_back(img.file);
+      continue;
+    }
+    files[img.stem] = labels_text(img.predictions, LabelKind::kPrediction, LabelDigits::kExact);
+  }
+  if (!unknown.empty())
+    throw StudyError(
+        fmt::format("{}: {} image(s) are no scene of {} (e.g. '{}'); expected the COCO file the "
+                    "domain was imported from, so nothing is written",
+                    o.annotations, unknown.size(), o.out_dir, quoted_for_message(unknown.front())));
+  nlohmann::ordered_json j;
+  j["imported_with"] = "ipd import predictions";
+  j["source"] = fs::absolute(o.results).lexically_normal().string();
+  j["kind"] = "COCO results";
+  j["image_ids_from"] = fs::absolute(o.annotations).lexically_normal().string();
+  j["confidence"] = "the results' scores";
+  std::vector<std::string> empty;
+  for (const std::string& s : scenes)
+    if (!files.count(s)) empty.push_back(s);
+  j["no_detections"] = empty;
+  r->no_detection_files =
+      write_prediction_set(o.out_dir, o.model, files, scenes, dump_json_output(j, 1) + "\n", o.replace, &r->removed);
+  r->written = true;
+}
+
 CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   CocoImportReport r;
-  check_domain_folder(o.out_dir, o.replace, "ipd import coco");
+  if (!o.predictions_only) check_domain_folder(o.out_dir, o.replace, "ipd import coco");
   const json gt = parse_json_file(o.annotations, "a COCO object {\"images\": [...], \"annotations\": [...], ...}");
   for (const char* key : {"images", "annotations", "categories"})
     if (!gt.is_object() || !gt.contains(key) || !gt[key].is_array())
@@ -328,7 +364,8 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   std::map<long, int> class_of;  // category id -> YOLO class
   read_categories(gt, o.annotations, &class_of, &r.classes);
   r.categories = static_cast<int>(class_of.size());
-  if (const std::string conflict = class_name_conflict(o.out_dir, r.classes); !conflict.empty())
+  if (const std::string conflict = o.predictions_only ? std::string() : class_name_conflict(o.out_dir, r.classes);
+      !conflict.empty())
     throw StudyError(
         fmt::format("{}: {}; a class number must be the same category in every domain of a study "
                     "(rock_class picks one number for all), so nothing is written",
@@ -347,7 +384,10 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   r.images = static_cast<int>(images.size());
   r.collisions = name_collisions(images, o.annotations);
   if (!r.collisions.empty() || (!r.errors.empty() && !o.skip_bad_entries)) return r;
-  write_study(o, images, &r);
+  if (o.predictions_only)
+    write_prediction_set_only(o, images, &r);
+  else
+    write_study(o, images, &r);
   return r;
 }
 

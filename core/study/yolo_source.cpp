@@ -48,7 +48,12 @@ std::string shown(const std::string& root, const std::string& rel) {
 std::vector<FolderEntry> list_source(const std::string& root, const std::string& rel) {
   std::vector<FolderEntry> entries;
   try {
-    entries = entries_beneath(root, rel);
+    if (rel.empty()) {  // the root itself: listed from its parent (the user named it; it may be a link)
+      const fs::path r = fs::canonical(root);
+      entries = entries_beneath(r.parent_path().string(), r.filename().string());
+    } else {
+      entries = entries_beneath(root, rel);
+    }
   } catch (const IoError& e) {
     throw StudyError(std::string(e.what()) + " (links in an import's source are never followed)");
   }
