@@ -208,6 +208,19 @@ TEST(YoloImport, ManglingRulesGiveBackTheNameAndNothingElse) {
   EXPECT_FALSE(has_upload_prefix("1a2b3c4d-"));
 }
 
+// A name that merely starts like an upload id keeps it unless every name of the export has one: the prefix is
+// Label Studio's only when it marks every upload.
+TEST(YoloImport, AnUploadPrefixIsLeftOutOnlyWhenEveryNameHasOne) {
+  test::TempDir t;
+  test::write_text(t / "ls/classes.txt", "rock\n");
+  test::write_text(t / "ls/labels/deadbeef-s1.txt", "0 0.5 0.5 0.1 0.1\n");
+  test::write_text(t / "ls/labels/s2.txt", "0 0.5 0.5 0.1 0.1\n");
+  const auto r = test::run_ipd("import yolo " + t / "ls" + " --out " + t / "study/real");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(t / "study/real/labels/deadbeef-s1.txt"));
+  EXPECT_TRUE(fs::exists(t / "study/real/labels/s2.txt"));
+}
+
 // A second model's COCO results join a domain imported from COCO without touching (or re-importing) its GT.
 TEST(PredictionImport, ASecondModelsCocoResultsJoinTheDomainAndLeaveItsGroundTruth) {
   test::TempDir t;
