@@ -91,6 +91,24 @@ bool report_unusable_pairs(const std::vector<PairsProblem>& problems, bool skip_
   return true;
 }
 
+bool report_layout_problems(const std::vector<LayoutProblem>& problems, bool skip_bad_lines,
+                            std::vector<std::string>* warnings) {
+  bool stop = false;
+  for (const LayoutProblem& p : problems) {
+    if (p.removes_most && !skip_bad_lines) {
+      fmt::print(stderr, "error: {}\n", p.message);
+      stop = true;
+    } else {
+      warnings->push_back(p.message);
+    }
+  }
+  if (stop)
+    fmt::print(stderr,
+               "error: the numbers would leave out most of the study's scenes or rocks; fix the layout, or pass "
+               "--skip-bad-lines to print them anyway\n");
+  return stop;
+}
+
 Progress::Progress(std::string what) : what_(std::move(what)), tty_(::isatty(2) == 1) {}
 
 void Progress::update(int done, int total) {
