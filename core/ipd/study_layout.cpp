@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 
@@ -77,6 +78,19 @@ std::vector<std::string> sub_folders_with_labels(const std::string& root, const 
   return out;
 }
 
+// A prediction set `ipd import predictions --no-conf` wrote (its import.json says so).
+bool imported_without_confidences(const std::string& root, const std::string& set) {
+  try {
+    const auto text = read_file_beneath(root, set + "/import.json", size_t{1} << 20);
+    if (!text) return false;
+    const nlohmann::json j = nlohmann::json::parse(*text, nullptr, false);
+    return j.is_object() && j.contains("confidence") && j["confidence"].is_string() &&
+           j["confidence"].get<std::string>().rfind("none", 0) == 0;
+  } catch (const IoError&) {
+    return false;
+  }
+}
+
 std::string joined(const std::vector<std::string>& v) {
   std::string out;
   for (const auto& s : v) out += (out.empty() ? "" : ", ") + s;
@@ -144,6 +158,11 @@ std::vector<LayoutProblem> layout_problems(const StudyLabels& labels,
     for (const ModelInfo& m : models) {
       if (std::find(d.models.begin(), d.models.end(), m.name) == d.models.end()) continue;
       const std::string set = d.name + "/predictions/" + m.name;
+      if (imported_without_confidences(study.root, set))
+        out.push_back({fmt::format("{}/: imported without confidences (--no-conf, {}/import.json): every box has "
+                                   "confidence 1, so AP, --conf and the confidence breakdown say nothing about '{}'",
+                                   (fs::path(study.root) / set).string(), set, m.name),
+                       false});
       if (label_files_at(study.root, set) > 0) continue;
       if (const auto deeper = label_files_below(study.root, set, kLookDeeper))
         out.push_back(

@@ -420,6 +420,19 @@ Domain scan_domain(const fs::path& root, const std::string& name, std::set<std::
   return d;
 }
 
+// A YOLO dataset or a labelling tool's export named where a study was expected: said, with the command that
+// brings it in as a domain.
+std::string dataset_hint(const fs::path& root, const std::string& shown) {
+  std::error_code ec;
+  for (const char* marker : {"data.yaml", "data.yml", "obj.names", "classes.txt", "labels", "train/labels"})
+    if (fs::exists(fs::symlink_status(root / marker, ec)))
+      return fmt::format(
+          "; it holds {}, as a YOLO dataset or a labelling tool's export does: ipd import yolo {} --out "
+          "STUDY/<domain> brings it into a study (docs/import.md)",
+          marker, shown);
+  return {};
+}
+
 }  // namespace
 
 Study open_study(const std::string& root_in) {
@@ -447,7 +460,8 @@ Study open_study(const std::string& root_in) {
     names.push_back(name);
   }
   if (names.empty())
-    throw StudyError(root_in + ": no domains found (expected subdirectories like real/labels/ with YOLO label files)");
+    throw StudyError(root_in + ": no domains found (expected subdirectories like real/labels/ with YOLO label files)" +
+                     dataset_hint(root, root_in));
   if (names.size() > kMaxDomains)
     throw StudyError(
         fmt::format("{}: {} domains, more than the {} a study may hold (every pair of domains is "

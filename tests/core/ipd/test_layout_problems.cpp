@@ -99,19 +99,47 @@ TEST(LayoutProblems, GroundTruthWithoutTheChosenClassSaysWhichClassesItHolds) {
 TEST(LayoutProblems, DomainsSharingLessThanHalfTheirScenesStop) {
   test::TempDir d;
   write_study(d, "real/labels/", "synth/labels/");
-  for (const std::string stem : {"t1", "t2", "t3"}) test::write_text(d / ("synth/labels/" + stem + ".txt"), kRocks);
-  for (const std::string stem : {"s2", "s3"}) std::remove((d / ("synth/labels/" + stem + ".txt")).c_str());
+  for (const std::string stem : {"t1", "t2"}) test::write_text(d / ("synth/labels/" + stem + ".txt"), kRocks);
+  std::remove((d / "synth/labels/s3.txt").c_str());
+  // s1, s2 shared; s3 only in real, t1 and t2 only in synth: 3 of 5 scenes in no IPD.
   const auto r = table(d);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.err.find("error: 'real' and 'synth' share only 1 of their 6 scenes: 2 of real and 3 of synth have no "
-                       "counterpart (e.g. s2), so most of the study is in no IPD"),
+  EXPECT_NE(r.err.find("error: 'real' and 'synth' share only 2 of their 5 scenes: 1 of real and 2 of synth have no "
+                       "counterpart (e.g. s3), so most of the study is in no IPD"),
             std::string::npos)
       << r.err;
   // Half of them is still a number (with the warnings about the scenes without a counterpart).
-  std::remove((d / "synth/labels/t3.txt").c_str());
   std::remove((d / "synth/labels/t2.txt").c_str());
-  test::write_text(d / "synth/labels/s2.txt", kRocks);
-  EXPECT_EQ(table(d).exit_code, 0);
+  const auto half = table(d);
+  EXPECT_EQ(half.exit_code, 0) << half.err;
+  EXPECT_NE(half.out.find("det (real)"), std::string::npos) << half.out;
+}
+
+// --no-conf at import is said by every table made from the set, not only by the import.
+TEST(LayoutProblems, APredictionSetImportedWithoutConfidencesIsSaidByTheTable) {
+  test::TempDir d;
+  write_study(d, "real/labels/", "synth/labels/");
+  test::write_text(d / "real/predictions/det/import.json",
+                   "{\"confidence\": \"none in the run's files: every box read with confidence 1 (--no-conf)\"}\n");
+  const auto r = table(d);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: " + d / "real/predictions/det" +
+                       "/: imported without confidences (--no-conf, real/predictions/det/import.json): every box has "
+                       "confidence 1, so AP, --conf and the confidence breakdown say nothing about 'det'\n"),
+            std::string::npos)
+      << r.err;
+}
+
+TEST(LayoutProblems, AYoloDatasetNamedAsAStudyIsToldHowToBringItIn) {
+  test::TempDir d;
+  test::write_text(d / "ds/data.yaml", "train: images/train\nnames: [rock]\n");
+  test::write_text(d / "ds/labels/train/s1.txt", "0 0.5 0.5 0.1 0.1\n");
+  const auto ds = test::run_ipd("table " + d / "ds");
+  EXPECT_EQ(ds.exit_code, 1);
+  EXPECT_EQ(ds.err, "error: " + d / "ds" +
+                        ": no domains found (expected subdirectories like real/labels/ with YOLO label files); it "
+                        "holds data.yaml, as a YOLO dataset or a labelling tool's export does: ipd import yolo " +
+                        d / "ds" + " --out STUDY/<domain> brings it into a study (docs/import.md)\n");
 }
 
 TEST(LayoutProblems, ANameDifferenceIsAPrefixOrASuffixAndNothingElse) {
