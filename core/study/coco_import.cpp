@@ -292,11 +292,11 @@ void write_study(const CocoImportOptions& o, const std::map<long, Image>& images
   std::set<std::string> labels = {"classes.txt"}, pictures, written_pictures;
   for (const auto& [id, img] : images) {
     labels.insert(img.stem + ".txt");
-    write_file_beneath(root, staged.inside("labels/" + img.stem + ".txt"),
-                       labels_text(img.gt, LabelKind::kGroundTruth, LabelDigits::kExact));
+    write_new_file_beneath(root, staged.inside("labels/" + img.stem + ".txt"),
+                           labels_text(img.gt, LabelKind::kGroundTruth, LabelDigits::kExact));
     if (!o.results.empty())
-      write_file_beneath(root, staged.inside("predictions/" + o.model + "/" + img.stem + ".txt"),
-                         labels_text(img.predictions, LabelKind::kPrediction, LabelDigits::kExact));
+      write_new_file_beneath(root, staged.inside("predictions/" + o.model + "/" + img.stem + ".txt"),
+                             labels_text(img.predictions, LabelKind::kPrediction, LabelDigits::kExact));
     if (o.images_dir.empty()) continue;
     const std::string name = fs::path(img.file).filename().string();
     pictures.insert(name);
@@ -314,7 +314,7 @@ void write_study(const CocoImportOptions& o, const std::map<long, Image>& images
   }
   std::string names;
   for (const auto& c : r->classes) names += c + "\n";
-  write_file_beneath(root, staged.inside("labels/classes.txt"), names);
+  write_new_file_beneath(root, staged.inside("labels/classes.txt"), names);
   if (staged.target_exists()) carry_over(o, staged, labels, pictures, written_pictures, r);
   std::sort(r->other_prediction_sets.begin(), r->other_prediction_sets.end());
   staged.commit();

@@ -50,6 +50,7 @@ bool StagedFolder::target_exists() const {
 }
 
 void StagedFolder::commit() {
+  sync_file_system_beneath(parent_, temp_);  // its files were written without a sync each (write_new_file_beneath)
   std::error_code ec;
   const fs::path target = fs::path(parent_) / name_;
   if (!target_exists()) {

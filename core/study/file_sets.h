@@ -14,7 +14,8 @@ namespace ipd {
 
 // A folder written whole beside its target (`.<name>.import-<pid>-<n>` in the same parent) and renamed in, so
 // the target is never written into and a link in it (`labels -> /x`) never written through: ipd import fills
-// it through contained_file.h's writers (parent() as the root, inside() the names), then commit() swaps it
+// it through contained_file.h's writers (parent() as the root, inside() the names; write_new_file_beneath needs
+// no sync a file: commit() syncs the file system once before the swap), then commit() swaps it
 // with the target in one step (renameat2 RENAME_EXCHANGE; a plain rename when there is none) and removes
 // what was there through descriptors. Not committed, it is removed when it goes out of scope.
 class StagedFolder {

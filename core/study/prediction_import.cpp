@@ -96,10 +96,10 @@ int write_prediction_set(const std::string& out_dir, const std::string& model,
   for (const std::string& stem : scenes) {
     const auto f = files.find(stem);
     if (f == files.end()) ++empty;
-    write_file_beneath(staged.parent(), staged.inside(stem + ".txt"), f == files.end() ? std::string() : f->second);
+    write_new_file_beneath(staged.parent(), staged.inside(stem + ".txt"), f == files.end() ? std::string() : f->second);
     written.insert(stem + ".txt");
   }
-  write_file_beneath(staged.parent(), staged.inside("import.json"), provenance);
+  write_new_file_beneath(staged.parent(), staged.inside("import.json"), provenance);
   int gone = 0;
   for (const std::string& name : old)
     if (!written.count(name)) ++gone;

@@ -108,7 +108,7 @@ void write_domain(const YoloImportOptions& o, const std::vector<std::string>& te
   const std::string& root = staged.parent();
   for (size_t k = 0; k < s.scenes.size(); ++k) {
     const SourceScene& x = s.scenes[k];
-    write_file_beneath(root, staged.inside("labels/" + x.stem + ".txt"), texts[k]);
+    write_new_file_beneath(root, staged.inside("labels/" + x.stem + ".txt"), texts[k]);
     if (x.picture.empty()) continue;
     link_file_beneath(root, staged.inside("images/" + x.stem + fs::path(x.picture).extension().string()),
                       (fs::path(s.root) / x.picture).string());
@@ -117,9 +117,9 @@ void write_domain(const YoloImportOptions& o, const std::vector<std::string>& te
   if (!s.class_names.empty()) {
     std::string names;
     for (const auto& c : s.class_names) names += c + "\n";
-    write_file_beneath(root, staged.inside("labels/classes.txt"), names);
+    write_new_file_beneath(root, staged.inside("labels/classes.txt"), names);
   }
-  write_file_beneath(root, staged.inside("import.json"), provenance(s, o));
+  write_new_file_beneath(root, staged.inside("import.json"), provenance(s, o));
   // A replaced domain keeps its prediction sets (they are of the labels before: said) and files of other kinds.
   if (staged.target_exists()) {
     for (const FolderEntry& e : entries_beneath(root, staged.target_name()))
