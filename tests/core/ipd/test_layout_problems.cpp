@@ -142,6 +142,23 @@ TEST(LayoutProblems, AYoloDatasetNamedAsAStudyIsToldHowToBringItIn) {
                         d / "ds" + " --out STUDY/<domain> brings it into a study (docs/import.md)\n");
 }
 
+// yolo predict without save_conf: every line refused alike, and nothing said about why.
+TEST(LayoutProblems, PredictionsWithoutAConfidenceColumnAreNamedAsARunSavedWithoutIt) {
+  test::TempDir d;
+  write_study(d, "real/labels/", "synth/labels/");
+  for (const std::string stem : {"s1", "s2", "s3"})
+    test::write_text(d / ("real/predictions/det/" + stem + ".txt"), "0 0.21 0.2 0.1 0.1\n");
+  const auto r = table(d);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("\n" + d / "real/predictions/det" +
+                       "/: its lines have no confidence column, as a YOLO run saved without it; run the detector "
+                       "again with it (yolov5 detect.py --save-txt --save-conf, yolo predict save_txt=True "
+                       "save_conf=True), or bring the run in with ipd import predictions RUN --out STUDY/<domain> "
+                       "--model M --no-conf (docs/import.md)\n"),
+            std::string::npos)
+      << r.err;
+}
+
 TEST(LayoutProblems, ANameDifferenceIsAPrefixOrASuffixAndNothingElse) {
   EXPECT_EQ(name_difference("1a2b3c4d-0001", "0001"), "the prefix '1a2b3c4d-'");
   EXPECT_EQ(name_difference("0001", "0001_left"), "the suffix '_left'");
