@@ -126,6 +126,11 @@ Runner add_import_command(CLI::App& app) {
                  "warning: {}/predictions/{}/ is kept as it was; its predictions are of the labels before "
                  "this import\n",
                  o->out_dir, m);
+    if (r.polygons + r.rle_masks > 0)
+      fmt::print(stderr,
+                 "note: {} polygon and {} run-length segmentations read and checked; their boxes are written (label "
+                 "files hold boxes)\n",
+                 r.polygons, r.rle_masks);
     fmt::print("{} images, {} GT boxes, {} detections, {} classes, {} pictures linked -> {}{}\n", r.images, r.boxes,
                r.detections, r.categories, r.linked_images, o->out_dir,
                o->replace ? fmt::format(" ({} old files removed)", r.removed) : "");

@@ -9,6 +9,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "core/study/coco_segmentation.h"
 #include "core/study/file_sets.h"
 #include "core/study/prediction_import.h"
 #include "core/study/study.h"
@@ -35,6 +36,7 @@ struct Image {
   std::string file, stem;
   double w = 0, h = 0;
   std::vector<Box> gt, predictions;
+  std::vector<CocoSegmentation> gt_shapes, prediction_shapes;  // each box's segmentation (none: empty)
 };
 
 // A COCO [x, y, w, h] box in pixels to a normalised YOLO box; empty string when fine, else what's wrong.
@@ -217,8 +219,18 @@ struct BoxSink {
       errors.push_back({file, 0, where + ": " + why});
       return;
     }
+    CocoSegmentation shape;
+    if (a.contains("segmentation"))
+      if (const std::string bad = read_coco_segmentation(a["segmentation"], im->second.w, im->second.h, &shape);
+          !bad.empty()) {
+        errors.push_back({file, 0, where + ": " + bad});
+        return;
+      }
+    report->polygons += shape.polygons.empty() ? 0 : 1;
+    report->rle_masks += shape.rle ? 1 : 0;
     if (!prediction) {
       im->second.gt.push_back(b);
+      im->second.gt_shapes.push_back(std::move(shape));
       ++report->boxes;
       return;
     }
@@ -231,6 +243,7 @@ struct BoxSink {
     }
     b.conf = a["score"];
     im->second.predictions.push_back(b);
+    im->second.prediction_shapes.push_back(std::move(shape));
     ++report->detections;
   }
 };
