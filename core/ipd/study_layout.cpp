@@ -117,6 +117,77 @@ std::string no_shared_scene(const Domain& a, const Domain& b) {
       a.name, b.name, a.name, first_stems(a.stems), b.name, first_stems(b.stems), hint);
 }
 
+// A domain's own problems: labels only in sub-folders, and each chosen model's set nested too deep or imported
+// without confidences.
+void domain_problems(const Study& study, const Domain& d, const std::vector<ModelInfo>& models,
+                     std::vector<LayoutProblem>* out) {
+  const std::string labels_dir = d.name + "/labels";
+  if (label_files_at(study.root, labels_dir) == 0) {
+    int files = 0;
+    const std::vector<std::string> subs = sub_folders_with_labels(study.root, labels_dir, &files);
+    if (!subs.empty())
+      out->push_back({fmt::format("{}/: no label files of its own, but {} in its sub-folder{} {}; a study reads "
+                                  "<domain>/labels/<stem>.txt only, so domain '{}' has no ground truth (a dataset's "
+                                  "splits: ipd import yolo brings them in, merged, docs/import.md)",
+                                  (fs::path(study.root) / labels_dir).string(), files, subs.size() == 1 ? "" : "s",
+                                  joined(subs), d.name),
+                      true});
+  }
+  for (const ModelInfo& m : models) {
+    if (std::find(d.models.begin(), d.models.end(), m.name) == d.models.end()) continue;
+    const std::string set = d.name + "/predictions/" + m.name;
+    const std::string shown = (fs::path(study.root) / set).string();
+    if (imported_without_confidences(study.root, set))
+      out->push_back({fmt::format("{}/: imported without confidences (--no-conf, {}/import.json): every box has "
+                                  "confidence 1, so AP, --conf and the confidence breakdown say nothing about '{}'",
+                                  shown, set, m.name),
+                      false});
+    if (label_files_at(study.root, set) > 0) continue;
+    if (const auto deeper = label_files_below(study.root, set, kLookDeeper)) {
+      const std::string where = (fs::path(study.root) / deeper->first).string();
+      out->push_back({fmt::format("{}/: no prediction files of its own; they are nested too deep, {} in {}/ (expected "
+                                  "{}/<stem>.txt): every rock of '{}' would count as missed by '{}'; move them up, or "
+                                  "bring the run in with ipd import predictions {} --out {} --model {}",
+                                  shown, deeper->second, where, shown, d.name, m.name, where,
+                                  (fs::path(study.root) / d.name).string(), m.name),
+                      true});
+    }
+  }
+}
+
+// No GT box of the chosen class in the scenes `an` and `bn` share, with the classes their label files hold.
+std::optional<LayoutProblem> class_problem(const StudyLabels& labels, const std::string& an, const std::string& bn,
+                                           const SceneMatch& m) {
+  const Study& study = labels.study;
+  const int cls = study.config.rock_class;
+  if (cls < 0) return std::nullopt;  // all classes, or none chosen (a one-class study's class is settled)
+  long boxes = 0;
+  for (const std::string& stem : m.common)
+    for (const std::string* domain : {&an, &bn})
+      for (const Box& box : labels.gt_of(*domain, stem).boxes) boxes += box.cls == cls ? 1 : 0;
+  if (boxes > 0) return std::nullopt;
+  // What the label files hold instead (the class filter dropped it when they were read): the first scenes'.
+  std::map<int, long> held;
+  for (size_t k = 0; k < std::min<size_t>(m.common.size(), kScenesLookedInto); ++k)
+    for (const std::string* domain : {&an, &bn}) {
+      const LabelFile f = read_labels_beneath(study.root, *domain + "/labels/" + m.common[k] + ".txt", {});
+      for (const Box& box : f.boxes) ++held[box.cls];
+    }
+  std::string others;
+  for (const auto& [c, n] : held)
+    others +=
+        fmt::format("{}{}: {} box{}", others.empty() ? "" : ", ", study.classes.describe(c), n, n == 1 ? "" : "es");
+  const std::string first =
+      m.common.size() > kScenesLookedInto ? fmt::format(" (in the first {} scenes)", kScenesLookedInto) : std::string();
+  return LayoutProblem{
+      fmt::format("no ground-truth box of {} in the {} scenes '{}' and '{}' share{}: choose the class with --class or "
+                  "study.yaml's rock_class",
+                  study.classes.describe(cls), m.common.size(), an, bn,
+                  others.empty() ? std::string("; their label files hold no boxes at all")
+                                 : "; their label files hold " + others + first),
+      true};
+}
+
 }  // namespace
 
 std::string name_difference(const std::string& a, const std::string& b) {
@@ -141,41 +212,8 @@ std::vector<LayoutProblem> layout_problems(const StudyLabels& labels,
     in_pairs.insert(a);
     in_pairs.insert(b);
   }
-  for (const Domain& d : study.domains) {
-    if (!in_pairs.count(d.name)) continue;
-    const std::string labels_dir = d.name + "/labels";
-    if (label_files_at(study.root, labels_dir) == 0) {
-      int files = 0;
-      const std::vector<std::string> subs = sub_folders_with_labels(study.root, labels_dir, &files);
-      if (!subs.empty())
-        out.push_back({fmt::format("{}/: no label files of its own, but {} in its sub-folder{} {}; a study reads "
-                                   "<domain>/labels/<stem>.txt only, so domain '{}' has no ground truth (a dataset's "
-                                   "splits: ipd import yolo brings them in, merged, docs/import.md)",
-                                   (fs::path(study.root) / labels_dir).string(), files, subs.size() == 1 ? "" : "s",
-                                   joined(subs), d.name),
-                       true});
-    }
-    for (const ModelInfo& m : models) {
-      if (std::find(d.models.begin(), d.models.end(), m.name) == d.models.end()) continue;
-      const std::string set = d.name + "/predictions/" + m.name;
-      if (imported_without_confidences(study.root, set))
-        out.push_back({fmt::format("{}/: imported without confidences (--no-conf, {}/import.json): every box has "
-                                   "confidence 1, so AP, --conf and the confidence breakdown say nothing about '{}'",
-                                   (fs::path(study.root) / set).string(), set, m.name),
-                       false});
-      if (label_files_at(study.root, set) > 0) continue;
-      if (const auto deeper = label_files_below(study.root, set, kLookDeeper))
-        out.push_back(
-            {fmt::format("{}/: no prediction files of its own; they are nested too deep, {} in {}/ (expected "
-                         "{}/<stem>.txt): every rock of '{}' would count as missed by '{}'; move them up, or bring the "
-                         "run in with ipd import predictions {} --out {} --model {}",
-                         (fs::path(study.root) / set).string(), deeper->second,
-                         (fs::path(study.root) / deeper->first).string(), (fs::path(study.root) / set).string(), d.name,
-                         m.name, (fs::path(study.root) / deeper->first).string(),
-                         (fs::path(study.root) / d.name).string(), m.name),
-             true});
-    }
-  }
+  for (const Domain& d : study.domains)
+    if (in_pairs.count(d.name)) domain_problems(study, d, models, &out);
   for (const auto& [an, bn] : pairs) {
     const Domain* a = study.domain(an);
     const Domain* b = study.domain(bn);
@@ -192,34 +230,7 @@ std::vector<LayoutProblem> layout_problems(const StudyLabels& labels,
                                  an, bn, m.common.size(), m.common.size() + left_out, m.only_a.size(), an,
                                  m.only_b.size(), bn, m.only_a.empty() ? m.only_b.front() : m.only_a.front()),
                      true});
-    const int cls = study.config.rock_class;
-    if (cls < 0) continue;  // all classes, or none chosen (a one-class study's class is settled)
-    long boxes = 0;
-    for (const std::string& stem : m.common)
-      for (const std::string* domain : {&an, &bn})
-        for (const Box& box : labels.gt_of(*domain, stem).boxes) boxes += cls < 0 || box.cls == cls ? 1 : 0;
-    if (boxes > 0) continue;
-    // What the label files hold instead (the class filter dropped it when they were read): the first scenes'.
-    std::map<int, long> held;
-    for (size_t k = 0; k < std::min<size_t>(m.common.size(), kScenesLookedInto); ++k)
-      for (const std::string* domain : {&an, &bn}) {
-        const LabelFile f = read_labels_beneath(study.root, *domain + "/labels/" + m.common[k] + ".txt", {});
-        for (const Box& box : f.boxes) ++held[box.cls];
-      }
-    std::string others;
-    for (const auto& [c, n] : held)
-      others +=
-          fmt::format("{}{}: {} box{}", others.empty() ? "" : ", ", study.classes.describe(c), n, n == 1 ? "" : "es");
-    out.push_back(
-        {fmt::format("no ground-truth box of {} in the {} scenes '{}' and '{}' share{}: choose the class "
-                     "with --class or study.yaml's rock_class",
-                     study.classes.describe(cls), m.common.size(), an, bn,
-                     others.empty() ? std::string("; their label files hold no boxes at all")
-                                    : fmt::format("; their label files hold {}{}", others,
-                                                  m.common.size() > kScenesLookedInto
-                                                      ? fmt::format(" (in the first {} scenes)", kScenesLookedInto)
-                                                      : std::string())),
-         true});
+    if (auto p = class_problem(labels, an, bn, m)) out.push_back(std::move(*p));
   }
   return out;
 }

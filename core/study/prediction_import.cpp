@@ -188,41 +188,55 @@ std::string with_conf_one(const std::string& text) {
   return out;
 }
 
+// A run's label file, read as predictions and, when that fails, as boxes without a confidence.
+struct RunFile {
+  std::string name, text;
+  LabelFile as_prediction, as_gt;
+};
+
+std::vector<RunFile> read_run_files(const std::string& folder) {
+  std::vector<RunFile> files;
+  for (const FolderEntry& e : entries_of(folder)) {
+    if (e.folder || fs::path(e.name).extension() != ".txt" || e.name == "classes.txt") continue;
+    const std::string shown = (fs::path(folder) / e.name).string();
+    std::optional<std::string> text;
+    try {
+      text = read_file_beneath(folder, e.name, kMaxLabelFileBytes);
+    } catch (const IoError& err) {
+      throw StudyError(std::string(err.what()) + " (links in an import's source are never followed)");
+    }
+    RunFile f{e.name, text.value_or(""), {}, {}};
+    f.as_prediction = parse_labels(f.text, shown, {LabelKind::kPrediction});
+    if (!f.as_prediction.errors.empty()) f.as_gt = parse_labels(f.text, shown, {LabelKind::kGroundTruth});
+    files.push_back(std::move(f));
+  }
+  if (files.empty()) throw StudyError(folder + ": no label files (*.txt); nothing is written");
+  return files;
+}
+
+// A run saved without confidences: some file has boxes of 5 columns, every file that fails as predictions
+// reads as such boxes, and none carries a confidence (a run of empty files is a run that found nothing).
+bool without_confidences(const std::vector<RunFile>& files) {
+  bool any_conf = false, all_plain = true, any_plain = false;
+  for (const RunFile& f : files) {
+    if (f.as_prediction.errors.empty() && !f.as_prediction.boxes.empty()) any_conf = true;
+    if (f.as_prediction.errors.empty()) continue;
+    if (f.as_gt.errors.empty())
+      any_plain = true;
+    else
+      all_plain = false;
+  }
+  return any_plain && all_plain && !any_conf;
+}
+
 PredictionImportReport import_run(const PredictionImportOptions& o) {
   PredictionImportReport r;
   r.kind = "YOLO run";
   const std::vector<std::string> scenes = domain_scenes(o.out_dir);
   r.folder = run_labels_folder(o.source);
   const SceneNames names(o.out_dir, scenes);
-  const std::vector<FolderEntry> entries = entries_of(r.folder);
-  struct File {
-    std::string name, text;
-    LabelFile as_prediction, as_gt;
-  };
-  std::vector<File> files;
-  for (const FolderEntry& e : entries) {
-    if (e.folder || fs::path(e.name).extension() != ".txt" || e.name == "classes.txt") continue;
-    const std::string shown = (fs::path(r.folder) / e.name).string();
-    std::optional<std::string> text;
-    try {
-      text = read_file_beneath(r.folder, e.name, kMaxLabelFileBytes);
-    } catch (const IoError& err) {
-      throw StudyError(std::string(err.what()) + " (links in an import's source are never followed)");
-    }
-    File f{e.name, text.value_or(""), {}, {}};
-    f.as_prediction = parse_labels(f.text, shown, {LabelKind::kPrediction});
-    if (!f.as_prediction.errors.empty()) f.as_gt = parse_labels(f.text, shown, {LabelKind::kGroundTruth});
-    files.push_back(std::move(f));
-  }
-  if (files.empty()) throw StudyError(r.folder + ": no label files (*.txt); nothing is written");
-  // A run without confidences: every file that fails as predictions reads as boxes without them, and none
-  // carries them (a file of 6-column lines).
-  bool any_conf = false, all_plain = true;
-  for (const File& f : files) {
-    if (f.as_prediction.errors.empty() && !f.as_prediction.boxes.empty()) any_conf = true;
-    if (!f.as_prediction.errors.empty() && !f.as_gt.errors.empty()) all_plain = false;
-  }
-  const bool no_conf = !any_conf && all_plain;
+  std::vector<RunFile> files = read_run_files(r.folder);
+  const bool no_conf = without_confidences(files);
   if (no_conf && !o.no_conf)
     throw StudyError(fmt::format(
         "{}: the run wrote no confidences (5 columns: class cx cy w h); IPD and AP rank detections by them. Run "
@@ -236,7 +250,7 @@ PredictionImportReport import_run(const PredictionImportOptions& o) {
   std::map<std::string, std::string> out;
   std::map<std::string, std::string> from;  // scene -> the run's file, for collisions
   std::vector<std::string> unknown;
-  for (File& f : files) {
+  for (RunFile& f : files) {
     const LabelFile& parsed = no_conf ? f.as_gt : f.as_prediction;
     r.errors.insert(r.errors.end(), parsed.errors.begin(), parsed.errors.end());
     r.detections += static_cast<int>(parsed.boxes.size());

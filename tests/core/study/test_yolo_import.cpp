@@ -274,6 +274,16 @@ TEST(PredictionImport, ARunWithoutConfidencesIsRefusedWithTheCommandsThatWriteTh
   EXPECT_EQ(j["no_detections"], nlohmann::json::array({"s2"}));
 }
 
+// A run that found nothing anywhere has only empty files: that is no detections, not a run without confidences.
+TEST(PredictionImport, ARunOfEmptyFilesIsNoDetectionsNotARunWithoutConfidences) {
+  test::TempDir t;
+  test::write_text(t / "study/real/labels/s1.txt", "0 0.5 0.5 0.1 0.1\n");
+  test::write_text(t / "run/labels/s1.txt", "");
+  const auto r = test::run_ipd("import predictions " + t / "run" + " --out " + t / "study/real" + " --model m");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_file(t / "study/real/predictions/m/s1.txt"), "");
+}
+
 TEST(PredictionImport, AFolderOfRunsIsRefusedNamingTheRunsInIt) {
   test::TempDir t;
   test::write_text(t / "study/real/labels/s1.txt", "0 0.5 0.5 0.1 0.1\n");
@@ -374,6 +384,20 @@ TEST(YoloImportBadInput, AClassNameTheStudyGivesAnotherNumberIsRefusedNamingBoth
                        t / "study/synth/labels/classes.txt" +
                        "; a class number must be the same class in every domain of a study (rock_class picks one "
                        "number for all), so nothing is written\n");
+  EXPECT_FALSE(fs::exists(t / "study/real"));
+}
+
+TEST(YoloImportBadInput, AClassNameStudyYamlDoesNotListIsRefusedNamingBothFiles) {
+  test::TempDir t;
+  test::write_text(t / "study/study.yaml", "classes: [rock, shadow]\n");
+  test::write_text(t / "ls/classes.txt", "rock\nboulder\n");
+  test::write_text(t / "ls/labels/s1.txt", "1 0.5 0.5 0.1 0.1\n");
+  const auto r = test::run_ipd("import yolo " + t / "ls" + " --out " + t / "study/real");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "error: " + t / "ls/classes.txt" + ": class 1 \"boulder\" is not among the study's classes in " +
+                       t / "study/study.yaml" +
+                       "; a class must have one name in every label set (rename it, or add it to study.yaml's "
+                       "classes), so nothing is written\n");
   EXPECT_FALSE(fs::exists(t / "study/real"));
 }
 
