@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 
+#include "core/study/yolo_source.h"
 #include "core/util/contained_file.h"
 #include "core/util/number_text.h"
 
@@ -111,6 +112,18 @@ std::string no_shared_scene(const Domain& a, const Domain& b) {
     }
   if (!hint.empty())
     hint += " (a tool's mark: ipd import yolo maps Label Studio's and Roboflow's names back, docs/import.md)";
+  // Names a tool mangled (Roboflow's "<name>_jpg.rf.<hash>", Label Studio's "<id>-<name>"): its splits or its
+  // export named as domains.
+  for (const Domain* d : {&a, &b}) {
+    if (!hint.empty() || d->stems.empty()) break;
+    const std::string& first = d->stems.front();
+    const std::string name = scene_stem(first, has_upload_prefix(first));
+    if (name != first)
+      hint = fmt::format(
+          "; {}'s names are a tool's ({} is scene '{}' by the rules of docs/import.md): bring the "
+          "export in with ipd import yolo, which maps them back and merges its splits",
+          d->name, first, name);
+  }
   return fmt::format(
       "'{}' and '{}' share no scene (scenes pair across domains by file stem): {} has {}, {} has {}{}; no IPD can "
       "be measured between them",

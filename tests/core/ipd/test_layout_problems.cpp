@@ -50,6 +50,23 @@ TEST(LayoutProblems, TwoDomainsSharingNoSceneShowTheirNamesAndThePrefixThatSetsT
   EXPECT_NE(r.err.find("warning: 'real' and 'synth' share no scene"), std::string::npos) << r.err;
 }
 
+// A Roboflow export named as a study: its splits became domains that share no scene.
+TEST(LayoutProblems, ASplitOfAToolsExportNamedAsADomainIsToldItsNamesAreTheTools) {
+  test::TempDir d;
+  const std::string hash = ".rf.0123456789abcdef0123456789abcdef";
+  test::write_text(d / ("train/labels/a_jpg" + hash + ".txt"), kRocks);
+  test::write_text(d / ("valid/labels/b_jpg" + hash + ".txt"), kRocks);
+  test::write_text(d / ("train/predictions/det/a_jpg" + hash + ".txt"), kFound);
+  test::write_text(d / ("valid/predictions/det/b_jpg" + hash + ".txt"), kFound);
+  const auto r = test::run_ipd("table " + d.path() + " --bootstrap 0");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("; train's names are a tool's (a_jpg" + hash +
+                       " is scene 'a' by the rules of docs/import.md): bring the export in with ipd import yolo, "
+                       "which maps them back and merges its splits"),
+            std::string::npos)
+      << r.err;
+}
+
 TEST(LayoutProblems, LabelsOnlyInSubFoldersAreNamedWithTheirFolders) {
   test::TempDir d;
   write_study(d, "real/labels/train/", "synth/labels/");
