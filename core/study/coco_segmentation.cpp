@@ -101,6 +101,43 @@ bool decode_rle_counts(const std::string& s, std::vector<long long>* counts) {
   return true;
 }
 
+std::vector<double> merge_polygon_parts(const std::vector<std::vector<double>>& parts) {
+  if (parts.size() <= 1) return parts.empty() ? std::vector<double>() : parts.front();
+  const size_t n = parts.size();
+  auto count = [&](size_t i) { return parts[i].size() / 2; };
+  // out[i]: the point of part i joined to part i + 1; in[i]: the point of part i joined to part i - 1.
+  std::vector<size_t> out(n, 0), in(n, 0);
+  for (size_t i = 0; i + 1 < n; ++i) {
+    double best = INFINITY;
+    for (size_t a = 0; a < count(i); ++a)
+      for (size_t b = 0; b < count(i + 1); ++b) {
+        const double dx = parts[i][2 * a] - parts[i + 1][2 * b], dy = parts[i][2 * a + 1] - parts[i + 1][2 * b + 1];
+        if (dx * dx + dy * dy < best) {
+          best = dx * dx + dy * dy;
+          out[i] = a;
+          in[i + 1] = b;
+        }
+      }
+  }
+  std::vector<double> merged;
+  auto walk = [&](size_t i, size_t from, size_t steps) {  // steps + 1 points of part i, from `from` on
+    for (size_t k = 0; k <= steps; ++k) {
+      const size_t at = (from + k) % count(i);
+      const double x = parts[i][2 * at], y = parts[i][2 * at + 1];
+      if (merged.size() >= 2 && merged[merged.size() - 2] == x && merged.back() == y) continue;
+      merged.push_back(x);
+      merged.push_back(y);
+    }
+  };
+  walk(0, out[0], count(0));  // the first part whole, back to its bridge
+  for (size_t i = 1; i + 1 < n; ++i) walk(i, in[i], (out[i] + count(i) - in[i]) % count(i));  // there: in -> out
+  walk(n - 1, in[n - 1], count(n - 1));                                                       // the last one whole
+  for (size_t i = n - 1; i-- > 1;) walk(i, out[i], (in[i] + count(i) - out[i]) % count(i));   // back: out -> in
+  if (merged.size() >= 4 && merged[0] == merged[merged.size() - 2] && merged[1] == merged.back())
+    merged.resize(merged.size() - 2);
+  return merged;
+}
+
 std::string read_coco_segmentation(const nlohmann::json& seg, double width, double height, CocoSegmentation* out) {
   *out = {};
   if (seg.is_null() || (seg.is_array() && seg.empty())) return {};

@@ -20,6 +20,12 @@ struct CocoSegmentation {
 std::string read_coco_segmentation(const nlohmann::json& segmentation, double width, double height,
                                    CocoSegmentation* out);
 
+// One contour for a segmentation of several polygons (an object cut in two by an occluder), as a YOLO-seg line
+// holds one: each part joined to the next at their nearest points by a bridge walked there and back, which
+// encloses nothing, so the filled region is the parts' (Ultralytics' merge of COCO's multi-part masks). Points are
+// x, y pairs; one part is returned as it is.
+std::vector<double> merge_polygon_parts(const std::vector<std::vector<double>>& parts);
+
 // The counts of a compressed RLE string (pycocotools' rleFrString); false when it is not one.
 bool decode_rle_counts(const std::string& text, std::vector<long long>* counts);
 

@@ -36,6 +36,21 @@ TEST(CocoSegmentation, APolygonWithAnOddNumberOfCoordinatesOrTooFewPointsIsRefus
   EXPECT_EQ(problem("[[0, 0, 9, 0, 2, 2]]"), "segmentation[0]: point 2 (9, 0) is outside the 4x4 image");
 }
 
+// Two unit squares side by side, 1 apart: one contour through both, the bridge between their nearest corners
+// ((1, 0) and (2, 0)) walked there and back; its shoelace area is the two squares', 2.
+TEST(CocoSegmentation, PartsOfOneObjectBecomeOneContourJoinedWhereTheyAreNearest) {
+  const std::vector<double> a = {0, 0, 1, 0, 1, 1, 0, 1}, b = {2, 0, 3, 0, 3, 1, 2, 1};
+  const std::vector<double> merged = merge_polygon_parts({a, b});
+  EXPECT_EQ(merged, (std::vector<double>{1, 0, 1, 1, 0, 1, 0, 0, 1, 0, 2, 0, 3, 0, 3, 1, 2, 1, 2, 0}));
+  double twice_area = 0;
+  for (size_t k = 0; k < merged.size(); k += 2) {
+    const size_t next = (k + 2) % merged.size();
+    twice_area += merged[k] * merged[next + 1] - merged[next] * merged[k + 1];
+  }
+  EXPECT_DOUBLE_EQ(twice_area / 2, 2.0);
+  EXPECT_EQ(merge_polygon_parts({a}), a);
+}
+
 // Hand-encoded with pycocotools' rule: from the fourth count on, the difference from the count two before.
 TEST(CocoSegmentation, CompressedRunLengthsDecodeAsPycocotoolsWritesThem) {
   std::vector<long long> counts;
