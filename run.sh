@@ -11,7 +11,7 @@ packages=(
   libeigen3-dev libssl-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libfmt-dev libgtest-dev
   python3-numpy
   libimgui-dev libglfw3-dev libgl-dev libosmesa6-dev libstb-dev fonts-dejavu-core xvfb xauth
-  libcairo2-dev libharfbuzz-dev poppler-utils desktop-file-utils imagemagick
+  libcairo2-dev libharfbuzz-dev libpolyclipping-dev python3-shapely poppler-utils desktop-file-utils imagemagick
 )
 
 missing=()

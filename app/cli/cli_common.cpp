@@ -49,6 +49,7 @@ bool output_is_study_input(const std::string& study, const std::string& out) {
 void report_class_notes(const StudyLabels& labels) {
   for (const std::string& n : labels.study.classes.notes) fmt::print(stderr, "note: {}\n", n);
   for (const std::string& w : labels.class_warnings) fmt::print(stderr, "warning: {}\n", w);
+  if (!labels.task_note.empty()) fmt::print(stderr, "note: {}\n", labels.task_note);
 }
 
 bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_lines) {

@@ -24,6 +24,7 @@ struct Args {
   double conf = 0;
   bool skip_bad_lines = false;
   std::string class_word;
+  std::string task_word;
   std::vector<std::string> class_map;
   FigureOutputArgs output;
 };
@@ -45,12 +46,12 @@ StudyLabels confident_labels(const StudyLabels& labels, const std::string& model
 
 Chosen resolve(const Args& args, bool needs_scene) {
   Study study = open_study(args.study);
-  apply_class_options(args.class_word, args.class_map, &study);
+  apply_class_options(args.class_word, args.class_map, args.task_word, &study);
   Chosen f{load_labels(study), {}, {}, {}, {}};
   const Study& st = f.labels.study;
   if (report_label_errors(f.labels.errors, args.skip_bad_lines))
     throw StudyError(st.root + ": malformed label lines (listed above)");
-  require_class_choice(f.labels);
+  require_choices(f.labels);
   report_class_notes(f.labels);
   if (st.domains.size() < 2) throw StudyError(st.root + ": a figure needs two domains, this study has one");
   f.a = args.a.empty() ? st.domains[0].name : args.a;
@@ -138,7 +139,7 @@ Runner add_figure_command(CLI::App& app) {
     cmd->add_option("--crop", args->output.crop, "X0,Y0,X1,Y1: a region of the pictures, normalised to 0..1");
     cmd->add_option("--conf", args->conf, "Hide predictions below this confidence")->check(CLI::Range(0.0, 1.0));
     cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
-    add_class_options(cmd, &args->class_word, &args->class_map);
+    add_class_options(cmd, &args->class_word, &args->class_map, &args->task_word);
     add_figure_output_options(cmd, &args->output);
     cmd->callback([which, name] { *which = name; });
   };

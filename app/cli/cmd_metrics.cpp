@@ -68,7 +68,8 @@ void add_detection_metrics(const Study& study, const StudyOptions& so, const Stu
       for (int cls : classes) {
         std::vector<DetectionImage> images;
         for (const auto& stem : d.stems) {
-          DetectionImage im{labels.gt_of(d.name, stem).boxes, labels.predictions_of(d.name, m.name, stem).boxes};
+          DetectionImage im{labels.gt_of(d.name, stem).boxes, labels.predictions_of(d.name, m.name, stem).boxes,
+                            labels.study.config.task};
           if (classes.size() > 1) {
             auto other = [cls](const Box& b) { return b.cls != cls; };
             im.gt.erase(std::remove_if(im.gt.begin(), im.gt.end(), other), im.gt.end());
@@ -191,7 +192,7 @@ int run_metrics(const MetricsArgs& args) {
   all_detections.config.conf_threshold = 0;
   const StudyLabels labels = load_labels(all_detections);
   if (report_label_errors(labels.errors, so.skip_bad_lines)) return kBadInput;
-  require_class_choice(labels);
+  require_choices(labels);
   report_class_notes(labels);
   nlohmann::ordered_json j;
   j["conf_threshold"] = threshold;

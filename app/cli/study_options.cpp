@@ -61,7 +61,7 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
       ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--threads", o->threads, "Worker threads (0: every core); results don't depend on it")
       ->check(CLI::NonNegativeNumber);
-  add_class_options(cmd, &o->class_word, &o->class_map);
+  add_class_options(cmd, &o->class_word, &o->class_map, &o->task_word);
   cmd->add_flag("--no-cache", o->no_cache, "Register every scene again (ignore STUDY/.ipd-cache/)");
   cmd->add_flag("--skip-bad-lines", o->skip_bad_lines, "Warn about malformed label lines and skip them");
   if (!with_bootstrap) return;
@@ -79,7 +79,12 @@ void add_study_options(CLI::App* cmd, StudyOptions* o, bool with_bootstrap) {
       });
 }
 
-void add_class_options(CLI::App* cmd, std::string* class_word, std::vector<std::string>* class_map) {
+void add_class_options(CLI::App* cmd, std::string* class_word, std::vector<std::string>* class_map,
+                       std::string* task_word) {
+  cmd->add_option("--task", *task_word,
+                  "What a performance value is: detect (box IoU, the paper's) or segment (mask IoU of the outlines "
+                  "that YOLO-seg lines give; every instance needs one). Default: study.yaml's task, else detect")
+      ->check(CLI::IsMember({"detect", "segment"}));
   cmd->add_option("--class", *class_word,
                   "The class every number is about: a name from classes.txt or study.yaml, a class number, or 'all' "
                   "for a class-blind number (default: study.yaml's rock_class; required when the labels hold more "
@@ -90,7 +95,10 @@ void add_class_options(CLI::App* cmd, std::string* class_word, std::vector<std::
       ->delimiter(',');
 }
 
-void apply_class_options(const std::string& class_word, const std::vector<std::string>& class_map, Study* study) {
+void apply_class_options(const std::string& class_word, const std::vector<std::string>& class_map,
+                         const std::string& task_word, Study* study) {
+  if (!task_word.empty() && !parse_task(task_word, &study->config.task))
+    throw CLI::ValidationError(fmt::format("--task: expected detect or segment, got '{}'", task_word));
   std::map<int, int> from_to;
   for (const std::string& m : class_map) {
     const auto colon = m.find(':');
@@ -120,7 +128,7 @@ Study open_study_with_conf(const StudyOptions& o) {
   if (const std::string bad = o.validate(); !bad.empty()) throw CLI::ValidationError(bad);
   Study study = open_study(o.study);
   if (o.conf >= 0) study.config.conf_threshold = o.conf;
-  apply_class_options(o.class_word, o.class_map, &study);
+  apply_class_options(o.class_word, o.class_map, o.task_word, &study);
   return study;
 }
 
@@ -130,7 +138,7 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   StudyCache parsed(o.no_cache ? std::string() : parsed_study_cache_path(study.root), study.root);
   LoadedStudy out{parsed.load_labels(study), {}, study.config.conf_threshold, 0, {}};
   if (report_label_errors(out.labels.errors, o.skip_bad_lines)) return std::nullopt;
-  require_class_choice(out.labels);
+  require_choices(out.labels);
   report_class_notes(out.labels);
   RegistrationCache registration(o.no_cache ? std::string() : registration_cache_dir(study.root));
   parsed.hand_registrations_to(registration);

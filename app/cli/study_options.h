@@ -34,6 +34,7 @@ struct StudyOptions {
   bool no_cache = false;               // --no-cache: register every scene again
   std::string class_word;              // --class NAME|NUMBER|all; empty: study.yaml's rock_class
   std::vector<std::string> class_map;  // --class-map FROM:TO (prediction class FROM is the study's TO)
+  std::string task_word;               // --task detect|segment; empty: study.yaml's task
 
   BootstrapOptions bootstrap_options() const;
   // Empty when every value is in range (or the "not given" value), else "--option: what is wrong": a value
@@ -58,9 +59,11 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
 
 // Opens the study and applies --conf, --class and --class-map (for commands that read labels themselves).
 Study open_study_with_conf(const StudyOptions& o);
-// Applies --class and --class-map to an open study (StudyError for a class it does not know).
-void apply_class_options(const std::string& class_word, const std::vector<std::string>& class_map, Study* study);
-// Adds --class and --class-map to a command that has no other study option.
-void add_class_options(CLI::App* cmd, std::string* class_word, std::vector<std::string>* class_map);
+// Applies --class, --class-map and --task to an open study (StudyError for a class it does not know).
+void apply_class_options(const std::string& class_word, const std::vector<std::string>& class_map,
+                         const std::string& task_word, Study* study);
+// Adds --class, --class-map and --task to a command that has no other study option.
+void add_class_options(CLI::App* cmd, std::string* class_word, std::vector<std::string>* class_map,
+                       std::string* task_word);
 
 }  // namespace ipd::cli

@@ -18,6 +18,32 @@ double iou(const Box& a, const Box& b) {
   return std::clamp(inter / uni, 0.0, 1.0);
 }
 
+const char* task_name(Task task) { return task == Task::kSegment ? "segment" : "detect"; }
+
+bool parse_task(const std::string& word, Task* task) {
+  if (word != "detect" && word != "segment") return false;
+  *task = word == "segment" ? Task::kSegment : Task::kDetect;
+  return true;
+}
+
+namespace {
+// A box as the mask of its rectangle, for an instance without an outline in the segment task.
+Outline rectangle_outline(const Box& b) {
+  Outline o;
+  make_outline({{b.x0(), b.y0()}, {b.x1(), b.y0()}, {b.x1(), b.y1()}, {b.x0(), b.y1()}}, &o);
+  return o;
+}
+}  // namespace
+
+double instance_iou(const Box& a, const Box& b, Task task) {
+  if (task == Task::kDetect) return iou(a, b);
+  // Bounding-box prefilter: masks inside boxes that do not overlap do not overlap, so no clipping.
+  if (!(iou(a, b) > 0)) return 0.0;
+  if (a.outline && b.outline) return mask_iou(*a.outline, *b.outline);
+  if (!a.outline && !b.outline) return iou(a, b);
+  return a.outline ? mask_iou(*a.outline, rectangle_outline(b)) : mask_iou(rectangle_outline(a), *b.outline);
+}
+
 IouTable iou_table(const std::vector<Box>& gt, const std::vector<Box>& pred) {
   IouTable t;
   t.rows = static_cast<int>(gt.size());
@@ -28,14 +54,14 @@ IouTable iou_table(const std::vector<Box>& gt, const std::vector<Box>& pred) {
   return t;
 }
 
-PerformanceValues performance_values(const std::vector<Box>& gt, const std::vector<Box>& pred) {
+PerformanceValues performance_values(const std::vector<Box>& gt, const std::vector<Box>& pred, Task task) {
   PerformanceValues pv;
   pv.value.assign(gt.size(), 0.0);
   pv.best_prediction.assign(gt.size(), -1);
   for (size_t i = 0; i < gt.size(); ++i) {
     for (size_t j = 0; j < pred.size(); ++j) {
       if (pred[j].cls != gt[i].cls) continue;  // a shadow prediction never scores a rock (COCO: per category)
-      const double v = iou(gt[i], pred[j]);
+      const double v = instance_iou(gt[i], pred[j], task);
       if (v > pv.value[i]) {
         pv.value[i] = v;
         pv.best_prediction[i] = static_cast<int>(j);
@@ -83,6 +109,7 @@ Box transform_box(const Affine2& m, const Box& b) {
   r.cy = 0.5 * (lo_y + hi_y);
   r.w = hi_x - lo_x;
   r.h = hi_y - lo_y;
+  r.outline = nullptr;  // a box moved by m is no longer where its outline's points are
   return r;
 }
 

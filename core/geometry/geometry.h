@@ -1,8 +1,12 @@
-// Axis-aligned boxes, IoU and 2-D affine maps: the geometry everything else builds on.
+// Axis-aligned boxes (with their outlines), IoU and 2-D affine maps: the geometry everything else builds on.
 #pragma once
 
 #include <Eigen/Core>
+#include <memory>
+#include <string>
 #include <vector>
+
+#include "core/geometry/outline.h"
 
 namespace ipd {
 
@@ -11,6 +15,9 @@ struct Box {
   int cls = 0;
   double cx = 0, cy = 0, w = 0, h = 0;
   double conf = 1.0;  // 1 for ground truth
+  // The instance's mask, when its label line gave one (YOLO-seg, COCO polygons); the box is then its bounds.
+  // Shared: boxes are copied by every filter and view, an outline's points are not.
+  std::shared_ptr<const Outline> outline = nullptr;
 
   double x0() const { return cx - 0.5 * w; }
   double y0() const { return cy - 0.5 * h; }
@@ -22,6 +29,14 @@ struct Box {
 
 // Intersection over union; 0 (never NaN) when either box is degenerate or they don't overlap.
 double iou(const Box& a, const Box& b);
+
+// The perception task a number is about: boxes (the paper's detection) or instance masks (segmentation).
+enum class Task { kDetect, kSegment };
+const char* task_name(Task task);                      // "detect", "segment"
+bool parse_task(const std::string& word, Task* task);  // the inverse of task_name; false for any other word
+// The IoU of two instances for a task: box IoU for detect; mask IoU for segment (an instance without an outline
+// is the mask of its box's rectangle there, so two boxes give their box IoU). The one IoU every number uses.
+double instance_iou(const Box& a, const Box& b, Task task);
 
 // n x m table T[i][j] = iou(gt[i], pred[j]), row-major.
 struct IouTable {
@@ -38,7 +53,8 @@ struct PerformanceValues {
   std::vector<double> value;
   std::vector<int> best_prediction;
 };
-PerformanceValues performance_values(const std::vector<Box>& gt, const std::vector<Box>& pred);
+PerformanceValues performance_values(const std::vector<Box>& gt, const std::vector<Box>& pred,
+                                     Task task = Task::kDetect);
 
 // y = A x + t, stored as a 2x3 matrix [A | t].
 using Affine2 = Eigen::Matrix<double, 2, 3>;
@@ -56,7 +72,7 @@ bool invert(const Affine2& m, Affine2* out);
 // Linear interpolation from identity (t = 0) to m (t = 1), used to animate a registration.
 Affine2 interpolate_from_identity(const Affine2& m, double t);
 
-// The axis-aligned bounding box of a box's four corners mapped by m (class and confidence kept).
+// The axis-aligned bounding box of a box's four corners mapped by m (class and confidence kept, outline not).
 Box transform_box(const Affine2& m, const Box& b);
 
 std::vector<Eigen::Vector2d> centres(const std::vector<Box>& boxes);

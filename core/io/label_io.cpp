@@ -28,9 +28,10 @@ namespace {
 
 const char* const kColumnNames[] = {"class", "cx", "cy", "w", "h", "conf"};
 
-// Whitespace-separated fields of one line (up to a '#' comment), into `out` (reused: no allocation per line).
-void split_fields(std::string_view line, std::vector<std::string>* out) {
-  out->clear();
+// Whitespace-separated fields of one line (up to a '#' comment), into `out` (its strings reused: an outline line
+// of hundreds of numbers allocates nothing once the first such line has been read).
+void split_fields(std::string_view line, std::vector<std::string>* out, size_t* count) {
+  *count = 0;
   const size_t hash = line.find('#');
   if (hash != std::string_view::npos) line = line.substr(0, hash);
   size_t k = 0;
@@ -40,10 +41,9 @@ void split_fields(std::string_view line, std::vector<std::string>* out) {
     const size_t start = k;
     while (k < line.size() && !space(line[k])) ++k;
     if (k > start) {
-      if (out->size() < 8)
-        out->emplace_back(line.substr(start, k - start));
-      else
-        out->push_back({});  // only the count matters beyond a box line's columns
+      if (*count == out->size()) out->emplace_back();
+      (*out)[*count].assign(line.data() + start, k - start);
+      ++*count;
     }
   }
 }
@@ -51,30 +51,80 @@ void split_fields(std::string_view line, std::vector<std::string>* out) {
 // Untrusted text in a message: never more than 40 characters of it, control bytes shown as \xHH.
 std::string shorten(const std::string& s) { return quoted_for_message(s); }
 
-// Parses a line's fields into a box or returns why not.
-std::string parse_box(const std::vector<std::string>& f, const LabelParseOptions& opt, Box* box) {
-  const size_t want = opt.kind == LabelKind::kPrediction ? 6 : 5;
-  if (f.size() != want) {
-    return fmt::format("expected {} columns ({}), found {}", want,
-                       want == 6 ? "class cx cy w h conf" : "class cx cy w h", f.size());
-  }
-  const std::string& c = f[0];
+std::string parse_class(const std::string& c, Box* box) {
   if (c.empty() || c.find_first_not_of("0123456789") != std::string::npos || c.size() > 9) {
     return fmt::format("expected a non-negative integer class in column 1, found '{}'", shorten(c));
   }
   box->cls = std::atoi(c.c_str());
+  return {};
+}
+
+// A number of column `column` (1-based) named `name`, finite and (unless it is a confidence) in [0, 1].
+std::string parse_number(const std::string& field, size_t column, const std::string& name, bool normalised,
+                         const LabelParseOptions& opt, double* out) {
+  // The whole field is the number: a NUL or any other byte after it is an error, never cut off.
+  double x = NAN;
+  if (!parse_decimal(field, &x) && !is_non_finite_word(field))
+    return fmt::format("expected a number for {} in column {}, found '{}'", name, column, shorten(field));
+  if (!std::isfinite(x))
+    return fmt::format("expected a finite number for {} in column {}, found '{}'", name, column, shorten(field));
+  if (normalised && (x < -opt.range_tolerance || x > 1.0 + opt.range_tolerance))
+    return fmt::format("expected {} in [0, 1] (normalised), found {}", name, shorten(field));
+  *out = x;
+  return {};
+}
+
+// An outline line, YOLO-seg's `class x1 y1 ... xn yn` (then `conf` for a prediction): the box is the outline's
+// bounds. `n` fields, at least 7 (a triangle).
+std::string parse_outline(const std::vector<std::string>& f, size_t n, const LabelParseOptions& opt, Box* box) {
+  const bool prediction = opt.kind == LabelKind::kPrediction;
+  const size_t coords = n - 1 - (prediction ? 1 : 0);
+  if (coords % 2 != 0) {
+    return prediction ? fmt::format(
+                            "expected an outline with a confidence last (class x1 y1 ... xn yn conf), found "
+                            "{} columns: an odd number of coordinates, or no confidence",
+                            n)
+                      : fmt::format(
+                            "expected an outline (class x1 y1 ... xn yn), found {} columns: an odd number "
+                            "of coordinates",
+                            n);
+  }
+  if (std::string why = parse_class(f[0], box); !why.empty()) return why;
+  std::vector<Eigen::Vector2d> points(coords / 2);
+  for (size_t k = 0; k < coords; ++k) {
+    const std::string name = fmt::format("{}{}", k % 2 == 0 ? 'x' : 'y', k / 2 + 1);
+    if (std::string why = parse_number(f[k + 1], k + 2, name, true, opt, &points[k / 2][k % 2]); !why.empty())
+      return why;
+  }
+  if (prediction) {
+    if (std::string why = parse_number(f[n - 1], n, "conf", true, opt, &box->conf); !why.empty()) return why;
+  }
+  auto outline = std::make_shared<Outline>();
+  if (std::string why = make_outline(std::move(points), outline.get()); !why.empty()) return why;
+  if (outline->x1 - outline->x0 < kMinBoxSide || outline->y1 - outline->y0 < kMinBoxSide)
+    return fmt::format("expected an outline at least {:g} wide and high (a millionth of the picture)", kMinBoxSide);
+  box->cx = 0.5 * (outline->x0 + outline->x1);
+  box->cy = 0.5 * (outline->y0 + outline->y1);
+  box->w = outline->x1 - outline->x0;
+  box->h = outline->y1 - outline->y0;
+  box->outline = std::move(outline);
+  return {};
+}
+
+// Parses a line's `n` fields into a box (or an outline and its bounds) or returns why not.
+std::string parse_box(const std::vector<std::string>& f, size_t n, const LabelParseOptions& opt, Box* box) {
+  const size_t want = opt.kind == LabelKind::kPrediction ? 6 : 5;
+  if (n >= want + 2) return parse_outline(f, n, opt, box);
+  if (n != want) {
+    return fmt::format("expected {} columns ({}), found {}", want,
+                       want == 6 ? "class cx cy w h conf" : "class cx cy w h", n);
+  }
+  if (std::string why = parse_class(f[0], box); !why.empty()) return why;
   double v[6] = {0, 0, 0, 0, 0, 1};
+  // Every column is checked to be a number before any range: "expected a number for conf" names the column a
+  // reader must fix before "cx out of range" would.
   for (size_t k = 1; k < want; ++k) {
-    // The whole field is the number: a NUL or any other byte after it is an error, never cut off.
-    double x = NAN;
-    if (!parse_decimal(f[k], &x) && !is_non_finite_word(f[k])) {
-      return fmt::format("expected a number for {} in column {}, found '{}'", kColumnNames[k], k + 1, shorten(f[k]));
-    }
-    if (!std::isfinite(x)) {
-      return fmt::format("expected a finite number for {} in column {}, found '{}'", kColumnNames[k], k + 1,
-                         shorten(f[k]));
-    }
-    v[k] = x;
+    if (std::string why = parse_number(f[k], k + 1, kColumnNames[k], false, opt, &v[k]); !why.empty()) return why;
   }
   for (size_t k = 1; k < want; ++k) {
     if (v[k] < -opt.range_tolerance || v[k] > 1.0 + opt.range_tolerance) {
@@ -115,16 +165,17 @@ LabelFile parse_labels(const std::string& text, const std::string& file_name, co
   std::string_view rest(text);
   if (rest.substr(0, 3) == "\xEF\xBB\xBF") rest.remove_prefix(3);  // UTF-8 byte order mark (Windows editors)
   std::vector<std::string> fields;
+  size_t field_count = 0;
   int line_no = 0, unlisted = 0;
   while (!rest.empty()) {
     const size_t eol = rest.find('\n');
     const std::string_view line = rest.substr(0, eol);
     rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
     ++line_no;
-    split_fields(line, &fields);
-    if (fields.empty()) continue;
+    split_fields(line, &fields, &field_count);
+    if (field_count == 0) continue;
     Box b;
-    const std::string why = parse_box(fields, options, &b);
+    const std::string why = parse_box(fields, field_count, options, &b);
     if (!why.empty()) {
       if (static_cast<int>(out.errors.size()) < kMaxListedErrors)
         out.errors.push_back({file_name, line_no, why});
@@ -211,6 +262,19 @@ void keep_confident(LabelFile* file, double threshold) {
 std::string labels_text(const std::vector<Box>& boxes, LabelKind kind, LabelDigits digits) {
   std::string text;
   for (const auto& b : boxes) {
+    if (b.outline) {  // YOLO-seg: the outline's points stand for the box (its bounds)
+      text += fmt::format("{}", b.cls);
+      for (const Eigen::Vector2d& p : b.outline->points) {
+        if (digits == LabelDigits::kExact)
+          text += fmt::format(" {} {}", p.x(), p.y());
+        else
+          text += fmt::format(" {:.6f} {:.6f}", p.x(), p.y());
+      }
+      if (kind == LabelKind::kPrediction)
+        text += digits == LabelDigits::kExact ? fmt::format(" {}", b.conf) : fmt::format(" {:.4f}", b.conf);
+      text += '\n';
+      continue;
+    }
     if (digits == LabelDigits::kExact) {
       // fmt's "{}" is the shortest decimal that reads back as the same double.
       text += fmt::format("{} {} {} {} {}", b.cls, b.cx, b.cy, b.w, b.h);

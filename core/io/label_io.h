@@ -1,4 +1,5 @@
-// Reading YOLO-format label files (ground truth: `class cx cy w h`; predictions: `... conf`).
+// Reading YOLO-format label files (ground truth: `class cx cy w h`, or YOLO-seg's outline `class x1 y1 ... xn yn`;
+// predictions: either, then `conf`).
 #pragma once
 
 #include <string>
@@ -70,7 +71,7 @@ void keep_class(LabelFile* file, int cls);
 // Drops the predictions a confidence threshold does not keep (kept_at_threshold).
 void keep_confident(LabelFile* file, double threshold);
 
-// Boxes as YOLO txt lines (with confidence for predictions).
+// Boxes as YOLO txt lines (with confidence for predictions); a box with an outline as its YOLO-seg line.
 // How labels_text writes numbers. kFixed: as detectors write them, 6 decimals for a box and 4 for a confidence
 // (`ipd detect`, the demo). kExact: the shortest decimal that reads back as the same double, for numbers given
 // in full elsewhere (`ipd import coco`'s scores and boxes): a score of 0.24996 written as 0.2500 passed

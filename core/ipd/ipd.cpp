@@ -81,6 +81,7 @@ StudyLabels load_labels(const Study& study, const std::function<void(int done, i
   });
   for (const Job& j : jobs) out.errors.insert(out.errors.end(), j.slot->errors.begin(), j.slot->errors.end());
   settle_class(&out);
+  settle_task(&out);
   return out;
 }
 
@@ -110,9 +111,9 @@ SceneIpd scene_contribution(const std::string& stem, const RockPairs& pairs, con
 }
 
 SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, const std::vector<Box>& pred_a,
-                   const std::vector<Box>& gt_b, const std::vector<Box>& pred_b) {
+                   const std::vector<Box>& gt_b, const std::vector<Box>& pred_b, Task task) {
   return scene_contribution(pairing.stem, pairing.pairs, pairing.excluded_a, pairing.excluded_b,
-                            performance_values(gt_a, pred_a).value, performance_values(gt_b, pred_b).value);
+                            performance_values(gt_a, pred_a, task).value, performance_values(gt_b, pred_b, task).value);
 }
 
 namespace {
@@ -227,9 +228,9 @@ void add_cells(const StudyLabels& labels, const std::vector<bool>& shown, CrossT
       }
       if (!cell.missing_predictions)
         for (const ScenePairing& p : t->pairings[c])
-          cell.per_scene.push_back(
-              scene_ipd(p, labels.gt_of(a, p.stem).boxes, labels.predictions_of(a, model.name, p.stem).boxes,
-                        labels.gt_of(b, p.stem).boxes, labels.predictions_of(b, model.name, p.stem).boxes));
+          cell.per_scene.push_back(scene_ipd(
+              p, labels.gt_of(a, p.stem).boxes, labels.predictions_of(a, model.name, p.stem).boxes,
+              labels.gt_of(b, p.stem).boxes, labels.predictions_of(b, model.name, p.stem).boxes, study.config.task));
       total_table_cell(cell);
       if (!cell.missing_predictions) {
         const double threshold = study.config.conf_threshold;

@@ -29,6 +29,10 @@ struct StudyLabels {
   std::map<int, long> gt_boxes_by_class;
   std::string class_choice_needed;
   std::vector<std::string> class_warnings;  // prediction sets whose class numbers look shifted
+  // The task (study.config.task): why its instances can't be scored ("" when they can: segment needs an outline
+  // on every instance), and a note when outlines are read as boxes (detect).
+  std::string task_needs_outlines;
+  std::string task_note;
 
   const LabelFile& gt_of(const std::string& domain, const std::string& stem) const;
   const LabelFile& predictions_of(const std::string& domain, const std::string& model, const std::string& stem) const;
@@ -52,6 +56,12 @@ void settle_class(StudyLabels* labels);
 std::string class_choice_message(const StudyLabels& labels);
 // Throws StudyError(class_choice_needed) when a class must be chosen: no output may mix classes unasked.
 void require_class_choice(const StudyLabels& labels);
+// Checks the instances against the task (task_choice.cpp): under segment every instance needs an outline, under
+// detect outlines are read as their bounds (with a note).
+void settle_task(StudyLabels* labels);
+// Throws StudyError when a class must be chosen or the task can't score the instances: every command that prints
+// a number calls it.
+void require_choices(const StudyLabels& labels);
 // The class a number is about, for provenance: "rock (class 0)", "class 2", "all, class-blind (--class all)".
 std::string class_statement(const StudyLabels& labels);
 // Prediction sets whose boxes detect (IoU >= 0.5) GT of one other class far more than GT of their own class: the
@@ -96,8 +106,9 @@ SceneIpd scene_contribution(const std::string& stem, const RockPairs& pairs, con
                             const std::vector<int>& excluded_b, const std::vector<double>& perf_a,
                             const std::vector<double>& perf_b);
 
+// `task`: what a performance value is (box or mask IoU; study.config.task).
 SceneIpd scene_ipd(const ScenePairing& pairing, const std::vector<Box>& gt_a, const std::vector<Box>& pred_a,
-                   const std::vector<Box>& gt_b, const std::vector<Box>& pred_b);
+                   const std::vector<Box>& gt_b, const std::vector<Box>& pred_b, Task task);
 
 struct TableCell {
   std::string model, trained_on, a, b;

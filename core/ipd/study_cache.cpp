@@ -26,8 +26,9 @@ namespace {
 constexpr char kMagic[8] = {'I', 'P', 'D', 'S', 'T', 'U', 'D', 'Y'};
 // Bump when the layout, label parsing or a registration method's results change: 3 for the signature; 4: a
 // report keeps why its registration is ambiguous (Ambiguity), not only whether; 5: answers nothing was compared
-// with are flagged as such (Ambiguity::kUnchecked, kNoPlausible).
-constexpr std::uint32_t kFormat = 6;
+// with are flagged as such (Ambiguity::kUnchecked, kNoPlausible); 7: outlines, with their areas and centroids
+// (an outline's clipping into non-crossing contours is not redone on a warm load).
+constexpr std::uint32_t kFormat = 7;
 constexpr size_t kHeaderBytes = kParsedStudyHeaderBytes;
 static_assert(kHeaderBytes == sizeof kMagic + 4 + 8 + CacheSigner::kMacBytes);
 
@@ -117,6 +118,11 @@ void write_label_file(Writer& w, const LabelFile& f) {
     const double v[5] = {b.cx, b.cy, b.w, b.h, b.conf};
     w.pod<std::int32_t>(b.cls);
     w.pod(v);
+    const Outline* o = b.outline.get();
+    w.pod<std::uint32_t>(o ? static_cast<std::uint32_t>(o->points.size()) : 0);
+    if (!o) continue;
+    for (const Eigen::Vector2d& p : o->points) w.pod<std::array<double, 2>>({p.x(), p.y()});
+    w.pod<std::array<double, 7>>({o->area, o->centroid.x(), o->centroid.y(), o->x0, o->y0, o->x1, o->y1});
   }
   w.vec(f.line_of_box);
   w.pod<std::uint32_t>(static_cast<std::uint32_t>(f.errors.size()));
@@ -139,6 +145,19 @@ LabelFile read_label_file(Reader& r, const std::string& path) {
     b.cls = r.pod<std::int32_t>();
     const auto v = r.pod<std::array<double, 5>>();
     b.cx = v[0], b.cy = v[1], b.w = v[2], b.h = v[3], b.conf = v[4];
+    const auto points = r.pod<std::uint32_t>();
+    if (points == 0) continue;
+    if (points < 3 || points > kMaxOutlinePoints) throw std::runtime_error("bad outline");
+    auto o = std::make_shared<Outline>();
+    o->points.resize(points);
+    for (Eigen::Vector2d& p : o->points) {
+      const auto xy = r.pod<std::array<double, 2>>();
+      p = {xy[0], xy[1]};
+    }
+    const auto m = r.pod<std::array<double, 7>>();
+    o->area = m[0], o->centroid = {m[1], m[2]}, o->x0 = m[3], o->y0 = m[4], o->x1 = m[5], o->y1 = m[6];
+    if (!(o->area > 0)) throw std::runtime_error("bad outline area");
+    b.outline = std::move(o);
   }
   f.line_of_box = r.vec<int>();
   if (f.line_of_box.size() != f.boxes.size()) throw std::runtime_error("box and line counts differ");

@@ -103,6 +103,7 @@ Provenance table_provenance(const CrossTable& table, const StudyLabels& labels, 
   p.label_fingerprint = label_set_fingerprint(labels.study);
   p.class_name = provenance_class(labels);
   if (!p.class_name.empty()) p.class_maps = labels.study.classes.notes;
+  p.segment = labels.study.config.task == Task::kSegment;
   return p;
 }
 
@@ -136,6 +137,7 @@ Provenance session_provenance(const Session& session, const DomainPairFilter& on
   p.label_fingerprint = label_set_fingerprint(session.study());
   p.class_name = provenance_class(session.labels());
   if (!p.class_name.empty()) p.class_maps = session.study().classes.notes;
+  p.segment = session.study().config.task == Task::kSegment;
   return p;
 }
 
@@ -153,7 +155,8 @@ std::string provenance_note(const Provenance& p) {
     note += fmt::format("; stale hand pairs not used in {} (registration counts there)",
                         plural(p.scenes_with_stale_hand_pairs, "scene", "scenes"));
   note += ".";
-  return p.class_name.empty() ? note : fmt::format("Class {}. {}", p.class_name, note);
+  if (!p.class_name.empty()) note = fmt::format("Class {}. {}", p.class_name, note);
+  return p.segment ? "Mask IoU (task segment). " + note : note;
 }
 
 std::string provenance_class(const StudyLabels& labels) {
@@ -168,6 +171,7 @@ nlohmann::ordered_json provenance_json(const Provenance& p) {
   nlohmann::ordered_json edited = nlohmann::ordered_json::array();
   for (const EditedScene& e : p.edited_scenes) edited.push_back({{"a", e.a}, {"b", e.b}, {"stem", e.stem}});
   nlohmann::ordered_json j = {{"label_fingerprint", p.label_fingerprint}};
+  if (p.segment) j["task"] = "segment";
   if (!p.class_name.empty()) {
     j["class"] = p.class_name;
     j["class_maps"] = p.class_maps;

@@ -36,6 +36,9 @@ struct Provenance {
   // sets' class numbers were mapped by name; empty for a study whose one class has no name (nothing to tell).
   std::string class_name;
   std::vector<std::string> class_maps;
+  // Performance values are mask IoUs (task segment); said first in every note and as "task" in the JSON, since a
+  // mask-IoU IPD and a box-IoU IPD of the same study differ. Box IoU (the paper's) goes unsaid.
+  bool segment = false;
   std::vector<EditedScene> edited_scenes;  // in column and scene order
 };
 

@@ -61,8 +61,11 @@ std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& tabl
         rows.push_back(std::move(r));
       }
       if (!options.unpaired) continue;
-      const PerformanceValues pa = performance_values(ga, labels.predictions_of(cell.a, cell.model, sc.stem).boxes);
-      const PerformanceValues pb = performance_values(gb, labels.predictions_of(cell.b, cell.model, sc.stem).boxes);
+      const Task task = labels.study.config.task;
+      const PerformanceValues pa =
+          performance_values(ga, labels.predictions_of(cell.a, cell.model, sc.stem).boxes, task);
+      const PerformanceValues pb =
+          performance_values(gb, labels.predictions_of(cell.b, cell.model, sc.stem).boxes, task);
       const auto listed = [](const std::vector<int>& v, size_t i) {
         return std::find(v.begin(), v.end(), static_cast<int>(i)) != v.end();
       };
@@ -92,12 +95,15 @@ std::vector<RockRow> rock_rows(const StudyLabels& labels, const CrossTable& tabl
 }
 
 namespace {
-const char* const kColumns[] = {
-    "model", "trained_on", "a",   "b",   "scene", "class", "index_a", "index_b", "perf_a",      "perf_b", "diff",
-    "cx_a",  "cy_a",       "w_a", "h_a", "cx_b",  "cy_b",  "w_b",     "h_b",     "residual_px", "source", "excluded"};
+const char* const kColumns[] = {"model",   "trained_on",  "a",      "b",        "scene",       "class",
+                                "index_a", "index_b",     "perf_a", "perf_b",   "diff",        "cx_a",
+                                "cy_a",    "w_a",         "h_a",    "cx_b",     "cy_b",        "w_b",
+                                "h_b",     "residual_px", "source", "excluded", "mask_area_a", "mask_area_b"};
 
 std::string num(double v) { return std::isnan(v) ? std::string() : fmt::format("{:.12g}", v); }
 std::string field(const std::string& s) { return csv_field(s); }
+// A rock's mask area (normalised: the picture is 1); NaN for a box without an outline or no rock.
+double mask_area(bool has, const Box& b) { return has && b.outline ? b.outline->area : std::nan(""); }
 }  // namespace
 
 std::string rock_rows_csv(const std::vector<RockRow>& rows, const Provenance* provenance) {
@@ -114,10 +120,11 @@ std::string rock_rows_csv(const std::vector<RockRow>& rows, const Provenance* pr
     auto box = [&](bool has, const Box& x) {
       return has ? fmt::format("{},{},{},{}", num(x.cx), num(x.cy), num(x.w), num(x.h)) : std::string(",,,");
     };
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}{}\n", field(r.model), field(r.trained_on),
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}{}\n", field(r.model), field(r.trained_on),
                        field(r.a), field(r.b), field(r.scene), field(r.cls), a ? std::to_string(r.index_a) : "",
                        b ? std::to_string(r.index_b) : "", num(r.perf_a), num(r.perf_b), num(r.diff), box(a, r.box_a),
-                       box(b, r.box_b), num(r.residual_px), r.source, r.excluded ? "true" : "false", tail);
+                       box(b, r.box_b), num(r.residual_px), r.source, r.excluded ? "true" : "false",
+                       num(mask_area(a, r.box_a)), num(mask_area(b, r.box_b)), tail);
   }
   return out;
 }
@@ -155,7 +162,9 @@ std::string rock_rows_json(const std::vector<RockRow>& rows, const Provenance* p
                    {"h_b", n(b ? r.box_b.h : nan)},
                    {"residual_px", n(r.residual_px)},
                    {"source", r.source},
-                   {"excluded", r.excluded}});
+                   {"excluded", r.excluded},
+                   {"mask_area_a", n(mask_area(a, r.box_a))},
+                   {"mask_area_b", n(mask_area(b, r.box_b))}});
     out.back().update(prov);
   }
   return dump_json_output(out, 1) + "\n";

@@ -17,8 +17,8 @@ struct RockRow {
   std::string cls;                 // the rocks' class: its name, or its number where no file names it
   int index_a = -1, index_b = -1;  // 0-based rock indices; -1: no rock on that side (an unpaired row)
   double perf_a = std::numeric_limits<double>::quiet_NaN(), perf_b = std::numeric_limits<double>::quiet_NaN();
-  double diff = std::numeric_limits<double>::quiet_NaN();         // |perf_a - perf_b|, NaN on unpaired rows
-  Box box_a, box_b;                                               // normalised centre and size, as in the label files
+  double diff = std::numeric_limits<double>::quiet_NaN();  // |perf_a - perf_b|, NaN on unpaired rows
+  Box box_a, box_b;  // normalised centre and size, as in the label files (with the outline: mask_area_a/_b columns)
   double residual_px = std::numeric_limits<double>::quiet_NaN();  // |affine(centre a) - centre b| in B's pixels
   std::string source;     // "auto" (registration) or "hand" (pairs/<A>__<B>/<stem>.json)
   bool excluded = false;  // an unpaired row's rock left out of the IPD on purpose (its pairs file says so)

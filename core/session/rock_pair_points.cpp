@@ -178,7 +178,9 @@ std::vector<RockPairPoint> cell_pair_points(const StudyLabels& labels, const Tab
     const auto& gt_b = labels.gt_of(cell.b, sc.stem).boxes;
     const auto& pred_a = labels.predictions_of(cell.a, cell.model, sc.stem).boxes;
     const auto& pred_b = labels.predictions_of(cell.b, cell.model, sc.stem).boxes;
-    const PerformanceValues perf_a = performance_values(gt_a, pred_a), perf_b = performance_values(gt_b, pred_b);
+    const Task task = labels.study.config.task;
+    const PerformanceValues perf_a = performance_values(gt_a, pred_a, task);
+    const PerformanceValues perf_b = performance_values(gt_b, pred_b, task);
     for (size_t k = 0; k < sc.counted.size(); ++k) {
       RockPairPoint p;
       p.scene = static_cast<int>(s);

@@ -94,6 +94,10 @@ Session Session::open(const std::string& root, const SessionOptions& options) {
   // The rule every command keeps (LabelError::unusable_file): a label file that can't be read stops the study.
   for (const LabelError& e : labels.errors)
     if (e.unusable_file()) throw StudyError(e.to_string() + " (every rock of the file would count as missing)");
+  // As every command: under task segment a box without an outline would mix box and mask IoU in one number.
+  if (!labels.task_needs_outlines.empty()) throw StudyError(labels.task_needs_outlines);
+  if (labels.study.config.task == Task::kSegment)
+    class_note = "mask IoU (task segment)" + (class_note.empty() ? "" : "; " + class_note);
   RegistrationCache registration(options.cache_dir);
   parsed->hand_registrations_to(registration);
   SessionOptions with_cache = options;
@@ -386,7 +390,8 @@ void Session::recompute_performance() {
       parallel_for(d.stems.size(), 0, [&](size_t k) {
         std::vector<Box>& shown = *slots[k].second;
         shown = predictions_kept(labels_->predictions_of(d.name, m.name, d.stems[k]).boxes, conf_threshold_);
-        *slots[k].first = performance_values(labels_->gt_of(d.name, d.stems[k]).boxes, shown);
+        *slots[k].first =
+            performance_values(labels_->gt_of(d.name, d.stems[k]).boxes, shown, labels_->study.config.task);
       });
     }
   }

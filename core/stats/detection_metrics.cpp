@@ -37,7 +37,7 @@ ImageMatches match_image(const DetectionImage& im, double threshold, int max_det
     int m = -1;
     for (size_t g = 0; g < im.gt.size(); ++g) {
       if (gt_taken[g] || im.gt[g].cls != im.detections[d].cls) continue;  // per category, as COCOeval
-      const double v = iou(im.detections[d], im.gt[g]);
+      const double v = instance_iou(im.detections[d], im.gt[g], im.task);
       if (v < best) continue;
       best = v;
       m = static_cast<int>(g);

@@ -9,9 +9,11 @@
 
 namespace ipd {
 
-// One image: its GT boxes and its detections (Box::conf is the score).
+// One image: its GT boxes and its detections (Box::conf is the score), matched by box IoU (detect) or by mask IoU
+// (segment: pycocotools' iouType 'segm'), through the one matching below.
 struct DetectionImage {
   std::vector<Box> gt, detections;
+  Task task = Task::kDetect;
 };
 
 // pycocotools' COCOeval for one category, area "all", no crowd: per image the detections sorted by score

@@ -209,14 +209,15 @@ struct PairValue {
 };
 
 // The property a breakdown bins by, of ref rock i of a scene (gt: the scene's GT in domain a, pred its
-// predictions, perf their performance values when binning by confidence).
+// predictions, perf their performance values when binning by confidence). Size is the mask's area in the
+// segment task (what its performance value measures), the box's in detect.
 double rock_property(BreakdownBy by, const std::vector<Box>& gt, const std::vector<Box>& pred,
-                     const PerformanceValues& perf, int i, double pixel_area) {
+                     const PerformanceValues& perf, int i, double pixel_area, Task task) {
   const Box& box = gt[i];
   double v = 0;
   switch (by) {
     case BreakdownBy::kSize:
-      v = box.area() * pixel_area;
+      v = (task == Task::kSegment && box.outline ? box.outline->area : box.area()) * pixel_area;
       break;
     case BreakdownBy::kRegion:
       v = std::clamp(static_cast<int>(std::floor(box.cy * 3)), 0, 2) * 3 +
@@ -239,9 +240,9 @@ std::vector<PairValue> pair_values(const StudyLabels& labels, const TableCell& c
     const auto& gt = labels.gt_of(cell.a, sc.stem).boxes;
     const auto& pred = labels.predictions_of(cell.a, cell.model, sc.stem).boxes;
     PerformanceValues perf;
-    if (by == BreakdownBy::kConfidence) perf = performance_values(gt, pred);
+    if (by == BreakdownBy::kConfidence) perf = performance_values(gt, pred, labels.study.config.task);
     for (size_t k = 0; k < sc.counted.size(); ++k) {
-      const double v = rock_property(by, gt, pred, perf, sc.counted[k].first, pixel_area);
+      const double v = rock_property(by, gt, pred, perf, sc.counted[k].first, pixel_area, labels.study.config.task);
       pairs.push_back({static_cast<int>(s), v, std::abs(sc.perf_a[k] - sc.perf_b[k])});
     }
   }

@@ -251,6 +251,11 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
           throw StudyError(fmt::format("{}:{}: classes lists '{}' twice; each class once, at its number", file, line,
                                        quoted_for_message(c.class_names[k])));
       }
+    } else if (key == "task") {
+      const std::string word = yaml_get<std::string>(v, file, "task");
+      if (!parse_task(word, &c.task))
+        throw StudyError(fmt::format("{}:{}: task must be detect (box IoU) or segment (mask IoU), found '{}'", file,
+                                     line, quoted_for_message(word)));
     } else if (key == "conf_threshold") {
       c.conf_threshold = yaml_get<double>(v, file, "conf_threshold");
       if (!(c.conf_threshold >= 0 && c.conf_threshold <= 1))
@@ -276,8 +281,8 @@ StudyConfig parse_study_config_nodes(const std::string& text, const std::string&
       parse_registration(v, file, line, &c);
     } else {
       throw StudyError(
-          fmt::format("{}:{}: unknown setting '{}' (expected rock_class, classes, conf_threshold, image_size, domains, "
-                      "models, registration)",
+          fmt::format("{}:{}: unknown setting '{}' (expected rock_class, classes, task, conf_threshold, image_size, "
+                      "domains, models, registration)",
                       file, line, quoted_for_message(key)));
     }
   }

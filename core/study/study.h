@@ -33,7 +33,10 @@ struct StudyConfig {
   std::vector<std::string> class_names;  // study.yaml's `classes`, by class number; empty when not given
   std::string rock_class_word;           // `rock_class: rock` (a name), resolved once the classes are read
   int rock_class_line = 0;
-  double conf_threshold = 0;                      // predictions below this are dropped
+  double conf_threshold = 0;  // predictions below this are dropped
+  // What a performance value is: a box's IoU (detect, the paper) or an outline's mask IoU (segment);
+  // `task` in study.yaml, `--task` on the command line.
+  Task task = Task::kDetect;
   int image_width = 0, image_height = 0;          // for labels-only studies; 0 when unknown
   std::vector<std::string> domain_order;          // optional preferred order
   std::map<std::string, std::string> trained_on;  // model -> domain

@@ -117,6 +117,22 @@ int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bound
   return p.left_out;
 }
 
+void dashed_polygon(Canvas& c, const std::vector<Pt>& points, Colour colour, double width_pt, double dash) {
+  const double gap = 0.6 * dash;
+  double phase = 0;  // carried from edge to edge, so short edges of a fine outline still show dashes
+  for (size_t k = 0; k < points.size(); ++k) {
+    const Pt a = points[k], b = points[(k + 1) % points.size()];
+    const double len = std::hypot(b.x - a.x, b.y - a.y);
+    if (len <= 0) continue;
+    const double ux = (b.x - a.x) / len, uy = (b.y - a.y) / len;
+    for (double t = -phase; t < len; t += dash + gap) {
+      const double s = std::max(0.0, t), e = std::min(len, t + dash);
+      if (e > s) c.line({a.x + ux * s, a.y + uy * s}, {a.x + ux * e, a.y + uy * e}, colour, width_pt);
+    }
+    phase = std::fmod(phase + len, dash + gap);
+  }
+}
+
 void dashed_rect(Canvas& c, const PtRect& r, Colour colour, double width_pt, double dash) {
   const double gap = 0.6 * dash;
   const auto edge = [&](Pt a, Pt b) {

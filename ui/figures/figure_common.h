@@ -42,6 +42,8 @@ struct LegendItem {
 
 // A box outline in dashes starting at each corner (so corners always show), `dash` long with `dash` * 0.6 gaps.
 void dashed_rect(Canvas& c, const PtRect& r, Colour colour, double width_pt, double dash);
+// A closed polygon's edges dashed like dashed_rect's (a predicted outline).
+void dashed_polygon(Canvas& c, const std::vector<Pt>& points, Colour colour, double width_pt, double dash);
 // Items flowing left to right, wrapping to new rows; returns the height used.
 double draw_legend(Canvas& c, Pt at, double width, const TextStyle& st, const std::vector<LegendItem>& items);
 

@@ -20,12 +20,13 @@ constexpr double kContext = 2.5;     // a crop spans this many times its rock's 
 constexpr double kMinEntryPt = 110;  // an entry (two crops) is at least this wide: 2 per single column
 constexpr Colour kPlain = rgb(92, 92, 98);
 
-GalleryCrop crop_of(const std::vector<Box>& gt, const std::vector<Box>& pred, int rock, double perf, int w, int h) {
+GalleryCrop crop_of(const std::vector<Box>& gt, const std::vector<Box>& pred, int rock, double perf, int w, int h,
+                    Task task) {
   GalleryCrop c;
   c.rock = rock;
   c.perf = perf;
   c.gt = gt[rock];
-  const int best = performance_values(gt, pred).best_prediction[rock];
+  const int best = performance_values(gt, pred, task).best_prediction[rock];
   if (best >= 0) c.pred = pred[best], c.has_pred = true;
   c.region = gallery_crop_region(c.gt, w, h);
   return c;
@@ -108,9 +109,9 @@ GalleryInput gallery_input(const StudyLabels& labels, const TableCell& cell, int
     e.stem = cell.per_scene[p.scene].stem;
     e.diff = p.abs_diff;
     e.a = crop_of(labels.gt_of(cell.a, e.stem).boxes, labels.predictions_of(cell.a, cell.model, e.stem).boxes, p.rock_a,
-                  p.perf_a, wa, ha);
+                  p.perf_a, wa, ha, labels.study.config.task);
     e.b = crop_of(labels.gt_of(cell.b, e.stem).boxes, labels.predictions_of(cell.b, cell.model, e.stem).boxes, p.rock_b,
-                  p.perf_b, wb, hb);
+                  p.perf_b, wb, hb, labels.study.config.task);
     in.entries.push_back(std::move(e));
   }
   return in;

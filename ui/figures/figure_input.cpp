@@ -73,6 +73,7 @@ SceneFigureInput scene_input_from_study(const StudyLabels& labels, const std::st
   if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
   in.label_fingerprint = label_set_fingerprint(st);
   in.class_name = provenance_class(labels);
+  in.task = labels.study.config.task;
   read_scene_review(labels, swapped ? b : a, swapped ? a : b, stem, p.pairs, in);
   return in;
 }
@@ -104,6 +105,7 @@ SceneFigureInput scene_input_from_session(const Session& s, int scene) {
   if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
   in.label_fingerprint = label_set_fingerprint(st);
   in.class_name = provenance_class(s.labels());
+  in.task = s.labels().study.config.task;
   const ReviewState& review = s.review_of(s.pair_index());
   in.reviewed = review.reviewed.at(scene) != 0;
   // Checks that are pairs now (one whose pair was edited away is kept, but does not apply).

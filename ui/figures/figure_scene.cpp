@@ -24,7 +24,7 @@ SceneNumbers scene_numbers(const SceneFigureInput& in) {
   p.excluded_b = in.excluded_b;
   p.count_a = int(in.gt_a.size());
   p.count_b = int(in.gt_b.size());
-  const SceneIpd s = scene_ipd(p, in.gt_a, in.pred_a, in.gt_b, in.pred_b);
+  const SceneIpd s = scene_ipd(p, in.gt_a, in.pred_a, in.gt_b, in.pred_b, in.task);
   return {s.ipd(), s.pairs};
 }
 
@@ -56,6 +56,12 @@ struct PanelMap {
   PtRect raw(const Box& b) const {
     const Pt p0 = (*this)(b.x0(), b.y0()), p1 = (*this)(b.x1(), b.y1());
     return {p0.x, p0.y, p1.x, p1.y};
+  }
+  std::vector<Pt> outline(const Outline& o) const {
+    std::vector<Pt> out;
+    out.reserve(o.points.size());
+    for (const Eigen::Vector2d& p : o.points) out.push_back((*this)(p.x(), p.y()));
+    return out;
   }
 };
 
@@ -112,8 +118,8 @@ namespace {
 // light on a dark halo, predictions dashed and dark on a light halo (figure_common.h: greyscale and
 // colour-vision safe). Returns the notice's box, which labels keep off (empty rect with a picture).
 PtRect draw_side_boxes(Canvas& c, const PanelMap& m, const cv::Mat& picture, const std::string& problem,
-                       const std::vector<Box>& gt, const std::vector<Box>& pred, const std::vector<int>& number,
-                       const std::vector<int>& excluded, const FigureOptions& o) {
+                       const std::vector<Box>& gt, const std::vector<Box>& pred, Task task,
+                       const std::vector<int>& number, const std::vector<int>& excluded, const FigureOptions& o) {
   const FigureLayers& L = o.layers;
   const PtRect& P = m.panel;
   PtRect notice{};
@@ -138,7 +144,7 @@ PtRect draw_side_boxes(Canvas& c, const PanelMap& m, const cv::Mat& picture, con
     c.pop_clip();
   }
   const double lw = std::max(0.35, o.font_pt * 0.07), dash = std::max(1.5, 4 * lw);
-  const std::vector<int> best = performance_values(gt, pred).best_prediction;
+  const std::vector<int> best = performance_values(gt, pred, task).best_prediction;
   c.push_clip(P);
   PtRect r;
   if (L.pred)
@@ -149,6 +155,12 @@ PtRect draw_side_boxes(Canvas& c, const PanelMap& m, const cv::Mat& picture, con
       const bool is_best = std::find(best.begin(), best.end(), int(k)) != best.end();
       const double w = is_best ? lw * 1.5 : lw;
       const auto faint = [&](Colour col) { return is_best ? col : rgb(col.r, col.g, col.b, col.a * 3 / 5); };
+      if (pred[k].outline) {  // the mask the performance value is about, not its bounds
+        const std::vector<Pt> q = m.outline(*pred[k].outline);
+        dashed_polygon(c, q, faint(kLightHalo), w * kHaloRatio, dash);
+        dashed_polygon(c, q, faint(kPredC), w, dash);
+        continue;
+      }
       dashed_rect(c, m.raw(pred[k]), faint(kLightHalo), w * kHaloRatio, dash);
       dashed_rect(c, m.raw(pred[k]), faint(kPredC), w, dash);
     }
@@ -158,9 +170,15 @@ PtRect draw_side_boxes(Canvas& c, const PanelMap& m, const cv::Mat& picture, con
       if (!m.box(gt[k], r)) continue;
       const PtRect b = m.raw(gt[k]);
       const bool struck = std::find(excluded.begin(), excluded.end(), int(k)) != excluded.end();
-      c.rect(b, kDarkHalo, lw * kHaloRatio);
+      if (gt[k].outline) {
+        const std::vector<Pt> q = m.outline(*gt[k].outline);
+        c.polyline(q, kDarkHalo, lw * kHaloRatio, true);
+        c.polyline(q, colour_of(k), lw, true);
+      } else {
+        c.rect(b, kDarkHalo, lw * kHaloRatio);
+        c.rect(b, colour_of(k), lw);
+      }
       if (struck) c.line({b.x0, b.y0}, {b.x1, b.y1}, kDarkHalo, lw * kHaloRatio);
-      c.rect(b, colour_of(k), lw);
       if (struck) c.line({b.x0, b.y0}, {b.x1, b.y1}, colour_of(k), lw);
     }
   c.pop_clip();
@@ -174,7 +192,7 @@ struct SideLabels {
   std::vector<Label> labels;
   std::vector<int> pair;
 };
-SideLabels side_labels(const PanelMap& m, const std::vector<Box>& gt, const std::vector<Box>& pred,
+SideLabels side_labels(const PanelMap& m, const std::vector<Box>& gt, const std::vector<Box>& pred, Task task,
                        const std::vector<int>& number, const std::set<int>& unnumbered, const FigureOptions& o) {
   const FigureLayers& L = o.layers;
   SideLabels out;
@@ -213,7 +231,7 @@ SideLabels side_labels(const PanelMap& m, const std::vector<Box>& gt, const std:
       double matched_iou = 0;
       for (size_t j = 0; j < gt.size(); ++j) {
         if (gt[j].cls != pred[k].cls) continue;  // a rock matches its own class
-        if (const double v = iou(gt[j], pred[k]); v > matched_iou) matched = int(j), matched_iou = v;
+        if (const double v = instance_iou(gt[j], pred[k], task); v > matched_iou) matched = int(j), matched_iou = v;
       }
       Label l{fmt::format("{:.2f}", pred[k].conf), style(secondary_pt(o.font_pt), kPredTextC), r, true, 1};
       for (size_t j = 0; j < gt.size(); ++j)
@@ -291,8 +309,8 @@ PairsLeftOut draw_pair_labels(Canvas& c, const PanelMap& left, const PanelMap& r
   const TwoPanelLabels t = place_on_both(
       c,
       [&](int k, const std::set<int>& unnumbered) {
-        return k == 0 ? side_labels(left, in.gt_a, in.pred_a, num_a, unnumbered, o)
-                      : side_labels(right, in.gt_b, in.pred_b, num_b, unnumbered, o);
+        return k == 0 ? side_labels(left, in.gt_a, in.pred_a, in.task, num_a, unnumbered, o)
+                      : side_labels(right, in.gt_b, in.pred_b, in.task, num_b, unnumbered, o);
       },
       bounds, obstacles);
   PairsLeftOut out;
@@ -399,9 +417,9 @@ PairsLayout draw_pairs_figure(DisplayList& out, const SceneFigureInput& in, cons
   const std::vector<int> num_a = pair_numbers(in.pairs, in.gt_a.size(), true);
   const std::vector<int> num_b = pair_numbers(in.pairs, in.gt_b.size(), false);
   const PtRect notice_a =
-      draw_side_boxes(out, left, in.picture_a, in.problem_a, in.gt_a, in.pred_a, num_a, in.excluded_a, o);
+      draw_side_boxes(out, left, in.picture_a, in.problem_a, in.gt_a, in.pred_a, in.task, num_a, in.excluded_a, o);
   const PtRect notice_b =
-      draw_side_boxes(out, right, in.picture_b, in.problem_b, in.gt_b, in.pred_b, num_b, in.excluded_b, o);
+      draw_side_boxes(out, right, in.picture_b, in.problem_b, in.gt_b, in.pred_b, in.task, num_b, in.excluded_b, o);
   const PairsLeftOut left_out = draw_pair_labels(out, left, right, in, num_a, num_b, notice_a, notice_b, o);
   y += ph + 0.35 * F;
   if (o.layers.legend) {

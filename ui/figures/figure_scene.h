@@ -30,6 +30,7 @@ struct SceneFigureInput {
   int image_w = 1936, image_h = 1216;  // aspect when there is no picture
   std::string label_fingerprint;       // of the study's label files (label_set_fingerprint), for the metadata
   std::string class_name;              // the class shown (provenance_class): "" for an unnamed one-class study
+  Task task = Task::kDetect;           // what a performance value is (box or mask IoU)
   // The scene's review marks (core/session/review_state.h), so the figure's note says what the table's does.
   bool reviewed = false;
   int pairs_checked = 0;  // checked as correct and still pairs

@@ -3,6 +3,7 @@
 #include "ui/gui/rock_numbers.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -30,6 +31,41 @@ void text_with_backdrop(ImDrawList* dl, ImVec2 at, ImU32 colour, const char* tex
   const ImVec2 ext = font->CalcTextSizeA(size, FLT_MAX, 0.0f, text);
   dl->AddRectFilled({at.x - 1, at.y}, {at.x + ext.x + 1, at.y + ext.y}, IM_COL32(0, 0, 0, 170));
   dl->AddText(font, size, at, colour, text);
+}
+
+// An instance's outline on screen: solid (ground truth) or dashed (a prediction), closed.
+void draw_outline(ImDrawList* dl, const Placement& pl, const Outline& o, ImU32 colour, float thickness, bool dashed) {
+  std::vector<ImVec2> q;
+  q.reserve(o.points.size());
+  for (const Eigen::Vector2d& p : o.points) q.push_back(pl.to_screen(p.x(), p.y()));
+  if (!dashed) {
+    dl->AddPolyline(q.data(), static_cast<int>(q.size()), colour, ImDrawFlags_Closed, thickness);
+    return;
+  }
+  // Dashes of 6 px with gaps of 4 px, continued from one edge to the next so corners don't bunch them up.
+  constexpr float kDash = 6, kPeriod = 10;
+  float phase = 0;
+  for (size_t k = 0; k < q.size(); ++k) {
+    const ImVec2 a = q[k], b = q[(k + 1) % q.size()];
+    const float dx = b.x - a.x, dy = b.y - a.y, len = std::sqrt(dx * dx + dy * dy);
+    if (len <= 0) continue;
+    for (float t = -phase; t < len; t += kPeriod) {
+      const float t0 = std::max(t, 0.0f), t1 = std::min(t + kDash, len);
+      if (t1 > t0)
+        dl->AddLine({a.x + dx * t0 / len, a.y + dy * t0 / len}, {a.x + dx * t1 / len, a.y + dy * t1 / len}, colour,
+                    thickness);
+    }
+    phase = std::fmod(phase + len, kPeriod);
+  }
+}
+
+// The outline's region filled with a translucent colour (the hovered rock's mask).
+void fill_outline(ImDrawList* dl, const Placement& pl, const Outline& o, ImU32 colour) {
+  const std::vector<int> t = outline_triangles(o);
+  for (size_t k = 0; k + 2 < t.size(); k += 3) {
+    const Eigen::Vector2d &a = o.points[t[k]], &b = o.points[t[k + 1]], &c = o.points[t[k + 2]];
+    dl->AddTriangleFilled(pl.to_screen(a.x(), a.y()), pl.to_screen(b.x(), b.y()), pl.to_screen(c.x(), c.y()), colour);
+  }
 }
 
 }  // namespace
@@ -79,7 +115,11 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
       const Box& b = (*in.predictions)[k];
       const ImVec2 q0 = pl.to_screen(b.x0(), b.y0()), q1 = pl.to_screen(b.x1(), b.y1());
       const bool best = is_best[k] != 0;
-      dl->AddRect(q0, q1, best ? kRed : IM_COL32(235, 40, 40, 140), 0, 0, best ? 2 * thick : thick);
+      const ImU32 colour = best ? kRed : IM_COL32(235, 40, 40, 140);
+      if (b.outline)
+        draw_outline(dl, pl, *b.outline, colour, best ? 2 * thick : thick, true);
+      else
+        dl->AddRect(q0, q1, colour, 0, 0, best ? 2 * thick : thick);
       if (layers.confidences && q1.x - q0.x >= in.min_box_px_for_confidence) confidences.push_back({q0, q1, b.conf, k});
     }
   }
@@ -99,7 +139,12 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
       if (int(k) == in.highlight) colour = kHighlight;
       if (int(k) == in.selected) colour = kSelected;
       const bool wide = int(k) == in.highlight || int(k) == in.selected || sampled || suspect;
-      dl->AddRect(q0, q1, colour, 0, 0, wide ? 2.5f * thick : thick);
+      if (b.outline) {
+        if (hovered == int(k)) fill_outline(dl, pl, *b.outline, (colour & ~IM_COL32_A_MASK) | IM_COL32(0, 0, 0, 70));
+        draw_outline(dl, pl, *b.outline, colour, wide ? 2.5f * thick : thick, false);
+      } else {
+        dl->AddRect(q0, q1, colour, 0, 0, wide ? 2.5f * thick : thick);
+      }
       if (excluded) dl->AddLine(q0, q1, colour, thick);
       if (layers.indices) {
         // Partners share their pair's number; an unpaired rock shows its own 1-based index after an "x".

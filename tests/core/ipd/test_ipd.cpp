@@ -157,7 +157,7 @@ TEST(Ipd, NoPairsGivesNanNotACrash) {
   SceneIpd s;
   EXPECT_TRUE(std::isnan(s.ipd()));
   ScenePairing p;
-  const SceneIpd e = scene_ipd(p, {}, {}, {}, {});
+  const SceneIpd e = scene_ipd(p, {}, {}, {}, {}, Task::kDetect);
   EXPECT_EQ(e.pairs, 0);
   EXPECT_TRUE(std::isnan(e.ipd()));
 }

@@ -137,12 +137,12 @@ TEST(Provenance, RockExportRowsSayHandAndExcluded) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out,
             "model,trained_on,a,b,scene,class,index_a,index_b,perf_a,perf_b,diff,cx_a,cy_a,w_a,h_a,cx_b,cy_b,w_b,h_b,"
-            "residual_px,source,excluded,label_fingerprint,scenes_with_hand_pairs,pairs_set_by_hand,rocks_excluded,"
-            "scenes_reviewed,pairs_checked,scenes_with_stale_hand_pairs\n"
-            "det,,real,synth,s1,0,0,1,1,0.333333333333,0.666666666667,0.2,0.2,0.1,0.1,0.2,0.2,0.1,0.1,,hand,false,"
+            "residual_px,source,excluded,mask_area_a,mask_area_b,label_fingerprint,scenes_with_hand_pairs,"
+            "pairs_set_by_hand,rocks_excluded,scenes_reviewed,pairs_checked,scenes_with_stale_hand_pairs\n"
+            "det,,real,synth,s1,0,0,1,1,0.333333333333,0.666666666667,0.2,0.2,0.1,0.1,0.2,0.2,0.1,0.1,,hand,false,,,"
             "d189a61c07b5,1,1,1,0,0,0\n"
-            "det,,real,synth,s1,0,1,,0,,,0.6,0.6,0.1,0.1,,,,,,hand,true,d189a61c07b5,1,1,1,0,0,0\n"
-            "det,,real,synth,s1,0,,0,,0,,,,,,0.6,0.6,0.1,0.1,,hand,false,d189a61c07b5,1,1,1,0,0,0\n");
+            "det,,real,synth,s1,0,1,,0,,,0.6,0.6,0.1,0.1,,,,,,hand,true,,,d189a61c07b5,1,1,1,0,0,0\n"
+            "det,,real,synth,s1,0,,0,,0,,,,,,0.6,0.6,0.1,0.1,,hand,false,,,d189a61c07b5,1,1,1,0,0,0\n");
   r = test::run_ipd("export rocks " + d.path() + " --unpaired --no-cache --format json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json rows = nlohmann::json::parse(r.out);

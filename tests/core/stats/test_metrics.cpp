@@ -156,7 +156,7 @@ TEST(Metrics, ExportRowsReproduceTheTable) {
   const std::string csv = rock_rows_csv(rows);
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
             "model,trained_on,a,b,scene,class,index_a,index_b,perf_a,perf_b,diff,cx_a,cy_a,w_a,h_a,cx_b,cy_b,w_b,h_b,"
-            "residual_px,source,excluded");
+            "residual_px,source,excluded,mask_area_a,mask_area_b");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), static_cast<long>(rows.size()) + 1);
 }
 

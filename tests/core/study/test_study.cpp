@@ -87,10 +87,11 @@ TEST(Study, ClearErrorsForUnusableStudies) {
     open_study(d.path());
     FAIL();
   } catch (const StudyError& e) {
-    EXPECT_EQ(std::string(e.what()),
-              d / "study.yaml" +
-                  ":2: unknown setting 'conf_treshold' (expected rock_class, classes, conf_threshold, image_size, "
-                  "domains, models, registration)");
+    EXPECT_EQ(
+        std::string(e.what()),
+        d / "study.yaml" +
+            ":2: unknown setting 'conf_treshold' (expected rock_class, classes, task, conf_threshold, image_size, "
+            "domains, models, registration)");
   }
   test::write_text(d / "study.yaml", "registration: {method: icp}\n");
   EXPECT_THROW(open_study(d.path()), StudyError);
@@ -118,7 +119,7 @@ TEST(Study, MessagesQuoteAtMostFortyCharactersOfTheFile) {
   const std::string shown = std::string(37, 'r') + "...";
   EXPECT_EQ(test::study_yaml_error(long_word + ": 1\n"),
             "study.yaml:1: unknown setting '" + shown +
-                "' (expected rock_class, classes, conf_threshold, image_size, domains, models, registration)");
+                "' (expected rock_class, classes, task, conf_threshold, image_size, domains, models, registration)");
   EXPECT_EQ(
       test::study_yaml_error("registration: {" + long_word + ": 1}\n"),
       "study.yaml:1: unknown registration setting '" + shown + "' (expected method, seed, trials, gate, budget_ms)");
