@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
@@ -36,7 +37,6 @@ struct Image {
   std::string file, stem;
   double w = 0, h = 0;
   std::vector<Box> gt, predictions;
-  std::vector<CocoSegmentation> gt_shapes, prediction_shapes;  // each box's segmentation (none: empty)
 };
 
 // A COCO [x, y, w, h] box in pixels to a normalised YOLO box; empty string when fine, else what's wrong.
@@ -226,11 +226,25 @@ struct BoxSink {
         errors.push_back({file, 0, where + ": " + bad});
         return;
       }
-    report->polygons += shape.polygons.empty() ? 0 : 1;
+    if (!shape.polygons.empty()) {
+      // Written as its YOLO-seg line (several parts joined into one contour); read back, the box is its bounds.
+      const std::vector<double> merged = merge_polygon_parts(shape.polygons);
+      std::vector<Eigen::Vector2d> points;
+      for (size_t k = 0; k + 1 < merged.size(); k += 2) points.emplace_back(merged[k], merged[k + 1]);
+      auto outline = std::make_shared<Outline>();
+      std::string why = make_outline(std::move(points), outline.get());
+      if (why.empty() && (outline->x1 - outline->x0 < kMinBoxSide || outline->y1 - outline->y0 < kMinBoxSide))
+        why = "expected an outline at least a millionth of the picture wide and high";
+      if (!why.empty()) {
+        errors.push_back({file, 0, where + ": segmentation: " + why});
+        return;
+      }
+      b.outline = std::move(outline);
+      ++report->polygons;
+    }
     report->rle_masks += shape.rle ? 1 : 0;
     if (!prediction) {
       im->second.gt.push_back(b);
-      im->second.gt_shapes.push_back(std::move(shape));
       ++report->boxes;
       return;
     }
@@ -243,7 +257,6 @@ struct BoxSink {
     }
     b.conf = a["score"];
     im->second.predictions.push_back(b);
-    im->second.prediction_shapes.push_back(std::move(shape));
     ++report->detections;
   }
 };

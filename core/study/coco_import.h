@@ -37,7 +37,8 @@ struct CocoImportOptions {
 struct CocoImportReport {
   int images = 0, boxes = 0, detections = 0, linked_images = 0;
   int categories = 0;
-  // Annotations and detections with a segmentation: polygons, and run-length masks (written as their boxes).
+  // Annotations and detections with a segmentation: polygons (written as YOLO-seg outlines), and run-length
+  // masks (written as their boxes: a label line holds an outline, not a mask).
   int polygons = 0, rle_masks = 0;
   std::vector<std::string> classes;  // classes[k]: the name of category id k, the YOLO class k ("" for no category)
   std::vector<LabelError> errors;    // all of them; nothing is written when any is fatal
