@@ -9,6 +9,7 @@
 #include <set>
 
 #include "core/study/study_names.h"
+#include "core/study/yolo_source.h"
 #include "core/util/atomic_file.h"
 #include "core/util/contained_file.h"
 #include "core/util/json_input.h"
@@ -425,19 +426,6 @@ Domain scan_domain(const fs::path& root, const std::string& name, std::set<std::
   return d;
 }
 
-// A YOLO dataset or a labelling tool's export named where a study was expected: said, with the command that
-// brings it in as a domain.
-std::string dataset_hint(const fs::path& root, const std::string& shown) {
-  std::error_code ec;
-  for (const char* marker : {"data.yaml", "data.yml", "obj.names", "classes.txt", "labels", "train/labels"})
-    if (fs::exists(fs::symlink_status(root / marker, ec)))
-      return fmt::format(
-          "; it holds {}, as a YOLO dataset or a labelling tool's export does: ipd import yolo {} --out "
-          "STUDY/<domain> brings it into a study (docs/import.md)",
-          marker, shown);
-  return {};
-}
-
 }  // namespace
 
 Study open_study(const std::string& root_in) {
@@ -466,7 +454,7 @@ Study open_study(const std::string& root_in) {
   }
   if (names.empty())
     throw StudyError(root_in + ": no domains found (expected subdirectories like real/labels/ with YOLO label files)" +
-                     dataset_hint(root, root_in));
+                     yolo_dataset_hint(root.string(), root_in));
   if (names.size() > kMaxDomains)
     throw StudyError(
         fmt::format("{}: {} domains, more than the {} a study may hold (every pair of domains is "

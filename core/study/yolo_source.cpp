@@ -391,6 +391,17 @@ YoloSource locate(const std::string& src) {
 
 }  // namespace
 
+std::string yolo_dataset_hint(const std::string& folder, const std::string& shown) {
+  std::error_code ec;
+  for (const char* marker : {"data.yaml", "data.yml", "obj.names", "classes.txt", "labels", "train/labels"})
+    if (fs::exists(fs::symlink_status(fs::path(folder) / marker, ec)))
+      return fmt::format(
+          "; it holds {}, as a YOLO dataset or a labelling tool's export does: ipd import yolo {} --out "
+          "STUDY/<domain> brings it into a study (docs/import.md)",
+          marker, shown);
+  return {};
+}
+
 bool is_picture_name(const std::string& file_name) {
   static const std::set<std::string> kExtensions = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".webp"};
   return kExtensions.count(lower(fs::path(file_name).extension().string())) > 0;

@@ -47,6 +47,11 @@ bool has_upload_prefix(const std::string& stem);
 // pictures or label files that become one scene, and a split name the source does not have.
 YoloSource find_yolo_source(const std::string& src, const std::string& split);
 
+// When `folder` (named where a study was expected, as `shown`) holds what a YOLO dataset or a labelling tool's
+// export holds (data.yaml, obj.names, classes.txt, labels/, train/labels/): "; it holds X, as ...: ipd import yolo
+// SHOWN --out STUDY/<domain> brings it into a study (docs/import.md)", to end a "no domains found"; else "".
+std::string yolo_dataset_hint(const std::string& folder, const std::string& shown);
+
 // The image extensions a study reads (lower case, with the dot).
 bool is_picture_name(const std::string& file_name);
 
