@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <set>
 
 #include <cstdlib>
 
@@ -62,6 +64,17 @@ bool report_label_errors(const std::vector<LabelError>& errors, bool skip_bad_li
     const bool warn = skip_bad_lines && e.malformed_lines() > 0;
     fmt::print(stderr, "{}{}\n", warn ? "warning: " : "", e.to_string());
   }
+  // A run saved without confidences fails every line the same way: said once per folder, with the way out.
+  std::set<std::string> runs_without_conf;
+  for (const auto& e : errors)
+    if (e.message.rfind("expected 6 columns (class cx cy w h conf), found 5", 0) == 0 &&
+        runs_without_conf.insert(std::filesystem::path(e.file).parent_path().string()).second)
+      fmt::print(stderr,
+                 "{}/: its lines have no confidence column, as a YOLO run saved without it; run the detector again "
+                 "with it (yolov5 detect.py --save-txt --save-conf, yolo predict save_txt=True save_conf=True), or "
+                 "bring the run in with ipd import predictions RUN --out STUDY/<domain> --model M --no-conf "
+                 "(docs/import.md)\n",
+                 std::filesystem::path(e.file).parent_path().string());
   if (file_problems) return true;
   if (skip_bad_lines) {
     fmt::print(stderr, "warning: {} malformed line(s) skipped (--skip-bad-lines)\n", lines);
@@ -90,6 +103,24 @@ bool report_unusable_pairs(const std::vector<PairsProblem>& problems, bool skip_
              "to use registration for them\n",
              unusable);
   return true;
+}
+
+bool report_layout_problems(const std::vector<LayoutProblem>& problems, bool skip_bad_lines,
+                            std::vector<std::string>* warnings) {
+  bool stop = false;
+  for (const LayoutProblem& p : problems) {
+    if (p.removes_most && !skip_bad_lines) {
+      fmt::print(stderr, "error: {}\n", p.message);
+      stop = true;
+    } else {
+      warnings->push_back(p.message);
+    }
+  }
+  if (stop)
+    fmt::print(stderr,
+               "error: the numbers would leave out most of the study's scenes or rocks; fix the layout, or pass "
+               "--skip-bad-lines to print them anyway\n");
+  return stop;
 }
 
 Progress::Progress(std::string what) : what_(std::move(what)), tty_(::isatty(2) == 1) {}

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/ipd/ipd.h"
+#include "core/ipd/study_layout.h"
 
 namespace ipd::cli {
 
@@ -23,6 +24,10 @@ void report_class_notes(const StudyLabels& labels);
 // printed as warnings here) while registration counts for those scenes.
 bool report_unusable_pairs(const std::vector<PairsProblem>& problems, bool skip_bad_lines,
                            std::vector<std::string>* warnings);
+// Layout problems (study_layout.h) that took most of a number's scenes or rocks: printed as errors (true: fatal,
+// nothing is printed from such a study), or with --skip-bad-lines added to `warnings` like every other problem.
+bool report_layout_problems(const std::vector<LayoutProblem>& problems, bool skip_bad_lines,
+                            std::vector<std::string>* warnings);
 
 // The arguments after the program name, reversed (as CLI::App::parse takes them), with `--ci 0.9` joined
 // into `--ci=0.9`: --ci is a flag with an optional level, so a level must be attached to it, and a

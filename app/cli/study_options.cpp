@@ -162,6 +162,9 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   out.table = compute_cross_table(out.labels, opt);
   parsed.save(out.labels, registration);
   if (report_unusable_pairs(out.table.pairs_problems, o.skip_bad_lines, &out.table.warnings)) return std::nullopt;
+  if (report_layout_problems(layout_problems(out.labels, out.table.columns, out.table.models), o.skip_bad_lines,
+                             &out.table.warnings))
+    return std::nullopt;
   for (const auto& w : out.table.warnings) fmt::print(stderr, "warning: {}\n", w);
   out.bootstrap = o.bootstrap_options();
   if (!o.seed) out.bootstrap.seed = opt.registration.seed;

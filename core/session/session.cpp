@@ -10,6 +10,7 @@
 #include <set>
 
 #include "core/geometry/confidence_threshold.h"
+#include "core/ipd/study_layout.h"
 #include "core/ipd/study_pipeline.h"
 #include "core/registration/registration_cache.h"
 #include "core/util/atomic_file.h"
@@ -171,6 +172,10 @@ Session::Session(StudyLabels labels, const SessionOptions& options)
         problems.push_back(missing_predictions_problem(st, m.name, d.name));
       else if (auto p = missing_prediction_files_problem(labels_ref, m.name, d.name))
         problems.push_back(std::move(*p));
+  // What the layout leaves out (two domains without a shared scene, labels in sub-folders, a prediction set
+  // nested too deep, no GT of the class): the same words `ipd table` stops with.
+  for (const LayoutProblem& p : layout_problems(labels_ref, domain_pairs(), st.models))
+    problems.push_back({{}, 0, {}, {}, {}, p.message});
   problems_ = std::make_shared<const std::vector<Problem>>(std::move(problems));
   cached_ = paired.cached_registrations;
   if (!st.models.empty()) model_ = st.models.front().name;

@@ -5,15 +5,19 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <stdexcept>
 
+#include "core/study/coco_segmentation.h"
 #include "core/study/file_sets.h"
+#include "core/study/prediction_import.h"
 #include "core/study/study.h"
 #include "core/util/atomic_file.h"
 #include "core/util/contained_file.h"
 #include "core/util/json_input.h"
+#include "core/util/json_output.h"
 #include "core/util/number_text.h"
 
 namespace fs = std::filesystem;
@@ -94,6 +98,7 @@ std::string CocoImportOptions::validate() const {
   if (annotations.empty()) return "annotations must name the COCO instances file, got an empty path";
   if (out_dir.empty()) return "out_dir must name the domain directory to fill, got an empty path";
   if (!results.empty() && model.empty()) return "model must name the prediction set when results are given, got \"\"";
+  if (predictions_only && results.empty()) return "predictions_only needs the results file, got an empty path";
   return {};
 }
 
@@ -214,6 +219,30 @@ struct BoxSink {
       errors.push_back({file, 0, where + ": " + why});
       return;
     }
+    CocoSegmentation shape;
+    if (a.contains("segmentation"))
+      if (const std::string bad = read_coco_segmentation(a["segmentation"], im->second.w, im->second.h, &shape);
+          !bad.empty()) {
+        errors.push_back({file, 0, where + ": " + bad});
+        return;
+      }
+    if (!shape.polygons.empty()) {
+      // Written as its YOLO-seg line (several parts joined into one contour); read back, the box is its bounds.
+      const std::vector<double> merged = merge_polygon_parts(shape.polygons);
+      std::vector<Eigen::Vector2d> points;
+      for (size_t k = 0; k + 1 < merged.size(); k += 2) points.emplace_back(merged[k], merged[k + 1]);
+      auto outline = std::make_shared<Outline>();
+      std::string why = make_outline(std::move(points), outline.get());
+      if (why.empty() && (outline->x1 - outline->x0 < kMinBoxSide || outline->y1 - outline->y0 < kMinBoxSide))
+        why = "expected an outline at least a millionth of the picture wide and high";
+      if (!why.empty()) {
+        errors.push_back({file, 0, where + ": segmentation: " + why});
+        return;
+      }
+      b.outline = std::move(outline);
+      ++report->polygons;
+    }
+    report->rle_masks += shape.rle ? 1 : 0;
     if (!prediction) {
       im->second.gt.push_back(b);
       ++report->boxes;
@@ -231,22 +260,6 @@ struct BoxSink {
     ++report->detections;
   }
 };
-
-// A domain folder that already holds files takes a new set only when the user asked to replace it.
-void check_out_dir(const CocoImportOptions& o) {
-  std::error_code ec;
-  const fs::file_status st = fs::symlink_status(o.out_dir, ec);
-  if (!fs::exists(st)) return;
-  if (fs::is_symlink(st))
-    throw StudyError(o.out_dir + ": is a symbolic link; the import replaces a folder, never through a link");
-  if (!fs::is_directory(fs::status(o.out_dir, ec)))
-    throw StudyError(o.out_dir + ": is not a folder; ipd import coco fills a domain folder");
-  if (fs::is_empty(o.out_dir, ec) && !ec) return;
-  if (o.replace) return;
-  throw StudyError(o.out_dir +
-                   ": already exists and is not an empty directory; its labels, pictures and predictions would mix "
-                   "with the imported ones, so nothing is written (--replace replaces them whole)");
-}
 
 // What the folder being replaced holds besides the new set, moved into the new folder as it is (other
 // prediction sets, a picture the import names but could not find, files of other kinds), and the old set's
@@ -305,11 +318,11 @@ void write_study(const CocoImportOptions& o, const std::map<long, Image>& images
   std::set<std::string> labels = {"classes.txt"}, pictures, written_pictures;
   for (const auto& [id, img] : images) {
     labels.insert(img.stem + ".txt");
-    write_file_beneath(root, staged.inside("labels/" + img.stem + ".txt"),
-                       labels_text(img.gt, LabelKind::kGroundTruth, LabelDigits::kExact));
+    write_new_file_beneath(root, staged.inside("labels/" + img.stem + ".txt"),
+                           labels_text(img.gt, LabelKind::kGroundTruth, LabelDigits::kExact));
     if (!o.results.empty())
-      write_file_beneath(root, staged.inside("predictions/" + o.model + "/" + img.stem + ".txt"),
-                         labels_text(img.predictions, LabelKind::kPrediction, LabelDigits::kExact));
+      write_new_file_beneath(root, staged.inside("predictions/" + o.model + "/" + img.stem + ".txt"),
+                             labels_text(img.predictions, LabelKind::kPrediction, LabelDigits::kExact));
     if (o.images_dir.empty()) continue;
     const std::string name = fs::path(img.file).filename().string();
     pictures.insert(name);
@@ -327,16 +340,49 @@ void write_study(const CocoImportOptions& o, const std::map<long, Image>& images
   }
   std::string names;
   for (const auto& c : r->classes) names += c + "\n";
-  write_file_beneath(root, staged.inside("labels/classes.txt"), names);
+  write_new_file_beneath(root, staged.inside("labels/classes.txt"), names);
   if (staged.target_exists()) carry_over(o, staged, labels, pictures, written_pictures, r);
   std::sort(r->other_prediction_sets.begin(), r->other_prediction_sets.end());
   staged.commit();
   r->written = true;
 }
 
+// A model's results joining a domain that is there: only predictions/<model>/ is written, a file per scene.
+void write_prediction_set_only(const CocoImportOptions& o, const std::map<long, Image>& images, CocoImportReport* r) {
+  const std::vector<std::string> scenes = domain_scenes(o.out_dir);
+  const std::set<std::string> known(scenes.begin(), scenes.end());
+  std::map<std::string, std::string> files;
+  std::vector<std::string> unknown;
+  for (const auto& [id, img] : images) {
+    if (!known.count(img.stem)) {
+      unknown.push_back(img.file);
+      continue;
+    }
+    files[img.stem] = labels_text(img.predictions, LabelKind::kPrediction, LabelDigits::kExact);
+  }
+  if (!unknown.empty())
+    throw StudyError(
+        fmt::format("{}: {} image(s) are no scene of {} (e.g. '{}'); expected the COCO file the "
+                    "domain was imported from, so nothing is written",
+                    o.annotations, unknown.size(), o.out_dir, quoted_for_message(unknown.front())));
+  nlohmann::ordered_json j;
+  j["imported_with"] = "ipd import predictions";
+  j["source"] = fs::absolute(o.results).lexically_normal().string();
+  j["kind"] = "COCO results";
+  j["image_ids_from"] = fs::absolute(o.annotations).lexically_normal().string();
+  j["confidence"] = "the results' scores";
+  std::vector<std::string> empty;
+  for (const std::string& s : scenes)
+    if (!files.count(s)) empty.push_back(s);
+  j["no_detections"] = empty;
+  r->no_detection_files =
+      write_prediction_set(o.out_dir, o.model, files, scenes, dump_json_output(j, 1) + "\n", o.replace, &r->removed);
+  r->written = true;
+}
+
 CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   CocoImportReport r;
-  check_out_dir(o);
+  if (!o.predictions_only) check_domain_folder(o.out_dir, o.replace, "ipd import coco");
   const json gt = parse_json_file(o.annotations, "a COCO object {\"images\": [...], \"annotations\": [...], ...}");
   for (const char* key : {"images", "annotations", "categories"})
     if (!gt.is_object() || !gt.contains(key) || !gt[key].is_array())
@@ -344,7 +390,8 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   std::map<long, int> class_of;  // category id -> YOLO class
   read_categories(gt, o.annotations, &class_of, &r.classes);
   r.categories = static_cast<int>(class_of.size());
-  if (const std::string conflict = class_name_conflict(o.out_dir, r.classes); !conflict.empty())
+  if (const std::string conflict = o.predictions_only ? std::string() : class_name_conflict(o.out_dir, r.classes);
+      !conflict.empty())
     throw StudyError(
         fmt::format("{}: {}; a class number must be the same category in every domain of a study "
                     "(rock_class picks one number for all), so nothing is written",
@@ -363,7 +410,10 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   r.images = static_cast<int>(images.size());
   r.collisions = name_collisions(images, o.annotations);
   if (!r.collisions.empty() || (!r.errors.empty() && !o.skip_bad_entries)) return r;
-  write_study(o, images, &r);
+  if (o.predictions_only)
+    write_prediction_set_only(o, images, &r);
+  else
+    write_study(o, images, &r);
   return r;
 }
 

@@ -23,6 +23,10 @@ struct CocoImportOptions {
   // pictures and the `model` prediction set are replaced whole: files of the old set the import does not
   // write are removed, so two imports never mix.
   bool replace = false;
+  // Only the prediction set: `results` become <out_dir>/predictions/<model>/ of a domain already there (its
+  // ground truth is not touched; `annotations` only says which picture each image id is). Every scene of the
+  // domain the results have no image for gets an empty file (no detections).
+  bool predictions_only = false;
 
   // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence.
   std::string validate() const;
@@ -33,12 +37,16 @@ struct CocoImportOptions {
 struct CocoImportReport {
   int images = 0, boxes = 0, detections = 0, linked_images = 0;
   int categories = 0;
+  // Annotations and detections with a segmentation: polygons (written as YOLO-seg outlines), and run-length
+  // masks (written as their boxes: a label line holds an outline, not a mask).
+  int polygons = 0, rle_masks = 0;
   std::vector<std::string> classes;  // classes[k]: the name of category id k, the YOLO class k ("" for no category)
   std::vector<LabelError> errors;    // all of them; nothing is written when any is fatal
   // Images whose labels would overwrite each other's or the class names (same stem in two folders, an image
   // named classes.png): never skipped, nothing is written while there is one.
   std::vector<std::string> collisions;
   bool written = false;
+  int no_detection_files = 0;                      // predictions_only: scenes without an image in the results
   int removed = 0;                                 // files of the replaced set the import did not write again
   std::vector<std::string> other_prediction_sets;  // predictions/<model>/ folders a replace left as they were
 };

@@ -50,6 +50,7 @@ bool StagedFolder::target_exists() const {
 }
 
 void StagedFolder::commit() {
+  sync_file_system_beneath(parent_, temp_);  // its files were written without a sync each (write_new_file_beneath)
   std::error_code ec;
   const fs::path target = fs::path(parent_) / name_;
   if (!target_exists()) {
@@ -59,6 +60,21 @@ void StagedFolder::commit() {
       throw StudyError(target.string() + ": is a symbolic link; the import replaces a folder, never through a link");
     exchange_beneath(parent_, temp_, name_);  // temp_ now names what was there, removed by the destructor
   }
+}
+
+void check_domain_folder(const std::string& out_dir, bool replace, const std::string& command) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(out_dir, ec);
+  if (!fs::exists(st)) return;
+  if (fs::is_symlink(st))
+    throw StudyError(out_dir + ": is a symbolic link; the import replaces a folder, never through a link");
+  if (!fs::is_directory(fs::status(out_dir, ec)))
+    throw StudyError(out_dir + ": is not a folder; " + command + " fills a domain folder");
+  if (fs::is_empty(out_dir, ec) && !ec) return;
+  if (replace) return;
+  throw StudyError(out_dir +
+                   ": already exists and is not an empty directory; its labels, pictures and predictions would mix "
+                   "with the imported ones, so nothing is written (--replace replaces them whole)");
 }
 
 std::vector<std::string> label_files_in(const std::string& dir) {

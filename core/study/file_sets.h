@@ -14,7 +14,8 @@ namespace ipd {
 
 // A folder written whole beside its target (`.<name>.import-<pid>-<n>` in the same parent) and renamed in, so
 // the target is never written into and a link in it (`labels -> /x`) never written through: ipd import fills
-// it through contained_file.h's writers (parent() as the root, inside() the names), then commit() swaps it
+// it through contained_file.h's writers (parent() as the root, inside() the names; write_new_file_beneath needs
+// no sync a file: commit() syncs the file system once before the swap), then commit() swaps it
 // with the target in one step (renameat2 RENAME_EXCHANGE; a plain rename when there is none) and removes
 // what was there through descriptors. Not committed, it is removed when it goes out of scope.
 class StagedFolder {
@@ -35,6 +36,11 @@ class StagedFolder {
  private:
   std::string parent_, name_, temp_;
 };
+
+// A domain folder an import fills takes a new set only when the user asked to replace it: a folder that holds
+// files is refused (StudyError, nothing written) unless `replace`; a link or a file there always is. `command`
+// names the import in the message ("ipd import coco").
+void check_domain_folder(const std::string& out_dir, bool replace, const std::string& command);
 
 // The label files (`*.txt`, regular files or links) directly in `dir`, sorted; none when `dir` is missing.
 // Throws StudyError when `dir` exists but can't be listed.

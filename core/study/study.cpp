@@ -10,6 +10,7 @@
 
 #include "core/study/study_names.h"
 #include "core/study/study_yaml_domains.h"
+#include "core/study/yolo_source.h"
 #include "core/util/atomic_file.h"
 #include "core/util/contained_file.h"
 #include "core/util/json_input.h"
@@ -447,7 +448,8 @@ Study open_study(const std::string& root_in) {
     names.push_back(name);
   }
   if (names.empty())
-    throw StudyError(root_in + ": no domains found (expected subdirectories like real/labels/ with YOLO label files)");
+    throw StudyError(root_in + ": no domains found (expected subdirectories like real/labels/ with YOLO label files)" +
+                     yolo_dataset_hint(root.string(), root_in));
   if (names.size() > kMaxDomains)
     throw StudyError(
         fmt::format("{}: {} domains, more than the {} a study may hold (every pair of domains is "

@@ -118,7 +118,7 @@ mode_t type_at(int dir, const std::string& name, const std::string& shown) {
   throw IoError(fmt::format("{}: cannot examine: {}", shown, errno_text(errno)));
 }
 
-void write_all(int fd, const std::string& contents, const std::string& shown) {
+void write_all(int fd, const std::string& contents, const std::string& shown, bool sync = true) {
   size_t done = 0;
   while (done < contents.size()) {
     const ssize_t n = ::write(fd, contents.data() + done, contents.size() - done);
@@ -128,7 +128,7 @@ void write_all(int fd, const std::string& contents, const std::string& shown) {
     }
     done += static_cast<size_t>(n);
   }
-  if (::fsync(fd) != 0) throw IoError(shown + ": cannot write: " + errno_text(errno));
+  if (sync && ::fsync(fd) != 0) throw IoError(shown + ": cannot write: " + errno_text(errno));
 }
 
 // Reads the open regular file `fd` whole (at most `max_bytes`), named `shown` in errors.
@@ -376,6 +376,29 @@ void remove_tree_beneath(const std::string& root, const std::string& relative) {
   }
   if (::unlinkat(dir.get(), parts.back().c_str(), type == S_IFDIR ? AT_REMOVEDIR : 0) != 0 && errno != ENOENT)
     throw IoError(fmt::format("{}: cannot remove: {}", shown, errno_text(errno)));
+}
+
+void write_new_file_beneath(const std::string& root, const std::string& relative, const std::string& contents) {
+  const std::vector<std::string> parts = split_relative(root, relative);
+  std::string shown;
+  const Fd dir = open_folders(root, parts, true, "saving", &shown);
+  // O_EXCL | O_NOFOLLOW: a file or link already there is never written through.
+  const int fd = ::openat(dir.get(), parts.back().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0) throw IoError(shown + ": cannot write: " + errno_text(errno));
+  try {
+    write_all(fd, contents, shown, false);
+  } catch (...) {
+    ::close(fd);
+    ::unlinkat(dir.get(), parts.back().c_str(), 0);
+    throw;
+  }
+  if (::close(fd) != 0) throw IoError(shown + ": cannot write: " + errno_text(errno));
+}
+
+void sync_file_system_beneath(const std::string& root, const std::string& relative) {
+  const Fd dir = open_folder(root, relative, "saving");
+  if (::syncfs(dir.get()) != 0)
+    throw IoError((std::filesystem::path(root) / relative).string() + ": cannot sync: " + errno_text(errno));
 }
 
 void link_file_beneath(const std::string& root, const std::string& relative, const std::string& source) {

@@ -80,6 +80,12 @@ void exchange_beneath(const std::string& root, const std::string& a, const std::
 // Removes root/relative and everything in it, through descriptors: a link inside is removed itself, its
 // target never listed or touched. Nothing there: nothing done.
 void remove_tree_beneath(const std::string& root, const std::string& relative);
+// Writes root/relative, which must not exist (its folders are created; none may be a link), without a temp file
+// or fsync: for a folder being filled that nobody reads until it is synced (sync_file_system_beneath) and renamed
+// in whole (StagedFolder), where a sync per file cost 8 ms a file (16 s for 2,000 label files).
+void write_new_file_beneath(const std::string& root, const std::string& relative, const std::string& contents);
+// Makes everything written on the file system of root/relative durable (syncfs), once, before a rename publishes it.
+void sync_file_system_beneath(const std::string& root, const std::string& relative);
 // Puts the file `source` (a path the user named) at root/relative: a hard link, or a copy through the
 // descriptor layer when it is on another file system.
 void link_file_beneath(const std::string& root, const std::string& relative, const std::string& source);

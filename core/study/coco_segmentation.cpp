@@ -1,0 +1,149 @@
+#include "core/study/coco_segmentation.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/util/json_input.h"
+
+namespace ipd {
+
+namespace {
+
+constexpr double kPixelSlack = 1.0;  // a pixel of rounding beyond the border is fine, as for a bbox
+
+std::string read_polygons(const nlohmann::json& seg, double width, double height, CocoSegmentation* out) {
+  for (size_t k = 0; k < seg.size(); ++k) {
+    const nlohmann::json& part = seg[k];
+    if (!part.is_array() ||
+        !std::all_of(part.begin(), part.end(), [](const nlohmann::json& v) { return v.is_number(); }))
+      return fmt::format("segmentation[{}]: expected a polygon [x1, y1, x2, y2, ...] of numbers, found {}", k,
+                         describe_json(part));
+    if (part.size() % 2 != 0)
+      return fmt::format("segmentation[{}]: a polygon has an odd number of coordinates ({}); expected x, y pairs", k,
+                         part.size());
+    if (part.size() < 6)
+      return fmt::format("segmentation[{}]: a polygon of {} point(s); expected at least 3 (x, y pairs)", k,
+                         part.size() / 2);
+    std::vector<double> points;
+    for (size_t j = 0; j < part.size(); j += 2) {
+      const double x = part[j], y = part[j + 1];
+      if (!std::isfinite(x) || !std::isfinite(y) || x < -kPixelSlack || y < -kPixelSlack || x > width + kPixelSlack ||
+          y > height + kPixelSlack)
+        return fmt::format("segmentation[{}]: point {} ({}, {}) is outside the {}x{} image", k, j / 2 + 1, x, y, width,
+                           height);
+      points.push_back(std::clamp(x / width, 0.0, 1.0));
+      points.push_back(std::clamp(y / height, 0.0, 1.0));
+    }
+    out->polygons.push_back(std::move(points));
+  }
+  return {};
+}
+
+std::string read_rle(const nlohmann::json& seg, double width, double height, CocoSegmentation* out) {
+  const auto size = seg.find("size");
+  if (size == seg.end() || !size->is_array() || size->size() != 2 || !(*size)[0].is_number_integer() ||
+      !(*size)[1].is_number_integer())
+    return "expected an RLE {\"counts\", \"size\": [height, width]}, found " + describe_json(seg);
+  const long long h = (*size)[0], w = (*size)[1];
+  if (static_cast<double>(h) != height || static_cast<double>(w) != width)
+    return fmt::format("RLE size [{}, {}] is not the image's [height, width] [{}, {}]", h, w, height, width);
+  std::vector<long long> counts;
+  const auto c = seg.find("counts");
+  if (c != seg.end() && c->is_string()) {
+    if (!decode_rle_counts(c->get<std::string>(), &counts))
+      return "RLE counts: expected pycocotools' compressed counts, found " + describe_json(*c);
+  } else if (c != seg.end() && c->is_array() &&
+             std::all_of(c->begin(), c->end(), [](const nlohmann::json& v) { return v.is_number_integer(); })) {
+    for (const auto& v : *c) counts.push_back(v.get<long long>());
+  } else {
+    return "RLE counts: expected a list of run lengths or a compressed string, found " +
+           (c == seg.end() ? std::string("none") : describe_json(*c));
+  }
+  long long sum = 0;
+  for (const long long n : counts) {
+    if (n < 0) return fmt::format("RLE counts: a negative run length {}", n);
+    sum += n;
+    if (sum > h * w) break;
+  }
+  if (sum != h * w)
+    return fmt::format("RLE counts cover {} pixels; expected the {}x{} image's {} (height x width)", sum, w, h, h * w);
+  out->rle = true;
+  return {};
+}
+
+}  // namespace
+
+bool decode_rle_counts(const std::string& s, std::vector<long long>* counts) {
+  // pycocotools' rleFrString: 5 bits a character (offset 48), bit 0x20 says "more", a sign bit in the last
+  // character; from the third count on, each is stored as the difference from the one two before.
+  counts->clear();
+  size_t p = 0;
+  while (p < s.size()) {
+    long long x = 0;
+    int k = 0;
+    bool more = true;
+    while (more) {
+      if (p >= s.size() || k > 12) return false;
+      const int ch = static_cast<unsigned char>(s[p]) - 48;
+      if (ch < 0 || ch > 63) return false;
+      x |= static_cast<long long>(ch & 0x1f) << (5 * k);
+      more = (ch & 0x20) != 0;
+      ++p;
+      ++k;
+      if (!more && (ch & 0x10)) x |= -(1LL << (5 * k));
+    }
+    if (counts->size() > 2) x += (*counts)[counts->size() - 2];
+    counts->push_back(x);
+  }
+  return true;
+}
+
+std::vector<double> merge_polygon_parts(const std::vector<std::vector<double>>& parts) {
+  if (parts.size() <= 1) return parts.empty() ? std::vector<double>() : parts.front();
+  const size_t n = parts.size();
+  auto count = [&](size_t i) { return parts[i].size() / 2; };
+  // out[i]: the point of part i joined to part i + 1; in[i]: the point of part i joined to part i - 1.
+  std::vector<size_t> out(n, 0), in(n, 0);
+  for (size_t i = 0; i + 1 < n; ++i) {
+    double best = INFINITY;
+    for (size_t a = 0; a < count(i); ++a)
+      for (size_t b = 0; b < count(i + 1); ++b) {
+        const double dx = parts[i][2 * a] - parts[i + 1][2 * b], dy = parts[i][2 * a + 1] - parts[i + 1][2 * b + 1];
+        if (dx * dx + dy * dy < best) {
+          best = dx * dx + dy * dy;
+          out[i] = a;
+          in[i + 1] = b;
+        }
+      }
+  }
+  std::vector<double> merged;
+  auto walk = [&](size_t i, size_t from, size_t steps) {  // steps + 1 points of part i, from `from` on
+    for (size_t k = 0; k <= steps; ++k) {
+      const size_t at = (from + k) % count(i);
+      const double x = parts[i][2 * at], y = parts[i][2 * at + 1];
+      if (merged.size() >= 2 && merged[merged.size() - 2] == x && merged.back() == y) continue;
+      merged.push_back(x);
+      merged.push_back(y);
+    }
+  };
+  walk(0, out[0], count(0));  // the first part whole, back to its bridge
+  for (size_t i = 1; i + 1 < n; ++i) walk(i, in[i], (out[i] + count(i) - in[i]) % count(i));  // there: in -> out
+  walk(n - 1, in[n - 1], count(n - 1));                                                       // the last one whole
+  for (size_t i = n - 1; i-- > 1;) walk(i, out[i], (in[i] + count(i) - out[i]) % count(i));   // back: out -> in
+  if (merged.size() >= 4 && merged[0] == merged[merged.size() - 2] && merged[1] == merged.back())
+    merged.resize(merged.size() - 2);
+  return merged;
+}
+
+std::string read_coco_segmentation(const nlohmann::json& seg, double width, double height, CocoSegmentation* out) {
+  *out = {};
+  if (seg.is_null() || (seg.is_array() && seg.empty())) return {};
+  if (seg.is_array()) return read_polygons(seg, width, height, out);
+  if (seg.is_object()) return read_rle(seg, width, height, out);
+  return "expected segmentation polygons [[x1, y1, ...]] or an RLE {counts, size}, found " + describe_json(seg);
+}
+
+}  // namespace ipd
