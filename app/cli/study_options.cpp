@@ -162,8 +162,13 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   out.table = compute_cross_table(out.labels, opt);
   parsed.save(out.labels, registration);
   if (report_unusable_pairs(out.table.pairs_problems, o.skip_bad_lines, &out.table.warnings)) return std::nullopt;
-  if (report_layout_problems(layout_problems(out.labels, out.table.columns, out.table.models), o.skip_bad_lines,
-                             &out.table.warnings))
+  // The layout of the domain pairs computed: a ranking computes its reference's pairs only, and says of each
+  // candidate it can't rank why (a candidate sharing no scene with the reference is one row, not a stop).
+  std::vector<std::pair<std::string, std::string>> computed;
+  for (const auto& [a, b] : out.table.columns)
+    if (only_pairs_with.empty() || a == only_pairs_with || b == only_pairs_with) computed.emplace_back(a, b);
+  if (report_layout_problems(layout_problems(out.labels, computed, out.table.models),
+                             o.skip_bad_lines || !only_pairs_with.empty(), &out.table.warnings))
     return std::nullopt;
   for (const auto& w : out.table.warnings) fmt::print(stderr, "warning: {}\n", w);
   out.bootstrap = o.bootstrap_options();

@@ -420,8 +420,16 @@ std::string scene_stem(const std::string& source_stem, bool strip_upload_prefix)
   return s.substr(0, underscore);
 }
 
-YoloSource find_yolo_source(const std::string& src, const std::string& split) {
+YoloSource find_yolo_source(const std::string& src, const std::string& chosen) {
   YoloSource s = locate(src);
+  // "valid" (Roboflow's folder) and "val" (data.yaml's key) name one split: a Roboflow export read through its
+  // data.yaml calls its valid/ folder val.
+  std::string split = chosen;
+  const auto has = [&](const std::string& x) {
+    return std::find(s.splits.begin(), s.splits.end(), x) != s.splits.end();
+  };
+  if (split == "valid" && !has("valid") && has("val")) split = "val";
+  if (split == "val" && !has("val") && has("valid")) split = "valid";
   if (!split.empty()) {
     if (std::find(s.splits.begin(), s.splits.end(), split) == s.splits.end()) {
       std::string have;

@@ -163,7 +163,7 @@ TEST(Reliability, PairsJsonIndicesAreRangeCheckedAndEveryErrorNamesTheFile) {
        ": \"excluded_a\" holds 18446744073709551615, expected a rock index below 2"},
       {"{\"pairs\": [[1e309, 0]]}", ": invalid JSON: "},
       {"{\"pairs\": [[0, 1]], \"exclude_a\": [0]}",
-       ": unknown key \"exclude_a\" (expected pairs, excluded_a, excluded_b, rocks_a, rocks_b)"},
+       ": unknown key \"exclude_a\" (expected pairs, excluded_a, excluded_b, rocks_a, rocks_b, class)"},
       {"{\"pairs\": [[0, \"" + std::string(100000, '7') + "\"]]}",
        ": pair 1 must be two integer rock indices, found [0,\"777"},
   };

@@ -197,6 +197,25 @@ TEST(YoloImport, ARoboflowYolov5ExportHasItsNamesMappedBackAndItsSplitsMerged) {
   EXPECT_EQ(table_cells(t / "study"), table_cells(t / "flat"));
 }
 
+// Roboflow's folder is valid/, its data.yaml's key val: --split valid and --split val both take that split.
+TEST(YoloImport, TheValidationSplitIsChosenByEitherOfItsNames) {
+  for (const std::string word : {"valid", "val"}) {
+    test::TempDir t;
+    const std::string ds = t / "roboflow";
+    test::write_text(ds + "/data.yaml", "train: ../train/images\nval: ../valid/images\nnames: ['rock']\n");
+    const std::vector<std::string> splits = {"train", "valid", "train"};
+    for (size_t k = 0; k < kStems.size(); ++k) {
+      const std::string name = kStems[k] + "_png.rf." + kHashA;
+      test::write_text(ds + "/" + splits[k] + "/labels/" + name + ".txt", gt_of("real", k));
+      picture(ds + "/" + splits[k] + "/images/" + name + ".jpg");
+    }
+    const auto r = test::run_ipd("import yolo " + ds + "/data.yaml --out " + (t / "study/real") + " --split " + word);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::exists(t / ("study/real/labels/" + kStems[1] + ".txt"))) << word;
+    EXPECT_FALSE(fs::exists(t / ("study/real/labels/" + kStems[0] + ".txt"))) << word;
+  }
+}
+
 TEST(YoloImport, ManglingRulesGiveBackTheNameAndNothingElse) {
   EXPECT_EQ(scene_stem("0001_jpg.rf." + kHashA, false), "0001");
   EXPECT_EQ(scene_stem("a_b_jpeg.rf." + kHashA, false), "a_b");
