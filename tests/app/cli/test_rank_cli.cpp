@@ -44,6 +44,9 @@ TEST(RankCli, BadCandidatesAreSaidAndTheRestRanked) {
       << r.out;
   EXPECT_NE(r.out.find("(Holm-corrected over 3 comparisons with the best)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("Label files "), std::string::npos) << r.out;
+  // Candidates are never compared with each other: their layouts against each other are not the ranking's.
+  EXPECT_EQ(r.err.find("'dim' and 'lonely'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'real' and 'lonely' share no scene"), std::string::npos) << r.err;
 }
 
 TEST(RankCli, UnknownDomainIsAUsageOfTheStudysNames) {
