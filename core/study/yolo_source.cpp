@@ -131,6 +131,17 @@ void add_split(const std::string& root, const std::string& split, const std::str
     SourceScene& s = by_path[without_extension(p.lexically_relative(labels.empty() ? "." : labels).string())];
     s.label = f;
   }
+  // Pictures and labels pair by their path below images/ and labels/: in a split with pictures, a label file
+  // with none at its path was moved or misplaced, and would become a scene without its picture.
+  const bool has_pictures =
+      std::any_of(by_path.begin(), by_path.end(), [](const auto& kv) { return !kv.second.picture.empty(); });
+  for (const auto& [key, s] : by_path)
+    if (has_pictures && s.picture.empty())
+      throw StudyError(fmt::format(
+          "{}: no picture for this label file at {}.* (labels and pictures pair by their path below {} and {}); "
+          "move it beside its picture's path, or remove it",
+          printable_name(shown(root, s.label)), printable_name(shown(root, (fs::path(images) / key).string())),
+          printable_name(shown(root, labels)), printable_name(shown(root, images))));
   for (auto& [key, s] : by_path) {
     s.split = split;
     s.source_stem = fs::path(key).filename().string();

@@ -355,6 +355,21 @@ TEST(YoloImportBadInput, ASplitFolderThatIsNotThereIsRefusedWithItsLine) {
                                                      " is not there; expected the split's folder of pictures\n");
 }
 
+// A label moved into a sub-folder of its split no longer pairs with its picture: said by name, nothing written.
+TEST(YoloImportBadInput, ALabelFileWithoutItsPictureIsRefusedNamingWhereThePictureWouldBe) {
+  test::TempDir t;
+  picture(t / "ds/images/train/s1.png");
+  picture(t / "ds/images/train/s2.png");
+  test::write_text(t / "ds/labels/train/s1.txt", "0 0.5 0.5 0.1 0.1\n");
+  test::write_text(t / "ds/labels/train/extra/s2.txt", "0 0.5 0.5 0.1 0.1\n");
+  test::write_text(t / "ds/data.yaml", "path: .\ntrain: images/train\nnames: [rock]\n");
+  EXPECT_EQ(import_error(t, t / "ds/data.yaml"),
+            "error: " + t / "ds/labels/train/extra/s2.txt" + ": no picture for this label file at " +
+                t / "ds/images/train/extra/s2" + ".* (labels and pictures pair by their path below " +
+                t / "ds/labels/train" + " and " + t / "ds/images/train" +
+                "); move it beside its picture's path, or remove it\n");
+}
+
 TEST(YoloImportBadInput, TwoFilesThatBecomeOneSceneAreRefusedNamingBoth) {
   test::TempDir t;
   test::write_text(t / "rf/data.yaml", "train: ../train/images\nnames: ['rock']\n");
