@@ -69,7 +69,8 @@ std::string parse_number(const std::string& field, size_t column, const std::str
   if (!std::isfinite(x))
     return fmt::format("expected a finite number for {} in column {}, found '{}'", name, column, shorten(field));
   if (normalised && (x < -opt.range_tolerance || x > 1.0 + opt.range_tolerance))
-    return fmt::format("expected {} in [0, 1] (normalised), found {}", name, shorten(field));
+    return fmt::format("expected {} in [0, 1]{}, found {}", name, name == "conf" ? "" : " (normalised)",
+                       shorten(field));
   *out = x;
   return {};
 }
@@ -128,7 +129,8 @@ std::string parse_box(const std::vector<std::string>& f, size_t n, const LabelPa
   }
   for (size_t k = 1; k < want; ++k) {
     if (v[k] < -opt.range_tolerance || v[k] > 1.0 + opt.range_tolerance) {
-      return fmt::format("expected {} in [0, 1] (normalised), found {}", kColumnNames[k], shorten(f[k]));
+      return fmt::format("expected {} in [0, 1]{}, found {}", kColumnNames[k], k == 5 ? "" : " (normalised)",
+                         shorten(f[k]));
     }
   }
   // Not just > 0: a box of 1e-300 has an area of 0 in doubles, so even its own copy would not overlap it.

@@ -119,7 +119,7 @@ TEST(LabelOutlines, ABadOutlineLineNamesTheFileLineAndWhatWasExpected) {
             "odd number of coordinates, or no confidence");
   const LabelFile c = parse_labels("0 0.1 0.2 0.5 0.2 0.3 0.6 1.5\n", "p.txt", {LabelKind::kPrediction});
   ASSERT_EQ(c.errors.size(), 1u);
-  EXPECT_EQ(c.errors[0].to_string(), "p.txt:1: expected conf in [0, 1] (normalised), found 1.5");
+  EXPECT_EQ(c.errors[0].to_string(), "p.txt:1: expected conf in [0, 1], found 1.5");
 }
 
 TEST(LabelOutlines, AnOutlineIsWrittenBackAsTheLineItWasReadFrom) {
