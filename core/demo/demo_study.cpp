@@ -8,6 +8,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "core/demo/demo_rng.h"
 #include "core/detect/rock_detector.h"
 #include "core/io/label_io.h"
 #include "core/picture/picture_codec.h"
@@ -18,16 +19,6 @@ namespace fs = std::filesystem;
 namespace ipd {
 
 namespace {
-
-// Deterministic across standard libraries: mt19937_64's output is specified, the distributions are not.
-struct DemoRng {
-  std::mt19937_64 g;
-  explicit DemoRng(std::uint64_t seed) : g(seed) {}
-  double uniform(double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(g() >> 11) / 9007199254740992.0);
-  }
-  int below(int n) { return static_cast<int>(g() % static_cast<std::uint64_t>(n)); }
-};
 
 struct Rock {
   double x, y, rx, ry, angle_deg, albedo;

@@ -8,6 +8,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "core/demo/demo_rng.h"
 #include "core/io/label_io.h"
 #include "core/util/atomic_file.h"
 
@@ -17,18 +18,8 @@ namespace ipd {
 
 namespace {
 
-// Deterministic across standard libraries: mt19937_64's output is specified, the distributions are not.
-struct Rng {
-  std::mt19937_64 g;
-  explicit Rng(std::uint64_t seed) : g(seed) {}
-  double uniform(double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(g() >> 11) / 9007199254740992.0);
-  }
-  int below(int n) { return static_cast<int>(g() % static_cast<std::uint64_t>(n)); }
-};
-
 // A scene's rocks: boxes that don't overlap much, in normalised coordinates.
-std::vector<Box> make_rocks(Rng& rng, const VariantStudyOptions& o) {
+std::vector<Box> make_rocks(DemoRng& rng, const VariantStudyOptions& o) {
   const int n = o.min_rocks + rng.below(std::max(1, o.max_rocks - o.min_rocks + 1));
   const double size = std::min(0.08, 0.5 / std::sqrt(static_cast<double>(std::max(n, 1))));
   std::vector<Box> rocks;
@@ -49,7 +40,7 @@ Box seen(const Box& g, double dx, double dy, double s, double conf) {
   return Box{0, g.cx + dx * g.w, g.cy + dy * g.h, g.w * s, g.h * s, conf};
 }
 
-void shuffle(Rng& rng, std::vector<Box>* boxes) {
+void shuffle(DemoRng& rng, std::vector<Box>* boxes) {
   for (size_t i = boxes->size(); i > 1; --i) std::swap((*boxes)[i - 1], (*boxes)[rng.below(static_cast<int>(i))]);
 }
 
@@ -111,7 +102,7 @@ std::string variant_study_yaml(const VariantStudyOptions& o, int count) {
 
 void write_variant_study(const std::string& dir, const VariantStudyOptions& o) {
   o.check();
-  Rng rng(o.seed);
+  DemoRng rng(o.seed);
   auto stem = [](int k) { return fmt::format("scene_{:05d}", k + 1); };
   auto write = [&](const std::string& domain, const std::string& name, const std::vector<Box>& gt,
                    const std::vector<Box>& pred) {
