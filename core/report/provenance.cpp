@@ -79,6 +79,7 @@ void count_reviews(const CrossTable& table, size_t c, const StudyLabels& labels,
     return labels.gt_of(side_a ? a : b, scenes[k]->stem).boxes;
   };
   r.pairs = [&](int k) -> const RockPairs& { return scenes[k]->pairs; };
+  r.take_class_of(labels.study);
   const ReviewRead read = load_review(labels.study.root, a, b, r);
   p->scenes_reviewed += read.state.reviewed_scenes;
   p->pairs_checked += read.state.checked_pairs();

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/study/fixed_pairs.h"
+#include "core/study/hand_work_class.h"
 #include "core/study/study.h"
 #include "core/util/contained_file.h"
 #include "core/util/errors.h"
@@ -77,13 +78,29 @@ class ReviewParser {
   void reviewed(const nlohmann::json& list) {
     if (!list.is_array()) throw StudyError(file_ + ": \"reviewed\" must be an array of scene names");
     for (const auto& v : list) {
-      const std::string stem = scene_name(v, "\"reviewed\"");
+      std::optional<int> cls;
+      const nlohmann::json* name = &v;
+      if (v.is_object()) {
+        const bool shape = v.contains("scene") && v.size() == (v.contains("class") ? 2u : 1u);
+        if (!shape)
+          throw StudyError(
+              fmt::format("{}: \"reviewed\" holds {}, expected a scene name or {{\"scene\": s, "
+                          "\"class\": N}}",
+                          file_, describe_json(v)));
+        name = &v["scene"];
+        if (v.contains("class")) cls = parse_hand_work_class(v["class"], file_, "the \"class\" of a review mark");
+      }
+      const std::string stem = scene_name(*name, "\"reviewed\"");
+      if (is_other_class_work(cls, scenes_.shown_class)) {
+        out_->state.kept_reviewed.push_back({stem, cls});  // another class's audit: kept, not this class's
+        continue;
+      }
       const int k = scene_of(stem);
       if (k < 0) {
         problem(stem, fmt::format("the review mark of scene {} does not apply now: {} - {} has no such scene (kept in "
                                   "the file)",
-                                  describe_json(v), a_, b_));
-        out_->state.kept_reviewed.push_back(stem);
+                                  describe_json(*name), a_, b_));
+        out_->state.kept_reviewed.push_back({stem, cls});
       } else if (!out_->state.reviewed[k]) {
         out_->state.toggle_reviewed(k);
       }
@@ -94,21 +111,27 @@ class ReviewParser {
     if (!list.is_array())
       throw StudyError(file_ + ": \"checked\" must be an array of {\"scene\", \"rock_a\", \"rock_b\"}");
     for (const auto& c : list) {
-      const bool shape =
-          c.is_object() && c.size() == 3 && c.contains("scene") && c.contains("rock_a") && c.contains("rock_b");
+      const bool shape = c.is_object() && c.size() == (c.contains("class") ? 4u : 3u) && c.contains("scene") &&
+                         c.contains("rock_a") && c.contains("rock_b");
       if (!shape)
         throw StudyError(
             fmt::format("{}: \"checked\" holds {}, expected {{\"scene\": s, \"rock_a\": [cx, cy, w, h], "
-                        "\"rock_b\": [cx, cy, w, h]}}",
+                        "\"rock_b\": [cx, cy, w, h]}} (and \"class\": N in a study of several classes)",
                         file_, describe_json(c)));
       const std::string stem = scene_name(c["scene"], "\"checked\"");
       const auto box_a = parse_box(c["rock_a"], "rock_a", file_), box_b = parse_box(c["rock_b"], "rock_b", file_);
+      std::optional<int> cls;
+      if (c.contains("class")) cls = parse_hand_work_class(c["class"], file_, "the \"class\" of a check");
+      if (is_other_class_work(cls, scenes_.shown_class)) {
+        out_->state.kept_checks.push_back({stem, box_a, box_b, cls, true});  // another class's pair: kept
+        continue;
+      }
       const int k = scene_of(stem);
       if (k < 0) {
         problem(stem, fmt::format("the check of a pair in scene {} does not apply now: {} - {} has no such scene "
                                   "(kept in the file)",
                                   describe_json(c["scene"]), a_, b_));
-        out_->state.kept_checks.push_back({stem, box_a, box_b});
+        out_->state.kept_checks.push_back({stem, box_a, box_b, cls, false});
         continue;
       }
       // The pair of the scene's current pairs whose rocks have these boxes (identical boxes are the same rock).
@@ -121,7 +144,7 @@ class ReviewParser {
         }
       if (!found) {
         problem(stem, kept_check_message(k, box_a, box_b, describe_json(c["scene"])));
-        out_->state.kept_checks.push_back({stem, box_a, box_b});
+        out_->state.kept_checks.push_back({stem, box_a, box_b, cls, false});
       }
     }
   }
@@ -173,7 +196,7 @@ bool ReviewState::apply_kept_checks(int scene, const std::string& stem, const st
                                     const std::vector<Box>& gt_b, const RockPairs& pairs) {
   const size_t before = kept_checks.size();
   auto applies = [&](const KeptCheck& k) {
-    if (k.scene != stem) return false;
+    if (k.scene != stem || k.other_class) return false;
     for (const auto& [i, j] : pairs)
       if (same_box(gt_a.at(i), k.rock_a) && same_box(gt_b.at(j), k.rock_b)) {
         if (!is_checked(scene, i, j)) toggle_checked(scene, i, j);
@@ -225,18 +248,32 @@ ReviewRead load_review(const std::string& root, const std::string& a, const std:
   return out;
 }
 
+void ReviewScenes::take_class_of(const Study& study) {
+  shown_class = study.config.rock_class;
+  written_class = hand_work_class(study);
+}
+
 std::string review_json(const ReviewState& state, const ReviewScenes& scenes) {
   nlohmann::ordered_json j;
   j["reviewed"] = nlohmann::ordered_json::array();
   j["checked"] = nlohmann::ordered_json::array();
+  auto reviewed = [](const std::string& stem, std::optional<int> cls) {
+    if (!cls) return nlohmann::ordered_json(stem);
+    nlohmann::ordered_json r;
+    r["scene"] = stem;
+    r["class"] = hand_work_class_json(*cls);
+    return r;
+  };
   for (size_t k = 0; k < state.reviewed.size(); ++k)
-    if (state.reviewed[k]) j["reviewed"].push_back(scenes.stems[k]);
-  for (const std::string& stem : state.kept_reviewed) j["reviewed"].push_back(stem);
-  auto check = [](const std::string& stem, const std::array<double, 4>& a, const std::array<double, 4>& b) {
+    if (state.reviewed[k]) j["reviewed"].push_back(reviewed(scenes.stems[k], scenes.written_class));
+  for (const KeptReviewed& r : state.kept_reviewed) j["reviewed"].push_back(reviewed(r.scene, r.cls));
+  auto check = [](const std::string& stem, const std::array<double, 4>& a, const std::array<double, 4>& b,
+                  std::optional<int> cls) {
     nlohmann::ordered_json c;
     c["scene"] = stem;
     c["rock_a"] = a;
     c["rock_b"] = b;
+    if (cls) c["class"] = hand_work_class_json(*cls);
     return c;
   };
   auto box = [](const Box& b) { return std::array<double, 4>{b.cx, b.cy, b.w, b.h}; };
@@ -244,10 +281,10 @@ std::string review_json(const ReviewState& state, const ReviewScenes& scenes) {
     const int scene = static_cast<int>(k);
     // Also a check of a pair edited away since: the user's record, which applies again if the pair comes back.
     for (const auto& [a, b] : state.checked[k])
-      j["checked"].push_back(
-          check(scenes.stems[k], box(scenes.gt(scene, true).at(a)), box(scenes.gt(scene, false).at(b))));
+      j["checked"].push_back(check(scenes.stems[k], box(scenes.gt(scene, true).at(a)),
+                                   box(scenes.gt(scene, false).at(b)), scenes.written_class));
   }
-  for (const KeptCheck& c : state.kept_checks) j["checked"].push_back(check(c.scene, c.rock_a, c.rock_b));
+  for (const KeptCheck& c : state.kept_checks) j["checked"].push_back(check(c.scene, c.rock_a, c.rock_b, c.cls));
   return dump_json_output(j) + "\n";
 }
 

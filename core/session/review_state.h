@@ -12,6 +12,11 @@
 // are kept as read and written back with the next save, so a temporary change (another registration
 // method, a typo in a label file) never deletes the user's record; they apply again once read when their
 // pair (or scene) is back.
+//
+// In a study where another class can be chosen, each mark names the class its rocks were shown under, as hand
+// pairs do (hand_work_class.h): {"scene": "scene_0001", "class": 0} in "reviewed", "class": 0 in a check. Marks
+// of another class than the one shown are that class's: kept as read and written back, neither applied nor
+// reported. A mark without "class" holds for every class.
 #pragma once
 
 #include <array>
@@ -26,11 +31,21 @@
 
 namespace ipd {
 
+struct Study;
+
 // A check read from the file that does not apply now (its rocks are not a pair of its scene, or the domain
 // pair has no such scene), kept as read.
 struct KeptCheck {
   std::string scene;
   std::array<double, 4> rock_a, rock_b;  // cx, cy, w, h
+  std::optional<int> cls;                // as read ("class"); none: every class
+  bool other_class = false;              // of another class than the one shown: never applies here
+};
+
+// A review mark of a scene read from the file that does not apply now (no such scene, or another class's).
+struct KeptReviewed {
+  std::string scene;
+  std::optional<int> cls;  // as read
 };
 
 struct ReviewState {
@@ -38,7 +53,7 @@ struct ReviewState {
   std::vector<RockPairs> checked;  // per scene: (index in A, index in B) of pairs judged correct, sorted
   int reviewed_scenes = 0;
   // Marks of the file that do not apply now, written back as read (load_review's problems name them).
-  std::vector<std::string> kept_reviewed;  // scenes the domain pair does not have now
+  std::vector<KeptReviewed> kept_reviewed;  // scenes the domain pair does not have now, other classes' marks
   std::vector<KeptCheck> kept_checks;
 
   explicit ReviewState(size_t scenes = 0) : reviewed(scenes, 0), checked(scenes) {}
@@ -59,6 +74,10 @@ struct ReviewScenes {
   std::vector<std::string> stems;  // sorted, as Session keeps them
   std::function<const std::vector<Box>&(int scene, bool side_a)> gt;
   std::function<const RockPairs&(int scene)> pairs;  // the scene's current (A, B) pairs
+  int shown_class = -1;                              // study.config.rock_class (kNoClassChosen: none chosen)
+  std::optional<int> written_class;                  // hand_work_class: the class marks made now are of
+  // Takes shown_class and written_class from the study.
+  void take_class_of(const Study& study);
 };
 
 // "review/<a>__<b>.json"

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "core/session/session.h"
+#include "core/study/hand_work_class.h"
 #include "core/util/atomic_file.h"
 #include "core/util/contained_file.h"
 
@@ -135,7 +136,7 @@ SaveJob Session::job_for(int pair, int scene, const std::string& root) const {
   job.also_remove.push_back((fs::path(root) / fixed_pairs_relative_path(b, a, s.stem)).string());
   if (s.edited)
     job.contents = fixed_pairs_json(s.current, labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes,
-                                    pairs_file_class(labels_->study));
+                                    hand_work_class(labels_->study));
   if (root == labels_->study.root) job.expected = {s.disk_ab, s.disk_ba};
   job.pair = pair;
   job.stem = s.stem;
@@ -150,17 +151,10 @@ SaveJob Session::set_scene(int pair, int scene, const FixedPairs& fp, bool edite
   // Only this scene's contribution changes: swap it in every model's totals.
   for (auto& [key, list] : contributions_) {
     if (key.second != pair) continue;
-    CellTotals& t = totals_[key];
-    const SceneIpd& old = list[scene];
-    t.sum_abs_diff -= old.sum_abs_diff;
-    t.pairs -= old.pairs;
-    t.unpaired_a -= old.unpaired_a;
-    t.unpaired_b -= old.unpaired_b;
+    TableCell& t = totals_[key];
+    count_scene_in_cell(t, list[scene], -1);
     list.set(scene, contribution(key.first, pair, scene));
-    t.sum_abs_diff += list[scene].sum_abs_diff;
-    t.pairs += list[scene].pairs;
-    t.unpaired_a += list[scene].unpaired_a;
-    t.unpaired_b += list[scene].unpaired_b;
+    count_scene_in_cell(t, list[scene]);
   }
   apply_kept_checks(pair, scene);
   reaudit(pair, scene);
@@ -256,6 +250,12 @@ SaveJob Session::apply(int scene, Edit e) {
       break;
   }
   std::sort(next.pairs.begin(), next.pairs.end());
+  if (e.kind == Edit::Kind::kPair || e.kind == Edit::Kind::kReplacePairs) {
+    const auto& [a, b] = pairs_[pair_];
+    if (const auto why = pair_across_classes(next, labels_->gt_of(a, s.stem).boxes, labels_->gt_of(b, s.stem).boxes, a,
+                                             b, labels_->study.classes))
+      throw StudyError("edit refused: " + *why);
+  }
   // Discarding a stale pairs file is no step undo can take back: the scene showed registration's pairs before
   // and after, and the file is gone (the dialog says so). An entry would "undo" by changing nothing.
   if (!(e.kind == Edit::Kind::kResetToAutomatic && s.pairs_unusable)) {

@@ -18,6 +18,7 @@ ReviewScenes Session::review_scenes(int pair) const {
     return labels_->gt_of(side_a ? a : b, scenes_[pair][scene].stem).boxes;
   };
   r.pairs = [this, pair](int scene) -> const RockPairs& { return scenes_[pair][scene].current.pairs; };
+  r.take_class_of(labels_->study);
   return r;
 }
 

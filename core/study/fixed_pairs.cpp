@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "core/study/hand_work_class.h"
 #include "core/study/study.h"
 #include "core/util/contained_file.h"
 #include "core/util/json_input.h"
@@ -245,15 +246,7 @@ ParsedFile parse_file(const std::string& text, const std::string& file, size_t n
           fmt::format("{}: unknown key \"{}\" (expected pairs, excluded_a, excluded_b, rocks_a, rocks_b, class)", file,
                       item.key().size() > 40 ? item.key().substr(0, 37) + "..." : item.key()));
   ParsedFile f;
-  if (j.contains("class")) {
-    const nlohmann::json& c = j["class"];
-    if (c.is_string() && c.get<std::string>() == "all")
-      f.cls = kAllClasses;
-    else if (c.is_number_integer() && c.get<long long>() >= 0 && c.get<long long>() <= INT_MAX)
-      f.cls = c.get<int>();
-    else
-      throw StudyError(file + ": \"class\" must be a class number >= 0 or \"all\" (the class its pairs are of)");
-  }
+  if (j.contains("class")) f.cls = parse_hand_work_class(j["class"], file, "\"class\"");
   f.pairs = parse_pair_list(j["pairs"], file, n1, n2);
   f.first.excluded = parse_excluded(j, "excluded_a", file, n1);
   f.second.excluded = parse_excluded(j, "excluded_b", file, n2);
@@ -269,7 +262,7 @@ std::optional<FixedPairs> parse_fixed_pairs(const std::string& text, const std::
                                             std::vector<PairsProblem>* problems) {
   ParsedFile f = parse_file(text, file, first.gt->size(), second.gt->size());
   // Hand pairs of another class index another class's rocks: not this class's pairs, and no problem of them.
-  if (f.cls && cls != kNoClassChosen && *f.cls != cls) {
+  if (is_other_class_work(f.cls, cls)) {
     *other_class = *f.cls;
     return std::nullopt;
   }
@@ -336,6 +329,9 @@ FixedPairsRead load_fixed_pairs(const Study& study, const std::string& a, const 
     out.pairs = swapped ? parse_fixed_pairs(*text, shown, true, sb, sa, cls, &out.other_class, &out.problems)
                         : parse_fixed_pairs(*text, shown, false, sa, sb, cls, &out.other_class, &out.problems);
     if (out.other_class != kNoClassChosen) out.other_class_file = shown;
+    if (out.pairs)
+      if (const auto why = pair_across_classes(*out.pairs, gt_a, gt_b, a, b, study.classes))
+        throw StudyError(shown + ": " + *why);
     found = true;
     found_path = shown;
   }
@@ -353,19 +349,22 @@ std::optional<FixedPairs> read_fixed_pairs(const Study& study, const std::string
   return std::move(r.pairs);
 }
 
-std::optional<int> pairs_file_class(const Study& study) {
-  const int cls = study.config.rock_class;
-  if (cls == kNoClassChosen) return std::nullopt;
-  const auto& names = study.classes.names;
-  const long named = std::count_if(names.begin(), names.end(), [](const std::string& n) { return !n.empty(); });
-  if (cls == kAllClasses || cls > 0 || named > 1) return cls;
+std::optional<std::string> pair_across_classes(const FixedPairs& fp, const std::vector<Box>& gt_a,
+                                               const std::vector<Box>& gt_b, const std::string& a, const std::string& b,
+                                               const StudyClasses& classes) {
+  for (const auto& [x, y] : fp.pairs) {
+    const int ca = gt_a.at(static_cast<size_t>(x)).cls, cb = gt_b.at(static_cast<size_t>(y)).cls;
+    if (ca != cb)
+      return fmt::format("pairs {} rock {} ({}) with {} rock {} ({}): a pair joins two rocks of one class", a, x + 1,
+                         classes.name_of(ca), b, y + 1, classes.name_of(cb));
+  }
   return std::nullopt;
 }
 
 std::string fixed_pairs_json(const FixedPairs& fp, const std::vector<Box>& gt_a, const std::vector<Box>& gt_b,
                              std::optional<int> cls) {
   nlohmann::json j;
-  if (cls) j["class"] = *cls == kAllClasses ? nlohmann::json("all") : nlohmann::json(*cls);
+  if (cls) j["class"] = hand_work_class_json(*cls);
   j["pairs"] = nlohmann::json::array();
   std::set<int> rocks_a(fp.excluded_a.begin(), fp.excluded_a.end()),
       rocks_b(fp.excluded_b.begin(), fp.excluded_b.end());
@@ -393,7 +392,7 @@ std::string fixed_pairs_json(const FixedPairs& fp, const std::vector<Box>& gt_a,
 void write_fixed_pairs(const Study& study, const std::string& a, const std::string& b, const std::string& stem,
                        const FixedPairs& fp, const std::vector<Box>& gt_a, const std::vector<Box>& gt_b) {
   write_file_beneath(study.root, fixed_pairs_relative_path(a, b, stem),
-                     fixed_pairs_json(fp, gt_a, gt_b, pairs_file_class(study)));
+                     fixed_pairs_json(fp, gt_a, gt_b, hand_work_class(study)));
 }
 
 Problem pairs_file_problem(const PairsProblem& w, const std::string& a, const std::string& b, const std::string& stem) {

@@ -31,6 +31,7 @@
 namespace ipd {
 
 struct Study;
+struct StudyClasses;
 
 // How far a box may move and still be the same rock, in each of cx, cy, w, h (fractions of the picture).
 // Label files are written with 6 decimals (YOLO's own writer, `ipd demo`, most converters), so re-exporting
@@ -87,8 +88,8 @@ struct FixedPairsRead {
 
 // Reads pairs/<A>__<B>/<stem>.json or pairs/<B>__<A>/<stem>.json (swapping indices), binding stored rocks
 // to `gt_a`/`gt_b` by box. Throws StudyError naming the file for bad JSON, unknown keys, indices out of
-// range (in files without boxes), a rock paired twice, a paired rock without a stored box, a symbolic link
-// on the way, or an unreadable file. When both exist, A__B counts and a problem names B__A.
+// range (in files without boxes), a rock paired twice, a pair of two classes' rocks, a paired rock without a stored
+// box, a symbolic link on the way, or an unreadable file. When both exist, A__B counts and a problem names B__A.
 FixedPairsRead load_fixed_pairs(const Study& study, const std::string& a, const std::string& b, const std::string& stem,
                                 const std::vector<Box>& gt_a, const std::vector<Box>& gt_b);
 
@@ -98,9 +99,14 @@ std::optional<FixedPairs> read_fixed_pairs(const Study& study, const std::string
                                            const std::string& stem, const std::vector<Box>& gt_a,
                                            const std::vector<Box>& gt_b, std::vector<std::string>* warnings = nullptr);
 
-// The class a pairs file written now is of: the chosen class in a study where another could be chosen (more
-// than one named class, a class number above 0, or class-blind), else none (the file holds for every class).
-std::optional<int> pairs_file_class(const Study& study);
+// A pair joins two rocks of one class: rocks of two classes are two different things, whatever their boxes (a
+// class-blind study can show both). The message naming the first pair of `pairs` that joins two classes ("pairs
+// real rock 3 (rock) with synth rock 5 (shadow): ..."), rocks numbered from 1 as the panes show them; nullopt
+// when every pair is within a class.
+std::optional<std::string> pair_across_classes(const FixedPairs& pairs, const std::vector<Box>& gt_a,
+                                               const std::vector<Box>& gt_b, const std::string& a, const std::string& b,
+                                               const StudyClasses& classes);
+
 // The file's text, with each paired or excluded rock's box from `gt_a`/`gt_b`, and "class" when `cls` is set.
 std::string fixed_pairs_json(const FixedPairs& pairs, const std::vector<Box>& gt_a, const std::vector<Box>& gt_b,
                              std::optional<int> cls);

@@ -36,6 +36,7 @@ void read_scene_review(const StudyLabels& labels, const std::string& a, const st
   one.stems = {stem};
   one.gt = [&](int, bool side_a) -> const std::vector<Box>& { return labels.gt_of(side_a ? a : b, stem).boxes; };
   one.pairs = [&](int) -> const RockPairs& { return pairs; };
+  one.take_class_of(labels.study);
   const ReviewRead read = load_review(labels.study.root, a, b, one);  // other scenes' marks are dropped
   in.reviewed = read.state.reviewed_scenes > 0;
   in.pairs_checked = static_cast<int>(read.state.checked.at(0).size());

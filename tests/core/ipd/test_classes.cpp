@@ -298,3 +298,104 @@ TEST(Classes, HandPairsOfOneClassAreNotAnotherClasssPairs) {
 
 }  // namespace
 }  // namespace ipd
+
+namespace ipd {
+namespace {
+
+// A pair joins two rocks of one class, also in a class-blind view where both are shown: an edit pairing real's
+// rock R1 with synth's shadow S1 is refused, and so is a pairs file that holds such a pair.
+TEST(Classes, AHandPairJoiningTwoClassesIsRefused) {
+  test::TempDir d;
+  write_two_class_study(d);
+  SessionOptions all;
+  all.class_word = "all";
+  {
+    Session s = Session::open(d.path(), all);
+    try {
+      s.apply(0, Edit::pair(0, 1));  // rows of real/labels/s1.txt: R1 S1 R2
+      FAIL() << "a rock was paired with a shadow";
+    } catch (const StudyError& e) {
+      EXPECT_STREQ(e.what(),
+                   "edit refused: pairs real rock 1 (rock) with synth rock 2 (shadow): a pair joins two rocks of one "
+                   "class");
+    }
+    const SaveJob job = s.apply(0, Edit::pair(0, 0));  // R1 with R1: within a class, saved as class-blind work
+    ASSERT_TRUE(job.contents.has_value());
+    EXPECT_EQ(job.contents->rfind("{\"class\":\"all\",\"pairs\":[[0,0],", 0), 0u) << *job.contents;
+  }
+  test::write_text(d / "pairs/real__synth/s1.json", "{\"class\": \"all\", \"pairs\": [[0, 1]]}\n");
+  try {
+    ipd_for(d, "all");
+    FAIL() << "a pairs file joining two classes was used";
+  } catch (const StudyError& e) {
+    EXPECT_EQ(std::string(e.what()), d / "pairs/real__synth/s1.json" +
+                                         ": pairs real rock 1 (rock) with synth rock 2 (shadow): a pair joins two "
+                                         "rocks of one class");
+  }
+}
+
+// Review marks are of the class they were made under, as hand pairs are: the rocks' reviewed scene and checked
+// pair are no marks (and no problem) while shadows are shown, a shadow review is added beside them, and both
+// classes' marks are in the file and apply again under their own class.
+TEST(Classes, ReviewMarksAreOfTheClassTheyWereMadeUnder) {
+  test::TempDir d;
+  write_two_class_study(d);
+  SessionOptions rocks;
+  rocks.class_word = "rock";
+  SessionOptions shadow;
+  shadow.class_word = "shadow";
+  {
+    Session s = Session::open(d.path(), rocks);
+    run_save_job(s.toggle_reviewed(0));
+    const auto job = s.toggle_checked(0, 1, 1);  // R2 | R2 (rows of the rock class)
+    ASSERT_TRUE(job && job->contents);
+    EXPECT_EQ(*job->contents,
+              "{\"reviewed\":[{\"scene\":\"s1\",\"class\":0}],\"checked\":[{\"scene\":\"s1\",\"rock_a\":[0.6,0.6,0.1,"
+              "0.1],\"rock_b\":[0.6,0.6,0.1,0.1],\"class\":0}]}\n");
+    run_save_job(*job);
+  }
+  {
+    Session s = Session::open(d.path(), shadow);
+    EXPECT_EQ(s.review_of(0).reviewed_scenes, 0);
+    EXPECT_EQ(s.review_of(0).checked_pairs(), 0);
+    for (const Problem& p : s.problems())  // the rocks' marks are no problem of the shadows
+      EXPECT_EQ(p.file.find("review"), std::string::npos) << p.file << ": " << p.message;
+    const SaveJob job = s.toggle_reviewed(0);
+    ASSERT_TRUE(job.contents);
+    EXPECT_EQ(*job.contents,
+              "{\"reviewed\":[{\"scene\":\"s1\",\"class\":1},{\"scene\":\"s1\",\"class\":0}],\"checked\":[{"
+              "\"scene\":\"s1\",\"rock_a\":[0.6,0.6,0.1,0.1],\"rock_b\":[0.6,0.6,0.1,0.1],\"class\":0}]}\n");
+    run_save_job(job);
+  }
+  Session s = Session::open(d.path(), rocks);
+  EXPECT_EQ(s.review_of(0).reviewed_scenes, 1);
+  EXPECT_EQ(s.review_of(0).checked_pairs(), 1);
+  EXPECT_TRUE(s.review_of(0).is_checked(0, 1, 1));
+}
+
+// A class-blind check is class-blind work: shown under rocks it is kept aside, and stays aside when an edit makes
+// the scene's pairs be looked at again (the moment kept checks of this class apply again).
+TEST(Classes, AClassBlindCheckNeverAppliesToOneClasssPairs) {
+  test::TempDir d;
+  write_two_class_study(d);
+  SessionOptions all;
+  all.class_word = "all";
+  {
+    Session s = Session::open(d.path(), all);
+    const auto job = s.toggle_checked(0, 2, 2);  // R2 | R2 (rows of every class: R1 S1 R2)
+    ASSERT_TRUE(job && job->contents);
+    EXPECT_NE(job->contents->find("\"class\":\"all\""), std::string::npos) << *job->contents;
+    run_save_job(*job);
+  }
+  SessionOptions rocks;
+  rocks.class_word = "rock";
+  Session s = Session::open(d.path(), rocks);
+  EXPECT_EQ(s.review_of(0).checked_pairs(), 0);
+  ASSERT_EQ(s.review_of(0).kept_checks.size(), 1u);
+  (void)s.apply(0, Edit::unpair(Side::kA, 0));  // R1 out; R2 | R2 stays a pair
+  EXPECT_EQ(s.review_of(0).checked_pairs(), 0);
+  EXPECT_EQ(s.review_of(0).kept_checks.size(), 1u);
+}
+
+}  // namespace
+}  // namespace ipd
