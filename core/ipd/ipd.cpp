@@ -154,17 +154,39 @@ TableCell make_table_cell(const ModelInfo& model, const std::string& a, const st
   return cell;
 }
 
+void count_scene_in_cell(TableCell& cell, const SceneIpd& s, int sign) {
+  cell.sum_abs_diff += sign * s.sum_abs_diff;
+  cell.pairs += sign * s.pairs;
+  cell.unpaired_a += sign * s.unpaired_a;
+  cell.unpaired_b += sign * s.unpaired_b;
+  cell.scenes += sign;
+  settle_table_cell(cell);
+}
+
+void settle_table_cell(TableCell& cell) {
+  cell.ipd = cell.pairs > 0 && cell.no_value_reason.empty() ? cell.sum_abs_diff / static_cast<double>(cell.pairs)
+                                                            : std::nan("");
+}
+
 void total_table_cell(TableCell& cell) {
-  double sum = 0;
+  cell.sum_abs_diff = 0;
   cell.pairs = cell.unpaired_a = cell.unpaired_b = 0;
-  for (const SceneIpd& s : cell.per_scene) {
-    sum += s.sum_abs_diff;
-    cell.pairs += s.pairs;
-    cell.unpaired_a += s.unpaired_a;
-    cell.unpaired_b += s.unpaired_b;
+  cell.scenes = 0;
+  for (const SceneIpd& s : cell.per_scene) count_scene_in_cell(cell, s);
+  settle_table_cell(cell);
+}
+
+std::vector<std::string> mark_missing_predictions(TableCell& cell, const StudyLabels& labels) {
+  std::vector<std::string> missing;
+  for (const auto& d : {cell.a, cell.b}) {
+    if (labels.has_predictions(d, cell.model)) continue;
+    cell.missing_predictions = true;
+    // The table's footnote for its "n/a" (the warning on stderr says where the folder was looked for).
+    cell.no_value_reason += (cell.no_value_reason.empty() ? "no predictions of " + cell.model + " for " : " and ") + d;
+    missing.push_back(d);
   }
-  cell.scenes = static_cast<int>(cell.per_scene.size());
-  cell.ipd = cell.pairs > 0 ? sum / static_cast<double>(cell.pairs) : std::nan("");
+  settle_table_cell(cell);
+  return missing;
 }
 
 const TableCell* CrossTable::cell(const std::string& model, const std::string& a, const std::string& b) const {
@@ -213,18 +235,13 @@ void add_cells(const StudyLabels& labels, const std::vector<bool>& shown, CrossT
         t->cells.push_back(std::move(cell));
         continue;
       }
+      const std::vector<std::string> missing = mark_missing_predictions(cell, labels);
       for (const auto& d : {a, b}) {
-        if (labels.has_predictions(d, model.name)) {
-          if (warned.insert(model.name + "\n" + d).second)
-            if (auto p = missing_prediction_files_problem(labels, model.name, d)) t->warnings.push_back(p->to_string());
-          continue;
-        }
-        cell.missing_predictions = true;
-        // The table's footnote for its "n/a" (the warning on stderr says where the folder was looked for).
-        cell.no_value_reason +=
-            (cell.no_value_reason.empty() ? "no predictions of " + model.name + " for " : " and ") + d;
-        if (warned.insert(model.name + "\n" + d).second)
+        if (!warned.insert(model.name + "\n" + d).second) continue;
+        if (std::find(missing.begin(), missing.end(), d) != missing.end())
           t->warnings.push_back(missing_predictions_problem(study, model.name, d).to_string());
+        else if (auto p = missing_prediction_files_problem(labels, model.name, d))
+          t->warnings.push_back(p->to_string());
       }
       if (!cell.missing_predictions)
         for (const ScenePairing& p : t->pairings[c])
@@ -237,9 +254,8 @@ void add_cells(const StudyLabels& labels, const std::vector<bool>& shown, CrossT
         const long na = count_predictions(labels, a, model.name, t->pairings[c]);
         const long nb = count_predictions(labels, b, model.name, t->pairings[c]);
         cell.no_value_reason = no_predictions_reason(na, nb, a, b, threshold);
-        if (!cell.no_value_reason.empty())
-          cell.ipd = std::nan("");
-        else if (na == 0 || nb == 0)
+        settle_table_cell(cell);
+        if (cell.no_value_reason.empty() && (na == 0 || nb == 0))
           t->warnings.push_back(one_side_without_predictions(model.name, na == 0 ? a : b, na == 0 ? b : a, threshold));
       }
       t->cells.push_back(std::move(cell));

@@ -117,6 +117,7 @@ struct TableCell {
   double ci_low = std::nan(""), ci_high = std::nan(""), se = std::nan("");
   long pairs = 0, unpaired_a = 0, unpaired_b = 0;
   int scenes = 0;
+  double sum_abs_diff = 0;               // over the scenes counted: ipd is this / pairs (settle_table_cell)
   bool involves_training_domain = true;  // false: computed, but shown as "–" like the paper
   bool missing_predictions = false;
   // Why the cell is not a number although both domains have prediction sets (no_predictions_reason):
@@ -145,6 +146,15 @@ long count_predictions(const StudyLabels& labels, const std::string& domain, con
 TableCell make_table_cell(const ModelInfo& model, const std::string& a, const std::string& b);
 // Pairs, unpaired counts, scenes and the pooled IPD (Σ|diff| / pairs; NaN without pairs) from per_scene.
 void total_table_cell(TableCell& cell);
+// The running form of total_table_cell, for a view that swaps one scene's contribution after an edit (ipd-studio
+// keeps per_scene beside the cell): adds scene `s` to the cell's sums (sign -1 takes it away) and settles the value.
+void count_scene_in_cell(TableCell& cell, const SceneIpd& s, int sign = +1);
+// The cell's value from its sums: the pooled IPD, NaN without pairs or with a no_value_reason (no predictions
+// on either side is no number, whatever the sums).
+void settle_table_cell(TableCell& cell);
+// Marks a cell whose model has no prediction set for one of its domains (missing_predictions, with the reason
+// its "n/a" is footnoted with: "no predictions of det for real and synth"). Returns the domains without one.
+std::vector<std::string> mark_missing_predictions(TableCell& cell, const StudyLabels& labels);
 
 struct CrossTable {
   std::vector<ModelInfo> models;

@@ -21,10 +21,6 @@ namespace fs = std::filesystem;
 
 namespace ipd {
 
-double CellTotals::ipd() const {
-  return pairs > 0 && no_value_reason.empty() ? sum_abs_diff / static_cast<double>(pairs) : std::nan("");
-}
-
 Session Session::open(const std::string& root, const RegistrationOptions* registration) {
   SessionOptions o;
   o.registration = registration;
@@ -358,14 +354,12 @@ SceneSummary Session::summary(int scene) const {
   return s;
 }
 
-CellTotals Session::totals_for(const std::string& model, int pair_index) const {
+TableCell Session::cell_for(const std::string& model, int pair_index) const {
   const auto it = totals_.find({model, pair_index});
-  if (it == totals_.end()) {
-    CellTotals none;
-    none.sum_abs_diff = std::nan("");
-    return none;
-  }
-  return it->second;
+  if (it != totals_.end()) return it->second;
+  TableCell none;  // no such model or domain pair
+  none.model = model;
+  return none;
 }
 
 const CowVector<SceneIpd>& Session::contributions_for(const std::string& model, int pair_index) const {
@@ -443,28 +437,24 @@ void Session::rebuild_totals() {
   threshold_problems_.clear();
   for (const auto& m : labels_->study.models) {
     for (size_t p = 0; p < pairs_.size(); ++p) {
-      if (!labels_->has_predictions(pairs_[p].first, m.name) || !labels_->has_predictions(pairs_[p].second, m.name))
-        continue;
+      const auto& [a, b] = pairs_[p];
+      TableCell& t = totals_[{m.name, static_cast<int>(p)}];
+      t = make_table_cell(m, a, b);
+      if (!mark_missing_predictions(t, *labels_).empty()) continue;  // "n/a", as the table's
       std::vector<SceneIpd> list;
-      CellTotals& t = totals_[{m.name, static_cast<int>(p)}];
       for (size_t s = 0; s < scenes_[p].size(); ++s) {
         list.push_back(contribution(m.name, static_cast<int>(p), static_cast<int>(s)));
-        t.sum_abs_diff += list.back().sum_abs_diff;
-        t.pairs += list.back().pairs;
-        t.unpaired_a += list.back().unpaired_a;
-        t.unpaired_b += list.back().unpaired_b;
-        ++t.scenes;
+        count_scene_in_cell(t, list.back());
       }
       contributions_[{m.name, static_cast<int>(p)}] = CowVector<SceneIpd>(std::move(list));
       // The table's rule (compute_cross_table): no predictions on either side is no number; on one, a warning.
-      const auto& [a, b] = pairs_[p];
       const long na = shown_predictions(a, m.name, static_cast<int>(p)),
                  nb = shown_predictions(b, m.name, static_cast<int>(p));
       t.no_value_reason = no_predictions_reason(na, nb, a, b, effective_threshold());
+      settle_table_cell(t);
       // Listed too, for the cells the table shows (those of the training domain; `ipd table` footnotes them): the
       // Problems window says why a cell has no number.
-      const bool shown = m.trained_on.empty() || m.trained_on == a || m.trained_on == b;
-      if (!t.no_value_reason.empty() && shown) {
+      if (!t.no_value_reason.empty() && t.involves_training_domain) {
         Problem q;
         q.domain = a;
         q.other_domain = b;

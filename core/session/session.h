@@ -130,15 +130,6 @@ struct SessionOptions {
   std::string validate() const { return {}; }
 };
 
-struct CellTotals {
-  double sum_abs_diff = 0;
-  long pairs = 0, unpaired_a = 0, unpaired_b = 0;
-  int scenes = 0;
-  // Why the cell is not a number (no_predictions_reason, ipd.h): then ipd() is NaN, whatever the sums.
-  std::string no_value_reason;
-  double ipd() const;
-};
-
 class Session {
  public:
   // Loads labels and pairs every image pair of every domain pair (the heavy part: run it off the UI thread).
@@ -206,8 +197,10 @@ class Session {
   bool excluded(Side side, int scene, int rock) const;
 
   // IPD of the current domain pair for the current model, and any cell of the cross table.
-  CellTotals totals() const { return totals_for(model_, pair_); }
-  CellTotals totals_for(const std::string& model, int pair_index) const;
+  // The cross table's cells as the engine makes them (make_table_cell, count_scene_in_cell, settle_table_cell: one
+  // rule with `ipd table`), kept current after every edit; per_scene stays empty (contributions_for holds it).
+  TableCell cell() const { return cell_for(model_, pair_); }
+  TableCell cell_for(const std::string& model, int pair_index) const;
   // Each scene's contribution to a cell (scene order of the domain pair; `counted` in (A, B) indices);
   // empty when the model lacks predictions for a domain. For the statistics (session_statistics.h).
   const CowVector<SceneIpd>& contributions_for(const std::string& model, int pair_index) const;
@@ -312,7 +305,7 @@ class Session {
   std::shared_ptr<const ByDomainModelStem<PerformanceValues>> perf_;
   std::shared_ptr<const ByDomainModelStem<std::vector<Box>>> shown_predictions_;
   // (model, pair) -> totals, and each scene's contribution to them
-  std::map<std::pair<std::string, int>, CellTotals> totals_;
+  std::map<std::pair<std::string, int>, TableCell> totals_;
   std::map<std::pair<std::string, int>, CowVector<SceneIpd>> contributions_;
   // Per domain pair: review marks (replaced whole on a change, so snapshots share them) and what this window
   // last read or wrote at review/<A>__<B>.json.

@@ -15,12 +15,8 @@ CrossTable session_table(const Session& s) {
   for (const auto& m : t.models) {
     for (size_t p = 0; p < t.columns.size(); ++p) {
       const auto& [a, b] = t.columns[p];
-      TableCell c = make_table_cell(m, a, b);
-      c.missing_predictions = !s.labels().has_predictions(a, m.name) || !s.labels().has_predictions(b, m.name);
+      TableCell c = s.cell_for(m.name, static_cast<int>(p));  // the window's cell, with its scenes for the intervals
       if (!c.missing_predictions) c.per_scene = s.contributions_for(m.name, static_cast<int>(p)).to_vector();
-      total_table_cell(c);
-      c.no_value_reason = s.totals_for(m.name, static_cast<int>(p)).no_value_reason;
-      if (!c.no_value_reason.empty()) c.ipd = std::nan("");
       t.cells.push_back(std::move(c));
     }
   }

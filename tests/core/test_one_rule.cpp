@@ -54,7 +54,7 @@ TEST(OneRule, EngineStudioFiguresAndMetricsKeepTheSamePredictions) {
   const Session s = Session::open(d.path());
   EXPECT_EQ(s.predictions(Side::kA, 0).size(), 2u);
   EXPECT_NEAR(s.performance(Side::kA, 0).value[1], 1.0 / 3.0, 1e-12);
-  EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 0.5, 1e-12);
 
   const ui::SceneFigureInput in = ui::scene_input_from_study(labels, "real", "synth", "det", "s1", 0.0, {});
   EXPECT_EQ(in.pred_a.size(), 2u);
@@ -107,11 +107,14 @@ TEST(OneRule, StudioCellsAreTheEngineCells) {
       SCOPED_TRACE(fmt::format("{} on {} | {}", model, a, b));
       const TableCell* e = t.cell(model, a, b);
       ASSERT_NE(e, nullptr);
-      const CellTotals c = s.totals_for(model, static_cast<int>(p));
-      EXPECT_EQ(std::isnan(c.ipd()), std::isnan(e->ipd));
+      const TableCell c = s.cell_for(model, static_cast<int>(p));
+      EXPECT_EQ(std::isnan(c.ipd), std::isnan(e->ipd));
       if (!std::isnan(e->ipd)) {
-        EXPECT_NEAR(c.ipd(), e->ipd, 1e-12);
+        EXPECT_NEAR(c.ipd, e->ipd, 1e-12);
       }
+      EXPECT_EQ(c.involves_training_domain, e->involves_training_domain);
+      EXPECT_EQ(c.missing_predictions, e->missing_predictions);
+      EXPECT_EQ(c.no_value_reason, e->no_value_reason);  // also "no predictions of solo for ...": the same footnote
       if (e->missing_predictions) {
         ++missing;
         continue;

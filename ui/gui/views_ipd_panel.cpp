@@ -36,13 +36,13 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
       if (ImGui::Checkbox(label.c_str(), &checked)) out.check_left = l, out.check_right = r;
     }
   }
-  const CellTotals t = s.totals();
+  const TableCell t = s.cell();
   ImGui::Separator();
   ImGui::Text("IPD(%s, %s) for %s", s.left_domain().c_str(), s.right_domain().c_str(), s.model().c_str());
   if (!t.no_value_reason.empty())  // two empty prediction sets are not a perfect match: say why there is no number
     text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "– (not a number): " + t.no_value_reason);
   else
-    text_wrapped_at_spaces(cell_totals_line(t.ipd(), t.pairs, *v.summaries));
+    text_wrapped_at_spaces(cell_totals_line(t.ipd, t.pairs, *v.summaries));
   ImGui::Separator();
   ImGui::TextUnformatted("Cross table (lower is better)");
   const auto& pairs = s.domain_pairs();
@@ -90,9 +90,9 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
       if (!m.trained_on.empty() && ImGui::IsItemHovered()) ImGui::SetTooltip("trained on %s", m.trained_on.c_str());
       for (size_t p = 0; p < pairs.size(); ++p) {
         ImGui::TableNextColumn();
-        const bool involves = m.trained_on.empty() || m.trained_on == pairs[p].first || m.trained_on == pairs[p].second;
-        const CellTotals cell = s.totals_for(m.name, static_cast<int>(p));
-        const double val = cell.ipd();
+        const TableCell cell = s.cell_for(m.name, static_cast<int>(p));  // the engine's cell (ipd.h)
+        const bool involves = cell.involves_training_domain;
+        const double val = cell.ipd;
         const bool current = m.name == s.model() && static_cast<int>(p) == s.pair_index();
         if (!involves)  // the en dash of the tables and figures (the paper's mark)
           ImGui::TextDisabled("–");

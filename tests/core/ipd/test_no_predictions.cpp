@@ -132,17 +132,17 @@ TEST(NoPredictions, TheSessionSaysWhyItsCellHasNoNumber) {
   test::TempDir d;
   write_study(d, "");
   Session s(load_labels(open_study(d.path())));
-  EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);  // the tiny study worked by hand (test_ipd.cpp)
-  s.set_conf_threshold(0.95);                 // the slider: nothing is left on either side
-  EXPECT_TRUE(std::isnan(s.totals().ipd()));
-  EXPECT_EQ(s.totals().no_value_reason, "no predictions at or above 0.95 in real and synth");
+  EXPECT_NEAR(s.cell().ipd, 0.5, 1e-12);  // the tiny study worked by hand (test_ipd.cpp)
+  s.set_conf_threshold(0.95);             // the slider: nothing is left on either side
+  EXPECT_TRUE(std::isnan(s.cell().ipd));
+  EXPECT_EQ(s.cell().no_value_reason, "no predictions at or above 0.95 in real and synth");
   EXPECT_EQ(s.summary(0).no_value_reason, "no predictions at or above 0.95 in real and synth");
   EXPECT_TRUE(std::isnan(s.summary(0).ipd));
   ASSERT_EQ(s.problems().size(), 1u);  // the Problems window says why the cell has no number
   EXPECT_EQ(s.problems()[0].to_string(),
             "model 'det': IPD(real, synth) is not a number: no predictions at or above 0.95 in real and synth");
   s.set_conf_threshold(0.85);
-  EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 0.5, 1e-12);
   ASSERT_EQ(s.problems().size(), 1u);
   EXPECT_EQ(s.problems()[0].to_string(),
             "model 'det' has no predictions at or above 0.85 in 'synth' (its scenes compared "

@@ -286,8 +286,8 @@ TEST(StudyCache, SessionReopensFromItWithTheSameFigures) {
     EXPECT_EQ(warm.view_pairs(k), cold.view_pairs(k));
     EXPECT_EQ(warm.summary(k).ipd, cold.summary(k).ipd) << k;
   }
-  EXPECT_EQ(warm.totals().pairs, cold.totals().pairs);
-  EXPECT_EQ(warm.totals().ipd(), cold.totals().ipd());
+  EXPECT_EQ(warm.cell().pairs, cold.cell().pairs);
+  EXPECT_EQ(warm.cell().ipd, cold.cell().ipd);
 }
 
 // A twin rendered from the same labels registers as 'identical layouts' (the last stop reason): the cache

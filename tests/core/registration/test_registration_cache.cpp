@@ -107,7 +107,7 @@ TEST(RegistrationCache, TableAndSessionShareItAndAgree) {
   so.cache_dir = t.cache_dir;
   const Session s = Session::open(d.path(), so);
   EXPECT_EQ(s.cached_registrations(), 3);
-  EXPECT_DOUBLE_EQ(s.totals().ipd(), cold.cells[0].ipd);
+  EXPECT_DOUBLE_EQ(s.cell().ipd, cold.cells[0].ipd);
 }
 
 TEST(RegistrationCache, ForgedOrForeignEntriesAreIgnoredRecomputedAndOverwritten) {

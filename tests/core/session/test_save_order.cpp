@@ -37,7 +37,7 @@ TEST(SaveOrder, AFailedWriteKeepsTheOtherNameOrderFile) {
   test::TempDir d;
   write_study_with_hand_pairs(d);
   Session s = Session::open(d.path());
-  ASSERT_NEAR(s.totals().ipd(), kHand, 1e-12);
+  ASSERT_NEAR(s.cell().ipd, kHand, 1e-12);
   const SaveJob job = s.apply(0, Edit::pair(0, 0));  // real 0 <-> synth 0 only: IPD 1
   ASSERT_EQ(job.path, d / "pairs/real__synth/s1.json");
   // The new file's directory can't be made (a file is in the way): the write fails, as on a full disk.
@@ -71,7 +71,7 @@ TEST(SaveOrder, ACrashBetweenAnyTwoStepsLeavesTheOldOrTheNewPairs) {
     }
     EXPECT_TRUE(crashed) << step;
     EXPECT_NEAR(ipd_on_disk(d.path()), expected, 1e-12) << "crash after " << step;
-    EXPECT_NEAR(Session::open(d.path()).totals().ipd(), expected, 1e-12) << "crash after " << step;
+    EXPECT_NEAR(Session::open(d.path()).cell().ipd, expected, 1e-12) << "crash after " << step;
   }
   // Back to automatic: the other name order goes first, so the file read first still holds the old pairs.
   for (const auto& [step, expected] :
@@ -80,7 +80,7 @@ TEST(SaveOrder, ACrashBetweenAnyTwoStepsLeavesTheOldOrTheNewPairs) {
     write_study_with_hand_pairs(d);
     test::write_text(d / "pairs/real__synth/s1.json", "{\"pairs\": [[0, 0]]}\n");  // both orders present
     Session s = Session::open(d.path());
-    ASSERT_NEAR(s.totals().ipd(), kEdited, 1e-12);
+    ASSERT_NEAR(s.cell().ipd, kEdited, 1e-12);
     const SaveJob job = s.apply(0, Edit::reset());
     ASSERT_FALSE(job.contents.has_value());
     try {

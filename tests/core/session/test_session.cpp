@@ -37,7 +37,7 @@ TEST(Session, OpensWithTheEngineFigures) {
   ASSERT_EQ(s.scenes().size(), 1u);
   EXPECT_EQ(s.left_domain(), "real");
   EXPECT_EQ(s.model(), "det");
-  EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 0.5, 1e-12);
   EXPECT_EQ(s.view_pairs(0), (RockPairs{{0, 1}, {1, 0}}));
   const SceneSummary sum = s.summary(0);
   EXPECT_NEAR(sum.ipd, 0.5, 1e-12);
@@ -51,7 +51,7 @@ TEST(Session, PairUnpairUndoRedoAndSaveAreSeenByTheEngine) {
   Session s = Session::open(d.path());
   // Unpair real rock 1: only (0,1) is left, |1 - 1/3| = 2/3.
   SaveJob job = s.apply(0, Edit::unpair(Side::kA, 1));
-  EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 2.0 / 3, 1e-12);
   EXPECT_EQ(s.summary(0).unpaired_a, 1);
   EXPECT_TRUE(s.summary(0).edited);
   EXPECT_EQ(job.path, d / "pairs/real__synth/s1.json");
@@ -62,26 +62,26 @@ TEST(Session, PairUnpairUndoRedoAndSaveAreSeenByTheEngine) {
   // Pair real 0 with synth 0: replaces real 0's old partner. perf 1 vs 0 -> IPD 1.
   run_save_job(s.apply(0, Edit::pair(0, 0)));
   EXPECT_EQ(s.view_pairs(0), (RockPairs{{0, 0}}));
-  EXPECT_NEAR(s.totals().ipd(), 1.0, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 1.0, 1e-12);
   EXPECT_NEAR(table_ipd_from_disk(d.path()), 1.0, 1e-12);
   // Undo twice: back to automatic, and the file is removed.
   run_save_job(*s.undo());
-  EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 2.0 / 3, 1e-12);
   const auto back = s.undo();
   ASSERT_TRUE(back.has_value());
   EXPECT_FALSE(back->contents.has_value());
   run_save_job(*back);
   EXPECT_FALSE(std::filesystem::exists(d / "pairs/real__synth/s1.json"));
-  EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 0.5, 1e-12);
   EXPECT_FALSE(s.undo().has_value());
   // Redo re-applies the unpair.
   run_save_job(*s.redo());
-  EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 2.0 / 3, 1e-12);
   EXPECT_NEAR(table_ipd_from_disk(d.path()), 2.0 / 3, 1e-12);
   // A new edit drops the redo branch.
   s.apply(0, Edit::reset());
   EXPECT_FALSE(s.can_redo());
-  EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 0.5, 1e-12);
 }
 
 // 300 copies of the tiny study's scene (s001 ... s300): scenes 0 and 200 in different chunks of CowVector's 128 scenes.
@@ -106,12 +106,12 @@ TEST(Session, ACopyIsASnapshotThatLaterEditsLeaveAlone) {
   // Unpair real rock 1 of s201: its (1, 0) pair goes, |1/3 - 0| with it. Each scene's sum is 1 over 2 pairs;
   // s201's is 2/3 over 1 pair: (299 + 2/3) / 599 = 899 / 1797.
   s.apply(200, Edit::unpair(Side::kA, 1));
-  EXPECT_NEAR(s.totals().ipd(), 899.0 / 1797, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 899.0 / 1797, 1e-12);
   EXPECT_EQ(s.view_pairs(200), (RockPairs{{0, 1}}));
   EXPECT_EQ(s.audit(200).pairs.size(), 1u);
   EXPECT_TRUE(s.summary(200).edited);
-  EXPECT_NEAR(before.totals().ipd(), 0.5, 1e-12);
-  EXPECT_EQ(before.totals().pairs, 600);
+  EXPECT_NEAR(before.cell().ipd, 0.5, 1e-12);
+  EXPECT_EQ(before.cell().pairs, 600);
   EXPECT_EQ(before.view_pairs(200), (RockPairs{{0, 1}, {1, 0}}));
   EXPECT_EQ(before.audit(200).pairs.size(), 2u);
   EXPECT_FALSE(before.summary(200).edited);
@@ -123,9 +123,9 @@ TEST(Session, ACopyIsASnapshotThatLaterEditsLeaveAlone) {
 
   const Session edited = s;
   ASSERT_TRUE(s.undo().has_value());
-  EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 0.5, 1e-12);
   EXPECT_EQ(edited.view_pairs(200), (RockPairs{{0, 1}}));
-  EXPECT_NEAR(edited.totals().ipd(), 899.0 / 1797, 1e-12);
+  EXPECT_NEAR(edited.cell().ipd, 899.0 / 1797, 1e-12);
   EXPECT_TRUE(edited.can_undo());
   EXPECT_FALSE(edited.can_redo());
   ASSERT_TRUE(s.redo().has_value());
@@ -150,7 +150,7 @@ TEST(Session, AHandPairedSceneIsRegisteredOnlyWhenNeeded) {
   EXPECT_TRUE(s.audit(0).waits_for_registration);
   EXPECT_TRUE(s.audit(0).pairs.empty());
   EXPECT_EQ(s.audit(0).suspects, 0);
-  EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);  // the hand pair (0, 1) counts: |1 - 1/3|
+  EXPECT_NEAR(s.cell().ipd, 2.0 / 3, 1e-12);  // the hand pair (0, 1) counts: |1 - 1/3|
   const Session before = s;
   EXPECT_TRUE(s.register_scene(0, 0));
   EXPECT_FALSE(s.register_scene(0, 0));  // once
@@ -160,7 +160,7 @@ TEST(Session, AHandPairedSceneIsRegisteredOnlyWhenNeeded) {
   ASSERT_EQ(s.audit(0).pairs.size(), 1u);  // the audit of the hand pair against the found affine
   EXPECT_NEAR(s.audit(0).pairs[0].residual_px, 0, 1e-6);
   EXPECT_EQ(s.view_pairs(0), (RockPairs{{0, 1}}));  // still the hand pairs
-  EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 2.0 / 3, 1e-12);
   EXPECT_FALSE(before.scenes()[0].registered);  // a snapshot taken before keeps waiting
 
   // Going back to automatic pairs on a scene not registered yet registers it first.
@@ -169,7 +169,7 @@ TEST(Session, AHandPairedSceneIsRegisteredOnlyWhenNeeded) {
   fresh.apply(0, Edit::reset());
   EXPECT_TRUE(fresh.scenes()[0].registered);
   EXPECT_EQ(fresh.view_pairs(0), (RockPairs{{0, 1}, {1, 0}}));
-  EXPECT_NEAR(fresh.totals().ipd(), 0.5, 1e-12);
+  EXPECT_NEAR(fresh.cell().ipd, 0.5, 1e-12);
 }
 
 TEST(Session, ExcludeAndSwappedView) {
@@ -182,7 +182,7 @@ TEST(Session, ExcludeAndSwappedView) {
   EXPECT_EQ(s.view_pairs(0), (RockPairs{{0, 1}, {1, 0}}));  // (synth, real)
   // Exclude synth rock 0 (left): its pair (real 1, synth 0) leaves the IPD: only |1 - 1/3| remains.
   const SaveJob job = s.apply(0, Edit::toggle_exclude(Side::kA, 0));
-  EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 2.0 / 3, 1e-12);
   EXPECT_TRUE(s.excluded(Side::kA, 0, 0));
   EXPECT_EQ(*job.contents,
             "{\"excluded_b\":[0],\"pairs\":[[0,1],[1,0]],\"rocks_a\":[[0,0.2,0.2,0.1,0.1],[1,0.6,0.6,0.1,0.1]],"
@@ -203,7 +203,7 @@ TEST(Session, ConfidenceThresholdMovesTheIpd) {
   write_tiny_study(d);
   Session s = Session::open(d.path());
   s.set_conf_threshold(0.5);  // real rock 1's prediction (0.4) is dropped: diffs 2/3 and 0
-  EXPECT_NEAR(s.totals().ipd(), 1.0 / 3, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 1.0 / 3, 1e-12);
   EXPECT_EQ(s.predictions(Side::kA, 0).size(), 1u);
 }
 
@@ -247,7 +247,7 @@ TEST(Session, IncrementalTotalsMatchAFullRecompute) {
     TableOptions o;
     o.models = {m};
     const double from_disk = compute_cross_table(load_labels(open_study(d.path())), o).cells[0].ipd;
-    EXPECT_NEAR(s.totals_for(m, 0).ipd(), from_disk, 1e-12) << m;
+    EXPECT_NEAR(s.cell_for(m, 0).ipd, from_disk, 1e-12) << m;
   }
 }
 

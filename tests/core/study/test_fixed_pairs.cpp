@@ -221,7 +221,7 @@ TEST(FixedPairsBinding, FilesWithoutBoxesLoadByIndexAndGainBoxesOnTheNextSave) {
   test::write_text(f, R"({"pairs": [[0, 1]]})");
   EXPECT_NEAR(table_of(d.path()).cells[0].ipd, 2.0 / 3, 1e-12);
   Session s = Session::open(d.path());
-  EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 2.0 / 3, 1e-12);
   EXPECT_TRUE(s.pairs_problems().empty());
   run_save_job(s.apply(0, Edit::toggle_exclude(Side::kB, 0)));
   EXPECT_EQ(read_file(f),
