@@ -12,10 +12,10 @@
 #include <chrono>
 #include <ctime>
 #include <filesystem>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
 
+#include "core/picture/picture_codec.h"
 #include "core/util/atomic_file.h"
 #include "ui/canvas/canvas.h"
 
@@ -136,7 +136,7 @@ void StudioWindow::save_screenshot(const std::string& path) const {
   cv::cvtColor(rgba, bgr, cv::COLOR_RGBA2BGR);
   cv::flip(bgr, bgr, 0);
   std::vector<uchar> png;
-  cv::imencode(".png", bgr, png);
+  if (!encode_picture(".png", bgr, &png)) throw std::runtime_error(path + ": cannot encode the screenshot as PNG");
   write_file_atomically(path, std::string(png.begin(), png.end()));
 }
 
