@@ -136,7 +136,11 @@ Runner add_figure_command(CLI::App& app) {
     cmd->add_option("--layers", args->output.layers,
                     "Comma-separated subset of gt,pred,conf,indices,pairs,legend (default: all but conf for a "
                     "single column)");
-    cmd->add_option("--crop", args->output.crop, "X0,Y0,X1,Y1: a region of the pictures, normalised to 0..1");
+    cmd->add_option("--crop", args->output.crop,
+                    "X0,Y0,X1,Y1: a region of the pictures, normalised to 0..1; auto: the rocks' extent");
+    cmd->add_option("--panels", args->output.panels,
+                    "auto (default), side or stacked: the two pictures side by side or one under the other")
+        ->check(CLI::IsMember({"auto", "side", "stacked"}));
     cmd->add_option("--conf", args->conf, "Hide predictions below this confidence")->check(CLI::Range(0.0, 1.0));
     cmd->add_flag("--skip-bad-lines", args->skip_bad_lines, "Warn about malformed label lines and skip them");
     add_class_options(cmd, &args->class_word, &args->class_map, &args->task_word);

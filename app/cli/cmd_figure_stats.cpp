@@ -17,8 +17,8 @@ namespace {
 struct StatsArgs {
   StudyOptions study;
   FigureOutputArgs output;
-  std::string ref, a, b, by = "size", sort = "diff";
-  int permutations = 2000, worst = 2, bins = 4, count = 8;
+  std::string ref, a, b, by = "size", sort = "diff", scene;
+  int permutations = 2000, worst = 2, bins = 4, count = 8, rock = 0;
 };
 
 int run(const std::string& kind, const StatsArgs& args) {
@@ -42,6 +42,12 @@ int run(const std::string& kind, const StatsArgs& args) {
   r.worst = args.worst;
   r.bins = args.bins;
   r.count = args.count;
+  r.scene = args.scene;
+  r.rock = args.rock;
+  if (args.rock > 0 && args.scene.empty()) {
+    fmt::print(stderr, "error: --rock {} needs --scene: rock numbers are a scene's\n", args.rock);
+    return kUsage;
+  }
   parse_gallery_sort(args.sort, &r.gallery_sort);
   if (kind == "gallery" && !args.study.domains.empty()) {
     if (args.study.domains.size() != 2) {
@@ -94,6 +100,11 @@ Runner add_figure_stats_commands(CLI::App* fig, std::shared_ptr<std::string> whi
   add_figure_output_options(gallery, &args->output);
   gallery->callback([which] { *which = "gallery"; });
   gallery->add_option("--count", args->count, "How many pairs (default 8)")->check(CLI::Range(1, 200));
+  gallery->add_option("--scene", args->scene, "Only this scene's pairs (its file stem)");
+  gallery
+      ->add_option("--rock", args->rock,
+                   "With --scene: only the pair of this rock of the first domain (from 1), drawn across the column")
+      ->check(CLI::Range(1, 1000000));
   gallery->add_option("--sort", args->sort, "diff, size, perf-a or perf-b (largest first; default diff)")
       ->check(CLI::IsMember({"diff", "size", "perf-a", "perf-b"}));
   return [args, which]() -> int { return run(*which, *args); };

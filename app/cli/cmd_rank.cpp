@@ -17,7 +17,7 @@ namespace {
 struct RankCommandArgs {
   RankArgs rank;
   std::string format = "text", out;
-  bool booktabs = false;
+  bool booktabs = false, latex_wide = false;
 };
 
 int run_rank(const RankCommandArgs& args) {
@@ -30,6 +30,7 @@ int run_rank(const RankCommandArgs& args) {
   TableFormatOptions fo;
   fo.latex_ci = args.rank.study.ci_given;
   fo.booktabs = args.booktabs;
+  fo.latex_wide = args.latex_wide;
   fo.resamples = ranked->loaded.bootstrap.resamples;
   fo.level = ranked->loaded.bootstrap.level;
   fo.seed = ranked->loaded.bootstrap.seed;
@@ -39,6 +40,9 @@ int run_rank(const RankCommandArgs& args) {
   // The machine-readable formats carry the notes as fields; a reader of the terminal still sees them.
   if (format == TableFormat::kCsv || format == TableFormat::kJson)
     for (const std::string& n : ranking_notes(ranked->ranking, fo)) fmt::print(stderr, "note: {}\n", n);
+  if (format == TableFormat::kLatex)
+    if (const std::string advice = latex_ranking_fit_advice(ranked->ranking, fo); !advice.empty())
+      fmt::print(stderr, "note: {}\n", advice);
   if (args.out.empty()) {
     std::cout << text;
   } else {
@@ -58,6 +62,9 @@ Runner add_rank_command(CLI::App& app) {
   cmd->add_option("--format", args->format, "text, csv, json, markdown or latex")
       ->check(CLI::IsMember({"text", "csv", "json", "markdown", "latex"}));
   cmd->add_flag("--booktabs", args->booktabs, "LaTeX: \\toprule/\\midrule/\\bottomrule (needs the booktabs package)");
+  cmd->add_flag("--latex-wide", args->latex_wide,
+                "LaTeX: settings' names, parameters and intervals on one line, for a table* across both columns "
+                "(default: a compact layout for one column)");
   cmd->add_option("--out", args->out, "Write the ranking to this file (atomically) instead of stdout");
   return [args]() -> int { return run_rank(*args); };
 }

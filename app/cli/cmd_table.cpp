@@ -74,23 +74,6 @@ std::vector<std::string> table_notes(const TableArgs& args, const LoadedStudy& l
   return notes;
 }
 
-// Whether a LaTeX table fits where it is meant to go, at 10 pt type (never by shrinking it); empty when it fits.
-std::string latex_width_note(const CrossTable& table, const TableFormatOptions& fo) {
-  const double w = latex_table_width_pt(table, fo);
-  if (!fo.latex_wide && w > kIeeeColumnPt)
-    return fmt::format(
-        "the LaTeX table is about {:.0f} pt wide, more than one IEEE column ({:g} pt at 10 pt "
-        "type): only a table* across both columns fits it (--latex-wide spells the names out "
-        "for that)",
-        w, kIeeeColumnPt);
-  if (fo.latex_wide && w > kIeeeTextWidthPt)
-    return fmt::format(
-        "the LaTeX table is about {:.0f} pt wide, more than both IEEE columns ({:g} pt): "
-        "drop --latex-wide for the compact layout",
-        w, kIeeeTextWidthPt);
-  return "";
-}
-
 int run_table(const TableArgs& args) {
   TableFormat format = TableFormat::kText;
   parse_table_format(args.format, &format);
@@ -114,7 +97,7 @@ int run_table(const TableArgs& args) {
   std::string text = format_table(loaded->table, format, fo);
   std::vector<std::string> notes = table_notes(args, *loaded, provenance);
   if (format == TableFormat::kLatex) {
-    std::string width = latex_width_note(loaded->table, fo);
+    std::string width = latex_fit_advice(loaded->table, fo);
     if (!width.empty()) notes.push_back(width);
   }
   for (const std::string& n : notes) {

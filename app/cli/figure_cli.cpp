@@ -49,7 +49,11 @@ int figure_options(const FigureOutputArgs& a, ui::FigureOptions* out) {
     o.font_pt = a.font_pt;
     o.dpi = a.dpi;
     o.layers = a.layers.empty() ? ui::default_layers(o.width_in) : ui::parse_layers(a.layers);
-    if (!a.crop.empty()) o.crop = ui::parse_crop(a.crop);
+    if (a.crop == "auto")
+      o.crop_auto = true;
+    else if (!a.crop.empty())
+      o.crop = ui::parse_crop(a.crop);
+    o.panels = ui::parse_panels(a.panels);
     o.font_file = a.font.empty() ? ui::default_font_file() : a.font;
     o.check();
   } catch (const std::invalid_argument& e) {

@@ -12,7 +12,7 @@
 namespace ipd::cli {
 
 struct FigureOutputArgs {
-  std::string out, column = "single", font, layers, crop;
+  std::string out, column = "single", font, layers, crop, panels = "auto";
   std::optional<double> width_in;  // --width-in; not given: --column's width
   double font_pt = 8, dpi = 300;
   bool mkdir = false;  // --mkdir: create --out's folder when it is missing

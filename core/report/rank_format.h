@@ -18,4 +18,11 @@ std::string format_ranking(const Ranking& ranking, TableFormat format, const Tab
 // the level, how Δ and p were made ("Holm"), candidates not ranked and why, candidates without predictions.
 std::vector<std::string> ranking_notes(const Ranking& ranking, const TableFormatOptions& options);
 
+// LaTeX (format_ranking): by default a compact layout for one IEEE column (settings by their parameter values when
+// they all have the same parameters, intervals on a second line); `options.latex_wide`: names, parameters and
+// intervals on one line, for a table* across both columns.
+// What `ipd rank --format latex` says when the compact ranking is wider than one IEEE column (252 pt at 10 pt
+// type), with its estimated width and where it fits; "" when it fits or for the wide layout.
+std::string latex_ranking_fit_advice(const Ranking& ranking, const TableFormatOptions& options);
+
 }  // namespace ipd

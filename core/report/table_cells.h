@@ -40,5 +40,7 @@ double row_best(const CrossTable& t, size_t row);
 // escaping of plain text.
 std::string latex_cross_table(const CrossTable& t, const TableFormatOptions& o);
 std::string latex_text(const std::string& s);
+// The advance width of plain text at 10 pt Computer Modern (roman, or bold), in points, within a few.
+double latex_text_width_pt(const std::string& s, bool bold);
 
 }  // namespace ipd::table_cells

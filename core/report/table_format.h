@@ -55,9 +55,22 @@ int footnote_number(std::vector<std::string>* reasons, const std::string& reason
 
 // One IEEE column at 10 pt type, and both columns (table*), in points.
 constexpr double kIeeeColumnPt = 252, kIeeeTextWidthPt = 516;
-// The width the LaTeX tabular of `options` (compact or wide) takes at 10 pt Computer Modern, estimated from
-// the glyph widths (within a few points): to say when only the wide layout across both columns fits.
+// The LaTeX layouts. Each prints only the domain pairs some row's detector was trained on (a pair no row
+// trained on is "--" in every row; the legend counts them). kWide: --latex-wide's, names spelled out, for a
+// table*. The compact ones (letters A, B, ... with a legend, intervals on a second line): kPairColumns, the
+// paper's orientation, written when it fits one IEEE column; else kPairRows (domain pairs as rows, one column
+// per detector) when that is narrower, as with four or five domains and one to three detectors.
+enum class LatexLayout { kWide, kPairColumns, kPairRows };
+LatexLayout latex_layout(const CrossTable& table, const TableFormatOptions& options);
+// The width a layout's tabular takes at 10 pt Computer Modern, estimated from the glyph widths (within a few
+// points).
+double latex_layout_width_pt(const CrossTable& table, const TableFormatOptions& options, LatexLayout layout);
+// The width of the layout `format_table` writes for `options`.
 double latex_table_width_pt(const CrossTable& table, const TableFormatOptions& options);
+// What `ipd table --format latex` says about where its table fits, true for every layout: "" when the table
+// fits where it is meant to go (one column; a table* for --latex-wide); which layout does fit otherwise (or
+// that none does, and what to leave out); and, when the domain pairs were turned into rows, why.
+std::string latex_fit_advice(const CrossTable& table, const TableFormatOptions& options);
 std::string format_table(const CrossTable& table, TableFormat format, const TableFormatOptions& options = {});
 
 }  // namespace ipd

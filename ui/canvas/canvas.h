@@ -108,6 +108,7 @@ class DisplayList : public Canvas {
   Pt measure(const TextStyle& style, const std::string& s) override { return metrics_.measure(style, s); }
 
   void replay(Canvas& out) const;
+  const FontMetrics& metrics() const { return metrics_; }
   // Every text drawn, with its box (for tests and the overlap check).
   struct TextItem {
     PtRect box;

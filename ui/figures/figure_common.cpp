@@ -69,6 +69,18 @@ double draw_legend(Canvas& c, Pt at, double width, const TextStyle& st, const st
       case Swatch::kLine:
         c.line({x, cy}, {x + sw, cy}, it.colour, lw * 1.5);
         break;
+      case Swatch::kOutline:  // a stroke as the pictures draw it: on its halo
+        if (halo) c.line({box.x0, cy}, {box.x1, cy}, it.halo, lw * 1.3 * kHaloRatio);
+        c.line({box.x0, cy}, {box.x1, cy}, it.colour, lw * 1.3);
+        break;
+      case Swatch::kDashedOutline: {  // two dashes and a gap, as an outline's dashes
+        const double dash = box.width() / 2.6;
+        for (double x0 : {box.x0, box.x1 - dash}) {
+          if (halo) c.line({x0, cy}, {x0 + dash, cy}, it.halo, lw * 1.3 * kHaloRatio);
+          c.line({x0, cy}, {x0 + dash, cy}, it.colour, lw * 1.3);
+        }
+        break;
+      }
     }
     c.text({x + sw + pad, y}, Anchor::kTopLeft, st, it.text);
     x += w + item_gap;
@@ -117,7 +129,16 @@ int draw_labels(Canvas& c, const std::vector<Label>& labels, const PtRect& bound
   return p.left_out;
 }
 
+double outline_dash(double perimeter_pt, double dash) {
+  return std::max(kMinDashPt, std::min(dash, perimeter_pt / (kMinDashes * 1.6)));
+}
+
 void dashed_polygon(Canvas& c, const std::vector<Pt>& points, Colour colour, double width_pt, double dash) {
+  double perimeter = 0;
+  for (size_t k = 0; k < points.size(); ++k)
+    perimeter +=
+        std::hypot(points[(k + 1) % points.size()].x - points[k].x, points[(k + 1) % points.size()].y - points[k].y);
+  dash = outline_dash(perimeter, dash);
   const double gap = 0.6 * dash;
   double phase = 0;  // carried from edge to edge, so short edges of a fine outline still show dashes
   for (size_t k = 0; k < points.size(); ++k) {
@@ -134,6 +155,7 @@ void dashed_polygon(Canvas& c, const std::vector<Pt>& points, Colour colour, dou
 }
 
 void dashed_rect(Canvas& c, const PtRect& r, Colour colour, double width_pt, double dash) {
+  dash = outline_dash(2 * (std::abs(r.width()) + std::abs(r.height())), dash);
   const double gap = 0.6 * dash;
   const auto edge = [&](Pt a, Pt b) {
     const double len = std::hypot(b.x - a.x, b.y - a.y);

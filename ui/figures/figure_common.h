@@ -31,8 +31,9 @@ std::vector<std::string> wrap(Canvas& c, const TextStyle& st, const std::string&
 // Draws wrapped text from (x, y) down; returns the height used.
 double draw_wrapped(Canvas& c, Pt at, const TextStyle& st, const std::string& text, double width);
 
-// kStruckBox: a box with a diagonal; kDashedBox: a prediction's dashed box.
-enum class Swatch { kBox, kDot, kRing, kLine, kStruckBox, kDashedBox };
+// kStruckBox: a box with a diagonal; kDashedBox: a prediction's dashed box. kOutline, kDashedOutline: a line
+// sample, solid or dashed, for the figures that draw outlines (masks) rather than boxes.
+enum class Swatch { kBox, kDot, kRing, kLine, kStruckBox, kDashedBox, kOutline, kDashedOutline };
 struct LegendItem {
   Swatch swatch;
   Colour colour;
@@ -40,9 +41,18 @@ struct LegendItem {
   Colour halo = rgb(0, 0, 0, 0);  // drawn under the swatch's strokes, as on the pictures (alpha 0: none)
 };
 
-// A box outline in dashes starting at each corner (so corners always show), `dash` long with `dash` * 0.6 gaps.
+// A dashed outline keeps at least kMinDashes dashes around its perimeter, so a small prediction's outline reads
+// as dashed (not as a broken solid line) at a single column and in greyscale; its dashes never get shorter than
+// kMinDashPt (a dotted line), and never longer than the `dash` asked for.
+constexpr int kMinDashes = 5;
+constexpr double kMinDashPt = 0.8;
+// The dash length for an outline of `perimeter_pt`: min(dash, perimeter / (kMinDashes x 1.6)), at least kMinDashPt.
+double outline_dash(double perimeter_pt, double dash);
+
+// A box outline in dashes starting at each corner (so corners always show), `dash` long with `dash` * 0.6 gaps
+// (outline_dash of its perimeter).
 void dashed_rect(Canvas& c, const PtRect& r, Colour colour, double width_pt, double dash);
-// A closed polygon's edges dashed like dashed_rect's (a predicted outline).
+// A closed polygon's edges dashed like dashed_rect's (a predicted outline), outline_dash of its perimeter.
 void dashed_polygon(Canvas& c, const std::vector<Pt>& points, Colour colour, double width_pt, double dash);
 // Items flowing left to right, wrapping to new rows; returns the height used.
 double draw_legend(Canvas& c, Pt at, double width, const TextStyle& st, const std::vector<LegendItem>& items);

@@ -8,6 +8,7 @@
 
 #include "core/picture/picture_codec.h"
 #include "core/stats/study_statistics.h"
+#include "core/util/errors.h"
 #include "ui/figures/figure_common.h"
 
 namespace ipd::ui {
@@ -29,6 +30,7 @@ GalleryCrop crop_of(const std::vector<Box>& gt, const std::vector<Box>& pred, in
   c.gt = gt[rock];
   const int best = performance_values(gt, pred, task).best_prediction[rock];
   if (best >= 0) c.pred = pred[best], c.has_pred = true;
+  if (c.mask && c.has_pred) c.box_iou = instance_iou(c.gt, c.pred, Task::kDetect);
   c.region = gallery_crop_region(c.gt, w, h);
   return c;
 }
@@ -94,8 +96,11 @@ void draw_crop(Canvas& c, const PtRect& panel, const GalleryCrop& g, double font
 double draw_caption(Canvas& c, const PtRect& panel, const GalleryCrop& g, const TextStyle& st) {
   const Pt at{panel.x0, panel.y1 + 0.15 * st.size_pt};
   const double h = draw_wrapped(c, at, st, fmt::format("rock {}", g.rock + 1), panel.width());
-  return h + draw_wrapped(c, {at.x, at.y + h}, st, fmt::format("{} {:.3f}", g.mask ? "mask IoU" : "perf", g.perf),
-                          panel.width());
+  const std::string perf = fmt::format("{} {:.3f}", g.mask ? "mask IoU" : "perf", g.perf);
+  double used = h + draw_wrapped(c, {at.x, at.y + h}, st, perf, panel.width());
+  if (g.mask && std::isfinite(g.box_iou))
+    used += draw_wrapped(c, {at.x, at.y + used}, st, fmt::format("box IoU {:.3f}", g.box_iou), panel.width());
+  return used;
 }
 
 }  // namespace
@@ -110,10 +115,30 @@ std::pair<int, int> gallery_picture_size(int w, int h) {
   return w > 0 && h > 0 ? std::pair<int, int>{w, h} : std::pair<int, int>{1936, 1216};
 }
 
-GalleryInput gallery_input(const StudyLabels& labels, const TableCell& cell, int count, GallerySort sort) {
+GalleryInput gallery_input(const StudyLabels& labels, const TableCell& cell, int count, GallerySort sort,
+                           const std::string& scene, int rock) {
   GalleryInput in;
   in.a = cell.a, in.b = cell.b, in.model = cell.model, in.sort = sort;
-  const std::vector<RockPairPoint> points = cell_pair_points(labels, cell);
+  std::vector<RockPairPoint> points = cell_pair_points(labels, cell);
+  if (!scene.empty()) {
+    std::vector<RockPairPoint> picked;
+    std::string paired;  // the scene's paired rocks of a, to name in the error
+    for (const RockPairPoint& p : points) {
+      if (cell.per_scene[p.scene].stem != scene) continue;
+      paired += (paired.empty() ? "" : ", ") + std::to_string(p.rock_a + 1);
+      if (rock <= 0 || p.rock_a + 1 == rock) picked.push_back(p);
+    }
+    if (picked.empty())
+      throw StudyError(
+          paired.empty()
+              ? fmt::format("--scene {}: no counted rock pair of {} | {} for model {} in that scene", scene, cell.a,
+                            cell.b, cell.model)
+              : fmt::format("--rock {}: rock {} of {} in {} is in no counted pair of {} | {} for model {} (its paired "
+                            "rocks: {})",
+                            rock, rock, cell.a, scene, cell.a, cell.b, cell.model, paired));
+    points = std::move(picked);
+    in.scene = scene, in.rock = rock;
+  }
   in.counted_pairs = static_cast<int>(points.size());
   const auto size_of = [&](const std::string& d) {
     const auto [w, h] = domain_image_size(labels.study, d);
@@ -163,17 +188,27 @@ GalleryLayout draw_gallery_figure(DisplayList& out, const GalleryInput& in, cons
   const double W = o.width_pt(), m = kFigureMargin, avail = W - 2 * m, F = o.font_pt, small = secondary_pt(F);
   const TextStyle body = style(F, kInk), bold = style(F, kInk, true), note = style(small, kGrey);
   double y = m;
-  y += draw_wrapped(out, {m, y}, bold,
-                    fmt::format("Rock pairs by {} (largest first): {} | {}, model {}",
-                                gallery_sort_label(in.sort, in.a, in.b), in.a, in.b, in.model),
-                    avail) +
-       0.2 * F;
-  y += draw_legend(out, {m, y}, avail, body,
-                   {{Swatch::kBox, kGtC, "GT rock", kDarkHalo},
-                    {Swatch::kDashedBox, kPredC, "its best prediction", kLightHalo}}) +
+  const std::string title =
+      in.rock > 0
+          ? fmt::format("Rock {} of {} in {} and its partner in {}, model {}", in.rock, in.a, in.scene, in.b, in.model)
+      : !in.scene.empty() ? fmt::format("Rock pairs of {} by {} (largest first): {} | {}, model {}", in.scene,
+                                        gallery_sort_label(in.sort, in.a, in.b), in.a, in.b, in.model)
+                          : fmt::format("Rock pairs by {} (largest first): {} | {}, model {}",
+                                        gallery_sort_label(in.sort, in.a, in.b), in.a, in.b, in.model);
+  y += draw_wrapped(out, {m, y}, bold, title, avail) + 0.2 * F;
+  // Outlines (masks) are named by line samples, boxes by boxes: a legend shows what the crops draw.
+  const bool outlines = std::any_of(in.entries.begin(), in.entries.end(), [](const GalleryEntry& e) {
+    return e.a.gt.outline || e.b.gt.outline || e.a.pred.outline || e.b.pred.outline;
+  });
+  y += draw_legend(
+           out, {m, y}, avail, body,
+           {{outlines ? Swatch::kOutline : Swatch::kBox, kGtC, "GT rock", kDarkHalo},
+            {outlines ? Swatch::kDashedOutline : Swatch::kDashedBox, kPredC, "its best prediction", kLightHalo}}) +
        0.3 * F;
   const double gap = 0.8 * F, inner = 0.25 * F;
-  const int per_row = std::max(1, static_cast<int>((avail + gap) / (kMinEntryPt + gap)));
+  // Fewer pairs than a row holds take the whole width: one rock pair (--scene --rock) spans the column.
+  const int per_row = std::max(1, std::min(static_cast<int>(std::max<size_t>(1, in.entries.size())),
+                                           static_cast<int>((avail + gap) / (kMinEntryPt + gap))));
   const double entry_w = (avail - (per_row - 1) * gap) / per_row, side = (entry_w - inner) / 2;
   GalleryLayout layout;
   for (size_t k = 0; k < in.entries.size(); k += per_row) {
@@ -192,8 +227,9 @@ GalleryLayout draw_gallery_figure(DisplayList& out, const GalleryInput& in, cons
     }
     y += row_h + 0.6 * F;
   }
-  std::string notes = fmt::format("The first {} of {} counted pairs; left {}, right {}.", in.entries.size(),
-                                  in.counted_pairs, in.a, in.b);
+  std::string notes = in.rock > 0 ? fmt::format("Left {}, right {}.", in.a, in.b)
+                                  : fmt::format("The first {} of {} counted pairs; left {}, right {}.",
+                                                in.entries.size(), in.counted_pairs, in.a, in.b);
   if (in.entries.empty()) notes = fmt::format("No counted pairs for model {} in {} | {}.", in.model, in.a, in.b);
   if (!in.pictures && !in.entries.empty()) notes += " Labels-only study: boxes on a plain background.";
   for (const GalleryEntry& e : in.entries)

@@ -5,6 +5,8 @@
 // order are the studio's Rock pairs gallery's (core/session/rock_pair_points.h).
 #pragma once
 
+#include <cmath>
+
 #include <opencv2/core.hpp>
 #include <string>
 #include <utility>
@@ -24,6 +26,9 @@ struct GalleryCrop {
   int rock = -1;  // 0-based; printed from 1 as the studio numbers rocks
   double perf = 0;
   bool mask = false;  // perf is a mask IoU (task segment): said so under the crop
+  // With a mask: the IoU of the GT's box with the box of the same prediction, printed beside the mask IoU so a
+  // reader sees what the outline changes (NaN without a prediction or without masks).
+  double box_iou = NAN;
   Box gt, pred;
   bool has_pred = false;
   Crop region;
@@ -43,6 +48,8 @@ struct GalleryInput {
   GallerySort sort = GallerySort::kDiff;
   int counted_pairs = 0;  // in the cell: the entries are the first of these
   std::vector<GalleryEntry> entries;
+  std::string scene;  // gallery_input's scene and rock, when the pairs were picked by them (the title says so)
+  int rock = 0;
   bool pictures = false;  // load_gallery_pictures found a picture for some crop
 };
 
@@ -55,7 +62,11 @@ std::pair<int, int> gallery_picture_size(int w, int h);
 
 // The first `count` counted pairs of `cell` in `sort` order (gallery_sorted), with their boxes. `labels`
 // must be the ones the table was computed from (threshold applied).
-GalleryInput gallery_input(const StudyLabels& labels, const TableCell& cell, int count, GallerySort sort);
+// `scene` (optional): only that scene's pairs; `rock` (from 1, with a scene): only the pair of that rock of the
+// cell's first domain, a figure of one rock pair. Throws StudyError naming the scene's paired rocks when the
+// scene or rock is in no counted pair.
+GalleryInput gallery_input(const StudyLabels& labels, const TableCell& cell, int count, GallerySort sort,
+                           const std::string& scene = "", int rock = 0);
 
 // Reads each scene's picture once and keeps only the crops (a picture that can't be decoded is named in the
 // crop's problem). File I/O: off the UI thread.

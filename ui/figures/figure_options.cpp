@@ -63,6 +63,13 @@ FigureLayers default_layers(double width_in) {
   return l;
 }
 
+PanelArrangement parse_panels(const std::string& text) {
+  if (text == "auto") return PanelArrangement::kAuto;
+  if (text == "side") return PanelArrangement::kSideBySide;
+  if (text == "stacked") return PanelArrangement::kStacked;
+  throw std::invalid_argument("--panels: expected auto, side or stacked, found '" + text + "'");
+}
+
 Crop parse_crop(const std::string& text) {
   const auto parts = split(text, ',');
   const std::string usage =

@@ -33,12 +33,23 @@ struct Crop {
 // "X0,Y0,X1,Y1"; throws std::invalid_argument unless 0 <= X0 < X1 <= 1 and 0 <= Y0 < Y1 <= 1.
 Crop parse_crop(const std::string& text);
 
+// How the pairs and registration figures place their two pictures: side by side, stacked (each the figure's
+// whole width, the second under the first), or (auto) side by side unless that leaves more than a fifth of the
+// pairs unnumbered and stacking numbers more (scene::choose_stacked).
+enum class PanelArrangement { kAuto, kSideBySide, kStacked };
+// "auto", "side" or "stacked"; throws std::invalid_argument naming the accepted words otherwise.
+PanelArrangement parse_panels(const std::string& text);
+
 struct FigureOptions {
   double width_in = kSingleColumnIn;
   double font_pt = 8;
   double dpi = 300;  // PNG only
   FigureLayers layers = default_layers(kSingleColumnIn);
   Crop crop;
+  // --crop auto: the pictures cut to the rocks' extent (both sides' GT boxes, and for the registration figure
+  // the aligned centres), with a margin for their numbers (scene::rocks_crop); `crop` is then ignored.
+  bool crop_auto = false;
+  PanelArrangement panels = PanelArrangement::kAuto;
   std::string font_file;    // empty: default_font_file()
   bool ci = false;          // table: confidence intervals
   std::string by = "size";  // breakdown: size|region|confidence

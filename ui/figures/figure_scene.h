@@ -46,6 +46,8 @@ SceneNumbers scene_numbers(const SceneFigureInput& in);
 // Where the pictures went (points), for tests.
 struct PairsLayout {
   PtRect left, right;
+  bool stacked = false;  // the pictures one under the other (FigureOptions::panels)
+  int unnumbered = 0;    // pairs in view on both pictures, numbered on neither
 };
 // Draws the figure into `out` and sets its page size (width from the options, height from the content).
 // Where a labels-only panel's notice ("no picture") goes: of the panel's top, bottom, corners, sides and middle

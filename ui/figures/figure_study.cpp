@@ -102,7 +102,7 @@ std::string draw_study_figure_body(DisplayList& fig, const CrossTable& t, const 
   if (!cell) throw StudyError(fmt::format("{}: no IPD({}, {}) for model {} in this study", st.root, a, b, model));
   if (r.kind == "gallery") {
     require_number(cell);
-    GalleryInput in = gallery_input(labels, *cell, r.count, r.gallery_sort);
+    GalleryInput in = gallery_input(labels, *cell, r.count, r.gallery_sort, r.scene, r.rock);
     load_gallery_pictures(in, st);
     draw_gallery_figure(fig, in, o);
     return fmt::format("Rock pairs of IPD({}, {}) for {}", cell->a, cell->b, model);

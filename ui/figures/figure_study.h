@@ -26,6 +26,8 @@ struct StudyFigureRequest {
   int worst = 2;                    // distribution: scenes named per domain pair
   int bins = 4;                     // breakdown by size or confidence
   int count = 8;                    // gallery: how many pairs
+  std::string scene;                // gallery: only this scene's pairs (empty: all)
+  int rock = 0;                     // gallery, with scene: only the pair of this rock of `a` (from 1; 0: all)
   GallerySort gallery_sort = GallerySort::kDiff;
   // The confidence threshold the predictions were cut at (`--conf`, the studio's slider, else study.yaml's):
   // above 0 the table, compare, distribution and breakdown say it under the figure, as the pairs figure's

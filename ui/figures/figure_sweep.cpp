@@ -99,6 +99,9 @@ SweepChart sweep_chart(const Ranking& k) {
 
 namespace {
 
+// The gap between the value axis' title and its top tick label, in font sizes (about 2.4 pt at 8 pt).
+constexpr double kAxisTitleGap = 0.3;
+
 // A vertical value axis at x (ticks to its left), from y_bottom (lo) up to y_top (hi); returns its width.
 double draw_value_axis(Canvas& c, double x, double y_top, double y_bottom, double lo, double hi,
                        const std::vector<double>& ticks, double right, const FigureOptions& o) {
@@ -178,7 +181,10 @@ void draw_line_sweep(DisplayList& out, const SweepChart& ch, const FigureOptions
   const double axis_lo = std::min(xlo - xpad, xt.front()), axis_hi = std::max(xhi + xpad, xt.back());
   // The value axis' label above it, at the top left (a rotated label would need a rotated font).
   out.text({kFigureMargin, y}, Anchor::kTopLeft, small, "IPD (lower is better)");
-  y += out.measure(small, "Ag").y + 0.3 * F;
+  // The top tick's label is centred on the axis' end, half its height above it: the title clears that half
+  // and a gap (kAxisTitleGap font sizes), so the two never touch.
+  const double text_h = out.measure(small, "Ag").y;
+  y += text_h + 0.5 * text_h + kAxisTitleGap * F;
   const double x0 = kFigureMargin + widest_tick(out, yt, o) + 0.8 * F, x1 = W - kFigureMargin - 0.5 * F;
   const double plot_h = std::max(90.0, 0.55 * (x1 - x0));
   const double top = y, bottom = y + plot_h;

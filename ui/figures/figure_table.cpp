@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
+#include <type_traits>
 
 #include <fmt/format.h>
 #include "core/ipd/ipd.h"
@@ -36,6 +38,28 @@ void for_each_text(const TableFigure& t, size_t c, F&& f) {
 // The intervals' smaller font (secondary_pt of the cells').
 double interval_pt(double cell_pt) { return secondary_pt(cell_pt); }
 
+// The width each column needs at font size F with its cells wrapped at spaces (`lo`: the widest word, or the
+// whole interval, which never wraps) and on one line (`hi`), padding included.
+struct ColumnNeeds {
+  std::vector<double> lo, hi;
+};
+ColumnNeeds column_needs(Canvas& out, const TableFigure& t, double F) {
+  const size_t cols = t.header.size();
+  const TextStyle bold = style(F, kInk, true), sub = style(interval_pt(F), kGrey);
+  const double pad = 0.9 * F;
+  ColumnNeeds n{std::vector<double>(cols, 0), std::vector<double>(cols, 0)};
+  for (size_t c = 0; c < cols; ++c)
+    for_each_text(t, c, [&](const std::string& s, bool, bool is_sub) {
+      const TextStyle& st = is_sub ? sub : bold;
+      n.lo[c] = std::max(n.lo[c], (is_sub ? out.measure(st, s).x : widest_word(out, st, s)) + pad);
+      n.hi[c] = std::max(n.hi[c], out.measure(st, s).x + pad);
+    });
+  return n;
+}
+
+// The smallest font the table may use: the print minimum (kReadablePt), or --font-pt when that asks for less.
+double floor_font(const FigureOptions& o) { return std::min(o.font_pt, kReadablePt); }
+
 // The font size and column widths of a table `avail` wide.
 struct TableFit {
   double font_pt = 0;
@@ -45,30 +69,20 @@ struct TableFit {
 TableFit fit_table(Canvas& out, const TableFigure& t, const FigureOptions& o, double avail) {
   const size_t cols = t.header.size();
   // The largest font (up to --font-pt) at which every column fits with its cells wrapped at spaces; columns
-  // narrower than their longest cell share the shortfall in proportion.
-  // Never below the print minimum (kReadablePt) unless --font-pt asks for less: a table that still doesn't
-  // fit wraps its cells rather than shrinking further.
+  // narrower than their longest cell share the shortfall in proportion. Never below floor_font: a table
+  // that does not fit there is split into column groups (table_column_groups) before it gets here.
   double F = o.font_pt;
-  const double floor_pt = std::min(o.font_pt, kReadablePt);
+  const double floor_pt = floor_font(o);
   std::vector<double> w(cols);
   for (;; F -= 0.25) {
     F = std::max(F, floor_pt);
-    const TextStyle bold = style(F, kInk, true), sub = style(interval_pt(F), kGrey);
-    const double pad = 0.9 * F;
-    std::vector<double> lo(cols, 0), hi(cols, 0);
-    for (size_t c = 0; c < cols; ++c)
-      for_each_text(t, c, [&](const std::string& s, bool, bool is_sub) {
-        const TextStyle& st = is_sub ? sub : bold;
-        // An interval is one unit: it never wraps (its column is at least as wide as it).
-        lo[c] = std::max(lo[c], (is_sub ? out.measure(st, s).x : widest_word(out, st, s)) + pad);
-        hi[c] = std::max(hi[c], out.measure(st, s).x + pad);
-      });
+    const ColumnNeeds n = column_needs(out, t, F);
     double sum_lo = 0, sum_hi = 0;
-    for (size_t c = 0; c < cols; ++c) sum_lo += lo[c], sum_hi += hi[c];
+    for (size_t c = 0; c < cols; ++c) sum_lo += n.lo[c], sum_hi += n.hi[c];
     const double k = sum_hi <= avail   ? 1.0
                      : sum_hi > sum_lo ? std::max(0.0, (avail - sum_lo) / (sum_hi - sum_lo))
                                        : 0.0;
-    for (size_t c = 0; c < cols; ++c) w[c] = lo[c] + k * (hi[c] - lo[c]);
+    for (size_t c = 0; c < cols; ++c) w[c] = n.lo[c] + k * (n.hi[c] - n.lo[c]);
     if (sum_lo <= avail || F <= floor_pt) break;
   }
   // A table narrower than the page spreads its spare width over the value columns, so the rules span the
@@ -81,11 +95,26 @@ TableFit fit_table(Canvas& out, const TableFigure& t, const FigureOptions& o, do
   return {F, w};
 }
 
-}  // namespace
+// The table restricted to the first column (the row names) and the value columns `keep`.
+TableFigure with_columns(const TableFigure& t, const std::vector<size_t>& keep) {
+  TableFigure g;
+  const auto pick = [&](const auto& row) {
+    std::decay_t<decltype(row)> out;
+    if (!row.empty()) out.push_back(row[0]);
+    for (size_t c : keep)
+      if (c < row.size()) out.push_back(row[c]);
+    return out;
+  };
+  g.header = pick(t.header);
+  for (const auto& r : t.rows) g.rows.push_back(pick(r));
+  for (const auto& r : t.bold) g.bold.push_back(pick(r));
+  for (const auto& r : t.sub) g.sub.push_back(pick(r));
+  return g;
+}
 
-void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptions& o) {
-  o.check();
-  const double W = o.width_pt(), m = kFigureMargin, avail = W - 2 * m;
+// One table block (header band, rows, rules) from y down; returns the y below its bottom rule.
+double draw_table_block(DisplayList& out, const TableFigure& t, const FigureOptions& o, double y) {
+  const double m = kFigureMargin, avail = o.width_pt() - 2 * m;
   const size_t cols = t.header.size();
   const TableFit fit = fit_table(out, t, o, avail);
   const double F = fit.font_pt;
@@ -93,7 +122,6 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
   const TextStyle body = style(F, kInk), bold = style(F, kInk, true), sub = style(interval_pt(F), kGrey);
   const double pad = 0.9 * F, line_h = out.measure(body, "Ag").y, sub_h = out.measure(sub, "Ag").y;
   const double lw = std::max(0.3, 0.06 * F);
-  double y = m + draw_wrapped(out, {m, m}, style(o.font_pt, kInk), t.title, avail) + 0.4 * F;
   std::vector<double> x(cols + 1, m);
   for (size_t c = 0; c < cols; ++c) x[c + 1] = x[c] + w[c];
   // Header: wrapped per column, on a light band.
@@ -130,6 +158,64 @@ void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptio
   out.line({x[0], top}, {x[cols], top}, kInk, lw * 2);
   out.line({x[0], top + head_h}, {x[cols], top + head_h}, kInk, lw);
   out.line({x[0], y}, {x[cols], y}, kInk, lw * 2);
+  return y;
+}
+
+}  // namespace
+
+std::vector<std::vector<size_t>> table_column_groups(Canvas& c, const TableFigure& t, const FigureOptions& o) {
+  o.check();
+  const double avail = o.width_pt() - 2 * kFigureMargin;
+  const size_t cols = t.header.size();
+  const ColumnNeeds n = column_needs(c, t, floor_font(o));
+  std::vector<std::vector<size_t>> groups(1);
+  double used = cols > 0 ? n.lo[0] : 0;
+  for (size_t k = 1; k < cols; ++k) {
+    if (!groups.back().empty() && used + n.lo[k] > avail) groups.emplace_back(), used = n.lo[0];
+    if (n.lo[0] + n.lo[k] > avail) {
+      // Even alone beside the row names this column is wider than the page: say which width holds it.
+      const double need_in = (n.lo[0] + n.lo[k] + 2 * kFigureMargin) / 72.0;
+      throw std::invalid_argument(fmt::format(
+          "the table's column \"{}\" needs {:.2f} in beside the row names, more than the figure's {:g} in: "
+          "{}",
+          t.header[k], need_in, o.width_in,
+          need_in <= kSingleColumnIn   ? std::string("--column single fits it")
+          : need_in <= kDoubleColumnIn ? std::string("--column double fits it")
+                                       : fmt::format("--width-in {:.1f} fits it", std::ceil(need_in * 10) / 10)));
+    }
+    groups.back().push_back(k);
+    used += n.lo[k];
+  }
+  // As many columns in each group as the others, when that fits: two tables of 3 read better than 5 and 1.
+  const size_t values = cols > 0 ? cols - 1 : 0, per = (values + groups.size() - 1) / groups.size();
+  std::vector<std::vector<size_t>> even;
+  for (size_t k = 1; k < cols; ++k) {
+    if (even.empty() || even.back().size() == per) even.emplace_back();
+    even.back().push_back(k);
+  }
+  const bool even_fits = std::all_of(even.begin(), even.end(), [&](const std::vector<size_t>& g) {
+    double w = n.lo[0];
+    for (size_t k : g) w += n.lo[k];
+    return w <= avail;
+  });
+  return even_fits && even.size() == groups.size() ? even : groups;
+}
+
+void draw_table_figure(DisplayList& out, const TableFigure& t, const FigureOptions& o) {
+  o.check();
+  const double W = o.width_pt(), m = kFigureMargin, avail = W - 2 * m;
+  const double F = o.font_pt;
+  double y = m + draw_wrapped(out, {m, m}, style(o.font_pt, kInk), t.title, avail) + 0.4 * F;
+  // A table wider than the page at the print minimum is drawn as several tables, one under the other, each
+  // with the row names and as many columns as fit: every cell is on the page, none cut or overrun.
+  const std::vector<std::vector<size_t>> groups = table_column_groups(out, t, o);
+  for (size_t g = 0; g < groups.size(); ++g) {
+    if (g > 0) y += 0.6 * F;
+    // Split tables share one font size (the print minimum), so a value reads the same in each.
+    FigureOptions block = o;
+    if (groups.size() > 1) block.font_pt = floor_font(o);
+    y = draw_table_block(out, groups.size() == 1 ? t : with_columns(t, groups[g]), block, y);
+  }
   y += 0.4 * F;
   if (!t.note.empty()) y += draw_wrapped(out, {m, y}, style(secondary_pt(o.font_pt), kGrey), t.note, avail);
   out.width_pt = W;
@@ -172,6 +258,19 @@ TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
     fig.rows.push_back(row);
     fig.bold.push_back(bold);
   }
+  // A domain pair no row's detector was trained on holds no number, only "–": it is left out, and said.
+  std::vector<size_t> keep;
+  for (size_t c = 0; c < nc; ++c)
+    for (size_t r = 0; r < t.models.size(); ++r)
+      if (t.cells[r * nc + c].involves_training_domain) {
+        keep.push_back(c + 1);
+        break;
+      }
+  const size_t dropped = nc - keep.size();
+  if (dropped > 0 && !keep.empty()) {
+    TableFigure kept = with_columns(fig, keep);
+    fig.header = kept.header, fig.rows = kept.rows, fig.bold = kept.bold, fig.sub = kept.sub;
+  }
   fig.note =
       "Rows: detector and its training domain. \u2013: pair not involving the training domain; bold: the row's best.";
   // Only when some cell has brackets (a one-scene study has none: its cells say "1 scene: no interval").
@@ -179,6 +278,9 @@ TableFigure table_figure_of(const CrossTable& t, bool ci, double level) {
     return c.involves_training_domain && std::isfinite(c.ci_low) && std::isfinite(c.ci_high);
   });
   if (ci && brackets) fig.note += fmt::format(" Brackets: {:g}% scene-bootstrap interval.", 100 * level);
+  if (dropped > 0 && !keep.empty())
+    fig.note += fmt::format(" Not shown: {} domain pair{} without any row's training domain (every cell \u2013).",
+                            dropped, dropped == 1 ? "" : "s");
   for (size_t k = 0; k < reasons.size(); ++k)
     fig.note += fmt::format(" {}: not a number, {}.", no_value_mark(static_cast<int>(k) + 1), reasons[k]);
   return fig;

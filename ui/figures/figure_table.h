@@ -18,8 +18,16 @@ struct TableFigure {
   std::string note;
 };
 
-// Columns fit the width: headers wrap at spaces, then the font shrinks (never below 6 pt).
+// Columns fit the width: headers wrap at spaces, then the font shrinks (never below the print minimum, 7 pt,
+// unless --font-pt asks for less); a table still wider than the page is drawn as several tables one under the
+// other (table_column_groups), so no cell is ever cut.
 void draw_table_figure(DisplayList& out, const TableFigure& table, const FigureOptions& options);
+
+// The value columns (indices into header, from 1) of each table the figure draws: one group when the table
+// fits the width at the smallest font, else consecutive groups, as even as fits, each drawn beside the row
+// names. Throws std::invalid_argument naming the --column (or --width-in) that fits when one value column
+// beside the row names is wider than the page.
+std::vector<std::vector<size_t>> table_column_groups(Canvas& c, const TableFigure& table, const FigureOptions& options);
 
 }  // namespace ipd::ui
 

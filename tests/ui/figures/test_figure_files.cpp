@@ -3,11 +3,14 @@
 // inches x dpi; unknown extensions refused; the GUI's export and the CLI give the same PDF for one view.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <regex>
+#include <sstream>
 
 #include "core/demo/demo_study.h"
 #include "core/session/session.h"
@@ -152,6 +155,91 @@ TEST(FigureFiles, TableIntervalsFitOnOneLineInASingleColumn) {
     EXPECT_TRUE(bad.empty()) << column << ": " << (bad.empty() ? "" : bad.front());
     EXPECT_NE(t.all().find("Brackets: 95% scene-bootstrap interval."), std::string::npos) << t.all();
   }
+}
+
+// The cross table's shown cells as `ipd table --format csv` gives them: the value ("0.3120") and, when the cell
+// has one, its interval's ends ("[0.223," and "0.393]", as pdftotext splits "[0.223, 0.393]"), per row and pair.
+struct CsvCell {
+  std::string model, a, b, value, low, high;
+};
+std::vector<CsvCell> csv_cells(const std::string& csv) {
+  std::vector<CsvCell> out;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header: model,trained_on,a,b,ipd,...,involves_training_domain,ci_low,ci_high,...
+  std::vector<std::string> head;
+  {
+    std::istringstream h(line);
+    for (std::string f; std::getline(h, f, ',');) head.push_back(f);
+  }
+  const auto col = [&](const std::string& name) {
+    return static_cast<size_t>(std::find(head.begin(), head.end(), name) - head.begin());
+  };
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::istringstream r(line);
+    for (std::string x; std::getline(r, x, ',');) f.push_back(x);
+    if (f.size() < head.size() || f[col("ipd")].empty()) continue;
+    if (f[col("involves_training_domain")] != "true") continue;  // "–" in the figure
+    const auto fixed = [](const std::string& v, int digits) { return fmt::format("{:.{}f}", std::stod(v), digits); };
+    out.push_back({f[col("model")], f[col("a")], f[col("b")], fixed(f[col("ipd")], 4),
+                   f[col("ci_low")].empty() ? "" : fixed(f[col("ci_low")], 3),
+                   f[col("ci_high")].empty() ? "" : fixed(f[col("ci_high")], 3)});
+  }
+  return out;
+}
+
+// Table I never drops a cell: for 2 to 5 domains and 1 to 3 detectors, at one and at two columns, every shown
+// cell's value and both ends of its interval are words of the PDF (pdftotext), and no word runs past the page's right
+// margin. Four or five domains at one column don't fit one table: the figure draws two, each with the row names.
+TEST(FigureFiles, TableFigureKeepsEveryCellForTwoToFiveDomainsAndOneToThreeDetectors) {
+  test::TempDir d;
+  test::write_small_demo_study(d);
+  // Five domains (two copies with long names, as renderer settings are named) and a third detector trained on
+  // real, so every detector count fits every domain count.
+  fs::copy(d / "hapke", d / "sun30", fs::copy_options::recursive);
+  fs::copy(d / "principled", d / "sun350", fs::copy_options::recursive);
+  for (const std::string dom : {"real", "principled", "hapke", "sun30", "sun350"})
+    fs::copy(d / (dom + "/predictions/det-real"), d / (dom + "/predictions/det-real2"), fs::copy_options::recursive);
+  test::write_text(d / "study.yaml",
+                   "domains: [real, principled, hapke, sun30, sun350]\nimage_size: [960, 600]\nmodels:\n"
+                   "  det-real: {trained_on: real}\n  det-principled: {trained_on: principled}\n"
+                   "  det-real2: {trained_on: real}\n");
+  const std::vector<std::string> domains = {"real", "principled", "hapke", "sun30", "sun350"};
+  const std::vector<std::string> models = {"det-real", "det-principled", "det-real2"};
+  int split = 0;
+  for (size_t nd = 2; nd <= 5; ++nd)
+    for (size_t nm = 1; nm <= 3; ++nm) {
+      std::string doms, mods;
+      for (size_t k = 0; k < nd; ++k) doms += (k ? "," : "") + domains[k];
+      for (size_t k = 0; k < nm; ++k) mods += (k ? "," : "") + models[k];
+      const std::string opts = " --domains " + doms + " --model " + mods + " --bootstrap 200";
+      const auto csv = test::run_ipd("table " + d.path() + opts + " --format csv");
+      ASSERT_EQ(csv.exit_code, 0) << csv.err;
+      const std::vector<CsvCell> cells = csv_cells(csv.out);
+      ASSERT_FALSE(cells.empty()) << csv.out;
+      for (const std::string column : {"single", "double"}) {
+        const std::string out = d / fmt::format("table_{}_{}_{}.pdf", nd, nm, column);
+        const std::string what = fmt::format("{} domains, {} models, {} column", nd, nm, column);
+        const auto r = test::run_ipd("figure table " + d.path() + opts + " --ci --column " + column + " --out " + out);
+        ASSERT_EQ(r.exit_code, 0) << what << ": " << r.err;
+        const PdfText t = pdf_text(out);
+        for (const Word& w : t.words) EXPECT_LE(w.x1, t.width - 4 + 0.05) << what << ": " << w.text;
+        // Each value and interval end is a word of the page as often as the cells hold it.
+        std::map<std::string, int> need, have;
+        for (const CsvCell& c : cells) {
+          ++need[c.value];
+          if (!c.low.empty()) ++need["[" + c.low + ","], ++need[c.high + "]"];
+        }
+        for (const Word& w : t.words) ++have[w.text];
+        for (const auto& [word, n] : need) EXPECT_GE(have[word], n) << what << ": \"" << word << "\" in " << t.all();
+        int headers = 0;
+        for (const Word& w : t.words) headers += w.text == "Train";
+        if (headers > 1) ++split;
+        EXPECT_TRUE(overlapping(t).empty()) << what;
+      }
+    }
+  EXPECT_GT(split, 0);  // some single-column tables were split in two, not cut
 }
 
 // The blank border around everything drawn on a PDF's page, in points (rendered at 4 px per point; a

@@ -2,6 +2,7 @@
 // drawn as crops with their GT box, best prediction and performance values.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
 #include <cmath>
 #include <filesystem>
 #include <opencv2/imgcodecs.hpp>
@@ -204,6 +205,123 @@ TEST(FigureGallery, LayoutIsSquareCropsSideBySide) {
   EXPECT_TRUE(under("perf 0.818", l.right[1]));
   EXPECT_FALSE(under("perf 0.818", l.left[1]));
   EXPECT_LE(l.right[1].x1, fig.width_pt - ui::fig::kFigureMargin + 1e-9);
+}
+
+// One rock pair of a segmentation study, with its box IoU beside its mask IoU. Scene s1 has three square rocks
+// 0.1 wide (10 px of 100) at the same places in both domains. Rock 1 of real is predicted by the triangle
+// that is its lower-left half: mask IoU = 0.005 / 0.01 = 0.5, while the triangle's box is the square's, box
+// IoU 1; synth predicts the square itself (both 1). |diff| = 0.5.
+void write_mask_pair_study(const test::TempDir& d) {
+  test::write_text(
+      d / "study.yaml",
+      "domains: [real, synth]\nimage_size: [100, 100]\ntask: segment\nmodels: {det: {trained_on: real}}\n");
+  const auto square = [](double x, double y) {
+    return fmt::format("{} {} {} {} {} {} {} {}", x, y, x + 0.1, y, x + 0.1, y + 0.1, x, y + 0.1);
+  };
+  const std::string gt = "0 " + square(0.2, 0.2) + "\n0 " + square(0.6, 0.6) + "\n0 " + square(0.4, 0.75) + "\n";
+  const std::string rest = "0 " + square(0.6, 0.6) + " 0.9\n0 " + square(0.4, 0.75) + " 0.9\n";
+  for (const std::string dom : {"real", "synth"}) test::write_text(d / (dom + "/labels/s1.txt"), gt);
+  test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.3 0.2 0.2 0.3 0.9\n" + rest);
+  test::write_text(d / "synth/predictions/det/s1.txt", "0 " + square(0.2, 0.2) + " 0.9\n" + rest);
+}
+
+TEST(FigureGallery, OneRockPairShowsBoxIouBesideMaskIou) {
+  test::TempDir d;
+  write_mask_pair_study(d);
+  const std::string out = d / "rock.pdf";
+  const auto r = test::run_ipd("figure gallery " + d.path() + " --scene s1 --rock 1 --no-cache --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string all = test::pdf_text(out).all();
+  EXPECT_NE(all.find("Rock 1 of real in s1 and its partner in synth, model det"), std::string::npos) << all;
+  EXPECT_NE(all.find("1. s1, |diff| 0.500"), std::string::npos) << all;
+  EXPECT_NE(all.find("Left real, right synth."), std::string::npos) << all;
+  EXPECT_NE(all.find("mask IoU 0.500"), std::string::npos) << all;  // real: the triangle
+  EXPECT_EQ(all.find("2. s1"), std::string::npos) << all;           // one pair only
+  size_t box_ious = 0;
+  for (size_t at = 0; (at = all.find("box IoU 1.000", at)) != std::string::npos; ++at) ++box_ious;
+  EXPECT_EQ(box_ious, 2u) << all;  // both sides: the triangle's box is the square's
+  // The one pair spans the column: drawn in process, its right crop ends at the right margin.
+  const StudyLabels labels = labels_of(d);
+  const CrossTable t = compute_cross_table(labels, {});
+  const ui::GalleryInput in = ui::gallery_input(labels, real_synth(t), 8, GallerySort::kDiff, "s1", 1);
+  ASSERT_EQ(in.entries.size(), 1u);
+  EXPECT_NEAR(in.entries[0].a.perf, 0.5, 1e-9);
+  EXPECT_NEAR(in.entries[0].a.box_iou, 1.0, 1e-9);
+  const ui::FontMetrics metrics(ui::default_font_file());
+  ui::DisplayList fig(metrics);
+  ui::FigureOptions o;
+  const ui::GalleryLayout l = ui::draw_gallery_figure(fig, in, o);
+  ASSERT_EQ(l.right.size(), 1u);
+  EXPECT_NEAR(l.right[0].x1, 252 - ui::fig::kFigureMargin, 1e-6);
+  // A rock in no pair, and --rock without --scene, are refused by name.
+  const auto bad = test::run_ipd("figure gallery " + d.path() + " --scene s1 --rock 9 --no-cache --out " + out);
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--rock 9: rock 9 of real in s1 is in no counted pair of real | synth for model det (its "
+                         "paired rocks: 1, 2, 3)"),
+            std::string::npos)
+      << bad.err;
+  const auto no_scene = test::run_ipd("figure gallery " + d.path() + " --rock 1 --out " + out);
+  EXPECT_EQ(no_scene.exit_code, 2);
+  EXPECT_NE(no_scene.err.find("error: --rock 1 needs --scene: rock numbers are a scene's"), std::string::npos)
+      << no_scene.err;
+}
+
+// Counts what a figure draws, for the stroke rules below.
+struct StrokeCounter : ui::Canvas {
+  int rects = 0;
+  std::vector<double> lines;  // lengths
+  void rect(const ui::PtRect&, ui::Colour, double) override { ++rects; }
+  void fill_rect(const ui::PtRect&, ui::Colour) override {}
+  void line(ui::Pt a, ui::Pt b, ui::Colour, double) override { lines.push_back(std::hypot(b.x - a.x, b.y - a.y)); }
+  void polyline(const std::vector<ui::Pt>&, ui::Colour, double, bool) override {}
+  void circle(ui::Pt, double, ui::Colour, double) override {}
+  void fill_circle(ui::Pt, double, ui::Colour) override {}
+  void text(ui::Pt, ui::Anchor, const ui::TextStyle&, const std::string&) override {}
+  void image(const ui::FigurePicture&, const ui::PtRect&) override {}
+  void push_clip(const ui::PtRect&) override {}
+  void pop_clip() override {}
+  ui::Pt measure(const ui::TextStyle& st, const std::string& s) override {
+    return {0.5 * st.size_pt * s.size(), 1.2 * st.size_pt};
+  }
+};
+
+// A small prediction's dashed outline keeps at least five dashes: a 2 x 2 pt square (perimeter 8 pt) asked
+// for 2.24 pt dashes (4 x the 0.56 pt stroke at 8 pt) gets 8 / (5 x 1.6) = 1 pt dashes with 0.6 pt gaps, so
+// about 5 pt of its 8 are inked in 5 dashes; a tiny one (perimeter 3 pt) dots at 0.8 pt; a large one keeps
+// the length asked for.
+TEST(FigureStrokes, DashesScaleToASmallOutlinesPerimeter) {
+  EXPECT_DOUBLE_EQ(ui::fig::outline_dash(100, 2.24), 2.24);
+  EXPECT_DOUBLE_EQ(ui::fig::outline_dash(8, 2.24), 1.0);
+  EXPECT_DOUBLE_EQ(ui::fig::outline_dash(3, 2.24), 0.8);
+  for (int polygon = 0; polygon < 2; ++polygon) {
+    StrokeCounter c;
+    if (polygon)
+      ui::fig::dashed_polygon(c, {{10, 10}, {12, 10}, {12, 12}, {10, 12}}, ui::fig::kPredC, 0.56, 2.24);
+    else
+      ui::fig::dashed_rect(c, {10, 10, 12, 12}, ui::fig::kPredC, 0.56, 2.24);
+    double inked = 0, longest = 0;
+    for (double len : c.lines) inked += len, longest = std::max(longest, len);
+    EXPECT_LE(longest, 1.0 + 1e-9) << polygon;
+    EXPECT_NEAR(inked, 5.0, 1.0) << polygon;
+    EXPECT_GE(c.lines.size(), 5u) << polygon;
+  }
+}
+
+// Outlines are named in the legend by line samples: a solid stroke on its halo for GT, two dashes for a
+// prediction; boxes by boxes.
+TEST(FigureStrokes, OutlineLegendSwatchesAreLineSamples) {
+  StrokeCounter c;
+  ui::fig::draw_legend(c, {0, 0}, 200, ui::fig::style(8, ui::fig::kInk),
+                       {{ui::fig::Swatch::kOutline, ui::fig::kGtC, "GT rock", ui::fig::kDarkHalo},
+                        {ui::fig::Swatch::kDashedOutline, ui::fig::kPredC, "prediction", ui::fig::kLightHalo}});
+  EXPECT_EQ(c.rects, 0);
+  ASSERT_EQ(c.lines.size(), 6u);                    // GT: halo + stroke; prediction: two dashes, each halo + stroke
+  EXPECT_GT(c.lines[0], 5.0);                       // the solid sample spans the swatch
+  EXPECT_NEAR(c.lines[2], c.lines[0] / 2.6, 1e-9);  // a dash: 1 / 2.6 of it
+  StrokeCounter boxes;
+  ui::fig::draw_legend(boxes, {0, 0}, 200, ui::fig::style(8, ui::fig::kInk),
+                       {{ui::fig::Swatch::kBox, ui::fig::kGtC, "GT rock", ui::fig::kDarkHalo}});
+  EXPECT_EQ(boxes.rects, 2);
 }
 
 }  // namespace

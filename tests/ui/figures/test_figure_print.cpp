@@ -4,6 +4,8 @@
 // and deuteranopia, a no-picture notice that covers no label, footnotes that suggest what helps.
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
@@ -66,22 +68,26 @@ TEST(FigurePrint, EveryTextIsAtLeast7PtAtTheDefaults) {
 }
 
 // The pair numbers shown on each picture of a pairs or registration figure (digit-only words between the
-// left caption and the legend), and the footnote's count of unnumbered pairs.
+// left caption and the legend), and the footnote's count of unnumbered pairs. The pictures are side by side
+// (split at the page's middle) or stacked (split at the second picture's caption `b`, at the left margin).
 struct ShownNumbers {
   std::multiset<int> left, right;
   int pairs = -1, unnumbered = 0;
+  bool stacked = false;
 };
-ShownNumbers shown_numbers(const PdfText& t, const std::string& a) {
+ShownNumbers shown_numbers(const PdfText& t, const std::string& a, const std::string& b) {
   ShownNumbers s;
-  double top = 0, bottom = t.height;
+  double top = 0, bottom = t.height, split_y = 0;
   for (const Word& w : t.words)
     if (w.text == a && top == 0) top = w.y1;  // the left caption
   for (const Word& w : t.words)
     if (w.text == "GT" && w.y0 > top) bottom = std::min(bottom, w.y0);  // the legend's first entry
   for (const Word& w : t.words)
+    if (w.text == b && w.y0 > top && w.x0 < 10) s.stacked = true, split_y = w.y0;
+  for (const Word& w : t.words)
     if (w.y0 >= top && w.y1 <= bottom && !w.text.empty() &&
         std::all_of(w.text.begin(), w.text.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }))
-      (w.x0 < t.width / 2 ? s.left : s.right).insert(std::stoi(w.text));
+      ((s.stacked ? w.y0 < split_y : w.x0 < t.width / 2) ? s.left : s.right).insert(std::stoi(w.text));
   std::smatch m;
   const std::string all = t.all();
   if (std::regex_search(all, m, std::regex("\\((\\d+) pairs?\\)"))) s.pairs = std::stoi(m[1]);
@@ -93,13 +99,13 @@ ShownNumbers shown_numbers(const PdfText& t, const std::string& a) {
 }
 
 void expect_pairs_on_both_sides(const test::TempDir& d, const std::string& scene_args, const std::string& a,
-                                int min_numbered) {
+                                int min_numbered, const std::string& b = "synth") {
   for (const std::string kind : {"pairs", "registration"})
     for (const std::string column : {"single", "double"})
       for (const std::string layers : {"", " --layers gt,pred,conf,indices,pairs,legend"}) {
         const std::string at = kind + " " + column + layers;
         const PdfText t = figure(d, kind + " " + d.path() + scene_args + " --column " + column + layers, "p.pdf");
-        const ShownNumbers s = shown_numbers(t, kind == "pairs" ? a : "before");
+        const ShownNumbers s = shown_numbers(t, kind == "pairs" ? a : "before", kind == "pairs" ? b : "after");
         ASSERT_GT(s.pairs, 0) << at << ": " << t.all();
         EXPECT_EQ(s.left, s.right) << at << ": a pair's number on one picture only";
         // Each pair once per side; the unnumbered ones are counted in the footnote.
@@ -122,7 +128,7 @@ TEST(FigurePrint, APairsNumberShowsOnBothPicturesOrNeitherIn60RockScenes) {
   demo.width = 1936, demo.height = 1216;
   demo.labels_only = true;
   write_demo_study(d.path(), demo);
-  expect_pairs_on_both_sides(d, "", "real", 5);
+  expect_pairs_on_both_sides(d, "", "real", 5, "principled");
 }
 
 TEST(FigurePrint, APairsNumberShowsOnBothPicturesOrNeitherInTheDemo) {
@@ -130,7 +136,7 @@ TEST(FigurePrint, APairsNumberShowsOnBothPicturesOrNeitherInTheDemo) {
   DemoStudyOptions demo;
   demo.scenes = 3;
   write_demo_study(d.path(), demo);
-  expect_pairs_on_both_sides(d, " --scene scene_02", "real", 9);
+  expect_pairs_on_both_sides(d, " --scene scene_02", "real", 9, "principled");
 }
 
 // A real layout: POLAR-Sim terrain 04, camera B, the same view under two sun azimuths (60 and 58 boxes),
@@ -158,6 +164,59 @@ TEST(FigurePrint, APairsNumberShowsOnBothPicturesOrNeitherOnAPolarSimLayout) {
     test::write_text(d / (std::string(domain) + "/predictions/det/s.txt"), predictions);
   }
   expect_pairs_on_both_sides(d, "", "real", 5);
+}
+
+// The unnumbered pairs a scene figure's footnote counts ("15 pairs unnumbered: ..."), 0 without one.
+int unnumbered_pairs(const PdfText& t) {
+  std::smatch m;
+  const std::string all = t.all();
+  return std::regex_search(all, m, std::regex("([0-9]+) pairs? unnumbered")) ? std::stoi(m[1]) : 0;
+}
+
+// A dense real layout at one column: POLAR-Sim terrain 04, camera A, left, under sun 180 and sun 30 (28 rocks
+// each, 28 pairs), predictions the GT boxes shifted by a fifth of their width. Side by side, each picture is
+// 120 pt wide and about half the pairs go unnumbered; the figure then stacks the pictures (each 244 pt wide)
+// and numbers at least 80% of the pairs, in the pairs and the registration figure, with or without --crop auto.
+TEST(FigurePrint, APolarViewAtOneColumnNumbersFourFifthsOfItsPairs) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::path(IPD_SHARED_DATA) / "labels/Terrain04";
+  if (!fs::exists(root / "04_A_off_180_L_1024.txt"))
+    GTEST_SKIP() << "POLAR-Sim labels not found under " << root << " (../shared/data/polar-sim): not measured";
+  test::TempDir d;
+  test::write_text(d / "study.yaml",
+                   "domains: [real, synth]\nimage_size: [1936, 1216]\nmodels: {det: {trained_on: real}}\n");
+  const std::pair<const char*, const char*> sides[] = {{"real", "04_A_off_180_L_1024.txt"},
+                                                       {"synth", "04_A_off_30_L_1024.txt"}};
+  for (const auto& [domain, file] : sides) {
+    std::ifstream in(root / file);
+    std::string labels, predictions;
+    int cls = 0, rocks = 0;
+    double cx, cy, w, h;
+    for (int k = 0; in >> cls >> cx >> cy >> w >> h; ++k) {
+      if (cls != 0) continue;
+      ++rocks;
+      labels += fmt::format("0 {} {} {} {}\n", cx, cy, w, h);
+      predictions += fmt::format("0 {} {} {} {} {:.2f}\n", cx + 0.2 * w, cy, w, h, 0.5 + 0.01 * (k % 40));
+    }
+    ASSERT_EQ(rocks, 28) << file;
+    test::write_text(d / (std::string(domain) + "/labels/s.txt"), labels);
+    test::write_text(d / (std::string(domain) + "/predictions/det/s.txt"), predictions);
+  }
+  for (const std::string kind : {"pairs", "registration"}) {
+    const PdfText title = figure(d, kind + " " + d.path() + " --panels side", kind + "_side.pdf");
+    ASSERT_NE(title.all().find("(28 pairs)"), std::string::npos) << title.all();
+    const int side = unnumbered_pairs(title);
+    EXPECT_GT(side, 28 / 5) << kind << ": side by side numbers more than 80% already";
+    for (const std::string crop : {"", " --crop auto"}) {
+      const PdfText t = figure(d, kind + " " + d.path() + crop, kind + "_auto.pdf");
+      const int unnumbered = unnumbered_pairs(t);
+      EXPECT_LE(unnumbered, 28 / 5) << kind << crop << ": " << 28 - unnumbered << " of 28 pairs numbered";
+      std::cout << "[ measured ] " << kind << crop << " at one column: " << 28 - unnumbered
+                << " of 28 pairs numbered (side by side: " << 28 - side << ")\n";
+      EXPECT_NEAR(t.width, 252, 1.0);
+      EXPECT_TRUE(test::overlapping(t).empty()) << kind << crop << ": " << test::overlapping(t).front();
+    }
+  }
 }
 
 // Labels-only pictures carry a "no picture" notice: no label may sit on it (4 overlaps in one 60-rock scene).

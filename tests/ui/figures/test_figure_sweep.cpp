@@ -81,5 +81,30 @@ TEST(SweepFigure, NoTextUnderSevenPointsInEitherForm) {
   }
 }
 
+// The value axis' title sits above the axis and its top tick label ("0.10" here: ticks 0, 0.02, ... 0.10
+// over IPDs up to 0.09 + 0.01) is centred on the axis' end: the two boxes keep a clear gap (0.3 font sizes =
+// 2.4 pt at 8 pt), at both column widths.
+TEST(SweepFigure, AxisTitleClearsTheTopTickLabel) {
+  const ui::FontMetrics metrics(ui::default_font_file());
+  for (const double width : {ui::kSingleColumnIn, ui::kDoubleColumnIn}) {
+    ui::DisplayList fig(metrics);
+    ui::FigureOptions o;
+    o.width_in = width;
+    ui::draw_sweep_chart(fig, ui::sweep_chart(three_settings()), o);
+    const std::vector<ui::DisplayList::TextItem> texts = fig.texts();
+    const ui::DisplayList::TextItem *title = nullptr, *top_tick = nullptr;
+    for (const auto& t : texts) {
+      if (t.text == "IPD (lower is better)") title = &t;
+      // The tick labels are the texts right of the page's left margin and left of the axis, "0.00" to "0.10".
+      if (t.text.size() == 4 && t.text.rfind("0.", 0) == 0 && t.box.x0 < 30 &&
+          (!top_tick || t.box.y0 < top_tick->box.y0))
+        top_tick = &t;
+    }
+    ASSERT_TRUE(title && top_tick);
+    EXPECT_EQ(top_tick->text, "0.10");
+    EXPECT_GE(top_tick->box.y0 - title->box.y1, 2.4 - 1e-9) << width;
+  }
+}
+
 }  // namespace
 }  // namespace ipd

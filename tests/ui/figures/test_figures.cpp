@@ -14,6 +14,8 @@
 #include "ui/canvas/canvas_cairo.h"
 #include "ui/figures/figure_input.h"
 #include "ui/figures/figure_options.h"
+#include "ui/figures/figure_scene.h"
+#include "ui/figures/scene_panels.h"
 
 namespace fs = std::filesystem;
 
@@ -85,6 +87,46 @@ TEST(Figures, PairsRegistrationAndTableMatchTheirGoldenImages) {
 
 bool near(const cv::Vec3b& bgr, int r, int g, int b) {
   return std::abs(bgr[2] - r) < 40 && std::abs(bgr[1] - g) < 40 && std::abs(bgr[0] - b) < 40;
+}
+
+// --panels: side by side, each picture half the width less the 4 pt gap ((252 - 8 - 4) / 2 = 120 pt), or
+// stacked, each the whole width between the margins (244 pt), the second under the first; auto keeps a
+// sparse scene (every pair numbered) side by side. --crop auto on the study's two rocks (x 0.20..0.80,
+// y 0.275..0.76): a square region (the picture's shape) 0.6 + 2 x 0.05 wide about their centre.
+TEST(Figures, PanelsSideBySideOrStackedAndTheRocksCrop) {
+  test::TempDir d;
+  test::write_figure_study(d, false);
+  const StudyLabels labels = load_labels(open_study(d.path()));
+  const ui::SceneFigureInput in = ui::scene_input_from_study(labels, "real", "synth", "det", "s1", 0, {});
+  const ui::FontMetrics metrics(ui::default_font_file());
+  for (const auto panels :
+       {ui::PanelArrangement::kAuto, ui::PanelArrangement::kSideBySide, ui::PanelArrangement::kStacked}) {
+    ui::FigureOptions o;
+    o.panels = panels;
+    ui::DisplayList fig(metrics);
+    const ui::PairsLayout l = ui::draw_pairs_figure(fig, in, o);
+    const bool stacked = panels == ui::PanelArrangement::kStacked;
+    EXPECT_EQ(l.stacked, stacked);
+    EXPECT_NEAR(l.left.width(), stacked ? 244 : 120, 1e-9);
+    EXPECT_NEAR(l.left.height(), l.left.width() / (640.0 / 400.0), 1e-9);
+    if (stacked) {
+      EXPECT_NEAR(l.right.x0, l.left.x0, 1e-9);
+      EXPECT_GT(l.right.y0, l.left.y1);
+    } else {
+      EXPECT_NEAR(l.right.x0, l.left.x1 + 4, 1e-9);
+      EXPECT_NEAR(l.right.y0, l.left.y0, 1e-9);
+    }
+  }
+  EXPECT_THROW(ui::parse_panels("stack"), std::invalid_argument);
+  const auto r = test::run_ipd("figure pairs " + d.path() + " --scene s1 --panels stack --out " + (d / "p.pdf"));
+  EXPECT_EQ(r.exit_code, 2);
+  // Rocks: real 0.30 +- 0.10 x 0.40 +- 0.125 and 0.75 +- 0.05 x 0.70 +- 0.06; synth the first only.
+  // x 0.20..0.80, y 0.275..0.76: side max(0.6, 0.485) + 0.1 = 0.7, centred on (0.5, 0.5175).
+  const ui::Crop c = ui::scene::rocks_crop(in, false);
+  EXPECT_NEAR(c.x0, 0.15, 1e-9);
+  EXPECT_NEAR(c.x1, 0.85, 1e-9);
+  EXPECT_NEAR(c.y0, 0.5175 - 0.35, 1e-9);
+  EXPECT_NEAR(c.y1, 0.5175 + 0.35, 1e-9);
 }
 
 TEST(Figures, BoxesStandWhereTheLabelsSay) {
