@@ -44,7 +44,7 @@ class ReviewParser {
       : file_(std::move(file)), a_(a), b_(b), scenes_(scenes), out_(out) {}
 
   void parse(const std::string& text) {
-    const nlohmann::json j = parse_json_input(text, file_, kExpected, kMaxJsonDepth);
+    const nlohmann::json j = parse_json_input(text, file_, kExpected, kMaxJsonDepth, kMaxHandWorkJsonValues);
     if (!j.is_object()) throw StudyError(file_ + ": expected an object like " + kExpected);
     for (const auto& item : j.items())
       if (item.key() != "reviewed" && item.key() != "checked")

@@ -236,7 +236,8 @@ void check_unbound_ranges(const ParsedFile& f, const std::string& file) {
 }
 
 ParsedFile parse_file(const std::string& text, const std::string& file, size_t n1, size_t n2) {
-  const nlohmann::json j = parse_json_input(text, file, "{\"pairs\": [[i, j], ...]}", kMaxJsonDepth);
+  const nlohmann::json j =
+      parse_json_input(text, file, "{\"pairs\": [[i, j], ...]}", kMaxJsonDepth, kMaxHandWorkJsonValues);
   if (!j.is_object() || !j.contains("pairs") || !j["pairs"].is_array())
     throw StudyError(file + ": expected an object with a \"pairs\" array, like {\"pairs\": [[0, 2], [1, 0]]}");
   static const std::set<std::string> kKeys = {"pairs", "excluded_a", "excluded_b", "rocks_a", "rocks_b", "class"};

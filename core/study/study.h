@@ -89,6 +89,10 @@ SceneMatch match_scenes(const Domain& a, const Domain& b);
 // and the limit (never read into memory). A pairs file of a 20,000-rock scene is under 2 MB and its JSON
 // document takes about 25 times its size while parsed, so 8 MB bounds that at ~200 MB; study.yaml is a few KB.
 constexpr size_t kMaxPairsFileBytes = size_t{8} << 20;
+// And at most this many JSON values (parse_json_input): a scene's hand pairs take 15 values a pair (66,000 pairs),
+// a review check 13. It bounds the parsed document at about 85 MB whatever the file holds (8 MB of `{}` would
+// be 2.7 million empty objects, 216 MB).
+constexpr size_t kMaxHandWorkJsonValues = 1'000'000;
 // A study holds at most this many domains: every pair of them is compared (4,950 pairs at the limit); more is
 // refused when the study is opened, naming the count and the limit.
 constexpr size_t kMaxDomains = 100;

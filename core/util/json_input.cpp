@@ -38,7 +38,7 @@ size_t too_deep_at(const std::string& text, int limit) {
 }  // namespace
 
 nlohmann::json parse_json_input(const std::string& text, const std::string& file, const std::string& expected,
-                                int max_depth) {
+                                int max_depth, size_t max_values) {
   const size_t deep = too_deep_at(text, max_depth);
   if (deep != std::string::npos)
     throw StudyError(fmt::format("{}: JSON nested deeper than {} levels at byte {}: expected {}", file, max_depth,
@@ -46,8 +46,13 @@ nlohmann::json parse_json_input(const std::string& text, const std::string& file
   // nlohmann keeps the last of two equal keys: {"pairs": [...], "pairs": [...]} would silently drop the first
   // list. The keys of each open object are collected (nesting is capped above) and a repeat is an error.
   std::vector<std::unordered_set<std::string>> keys;
+  size_t values = 0;
   auto no_duplicate_keys = [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using Event = nlohmann::json::parse_event_t;
+    const bool value = event == Event::object_start || event == Event::array_start || event == Event::value;
+    if (value && max_values > 0 && ++values > max_values)
+      throw StudyError(fmt::format("{}: holds more than {} JSON values, the limit for this kind of file: expected {}",
+                                   file, max_values, expected));
     if (event == Event::object_start) {
       keys.emplace_back();
     } else if (event == Event::object_end) {

@@ -328,6 +328,27 @@ TEST(ReceivedStudy, ALabelFileOverTheCapIsRefusedUnread) {
   EXPECT_TRUE(f.boxes.empty());
 }
 
+// A review file is parsed into a document that costs memory per value, far more than its bytes: 2 MB of zeros
+// is a million numbers. Past the cap the file is refused by its count before the document grows further.
+TEST(ReceivedStudy, AReviewFileOfOverAMillionValuesIsRefusedByItsCount) {
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  std::string zeros = "{\"reviewed\": [0";
+  for (size_t k = 1; k <= kMaxHandWorkJsonValues; ++k) zeros += ",0";
+  test::write_text(d / "review/real__synth.json", zeros + "]}\n");
+  try {
+    Session::open(d.path());
+    ADD_FAILURE() << "opened";
+  } catch (const StudyError& e) {
+    const std::string why = std::string(e.what());
+    EXPECT_EQ(why.rfind(d / "review/real__synth.json" +
+                            ": holds more than 1000000 JSON values, the limit for this kind of file: expected ",
+                        0),
+              0u)
+        << why;
+  }
+}
+
 // The rule of docs/architecture.md: code under core/, ui/ and app/ reaches a study's files only through
 // contained_file.h (descriptors opened beneath the study), never by name. Each call that opens, removes or
 // renames by name is listed here with why its path is not a study's.
