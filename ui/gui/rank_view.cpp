@@ -24,7 +24,7 @@ std::string params_text(const std::vector<std::pair<std::string, double>>& param
 
 // The plot of the IPD along the one varying parameter: interval bars, the points (the best a larger ring, the
 // group filled), a click selects a setting.
-void draw_sweep(const Session& s, const SweepChart& chart, UiCommands& out) {
+void draw_sweep(const Session& s, const SweepChart& chart, const std::string& ref, UiCommands& out) {
   const float h = std::max(120.0f, 9 * ImGui::GetTextLineHeight());
   const ImVec2 p0 = ImGui::GetCursorScreenPos();
   const float w = std::max(200.0f, ImGui::GetContentRegionAvail().x);
@@ -52,8 +52,7 @@ void draw_sweep(const Session& s, const SweepChart& chart, UiCommands& out) {
     dl->AddText({std::clamp(sx(x) - 0.5f * ImGui::CalcTextSize(t.c_str()).x, p0.x, right - 20), bottom + 2}, text,
                 t.c_str());
   }
-  const std::string label = chart.parameters.front() + "  (IPD, lower is closer to " +
-                            (chart.points.empty() ? std::string() : std::string("the reference")) + ")";
+  const std::string label = chart.parameters.front() + "  (IPD, lower is closer to " + ref + ")";
   dl->AddText({left + 0.5f * (right - left - ImGui::CalcTextSize(label.c_str()).x), bottom + 2 + line}, text,
               label.c_str());
   const ImVec2 mouse = ImGui::GetIO().MousePos;
@@ -195,7 +194,7 @@ void draw_rank_window(const StudyView& v, const SessionRanking* result, bool cur
       ImGui::TextUnformatted(("IPD along " + chart.parameters.front() +
                               " (ring: the best; filled: not distinguishable from it; bars: 95% intervals)")
                                  .c_str());
-      draw_sweep(s, chart, out);
+      draw_sweep(s, chart, k.ref, out);
     } else {
       text_disabled_wrapped_at_spaces("two parameters vary (" + chart.parameters[0] + ", " + chart.parameters[1] +
                                       "): ipd figure sweep draws them as a heat map");
