@@ -215,7 +215,7 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
     ui_.rerun_discarded = false;
   }
   if ((cmd.export_figures || cmd.export_dialog) && !s.scenes().empty())
-    ui::open_export_dialog(export_dialog_, ui::export_view_context(s, ui_, stats_ui_));
+    ui::open_export_dialog(export_dialog_, export_context());
 }
 
 void StudioApp::note_picture_problem(const DecodedPicture& d) {
@@ -279,6 +279,12 @@ void StudioApp::export_figure(const ui::ExportRequest& request) {
   };
   ui_.status = "exporting " + request.path + " ...";
   worker_.submit(std::move(c));
+}
+
+ui::ExportViewContext StudioApp::export_context() const {
+  ui::ExportViewContext ctx = ui::export_view_context(*snap_->session, ui_, stats_ui_);
+  ctx.gallery_sort = rock_view_.gallery_sort;
+  return ctx;
 }
 
 void StudioApp::goto_pair(int scene, int left, int right) {

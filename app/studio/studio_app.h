@@ -55,7 +55,9 @@ class StudioApp {
   bool replay_step();  // one action of --replay; false while waiting
   ui::Picture picture(const std::string& domain, const std::string& stem, bool urgent, bool* full);
   void list_browse_dir();
-  void export_figure(const ui::ExportRequest& request);  // on the worker, from the current snapshot
+  void export_figure(const ui::ExportRequest& request);
+  // The view's export context, its gallery in the order the Rock pairs gallery shows.
+  ui::ExportViewContext export_context() const;  // on the worker, from the current snapshot
   // What a finished replay left undone (failed or unsaved edits, failed or unfinished exports), one line each.
   std::vector<std::string> replay_problems() const;
   void note_picture_problem(const DecodedPicture& d);

@@ -107,8 +107,7 @@ void StudioApp::frame() {
     ui::draw_rank_window(v, rank_.result(), rank_.current(snap_, request), ui_, cmd);
   }
   if (s)
-    if (auto request = ui::draw_export_dialog(export_dialog_, ui::export_view_context(*s, ui_, stats_ui_)))
-      export_figure(*request);
+    if (auto request = ui::draw_export_dialog(export_dialog_, export_context())) export_figure(*request);
   ImGui::End();
   stats_out_.set_picture_px(ui_.picture_px[0].x, ui_.picture_px[0].y, ui_.picture_px[1].x, ui_.picture_px[1].y,
                             vp->Size.x, vp->Size.y);

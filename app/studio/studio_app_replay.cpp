@@ -262,7 +262,7 @@ bool StudioApp::replay_output_action(const ReplayAction& a) {
     if (s.scenes().empty()) return true;  // no view to export
     // The dialog's request with its defaults (single column, the view's layers and zoom) for the kind.
     ui::ExportDialogState d;
-    const ui::ExportViewContext ctx = ui::export_view_context(s, ui_, stats_ui_);
+    const ui::ExportViewContext ctx = export_context();
     ui::open_export_dialog(d, ctx);
     if (a.args.size() == 2) ui::set_export_kind(d, a.args[0]);  // checked by parse_replay
     export_figure(ui::export_request(d, ctx, a.args.back()));

@@ -14,6 +14,7 @@
 
 #include "core/session/session.h"
 #include "core/util/atomic_file.h"
+#include "tests/support/pdf_text.h"
 #include "tests/support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -208,6 +209,26 @@ TEST(StudioAudit, RankWindowListsTheRankingAndAClickShowsTheSettingOnTheRight) {
   const nlohmann::json s2 = state(d, "s2.json");
   EXPECT_EQ(s2["left"], "real");
   EXPECT_EQ(s2["right"], third);
+}
+
+TEST(StudioAudit, GalleryExportFollowsTheSortOnScreen) {
+  if (!studio()) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd(fmt::format("demo {}", d / "study")).exit_code, 0);
+  std::string log;
+  ASSERT_EQ(replay(d, d / "study",
+                   fmt::format("model det-real\ngallery sort size\nexport gallery {}/studio.pdf\n", d.path()), &log),
+            0)
+      << log;
+  for (const char* sort : {"size", "diff"})
+    ASSERT_EQ(test::run_ipd(fmt::format("figure gallery {} --model det-real --sort {} --count 8 --out {}/{}.pdf",
+                                        d / "study", sort, d.path(), sort))
+                  .exit_code,
+              0);
+  // The same pairs in the same order as `ipd figure gallery --sort size`, not the default |diff| order.
+  const std::string studio_words = test::pdf_words(d / "studio.pdf");
+  EXPECT_EQ(studio_words, test::pdf_words(d / "size.pdf"));
+  EXPECT_NE(studio_words, test::pdf_words(d / "diff.pdf"));
 }
 
 }  // namespace
