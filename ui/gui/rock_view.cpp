@@ -306,7 +306,7 @@ void draw_gallery(const StudyView& v, RockViewState& st, UiCommands& out) {
     ImGui::Text("rock %d (%s) | rock %d (%s)", p.rock_a + 1, s.left_domain().c_str(), p.rock_b + 1,
                 s.right_domain().c_str());
     ImGui::Text("perf %.3f | %.3f   |diff| %.3f", p.perf_a, p.perf_b, p.abs_diff);
-    ImGui::Text("size %s px2 (%s rock)", thousands(std::llround(p.size)).c_str(), s.left_domain().c_str());
+    ImGui::Text("size %s px² (%s rock)", thousands(std::llround(p.size)).c_str(), s.left_domain().c_str());
     if (ImGui::SmallButton("go to pair")) go_to(p, out);
     ImGui::EndGroup();
     ImGui::EndGroup();
