@@ -58,20 +58,20 @@ TEST(PaneZoom, SyncingPictureCoordinatesLeavesThePartnerOffByTheShift) {
 }
 
 TEST(PaneZoom, TheSelectedRocksPartnerSitsWhereTheRockSits) {
-  // Left view zoom 2.5 centred on the rock at (0.3, 0.4): pan (-0.2, -0.1). Its partner is at (0.7, 0.25): the
-  // right view is panned by the offset (0.4, -0.15), to (0.2, -0.25), the same zoom.
-  const CanvasView left{2.5f, {-0.2f, -0.1f}};
+  // Left view zoom 2.5, pan (-0.1, 0.05), the rock at (0.3, 0.4) off the pane's centre. Its partner is at
+  // (0.7, 0.25): the right view is panned by the offset (0.4, -0.15), to (0.3, -0.1), the same zoom.
+  const CanvasView left{2.5f, {-0.1f, 0.05f}};
   const CanvasView right = view_on_partner(left, {0.3f, 0.4f}, {0.7f, 0.25f});
   EXPECT_FLOAT_EQ(right.zoom, 2.5f);
-  EXPECT_NEAR(right.pan.x, 0.2f, 1e-6);
-  EXPECT_NEAR(right.pan.y, -0.25f, 1e-6);
-  // Both points land on the same spot of their panes (400 x 250, a 1600 x 1000 picture): 200 + (0.3 - 0.5 + 0.2)
-  // x 1000 = 200 px, 125 + (0.4 - 0.5 + 0.1) x 625 = 125 px, the centre.
+  EXPECT_NEAR(right.pan.x, 0.3f, 1e-6);
+  EXPECT_NEAR(right.pan.y, -0.1f, 1e-6);
+  // Both points land on the same spot of their panes (400 x 250, a 1600 x 1000 picture shown 1000 x 625):
+  // 200 + (0.3 - 0.5 + 0.1) x 1000 = 100 px, 125 + (0.4 - 0.5 - 0.05) x 625 = 31.25 px.
   const Placement pl = place({0, 0}, {400, 250}, 1600, 1000, left), pr = place({0, 0}, {400, 250}, 1600, 1000, right);
-  EXPECT_NEAR(pl.to_screen(0.3, 0.4).x, 200, 1e-3);
-  EXPECT_NEAR(pl.to_screen(0.3, 0.4).y, 125, 1e-3);
-  EXPECT_NEAR(pr.to_screen(0.7, 0.25).x, 200, 1e-3);
-  EXPECT_NEAR(pr.to_screen(0.7, 0.25).y, 125, 1e-3);
+  EXPECT_NEAR(pl.to_screen(0.3, 0.4).x, 100, 1e-3);
+  EXPECT_NEAR(pl.to_screen(0.3, 0.4).y, 31.25, 1e-3);
+  EXPECT_NEAR(pr.to_screen(0.7, 0.25).x, 100, 1e-3);
+  EXPECT_NEAR(pr.to_screen(0.7, 0.25).y, 31.25, 1e-3);
 }
 
 TEST(BlinkView, TheRightPictureIsLaidOverTheLeftThroughTheAffine) {
