@@ -36,6 +36,7 @@ void FrameStats::print(bool frames, const std::string& open_note) const {
                open_note);
   if (frames) line(summary("frame_ms", frame_ms_)), line(summary("ui_cpu_ms", frame_cpu_ms_));
   if (frames) line(picture_line());
+  if (frames) line(summary("blink_frame_ms", blink_frame_ms_)), line(blink_line_);
   line(summary("scene_ms", scene_ms_));
   // Measurements, as frame_ms: only when asked for.
   if (frames) line(summary("edit_ms", edit_ms_)), line(summary("edit_cpu_ms", edit_cpu_ms_));

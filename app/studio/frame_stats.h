@@ -28,6 +28,9 @@ class FrameStats {
     export_frame_ms_.push_back(ms);
     export_ui_cpu_ms_.push_back(ui_cpu_ms);
   }
+  // A frame drawn in the blink view (also counted in frame_ms), and what the last one drew.
+  void add_blink_frame(double ms) { blink_frame_ms_.push_back(ms); }
+  void set_blink_line(std::string line) { blink_line_ = std::move(line); }
   // The first call of each records the time since the program started.
   void content_shown() { mark(&content_ms_); }
   void study_loaded() { mark(&loaded_ms_); }
@@ -41,17 +44,19 @@ class FrameStats {
   // `NAME median=X p95=Y max=Z n=N over_50ms=K` (empty without values).
   static std::string summary(const char* name, std::vector<double> values);
   // open_ms/loaded_ms (with `open_note` after them), then frame_ms, ui_cpu_ms and the export lines when
-  // `frames`;
+  // `frames` (blink_frame_ms and the blink line when the blink view was drawn);
   // scene_ms whenever scenes were changed, edit_ms whenever edits were made.
   void print(bool frames, const std::string& open_note) const;
 
  private:
   void mark(double* slot);
   std::chrono::steady_clock::time_point started_ = std::chrono::steady_clock::now();
-  std::vector<double> frame_ms_, frame_cpu_ms_, scene_ms_, edit_ms_, edit_cpu_ms_, export_frame_ms_, export_ui_cpu_ms_;
+  std::vector<double> frame_ms_, frame_cpu_ms_, blink_frame_ms_, scene_ms_, edit_ms_, edit_cpu_ms_, export_frame_ms_,
+      export_ui_cpu_ms_;
   double content_ms_ = -1;  // start to the first frame showing the study (a first look at big studies)
   double loaded_ms_ = -1;   // start to the first frame with the whole study in
   std::vector<float> picture_px_;
+  std::string blink_line_;  // `blink pane=WxH pane_share=S ...` of the last blink frame
 };
 
 }  // namespace ipd::studio

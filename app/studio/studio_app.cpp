@@ -139,8 +139,10 @@ void StudioApp::submit_edits(const ui::UiCommands& cmd) {
   }
   if (cmd.check_left >= 0 && !s.scenes().empty()) {
     worker_.submit(command::ToggleChecked{ui_.scene, cmd.check_left, cmd.check_right});
+    // Both rocks named as the panes name them (a right rock's own number is not its pair's).
     ui_.status = fmt::format(
-        "pair {} | {} in {} {}", cmd.check_left + 1, cmd.check_right + 1, s.scenes()[ui_.scene].stem,
+        "pair {} ({} rock {} | {} rock {}) in {} {}", cmd.check_left + 1, s.left_domain(), cmd.check_left + 1,
+        s.right_domain(), cmd.check_right + 1, s.scenes()[ui_.scene].stem,
         s.checked(ui_.scene, cmd.check_left, cmd.check_right) ? "no longer checked as correct" : "checked as correct");
   }
 }
@@ -213,7 +215,7 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
     ui_.rerun_discarded = false;
   }
   if ((cmd.export_figures || cmd.export_dialog) && !s.scenes().empty())
-    ui::open_export_dialog(export_dialog_, ui::export_view_context(s, ui_, stats_ui_));
+    ui::open_export_dialog(export_dialog_, export_context());
 }
 
 void StudioApp::note_picture_problem(const DecodedPicture& d) {
@@ -279,6 +281,12 @@ void StudioApp::export_figure(const ui::ExportRequest& request) {
   worker_.submit(std::move(c));
 }
 
+ui::ExportViewContext StudioApp::export_context() const {
+  ui::ExportViewContext ctx = ui::export_view_context(*snap_->session, ui_, stats_ui_);
+  ctx.gallery_sort = rock_view_.gallery_sort;
+  return ctx;
+}
+
 void StudioApp::goto_pair(int scene, int left, int right) {
   const Session& s = *snap_->session;
   if (scene < 0 || scene >= static_cast<int>(s.scenes().size())) return;
@@ -289,6 +297,31 @@ void StudioApp::goto_pair(int scene, int left, int right) {
   ui_.left_view = {std::max(ui_.left_view.zoom, 3.0f), {float(bl.cx - 0.5), float(bl.cy - 0.5)}};
   ui_.right_view = {ui_.left_view.zoom, {float(br.cx - 0.5), float(br.cy - 0.5)}};
   ui_.status = fmt::format("pair {} | {} in {}", left + 1, right + 1, s.scenes()[scene].stem);
+}
+
+void StudioApp::follow_selected_partner() {
+  const Session& s = *snap_->session;
+  if (!ui_.sync_views || s.scenes().empty() || ui_.selected_left < 0 ||
+      ui_.selected_left >= static_cast<int>(s.gt(Side::kA, ui_.scene).size())) {
+    followed_.clear();
+    return;
+  }
+  int partner = -1;
+  for (const auto& [l, r] : s.view_pairs(ui_.scene))
+    if (l == ui_.selected_left) partner = r;
+  const std::string key =
+      fmt::format("{}/{}/{}/{}/{}", s.pair_index(), s.swapped(), ui_.scene, ui_.selected_left, partner);
+  if (key == followed_) return;
+  followed_ = key;
+  if (ui_.left_view.zoom <= 1) return;  // the whole picture is in view, the partner too
+  const Box& bl = s.gt(Side::kA, ui_.scene)[ui_.selected_left];
+  const ImVec2 rock{float(bl.cx), float(bl.cy)};
+  ImVec2 target = ui::towards_partner(s, ui_.scene, 0)(rock);  // unpaired: where registration puts it
+  if (partner >= 0 && partner < static_cast<int>(s.gt(Side::kB, ui_.scene).size())) {
+    const Box& br = s.gt(Side::kB, ui_.scene)[partner];
+    target = {float(br.cx), float(br.cy)};
+  }
+  ui_.right_view = ui::view_on_partner(ui_.left_view, rock, target);
 }
 
 void StudioApp::next_suspect() {
@@ -340,6 +373,7 @@ std::string StudioApp::after_render(double ms, double ui_cpu_ms) {
     // Count frames once the study is open and the current pictures are in (or after a grace period).
     if (loader_.idle() || ++settle_ > 600) {
       if (counted_ > 2) stats_out_.add_frame(ms, ui_cpu_ms);  // the first frames upload textures
+      if (counted_ > 2 && ui_.blink_drawn.drawn) stats_out_.add_blink_frame(ms);
       ++counted_;
     }
     // A study that can't be opened ends the replay: its actions have nothing to act on.

@@ -13,11 +13,13 @@
 #include "app/studio/frame_stats.h"
 #include "app/studio/studio_options.h"
 #include "app/studio/studio_points.h"
+#include "app/studio/studio_rank.h"
 #include "app/studio/studio_replay.h"
 #include "app/studio/studio_stats.h"
 #include "app/studio/studio_textures.h"
 #include "app/studio/studio_worker.h"
 #include "ui/gui/export_dialog.h"
+#include "ui/gui/rank_view.h"
 #include "ui/gui/rock_view.h"
 #include "ui/gui/stats_panels.h"
 #include "ui/gui/views.h"
@@ -53,12 +55,21 @@ class StudioApp {
   bool replay_step();  // one action of --replay; false while waiting
   ui::Picture picture(const std::string& domain, const std::string& stem, bool urgent, bool* full);
   void list_browse_dir();
-  void export_figure(const ui::ExportRequest& request);  // on the worker, from the current snapshot
+  void export_figure(const ui::ExportRequest& request);
+  // The view's export context, its gallery in the order the Rock pairs gallery shows.
+  ui::ExportViewContext export_context() const;  // on the worker, from the current snapshot
   // What a finished replay left undone (failed or unsaved edits, failed or unfinished exports), one line each.
   std::vector<std::string> replay_problems() const;
   void note_picture_problem(const DecodedPicture& d);
   void goto_problem(const Problem& p);
   void goto_pair(int scene, int left, int right);
+  // Sync zoom: when the selected left rock or its partner changed (a click, N, a re-pairing), the right picture
+  // shows the partner where the left one shows the rock (through the affine when it has none).
+  void follow_selected_partner();
+  // The blink view and the Rank window as a script drives them (studio_app_replay.cpp), and the state dump.
+  bool replay_blink(const ReplayAction& a);
+  bool replay_rank(const ReplayAction& a, ui::UiCommands* cmd);
+  std::string write_state(const std::string& file) const;
   // Replay verbs of the rock view (studio_replay.h): its axes, a drag box, the scene list written out.
   void replay_rock_axes(const std::string& x, const std::string& y);
   void replay_select(double x0, double y0, double x1, double y1);
@@ -87,6 +98,8 @@ class StudioApp {
   ui::RockViewState rock_view_;
   StatsJob stats_;             // intervals, histogram, breakdown, comparison: off the UI thread
   RockPointsJob rock_points_;  // the Rock pairs window's pairs: off the UI thread
+  RankJob rank_;               // the Rank window's ranking: off the UI thread
+  std::string followed_;       // the selection sync zoom last followed: "pair/swapped/scene/left/partner"
   std::shared_ptr<const Snapshot> snap_;
   // The session's problems and then the pictures that could not be read (found as they are shown).
   std::vector<Problem> problems_, picture_problems_;

@@ -101,12 +101,21 @@ void StudioApp::frame() {
     rock_points_.update(snap_, ui::rock_view_scenes(ui_, rock_view_));
     ui::draw_rock_view(v, rock_points_.result(), rock_points_.computing(), rock_view_, ui_, cmd);
   }
+  if (s && ui_.show_rank) {
+    const SessionRankRequest request = ui::rank_request(*s);
+    rank_.update(snap_, request);
+    ui::draw_rank_window(v, rank_.result(), rank_.current(snap_, request), ui_, cmd);
+  }
   if (s)
-    if (auto request = ui::draw_export_dialog(export_dialog_, ui::export_view_context(*s, ui_, stats_ui_)))
-      export_figure(*request);
+    if (auto request = ui::draw_export_dialog(export_dialog_, export_context())) export_figure(*request);
   ImGui::End();
   stats_out_.set_picture_px(ui_.picture_px[0].x, ui_.picture_px[0].y, ui_.picture_px[1].x, ui_.picture_px[1].y,
                             vp->Size.x, vp->Size.y);
+  if (const ui::BlinkDrawn& b = ui_.blink_drawn; b.drawn)
+    stats_out_.set_blink_line(fmt::format(
+        "blink pane={:.0f}x{:.0f} pane_share={:.3f} pictures={} right_opacity={:.2f} gt={}+{} pred={}+{} hand_pairs={}",
+        b.pane.x, b.pane.y, b.pane.x * b.pane.y / (vp->Size.x * vp->Size.y), b.pictures ? "yes" : "no", b.right_opacity,
+        b.gt_left, b.gt_right, b.predictions_left, b.predictions_right, b.hand_pairs));
   apply(cmd);
   textures_.end_frame();
 }
@@ -179,6 +188,8 @@ void StudioApp::draw_study(ui::StudyView& v, float h, ui::UiCommands& cmd) {
   }
   ui::Picture left, right;
   if (!v.session->scenes().empty()) scene_pictures(*v.session, &left, &right);
+  follow_selected_partner();
+  ui_.blink_drawn = ui::BlinkDrawn{};  // set again when the blink view is drawn
   ui::draw_main_columns(
       v, ui_, left, right, h, [&] { ui::draw_stats_panels(v, v.stats, stats_.computing(), stats_ui_, ui_, cmd); }, cmd);
 }

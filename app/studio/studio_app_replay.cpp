@@ -11,6 +11,8 @@
 #include "app/studio/studio_app.h"
 #include "core/util/atomic_file.h"
 
+#include <nlohmann/json.hpp>
+
 namespace ipd::studio {
 
 void StudioApp::replay_rock_axes(const std::string& x, const std::string& y) {
@@ -166,6 +168,81 @@ bool StudioApp::replay_edit_action(const ReplayAction& a, ui::UiCommands* cmd) {
   return true;
 }
 
+bool StudioApp::replay_blink(const ReplayAction& a) {
+  if (a.verb != "blink") return false;
+  ui::BlinkState& b = ui_.blink;
+  const std::string& w = a.args[0];  // checked by parse_replay
+  const float value = a.args.size() == 2 ? std::strtof(a.args[1].c_str(), nullptr) : 0;
+  if (w == "on" || w == "off") b.on = w == "on";
+  if (w == "flip") b.on = true, b.overlay = false, b.manual_right = !b.manual_right, b.flips_per_second = 0;
+  if (w == "overlay") b.on = true, b.overlay = true, b.opacity = value;
+  if (w == "rate") b.on = true, b.overlay = false, b.flips_per_second = value, b.rate_started = ImGui::GetTime();
+  return true;
+}
+
+bool StudioApp::replay_rank(const ReplayAction& a, ui::UiCommands* cmd) {
+  if (a.verb != "rank") return false;
+  ui_.show_rank = true;
+  if (a.args.empty()) return true;
+  // A click on the setting's row: it must be one the window lists (ranked against the left domain).
+  const Session& s = *snap_->session;
+  const SessionRankRequest request = ui::rank_request(s);
+  const SessionRanking* r = rank_.current(snap_, request) ? rank_.result() : nullptr;
+  const bool listed = r && r->ranking &&
+                      std::any_of(r->ranking->ranked.begin(), r->ranking->ranked.end(),
+                                  [&](const RankedCandidate& c) { return c.domain == a.args[0]; });
+  if (!listed)
+    replay_fail(a, fmt::format("'rank': '{}' is not a ranked setting against {}{}", a.args[0], s.left_domain(),
+                               r && !r->ranking ? " (" + r->error + ")" : ""));
+  else
+    ui::choose_ranked_domain(s, a.args[0], *cmd);
+  return true;
+}
+
+std::string StudioApp::write_state(const std::string& file) const {
+  const Session& s = *snap_->session;
+  nlohmann::json j;
+  j["left"] = s.left_domain();
+  j["right"] = s.right_domain();
+  j["model"] = s.model();
+  j["scene"] = s.scenes().empty() ? "" : s.scenes()[ui_.scene].stem;
+  j["edited"] = !s.scenes().empty() && (*snap_->summaries)[ui_.scene].edited;
+  j["selected_left"] = ui_.selected_left + 1;  // 1-based as the replay's rocks; 0: none
+  j["focus"] = ui_.focus;
+  auto view = [](const ui::CanvasView& v) { return nlohmann::json{{"zoom", v.zoom}, {"pan", {v.pan.x, v.pan.y}}}; };
+  j["left_view"] = view(ui_.left_view);
+  j["right_view"] = view(ui_.right_view);
+  j["status"] = ui_.status;
+  const ui::BlinkDrawn& b = ui_.blink_drawn;
+  j["blink"] = {{"on", ui_.blink.on},
+                {"mode", ui_.blink.overlay ? "overlay" : "blink"},
+                {"drawn", b.drawn},
+                {"pictures", b.pictures},
+                {"right_opacity", b.right_opacity},
+                {"gt", {b.gt_left, b.gt_right}},
+                {"predictions", {b.predictions_left, b.predictions_right}},
+                {"hand_pairs", b.hand_pairs},
+                {"pane", {b.pane.x, b.pane.y}}};
+  if (ui_.show_rank) {
+    nlohmann::json rank;
+    if (const SessionRanking* r = rank_.result(); r && r->ranking) {
+      rank["ref"] = r->ranking->ref;
+      for (const RankedCandidate& c : r->ranking->ranked)
+        rank["ranked"].push_back(
+            {{"domain", c.domain}, {"rank", c.rank}, {"ipd", c.ipd}, {"in_best_group", c.in_best_group}});
+    } else if (r) {
+      rank["error"] = r->error;
+    }
+    j["rank"] = rank;
+  }
+  try {
+    write_file_atomically(file, j.dump(1) + "\n");
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
 bool StudioApp::replay_output_action(const ReplayAction& a) {
   const Session& s = *snap_->session;
   if (a.verb == "screenshot") {
@@ -179,11 +256,13 @@ bool StudioApp::replay_output_action(const ReplayAction& a) {
                   std::strtod(a.args[2].c_str(), nullptr), std::strtod(a.args[3].c_str(), nullptr));
   } else if (a.verb == "list") {
     if (const std::string e = write_scene_list(a.args[0]); !e.empty()) replay_fail(a, e);
+  } else if (a.verb == "state") {
+    if (const std::string e = write_state(a.args[0]); !e.empty()) replay_fail(a, e);
   } else if (a.verb == "export") {
     if (s.scenes().empty()) return true;  // no view to export
     // The dialog's request with its defaults (single column, the view's layers and zoom) for the kind.
     ui::ExportDialogState d;
-    const ui::ExportViewContext ctx = ui::export_view_context(s, ui_, stats_ui_);
+    const ui::ExportViewContext ctx = export_context();
     ui::open_export_dialog(d, ctx);
     if (a.args.size() == 2) ui::set_export_kind(d, a.args[0]);  // checked by parse_replay
     export_figure(ui::export_request(d, ctx, a.args.back()));
@@ -259,6 +338,8 @@ bool StudioApp::replay_step() {
   if (!typing_.empty()) return press_next_typed_key(), false;
   // The Rock pairs window's pairs are of this snapshot and list before the next action acts on them.
   if (ui_.show_rock_view && !rock_points_.current(snap_, ui::rock_view_scenes(ui_, rock_view_))) return false;
+  // And the Rank window's ranking is of this snapshot, so `rank SETTING` clicks a row it lists.
+  if (ui_.show_rank && !rank_.current(snap_, ui::rank_request(*snap_->session))) return false;
   if (replay_next_ >= replay_.size()) {
     replay_next_ = replay_.size() + 1;  // finished
     return true;
@@ -266,7 +347,8 @@ bool StudioApp::replay_step() {
   const ReplayAction& a = replay_[replay_next_++];
   ui::UiCommands cmd;
   // parse_replay accepted only known verbs, each of exactly one group.
-  if (!replay_view_action(a, &cmd) && !replay_edit_action(a, &cmd) && !replay_input_action(a, &cmd))
+  if (!replay_view_action(a, &cmd) && !replay_edit_action(a, &cmd) && !replay_input_action(a, &cmd) &&
+      !replay_blink(a) && !replay_rank(a, &cmd))
     replay_output_action(a);
   apply(cmd);
   return true;

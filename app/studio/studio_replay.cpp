@@ -75,6 +75,9 @@ const std::map<std::string, VerbArguments>& replay_verbs() {
       {"dialog", {1, "open, export, goto, help, search or saveas"}},
       {"type", {1, "the text to type"}},
       {"key", {1, "enter, escape or tab"}},
+      {"blink", {1, "on, off, flip, overlay X (the right picture's opacity) or rate N (flips a second)"}},
+      {"rank", {0, "nothing (opens the Rank window) or the setting to show on the right"}},
+      {"state", {1, "a JSON file"}},
   };
   return verbs;
 }
@@ -96,13 +99,15 @@ void check_verb_and_count(const ReplayAction& a, Fail fail) {
     fail("unknown action '" + a.verb +
          "' (expected wait, conf, model, domains, scene, pair, unpair, exclude, automatic, undo, "
          "redo, rerun, export, screenshot, problems, problem, focus, rocks, select, list, gallery, review, suspect, "
-         "check, click, dialog, type or key)");
+         "check, click, dialog, type, key, blink, rank or state)");
   const bool export_with_kind = a.verb == "export" && a.args.size() == 2;
   const bool gallery_options = a.verb == "gallery" && (a.args.size() == 2 || a.args.size() == 4);
   const bool check_selected = a.verb == "check" && a.args.empty();
   const bool typed_words = a.verb == "type" && !a.args.empty();  // typed with one space between them
+  const bool blink_value = a.verb == "blink" && a.args.size() == 2;
+  const bool rank_setting = a.verb == "rank" && a.args.size() == 1;
   if (static_cast<int>(a.args.size()) != it->second.count && !export_with_kind && !gallery_options && !check_selected &&
-      !typed_words)
+      !typed_words && !blink_value && !rank_setting)
     fail("'" + a.verb + "' takes " + it->second.what + ", got " + std::to_string(a.args.size()) + " argument(s)");
 }
 
@@ -128,6 +133,15 @@ void check_argument_values(const ReplayAction& a, Fail fail) {
     fail("'domains': expected two different domains, got '" + quoted_for_message(a.args[0]) + "' twice");
   if (a.verb == "focus" && a.args[0] != "on" && a.args[0] != "off")
     fail("'focus': expected on or off, got '" + quoted_for_message(a.args[0]) + "'");
+  if (a.verb == "blink") {
+    const std::string& w = a.args[0];
+    const bool word = a.args.size() == 1 && (w == "on" || w == "off" || w == "flip");
+    double v = NAN;
+    const bool number = a.args.size() == 2 && parse_decimal(a.args[1], &v);
+    if (!word && !(number && w == "overlay" && v >= 0 && v <= 1) && !(number && w == "rate" && v >= 0 && v <= 8))
+      fail("'blink': expected on, off, flip, overlay X (X in [0, 1]) or rate N (N in [0, 8] flips a second), got '" +
+           quoted_for_message(w) + (a.args.size() == 2 ? " " + quoted_for_message(a.args[1]) : std::string()) + "'");
+  }
   if (a.verb == "conf") {
     double v = NAN;
     if (!parse_decimal(a.args[0], &v) || !(v >= 0 && v <= 1))

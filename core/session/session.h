@@ -95,6 +95,10 @@ struct SceneState {
   DiskVersion disk_ab, disk_ba;
 };
 
+// True when `fp` is the registered scene's automatic pairing: the same pairs, no rock excluded. An edit that
+// arrives there leaves the scene automatic (no pairs file), not hand-edited.
+bool matches_automatic(const SceneState& s, const FixedPairs& fp);
+
 struct SceneSummary {
   std::string stem;
   double ipd = 0;  // NaN when no pairs

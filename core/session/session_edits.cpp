@@ -206,6 +206,14 @@ void Session::refuse_stale_pairs_edit(int pair, int scene) const {
                   file, why, s.stem));
 }
 
+bool matches_automatic(const SceneState& s, const FixedPairs& fp) {
+  if (!s.registered || !fp.excluded_a.empty() || !fp.excluded_b.empty()) return false;
+  RockPairs automatic = s.automatic.pairs, pairs = fp.pairs;
+  std::sort(automatic.begin(), automatic.end());
+  std::sort(pairs.begin(), pairs.end());
+  return automatic == pairs;
+}
+
 SaveJob Session::apply(int scene, Edit e) {
   if (e.kind != Edit::Kind::kResetToAutomatic) refuse_stale_pairs_edit(pair_, scene);
   refuse_other_class_edit(pair_, scene);  // reset too: it would remove the other class's file
@@ -256,6 +264,9 @@ SaveJob Session::apply(int scene, Edit e) {
                                              b, labels_->study.classes))
       throw StudyError("edit refused: " + *why);
   }
+  // Pairs made by hand that are registration's own, with no rock excluded, are the automatic pairing again: the
+  // scene is no longer hand-edited and its pairs file goes (the history keeps the step).
+  if (edited && matches_automatic(s, next)) edited = false;
   // Discarding a stale pairs file is no step undo can take back: the scene showed registration's pairs before
   // and after, and the file is gone (the dialog says so). An entry would "undo" by changing nothing.
   if (!(e.kind == Edit::Kind::kResetToAutomatic && s.pairs_unusable)) {

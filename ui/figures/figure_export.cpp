@@ -62,6 +62,8 @@ std::string study_figure_file(const Session& session, const ExportRequest& r, Fi
   sr.b = r.kind == "compare" ? r.b : session.right_domain();
   sr.bootstrap.seed = session.study().config.registration.seed;  // as `ipd table` without --seed
   sr.conf_threshold = session.conf_threshold();
+  sr.count = r.gallery_count;
+  sr.gallery_sort = r.gallery_sort;
   CrossTable table = session_table(session);
   add_confidence_intervals(&table, sr.bootstrap, 1);
   StudyLabels labels;

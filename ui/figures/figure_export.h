@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "core/session/rock_pair_points.h"
 #include "ui/canvas/canvas_cairo.h"
 #include "ui/figures/figure_input.h"
 #include "ui/figures/figure_table.h"
@@ -33,6 +34,8 @@ struct ExportRequest {
   std::string path;            // .pdf, .svg or .png
   int scene = -1;              // pairs, registration
   std::string ref, a, b;       // compare: the statistics panel's domains (empty: as `ipd figure compare`)
+  int gallery_count = 8;       // gallery: how many pairs, in the order of gallery_sort (as on screen)
+  GallerySort gallery_sort = GallerySort::kDiff;
 };
 // Builds the figure from the session's current view (domains, model, threshold, edits) exactly as
 // `ipd figure KIND` builds it from the same study state on disk: scene kinds read the pictures; the study

@@ -68,6 +68,7 @@ void open_export_dialog(ExportDialogState& st, const ExportViewContext& ctx) {
   st.layers[1] = ctx.layers.predictions;
   st.layers[2] = ctx.layers.confidences && st.column == 1;  // confidences don't fit a single column
   st.layers[3] = ctx.layers.indices;
+  st.gallery_sort = static_cast<int>(ctx.gallery_sort);  // the export follows the order on screen
   std::snprintf(st.dir, sizeof st.dir, "%s", ctx.default_dir.c_str());
   std::snprintf(st.name, sizeof st.name, "%s", default_figure_name(st, ctx).c_str());
 }
@@ -93,6 +94,8 @@ ExportRequest export_request(const ExportDialogState& st, const ExportViewContex
   r.path = path;
   r.scene = ctx.scene;
   r.ref = ctx.ref, r.a = ctx.a, r.b = ctx.b;
+  r.gallery_count = std::max(1, st.gallery_count);
+  r.gallery_sort = static_cast<GallerySort>(std::clamp(st.gallery_sort, 0, 3));
   return r;
 }
 
@@ -142,6 +145,15 @@ std::optional<ExportRequest> draw_export_dialog(ExportDialogState& st, const Exp
                           ctx.a.c_str(), ctx.ref.c_str(), ctx.b.c_str());
   } else if (st.kind == 4) {
     ImGui::TextDisabled("model %s, every domain pair", ctx.model.c_str());
+  } else if (st.kind == 6) {
+    static const char* sorts[] = {"|diff|", "perf left", "perf right", "size"};  // GallerySort's order
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8);
+    ImGui::Combo("sort", &st.gallery_sort, sorts, 4);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6);
+    ImGui::InputInt("pairs", &st.gallery_count);
+    st.gallery_count = std::clamp(st.gallery_count, 1, 200);
+    ImGui::TextDisabled("model %s, IPD(%s, %s), largest first", ctx.model.c_str(), ctx.left.c_str(), ctx.right.c_str());
   } else {
     ImGui::TextDisabled("model %s, IPD(%s, %s)", ctx.model.c_str(), ctx.left.c_str(), ctx.right.c_str());
   }

@@ -25,6 +25,8 @@ struct ExportDialogState {
   float font_pt = 8;
   char dir[512] = "";
   char name[256] = "";
+  int gallery_sort = 0;   // gallery: a GallerySort, the Rock pairs gallery's order when the dialog opens
+  int gallery_count = 8;  // gallery: how many pairs
 };
 
 // What the view shows, to fill the dialog when it opens.
@@ -38,6 +40,7 @@ struct ExportViewContext {
   int image_w = 0, image_h = 0;
   int scene = -1;
   bool scene_stale = false;  // its pairs file no longer matches its labels: the CLI needs --skip-bad-lines
+  GallerySort gallery_sort = GallerySort::kDiff;  // the order the Rock pairs gallery shows
 };
 
 // The context of the session's current view (scene, layers, zoom, the comparison the statistics panel

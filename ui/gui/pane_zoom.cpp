@@ -1,5 +1,6 @@
 #include "ui/gui/pane_zoom.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ipd::ui {
@@ -29,6 +30,31 @@ PaneAffine PaneAffine::inverse() const {
   r.m[2] = -(r.m[0] * m[2] + r.m[1] * m[5]);
   r.m[5] = -(r.m[3] * m[2] + r.m[4] * m[5]);
   return r;
+}
+
+void zoom_at(CanvasView& view, float factor, ImVec2 mouse, ImVec2 p0, ImVec2 size, int w, int h) {
+  const Placement before = place(p0, size, w, h, view);
+  const float u = (mouse.x - before.origin.x) / before.size.x, t = (mouse.y - before.origin.y) / before.size.y;
+  view.zoom = std::clamp(view.zoom * factor, 0.25f, 40.0f);
+  const Placement after = place(p0, size, w, h, view);
+  const ImVec2 origin{mouse.x - u * after.size.x, mouse.y - t * after.size.y};
+  view.pan.x = (p0.x + 0.5f * size.x - origin.x) / after.size.x - 0.5f;
+  view.pan.y = (p0.y + 0.5f * size.y - origin.y) / after.size.y - 0.5f;
+}
+
+CanvasView view_on_partner(const CanvasView& self_view, ImVec2 self, ImVec2 partner) {
+  // place(): a point p is at centre + (p - 0.5 - pan) * size; the same size on both sides, so equal offsets need
+  // p_partner - pan_partner = p_self - pan_self.
+  return {self_view.zoom, {self_view.pan.x + partner.x - self.x, self_view.pan.y + partner.y - self.y}};
+}
+
+Quad warped_corners(const PaneAffine& left_from_right) {
+  return {{left_from_right({0, 0}), left_from_right({1, 0}), left_from_right({1, 1}), left_from_right({0, 1})}};
+}
+
+bool blink_shows_right(double seconds, float flips_per_second, bool manual) {
+  if (!(flips_per_second > 0)) return manual;
+  return static_cast<long long>(std::floor(seconds * flips_per_second)) % 2 == 1;
 }
 
 CanvasView view_after_scene_change(const CanvasView& view, ZoomOnSceneChange rule) {

@@ -33,6 +33,26 @@ struct PaneAffine {
   PaneAffine inverse() const;
 };
 
+// Zooms `view` by `factor` (kept within 0.25-40) about the screen point `mouse`: the picture point under it stays
+// under it. The pane is at `p0` with `size`, showing a picture of `w` x `h`.
+void zoom_at(CanvasView& view, float factor, ImVec2 mouse, ImVec2 p0, ImVec2 size, int w, int h);
+
+// The other pane's view showing `partner` (a normalised point of its picture) where `self_view` shows `self`:
+// the same zoom, panned by the points' offset, so a selected rock's partner sits where the rock sits.
+CanvasView view_on_partner(const CanvasView& self_view, ImVec2 self, ImVec2 partner);
+
+// The blink view draws the right picture over the left one through the scene's registration. The right picture's
+// corners (0,0), (1,0), (1,1), (0,1) in the left picture's normalised coordinates, through `left_from_right`
+// (an affine maps the rectangle onto a parallelogram, so four corners place the whole picture exactly).
+struct Quad {
+  ImVec2 p[4];
+};
+Quad warped_corners(const PaneAffine& left_from_right);
+
+// Which picture the blink view shows when it alternates: the right one on odd half-periods of `flips_per_second`
+// flips a second, counted from `seconds` = 0; with no rate (<= 0), `manual` (the key's choice).
+bool blink_shows_right(double seconds, float flips_per_second, bool manual);
+
 // What the panes' views become on a scene change: reset to the whole picture unless the user asked to keep
 // the zoom across scenes.
 enum class ZoomOnSceneChange { kReset, kKeep };

@@ -102,7 +102,8 @@ int draw_cells(const Plot& plot, const PairDensity& d, ImDrawList* dl) {
   float best = 36;  // within 6 px
   for (const DensityCell& c : d.cells) {
     const ImVec2 q0{plot.p0.x + c.cx * cw, plot.p1.y - (c.cy + 1) * ch};
-    const ImVec2 q1{q0.x + std::max(cw, 2.0f), q0.y + std::max(ch, 2.0f)};
+    // At least 4 x 4 pixels: a lone pair stays visible, and a click finds it.
+    const ImVec2 q1{q0.x + std::max(cw, 4.0f), q0.y + std::max(ch, 4.0f)};
     dl->AddRectFilled(q0, q1, c.selected > 0 ? kSelected : density_colour(c.count, d.max_count));
     const float dx = (q0.x + q1.x) / 2 - mouse.x, dy = (q0.y + q1.y) / 2 - mouse.y;
     if (dx * dx + dy * dy < best) best = dx * dx + dy * dy, hovered = c.first;
@@ -167,12 +168,23 @@ void draw_scatter(const Session& s, bool gathering, RockViewState& st, UiState& 
   ImGui::SameLine();
   ImGui::Checkbox("current scene only", &st.current_scene);
   const long n = st.points ? static_cast<long>(st.points->points.size()) : 0;
+  // What the points are: the model and threshold they are scored with, and with a drag box, what it selected
+  // (the scatter keeps the pairs of the list the filter alone gives; the list shows the selection's scenes).
+  const std::string cell = "model " + (s.model().empty() ? std::string("none") : s.model()) +
+                           ", conf >= " + fmt::format("{:g}", s.conf_threshold());
   if (!st.points)
     ImGui::TextDisabled("gathering the pairs...");
+  else if (!st.current_scene && !ui.selection_label.empty())
+    text_disabled_wrapped_at_spaces(
+        fmt::format("{} of the scenes the filter lists ({}); {} (orange), listed{}: drag "
+                    "another box, or clear it under the filter",
+                    counted(n, "pair"), cell, ui.selection_label, gathering ? " (updating...)" : ""));
   else
-    ImGui::TextDisabled("%s of %s%s: drag a box to filter the scene list, click a point to see its pair",
-                        counted(n, "pair").c_str(), st.current_scene ? "this scene" : "the listed scenes",
-                        gathering ? " (updating...)" : "");
+    text_disabled_wrapped_at_spaces(
+        fmt::format("{} of {} ({}){}: drag a box to filter the scene list, click a point "
+                    "to see its pair",
+                    counted(n, "pair"), st.current_scene ? "this scene" : "the listed scenes", cell,
+                    gathering ? " (updating...)" : ""));
   const PairAxis ax = kAxes[st.x_axis], ay = kAxes[st.y_axis];
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const float line = ImGui::GetTextLineHeight();
@@ -273,7 +285,12 @@ void draw_gallery(const StudyView& v, RockViewState& st, UiCommands& out) {
       fmt::format("The picture around each rock (a grey square where the study has none), GT solid yellow, its "
                   "best-IoU prediction dashed blue; {} | {}. Click to go.",
                   s.left_domain(), s.right_domain()));
-  const float px = 5 * ImGui::GetTextLineHeight();
+  // Thumbnails as large as the window's width allows for the two crops and their text (8 to 12 lines tall).
+  const float px = std::clamp((ImGui::GetContentRegionAvail().x - ImGui::CalcTextSize("rock 99 (principled) | "
+                                                                                      "rock 99 (principled)  ")
+                                                                      .x) /
+                                  2,
+                              5 * ImGui::GetTextLineHeight(), 9 * ImGui::GetTextLineHeight());
   ImGui::BeginChild("##gallerypairs");
   for (int k = st.gallery_page * kGalleryPage;
        k < std::min<int>(st.gallery.size(), (st.gallery_page + 1) * kGalleryPage); ++k) {
@@ -289,6 +306,7 @@ void draw_gallery(const StudyView& v, RockViewState& st, UiCommands& out) {
     ImGui::Text("rock %d (%s) | rock %d (%s)", p.rock_a + 1, s.left_domain().c_str(), p.rock_b + 1,
                 s.right_domain().c_str());
     ImGui::Text("perf %.3f | %.3f   |diff| %.3f", p.perf_a, p.perf_b, p.abs_diff);
+    ImGui::Text("size %s px² (%s rock)", thousands(std::llround(p.size)).c_str(), s.left_domain().c_str());
     if (ImGui::SmallButton("go to pair")) go_to(p, out);
     ImGui::EndGroup();
     ImGui::EndGroup();

@@ -23,21 +23,7 @@ Placement place(ImVec2 area_min, ImVec2 area_size, int image_w, int image_h, con
   return p;
 }
 
-namespace {
-
-void text_with_backdrop(ImDrawList* dl, ImVec2 at, ImU32 colour, const char* text, float scale) {
-  ImFont* font = ImGui::GetFont();
-  const float size = ImGui::GetFontSize() * scale;
-  const ImVec2 ext = font->CalcTextSizeA(size, FLT_MAX, 0.0f, text);
-  dl->AddRectFilled({at.x - 1, at.y}, {at.x + ext.x + 1, at.y + ext.y}, IM_COL32(0, 0, 0, 170));
-  dl->AddText(font, size, at, colour, text);
-}
-
-// An instance's outline on screen: solid (ground truth) or dashed (a prediction), closed.
-void draw_outline(ImDrawList* dl, const Placement& pl, const Outline& o, ImU32 colour, float thickness, bool dashed) {
-  std::vector<ImVec2> q;
-  q.reserve(o.points.size());
-  for (const Eigen::Vector2d& p : o.points) q.push_back(pl.to_screen(p.x(), p.y()));
+void draw_closed_path(ImDrawList* dl, const std::vector<ImVec2>& q, ImU32 colour, float thickness, bool dashed) {
   if (!dashed) {
     dl->AddPolyline(q.data(), static_cast<int>(q.size()), colour, ImDrawFlags_Closed, thickness);
     return;
@@ -57,6 +43,24 @@ void draw_outline(ImDrawList* dl, const Placement& pl, const Outline& o, ImU32 c
     }
     phase = std::fmod(phase + len, kPeriod);
   }
+}
+
+namespace {
+
+void text_with_backdrop(ImDrawList* dl, ImVec2 at, ImU32 colour, const char* text, float scale) {
+  ImFont* font = ImGui::GetFont();
+  const float size = ImGui::GetFontSize() * scale;
+  const ImVec2 ext = font->CalcTextSizeA(size, FLT_MAX, 0.0f, text);
+  dl->AddRectFilled({at.x - 1, at.y}, {at.x + ext.x + 1, at.y + ext.y}, IM_COL32(0, 0, 0, 170));
+  dl->AddText(font, size, at, colour, text);
+}
+
+// An instance's outline on screen: solid (ground truth) or dashed (a prediction), closed.
+void draw_outline(ImDrawList* dl, const Placement& pl, const Outline& o, ImU32 colour, float thickness, bool dashed) {
+  std::vector<ImVec2> q;
+  q.reserve(o.points.size());
+  for (const Eigen::Vector2d& p : o.points) q.push_back(pl.to_screen(p.x(), p.y()));
+  draw_closed_path(dl, q, colour, thickness, dashed);
 }
 
 // The outline's region filled with a translucent colour (the hovered rock's mask).
@@ -119,7 +123,7 @@ int draw_side(ImDrawList* dl, ImVec2 a0, ImVec2 asz, const CanvasView& view, con
       if (b.outline)
         draw_outline(dl, pl, *b.outline, colour, best ? 2 * thick : thick, true);
       else
-        dl->AddRect(q0, q1, colour, 0, 0, best ? 2 * thick : thick);
+        draw_closed_path(dl, {q0, {q1.x, q0.y}, q1, {q0.x, q1.y}}, colour, best ? 2 * thick : thick, true);
       if (layers.confidences && q1.x - q0.x >= in.min_box_px_for_confidence) confidences.push_back({q0, q1, b.conf, k});
     }
   }

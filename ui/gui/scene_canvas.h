@@ -62,6 +62,10 @@ struct Placement {
 };
 Placement place(ImVec2 area_min, ImVec2 area_size, int image_w, int image_h, const CanvasView& view);
 
+// A closed path on screen: solid (ground truth) or dashed, 6 px dashes and 4 px gaps running on round the
+// corners (predictions), as the panes, the blink view and the print figures draw them.
+void draw_closed_path(ImDrawList* dl, const std::vector<ImVec2>& points, ImU32 colour, float thickness, bool dashed);
+
 // Draws one side; returns the GT rock under `mouse` (-1 none). `text_scale` scales labels (figures).
 int draw_side(ImDrawList* dl, ImVec2 area_min, ImVec2 area_size, const CanvasView& view, const SideInput& in,
               const SideLayers& layers, ImVec2 mouse, float text_scale = 1.0f);

@@ -12,6 +12,8 @@
 #include "core/session/scene_filter.h"
 #include "core/session/session.h"
 #include "core/session/session_statistics.h"
+#include "ui/gui/blink_view.h"
+#include "ui/gui/pane_zoom.h"
 #include "ui/gui/scene_canvas.h"
 
 namespace ipd::ui {
@@ -130,6 +132,9 @@ struct UiState {
   std::string selection_label;  // "selection: 37 pairs in 12 scenes"
   int selection_pair = -1;
   std::string selection_model;
+  BlinkState blink;        // the blink view (B) in place of the two panes
+  BlinkDrawn blink_drawn;  // what it drew last frame
+  bool show_rank = false;  // the Rank window: the renderer settings ranked against the left domain
 };
 
 struct UiCommands {
@@ -180,6 +185,10 @@ std::string problems_label(size_t count);
 void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out);
 float scene_toolbar_width();  // the pictures' toolbar on one line
 void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, const Picture& right, UiCommands& out);
+// The blink view (blink_view.h) in the space the two panes would take (views_blink.cpp).
+void draw_blink_view(const StudyView& v, UiState& ui, const Picture& left, const Picture& right, UiCommands& out);
+// The blink view's legend: each domain's GT and predictions with their colour and line style.
+std::string blink_legend(const Session& s);
 void draw_registration(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out);
@@ -242,6 +251,11 @@ const std::vector<std::pair<const char*, const char*>>& shortcut_list();
 
 // Per-rock inputs of the canvas for one side of the current scene.
 SideInput side_input(const Session& s, const UiState& ui, Side side, const Picture& picture);
+
+// From the picture of view side k (0 left) to its partner's, through scene `scene`'s registration affine (which
+// maps A onto B): sync zoom keeps a rock's partner under the cursor, and the blink view lays the right picture
+// over the left one through towards_partner(s, scene, 1).
+PaneAffine towards_partner(const Session& s, int scene, int k);
 
 // The trace step shown at a replay position (clamped), -1 when the trace is empty.
 int replay_step(const RegistrationReport& r, float position);

@@ -97,6 +97,8 @@ const std::vector<std::pair<const char*, const char*>>& shortcut_list() {
       {"F", "fit the picture to its pane"},
       {"Z", "focus view: the pictures fill the window (again: the panels come back)"},
       {"1", "1:1 (one picture pixel per screen pixel)"},
+      {"B", "blink view: the right picture over the left one through the registration (again: the two pictures)"},
+      {"V", "blink view: show the other picture"},
       {"Space", "play / pause the registration replay"},
       {"F1 or ?", "this list"},
       {"filter box", "text, ipd>0.1, ipd<=0.05, suspect, edited, ambiguous, reviewed, unreviewed (all must match)"},
@@ -131,7 +133,9 @@ void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out) {
     ImGui::MenuItem("Keep zoom across scenes", nullptr, &ui.keep_zoom_across_scenes);
     if (ImGui::MenuItem("Go to scene...", "Ctrl+G")) ui.show_goto = true;
     if (ImGui::MenuItem("Next suspect pair", "N")) out.next_suspect = true;
+    ImGui::MenuItem("Blink view", "B", &ui.blink.on);
     ImGui::MenuItem("Rock pairs (scatter, gallery)", nullptr, &ui.show_rock_view);
+    ImGui::MenuItem("Rank renderer settings", nullptr, &ui.show_rank);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Review", v.session != nullptr && !v.session->scenes().empty())) {
@@ -408,6 +412,9 @@ void handle_shortcuts(const StudyView& v, UiState& ui, UiCommands& out) {
   if (pressed('R')) out.toggle_reviewed = true;
   if (pressed('C')) std::tie(out.check_left, out.check_right) = selected_pair(*v.session, ui);
   if (pressed('Z')) ui.focus = !ui.focus;
+  if (pressed('B')) ui.blink.on = !ui.blink.on;
+  if (pressed('V') && ui.blink.on && !ui.blink.overlay)
+    ui.blink.manual_right = !ui.blink.manual_right, ui.blink.flips_per_second = 0;
   if (pressed(ImGui::GetKeyIndex(ImGuiKey_Space))) {
     ui.replay.playing = !ui.replay.playing;
   }

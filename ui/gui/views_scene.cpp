@@ -31,28 +31,15 @@ std::vector<int> replay_sample(const StudyView& v, const UiState& ui, Side side)
   return side_is_a ? st.a_sample : st.b_sample;
 }
 
-// From the picture of view side k (0 left) to its partner's, through the scene's registration affine
-// (which maps A onto B), so sync zoom keeps a rock's partner under the cursor, not the same pixel.
-PaneAffine towards_partner(const Session& s, const UiState& ui, int k) {
-  const Affine2& m = s.scenes()[ui.scene].automatic.registration.affine;
+}  // namespace
+
+PaneAffine towards_partner(const Session& s, int scene, int k) {
+  const Affine2& m = s.scenes()[scene].automatic.registration.affine;
   PaneAffine a;
   for (int i = 0; i < 6; ++i) a.m[i] = m(i / 3, i % 3);
   const bool from_a = (k == 0) != s.swapped();
   return from_a ? a : a.inverse();
 }
-
-// Zoom by `factor` keeping the picture point under `mouse` where it is.
-void zoom_at(CanvasView& view, float factor, ImVec2 mouse, ImVec2 p0, ImVec2 size, int w, int h) {
-  const Placement before = place(p0, size, w, h, view);
-  const float u = (mouse.x - before.origin.x) / before.size.x, t = (mouse.y - before.origin.y) / before.size.y;
-  view.zoom = std::clamp(view.zoom * factor, 0.25f, 40.0f);
-  const Placement after = place(p0, size, w, h, view);
-  const ImVec2 origin{mouse.x - u * after.size.x, mouse.y - t * after.size.y};
-  view.pan.x = (p0.x + 0.5f * size.x - origin.x) / after.size.x - 0.5f;
-  view.pan.y = (p0.y + 0.5f * size.y - origin.y) / after.size.y - 0.5f;
-}
-
-}  // namespace
 
 SideInput side_input(const Session& s, const UiState& ui, Side side, const Picture& pic) {
   SideInput in;
@@ -98,6 +85,7 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
     ImGui::TextUnformatted("No scene is present in both domains.");
     return;
   }
+  if (ui.blink.on) return draw_blink_view(v, ui, left, right, out);
   // The toolbar wraps onto a second line in a narrow window rather than running off its edge.
   const float box = ImGui::GetFrameHeight() + ImGui::GetStyle().ItemInnerSpacing.x;
   ImGui::Checkbox("GT", &ui.layers.gt);
@@ -286,7 +274,7 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
         sel = hit;
         if (ui.selected_left >= 0 && ui.selected_right >= 0) {
           out.edits.push_back(Edit::pair(ui.selected_left, ui.selected_right));
-          ui.selected_left = ui.selected_right = -1;
+          ui.selected_right = -1;  // the left rock stays selected: sync zoom follows it to its new partner
         }
       }
       // Only when this picture's view changed: following the cursor as it merely moves would slide the other
@@ -297,7 +285,7 @@ void draw_side_by_side(const StudyView& v, UiState& ui, const Picture& left, con
         partner = view.zoom == 1.0f && view.pan.x == 0 && view.pan.y == 0
                       ? CanvasView{}  // back to the whole picture: so is the other
                       : partner_view(view, {mouse.x - p0.x, mouse.y - p0.y}, size, in.image_w, in.image_h,
-                                     towards_partner(s, ui, k));
+                                     towards_partner(s, ui.scene, k));
       if (hit >= 0) {
         const auto& pv_self = s.performance(side, ui.scene).value;
         ImGui::BeginTooltip();

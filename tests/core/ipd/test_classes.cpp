@@ -319,9 +319,9 @@ TEST(Classes, AHandPairJoiningTwoClassesIsRefused) {
                    "edit refused: pairs real rock 1 (rock) with synth rock 2 (shadow): a pair joins two rocks of one "
                    "class");
     }
-    const SaveJob job = s.apply(0, Edit::pair(0, 0));  // R1 with R1: within a class, saved as class-blind work
+    const SaveJob job = s.apply(0, Edit::pair(2, 0));  // R2 with R1: within a class, saved as class-blind work
     ASSERT_TRUE(job.contents.has_value());
-    EXPECT_EQ(job.contents->rfind("{\"class\":\"all\",\"pairs\":[[0,0],", 0), 0u) << *job.contents;
+    EXPECT_EQ(job.contents->rfind("{\"class\":\"all\",\"pairs\":[[1,1],[2,0]],", 0), 0u) << *job.contents;
   }
   test::write_text(d / "pairs/real__synth/s1.json", "{\"class\": \"all\", \"pairs\": [[0, 1]]}\n");
   try {

@@ -15,6 +15,8 @@
 #include "core/session/session.h"
 #include "tests/support/test_support.h"
 
+namespace fs = std::filesystem;
+
 namespace ipd {
 namespace {
 
@@ -82,6 +84,38 @@ TEST(Session, PairUnpairUndoRedoAndSaveAreSeenByTheEngine) {
   s.apply(0, Edit::reset());
   EXPECT_FALSE(s.can_redo());
   EXPECT_NEAR(s.cell().ipd, 0.5, 1e-12);
+}
+
+// Re-making registration's pairs by hand makes the scene automatic again: its pairs file goes, the engine
+// counts registration's pairs, and undo still walks back through the steps.
+TEST(Session, HandPairsEqualToRegistrationsMakeTheSceneAutomatic) {
+  test::TempDir d;
+  write_tiny_study(d);
+  Session s = Session::open(d.path());
+  const fs::path file = d / "pairs/real__synth/s1.json";
+  run_save_job(s.apply(0, Edit::unpair(Side::kA, 1)));  // (0,1) alone: hand-edited, IPD 2/3
+  ASSERT_TRUE(fs::exists(file));
+  EXPECT_TRUE(s.summary(0).edited);
+  EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
+  // Pairing real 1 with synth 0 again gives registration's {(0,1), (1,0)}.
+  const SaveJob job = s.apply(0, Edit::pair(1, 0));
+  EXPECT_FALSE(job.contents.has_value());  // the job removes the file
+  run_save_job(job);
+  EXPECT_FALSE(fs::exists(file));
+  EXPECT_FALSE(s.summary(0).edited);
+  EXPECT_EQ(s.view_pairs(0), (RockPairs{{0, 1}, {1, 0}}));
+  EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
+  EXPECT_NEAR(table_ipd_from_disk(d.path()), 0.5, 1e-12);
+  // The history keeps both steps: undo brings the hand pairs (and their file) back.
+  run_save_job(*s.undo());
+  EXPECT_TRUE(fs::exists(file));
+  EXPECT_TRUE(s.summary(0).edited);
+  EXPECT_NEAR(table_ipd_from_disk(d.path()), 2.0 / 3, 1e-12);
+  // Registration's pairs with a rock excluded are still hand-made: the exclusion is saved.
+  run_save_job(*s.redo());
+  run_save_job(s.apply(0, Edit::toggle_exclude(Side::kA, 0)));
+  EXPECT_TRUE(s.summary(0).edited);
+  EXPECT_TRUE(fs::exists(file));
 }
 
 // 300 copies of the tiny study's scene (s001 ... s300): scenes 0 and 200 in different chunks of CowVector's 128 scenes.

@@ -291,7 +291,8 @@ TEST(FixedPairsBinding, AnEditOfAStaleSceneIsRefusedAndResetDiscardsTheFile) {
   EXPECT_FALSE(s.scenes()[0].pairs_unusable);
   EXPECT_FALSE(s.can_undo());  // nothing to take back: the scene showed these pairs before, and the file is gone
   for (const Problem& p : s.problems()) EXPECT_NE(p.file, f) << p.to_string();  // no longer listed
-  const SaveJob edit = s.apply(0, Edit::pair(1, 0));
+  // Editable: an exclusion is saved (pairing 1 with 0 again would be registration's own pairs, saved as no file).
+  const SaveJob edit = s.apply(0, Edit::toggle_exclude(Side::kA, 0));
   EXPECT_TRUE(edit.contents.has_value());
 }
 

@@ -57,6 +57,52 @@ TEST(PaneZoom, SyncingPictureCoordinatesLeavesThePartnerOffByTheShift) {
   EXPECT_NEAR((0.475f - copied.x) * 800, 80, 1e-3);
 }
 
+TEST(PaneZoom, TheSelectedRocksPartnerSitsWhereTheRockSits) {
+  // Left view zoom 2.5, pan (-0.1, 0.05), the rock at (0.3, 0.4) off the pane's centre. Its partner is at
+  // (0.7, 0.25): the right view is panned by the offset (0.4, -0.15), to (0.3, -0.1), the same zoom.
+  const CanvasView left{2.5f, {-0.1f, 0.05f}};
+  const CanvasView right = view_on_partner(left, {0.3f, 0.4f}, {0.7f, 0.25f});
+  EXPECT_FLOAT_EQ(right.zoom, 2.5f);
+  EXPECT_NEAR(right.pan.x, 0.3f, 1e-6);
+  EXPECT_NEAR(right.pan.y, -0.1f, 1e-6);
+  // Both points land on the same spot of their panes (400 x 250, a 1600 x 1000 picture shown 1000 x 625):
+  // 200 + (0.3 - 0.5 + 0.1) x 1000 = 100 px, 125 + (0.4 - 0.5 - 0.05) x 625 = 31.25 px.
+  const Placement pl = place({0, 0}, {400, 250}, 1600, 1000, left), pr = place({0, 0}, {400, 250}, 1600, 1000, right);
+  EXPECT_NEAR(pl.to_screen(0.3, 0.4).x, 100, 1e-3);
+  EXPECT_NEAR(pl.to_screen(0.3, 0.4).y, 31.25, 1e-3);
+  EXPECT_NEAR(pr.to_screen(0.7, 0.25).x, 100, 1e-3);
+  EXPECT_NEAR(pr.to_screen(0.7, 0.25).y, 31.25, 1e-3);
+}
+
+TEST(BlinkView, TheRightPictureIsLaidOverTheLeftThroughTheAffine) {
+  // left_from_right: scale 0.5 about the origin, then shift (0.1, 0.2): the right picture's corners land at
+  // (0.1, 0.2), (0.6, 0.2), (0.6, 0.7), (0.1, 0.7) of the left one.
+  PaneAffine m;
+  m.m[0] = 0.5, m.m[2] = 0.1, m.m[4] = 0.5, m.m[5] = 0.2;
+  const Quad q = warped_corners(m);
+  const float want[4][2] = {{0.1f, 0.2f}, {0.6f, 0.2f}, {0.6f, 0.7f}, {0.1f, 0.7f}};
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(q.p[k].x, want[k][0], 1e-6) << k;
+    EXPECT_NEAR(q.p[k].y, want[k][1], 1e-6) << k;
+  }
+  // A rotation by 90 degrees (x, y) -> (1 - y, x) turns the rectangle, corner (1, 0) to (1, 1).
+  PaneAffine r;
+  r.m[0] = 0, r.m[1] = -1, r.m[2] = 1, r.m[3] = 1, r.m[4] = 0, r.m[5] = 0;
+  EXPECT_NEAR(warped_corners(r).p[1].x, 1, 1e-6);
+  EXPECT_NEAR(warped_corners(r).p[1].y, 1, 1e-6);
+}
+
+TEST(BlinkView, AlternatesAtTheRateOrShowsWhatTheKeyChose) {
+  // 2 flips a second: [0, 0.5) the left picture, [0.5, 1) the right, [1, 1.5) the left again.
+  EXPECT_FALSE(blink_shows_right(0.2, 2, true));
+  EXPECT_TRUE(blink_shows_right(0.7, 2, false));
+  EXPECT_FALSE(blink_shows_right(1.2, 2, true));
+  EXPECT_TRUE(blink_shows_right(1.6, 2, false));
+  // No rate: the key's choice, whatever the time.
+  EXPECT_TRUE(blink_shows_right(0.7, 0, true));
+  EXPECT_FALSE(blink_shows_right(0.7, 0, false));
+}
+
 TEST(PaneZoom, AffineInverseUndoesIt) {
   PaneAffine a;
   a.m[0] = 2, a.m[2] = 0.1, a.m[4] = 0.5, a.m[5] = -0.2;
