@@ -96,7 +96,7 @@ TEST(Session, HandPairsEqualToRegistrationsMakeTheSceneAutomatic) {
   run_save_job(s.apply(0, Edit::unpair(Side::kA, 1)));  // (0,1) alone: hand-edited, IPD 2/3
   ASSERT_TRUE(fs::exists(file));
   EXPECT_TRUE(s.summary(0).edited);
-  EXPECT_NEAR(s.totals().ipd(), 2.0 / 3, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 2.0 / 3, 1e-12);
   // Pairing real 1 with synth 0 again gives registration's {(0,1), (1,0)}.
   const SaveJob job = s.apply(0, Edit::pair(1, 0));
   EXPECT_FALSE(job.contents.has_value());  // the job removes the file
@@ -104,7 +104,7 @@ TEST(Session, HandPairsEqualToRegistrationsMakeTheSceneAutomatic) {
   EXPECT_FALSE(fs::exists(file));
   EXPECT_FALSE(s.summary(0).edited);
   EXPECT_EQ(s.view_pairs(0), (RockPairs{{0, 1}, {1, 0}}));
-  EXPECT_NEAR(s.totals().ipd(), 0.5, 1e-12);
+  EXPECT_NEAR(s.cell().ipd, 0.5, 1e-12);
   EXPECT_NEAR(table_ipd_from_disk(d.path()), 0.5, 1e-12);
   // The history keeps both steps: undo brings the hand pairs (and their file) back.
   run_save_job(*s.undo());
