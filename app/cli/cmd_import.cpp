@@ -128,8 +128,8 @@ Runner add_import_command(CLI::App& app) {
                  o->out_dir, m);
     if (r.polygons + r.rle_masks > 0)
       fmt::print(stderr,
-                 "note: {} polygon segmentations written as YOLO-seg outlines, {} run-length masks as their boxes "
-                 "(a label line holds an outline, not a mask)\n",
+                 "note: {} polygon segmentations and {} run-length masks written as YOLO-seg outlines (a mask "
+                 "traced along its pixels' edges at the image's resolution, holes filled)\n",
                  r.polygons, r.rle_masks);
     fmt::print("{} images, {} GT boxes, {} detections, {} classes, {} pictures linked -> {}{}\n", r.images, r.boxes,
                r.detections, r.categories, r.linked_images, o->out_dir,

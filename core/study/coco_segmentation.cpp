@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 
+#include "core/geometry/outline.h"
 #include "core/util/json_input.h"
 
 namespace ipd {
@@ -50,6 +52,9 @@ std::string read_rle(const nlohmann::json& seg, double width, double height, Coc
   const long long h = (*size)[0], w = (*size)[1];
   if (static_cast<double>(h) != height || static_cast<double>(w) != width)
     return fmt::format("RLE size [{}, {}] is not the image's [height, width] [{}, {}]", h, w, height, width);
+  if (h > kMaxRleMaskPixels || w > kMaxRleMaskPixels || h * w > kMaxRleMaskPixels)
+    return fmt::format("RLE size [{}, {}]: a mask of more than {} pixels; expected a picture's (at most 50 megapixels)",
+                       h, w, kMaxRleMaskPixels);
   std::vector<long long> counts;
   const auto c = seg.find("counts");
   if (c != seg.end() && c->is_string()) {
@@ -65,12 +70,35 @@ std::string read_rle(const nlohmann::json& seg, double width, double height, Coc
   long long sum = 0;
   for (const long long n : counts) {
     if (n < 0) return fmt::format("RLE counts: a negative run length {}", n);
+    if (n > h * w - sum) {
+      sum = h * w + 1;  // more than the image: the exact excess is not the point
+      break;
+    }
     sum += n;
-    if (sum > h * w) break;
   }
+  if (sum > h * w)
+    return fmt::format("RLE counts cover more than the {}x{} image's {} pixels (height x width)", w, h, h * w);
   if (sum != h * w)
     return fmt::format("RLE counts cover {} pixels; expected the {}x{} image's {} (height x width)", sum, w, h, h * w);
+  const RleMask mask = decode_rle_mask(counts, h, w);
+  if (mask.area == 0) return "RLE mask with no pixel set; expected the object's pixels";
+  bool too_many = false;
+  const auto contours = mask_component_contours(mask.pixels, kMaxOutlinePoints, &too_many);
+  if (too_many)
+    return fmt::format(
+        "RLE mask's outline has more than {} corners (its {} pixels in {}+ pieces); expected an "
+        "object's mask",
+        kMaxOutlinePoints, mask.area, contours.size());
   out->rle = true;
+  out->mask_pixels = mask.area;
+  for (const auto& contour : contours) {
+    std::vector<double> points;
+    for (const Eigen::Vector2i& p : contour) {
+      points.push_back((p.x() + mask.x) / width);
+      points.push_back((p.y() + mask.y) / height);
+    }
+    out->polygons.push_back(std::move(points));
+  }
   return {};
 }
 
@@ -79,26 +107,59 @@ std::string read_rle(const nlohmann::json& seg, double width, double height, Coc
 bool decode_rle_counts(const std::string& s, std::vector<long long>* counts) {
   // pycocotools' rleFrString: 5 bits a character (offset 48), bit 0x20 says "more", a sign bit in the last
   // character; from the third count on, each is stored as the difference from the one two before.
+  // At most 9 characters a count (45 bits): far beyond any picture's pixels, and no shift or sum overflows.
   counts->clear();
   size_t p = 0;
   while (p < s.size()) {
-    long long x = 0;
+    uint64_t bits = 0;
     int k = 0;
     bool more = true;
     while (more) {
-      if (p >= s.size() || k > 12) return false;
+      if (p >= s.size() || k >= 9) return false;
       const int ch = static_cast<unsigned char>(s[p]) - 48;
       if (ch < 0 || ch > 63) return false;
-      x |= static_cast<long long>(ch & 0x1f) << (5 * k);
+      bits |= static_cast<uint64_t>(ch & 0x1f) << (5 * k);
       more = (ch & 0x20) != 0;
       ++p;
       ++k;
-      if (!more && (ch & 0x10)) x |= -(1LL << (5 * k));
+      if (!more && (ch & 0x10)) bits |= ~uint64_t{0} << (5 * k);  // negative: the sign extended
     }
+    long long x = static_cast<long long>(bits);
     if (counts->size() > 2) x += (*counts)[counts->size() - 2];
     counts->push_back(x);
   }
   return true;
+}
+
+RleMask decode_rle_mask(const std::vector<long long>& counts, long long height, long long width) {
+  // The bounds of the pixels set, then the pixels in them. Runs alternate 0s and 1s, the first of 0s; pixel k
+  // is at row k % height of column k / height.
+  RleMask m;
+  long long x0 = width, x1 = -1, y0 = height, y1 = -1, at = 0;
+  for (size_t k = 0; k < counts.size(); at += counts[k], ++k) {
+    if (k % 2 == 0 || counts[k] == 0) continue;
+    const long long first = at, last = at + counts[k] - 1;
+    x0 = std::min(x0, first / height), x1 = std::max(x1, last / height);
+    if (first / height == last / height) {
+      y0 = std::min(y0, first % height), y1 = std::max(y1, last % height);
+    } else {  // the run goes from the bottom of one column to the top of the next: every row is in its bounds
+      y0 = 0, y1 = height - 1;
+    }
+    m.area += counts[k];
+  }
+  if (m.area == 0) return m;
+  m.x = static_cast<int>(x0), m.y = static_cast<int>(y0);
+  m.pixels.width = static_cast<int>(x1 - x0 + 1), m.pixels.height = static_cast<int>(y1 - y0 + 1);
+  m.pixels.on.assign(static_cast<size_t>(m.pixels.width) * m.pixels.height, 0);
+  at = 0;
+  for (size_t k = 0; k < counts.size(); at += counts[k], ++k) {
+    if (k % 2 == 0) continue;
+    for (long long p = at; p < at + counts[k]; ++p) {
+      const long long col = p / height - x0, row = p % height - y0;
+      m.pixels.on[static_cast<size_t>(row) * m.pixels.width + col] = 1;
+    }
+  }
+  return m;
 }
 
 std::vector<double> merge_polygon_parts(const std::vector<std::vector<double>>& parts) {

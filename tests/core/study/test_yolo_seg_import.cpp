@@ -105,13 +105,13 @@ TEST(YoloSegImport, CocoPolygonsBecomeYoloSegLinesAndMasksTheirBoxes) {
                                " --results " + t / "res.json" + " --model m");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err,
-            "note: 3 polygon segmentations written as YOLO-seg outlines, 1 run-length masks as their boxes (a label "
-            "line holds an outline, not a mask)\n");
+            "note: 3 polygon segmentations and 1 run-length masks written as YOLO-seg outlines (a mask traced along "
+            "its pixels' edges at the image's resolution, holes filled)\n");
   // The two squares of the second object joined at their nearest corners, (0.1, 0) and (0.2, 0).
   EXPECT_EQ(read_file(t / "study/real/labels/s1.txt"),
             "0 0.1 0.2 0.3 0.2 0.2 0.6\n"
             "0 0.1 0 0.1 0.2 0 0.2 0 0 0.1 0 0.2 0 0.3 0 0.3 0.2 0.2 0.2 0.2 0\n"
-            "0 0.75 0.5 0.5 1\n");
+            "0 0.5 0 1 0 1 1 0.5 1\n");
   EXPECT_EQ(read_file(t / "study/real/predictions/m/s1.txt"), "0 0.1 0.2 0.3 0.2 0.2 0.6 0.75\n");
 }
 
