@@ -21,14 +21,26 @@ Runner add_yolo(CLI::App* imp) {
   cmd->add_option("--out", o->out_dir, "The domain directory to fill, e.g. STUDY/real")->required();
   cmd->add_option("--split", o->split, "Import this split only (train, val, test, ...); default: every split");
   cmd->add_flag("--replace", o->replace, "Replace the labels and pictures of a domain folder that already holds files");
+  cmd->add_option("--names", o->names, "Class names of a dataset without a names file, class 0 first: rock,shadow")
+      ->delimiter(',');
+  cmd->add_flag("--skip-bad-lines", o->skip_bad_lines,
+                "Warn about malformed label lines and write them as comments (stops when they are most lines)");
   return [o]() -> int {
     const YoloImportReport r = import_yolo(*o);
-    for (const auto& e : r.errors) fmt::print(stderr, "{}\n", e.to_string());
-    if (!r.written) {
-      fmt::print(stderr, "error: {} problem{} in the source's label files; nothing written\n", r.errors.size(),
-                 r.errors.size() == 1 ? "" : "s");
+    for (const auto& e : r.errors)
+      fmt::print(stderr, "{}{}\n", r.written && e.malformed_lines() > 0 ? "warning: " : "", e.to_string());
+    if (!r.most_skipped.empty()) {
+      fmt::print(stderr, "error: {}\n", r.most_skipped);
       return kBadInput;
     }
+    if (!r.written) {
+      fmt::print(stderr, "error: {} problem{} in the source's label files; nothing written{}\n", r.errors.size(),
+                 r.errors.size() == 1 ? "" : "s",
+                 o->skip_bad_lines ? "" : " (--skip-bad-lines writes malformed lines as comments)");
+      return kBadInput;
+    }
+    if (r.skipped_lines > 0)
+      fmt::print(stderr, "warning: {} malformed line(s) written as comments (--skip-bad-lines)\n", r.skipped_lines);
     for (const auto& m : r.kept_prediction_sets)
       fmt::print(stderr,
                  "warning: {}/predictions/{}/ is kept as it was; its predictions are of the labels before "

@@ -82,11 +82,12 @@ TEST(YoloSegImport, AnOutlineWithAnOddNumberOfCoordinatesIsRefusedWithItsLine) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, t / "ls/labels/s1.txt" +
                        ":2: expected an outline (class x1 y1 ... xn yn), found 8 columns: an odd number of "
-                       "coordinates\nerror: 1 problem in the source's label files; nothing written\n");
+                       "coordinates\nerror: 1 problem in the source's label files; nothing written (--skip-bad-lines "
+                       "writes malformed lines as comments)\n");
   EXPECT_FALSE(fs::exists(t / "study"));
 }
 
-TEST(YoloSegImport, CocoPolygonsBecomeYoloSegLinesAndMasksTheirBoxes) {
+TEST(YoloSegImport, CocoPolygonsAndMasksBecomeYoloSegLines) {
   test::TempDir t;
   test::write_text(t / "gt.json",
                    "{\"images\": [{\"id\": 1, \"file_name\": \"s1.png\", \"width\": 100, \"height\": 50}],"
