@@ -16,6 +16,7 @@ std::vector<std::vector<Eigen::Vector2i>> mask_component_contours(const PixelMas
                                                                   bool* too_many) {
   *too_many = false;
   const int w = mask.width, h = mask.height;
+  if (w <= 0 || h <= 0 || mask.on.size() != static_cast<size_t>(w) * static_cast<size_t>(h)) return {};
   // 0: background, 1: a pixel of a component not traced yet, 2: of one traced.
   std::vector<uint8_t> state(mask.on.size());
   for (size_t k = 0; k < state.size(); ++k) state[k] = mask.on[k] ? 1 : 0;
@@ -56,7 +57,13 @@ std::vector<std::vector<Eigen::Vector2i>> mask_component_contours(const PixelMas
       // a pixel touching the current one only at a corner is never joined to it: 4-connectivity).
       std::vector<Eigen::Vector2i> contour;
       int x = x0, y = y0, d = 3;  // as the walk arrives at its start at the end: going north up the left edge
-      while (true) {
+      for (size_t step = 0;; ++step) {
+        if (points + contour.size() > max_points) {  // a speckle of thousands of pieces: the caller refuses it
+          *too_many = true;
+          contours.push_back(std::move(contour));
+          return contours;
+        }
+        if (step > 4 * mask.on.size()) return {};  // never: each pixel edge is walked at most once
         const int next = !ahead_right(x, y, d) ? (d + 1) % 4 : !ahead_left(x, y, d) ? d : (d + 3) % 4;
         if (next != d) {
           // Back at the start, leaving along the top edge again: the contour is closed. (A walk through the start
@@ -70,10 +77,6 @@ std::vector<std::vector<Eigen::Vector2i>> mask_component_contours(const PixelMas
       }
       points += contour.size();
       contours.push_back(std::move(contour));
-      if (points > max_points) {
-        *too_many = true;
-        return contours;
-      }
       // Mark the component traced (4-connected flood fill).
       stack.assign(1, size_t(y0) * w + x0);
       state[stack.back()] = 2;

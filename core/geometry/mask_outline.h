@@ -10,7 +10,8 @@
 
 namespace ipd {
 
-// Pixels row by row, `on[y * width + x]` non-zero for the mask's pixels.
+// Pixels row by row, `on[y * width + x]` non-zero for the mask's pixels (a mask whose `on` is not width x height
+// pixels has no contours).
 struct PixelMask {
   int width = 0, height = 0;
   std::vector<uint8_t> on;

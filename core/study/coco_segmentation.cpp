@@ -89,6 +89,7 @@ std::string read_rle(const nlohmann::json& seg, double width, double height, Coc
         "RLE mask's outline has more than {} corners (its {} pixels in {}+ pieces); expected an "
         "object's mask",
         kMaxOutlinePoints, mask.area, contours.size());
+  if (contours.empty()) return "RLE mask: no outline could be traced from its pixels";
   out->rle = true;
   out->mask_pixels = mask.area;
   for (const auto& contour : contours) {

@@ -121,8 +121,8 @@ std::string checked_label(const YoloSource& s, const SourceScene& x, bool skip_b
     const size_t end = std::min(text->find('\n', at), text->size());
     std::string_view v(text->data() + at, end - at);
     if (line == 1 && v.substr(0, 3) == "\xEF\xBB\xBF") v.remove_prefix(3);
-    const size_t first = v.find_first_not_of(" \t\r");
-    if (first != std::string_view::npos && v[first] != '#' && !good.count(line)) bad.insert(line);
+    const std::string_view fields = v.substr(0, v.find('#'));  // the reader's fields end at a comment
+    if (fields.find_first_not_of(" \t\r\v\f") != std::string_view::npos && !good.count(line)) bad.insert(line);
     at = end + 1;
   }
   r->skipped_lines += static_cast<int>(bad.size());
