@@ -191,10 +191,13 @@ std::vector<double> merge_polygon_parts(const std::vector<std::vector<double>>& 
       merged.push_back(y);
     }
   };
-  walk(0, out[0], count(0));  // the first part whole, back to its bridge
-  for (size_t i = 1; i + 1 < n; ++i) walk(i, in[i], (out[i] + count(i) - in[i]) % count(i));  // there: in -> out
-  walk(n - 1, in[n - 1], count(n - 1));                                                       // the last one whole
-  for (size_t i = n - 1; i-- > 1;) walk(i, out[i], (in[i] + count(i) - out[i]) % count(i));   // back: out -> in
+  walk(0, out[0], count(0));            // the first part whole, back to its bridge
+  for (size_t i = 1; i + 1 < n; ++i) {  // there: in -> out, the whole part when it meets both at one point
+    const size_t there = (out[i] + count(i) - in[i]) % count(i);
+    walk(i, in[i], there == 0 ? count(i) : there);
+  }
+  walk(n - 1, in[n - 1], count(n - 1));                                                      // the last one whole
+  for (size_t i = n - 1; i-- > 1;) walk(i, out[i], (in[i] + count(i) - out[i]) % count(i));  // back: out -> in
   if (merged.size() >= 4 && merged[0] == merged[merged.size() - 2] && merged[1] == merged.back())
     merged.resize(merged.size() - 2);
   return merged;
