@@ -80,6 +80,11 @@ Runner add_predictions(CLI::App* imp) {
                  r.errors.size() == 1 ? "" : "s");
       return kBadInput;
     }
+    if (r.rle_masks_cut > 0)
+      fmt::print(stderr,
+                 "note: {} run-length mask{} of several pieces kept the piece that encloses the most; {} pixels of "
+                 "the others left out (an outline is one ring)\n",
+                 r.rle_masks_cut, r.rle_masks_cut == 1 ? "" : "s", r.rle_pixels_left_out);
     if (r.conf_one)
       fmt::print(stderr, "warning: {}: no confidences in the run; every box is read with confidence 1 (--no-conf)\n",
                  r.folder);
@@ -143,6 +148,11 @@ Runner add_import_command(CLI::App& app) {
                  "note: {} polygon segmentations and {} run-length masks written as YOLO-seg outlines (a mask "
                  "traced along its pixels' edges at the image's resolution, holes filled)\n",
                  r.polygons, r.rle_masks);
+    if (r.rle_masks_cut > 0)
+      fmt::print(stderr,
+                 "note: {} run-length mask{} of several pieces kept the piece that encloses the most; {} pixels of "
+                 "the others left out (an outline is one ring)\n",
+                 r.rle_masks_cut, r.rle_masks_cut == 1 ? "" : "s", r.rle_pixels_left_out);
     fmt::print("{} images, {} GT boxes, {} detections, {} classes, {} pictures linked -> {}{}\n", r.images, r.boxes,
                r.detections, r.categories, r.linked_images, o->out_dir,
                o->replace ? fmt::format(" ({} old files removed)", r.removed) : "");

@@ -13,7 +13,8 @@ constexpr std::array<int, 4> kDy = {0, 1, 0, -1};
 }  // namespace
 
 std::vector<std::vector<Eigen::Vector2i>> mask_component_contours(const PixelMask& mask, size_t max_points,
-                                                                  bool* too_many) {
+                                                                  bool* too_many, std::vector<long long>* pixels) {
+  if (pixels) pixels->clear();
   *too_many = false;
   const int w = mask.width, h = mask.height;
   if (w <= 0 || h <= 0 || mask.on.size() != static_cast<size_t>(w) * static_cast<size_t>(h)) return {};
@@ -80,7 +81,9 @@ std::vector<std::vector<Eigen::Vector2i>> mask_component_contours(const PixelMas
       // Mark the component traced (4-connected flood fill).
       stack.assign(1, size_t(y0) * w + x0);
       state[stack.back()] = 2;
+      long long count = 0;
       while (!stack.empty()) {
+        ++count;
         const size_t k = stack.back();
         stack.pop_back();
         const int px = static_cast<int>(k % w), py = static_cast<int>(k / w);
@@ -94,6 +97,7 @@ std::vector<std::vector<Eigen::Vector2i>> mask_component_contours(const PixelMas
           }
         }
       }
+      if (pixels) pixels->push_back(count);
     }
   return contours;
 }

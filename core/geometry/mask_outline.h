@@ -23,7 +23,9 @@ struct PixelMask {
 // pixels that touch only at a corner are two components. Components are in the order of their first pixel row
 // by row. At most `max_points` corners in all: past it, `*too_many` is set and the contours found so far are
 // returned (a noise mask of a million specks is refused, not traced whole).
+// `pixels`, when given, gets each component's pixel count.
 std::vector<std::vector<Eigen::Vector2i>> mask_component_contours(const PixelMask& mask, size_t max_points,
-                                                                  bool* too_many);
+                                                                  bool* too_many,
+                                                                  std::vector<long long>* pixels = nullptr);
 
 }  // namespace ipd

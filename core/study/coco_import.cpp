@@ -252,6 +252,8 @@ struct BoxSink {
       }
       b.outline = std::move(outline);
       ++(shape.rle ? report->rle_masks : report->polygons);
+      report->rle_masks_cut += shape.pieces_left_out > 0 ? 1 : 0;
+      report->rle_pixels_left_out += shape.pixels_left_out;
     }
     if (!prediction) {
       im->second.gt.push_back(b);

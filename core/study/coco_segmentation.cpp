@@ -83,23 +83,56 @@ std::string read_rle(const nlohmann::json& seg, double width, double height, Coc
   const RleMask mask = decode_rle_mask(counts, h, w);
   if (mask.area == 0) return "RLE mask with no pixel set; expected the object's pixels";
   bool too_many = false;
-  const auto contours = mask_component_contours(mask.pixels, kMaxOutlinePoints, &too_many);
+  std::vector<long long> piece_pixels;
+  const auto contours = mask_component_contours(mask.pixels, kMaxOutlinePoints, &too_many, &piece_pixels);
   if (too_many)
     return fmt::format(
         "RLE mask's outline has more than {} corners (its {} pixels in {}+ pieces); expected an "
         "object's mask",
         kMaxOutlinePoints, mask.area, contours.size());
-  if (contours.empty()) return "RLE mask: no outline could be traced from its pixels";
+  if (contours.empty() || piece_pixels.size() != contours.size())
+    return "RLE mask: no outline could be traced from its pixels";
+  // An outline is one ring: the piece whose outer contour encloses the most (holes filled). Pieces inside it
+  // (in a hole) are covered; the others are left out and counted. Joining them by bridges would make contours
+  // that run along each other's pixel edges, which polygon clipping does not fill reliably.
+  const auto twice_area = [](const std::vector<Eigen::Vector2i>& c) {
+    long long a = 0;
+    for (size_t k = 0; k < c.size(); ++k) {
+      const Eigen::Vector2i& p = c[k];
+      const Eigen::Vector2i& q = c[(k + 1) % c.size()];
+      a += static_cast<long long>(p.x()) * q.y() - static_cast<long long>(q.x()) * p.y();
+    }
+    return a;
+  };
+  size_t best = 0;
+  for (size_t k = 1; k < contours.size(); ++k)
+    if (twice_area(contours[k]) > twice_area(contours[best])) best = k;
+  const std::vector<Eigen::Vector2i>& ring = contours[best];
+  const auto inside = [&](double px, double py) {  // crossing test of a pixel's centre, never on the ring
+    bool in = false;
+    for (size_t k = 0, j = ring.size() - 1; k < ring.size(); j = k++) {
+      const double xk = ring[k].x(), yk = ring[k].y(), xj = ring[j].x(), yj = ring[j].y();
+      if ((yk > py) != (yj > py) && px < (xj - xk) * (py - yk) / (yj - yk) + xk) in = !in;
+    }
+    return in;
+  };
+  long long left_out = 0;
+  int pieces_left_out = 0;
+  for (size_t k = 0; k < contours.size(); ++k)
+    if (k != best && !inside(contours[k][0].x() + 0.5, contours[k][0].y() + 0.5)) {
+      left_out += piece_pixels[k];
+      ++pieces_left_out;
+    }
   out->rle = true;
   out->mask_pixels = mask.area;
-  for (const auto& contour : contours) {
-    std::vector<double> points;
-    for (const Eigen::Vector2i& p : contour) {
-      points.push_back((p.x() + mask.x) / width);
-      points.push_back((p.y() + mask.y) / height);
-    }
-    out->polygons.push_back(std::move(points));
+  out->pixels_left_out = left_out;
+  out->pieces_left_out = pieces_left_out;
+  std::vector<double> points;
+  for (const Eigen::Vector2i& p : ring) {
+    points.push_back((p.x() + mask.x) / width);
+    points.push_back((p.y() + mask.y) / height);
   }
+  out->polygons.push_back(std::move(points));
   return {};
 }
 

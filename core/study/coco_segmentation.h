@@ -3,7 +3,8 @@
 // encodings). A malformed one (a polygon with an odd number of coordinates or fewer than three points, RLE
 // counts that do not cover the image) is an error of its entry, never silently dropped. A run-length mask is
 // decoded at the image's resolution (its `size`) and traced into contours along its pixels' edges
-// (mask_outline.h): the outline covers exactly the mask's pixels, with holes filled.
+// (mask_outline.h): the outline covers exactly the mask's pixels, with holes filled, when the mask is one piece;
+// of several pieces, the one whose contour encloses the most is kept and the others are counted as left out.
 #pragma once
 
 #include <nlohmann/json_fwd.hpp>
@@ -16,10 +17,13 @@ namespace ipd {
 
 struct CocoSegmentation {
   // Each part's x1 y1 x2 y2 ..., normalised by the image's size: the polygons as given, or a run-length mask's
-  // outer contour of each 4-connected component (clockwise, y down), in the order of their first pixel row by row.
+  // one contour: the outer contour (clockwise, y down) of its 4-connected piece that encloses the most, holes
+  // filled.
   std::vector<std::vector<double>> polygons;
-  bool rle = false;           // the polygons are a run-length mask's contours
-  long long mask_pixels = 0;  // a run-length mask's pixels set
+  bool rle = false;               // the polygons are a run-length mask's contour
+  long long mask_pixels = 0;      // a run-length mask's pixels set
+  long long pixels_left_out = 0;  // of them, in pieces outside the contour (left out of the outline)
+  int pieces_left_out = 0;
 };
 
 // The largest mask a run-length segmentation may have, in pixels (height x width): the pictures' limit.

@@ -361,6 +361,8 @@ PredictionImportReport import_coco_results(const PredictionImportOptions& o) {
   r.detections = cr.detections;
   r.no_detection_files = cr.no_detection_files;
   r.removed = cr.removed;
+  r.rle_masks_cut = cr.rle_masks_cut;
+  r.rle_pixels_left_out = cr.rle_pixels_left_out;
   r.written = cr.written;
   return r;
 }

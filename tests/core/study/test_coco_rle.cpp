@@ -1,6 +1,7 @@
 // COCO run-length masks are read as masks, not as their boxes: decoded column by column at the image's
 // resolution and traced along their pixels' edges into one outline that covers exactly the mask's pixels (holes
-// filled, pieces joined), so the mask IoU of an RLE and a polygon of the same pixels is exact.
+// filled; of several pieces the one enclosing the most), so the mask IoU of an RLE and a polygon of the same
+// pixels is exact.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -95,24 +96,38 @@ TEST(CocoRle, AnRleSquareAndAPolygonSquareOfTheSamePixelsHaveMaskIouOne) {
 }
 
 // A 3 x 3 ring (its centre pixel off): the outline fills the hole, 9 pixels for the mask's 8, so against the
-// raster its IoU is 8/9. Two pieces are joined by a bridge that encloses nothing: 1 + 4 pixels.
-TEST(CocoRle, HolesAreFilledAndPiecesJoined) {
+// raster its IoU is 8/9.
+TEST(CocoRle, HolesAreFilled) {
   // 5 x 5, columns 1-3 rows 1-3 on but (2, 2): column-major runs.
   const CocoSegmentation ring = read(R"({"counts": [6, 3, 2, 1, 1, 1, 2, 3, 6], "size": [5, 5]})", 5, 5);
   EXPECT_EQ(ring.mask_pixels, 8);
+  EXPECT_EQ(ring.pixels_left_out, 0);
   ASSERT_EQ(ring.polygons.size(), 1u);
   EXPECT_NEAR(outline_of(ring).area * 25, 9.0, 1e-9);
-  // Pixel (0, 0) and a 2 x 2 block at x 2-3, y 2-3 of a 4 x 4 image.
+}
+
+// Of several pieces the outline keeps the one whose contour encloses the most; a piece in its hole is covered,
+// the others are left out and counted.
+TEST(CocoRle, OfSeveralPiecesTheOneEnclosingTheMostIsKept) {
+  // Pixel (0, 0) and a 2 x 2 block at x 2-3, y 2-3 of a 4 x 4 image: the block.
   const CocoSegmentation two = read(R"({"counts": [0, 1, 9, 2, 2, 2], "size": [4, 4]})", 4, 4);
   EXPECT_EQ(two.mask_pixels, 5);
-  ASSERT_EQ(two.polygons.size(), 2u);
-  EXPECT_NEAR(outline_of(two).area * 16, 5.0, 1e-9);
-  // Pixels touching only at a corner are two pieces (4-connectivity), each its own square.
+  ASSERT_EQ(two.polygons.size(), 1u);
+  EXPECT_EQ(two.polygons[0], (std::vector<double>{0.5, 0.5, 1, 0.5, 1, 1, 0.5, 1}));
+  EXPECT_EQ(two.pieces_left_out, 1);
+  EXPECT_EQ(two.pixels_left_out, 1);
+  // Pixels touching only at a corner are two pieces (4-connectivity); of two alike the first is kept.
   const CocoSegmentation diagonal = read(R"({"counts": [0, 1, 4, 1, 10], "size": [4, 4]})", 4, 4);
-  ASSERT_EQ(diagonal.polygons.size(), 2u);
+  ASSERT_EQ(diagonal.polygons.size(), 1u);
   EXPECT_EQ(diagonal.polygons[0], (std::vector<double>{0, 0, 0.25, 0, 0.25, 0.25, 0, 0.25}));
-  EXPECT_EQ(diagonal.polygons[1], (std::vector<double>{0.25, 0.25, 0.5, 0.25, 0.5, 0.5, 0.25, 0.5}));
-  EXPECT_NEAR(outline_of(diagonal).area * 16, 2.0, 1e-9);
+  EXPECT_EQ(diagonal.pixels_left_out, 1);
+  // A 5 x 5 ring (x, y 1-5 of 7 x 7, 16 pixels) around a pixel of its own at (3, 3): the ring's contour covers
+  // both, 25 pixels, nothing left out.
+  const CocoSegmentation nested =
+      read(R"({"counts": [8, 5, 2, 1, 3, 1, 2, 1, 1, 1, 1, 1, 2, 1, 3, 1, 2, 5, 8], "size": [7, 7]})", 7, 7);
+  EXPECT_EQ(nested.mask_pixels, 17);
+  EXPECT_EQ(nested.pieces_left_out, 0);
+  EXPECT_NEAR(outline_of(nested).area * 49, 25.0, 1e-9);
 }
 
 TEST(CocoRle, MasksThatCannotBeAnOutlineAreRefused) {
