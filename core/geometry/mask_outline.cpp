@@ -10,6 +10,29 @@ namespace {
 constexpr std::array<int, 4> kDx = {1, 0, -1, 0};
 constexpr std::array<int, 4> kDy = {0, 1, 0, -1};
 
+// Marks the 4-connected component of pixel `first` traced (state 1 -> 2); returns its pixel count.
+long long mark_traced(size_t first, int w, int h, std::vector<uint8_t>* state, std::vector<size_t>* stack) {
+  stack->assign(1, first);
+  (*state)[first] = 2;
+  long long count = 0;
+  while (!stack->empty()) {
+    ++count;
+    const size_t k = stack->back();
+    stack->pop_back();
+    const int px = static_cast<int>(k % w), py = static_cast<int>(k / w);
+    for (int n = 0; n < 4; ++n) {
+      const int qx = px + kDx[n], qy = py + kDy[n];
+      if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
+      const size_t q = size_t(qy) * w + qx;
+      if ((*state)[q] == 1) {
+        (*state)[q] = 2;
+        stack->push_back(q);
+      }
+    }
+  }
+  return count;
+}
+
 }  // namespace
 
 std::vector<std::vector<Eigen::Vector2i>> mask_component_contours(const PixelMask& mask, size_t max_points,
@@ -78,25 +101,7 @@ std::vector<std::vector<Eigen::Vector2i>> mask_component_contours(const PixelMas
       }
       points += contour.size();
       contours.push_back(std::move(contour));
-      // Mark the component traced (4-connected flood fill).
-      stack.assign(1, size_t(y0) * w + x0);
-      state[stack.back()] = 2;
-      long long count = 0;
-      while (!stack.empty()) {
-        ++count;
-        const size_t k = stack.back();
-        stack.pop_back();
-        const int px = static_cast<int>(k % w), py = static_cast<int>(k / w);
-        for (int n = 0; n < 4; ++n) {
-          const int qx = px + kDx[n], qy = py + kDy[n];
-          if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
-          const size_t q = size_t(qy) * w + qx;
-          if (state[q] == 1) {
-            state[q] = 2;
-            stack.push_back(q);
-          }
-        }
-      }
+      const long long count = mark_traced(size_t(y0) * w + x0, w, h, &state, &stack);
       if (pixels) pixels->push_back(count);
     }
   return contours;

@@ -44,6 +44,41 @@ std::string read_polygons(const nlohmann::json& seg, double width, double height
   return {};
 }
 
+// An outline is one ring: the piece whose outer contour encloses the most (holes filled). Pieces inside it (in
+// a hole) are covered; the others are left out and counted. Joining them by bridges would make contours that
+// run along each other's pixel edges, which polygon clipping does not fill reliably.
+const std::vector<Eigen::Vector2i>& enclosing_piece(const std::vector<std::vector<Eigen::Vector2i>>& contours,
+                                                    const std::vector<long long>& piece_pixels, long long* left_out,
+                                                    int* pieces_left_out) {
+  const auto twice_area = [](const std::vector<Eigen::Vector2i>& c) {
+    long long a = 0;
+    for (size_t k = 0; k < c.size(); ++k) {
+      const Eigen::Vector2i& p = c[k];
+      const Eigen::Vector2i& q = c[(k + 1) % c.size()];
+      a += static_cast<long long>(p.x()) * q.y() - static_cast<long long>(q.x()) * p.y();
+    }
+    return a;
+  };
+  size_t best = 0;
+  for (size_t k = 1; k < contours.size(); ++k)
+    if (twice_area(contours[k]) > twice_area(contours[best])) best = k;
+  const std::vector<Eigen::Vector2i>& ring = contours[best];
+  const auto inside = [&](double px, double py) {  // crossing test of a pixel's centre, never on the ring
+    bool in = false;
+    for (size_t k = 0, j = ring.size() - 1; k < ring.size(); j = k++) {
+      const double xk = ring[k].x(), yk = ring[k].y(), xj = ring[j].x(), yj = ring[j].y();
+      if ((yk > py) != (yj > py) && px < (xj - xk) * (py - yk) / (yj - yk) + xk) in = !in;
+    }
+    return in;
+  };
+  for (size_t k = 0; k < contours.size(); ++k)
+    if (k != best && !inside(contours[k][0].x() + 0.5, contours[k][0].y() + 0.5)) {
+      *left_out += piece_pixels[k];
+      ++*pieces_left_out;
+    }
+  return ring;
+}
+
 std::string read_rle(const nlohmann::json& seg, double width, double height, CocoSegmentation* out) {
   const auto size = seg.find("size");
   if (size == seg.end() || !size->is_array() || size->size() != 2 || !(*size)[0].is_number_integer() ||
@@ -92,37 +127,9 @@ std::string read_rle(const nlohmann::json& seg, double width, double height, Coc
         kMaxOutlinePoints, mask.area, contours.size());
   if (contours.empty() || piece_pixels.size() != contours.size())
     return "RLE mask: no outline could be traced from its pixels";
-  // An outline is one ring: the piece whose outer contour encloses the most (holes filled). Pieces inside it
-  // (in a hole) are covered; the others are left out and counted. Joining them by bridges would make contours
-  // that run along each other's pixel edges, which polygon clipping does not fill reliably.
-  const auto twice_area = [](const std::vector<Eigen::Vector2i>& c) {
-    long long a = 0;
-    for (size_t k = 0; k < c.size(); ++k) {
-      const Eigen::Vector2i& p = c[k];
-      const Eigen::Vector2i& q = c[(k + 1) % c.size()];
-      a += static_cast<long long>(p.x()) * q.y() - static_cast<long long>(q.x()) * p.y();
-    }
-    return a;
-  };
-  size_t best = 0;
-  for (size_t k = 1; k < contours.size(); ++k)
-    if (twice_area(contours[k]) > twice_area(contours[best])) best = k;
-  const std::vector<Eigen::Vector2i>& ring = contours[best];
-  const auto inside = [&](double px, double py) {  // crossing test of a pixel's centre, never on the ring
-    bool in = false;
-    for (size_t k = 0, j = ring.size() - 1; k < ring.size(); j = k++) {
-      const double xk = ring[k].x(), yk = ring[k].y(), xj = ring[j].x(), yj = ring[j].y();
-      if ((yk > py) != (yj > py) && px < (xj - xk) * (py - yk) / (yj - yk) + xk) in = !in;
-    }
-    return in;
-  };
   long long left_out = 0;
   int pieces_left_out = 0;
-  for (size_t k = 0; k < contours.size(); ++k)
-    if (k != best && !inside(contours[k][0].x() + 0.5, contours[k][0].y() + 0.5)) {
-      left_out += piece_pixels[k];
-      ++pieces_left_out;
-    }
+  const std::vector<Eigen::Vector2i>& ring = enclosing_piece(contours, piece_pixels, &left_out, &pieces_left_out);
   out->rle = true;
   out->mask_pixels = mask.area;
   out->pixels_left_out = left_out;
