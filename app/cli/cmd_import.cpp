@@ -21,14 +21,26 @@ Runner add_yolo(CLI::App* imp) {
   cmd->add_option("--out", o->out_dir, "The domain directory to fill, e.g. STUDY/real")->required();
   cmd->add_option("--split", o->split, "Import this split only (train, val, test, ...); default: every split");
   cmd->add_flag("--replace", o->replace, "Replace the labels and pictures of a domain folder that already holds files");
+  cmd->add_option("--names", o->names, "Class names of a dataset without a names file, class 0 first: rock,shadow")
+      ->delimiter(',');
+  cmd->add_flag("--skip-bad-lines", o->skip_bad_lines,
+                "Warn about malformed label lines and write them as comments (stops when they are most lines)");
   return [o]() -> int {
     const YoloImportReport r = import_yolo(*o);
-    for (const auto& e : r.errors) fmt::print(stderr, "{}\n", e.to_string());
-    if (!r.written) {
-      fmt::print(stderr, "error: {} problem{} in the source's label files; nothing written\n", r.errors.size(),
-                 r.errors.size() == 1 ? "" : "s");
+    for (const auto& e : r.errors)
+      fmt::print(stderr, "{}{}\n", r.written && e.malformed_lines() > 0 ? "warning: " : "", e.to_string());
+    if (!r.most_skipped.empty()) {
+      fmt::print(stderr, "error: {}\n", r.most_skipped);
       return kBadInput;
     }
+    if (!r.written) {
+      fmt::print(stderr, "error: {} problem{} in the source's label files; nothing written{}\n", r.errors.size(),
+                 r.errors.size() == 1 ? "" : "s",
+                 o->skip_bad_lines ? "" : " (--skip-bad-lines writes malformed lines as comments)");
+      return kBadInput;
+    }
+    if (r.skipped_lines > 0)
+      fmt::print(stderr, "warning: {} malformed line(s) written as comments (--skip-bad-lines)\n", r.skipped_lines);
     for (const auto& m : r.kept_prediction_sets)
       fmt::print(stderr,
                  "warning: {}/predictions/{}/ is kept as it was; its predictions are of the labels before "
@@ -68,6 +80,11 @@ Runner add_predictions(CLI::App* imp) {
                  r.errors.size() == 1 ? "" : "s");
       return kBadInput;
     }
+    if (r.rle_masks_cut > 0)
+      fmt::print(stderr,
+                 "note: {} run-length mask{} of several pieces kept the piece that encloses the most; {} pixels of "
+                 "the others left out (an outline is one ring)\n",
+                 r.rle_masks_cut, r.rle_masks_cut == 1 ? "" : "s", r.rle_pixels_left_out);
     if (r.conf_one)
       fmt::print(stderr, "warning: {}: no confidences in the run; every box is read with confidence 1 (--no-conf)\n",
                  r.folder);
@@ -128,9 +145,14 @@ Runner add_import_command(CLI::App& app) {
                  o->out_dir, m);
     if (r.polygons + r.rle_masks > 0)
       fmt::print(stderr,
-                 "note: {} polygon segmentations written as YOLO-seg outlines, {} run-length masks as their boxes "
-                 "(a label line holds an outline, not a mask)\n",
+                 "note: {} polygon segmentations and {} run-length masks written as YOLO-seg outlines (a mask "
+                 "traced along its pixels' edges at the image's resolution, holes filled)\n",
                  r.polygons, r.rle_masks);
+    if (r.rle_masks_cut > 0)
+      fmt::print(stderr,
+                 "note: {} run-length mask{} of several pieces kept the piece that encloses the most; {} pixels of "
+                 "the others left out (an outline is one ring)\n",
+                 r.rle_masks_cut, r.rle_masks_cut == 1 ? "" : "s", r.rle_pixels_left_out);
     fmt::print("{} images, {} GT boxes, {} detections, {} classes, {} pictures linked -> {}{}\n", r.images, r.boxes,
                r.detections, r.categories, r.linked_images, o->out_dir,
                o->replace ? fmt::format(" ({} old files removed)", r.removed) : "");

@@ -89,6 +89,18 @@ void run_job(Job* job, const RegistrationOptions& opt, int cls, bool skip_bad_li
     if (!f->exists) job->errors.push_back({f->path, 0, "no such label file"});
     job->errors.insert(job->errors.end(), f->errors.begin(), f->errors.end());
   }
+  // Skipped lines that are most of a file's box lines stop the pair, as a layout that leaves out most of a
+  // study's rocks stops ipd table: the pairs would be those of what is left, not of the scene's rocks.
+  for (const auto* f : {&a, &b}) {
+    long malformed = 0;
+    for (const LabelError& e : f->errors) malformed += e.malformed_lines();
+    const long lines = malformed + static_cast<long>(f->boxes.size());
+    if (skip_bad_lines && 2 * malformed > lines)
+      job->errors.push_back({f->path, 0,
+                             fmt::format("--skip-bad-lines would leave out {} of its {} box lines, more than half: "
+                                         "the pairs would be of what is left, not of the scene's rocks; fix the lines",
+                                         malformed, lines)});
+  }
   const bool file_problem =
       std::any_of(job->errors.begin(), job->errors.end(), [](const LabelError& e) { return e.malformed_lines() == 0; });
   if (!job->errors.empty() && (!skip_bad_lines || file_problem)) return;

@@ -185,6 +185,16 @@ std::map<long, Image> read_images(const json& gt, const std::string& file, std::
   return images;
 }
 
+// An entry as its messages name it: its place in the file's array, and its id when it has one
+// ("annotations[3] (id 17)"), the two ways a user finds it again.
+std::string entry_name(const std::string& array, size_t k, const json& entry) {
+  std::string name = fmt::format("{}[{}]", array, k);
+  if (entry.is_object())
+    if (const auto id = entry.find("id"); id != entry.end() && id->is_number_integer())
+      name += fmt::format(" (id {})", id->get<long long>());
+  return name;
+}
+
 // Where imported boxes go: each image's GT or predictions, counted in the report.
 struct BoxSink {
   std::map<long, Image>* images;
@@ -227,7 +237,8 @@ struct BoxSink {
         return;
       }
     if (!shape.polygons.empty()) {
-      // Written as its YOLO-seg line (several parts joined into one contour); read back, the box is its bounds.
+      // Written as its YOLO-seg line (several parts, or a mask's pieces, joined into one contour); read back, the
+      // box is its bounds.
       const std::vector<double> merged = merge_polygon_parts(shape.polygons);
       std::vector<Eigen::Vector2d> points;
       for (size_t k = 0; k + 1 < merged.size(); k += 2) points.emplace_back(merged[k], merged[k + 1]);
@@ -240,9 +251,10 @@ struct BoxSink {
         return;
       }
       b.outline = std::move(outline);
-      ++report->polygons;
+      ++(shape.rle ? report->rle_masks : report->polygons);
+      report->rle_masks_cut += shape.pieces_left_out > 0 ? 1 : 0;
+      report->rle_pixels_left_out += shape.pixels_left_out;
     }
-    report->rle_masks += shape.rle ? 1 : 0;
     if (!prediction) {
       im->second.gt.push_back(b);
       ++report->boxes;
@@ -399,13 +411,13 @@ CocoImportReport import_coco_checked(const CocoImportOptions& o) {
   std::map<long, Image> images = read_images(gt, o.annotations, &r.errors);
   const BoxSink sink{&images, &class_of, &r};
   size_t k = 0;
-  for (const auto& a : gt["annotations"]) sink.add(a, o.annotations, fmt::format("annotations[{}]", k++), false);
+  for (const auto& a : gt["annotations"]) sink.add(a, o.annotations, entry_name("annotations", k++, a), false);
   if (!o.results.empty()) {
     const json res = parse_json_file(o.results, "a JSON list of detections [{image_id, category_id, bbox, score}]");
     if (!res.is_array())
       throw StudyError(o.results + ": expected a JSON list of detections [{image_id, category_id, bbox, score}]");
     k = 0;
-    for (const auto& a : res) sink.add(a, o.results, fmt::format("[{}]", k++), true);
+    for (const auto& a : res) sink.add(a, o.results, entry_name("", k++, a), true);
   }
   r.images = static_cast<int>(images.size());
   r.collisions = name_collisions(images, o.annotations);

@@ -37,9 +37,12 @@ struct CocoImportOptions {
 struct CocoImportReport {
   int images = 0, boxes = 0, detections = 0, linked_images = 0;
   int categories = 0;
-  // Annotations and detections with a segmentation: polygons (written as YOLO-seg outlines), and run-length
-  // masks (written as their boxes: a label line holds an outline, not a mask).
+  // Annotations and detections with a segmentation: polygons and run-length masks, written as YOLO-seg outlines.
   int polygons = 0, rle_masks = 0;
+  // Run-length masks of several pieces keep the piece whose contour encloses the most: the masks that left
+  // pieces out, and those pieces' pixels.
+  int rle_masks_cut = 0;
+  long long rle_pixels_left_out = 0;
   std::vector<std::string> classes;  // classes[k]: the name of category id k, the YOLO class k ("" for no category)
   std::vector<LabelError> errors;    // all of them; nothing is written when any is fatal
   // Images whose labels would overwrite each other's or the class names (same stem in two folders, an image

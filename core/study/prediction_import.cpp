@@ -110,6 +110,37 @@ int write_prediction_set(const std::string& out_dir, const std::string& model,
 
 namespace {
 
+// The label files (*.txt) directly in root/rel; 0 when it can't be listed.
+size_t label_files_in(const std::string& root, const std::string& rel) {
+  try {
+    const std::vector<FolderEntry> entries = entries_beneath(root, rel);
+    return static_cast<size_t>(std::count_if(entries.begin(), entries.end(), [](const FolderEntry& e) {
+      return !e.folder && fs::path(e.name).extension() == ".txt";
+    }));
+  } catch (const IoError&) {
+    return 0;
+  }
+}
+
+// The first folder below root/rel, at most `depth` levels down (in name order, never through a link), that holds
+// labels/ with label files: a run; "" when there is none.
+std::string run_below(const std::string& root, const std::string& rel, int depth) {
+  if (depth <= 0) return {};
+  std::vector<FolderEntry> entries;
+  try {
+    entries = entries_beneath(root, rel);
+  } catch (const IoError&) {
+    return {};
+  }
+  for (const FolderEntry& e : entries) {
+    if (!e.folder) continue;
+    const std::string sub = rel + "/" + e.name;
+    if (label_files_in(root, sub + "/labels") > 0) return sub;
+    if (const std::string deeper = run_below(root, sub, depth - 1); !deeper.empty()) return deeper;
+  }
+  return {};
+}
+
 // Where a run's label files are: SRC/labels/ (a run folder: runs/detect/exp), or SRC itself when it holds them.
 std::string run_labels_folder(const std::string& src) {
   const std::string dir = absolute(src);
@@ -123,10 +154,22 @@ std::string run_labels_folder(const std::string& src) {
     if (!e.folder && fs::path(e.name).extension() == ".txt") return dir;
     if (e.folder && fs::is_directory(fs::symlink_status(fs::path(dir) / e.name / "labels", ec))) runs.push_back(e.name);
   }
-  if (runs.empty())
+  if (runs.empty()) {
+    // A run kept one or more folders down (an archive unzipped into a folder of its own, runs/detect/exp kept
+    // whole): said with where it is, rather than "no label files".
+    const fs::path canon = fs::canonical(dir, ec);
+    const std::string parent = canon.parent_path().string(), name = canon.filename().string();
+    if (const std::string run = ec ? std::string() : run_below(parent, name, 3); !run.empty()) {
+      const std::string shown = dir + run.substr(name.size());
+      throw StudyError(
+          fmt::format("{}: no label files here or in labels/, but {} holds a run's labels/ ({} label "
+                      "files): name that run, ipd import predictions {} --out ... --model ...",
+                      src, shown, label_files_in(parent, run + "/labels"), shown));
+    }
     throw StudyError(src +
                      ": no label files here or in labels/; expected a run of yolov5 detect.py --save-txt "
                      "--save-conf or yolo predict save_txt=True save_conf=True (runs/detect/exp)");
+  }
   std::string list;
   for (const auto& r : runs) list += (list.empty() ? "" : ", ") + r + "/";
   throw StudyError(fmt::format("{}: holds the run folder{} {}, not a run's files; name the run, e.g. {}", src,
@@ -318,6 +361,8 @@ PredictionImportReport import_coco_results(const PredictionImportOptions& o) {
   r.detections = cr.detections;
   r.no_detection_files = cr.no_detection_files;
   r.removed = cr.removed;
+  r.rle_masks_cut = cr.rle_masks_cut;
+  r.rle_pixels_left_out = cr.rle_pixels_left_out;
   r.written = cr.written;
   return r;
 }

@@ -36,6 +36,10 @@ struct PredictionImportReport {
   std::vector<LabelError> errors;  // nothing is written while there is one (COCO: unless skipped)
   bool written = false;
   int removed = 0;  // files of the replaced set the import did not write again
+  // COCO results: run-length masks of several pieces cut to the piece that encloses the most, and the pixels
+  // of the pieces left out.
+  int rle_masks_cut = 0;
+  long long rle_pixels_left_out = 0;
 };
 
 PredictionImportReport import_predictions(const PredictionImportOptions& options);

@@ -6,7 +6,9 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <set>
 #include <stdexcept>
+#include <string_view>
 
 #include "core/study/file_sets.h"
 #include "core/study/study.h"
@@ -61,8 +63,25 @@ void check_class_names(const std::string& domain_dir, const std::vector<std::str
 
 namespace {
 
-// Reads and checks one label file of the source: every line a box (label_io's rules), every class named.
-std::string checked_label(const YoloSource& s, const SourceScene& x, YoloImportReport* r) {
+// `text` with the lines of `bad` (1-based) written as comments, so the study reads it without them and the
+// line is still there to see.
+std::string with_lines_commented(const std::string& text, const std::set<int>& bad) {
+  std::string out;
+  size_t at = 0;
+  for (int line = 1; at < text.size(); ++line) {
+    const size_t end = std::min(text.find('\n', at), text.size());
+    if (bad.count(line)) out += "# skipped by ipd import yolo --skip-bad-lines: ";
+    out.append(text, at, end - at);
+    if (end < text.size()) out += '\n';
+    at = end + 1;
+  }
+  return out;
+}
+
+// Reads and checks one label file of the source: every line a box (label_io's rules), every class named. With
+// skip_bad_lines, the bad lines are commented out of the text returned.
+std::string checked_label(const YoloSource& s, const SourceScene& x, bool skip_bad_lines, YoloImportReport* r,
+                          long* box_lines) {
   const std::string shown = (fs::path(s.root) / x.label).string();
   std::optional<std::string> text;
   try {
@@ -75,17 +94,39 @@ std::string checked_label(const YoloSource& s, const SourceScene& x, YoloImportR
   po.kind = LabelKind::kGroundTruth;
   LabelFile f = parse_labels(*text, shown, po);
   r->errors.insert(r->errors.end(), f.errors.begin(), f.errors.end());
+  std::set<int> good(f.line_of_box.begin(), f.line_of_box.end());
+  int unnamed = 0;
   for (size_t k = 0; k < f.boxes.size(); ++k) {
     const int cls = f.boxes[k].cls;
     if (!s.class_names.empty() &&
-        (cls < 0 || static_cast<size_t>(cls) >= s.class_names.size() || s.class_names[cls].empty()))
+        (cls < 0 || static_cast<size_t>(cls) >= s.class_names.size() || s.class_names[cls].empty())) {
       r->errors.push_back({shown, f.line_of_box[k],
                            fmt::format("class {} is not among the classes {} names ({} of them); expected a named "
                                        "class number",
                                        cls, s.names_file, s.class_names.size())});
+      good.erase(f.line_of_box[k]);
+      ++unnamed;
+    }
   }
-  r->boxes += static_cast<int>(f.boxes.size());
-  return *text;
+  int malformed = unnamed;
+  for (const LabelError& e : f.errors) malformed += e.malformed_lines();
+  r->boxes += static_cast<int>(f.boxes.size()) - unnamed;
+  *box_lines += static_cast<long>(f.boxes.size()) + malformed - unnamed;
+  if (!skip_bad_lines || malformed == 0) return *text;
+  // Every line that is neither a box kept, nor blank, nor a comment was refused by the reader (the list of
+  // errors stops at kMaxListedErrors a file, so the lines are found here, not from it).
+  std::set<int> bad;
+  size_t at = 0;
+  for (int line = 1; at < text->size(); ++line) {
+    const size_t end = std::min(text->find('\n', at), text->size());
+    std::string_view v(text->data() + at, end - at);
+    if (line == 1 && v.substr(0, 3) == "\xEF\xBB\xBF") v.remove_prefix(3);
+    const std::string_view fields = v.substr(0, v.find('#'));  // the reader's fields end at a comment
+    if (fields.find_first_not_of(" \t\r\v\f") != std::string_view::npos && !good.count(line)) bad.insert(line);
+    at = end + 1;
+  }
+  r->skipped_lines += static_cast<int>(bad.size());
+  return with_lines_commented(*text, bad);
 }
 
 // <domain>/import.json: where the domain came from and which names were mapped back, so nothing is lost.
@@ -143,14 +184,35 @@ YoloImportReport import_yolo(const YoloImportOptions& o) {
   if (s.scenes.empty())
     throw StudyError(fmt::format("{}: the {} holds no label files or pictures{}; nothing is written", o.source,
                                  s.layout, o.split.empty() ? "" : " in split '" + o.split + "'"));
+  if (!o.names.empty()) {
+    if (!s.names_file.empty())
+      throw StudyError(
+          fmt::format("--names: {} names the classes of this source already; --names is for a dataset "
+                      "without a names file",
+                      s.names_file));
+    r.source.class_names = o.names;
+    r.source.names_file = "--names";
+  }
   if (!s.class_names.empty()) check_class_names(o.out_dir, s.class_names, s.names_file);
   std::vector<std::string> texts;
+  long box_lines = 0;
   for (const SourceScene& x : s.scenes) {
     if (x.label.empty()) ++r.without_label_file;
-    texts.push_back(x.label.empty() ? std::string() : checked_label(s, x, &r));
+    texts.push_back(x.label.empty() ? std::string() : checked_label(s, x, o.skip_bad_lines, &r, &box_lines));
   }
   r.scenes = static_cast<int>(s.scenes.size());
-  if (!r.errors.empty()) return r;
+  const bool unusable =
+      std::any_of(r.errors.begin(), r.errors.end(), [](const LabelError& e) { return e.unusable_file(); });
+  if (!r.errors.empty() && (!o.skip_bad_lines || unusable)) return r;
+  long skipped = 0;
+  for (const LabelError& e : r.errors) skipped += e.malformed_lines();
+  if (2 * skipped > box_lines) {
+    r.most_skipped = fmt::format(
+        "{}: --skip-bad-lines would leave out {} of its {} box lines, more than half: what is left is not the "
+        "dataset; fix the lines (or the layout that makes them wrong), nothing is written",
+        o.source, skipped, box_lines);
+    return r;
+  }
   write_domain(o, texts, &r);
   return r;
 }

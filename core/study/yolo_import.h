@@ -18,6 +18,14 @@ struct YoloImportOptions {
   std::string out_dir;   // the domain directory, e.g. STUDY/real
   std::string split;     // one split only ("" merges every split)
   bool replace = false;  // a domain folder with files is refused unless this is set (then replaced whole)
+  // Class names for a source without a names file (`--names rock,shadow`: class k is the k-th); refused beside
+  // a source that names its classes itself.
+  std::vector<std::string> names;
+  // Malformed lines (and boxes of an unnamed class) are warnings: each is written as a comment ("# skipped by
+  // ipd import yolo --skip-bad-lines: <the line>"), so the domain reads without them and nothing is lost. A
+  // source whose skipped lines would be more than half of its box lines is still refused (what is left is not
+  // the dataset).
+  bool skip_bad_lines = false;
 
   // Empty when usable; otherwise the field that is wrong, in one sentence.
   std::string validate() const;
@@ -29,6 +37,10 @@ struct YoloImportReport {
   int scenes = 0, boxes = 0, linked_images = 0;
   int without_label_file = 0;      // pictures without a label file: scenes without objects (an empty label file)
   std::vector<LabelError> errors;  // malformed lines, unnamed classes: nothing is written while there is one
+                                   // (with skip_bad_lines: the lines skipped, unless a file can't be read)
+  int skipped_lines = 0;           // with skip_bad_lines: lines written as comments
+  // With skip_bad_lines, why the import still stopped: the skipped lines were more than half of the box lines.
+  std::string most_skipped;
   bool written = false;
   std::vector<std::string> kept_prediction_sets;  // predictions/<model>/ of the replaced domain, kept as they were
 };

@@ -24,8 +24,10 @@ namespace ipd {
 namespace {
 
 constexpr size_t kMaxDataYamlBytes = size_t{1} << 20;
-constexpr int kMaxFolderDepth = 8;           // images/<split>/<camera>/<day>/... is deep enough
-constexpr size_t kMaxSourceFiles = 2000000;  // a listing past this is not a dataset folder
+constexpr int kMaxFolderDepth = 8;                   // images/<split>/<camera>/<day>/... is deep enough
+constexpr size_t kMaxSourceFiles = 2000000;          // a listing past this is not a dataset folder
+constexpr size_t kMaxListBytes = size_t{256} << 20;  // a list of 2,000,000 pictures' paths
+constexpr const char* kPictureExtensions = ".png, .jpg, .jpeg, .tif, .tiff, .bmp or .webp";
 
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -200,6 +202,8 @@ std::vector<std::string> yaml_names(const YAML::Node& n, const std::string& file
   return names;
 }
 
+std::string labels_of(const std::string& images);
+
 // A split's folder as data.yaml gives it, below the dataset root. Roboflow's data.yaml says "../train/images"
 // for the train/images beside it; Ultralytics reads that as "train/images" when "../train/images" is not
 // there, and so does this.
@@ -222,12 +226,71 @@ std::string split_folder(const std::string& root, const std::string& given, cons
   if (!fs::exists(fs::symlink_status(fs::path(root) / *rel, ec)))
     throw StudyError(fmt::format("{}:{}: {}: {} is not there; expected the split's folder of pictures", file, line, key,
                                  (fs::path(root) / *rel).string()));
-  if (!is_folder(root, *rel))
+  if (!is_folder(root, *rel) && lower(fs::path(*rel).extension().string()) != ".txt")
     throw StudyError(
-        fmt::format("{}:{}: {}: {} is not a folder; expected the split's folder of pictures (a list of "
-                    "pictures in a .txt file is not read: name the folder)",
+        fmt::format("{}:{}: {}: {} is not a folder; expected the split's folder of pictures or a .txt list of them",
                     file, line, key, (fs::path(root) / *rel).string()));
   return *rel;
+}
+
+// A split given as a list of pictures, one path a line (Ultralytics' `train: train.txt`, CVAT's train.txt): a
+// path starting with "./" is below the list's folder, an absolute one must be below the dataset root, any other
+// below the root (where Ultralytics, run from the dataset's folder, finds it); CVAT's "data/" prefix (Darknet's
+// data folder, the export's root) is left out when the path is not there with it. A picture's label file is
+// where Ultralytics looks for it (labels_of), and may be missing (no objects); a listed picture that is not there
+// is refused with its line, unless its label file is (an export without its pictures).
+void add_listed_split(const std::string& root, const std::string& split, const std::string& list,
+                      std::vector<SourceScene>* scenes) {
+  const std::string list_file = shown(root, list);
+  std::optional<std::string> text;
+  try {
+    text = read_file_beneath(root, list, kMaxListBytes);
+  } catch (const IoError& e) {
+    throw StudyError(std::string(e.what()) + " (links in an import's source are never followed)");
+  }
+  if (!text) throw StudyError(list_file + ": no such file");
+  size_t at = 0;
+  for (int line = 1; at < text->size(); ++line) {
+    const size_t end = std::min(text->find('\n', at), text->size());
+    std::string given = text->substr(at, end - at);
+    at = end + 1;
+    while (!given.empty() && (given.back() == '\r' || given.back() == ' ' || given.back() == '\t')) given.pop_back();
+    if (given.empty() || given[0] == '#') continue;
+    const fs::path base = given.rfind("./", 0) == 0 ? fs::path(root) / fs::path(list).parent_path() : fs::path(root);
+    auto below = [&](const std::string& g) -> std::optional<std::string> {
+      const fs::path p = (fs::path(g).is_absolute() ? fs::path(g) : base / g).lexically_normal();
+      const fs::path rel = p.lexically_relative(root);
+      if (rel.empty() || rel == "." || *rel.begin() == "..") return std::nullopt;
+      return rel.string();
+    };
+    std::error_code ec;
+    const auto there = [&](const std::string& rel) { return fs::exists(fs::symlink_status(fs::path(root) / rel, ec)); };
+    const auto label_of = [](const std::string& picture) {
+      const fs::path pic(picture);
+      return (fs::path(labels_of(pic.parent_path().string())) / pic.stem()).string() + ".txt";
+    };
+    std::optional<std::string> picture = below(given);
+    if (given.rfind("data/", 0) == 0 && !(picture && (there(*picture) || there(label_of(*picture)))))
+      if (const auto stripped = below(given.substr(5)); stripped && (there(*stripped) || there(label_of(*stripped))))
+        picture = stripped;
+    if (!picture)
+      throw StudyError(fmt::format("{}:{}: '{}' leaves the dataset folder {}; expected a picture below it", list_file,
+                                   line, quoted_for_message(given), root));
+    if (!is_picture_name(*picture))
+      throw StudyError(fmt::format("{}:{}: '{}' is not a picture ({}); expected one picture's path a line", list_file,
+                                   line, quoted_for_message(given), kPictureExtensions));
+    const std::string label = label_of(*picture);
+    SourceScene x;
+    x.split = split;
+    x.source_stem = fs::path(*picture).stem().string();
+    if (is_file(root, *picture)) x.picture = *picture;
+    if (is_file(root, label)) x.label = label;
+    if (x.picture.empty() && x.label.empty())
+      throw StudyError(fmt::format("{}:{}: {} is not there, nor its label file {}; expected a picture of the split",
+                                   list_file, line, printable_name(shown(root, *picture)),
+                                   printable_name(shown(root, label))));
+    scenes->push_back(x);
+  }
 }
 
 // Ultralytics' rule: a picture's label is at the path with the last "images" folder named "labels".
@@ -296,9 +359,11 @@ YoloSource from_data_yaml(const fs::path& yaml) {
     s.splits.push_back(key);
     for (const std::string& f : folders) {
       const std::string images = split_folder(s.root, f, file, v.Mark().line + 1, key);
-      const std::string labels = labels_of(images);
       std::vector<SourceScene> scenes;
-      add_split(s.root, key, images, labels, &scenes);
+      if (is_folder(s.root, images))
+        add_split(s.root, key, images, labels_of(images), &scenes);
+      else
+        add_listed_split(s.root, key, images, &scenes);
       s.scenes.insert(s.scenes.end(), scenes.begin(), scenes.end());
     }
   }
@@ -320,9 +385,26 @@ YoloSource from_cvat(const fs::path& dir) {
     if (!e.folder || e.name.rfind("obj_", 0) != 0 || e.name.size() <= 9 ||
         e.name.compare(e.name.size() - 5, 5, "_data") != 0)
       continue;
-    const std::string split = lower(e.name.substr(4, e.name.size() - 9));
+    const std::string subset = e.name.substr(4, e.name.size() - 9), split = lower(subset);
     s.splits.push_back(split);
-    add_split(s.root, split, e.name, e.name, &s.scenes);
+    if (!is_file(s.root, subset + ".txt")) {
+      add_split(s.root, split, e.name, e.name, &s.scenes);
+      continue;
+    }
+    // The subset's list (train.txt: data/obj_train_data/<frame>.<ext>) says which pictures it has, also when the
+    // export holds only their label files (Save images not ticked). A label file it does not list is refused:
+    // it would be left out without a word.
+    std::vector<SourceScene> listed;
+    add_listed_split(s.root, split, subset + ".txt", &listed);
+    std::set<std::string> labels;
+    for (const SourceScene& x : listed) labels.insert(x.label);
+    std::vector<std::string> files;
+    walk(s.root, e.name, 0, &files);
+    for (const std::string& f : files)
+      if (lower(fs::path(f).extension().string()) == ".txt" && !labels.count(f))
+        throw StudyError(fmt::format("{}: a label file no line of {} names; add its picture to the list, or remove it",
+                                     printable_name(shown(s.root, f)), shown(s.root, subset + ".txt")));
+    s.scenes.insert(s.scenes.end(), listed.begin(), listed.end());
   }
   if (s.splits.empty())
     throw StudyError(s.root +
@@ -394,6 +476,15 @@ YoloSource locate(const std::string& src) {
   for (const char* split : {"train", "valid", "val", "test"})
     if (is_folder(root, std::string(split) + "/labels")) splits.push_back(split);
   if (!splits.empty()) return from_split_folders(clean, splits);
+  // An archive unzipped into a folder of its own: the dataset is one folder down.
+  for (const FolderEntry& e : list_source(root, ""))
+    if (e.folder)
+      for (const char* marker : {"data.yaml", "data.yml", "obj.names", "labels", "train/labels"})
+        if (fs::exists(fs::symlink_status(clean / e.name / marker, ec)))
+          throw StudyError(fmt::format(
+              "{}: not a YOLO dataset itself, but its folder {} holds {} (the dataset unzipped one folder down): "
+              "ipd import yolo {} --out STUDY/<domain>",
+              src, e.name, marker, (fs::path(src) / e.name).string()));
   throw StudyError(src +
                    ": not a YOLO dataset layout this import knows; expected a data.yaml, obj.names and "
                    "obj_train_data/ (CVAT YOLO 1.1), labels/ and images/ (a dataset folder, Label Studio), or "

@@ -79,7 +79,8 @@ nlohmann::json parse_json_input(const std::string& text, const std::string& file
 }
 
 std::string describe_json(const nlohmann::json& value) {
-  const std::string s = value.dump();
+  // A string that is not UTF-8 (built from bytes, never parsed) is shown with U+FFFD, not thrown on.
+  const std::string s = value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   return s.size() > 40 ? s.substr(0, 37) + "..." : s;
 }
 

@@ -155,3 +155,58 @@ write(C, "image_named_classes.json", json.dumps(dict(coco, images=[
     {"id": 1, "file_name": "classes.png", "width": 1936, "height": 1216}, coco["images"][1]])))
 write(C, "duplicate_category_id.json", json.dumps(dict(coco, categories=coco["categories"] + [{"id": 3, "name": "stone"}])))
 write(C, "duplicate_keys.json", json.dumps(coco)[:-1] + ', "images": []}')
+# COCO with segmentations: polygons and run-length masks (plain and compressed counts) in GT and results.
+seg = dict(coco, images=[{"id": 1, "file_name": "s1.png", "width": 4, "height": 4}],
+           annotations=[{"id": 1, "image_id": 1, "category_id": 3, "bbox": [0, 0, 4, 4],
+                         "segmentation": {"counts": [3, 5, 2, 6], "size": [4, 4]}},
+                        {"id": 2, "image_id": 1, "category_id": 3, "bbox": [0, 0, 2, 2],
+                         "segmentation": [[0, 0, 2, 0, 2, 2, 0, 2]]}])
+write(C, "segmentations.json", json.dumps(seg) + SEP + json.dumps(
+    [{"image_id": 1, "category_id": 3, "bbox": [0, 0, 4, 4], "score": 0.5,
+      "segmentation": {"counts": "3521", "size": [4, 4]}}]))
+write(C, "rle_wrong_counts.json", json.dumps(seg).replace("[3, 5, 2, 6]", "[3, 5, 2, 99999999999]"))
+
+# --- COCO run-length masks: "H W" then the counts, a JSON list or pycocotools' compressed string ----------------
+R = "fuzz_rle"
+write(R, "list_4x4.txt", "4 4\n[3, 5, 2, 6]")
+write(R, "string_4x4.txt", "4 4\n3521")
+write(R, "square_10x10.txt", "10 10\ng04600000U1")
+write(R, "ring_5x5.txt", "5 5\n[6, 3, 2, 1, 1, 1, 2, 3, 6]")
+write(R, "diagonal_4x4.txt", "4 4\n[0, 1, 4, 1, 10]")
+write(R, "pinch_3x3.txt", "3 3\n[0, 3, 0, 1, 1, 1, 1, 2]")
+write(R, "checkerboard_8x8.txt", "8 8\n[" + ", ".join(["1"] * 64) + "]")
+write(R, "negative_and_huge.txt", "4 4\n[3, -5, 9223372036854775807]")
+write(R, "long_string.txt", "4 4\n" + "o" * 40)
+write(R, "empty_mask.txt", "4 4\n[16]")
+
+# --- data.yaml and its split list (after "----list----"), in a folder with images/train/s1.png ----------------
+Y = "fuzz_data_yaml"
+LIST = "\n----list----\n"
+write(Y, "valid_folders.yaml", "train: images/train\nval: images/train\nnames: [rock]\n")
+write(Y, "valid_mapping.yaml", "train: images/train\nnames:\n  0: rock\n  3: shadow\n")
+write(Y, "valid_list.yaml", "train: train.txt\nnames: [rock]" + LIST + "./images/train/s1.png\nimages/train/s1.png\n")
+write(Y, "list_escapes.yaml", "train: train.txt\nnames: [rock]" + LIST + "../../etc/passwd\n/etc/passwd\n")
+write(Y, "list_cvat.yaml", "train: train.txt\nnames: [rock]" + LIST + "data/images/train/s1.png\r\n# c\n\n")
+write(Y, "list_not_pictures.yaml", "train: train.txt\nnames: [rock]" + LIST + "images/train\nlabels/train/s1.txt\n")
+write(Y, "split_leaves.yaml", "train: ../../..\nnames: [rock]\n")
+write(Y, "truncated.yaml", "train: images/train\nnames: [rock, sh")
+write(Y, "names_bad.yaml", "train: images/train\nnames: {x: rock, 99999: y, 0: [a]}\n")
+write(Y, "roboflow.yaml", "train: ../train/images\nval: ../valid/images\nnc: 1\nnames: ['rock']\nroboflow:\n  workspace: w\n")
+write(Y, "not_a_mapping.yaml", "- train\n- val\n")
+
+# --- a label file imported by ipd import yolo (beside a valid one), with and without --skip-bad-lines ------------
+I = "fuzz_yolo_import"
+write(I, "valid.txt", "0 0.5 0.5 0.1 0.2\n0 0.25 0.75 0.05 0.05\n")
+write(I, "one_bad_line.txt", "0 0.5 0.5 0.1 0.2\n0 0.5 0.5 0.1\n# c\n")
+write(I, "most_bad.txt", "0 0.5 0.5\nx\n0 1 2 3 4 5 6 7 8\n")
+write(I, "unnamed_class.txt", "7 0.5 0.5 0.1 0.2\n")
+write(I, "outline.txt", "0 0.1 0.1 0.3 0.1 0.2 0.3\n0 0.1 0.1 0.3 0.1 0.2\n")
+write(I, "bom_crlf.txt", BOM + "0 0.5 0.5 0.1 0.2\r\nbad\r\n")
+write(I, "nul.txt", "0 0.5 0.5 0.1 0.2\n\x00\x00\n")
+# Found by fuzz_rle: counts that are not UTF-8 text, described in the message (not thrown on while describing).
+write(R, "not_utf8_counts.txt", b"4 4\noo\xaaoo")
+# Found by fuzz_rle: pieces in a row, the middle one met by both neighbours at one corner (it was left out).
+write(R, "middle_piece_one_corner.txt", "8 8\n[" + ", ".join(
+    ["1"] * 28 + ["2"] + ["1"] * 6 + ["0"] + ["1"] * 28) + "]")
+# Found by fuzz_rle: 21 pieces joined by bridges along their pixel edges, which Clipper filled as 30 of 32 pixels.
+write(R, "pieces_bridged_along_edges.txt", "8 8\n[1, 1, 2, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1, 1, 1, 1, 1, 2, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 2, 1, 1, 1, 1, 1, 1, 1]")

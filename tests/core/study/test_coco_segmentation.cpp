@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/geometry/outline.h"
 #include "core/study/coco_segmentation.h"
 #include "tests/support/test_support.h"
 
@@ -49,6 +50,19 @@ TEST(CocoSegmentation, PartsOfOneObjectBecomeOneContourJoinedWhereTheyAreNearest
   }
   EXPECT_DOUBLE_EQ(twice_area / 2, 2.0);
   EXPECT_EQ(merge_polygon_parts({a}), a);
+}
+
+// A middle part whose nearest corner to the part before and to the part after is one corner is walked whole (on
+// the way there), not left out: squares A (0,0)-(1,1), B (2,2)-(3,3) and C (1.5,0)-(1.8,0.5) meet B at (2, 2).
+TEST(CocoSegmentation, APartJoinedToBothNeighboursAtOneCornerIsKept) {
+  const std::vector<double> a = {0, 0, 1, 0, 1, 1, 0, 1}, b = {2, 2, 3, 2, 3, 3, 2, 3},
+                            c = {1.5, 0, 1.8, 0, 1.8, 0.5, 1.5, 0.5};
+  const std::vector<double> merged = merge_polygon_parts({a, b, c});
+  std::vector<Eigen::Vector2d> points;
+  for (size_t k = 0; k + 1 < merged.size(); k += 2) points.emplace_back(merged[k] / 4, merged[k + 1] / 4);
+  Outline o;
+  ASSERT_EQ(make_outline(points, &o), "");
+  EXPECT_NEAR(o.area * 16, 1 + 1 + 0.15, 1e-12);
 }
 
 // Hand-encoded with pycocotools' rule: from the fourth count on, the difference from the count two before.

@@ -400,10 +400,13 @@ TEST(YoloImportBadInput, AMalformedLineOrAnUnnamedClassIsRefusedWithItsLine) {
   test::write_text(t / "ls/labels/s1.txt", "0 0.5 0.5 0.1 0.1\n1 0.2 0.2 0.1 0.1\n");
   test::write_text(t / "ls/labels/s2.txt", "0 0.5 0.5 0.1\n");
   const std::string err = import_error(t, t / "ls");
-  EXPECT_EQ(err, t / "ls/labels/s1.txt" + ":2: class 1 is not among the classes " + t / "ls/classes.txt" +
-                     " names (1 of them); expected a named class number\n" + t / "ls/labels/s2.txt" +
-                     ":1: expected 5 columns (class cx cy w h), found 4\n"
-                     "error: 2 problems in the source's label files; nothing written\n");
+  EXPECT_EQ(
+      err,
+      t / "ls/labels/s1.txt" + ":2: class 1 is not among the classes " + t / "ls/classes.txt" +
+          " names (1 of them); expected a named class number\n" + t / "ls/labels/s2.txt" +
+          ":1: expected 5 columns (class cx cy w h), found 4\n"
+          "error: 2 problems in the source's label files; nothing written (--skip-bad-lines writes malformed lines as "
+          "comments)\n");
 }
 
 TEST(YoloImportBadInput, AClassNameTheStudyGivesAnotherNumberIsRefusedNamingBothFiles) {

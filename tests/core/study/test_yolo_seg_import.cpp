@@ -82,11 +82,12 @@ TEST(YoloSegImport, AnOutlineWithAnOddNumberOfCoordinatesIsRefusedWithItsLine) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, t / "ls/labels/s1.txt" +
                        ":2: expected an outline (class x1 y1 ... xn yn), found 8 columns: an odd number of "
-                       "coordinates\nerror: 1 problem in the source's label files; nothing written\n");
+                       "coordinates\nerror: 1 problem in the source's label files; nothing written (--skip-bad-lines "
+                       "writes malformed lines as comments)\n");
   EXPECT_FALSE(fs::exists(t / "study"));
 }
 
-TEST(YoloSegImport, CocoPolygonsBecomeYoloSegLinesAndMasksTheirBoxes) {
+TEST(YoloSegImport, CocoPolygonsAndMasksBecomeYoloSegLines) {
   test::TempDir t;
   test::write_text(t / "gt.json",
                    "{\"images\": [{\"id\": 1, \"file_name\": \"s1.png\", \"width\": 100, \"height\": 50}],"
@@ -105,13 +106,13 @@ TEST(YoloSegImport, CocoPolygonsBecomeYoloSegLinesAndMasksTheirBoxes) {
                                " --results " + t / "res.json" + " --model m");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err,
-            "note: 3 polygon segmentations written as YOLO-seg outlines, 1 run-length masks as their boxes (a label "
-            "line holds an outline, not a mask)\n");
+            "note: 3 polygon segmentations and 1 run-length masks written as YOLO-seg outlines (a mask traced along "
+            "its pixels' edges at the image's resolution, holes filled)\n");
   // The two squares of the second object joined at their nearest corners, (0.1, 0) and (0.2, 0).
   EXPECT_EQ(read_file(t / "study/real/labels/s1.txt"),
             "0 0.1 0.2 0.3 0.2 0.2 0.6\n"
             "0 0.1 0 0.1 0.2 0 0.2 0 0 0.1 0 0.2 0 0.3 0 0.3 0.2 0.2 0.2 0.2 0\n"
-            "0 0.75 0.5 0.5 1\n");
+            "0 0.5 0 1 0 1 1 0.5 1\n");
   EXPECT_EQ(read_file(t / "study/real/predictions/m/s1.txt"), "0 0.1 0.2 0.3 0.2 0.2 0.6 0.75\n");
 }
 
