@@ -100,8 +100,8 @@ std::string parse_outline(const std::vector<std::string>& f, size_t n, const Lab
   if (prediction) {
     if (std::string why = parse_number(f[n - 1], n, "conf", true, opt, &box->conf); !why.empty()) return why;
   }
-  auto outline = std::make_shared<Outline>();
-  if (std::string why = make_outline(std::move(points), outline.get()); !why.empty()) return why;
+  OutlineRef outline = OutlineRef::make();
+  if (std::string why = make_outline(std::move(points), outline.fill()); !why.empty()) return why;
   if (outline->x1 - outline->x0 < kMinBoxSide || outline->y1 - outline->y0 < kMinBoxSide)
     return fmt::format("expected an outline at least {:g} wide and high (a millionth of the picture)", kMinBoxSide);
   box->cx = 0.5 * (outline->x0 + outline->x1);

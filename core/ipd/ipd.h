@@ -33,6 +33,9 @@ struct StudyLabels {
   // on every instance), and a note when outlines are read as boxes (detect).
   std::string task_needs_outlines;
   std::string task_note;
+  // label_set_fingerprint(study) when the parsed-study cache knows it (every GT file read back unchanged, or read
+  // and hashed by this load); "" when nobody computed it yet (label_set_fingerprint_of then reads the files).
+  std::string label_fingerprint;
 
   const LabelFile& gt_of(const std::string& domain, const std::string& stem) const;
   const LabelFile& predictions_of(const std::string& domain, const std::string& model, const std::string& stem) const;

@@ -10,12 +10,15 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <string_view>
 #include <type_traits>
 
+#include "core/ipd/label_fingerprint.h"
 #include "core/util/cache_file.h"
 #include "core/util/cache_signer.h"
+#include "core/util/contained_file.h"
 
 namespace fs = std::filesystem;
 
@@ -27,8 +30,8 @@ constexpr char kMagic[8] = {'I', 'P', 'D', 'S', 'T', 'U', 'D', 'Y'};
 // Bump when the layout, label parsing or a registration method's results change: 3 for the signature; 4: a
 // report keeps why its registration is ambiguous (Ambiguity), not only whether; 5: answers nothing was compared
 // with are flagged as such (Ambiguity::kUnchecked, kNoPlausible); 7: outlines, with their areas and centroids
-// (an outline's clipping into non-crossing contours is not redone on a warm load).
-constexpr std::uint32_t kFormat = 7;
+// (an outline's clipping into non-crossing contours is not redone on a warm load); 8: the label set's fingerprint.
+constexpr std::uint32_t kFormat = 8;
 constexpr size_t kHeaderBytes = kParsedStudyHeaderBytes;
 static_assert(kHeaderBytes == sizeof kMagic + 4 + 8 + CacheSigner::kMacBytes);
 
@@ -148,7 +151,8 @@ LabelFile read_label_file(Reader& r, const std::string& path) {
     const auto points = r.pod<std::uint32_t>();
     if (points == 0) continue;
     if (points < 3 || points > kMaxOutlinePoints) throw std::runtime_error("bad outline");
-    auto o = std::make_shared<Outline>();
+    OutlineRef ref = OutlineRef::make();
+    Outline* o = ref.fill();
     o->points.resize(points);
     for (Eigen::Vector2d& p : o->points) {
       const auto xy = r.pod<std::array<double, 2>>();
@@ -157,7 +161,7 @@ LabelFile read_label_file(Reader& r, const std::string& path) {
     const auto m = r.pod<std::array<double, 7>>();
     o->area = m[0], o->centroid = {m[1], m[2]}, o->x0 = m[3], o->y0 = m[4], o->x1 = m[5], o->y1 = m[6];
     if (!(o->area > 0)) throw std::runtime_error("bad outline area");
-    b.outline = std::move(o);
+    b.outline = std::move(ref);
   }
   f.line_of_box = r.vec<int>();
   if (f.line_of_box.size() != f.boxes.size()) throw std::runtime_error("box and line counts differ");
@@ -221,6 +225,9 @@ RegistrationReport read_report(Reader& rd) {
   return r;
 }
 
+// The stamp of a file whose folder could not be opened: parsed every time, never equal to a file's stamp.
+const FileStamp kNeverReused{-3, 0, 0, 0, true};
+
 std::int64_t ns_of(const struct timespec& t) { return std::int64_t{t.tv_sec} * 1000000000 + t.tv_nsec; }
 
 void write_stamp(Writer& w, const FileStamp& s) {
@@ -242,6 +249,18 @@ FileStamp read_stamp(Reader& r) {
 }
 
 }  // namespace
+
+FileStamp stamp_at(const OpenFolder& folder, const std::string& name) {
+  FileStamp s;
+  struct stat st {};
+  if (!folder.stat_entry(name, &st)) return s;
+  s.exists = true;
+  s.size = st.st_size;
+  s.mtime_ns = ns_of(st.st_mtim);
+  s.ctime_ns = ns_of(st.st_ctim);
+  s.inode = st.st_ino;
+  return s;
+}
 
 FileStamp stamp_of(const std::string& path) {
   FileStamp s;
@@ -274,6 +293,9 @@ struct StudyCache::Contents {
   int rock_class = -1;     // the class asked for (files are stored with it applied, when it is a class)
   std::string class_maps;  // StudyClasses::map_key(): files are stored renumbered into the study's classes
   double conf_threshold = 0;
+  // label_set_fingerprint(study) over the GT files stored here (a study of `fingerprint_gt_files` GT files).
+  std::string fingerprint;
+  std::uint64_t fingerprint_gt_files = 0;
   std::unordered_map<std::string, Entry> labels;  // entry_key -> file as parsed
   RegistrationEntries registrations;
   // Filled by load_labels: each file's stamp as it was read, and how many files were taken from `labels`.
@@ -338,6 +360,8 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
     c->rock_class = r.pod<std::int32_t>();
     c->class_maps = r.str();
     c->conf_threshold = r.pod<double>();
+    c->fingerprint = r.str();
+    c->fingerprint_gt_files = r.pod<std::uint64_t>();
     const auto files = r.pod<std::uint64_t>();
     c->labels.reserve(files);
     for (std::uint64_t k = 0; k < files; ++k) {
@@ -369,19 +393,40 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
   Contents& c = *contents_;
   c.filters_match = c.rock_class == study.config.rock_class && c.class_maps == study.classes.map_key() &&
                     c.conf_threshold == study.config.conf_threshold;
-  std::atomic<int> reused{0}, parsed{0};
+  // Each folder of label files is opened once beneath the study (never through a link) and its files' stamps
+  // taken relative to it: one fstatat a file instead of resolving its whole path again. A folder that can't be
+  // opened so has its files parsed (which says why).
+  std::map<std::string, std::unique_ptr<OpenFolder>> folders;  // "domain\nmodel" (model "" for GT)
+  std::uint64_t gt_files = 0;
+  if (!path_.empty()) {
+    auto open = [&](const std::string& key, const std::string& relative) {
+      try {
+        folders[key] = std::make_unique<OpenFolder>(study.root, relative);
+      } catch (const IoError&) {
+        folders[key] = nullptr;
+      }
+    };
+    for (const auto& d : study.domains) {
+      gt_files += d.stems.size();
+      open(d.name + '\n', d.name + "/labels");
+      for (const auto& m : d.models) open(d.name + '\n' + m, d.name + "/predictions/" + m);
+    }
+  }
+  std::atomic<int> reused{0}, parsed{0}, reused_gt{0};
   StudyLabels labels =
       ipd::load_labels(study, progress,
                        [&](const std::string& domain, const std::string& model, const std::string& stem,
                            const std::string& path, LabelFile* out) {
                          const std::string key = entry_key(domain, model, stem);
-                         const FileStamp now = stamp_of(path);
+                         const auto folder = folders.find(domain + '\n' + model);
+                         const bool open = folder != folders.end() && folder->second;
+                         const FileStamp now = open ? stamp_at(*folder->second, stem + ".txt") : kNeverReused;
                          {
                            std::lock_guard<std::mutex> l(c.mu);
                            c.stamps[key] = now;
                          }
                          // Entries are only read here, each by one job: no lock needed to take one.
-                         const auto it = c.filters_match ? c.labels.find(key) : c.labels.end();
+                         const auto it = c.filters_match && open ? c.labels.find(key) : c.labels.end();
                          if (it == c.labels.end() || !(it->second.stamp == now) || it->second.file.path != path) {
                            ++parsed;
                            return false;
@@ -389,10 +434,25 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
                          *out = std::move(it->second.file);
                          it->second.stamp.size = -2;  // taken: a second use would find it empty
                          ++reused;
+                         if (model.empty()) ++reused_gt;
                          return true;
                        });
   stats_.files_reused = reused;
   stats_.files_parsed = parsed;
+  // The fingerprint hashes the GT files' bytes: when every one of them was read back unchanged (the stamps vouch
+  // for their bytes, as for their parse) and the study has no other, the stored one is this study's. Otherwise it
+  // is computed here, once, for the file to keep; a file that can't be read leaves it to the provenance, which says
+  // why.
+  if (!path_.empty()) {
+    if (!c.fingerprint.empty() && reused_gt == static_cast<int>(gt_files) && c.fingerprint_gt_files == gt_files) {
+      labels.label_fingerprint = c.fingerprint;
+    } else {
+      try {
+        labels.label_fingerprint = label_set_fingerprint(study);
+      } catch (const std::exception&) {
+      }
+    }
+  }
   return labels;
 }
 
@@ -410,7 +470,7 @@ void StudyCache::save(const StudyLabels& labels, const RegistrationCache& regist
   for (const auto& [d, models] : labels.predictions)
     for (const auto& [m, stems] : models) files += stems.size();
   const bool labels_same = stats_.state == "loaded" && contents_->filters_match && stats_.files_parsed == 0 &&
-                           files == contents_->labels.size();
+                           files == contents_->labels.size() && contents_->fingerprint == labels.label_fingerprint;
   const bool registrations_same = stats_.state == "loaded" && registration.served_only_preloaded();
   if (labels_same && registrations_same) return;
   // Copied only when the file is rewritten: a warm run of a 10,000-scene study keeps 30,000 reports.
@@ -422,6 +482,10 @@ void StudyCache::save(const StudyLabels& labels, const RegistrationCache& regist
   w.pod<std::int32_t>(labels.requested_class);
   w.str(labels.study.classes.map_key());
   w.pod<double>(labels.study.config.conf_threshold);
+  w.str(labels.label_fingerprint);
+  std::uint64_t gt_files = 0;
+  for (const auto& d : labels.study.domains) gt_files += d.stems.size();
+  w.pod<std::uint64_t>(gt_files);
   w.pod<std::uint64_t>(files);
   auto put = [&](const std::string& key, const LabelFile& f) {
     w.str(key);

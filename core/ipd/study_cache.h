@@ -13,7 +13,11 @@
 //    re-reading the content, because the signature proves this installation recorded them right after
 //    parsing that very file, and every change to a file's bytes or name moves its ctime, which no program
 //    can set back (only the system clock can). A file rewritten within the file system's timestamp tick
-//    of its parse, with the same size and inode, is the one change a stamp can miss;
+//    of its parse, with the same size and inode, is the one change a stamp can miss. Each folder of label files is
+//    opened once beneath the study (contained_file.h: OpenFolder) and its files' stamps taken with fstatat
+//    relative to it, without following a link;
+//  - the label set's fingerprint (label_fingerprint.h) is kept with the GT files it hashed and given back when every
+//    GT file of the study is read back unchanged, under the same stamps' word, so a warm run reads no label file;
 //  - registrations are keyed by the same content hash as the entry files (registration_cache.h), so a
 //    changed label file or option simply misses.
 // Label files are stored as load_labels() returns them (classes renumbered, class and confidence filters
@@ -47,6 +51,9 @@ struct FileStamp {
 };
 // The stamp of `path` now (exists = false when there is nothing there or it can't be examined).
 FileStamp stamp_of(const std::string& path);
+class OpenFolder;
+// The stamp of the entry `name` of an open folder (contained_file.h), examined without following it.
+FileStamp stamp_at(const OpenFolder& folder, const std::string& name);
 
 // STUDY/.ipd-cache/parsed-study.bin, or <user cache>/ipd-studio/parsed-study/<hash of the path>.bin.
 std::string parsed_study_cache_path(const std::string& study_root);

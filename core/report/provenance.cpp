@@ -1,7 +1,6 @@
 #include "core/report/provenance.h"
 
 #include <fmt/format.h>
-#include <openssl/evp.h>
 
 #include <algorithm>
 #include <memory>
@@ -15,46 +14,12 @@ namespace ipd {
 
 namespace {
 
-class Sha256 {
- public:
-  Sha256() : ctx_(EVP_MD_CTX_new(), EVP_MD_CTX_free) {
-    if (!ctx_ || !EVP_DigestInit_ex(ctx_.get(), EVP_sha256(), nullptr))
-      throw std::runtime_error("SHA-256 is not available from OpenSSL");
-  }
-  void add(const std::string& bytes) {
-    if (!EVP_DigestUpdate(ctx_.get(), bytes.data(), bytes.size())) throw std::runtime_error("SHA-256 failed");
-  }
-  std::string hex() {
-    unsigned char out[EVP_MAX_MD_SIZE];
-    unsigned int len = 0;
-    if (!EVP_DigestFinal_ex(ctx_.get(), out, &len)) throw std::runtime_error("SHA-256 failed");
-    std::string s;
-    for (unsigned int i = 0; i < len; ++i) s += fmt::format("{:02x}", out[i]);
-    return s;
-  }
-
- private:
-  std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> ctx_;
-};
-
 std::string plural(int n, const char* one, const char* many) { return fmt::format("{} {}", n, n == 1 ? one : many); }
 
 }  // namespace
 
-std::string label_set_fingerprint(const Study& study) {
-  // Paths sort by domain first, then stem: the study's domains and stems are read in any order, so sort here.
-  std::vector<std::string> files;
-  for (const Domain& d : study.domains)
-    for (const std::string& stem : d.stems) files.push_back(d.name + "/labels/" + stem + ".txt");
-  std::sort(files.begin(), files.end());
-  Sha256 sha;
-  for (const std::string& rel : files) {
-    const std::optional<std::string> text = read_file_beneath(study.root, rel);
-    if (!text) continue;  // a scene with a picture and no label file
-    sha.add(rel + std::string(1, '\0') + std::to_string(text->size()) + std::string(1, '\0'));
-    sha.add(*text);
-  }
-  return sha.hex().substr(0, 12);
+std::string label_set_fingerprint_of(const StudyLabels& labels) {
+  return labels.label_fingerprint.empty() ? label_set_fingerprint(labels.study) : labels.label_fingerprint;
 }
 
 namespace {
@@ -101,7 +66,7 @@ Provenance table_provenance(const CrossTable& table, const StudyLabels& labels, 
     }
     count_reviews(table, c, labels, &p);
   }
-  p.label_fingerprint = label_set_fingerprint(labels.study);
+  p.label_fingerprint = label_set_fingerprint_of(labels);
   p.class_name = provenance_class(labels);
   if (!p.class_name.empty()) p.class_maps = labels.study.classes.notes;
   p.segment = labels.study.config.task == Task::kSegment;
@@ -135,7 +100,7 @@ Provenance session_provenance(const Session& session, const DomainPairFilter& on
       for (const auto& pair : r.checked[k]) p.pairs_checked += std::binary_search(now.begin(), now.end(), pair);
     }
   }
-  p.label_fingerprint = label_set_fingerprint(session.study());
+  p.label_fingerprint = label_set_fingerprint_of(session.labels());
   p.class_name = provenance_class(session.labels());
   if (!p.class_name.empty()) p.class_maps = session.study().classes.notes;
   p.segment = session.study().config.task == Task::kSegment;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/ipd/ipd.h"
+#include "core/ipd/label_fingerprint.h"
 #include "core/session/session.h"
 
 namespace ipd {
@@ -42,12 +43,9 @@ struct Provenance {
   std::vector<EditedScene> edited_scenes;  // in column and scene order
 };
 
-// The first 12 hex digits of SHA-256 over every GT label file of the study, in sorted order of its path
-// below the study ("<domain>/labels/<stem>.txt"): each file contributes its path, a 0 byte, its size in
-// decimal, a 0 byte and its bytes, so renaming, moving or editing any label file changes it. Predictions,
-// pictures, study.yaml and pairs files are not covered (the hand-pair counts speak for the pairs). Throws
-// IoError naming the file for a symbolic link or an unreadable file.
-std::string label_set_fingerprint(const Study& study);
+// label_set_fingerprint (core/ipd/label_fingerprint.h) of the labels' study: the one the parsed-study cache
+// vouched for when it read every GT file unchanged (StudyLabels::label_fingerprint), else computed from the files.
+std::string label_set_fingerprint_of(const StudyLabels& labels);
 
 // Domain pairs a number was computed from, in either name order; empty: every domain pair there is.
 using DomainPairFilter = std::vector<std::pair<std::string, std::string>>;

@@ -242,8 +242,8 @@ struct BoxSink {
       const std::vector<double> merged = merge_polygon_parts(shape.polygons);
       std::vector<Eigen::Vector2d> points;
       for (size_t k = 0; k + 1 < merged.size(); k += 2) points.emplace_back(merged[k], merged[k + 1]);
-      auto outline = std::make_shared<Outline>();
-      std::string why = make_outline(std::move(points), outline.get());
+      OutlineRef outline = OutlineRef::make();
+      std::string why = make_outline(std::move(points), outline.fill());
       if (why.empty() && (outline->x1 - outline->x0 < kMinBoxSide || outline->y1 - outline->y0 < kMinBoxSide))
         why = "expected an outline at least a millionth of the picture wide and high";
       if (!why.empty()) {

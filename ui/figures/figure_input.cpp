@@ -72,7 +72,7 @@ SceneFigureInput scene_input_from_study(const StudyLabels& labels, const std::st
   in.method = to_string(p.registration.method);
   in.affine = (p.fixed || swapped) ? affine_of_pairs(in) : p.registration.affine;
   if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
-  in.label_fingerprint = label_set_fingerprint(st);
+  in.label_fingerprint = label_set_fingerprint_of(labels);
   in.class_name = provenance_class(labels);
   in.task = labels.study.config.task;
   read_scene_review(labels, swapped ? b : a, swapped ? a : b, stem, p.pairs, in);
@@ -104,7 +104,7 @@ SceneFigureInput scene_input_from_session(const Session& s, int scene) {
   in.affine = (state.edited || s.swapped()) ? affine_of_pairs(in) : state.automatic.registration.affine;
   const Study& st = s.study();
   if (st.config.image_width > 0) in.image_w = st.config.image_width, in.image_h = st.config.image_height;
-  in.label_fingerprint = label_set_fingerprint(st);
+  in.label_fingerprint = label_set_fingerprint_of(s.labels());
   in.class_name = provenance_class(s.labels());
   in.task = s.labels().study.config.task;
   const ReviewState& review = s.review_of(s.pair_index());

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <filesystem>
 
+#include "core/ipd/label_fingerprint.h"
 #include "core/ipd/study_cache.h"
 #include "core/session/session.h"
 #include "core/util/atomic_file.h"
@@ -57,6 +58,7 @@ std::string dump(const StudyLabels& l) {
 struct Opened {
   std::string labels;
   StudyCacheStats stats;
+  std::string fingerprint;  // StudyLabels::label_fingerprint as the load left it
 };
 
 // One open through the cache, as Session::open does it (labels, then save).
@@ -67,7 +69,7 @@ Opened open_cached(const std::string& root) {
   RegistrationCache registration("");
   registration.preload(cache.take_registrations());
   cache.save(labels, registration);
-  return {dump(labels), cache.stats()};
+  return {dump(labels), cache.stats(), labels.label_fingerprint};
 }
 
 TEST(StudyCache, ReopenReusesEveryFileAndReadsTheSame) {
@@ -264,6 +266,44 @@ TEST(StudyCache, AChangedLabelFileIsParsedAgain) {
   const Opened o2 = open_cached(d.path());
   EXPECT_EQ(o2.stats.files_parsed, 3);  // real/labels/s3, the removed prediction, synth/predictions of s3
   EXPECT_EQ(o2.labels, dump(load_labels(open_study(d.path()))));
+}
+
+// The label set's fingerprint is kept in the file and given back only while every GT file reads back unchanged and
+// no GT file came or went; otherwise it is the files' own again.
+TEST(StudyCache, TheLabelFingerprintIsReadBackOnlyWhileTheGroundTruthIsUnchanged) {
+  test::TempDir d;
+  write_study(d);
+  const std::string fresh = label_set_fingerprint(open_study(d.path()));
+  EXPECT_EQ(fresh.size(), 12u);
+  const Opened first = open_cached(d.path());
+  EXPECT_EQ(first.fingerprint, fresh);
+  const Opened again = open_cached(d.path());
+  EXPECT_EQ(again.stats.files_parsed, 0);
+  EXPECT_FALSE(again.stats.written);
+  EXPECT_EQ(again.fingerprint, fresh);
+
+  // A GT file's bytes change (same size, its old modification time put back).
+  const std::string file = d / "real/labels/s1.txt";
+  struct stat before {};
+  ASSERT_EQ(::stat(file.c_str(), &before), 0);
+  std::string text = read_file(file);
+  text[2] = text[2] == '1' ? '2' : '1';
+  test::write_text(file, text);
+  const struct timespec times[2] = {before.st_atim, before.st_mtim};
+  ASSERT_EQ(::utimensat(AT_FDCWD, file.c_str(), times, 0), 0);
+  const Opened changed = open_cached(d.path());
+  const std::string now = label_set_fingerprint(open_study(d.path()));
+  EXPECT_NE(now, fresh);
+  EXPECT_EQ(changed.fingerprint, now);
+  EXPECT_EQ(open_cached(d.path()).fingerprint, now);  // and kept for the next run
+
+  // A GT file goes: every other one reads back unchanged, but the set is not the one hashed.
+  fs::remove(d / "synth/labels/s2.txt");
+  const Opened fewer = open_cached(d.path());
+  EXPECT_EQ(fewer.stats.files_parsed, 0);
+  const std::string without = label_set_fingerprint(open_study(d.path()));
+  EXPECT_NE(without, now);
+  EXPECT_EQ(fewer.fingerprint, without);
 }
 
 TEST(StudyCache, SessionReopensFromItWithTheSameFigures) {

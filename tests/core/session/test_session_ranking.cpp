@@ -44,7 +44,9 @@ TEST(SessionRanking, EqualsTheCommandLinesRankingWithoutHandPairs) {
     EXPECT_DOUBLE_EQ(a.ci_low, b.ci_low) << a.domain;
     EXPECT_DOUBLE_EQ(a.ci_high, b.ci_high) << a.domain;
     EXPECT_EQ(a.pairs, b.pairs);
-    if (k > 0) EXPECT_DOUBLE_EQ(a.p_holm, b.p_holm) << a.domain;
+    if (k > 0) {
+      EXPECT_DOUBLE_EQ(a.p_holm, b.p_holm) << a.domain;
+    }
     EXPECT_EQ(a.in_best_group, b.in_best_group) << a.domain;
   }
   EXPECT_TRUE(studio.ranking->best()->domain == "ambient-025" || studio.ranking->best()->domain == "ambient-050")
