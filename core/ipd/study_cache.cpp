@@ -304,6 +304,32 @@ struct StudyCache::Contents {
   bool filters_match = false;
 };
 
+namespace {
+// Reads the open file `fd` whole and closes it; false when it can't be read. Read, not mapped: a file shortened
+// meanwhile reads short (and is then "truncated"), never a crash.
+bool read_whole_file(int fd, const std::function<void(const char*)>& hook, std::string* file) {
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    ::close(fd);
+    return false;
+  }
+  if (hook) hook("opened");
+  file->resize(static_cast<size_t>(st.st_size));
+  size_t done = 0;
+  bool read_error = false;
+  while (done < file->size()) {
+    const ssize_t n = ::read(fd, file->data() + done, file->size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    read_error = n < 0;
+    if (n <= 0) break;
+    done += static_cast<size_t>(n);
+  }
+  ::close(fd);
+  file->resize(done);
+  return !read_error;
+}
+}  // namespace
+
 StudyCache::StudyCache(std::string path, const std::string& study_root, const std::function<void(const char*)>& hook)
     : path_(std::move(path)), root_(study_root), contents_(std::make_unique<Contents>()) {
   stats_.state = "missing";
@@ -314,33 +340,11 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
   const auto dir = CacheDir::open(where.parent_path().string(), false);
   if (!dir) return;
   dir->remove_stale_temp_files();  // what writers killed mid-save left (each as large as the file)
-  {
-    const int fd = dir->open_file(where.filename().string());
-    if (fd < 0) return;  // missing, or refused and said so
-    struct stat st {};
-    if (::fstat(fd, &st) != 0) {
-      ::close(fd);
-      stats_.state = "unreadable";
-      return;
-    }
-    if (hook) hook("opened");
-    // Read, not mapped: a file shortened meanwhile reads short (and is then "truncated"), never a crash.
-    file.resize(static_cast<size_t>(st.st_size));
-    size_t done = 0;
-    bool read_error = false;
-    while (done < file.size()) {
-      const ssize_t n = ::read(fd, file.data() + done, file.size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      read_error = n < 0;
-      if (n <= 0) break;
-      done += static_cast<size_t>(n);
-    }
-    ::close(fd);
-    if (read_error) {
-      stats_.state = "unreadable";
-      return;
-    }
-    file.resize(done);
+  const int fd = dir->open_file(where.filename().string());
+  if (fd < 0) return;  // missing, or refused and said so
+  if (!read_whole_file(fd, hook, &file)) {
+    stats_.state = "unreadable";
+    return;
   }
   const std::string_view bytes(file);
   try {
