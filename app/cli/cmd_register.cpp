@@ -1,5 +1,6 @@
 // `ipd register REAL.txt SYNTH.txt` and `ipd register --list FILE.tsv`: rock pairing of label files.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 
@@ -8,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -104,8 +106,20 @@ void run_job(Job* job, const RegistrationOptions& opt, int cls, bool skip_bad_li
   const bool file_problem =
       std::any_of(job->errors.begin(), job->errors.end(), [](const LabelError& e) { return e.malformed_lines() == 0; });
   if (!job->errors.empty() && (!skip_bad_lines || file_problem)) return;
-  keep_class(&a, cls);
-  keep_class(&b, cls);
+  // A class one file holds none of leaves nothing of that class to pair there: every rock of the other
+  // file would read as unpaired, a layout mistake (the wrong --class, shifted class numbers), not a result.
+  for (LabelFile* f : {&a, &b}) {
+    std::set<int> held;
+    for (const Box& x : f->boxes) held.insert(x.cls);
+    const size_t before = f->boxes.size();
+    keep_class(f, cls);
+    if (cls >= 0 && before > 0 && f->boxes.empty())
+      job->errors.push_back({f->path, 0,
+                             fmt::format("no box of class {} among its {} (it holds class {}): nothing of that class "
+                                         "to pair; choose a class both files hold with --class",
+                                         cls, before, fmt::join(held, ", "))});
+  }
+  if (!job->errors.empty()) return;
   job->result = report_json(*job, register_rocks(a.boxes, b.boxes, opt));
 }
 

@@ -178,5 +178,20 @@ TEST(RegisterSkipBadLines, MostLinesSkippedStopsThePair) {
   EXPECT_EQ(test::run_ipd("register " + t / "a.txt" + " " + t / "b.txt" + " --skip-bad-lines").exit_code, 0);
 }
 
+// ipd register stops when the chosen class leaves one file without a box: the other file's rocks would all read
+// as unpaired, as a study where --class removes a domain's rocks stops ipd table.
+TEST(RegisterSkipBadLines, AClassOneFileLacksStopsThePair) {
+  test::TempDir t;
+  test::write_text(t / "a.txt", "0 0.5 0.5 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
+  test::write_text(t / "b.txt", "1 0.5 0.5 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
+  const auto r = test::run_ipd("register " + t / "a.txt" + " " + t / "b.txt" + " --class 1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, t / "a.txt" +
+                       ": no box of class 1 among its 2 (it holds class 0): nothing of that class to pair; choose a "
+                       "class both files hold with --class\n");
+  EXPECT_EQ(test::run_ipd("register " + t / "a.txt" + " " + t / "b.txt" + " --class 0").exit_code, 0);
+}
+
 }  // namespace
 }  // namespace ipd
