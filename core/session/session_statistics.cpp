@@ -14,7 +14,6 @@ CrossTable session_table(const Session& s) {
   t.columns = s.domain_pairs();
   for (const auto& m : t.models) {
     for (size_t p = 0; p < t.columns.size(); ++p) {
-      const auto& [a, b] = t.columns[p];
       TableCell c = s.cell_for(m.name, static_cast<int>(p));  // the window's cell, with its scenes for the intervals
       if (!c.missing_predictions) c.per_scene = s.contributions_for(m.name, static_cast<int>(p)).to_vector();
       t.cells.push_back(std::move(c));
