@@ -108,18 +108,21 @@ void run_job(Job* job, const RegistrationOptions& opt, int cls, bool skip_bad_li
   if (!job->errors.empty() && (!skip_bad_lines || file_problem)) return;
   // A class one file holds none of leaves nothing of that class to pair there: every rock of the other
   // file would read as unpaired, a layout mistake (the wrong --class, shifted class numbers), not a result.
+  bool lacks_class = false;
   for (LabelFile* f : {&a, &b}) {
     std::set<int> held;
     for (const Box& x : f->boxes) held.insert(x.cls);
     const size_t before = f->boxes.size();
     keep_class(f, cls);
-    if (cls >= 0 && before > 0 && f->boxes.empty())
+    if (cls >= 0 && before > 0 && f->boxes.empty()) {
+      lacks_class = true;
       job->errors.push_back({f->path, 0,
                              fmt::format("no box of class {} among its {} (it holds class {}): nothing of that class "
                                          "to pair; choose a class both files hold with --class",
                                          cls, before, fmt::join(held, ", "))});
+    }
   }
-  if (!job->errors.empty()) return;
+  if (lacks_class) return;
   job->result = report_json(*job, register_rocks(a.boxes, b.boxes, opt));
 }
 
