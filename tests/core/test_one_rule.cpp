@@ -94,6 +94,24 @@ void write_cells_study(const test::TempDir& d) {
       "0.06]]}\n");
 }
 
+// After an edit the studio's cell takes the scene's old contribution away and adds the new one: still the
+// engine's cell of the saved study, scene count included.
+TEST(OneRule, AfterAnEditTheStudioCellIsTheEnginesCell) {
+  test::TempDir d;
+  write_cells_study(d);
+  Session s = Session::open(d.path());
+  run_save_job(s.apply(1, Edit::unpair(Side::kA, 0)));  // scene s2: rock 0 left unpaired
+  const TableCell c = s.cell();
+  const CrossTable t = compute_cross_table(load_labels(open_study(d.path())), {});
+  const TableCell* e = t.cell(c.model, c.a, c.b);
+  ASSERT_NE(e, nullptr);
+  EXPECT_EQ(c.scenes, 2);
+  EXPECT_EQ(c.scenes, e->scenes);
+  EXPECT_EQ(c.pairs, e->pairs);
+  EXPECT_EQ(c.unpaired_a, e->unpaired_a);
+  EXPECT_NEAR(c.ipd, e->ipd, 1e-12);
+}
+
 TEST(OneRule, StudioCellsAreTheEngineCells) {
   test::TempDir d;
   write_cells_study(d);

@@ -154,6 +154,21 @@ TEST(PairsSymlinks, ARemovalWhoseFileBecomesALinkRemovesTheLinkOnly) {
   EXPECT_FALSE(fs::exists(fs::symlink_status(d / "pairs/real__synth/s1.json")));
 }
 
+// Read straight through the file layer, with no scan before it: a linked folder on the way is refused by the
+// one-call open (openat2, RESOLVE_NO_SYMLINKS) as by the folder-by-folder walk, which names it, whether it is
+// the last folder or one in the middle.
+TEST(PairsSymlinks, AFileReadBelowALinkedFolderIsRefusedNamingTheLink) {
+  test::TempDir d, x;
+  test::write_text(x / "real__synth/s1.json", kPairs);
+  test::write_text(x / "real__synth/deeper/s1.json", kPairs);
+  fs::create_directories(d / "pairs");
+  fs::create_symlink(x / "real__synth", d / "pairs/real__synth");
+  EXPECT_EQ(error_of([&] { read_file_beneath(d.path(), "pairs/real__synth/s1.json", 1 << 20); }),
+            refused(d / "pairs/real__synth", "reading"));
+  EXPECT_EQ(error_of([&] { read_file_beneath(d.path(), "pairs/real__synth/deeper/s1.json", 1 << 20); }),
+            refused(d / "pairs/real__synth", "reading"));
+}
+
 TEST(PairsSymlinks, PathsThatClimbOutOfTheStudyAreRefused) {
   test::TempDir d;
   EXPECT_EQ(error_of([&] { write_file_beneath(d.path(), "pairs/../../x.json", "{}"); }),
