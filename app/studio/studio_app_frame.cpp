@@ -104,7 +104,7 @@ void StudioApp::frame() {
   if (s && ui_.show_rank) {
     const SessionRankRequest request = ui::rank_request(*s);
     rank_.update(snap_, request);
-    ui::draw_rank_window(v, rank_.result(), rank_.current(snap_, request), ui_, cmd);
+    ui::draw_rank_window(v, rank_.result().get(), rank_.current(snap_, request), ui_, cmd);
   }
   if (s)
     if (auto request = ui::draw_export_dialog(export_dialog_, export_context())) export_figure(*request);
@@ -140,7 +140,7 @@ ui::StudyView StudioApp::study_view() {
   v.summaries = snap_->summaries.get();
   v.problems = &problems_;
   stats_.update(snap_, ui::stats_request(*s, stats_ui_));
-  v.stats = stats_.result();
+  v.stats = stats_.result().get();
   if (snap_->rerun && !s->scenes().empty() && snap_->rerun_pair == s->pair_index() &&
       snap_->rerun_stem == s->scenes()[ui_.scene].stem) {
     v.rerun = snap_->rerun.get();

@@ -187,7 +187,7 @@ bool StudioApp::replay_rank(const ReplayAction& a, ui::UiCommands* cmd) {
   // A click on the setting's row: it must be one the window lists (ranked against the left domain).
   const Session& s = *snap_->session;
   const SessionRankRequest request = ui::rank_request(s);
-  const SessionRanking* r = rank_.current(snap_, request) ? rank_.result() : nullptr;
+  const SessionRanking* r = rank_.current(snap_, request) ? rank_.result().get() : nullptr;
   const bool listed = r && r->ranking &&
                       std::any_of(r->ranking->ranked.begin(), r->ranking->ranked.end(),
                                   [&](const RankedCandidate& c) { return c.domain == a.args[0]; });
@@ -225,7 +225,7 @@ std::string StudioApp::write_state(const std::string& file) const {
                 {"pane", {b.pane.x, b.pane.y}}};
   if (ui_.show_rank) {
     nlohmann::json rank;
-    if (const SessionRanking* r = rank_.result(); r && r->ranking) {
+    if (const SessionRanking* r = rank_.result().get(); r && r->ranking) {
       rank["ref"] = r->ranking->ref;
       for (const RankedCandidate& c : r->ranking->ranked)
         rank["ranked"].push_back(
