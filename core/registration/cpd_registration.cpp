@@ -292,7 +292,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   out.trace = recorder.take_trace(fmt::format("{} ({}, {} of {})", to_string(out.stop),
                                               count_of(it, "EM iteration", "EM iterations"), grouped(out.work),
                                               count_of(budget, "point evaluation", "point evaluations")));
-  out.pairs = pair_final(f.to_image(out.affine_normalised), boxes_a, boxes_b, o, deadline, &out.note, &out.stop);
+  pair_final(f.to_image(out.affine_normalised), boxes_a, boxes_b, o, deadline, &out);
   out.inliers = static_cast<int>(out.pairs.size());
   return out;
 }

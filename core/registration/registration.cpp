@@ -378,18 +378,20 @@ void add_note(std::string* note, const std::string& sentence) {
   if (!sentence.empty()) *note += (note->empty() ? "" : "; ") + sentence;
 }
 
-RockPairs pair_final(const Affine2& image_affine, const std::vector<Box>& a, const std::vector<Box>& b,
-                     const RegistrationOptions& o, const Deadline& deadline, std::string* note, StopReason* stop) {
-  if (!deadline.has_budget()) return pair_aligned_boxes(image_affine, a, b, pairing_rule(o));
+void pair_final(const Affine2& image_affine, const std::vector<Box>& a, const std::vector<Box>& b,
+                const RegistrationOptions& o, const Deadline& deadline, MethodOutcome* out) {
+  const auto start = std::chrono::steady_clock::now();
   bool greedy = false;
-  RockPairs pairs = pair_aligned_boxes_within(image_affine, a, b, pairing_rule(o), deadline.whole(), &greedy);
+  out->pairs = deadline.has_budget()
+                   ? pair_aligned_boxes_within(image_affine, a, b, pairing_rule(o), deadline.whole(), &greedy)
+                   : pair_aligned_boxes(image_affine, a, b, pairing_rule(o));
+  out->pairing_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (greedy) {
-    add_note(note,
+    add_note(&out->note,
              "time budget spent before the rocks were paired: paired greedily (heaviest overlap first), "
              "not by the optimal assignment");
-    *stop = StopReason::kTimeBudget;
+    out->stop = StopReason::kTimeBudget;
   }
-  return pairs;
 }
 
 RegistrationReport register_rocks_until(const std::vector<Box>& a, const std::vector<Box>& b,
@@ -404,7 +406,7 @@ RegistrationReport register_rocks_until(const std::vector<Box>& a, const std::ve
   const bool identical = identical_layouts(a, b);
   if (identical) {
     out.affine_normalised = frame.from_image(identity_affine());
-    out.pairs = pair_final(identity_affine(), a, b, options, deadline, &out.note, &out.stop);
+    pair_final(identity_affine(), a, b, options, deadline, &out);
     out.inliers = static_cast<int>(a.size());  // every centre sits on its copy
     if (out.stop != StopReason::kTimeBudget) out.stop = StopReason::kIdenticalLayouts;
     out.confidence = 1.0;
@@ -446,6 +448,7 @@ RegistrationReport register_rocks_until(const std::vector<Box>& a, const std::ve
   r.ambiguity = detail::judge_answer(frame, r.pairs, frame.from_image(r.affine), out, &r.confidence);
   r.ambiguous = r.ambiguity != Ambiguity::kNone;
   r.work = out.work;
+  r.pairing_ms = out.pairing_ms;
   r.work_budget = detail::work_budget(options, a.size(), b.size());
   r.trace = std::move(out.trace);
   if (options.record_trace && r.trace.stop.empty()) r.trace.stop = to_string(r.stop);

@@ -135,6 +135,9 @@ struct RegistrationReport {
   StopReason stop = StopReason::kNotRun;
   std::string note;  // why a fallback was used, if one was
   double elapsed_ms = 0;
+  // The final pairing's part of elapsed_ms. A time budget turns it greedy but cannot end it, since every rock is
+  // paired or left alone by it: where many rocks overlap (thousands of allowed pairs) it runs past the budget.
+  double pairing_ms = 0;
   double work = 0, work_budget = 0;  // point evaluations spent, and the bound they were held to
   // How much better the answer fits than the best distinct alternative the method evaluated: 1 - (rival's
   // score / answer's score), in [0, 1]; 1 when no rival came close. 0 when nothing singles the answer out:

@@ -42,6 +42,7 @@ struct MethodOutcome {
   // (kNoPlausible), or one left by degenerate samples (kDegenerate).
   Ambiguity unjudged = Ambiguity::kNone;
   double work = 0;          // point evaluations spent (see RegistrationOptions::work_budget)
+  double pairing_ms = 0;    // the final pairing's wall time (RegistrationReport::pairing_ms)
   RegistrationTrace trace;  // filled when options.record_trace
 };
 
@@ -72,10 +73,11 @@ std::string grouped(double n);  // 89700 -> "89,700"
 RegistrationReport register_rocks_until(const std::vector<Box>& a, const std::vector<Box>& b,
                                         const RegistrationOptions& options, const Deadline& deadline);
 
-// A method's final pairing (pair_aligned_boxes by `image_affine`). Under a time budget it gets what is left of it:
-// pair_aligned_boxes_within, and when that had to pair greedily it says so in *note and sets *stop to the budget.
-RockPairs pair_final(const Affine2& image_affine, const std::vector<Box>& a, const std::vector<Box>& b,
-                     const RegistrationOptions& o, const Deadline& deadline, std::string* note, StopReason* stop);
+// A method's final pairing (pair_aligned_boxes by `image_affine`) into out->pairs, timed in out->pairing_ms. Under a
+// time budget it gets what is left of it: pair_aligned_boxes_within, and when that had to pair greedily it says so
+// in out->note and sets out->stop to the budget.
+void pair_final(const Affine2& image_affine, const std::vector<Box>& a, const std::vector<Box>& b,
+                const RegistrationOptions& o, const Deadline& deadline, MethodOutcome* out);
 // Adds a sentence to a note ("a; b").
 void add_note(std::string* note, const std::string& sentence);
 

@@ -333,7 +333,7 @@ MethodOutcome register_consensus(const RegistrationFrame& f, const std::vector<B
     out.stop = StopReason::kTooFewPoints;
     out.note = "a side has no rocks: nothing to register";
   }
-  out.pairs = pair_final(f.to_image(out.affine_normalised), boxes_a, boxes_b, o, deadline, &out.note, &out.stop);
+  pair_final(f.to_image(out.affine_normalised), boxes_a, boxes_b, o, deadline, &out);
   if (out.inliers < 0) out.inliers = static_cast<int>(out.pairs.size());
   return out;
 }

@@ -282,6 +282,24 @@ TEST(Cli, RegisterPrintsOneJsonObjectPerLine) {
   EXPECT_EQ(r.err, d / "none.txt" + ": no such label file\n");
 }
 
+// Under a budget the text report says how long the registration took and how much of it was the final pairing,
+// which the budget cannot end; the JSON carries the same two times.
+TEST(Cli, ABudgetedRegistrationSaysWhatPartTheFinalPairingTook) {
+  test::TempDir d;
+  write_register_pair(d);
+  auto r = test::run_ipd("register " + d / "r.txt " + d / "s.txt --budget-ms 5000 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_GT(j["pairing_ms"].get<double>(), 0);
+  EXPECT_LE(j["pairing_ms"].get<double>(), j["elapsed_ms"].get<double>());
+  r = test::run_ipd("register " + d / "r.txt " + d / "s.txt --budget-ms 5000");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find(" ms of a 5000 ms budget, the final pairing "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("cannot end it"), std::string::npos) << r.out;  // within the budget: nothing to explain
+  r = test::run_ipd("register " + d / "r.txt " + d / "s.txt");
+  EXPECT_EQ(r.out.find("time: "), std::string::npos) << r.out;  // no budget, no time line: the output stays the same
+}
+
 // --json names each count as the text report does: cpd counts EM iterations (it has no trials or hypotheses),
 // paper and consensus count trials and hypotheses.
 TEST(Cli, RegisterJsonNamesItsCountsAsTheTextDoes) {
@@ -292,9 +310,10 @@ TEST(Cli, RegisterJsonNamesItsCountsAsTheTextDoes) {
   auto j = nlohmann::json::parse(r.out);
   std::string keys;
   for (const auto& [key, value] : j.items()) keys += key + " ";
-  EXPECT_EQ(keys,
-            "affine ambiguous confidence elapsed_ms em_iterations inliers method pairs real score stop synth work "
-            "work_budget ");
+  EXPECT_EQ(
+      keys,
+      "affine ambiguous confidence elapsed_ms em_iterations inliers method pairing_ms pairs real score stop synth "
+      "work work_budget ");
   EXPECT_EQ(j["em_iterations"], 6);
   r = test::run_ipd("register " + d / "r.txt " + d / "s.txt --method cpd");
   EXPECT_NE(r.out.find("  method cpd: 6 EM iterations, score 0.00000; stopped: "), std::string::npos) << r.out;
