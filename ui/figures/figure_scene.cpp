@@ -44,9 +44,10 @@ FigurePicture crop_picture(const cv::Mat& img, const Crop& c, Crop* covered) {
 }
 
 std::string title_of(const SceneFigureInput& in, const SceneNumbers& n) {
-  // Two empty prediction sets are not a perfect match: no number, and why (no_predictions_reason).
+  // Two empty prediction sets are not a perfect match: no number, and why (no_predictions_reason); nor is a
+  // study without any detector's predictions.
   const std::string none =
-      in.model.empty() ? std::string()
+      in.model.empty() ? std::string("the study has no predictions")
                        : no_predictions_reason(static_cast<long>(in.pred_a.size()), static_cast<long>(in.pred_b.size()),
                                                in.a, in.b, in.conf_threshold);
   const std::string value = !none.empty()       ? "not a number (" + none + ")"

@@ -11,6 +11,7 @@
 #include "core/session/session.h"
 #include "core/study/study.h"
 #include "core/util/errors.h"
+#include "tests/support/pdf_text.h"
 #include "tests/support/test_support.h"
 
 namespace ipd {
@@ -228,6 +229,19 @@ TEST(Classes, ProvenanceNamesTheClass) {
   all.config.rock_class = kAllClasses;
   const StudyLabels blind = load_labels(all);
   EXPECT_EQ(provenance_class(blind), "all, class-blind (--class all)");
+}
+
+// A figure of one class of several says which, in the figure itself: a shadow table must not pass for a rock one.
+TEST(Classes, AFigureOfAChosenClassNamesItInTheFigure) {
+  test::TempDir d;
+  write_two_class_study(d);
+  for (const char* kind : {"table", "pairs"}) {
+    auto r = test::run_ipd(std::string("figure ") + kind + " " + d.path() + " --class shadow --out " + d / "f.pdf");
+    ASSERT_EQ(r.exit_code, 0) << kind << ": " << r.err;
+    const std::string words = test::pdf_words(d / "f.pdf");
+    EXPECT_NE(words.find("Class shadow (class 1)."), std::string::npos) << kind << ": " << words;
+    EXPECT_EQ(words.find("Label files"), std::string::npos) << kind << ": " << words;  // nothing set by hand
+  }
 }
 
 TEST(Classes, AnUnknownClassWordListsTheClasses) {

@@ -179,6 +179,15 @@ TEST(NoPredictions, FiguresSayThereIsNoNumber) {
   const std::string words = test::pdf_words(d / "p.pdf");
   EXPECT_NE(words.find("IPD not a number (no predictions at or above 0.999 in real and principled)"), std::string::npos)
       << words;
+  // A study with no detector at all: no model to name, and no number either.
+  test::write_text(d / "bare/real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
+  test::write_text(d / "bare/synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
+  test::write_text(d / "bare/study.yaml", "image_size: [1000, 1000]\n");
+  r = test::run_ipd("figure pairs " + d / "bare --out " + d / "bare.pdf");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(test::pdf_words(d / "bare.pdf").find("model none, scene IPD not a number (the study has no predictions)"),
+            std::string::npos)
+      << test::pdf_words(d / "bare.pdf");
   for (const char* kind : {"distribution", "compare"}) {
     r = test::run_ipd(std::string("figure ") + kind + " " + d / "s" + " --conf 0.999 --out " + d / "f.pdf");
     EXPECT_EQ(r.exit_code, 1) << kind;
