@@ -75,8 +75,7 @@ std::map<int, double> diff_by_ref_rock(const SceneIpd& s, bool ref_is_a) {
 const TableCell& find_cell(const CrossTable& t, const std::string& model, const std::string& x, const std::string& y) {
   const TableCell* c = t.cell(model, x, y);
   if (!c) throw StudyError(fmt::format("no IPD cell for model '{}' and domains '{}' and '{}'", model, x, y));
-  if (c->missing_predictions)
-    throw StudyError(fmt::format("model '{}' has no predictions for '{}' or '{}'", model, x, y));
+  // A missing predictions folder is one of the reasons (it names the domain that lacks one).
   if (!c->no_value_reason.empty()) throw_no_value(*c);
   return *c;
 }

@@ -18,8 +18,11 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
   if (!s.scenes().empty()) {
     const SceneSummary& m = (*v.summaries)[ui.scene];
     ImGui::Text("scene %s", m.stem.c_str());
-    text_wrapped_at_spaces("IPD " + fmt_ipd(m.ipd) + "  (" + counted(m.pairs, "pair") + ", unpaired " +
-                           thousands(m.unpaired_a) + " / " + thousands(m.unpaired_b) + ")");
+    if (s.cell().missing_predictions)  // no scene has a number, whatever its pairs: say why, not "0 pairs"
+      text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "IPD – (not a number): " + s.cell().no_value_reason);
+    else
+      text_wrapped_at_spaces("IPD " + fmt_ipd(m.ipd) + "  (" + counted(m.pairs, "pair") + ", unpaired " +
+                             thousands(m.unpaired_a) + " / " + thousands(m.unpaired_b) + ")");
     if (!m.no_value_reason.empty())
       text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "no IPD for this scene: " + m.no_value_reason);
     if (m.suspects)

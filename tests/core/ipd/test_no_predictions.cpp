@@ -210,6 +210,15 @@ TEST(NoPredictions, CompareNamesTheDomainWithoutPredictions) {
   const auto r = test::run_ipd("compare " + d / "s" + " --model det-real --ref real --a principled --b hapke");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("model 'det-real' has no predictions for hapke\n"), std::string::npos) << r.err;
+  // The comparison itself (the studio's compare panel) names the same one domain.
+  const CrossTable t = compute_cross_table(load_labels(open_study(d / "s")), {});
+  try {
+    compare_renderers(t, "det-real", "real", "principled", "hapke", {});
+    FAIL() << "compared";
+  } catch (const StudyError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "model 'det-real': IPD(real, hapke) is not a number: no predictions of det-real for hapke");
+  }
 }
 
 // A model without a predictions folder for one domain: its cells there are not a number, marked and
