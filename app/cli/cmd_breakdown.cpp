@@ -22,10 +22,6 @@ std::string interval_text(const Interval& i) {
   if (!i.has_interval()) return fmt::format("{:.4f}", i.estimate);
   return fmt::format("{:.4f} [{:.3f}, {:.3f}]", i.estimate, i.low, i.high);
 }
-nlohmann::ordered_json number(double v) {
-  return std::isnan(v) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v);
-}
-
 // What `ipd breakdown` was asked for.
 struct BreakdownArgs {
   StudyOptions study;
@@ -56,11 +52,11 @@ void print_breakdown_json(const std::vector<CellBreakdown>& out, const std::stri
     nlohmann::ordered_json bins = nlohmann::ordered_json::array();
     for (const auto& b : c.bins)
       bins.push_back({{"bin", b.label},
-                      {"low", number(b.low)},
-                      {"high", number(b.high)},
-                      {"ipd", number(b.ipd.estimate)},
-                      {"ci_low", number(b.ipd.low)},
-                      {"ci_high", number(b.ipd.high)},
+                      {"low", json_number(b.low)},
+                      {"high", json_number(b.high)},
+                      {"ipd", json_number(b.ipd.estimate)},
+                      {"ci_low", json_number(b.ipd.low)},
+                      {"ci_high", json_number(b.ipd.high)},
                       {"pairs", b.pairs},
                       {"scenes", b.scenes}});
     j["cells"].push_back({{"model", c.model}, {"trained_on", c.trained_on}, {"a", c.a}, {"b", c.b}, {"bins", bins}});

@@ -17,27 +17,23 @@
 namespace ipd::cli {
 
 namespace {
-nlohmann::ordered_json number(double v) {
-  return std::isnan(v) ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v);
-}
-
 nlohmann::ordered_json comparison_json(const RendererComparison& c, const Provenance& provenance) {
   const Comparison& r = c.result;
   return {{"model", c.model},
           {"ref", c.ref},
           {"a", c.a},
           {"b", c.b},
-          {"ipd_a", number(r.ipd_a)},
-          {"ipd_b", number(r.ipd_b)},
-          {"delta", number(r.delta.estimate)},
-          {"ci_low", number(r.delta.low)},
-          {"ci_high", number(r.delta.high)},
-          {"se", number(r.delta.se)},
-          {"p_value", number(r.p_value)},
+          {"ipd_a", json_number(r.ipd_a)},
+          {"ipd_b", json_number(r.ipd_b)},
+          {"delta", json_number(r.delta.estimate)},
+          {"ci_low", json_number(r.delta.low)},
+          {"ci_high", json_number(r.delta.high)},
+          {"se", json_number(r.delta.se)},
+          {"p_value", json_number(r.p_value)},
           {"scenes", r.scenes},
           {"pairs_a", r.pairs_a},
           {"pairs_b", r.pairs_b},
-          {"delta_common", number(r.delta_common)},
+          {"delta_common", json_number(r.delta_common)},
           {"pairs_common", r.pairs_common},
           {"sentence", comparison_sentence(c)},
           {"provenance", provenance_json(provenance)}};

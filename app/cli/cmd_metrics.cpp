@@ -17,9 +17,6 @@
 namespace ipd::cli {
 
 namespace {
-nlohmann::ordered_json number(double v) {
-  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
-}
 std::string fixed(double v, int digits) { return std::isnan(v) ? "n/a" : fmt::format("{:.{}f}", v, digits); }
 std::string with_ci(const Interval& i, int digits) {
   if (!i.has_interval()) return fixed(i.estimate, digits);
@@ -103,11 +100,11 @@ void add_metrics_row(const std::string& model, const std::string& domain, const 
   (*j)["metrics"].push_back({{"model", model},
                              {"domain", domain},
                              {"class", cls},
-                             {"ap50", number(r.ap50)},
-                             {"ap50_95", number(r.ap50_95)},
-                             {"precision", number(r.precision)},
-                             {"recall", number(r.recall)},
-                             {"f1", number(r.f1)},
+                             {"ap50", json_number(r.ap50)},
+                             {"ap50_95", json_number(r.ap50_95)},
+                             {"precision", json_number(r.precision)},
+                             {"recall", json_number(r.recall)},
+                             {"f1", json_number(r.f1)},
                              {"gt", r.gt},
                              {"detections", r.detections}});
   *text += fmt::format("{:<24} {:<12} {:>7} {:>9} {:>9} {:>7} {:>7} {:>6} {:>6}\n", model,
@@ -133,7 +130,7 @@ void add_ssim_ipd_correlations(const CrossTable& t, size_t c, const std::vector<
         y.push_back(scene_ipd[s.stem]);
       }
     const double r = spearman(x, y);
-    rho->push_back({{"model", m.name}, {"rho", number(r)}, {"scenes", x.size()}});
+    rho->push_back({{"model", m.name}, {"rho", json_number(r)}, {"scenes", x.size()}});
     *rho_text += fmt::format("{}{} {}", rho_text->empty() ? "" : ", ", m.name, fixed(r, 2));
   }
 }
@@ -167,12 +164,12 @@ bool add_image_metrics(const StudyOptions& so, nlohmann::ordered_json* j, std::s
     (*j)["images"].push_back({{"a", a},
                               {"b", b},
                               {"scenes", px.size()},
-                              {"ssim", number(ssim_ci.estimate)},
-                              {"ssim_ci_low", number(ssim_ci.low)},
-                              {"ssim_ci_high", number(ssim_ci.high)},
-                              {"psnr", number(psnr_ci.estimate)},
-                              {"psnr_ci_low", number(psnr_ci.low)},
-                              {"psnr_ci_high", number(psnr_ci.high)},
+                              {"ssim", json_number(ssim_ci.estimate)},
+                              {"ssim_ci_low", json_number(ssim_ci.low)},
+                              {"ssim_ci_high", json_number(ssim_ci.high)},
+                              {"psnr", json_number(psnr_ci.estimate)},
+                              {"psnr_ci_low", json_number(psnr_ci.low)},
+                              {"psnr_ci_high", json_number(psnr_ci.high)},
                               {"spearman", rho}});
     *text += fmt::format("{:<26} {:>6} {:<26} {:<26} {}\n", a + " - " + b, px.size(), with_ci(ssim_ci, 3),
                          with_ci(psnr_ci, 2), rho_text.empty() ? "n/a" : rho_text);

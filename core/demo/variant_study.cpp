@@ -44,7 +44,7 @@ void shuffle(DemoRng& rng, std::vector<Box>* boxes) {
   for (size_t i = boxes->size(); i > 1; --i) std::swap((*boxes)[i - 1], (*boxes)[rng.below(static_cast<int>(i))]);
 }
 
-const char* kReadme = R"(# IPD Studio variants demo (generated)
+const char* kVariantsReadme = R"(# IPD Studio variants demo (generated)
 
 Written by `ipd demo --variants N`; nothing in it is real data. `real/` is the reference, `ambient-XXX/` are N
 renderings of the same scenes with the shading's ambient term at XXX/100. The detector `det-real` finds each rock
@@ -145,7 +145,7 @@ void write_variant_study(const std::string& dir, const VariantStudyOptions& o) {
   }
   write_file_atomically((fs::path(dir) / "study.yaml").string(), variant_study_yaml(o, o.variants));
   write_file_atomically((fs::path(dir) / "README.md").string(),
-                        fmt::format(kReadme, o.true_ambient, variant_domain(o, true_best_variant(o))));
+                        fmt::format(kVariantsReadme, o.true_ambient, variant_domain(o, true_best_variant(o))));
 }
 
 }  // namespace ipd

@@ -8,12 +8,11 @@
 
 #include <fmt/format.h>
 
+#include "core/stats/statistics.h"
 #include "core/stats/study_statistics.h"
 
 namespace ipd {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double best_confidence(const PerformanceValues& perf, const std::vector<Box>& predictions, int rock) {
   const int best = perf.best_prediction[rock];

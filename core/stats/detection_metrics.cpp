@@ -5,12 +5,11 @@
 #include <numeric>
 
 #include "core/geometry/confidence_threshold.h"
+#include "core/stats/statistics.h"
 
 namespace ipd {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Indices of the detections by descending score, stable (numpy's argsort(-score, kind="mergesort")).
 std::vector<size_t> by_score(const std::vector<double>& scores) {

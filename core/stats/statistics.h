@@ -19,6 +19,9 @@
 
 namespace ipd {
 
+// "No number" (no pairs, no predictions, an empty bin): written n/a or –, and null in JSON.
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
 // One scene's contribution to a pooled IPD.
 struct SceneSum {
   double sum = 0;  // Σ |perf_a - perf_b| over the scene's counted pairs

@@ -6,13 +6,12 @@
 #include <map>
 
 #include "core/picture/picture_codec.h"
+#include "core/stats/statistics.h"
 #include "core/util/parallel.h"
 
 namespace ipd {
 
-namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-}
+namespace {}
 
 std::vector<SceneSum> scene_sums(const TableCell& cell) {
   std::vector<SceneSum> out;

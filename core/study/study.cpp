@@ -16,6 +16,7 @@
 #include "core/util/json_input.h"
 #include "core/util/json_output.h"
 #include "core/util/number_text.h"
+#include "core/util/utf8.h"
 
 namespace fs = std::filesystem;
 
@@ -27,11 +28,6 @@ namespace {
 constexpr size_t kShownNameBytes = 60;
 
 const std::set<std::string> kImageExtensions = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".webp"};
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
 
 template <typename T>
 T yaml_get(const YAML::Node& n, const std::string& file, const char* what) {
@@ -360,7 +356,7 @@ std::set<std::string> label_stems(const fs::path& dir) {
       refuse_link(f);
       check_name(p, p.stem().string(), "scene", kMaxStemBytes);
       stems.insert(p.stem().string());
-    } else if (lower(p.extension().string()) == ".txt")
+    } else if (ascii_lower(p.extension().string()) == ".txt")
       refused.push_back(p);
   }
   if (refused.empty()) return stems;
@@ -391,7 +387,7 @@ Domain scan_domain(const fs::path& root, const std::string& name, std::set<std::
   if (kind_of(root / name / "images") == FileKind::kDirectory) {
     std::vector<fs::path> pictures;
     for (const auto& f : list_directory(root / name / "images"))
-      if (kImageExtensions.count(lower(f.path().extension().string()))) {
+      if (kImageExtensions.count(ascii_lower(f.path().extension().string()))) {
         refuse_link(f);
         pictures.push_back(f.path());
       }

@@ -16,6 +16,7 @@
 #include "core/util/contained_file.h"
 #include "core/util/errors.h"
 #include "core/util/number_text.h"
+#include "core/util/utf8.h"
 
 namespace fs = std::filesystem;
 
@@ -28,11 +29,6 @@ constexpr int kMaxFolderDepth = 8;                   // images/<split>/<camera>/
 constexpr size_t kMaxSourceFiles = 2000000;          // a listing past this is not a dataset folder
 constexpr size_t kMaxListBytes = size_t{256} << 20;  // a list of 2,000,000 pictures' paths
 constexpr const char* kPictureExtensions = ".png, .jpg, .jpeg, .tif, .tiff, .bmp or .webp";
-
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-  return s;
-}
 
 bool is_hex(const std::string& s, size_t from, size_t count) {
   if (s.size() < from + count) return false;
@@ -117,7 +113,7 @@ void add_split(const std::string& root, const std::string& split, const std::str
   std::vector<std::string> files;
   if (!images.empty()) walk(root, images, 0, &files);
   for (const std::string& f : files) {
-    if (!is_picture_name(f) || (images == labels && lower(fs::path(f).extension().string()) == ".txt")) continue;
+    if (!is_picture_name(f) || (images == labels && ascii_lower(fs::path(f).extension().string()) == ".txt")) continue;
     const std::string key = without_extension(fs::path(f).lexically_relative(images.empty() ? "." : images).string());
     SourceScene& s = by_path[key];
     if (!s.picture.empty())
@@ -226,7 +222,7 @@ std::string split_folder(const std::string& root, const std::string& given, cons
   if (!fs::exists(fs::symlink_status(fs::path(root) / *rel, ec)))
     throw StudyError(fmt::format("{}:{}: {}: {} is not there; expected the split's folder of pictures", file, line, key,
                                  (fs::path(root) / *rel).string()));
-  if (!is_folder(root, *rel) && lower(fs::path(*rel).extension().string()) != ".txt")
+  if (!is_folder(root, *rel) && ascii_lower(fs::path(*rel).extension().string()) != ".txt")
     throw StudyError(
         fmt::format("{}:{}: {}: {} is not a folder; expected the split's folder of pictures or a .txt list of them",
                     file, line, key, (fs::path(root) / *rel).string()));
@@ -385,7 +381,7 @@ YoloSource from_cvat(const fs::path& dir) {
     if (!e.folder || e.name.rfind("obj_", 0) != 0 || e.name.size() <= 9 ||
         e.name.compare(e.name.size() - 5, 5, "_data") != 0)
       continue;
-    const std::string subset = e.name.substr(4, e.name.size() - 9), split = lower(subset);
+    const std::string subset = e.name.substr(4, e.name.size() - 9), split = ascii_lower(subset);
     s.splits.push_back(split);
     if (!is_file(s.root, subset + ".txt")) {
       add_split(s.root, split, e.name, e.name, &s.scenes);
@@ -401,7 +397,7 @@ YoloSource from_cvat(const fs::path& dir) {
     std::vector<std::string> files;
     walk(s.root, e.name, 0, &files);
     for (const std::string& f : files)
-      if (lower(fs::path(f).extension().string()) == ".txt" && !labels.count(f))
+      if (ascii_lower(fs::path(f).extension().string()) == ".txt" && !labels.count(f))
         throw StudyError(fmt::format("{}: a label file no line of {} names; add its picture to the list, or remove it",
                                      printable_name(shown(s.root, f)), shown(s.root, subset + ".txt")));
     s.scenes.insert(s.scenes.end(), listed.begin(), listed.end());
@@ -463,7 +459,7 @@ YoloSource locate(const std::string& src) {
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(clean, ec))) throw StudyError(src + ": no such file or folder");
   if (!fs::is_directory(clean, ec)) {
-    const std::string ext = lower(clean.extension().string());
+    const std::string ext = ascii_lower(clean.extension().string());
     if (ext == ".yaml" || ext == ".yml") return from_data_yaml(clean);
     throw StudyError(src + ": expected a dataset's data.yaml or its folder");
   }
@@ -506,7 +502,7 @@ std::string yolo_dataset_hint(const std::string& folder, const std::string& show
 
 bool is_picture_name(const std::string& file_name) {
   static const std::set<std::string> kExtensions = {".png", ".jpg", ".jpeg", ".tif", ".tiff", ".bmp", ".webp"};
-  return kExtensions.count(lower(fs::path(file_name).extension().string())) > 0;
+  return kExtensions.count(ascii_lower(fs::path(file_name).extension().string())) > 0;
 }
 
 bool has_upload_prefix(const std::string& stem) { return stem.size() > 9 && is_hex(stem, 0, 8) && stem[8] == '-'; }

@@ -16,32 +16,13 @@
 #include <vector>
 
 #include "core/util/atomic_file.h"
+#include "core/util/file_descriptor.h"
 
 namespace fs = std::filesystem;
 
 namespace ipd {
 
 namespace {
-
-// A descriptor closed on scope exit unless it is borrowed.
-struct Fd {
-  int fd = -1;
-  bool own = true;
-  Fd() = default;
-  Fd(int f, bool o) : fd(f), own(o) {}
-  Fd(Fd&& o) noexcept : fd(o.fd), own(o.own) { o.fd = -1; }
-  Fd& operator=(Fd&& o) noexcept {
-    if (this != &o) {
-      if (own && fd >= 0) ::close(fd);
-      fd = o.fd, own = o.own;
-      o.fd = -1;
-    }
-    return *this;
-  }
-  ~Fd() {
-    if (own && fd >= 0) ::close(fd);
-  }
-};
 
 std::vector<std::string> components(const std::string& rel) {
   std::vector<std::string> out;
@@ -76,16 +57,17 @@ int open_subdir(int dir_fd, const std::string& shown, const std::string& name, b
 }
 
 // The folder holding `rel`'s last component, and that component's name.
-Fd parent_of(int root_fd, const std::string& root_path, const std::string& rel, bool create, std::string* name) {
+FileDescriptor parent_of(int root_fd, const std::string& root_path, const std::string& rel, bool create,
+                         std::string* name) {
   const std::vector<std::string> parts = components(rel);
-  if (parts.empty() || parts.back() == "." || parts.back() == "..") return {};
+  if (parts.empty() || parts.back() == "." || parts.back() == "..") return FileDescriptor();
   *name = parts.back();
-  Fd dir(root_fd, false);
+  FileDescriptor dir = FileDescriptor::borrowed(root_fd);
   fs::path shown(root_path);
   for (size_t k = 0; k + 1 < parts.size(); ++k) {
     shown /= parts[k];
-    Fd next(open_subdir(dir.fd, shown.string(), parts[k], create), true);
-    if (next.fd < 0) return {};
+    FileDescriptor next(open_subdir(dir.get(), shown.string(), parts[k], create));
+    if (next.get() < 0) return FileDescriptor();
     dir = std::move(next);
   }
   return dir;
@@ -142,13 +124,13 @@ CacheDir::~CacheDir() {
 
 int CacheDir::open_file(const std::string& rel) const {
   std::string name;
-  const Fd dir = parent_of(fd_, path_, rel, false, &name);
-  if (dir.fd < 0) return -1;
+  const FileDescriptor dir = parent_of(fd_, path_, rel, false, &name);
+  if (dir.get() < 0) return -1;
   const std::string shown = (fs::path(path_) / rel).string();
   // O_NONBLOCK: a FIFO put there must not make the open hang.
-  const int fd = ::openat(dir.fd, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  const int fd = ::openat(dir.get(), name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
-    refuse(dir.fd, shown, name, errno);
+    refuse(dir.get(), shown, name, errno);
     return -1;
   }
   struct stat st {};
@@ -184,17 +166,17 @@ std::optional<std::string> CacheDir::read(const std::string& rel, size_t max_byt
 bool CacheDir::write(const std::string& rel, const std::string& contents,
                      const std::function<void(const char*)>& hook) const {
   std::string name;
-  const Fd dir = parent_of(fd_, path_, rel, true, &name);
-  if (dir.fd < 0) return false;
+  const FileDescriptor dir = parent_of(fd_, path_, rel, true, &name);
+  if (dir.get() < 0) return false;
   const std::string shown = (fs::path(path_) / rel).string();
   struct stat st {};
-  if (::fstatat(dir.fd, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && !S_ISREG(st.st_mode)) {
+  if (::fstatat(dir.get(), name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && !S_ISREG(st.st_mode)) {
     warn_cache_entry_once(shown,
                           S_ISLNK(st.st_mode) ? "is a symbolic link; not used" : "is not a regular file; not used");
     return false;
   }
   const std::string tmp = fmt::format("{}.tmp-{}-{}", name, ::getpid(), temp_counter++);
-  const int fd = ::openat(dir.fd, tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  const int fd = ::openat(dir.get(), tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0) return false;
   size_t done = 0;
   bool ok = true;
@@ -208,8 +190,8 @@ bool CacheDir::write(const std::string& rel, const std::string& contents,
   if (ok && hook) hook("checked");
   // renameat replaces the directory entry: were a link swapped in since the check, the link itself is
   // replaced and its target left alone.
-  if (!ok || ::renameat(dir.fd, tmp.c_str(), dir.fd, name.c_str()) != 0) {
-    ::unlinkat(dir.fd, tmp.c_str(), 0);
+  if (!ok || ::renameat(dir.get(), tmp.c_str(), dir.get(), name.c_str()) != 0) {
+    ::unlinkat(dir.get(), tmp.c_str(), 0);
     return false;
   }
   return true;

@@ -17,33 +17,12 @@
 #include <utility>
 #include <vector>
 
+#include "core/util/file_descriptor.h"
 #include "core/util/study_inputs.h"
 
 namespace ipd {
 
 namespace {
-
-std::string errno_text(int err) { return std::strerror(err); }
-
-// An open folder, closed when it goes out of scope.
-class Fd {
- public:
-  explicit Fd(int fd = -1) : fd_(fd) {}
-  Fd(Fd&& o) noexcept : fd_(o.fd_) { o.fd_ = -1; }
-  Fd& operator=(Fd&& o) noexcept {
-    std::swap(fd_, o.fd_);
-    return *this;
-  }
-  Fd(const Fd&) = delete;
-  ~Fd() {
-    if (fd_ >= 0) ::close(fd_);
-  }
-  int get() const { return fd_; }
-  int release() { return std::exchange(fd_, -1); }
-
- private:
-  int fd_;
-};
 
 // "PATH: is a FIFO, expected a regular file" (or a socket, a device), as read_file says it.
 std::string not_regular(const std::string& path, mode_t mode) {
@@ -89,13 +68,13 @@ int open_folder_in_one_call(int dir, const std::string& relative) {
 }
 
 // Opens the folders of `parts` (all but the last) below root, without following a link. Missing folders
-// are created when `create`; otherwise a missing one gives an Fd of -1. `shown` receives the path so far.
-Fd open_folders(const std::string& root, const std::vector<std::string>& parts, bool create, const char* action,
-                std::string* shown) {
-  Fd dir(::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
+// are created when `create`; otherwise a missing one gives an FileDescriptor of -1. `shown` receives the path so far.
+FileDescriptor open_folders(const std::string& root, const std::vector<std::string>& parts, bool create,
+                            const char* action, std::string* shown) {
+  FileDescriptor dir(::open(root.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC));
   if (dir.get() < 0) {
-    if (errno == ENOENT && !create) return Fd();
-    throw IoError(fmt::format("{}: cannot open the folder: {}", root, errno_text(errno)));
+    if (errno == ENOENT && !create) return FileDescriptor();
+    throw IoError(fmt::format("{}: cannot open the folder: {}", root, std::strerror(errno)));
   }
   *shown = root.size() > 1 && root.back() == '/' ? root.substr(0, root.size() - 1) : root;
   if (parts.size() > 2) {  // two folders or more: one call instead of one per folder
@@ -103,16 +82,16 @@ Fd open_folders(const std::string& root, const std::vector<std::string>& parts, 
     for (size_t k = 1; k + 1 < parts.size(); ++k) folders += "/" + parts[k];
     if (const int fd = open_folder_in_one_call(dir.get(), folders); fd >= 0) {
       *shown += "/" + folders + "/" + parts.back();
-      return Fd(fd);
+      return FileDescriptor(fd);
     }
   }
   for (size_t k = 0; k + 1 < parts.size(); ++k) {
     *shown += "/" + parts[k];
     int fd = ::openat(dir.get(), parts[k].c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
     if (fd < 0 && errno == ENOENT) {
-      if (!create) return Fd();
+      if (!create) return FileDescriptor();
       if (::mkdirat(dir.get(), parts[k].c_str(), 0755) != 0 && errno != EEXIST)
-        throw IoError(fmt::format("{}: cannot create the folder: {}", *shown, errno_text(errno)));
+        throw IoError(fmt::format("{}: cannot create the folder: {}", *shown, std::strerror(errno)));
       fd = ::openat(dir.get(), parts[k].c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
     }
     if (fd < 0) {
@@ -122,16 +101,16 @@ Fd open_folders(const std::string& root, const std::vector<std::string>& parts, 
         if (S_ISLNK(st.st_mode)) throw IoError(link_refused(*shown, action));
         if (!S_ISDIR(st.st_mode)) throw IoError(fmt::format("{}: is a file, expected a folder", *shown));
       }
-      throw IoError(fmt::format("{}: cannot open the folder: {}", *shown, errno_text(err)));
+      throw IoError(fmt::format("{}: cannot open the folder: {}", *shown, std::strerror(err)));
     }
-    dir = Fd(fd);
+    dir = FileDescriptor(fd);
   }
   *shown += "/" + parts.back();
   return dir;
 }
 
-// The folder root/relative itself, opened beneath root without following a link; an Fd of -1 when missing.
-Fd open_folder(const std::string& root, const std::string& relative, const char* action) {
+// The folder root/relative itself, opened beneath root without following a link; an FileDescriptor of -1 when missing.
+FileDescriptor open_folder(const std::string& root, const std::string& relative, const char* action) {
   std::vector<std::string> parts = split_relative(root, relative);
   parts.emplace_back();  // open_folders opens every part but the last
   std::string shown;
@@ -143,7 +122,7 @@ mode_t type_at(int dir, const std::string& name, const std::string& shown) {
   struct stat st {};
   if (::fstatat(dir, name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0) return st.st_mode & S_IFMT;
   if (errno == ENOENT) return 0;
-  throw IoError(fmt::format("{}: cannot examine: {}", shown, errno_text(errno)));
+  throw IoError(fmt::format("{}: cannot examine: {}", shown, std::strerror(errno)));
 }
 
 void write_all(int fd, const std::string& contents, const std::string& shown, bool sync = true) {
@@ -152,11 +131,11 @@ void write_all(int fd, const std::string& contents, const std::string& shown, bo
     const ssize_t n = ::write(fd, contents.data() + done, contents.size() - done);
     if (n < 0) {
       if (errno == EINTR) continue;
-      throw IoError(shown + ": cannot write: " + errno_text(errno));
+      throw IoError(shown + ": cannot write: " + std::strerror(errno));
     }
     done += static_cast<size_t>(n);
   }
-  if (sync && ::fsync(fd) != 0) throw IoError(shown + ": cannot write: " + errno_text(errno));
+  if (sync && ::fsync(fd) != 0) throw IoError(shown + ": cannot write: " + std::strerror(errno));
 }
 
 // Reads the open regular file `fd` whole (at most `max_bytes`), named `shown` in errors.
@@ -167,7 +146,7 @@ std::string read_open_file(int fd, const std::string& shown, size_t max_bytes) {
     const ssize_t n = ::read(fd, buf, sizeof buf);
     if (n < 0) {
       if (errno == EINTR) continue;
-      throw IoError(shown + ": cannot read: " + errno_text(errno));
+      throw IoError(shown + ": cannot read: " + std::strerror(errno));
     }
     if (n == 0) break;
     if (out.size() + static_cast<size_t>(n) > max_bytes)
@@ -186,7 +165,7 @@ void run_recheck(int dir, const std::string& name, const std::string& shown, con
     if (errno == ENOENT) recheck(std::nullopt);
     return;
   }
-  const Fd file(fd);
+  const FileDescriptor file(fd);
   struct stat st {};
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) return;
   recheck(read_open_file(fd, shown, kMaxReadBytes));
@@ -198,7 +177,7 @@ void write_file_beneath(const std::string& root, const std::string& relative, co
                         const WriteStepHook& hook, const Recheck& recheck) {
   const std::vector<std::string> parts = split_relative(root, relative);
   std::string shown;
-  const Fd dir = open_folders(root, parts, true, "saving", &shown);
+  const FileDescriptor dir = open_folders(root, parts, true, "saving", &shown);
   if (hook) hook("folder opened");
   const std::string& name = parts.back();
   const mode_t type = type_at(dir.get(), name, shown);
@@ -208,7 +187,7 @@ void write_file_beneath(const std::string& root, const std::string& relative, co
   const std::string tmp = temp_name_for(name);
   // O_EXCL | O_NOFOLLOW: a link planted under the temp name is never written through.
   const int fd = ::openat(dir.get(), tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-  if (fd < 0) throw IoError(shown + ": cannot write: " + errno_text(errno));
+  if (fd < 0) throw IoError(shown + ": cannot write: " + std::strerror(errno));
   try {
     write_all(fd, contents, shown);
   } catch (...) {
@@ -217,7 +196,7 @@ void write_file_beneath(const std::string& root, const std::string& relative, co
     throw;
   }
   if (::close(fd) != 0) {
-    const std::string why = errno_text(errno);
+    const std::string why = std::strerror(errno);
     ::unlinkat(dir.get(), tmp.c_str(), 0);
     throw IoError(shown + ": cannot write: " + why);
   }
@@ -232,7 +211,7 @@ void write_file_beneath(const std::string& root, const std::string& relative, co
   }
   // renameat replaces whatever is at `name` now (even a link swapped in after the check) without following it.
   if (::renameat(dir.get(), tmp.c_str(), dir.get(), name.c_str()) != 0) {
-    const std::string why = errno_text(errno);
+    const std::string why = std::strerror(errno);
     ::unlinkat(dir.get(), tmp.c_str(), 0);
     throw IoError(shown + ": cannot replace: " + why);
   }
@@ -245,7 +224,7 @@ bool remove_file_beneath(const std::string& root, const std::string& relative, c
                          const Recheck& recheck) {
   const std::vector<std::string> parts = split_relative(root, relative);
   std::string shown;
-  const Fd dir = open_folders(root, parts, false, "deleting", &shown);
+  const FileDescriptor dir = open_folders(root, parts, false, "deleting", &shown);
   if (dir.get() < 0) return false;
   if (hook) hook("folder opened");
   const std::string& name = parts.back();
@@ -258,7 +237,7 @@ bool remove_file_beneath(const std::string& root, const std::string& relative, c
   // unlinkat removes a name in this folder; should a link have been swapped in, the link goes, not its target.
   if (::unlinkat(dir.get(), name.c_str(), 0) != 0) {
     if (errno == ENOENT) return false;
-    throw IoError(shown + ": cannot remove: " + errno_text(errno));
+    throw IoError(shown + ": cannot remove: " + std::strerror(errno));
   }
   ::fsync(dir.get());  // the removal is durable before the next step depends on it
   return true;
@@ -267,7 +246,7 @@ bool remove_file_beneath(const std::string& root, const std::string& relative, c
 void check_beneath(const std::string& root, const std::string& relative) {
   const std::vector<std::string> parts = split_relative(root, relative);
   std::string shown;
-  const Fd dir = open_folders(root, parts, false, "saving", &shown);
+  const FileDescriptor dir = open_folders(root, parts, false, "saving", &shown);
   if (dir.get() >= 0 && type_at(dir.get(), parts.back(), shown) == S_IFLNK)
     throw IoError(link_refused(shown, "saving"));
 }
@@ -280,11 +259,11 @@ std::optional<std::string> read_entry(int dir, const std::string& name, const st
   if (fd < 0) {
     if (errno == ENOENT) return std::nullopt;
     if (errno == ELOOP) throw IoError(link_refused(shown, "reading"));
-    throw IoError(shown + ": cannot read: " + errno_text(errno));
+    throw IoError(shown + ": cannot read: " + std::strerror(errno));
   }
-  const Fd file(fd);
+  const FileDescriptor file(fd);
   struct stat st {};
-  if (::fstat(fd, &st) != 0) throw IoError(shown + ": cannot read: " + errno_text(errno));
+  if (::fstat(fd, &st) != 0) throw IoError(shown + ": cannot read: " + std::strerror(errno));
   if (S_ISDIR(st.st_mode)) throw IoError(shown + ": is a directory, expected a file");
   if (!S_ISREG(st.st_mode)) throw IoError(not_regular(shown, st.st_mode));
   if (static_cast<unsigned long long>(st.st_size) > max_bytes)
@@ -299,7 +278,7 @@ std::optional<std::string> read_file_beneath(const std::string& root, const std:
                                              const WriteStepHook& hook) {
   const std::vector<std::string> parts = split_relative(root, relative);
   std::string shown;
-  const Fd dir = open_folders(root, parts, false, "reading", &shown);
+  const FileDescriptor dir = open_folders(root, parts, false, "reading", &shown);
   if (dir.get() < 0) return std::nullopt;
   if (hook) hook("folder opened");
   return read_entry(dir.get(), parts.back(), shown, max_bytes);
@@ -312,7 +291,7 @@ std::optional<std::string> OpenFolder::read(const std::string& name, size_t max_
 
 int remove_stale_temp_files_beneath(const std::string& root, const std::string& relative, const WriteStepHook& hook) {
   try {
-    const Fd dir = open_folder(root, relative, "deleting");
+    const FileDescriptor dir = open_folder(root, relative, "deleting");
     if (dir.get() < 0) return 0;
     if (hook) hook("folder opened");
     return remove_stale_temp_files_at(dir.get());
@@ -330,7 +309,7 @@ std::vector<FolderEntry> list_entries(int dir, const std::string& shown) {
   DIR* d = fd < 0 ? nullptr : ::fdopendir(fd);
   if (!d) {
     if (fd >= 0) ::close(fd);
-    throw IoError(fmt::format("{}: cannot list the folder: {}", shown, errno_text(errno)));
+    throw IoError(fmt::format("{}: cannot list the folder: {}", shown, std::strerror(errno)));
   }
   ::rewinddir(d);
   while (const dirent* e = ::readdir(d)) {
@@ -355,19 +334,19 @@ void empty_folder(int dir, const std::string& shown) {
   for (const FolderEntry& e : list_entries(dir, shown)) {
     const std::string inner = shown + "/" + e.name;
     if (e.folder) {
-      const Fd sub(::openat(dir, e.name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
-      if (sub.get() < 0) throw IoError(fmt::format("{}: cannot open the folder: {}", inner, errno_text(errno)));
+      const FileDescriptor sub(::openat(dir, e.name.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+      if (sub.get() < 0) throw IoError(fmt::format("{}: cannot open the folder: {}", inner, std::strerror(errno)));
       empty_folder(sub.get(), inner);
     }
     if (::unlinkat(dir, e.name.c_str(), e.folder ? AT_REMOVEDIR : 0) != 0 && errno != ENOENT)
-      throw IoError(fmt::format("{}: cannot remove: {}", inner, errno_text(errno)));
+      throw IoError(fmt::format("{}: cannot remove: {}", inner, std::strerror(errno)));
   }
 }
 
 }  // namespace
 
 std::vector<FolderEntry> entries_beneath(const std::string& root, const std::string& relative) {
-  const Fd dir = open_folder(root, relative, "reading");
+  const FileDescriptor dir = open_folder(root, relative, "reading");
   if (dir.get() < 0) return {};
   return list_entries(dir.get(), root + "/" + relative);
 }
@@ -396,54 +375,55 @@ std::vector<std::string> folders_beneath(const std::string& root, const std::str
 void make_folder_beneath(const std::string& root, const std::string& relative) {
   const std::vector<std::string> parts = split_relative(root, relative);
   std::string shown;
-  const Fd dir = open_folders(root, parts, true, "saving", &shown);
+  const FileDescriptor dir = open_folders(root, parts, true, "saving", &shown);
   if (::mkdirat(dir.get(), parts.back().c_str(), 0755) != 0)
-    throw IoError(fmt::format("{}: cannot create the folder: {}", shown, errno_text(errno)));
+    throw IoError(fmt::format("{}: cannot create the folder: {}", shown, std::strerror(errno)));
 }
 
 void rename_beneath(const std::string& root, const std::string& from, const std::string& to) {
   const std::vector<std::string> a = split_relative(root, from), b = split_relative(root, to);
   std::string shown_a, shown_b;
-  const Fd dir_a = open_folders(root, a, false, "moving", &shown_a);
-  const Fd dir_b = open_folders(root, b, true, "moving", &shown_b);
+  const FileDescriptor dir_a = open_folders(root, a, false, "moving", &shown_a);
+  const FileDescriptor dir_b = open_folders(root, b, true, "moving", &shown_b);
   if (dir_a.get() < 0 || ::renameat(dir_a.get(), a.back().c_str(), dir_b.get(), b.back().c_str()) != 0)
     throw IoError(
-        fmt::format("{}: cannot move to {}: {}", shown_a, shown_b, errno_text(dir_a.get() < 0 ? ENOENT : errno)));
+        fmt::format("{}: cannot move to {}: {}", shown_a, shown_b, std::strerror(dir_a.get() < 0 ? ENOENT : errno)));
 }
 
 void exchange_beneath(const std::string& root, const std::string& a, const std::string& b) {
   const std::vector<std::string> pa = split_relative(root, a), pb = split_relative(root, b);
   std::string shown_a, shown_b;
-  const Fd dir_a = open_folders(root, pa, false, "moving", &shown_a);
-  const Fd dir_b = open_folders(root, pb, false, "moving", &shown_b);
+  const FileDescriptor dir_a = open_folders(root, pa, false, "moving", &shown_a);
+  const FileDescriptor dir_b = open_folders(root, pb, false, "moving", &shown_b);
   if (dir_a.get() < 0 || dir_b.get() < 0 ||
       ::renameat2(dir_a.get(), pa.back().c_str(), dir_b.get(), pb.back().c_str(), RENAME_EXCHANGE) != 0)
-    throw IoError(fmt::format("{}: cannot be swapped with {}: {}", shown_a, shown_b, errno_text(errno)));
+    throw IoError(fmt::format("{}: cannot be swapped with {}: {}", shown_a, shown_b, std::strerror(errno)));
 }
 
 void remove_tree_beneath(const std::string& root, const std::string& relative) {
   const std::vector<std::string> parts = split_relative(root, relative);
   std::string shown;
-  const Fd dir = open_folders(root, parts, false, "deleting", &shown);
+  const FileDescriptor dir = open_folders(root, parts, false, "deleting", &shown);
   if (dir.get() < 0) return;
   const mode_t type = type_at(dir.get(), parts.back(), shown);
   if (type == 0) return;
   if (type == S_IFDIR) {
-    const Fd sub(::openat(dir.get(), parts.back().c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
-    if (sub.get() < 0) throw IoError(fmt::format("{}: cannot open the folder: {}", shown, errno_text(errno)));
+    const FileDescriptor sub(
+        ::openat(dir.get(), parts.back().c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC));
+    if (sub.get() < 0) throw IoError(fmt::format("{}: cannot open the folder: {}", shown, std::strerror(errno)));
     empty_folder(sub.get(), shown);
   }
   if (::unlinkat(dir.get(), parts.back().c_str(), type == S_IFDIR ? AT_REMOVEDIR : 0) != 0 && errno != ENOENT)
-    throw IoError(fmt::format("{}: cannot remove: {}", shown, errno_text(errno)));
+    throw IoError(fmt::format("{}: cannot remove: {}", shown, std::strerror(errno)));
 }
 
 void write_new_file_beneath(const std::string& root, const std::string& relative, const std::string& contents) {
   const std::vector<std::string> parts = split_relative(root, relative);
   std::string shown;
-  const Fd dir = open_folders(root, parts, true, "saving", &shown);
+  const FileDescriptor dir = open_folders(root, parts, true, "saving", &shown);
   // O_EXCL | O_NOFOLLOW: a file or link already there is never written through.
   const int fd = ::openat(dir.get(), parts.back().c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-  if (fd < 0) throw IoError(shown + ": cannot write: " + errno_text(errno));
+  if (fd < 0) throw IoError(shown + ": cannot write: " + std::strerror(errno));
   try {
     write_all(fd, contents, shown, false);
   } catch (...) {
@@ -451,22 +431,22 @@ void write_new_file_beneath(const std::string& root, const std::string& relative
     ::unlinkat(dir.get(), parts.back().c_str(), 0);
     throw;
   }
-  if (::close(fd) != 0) throw IoError(shown + ": cannot write: " + errno_text(errno));
+  if (::close(fd) != 0) throw IoError(shown + ": cannot write: " + std::strerror(errno));
 }
 
 void sync_file_system_beneath(const std::string& root, const std::string& relative) {
-  const Fd dir = open_folder(root, relative, "saving");
+  const FileDescriptor dir = open_folder(root, relative, "saving");
   if (::syncfs(dir.get()) != 0)
-    throw IoError((std::filesystem::path(root) / relative).string() + ": cannot sync: " + errno_text(errno));
+    throw IoError((std::filesystem::path(root) / relative).string() + ": cannot sync: " + std::strerror(errno));
 }
 
 void link_file_beneath(const std::string& root, const std::string& relative, const std::string& source) {
   const std::vector<std::string> parts = split_relative(root, relative);
   std::string shown;
-  const Fd dir = open_folders(root, parts, true, "saving", &shown);
+  const FileDescriptor dir = open_folders(root, parts, true, "saving", &shown);
   if (::linkat(AT_FDCWD, source.c_str(), dir.get(), parts.back().c_str(), 0) == 0) return;
   if (errno != EXDEV && errno != EPERM && errno != EMLINK)
-    throw IoError(fmt::format("{}: cannot link {} there: {}", shown, source, errno_text(errno)));
+    throw IoError(fmt::format("{}: cannot link {} there: {}", shown, source, std::strerror(errno)));
   write_file_beneath(root, relative, read_file(source));  // another file system: a copy
 }
 
@@ -505,7 +485,7 @@ void write_output_file(const std::string& root, const std::string& path, const s
 std::string study_file_problem(const std::string& path) {
   struct stat st {};
   if (::lstat(path.c_str(), &st) != 0)
-    return errno == ENOENT ? "" : path + ": cannot be examined: " + errno_text(errno);
+    return errno == ENOENT ? "" : path + ": cannot be examined: " + std::strerror(errno);
   if (S_ISLNK(st.st_mode)) return link_refused(path, "reading");
   if (S_ISREG(st.st_mode)) return "";
   if (S_ISDIR(st.st_mode)) return path + ": is a directory, expected a file";

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+
+#include <cmath>
 #include <string>
 
 #include "core/util/utf8.h"
@@ -15,5 +17,11 @@ namespace ipd {
 // comes from check it first (require_utf8_names in core/study/study.h) so the message names the file.
 std::string dump_json_output(const nlohmann::json& j, int indent = -1);
 std::string dump_json_output(const nlohmann::ordered_json& j, int indent = -1);
+
+// A number, or null where there is none (NaN: no pairs, no predictions): JSON has no NaN, and 0 would read as a
+// perfect score.
+inline nlohmann::ordered_json json_number(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
 
 }  // namespace ipd
