@@ -60,6 +60,10 @@ void StudioApp::adopt_snapshot() {
   const bool other_pair = first || snap->session->pair_index() != snap_->session->pair_index() ||
                           snap->session->swapped() != snap_->session->swapped();
   const bool new_rerun = snap->rerun && (!snap_ || snap->rerun != snap_->rerun);
+  // The scene in view, by name: another domain pair, class or model may list the scenes differently.
+  std::string shown_stem;
+  if (!first && ui_.scene >= 0 && ui_.scene < static_cast<int>(snap_->session->scenes().size()))
+    shown_stem = snap_->session->scenes()[ui_.scene].stem;
   snap_ = std::move(snap);
   if (snap_->edit_ms >= 0) stats_out_.add_edit(snap_->edit_ms, snap_->edit_cpu_ms);
   const Session& s = *snap_->session;
@@ -85,7 +89,13 @@ void StudioApp::adopt_snapshot() {
     ui::update_browser_order(*snap_->summaries, ui_);
     order_version_ = snap_->version;
   }
-  if (other_pair) goto_scene(ui_.order.empty() ? 0 : ui_.order.front());
+  const bool scene_moved = !shown_stem.empty() && (ui_.scene >= static_cast<int>(s.scenes().size()) ||
+                                                   s.scenes()[ui_.scene].stem != shown_stem);
+  if (other_pair || scene_moved) {
+    // Comparing one scene across domain pairs, classes or renderer settings: it stays in view where it exists.
+    const int same = shown_stem.empty() ? -1 : s.scene_index(shown_stem);
+    goto_scene(same >= 0 ? same : ui_.order.empty() ? 0 : ui_.order.front());
+  }
   if (other_pair && !pending_scene_.empty()) {
     if (const int k = s.scene_index(pending_scene_); k >= 0) goto_scene(k), ui_.status = pending_status_;
     pending_scene_.clear();
@@ -166,6 +176,11 @@ void StudioApp::apply(const ui::UiCommands& cmd) {
   if (!cmd.open_study.empty() || (!cmd.class_word.empty() && snap_)) {
     // Another class is another study's worth of numbers: the study is opened again, showing that class.
     const std::string dir = cmd.open_study.empty() ? snap_->session->study().root : cmd.open_study;
+    // Another class of the same study: the scene in view stays in view (found again by name once opened).
+    if (cmd.open_study.empty() && ui_.scene >= 0 && ui_.scene < static_cast<int>(snap_->session->scenes().size())) {
+      pending_scene_ = snap_->session->scenes()[ui_.scene].stem;
+      pending_status_.clear();
+    }
     o_.study = dir;
     worker_.submit(command::OpenStudy{dir, false, cmd.class_word});
     snap_.reset();

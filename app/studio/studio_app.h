@@ -103,7 +103,8 @@ class StudioApp {
   std::shared_ptr<const Snapshot> snap_;
   // The session's problems and then the pictures that could not be read (found as they are shown).
   std::vector<Problem> problems_, picture_problems_;
-  std::string pending_scene_;   // a problem's scene, shown once the worker has switched to its domain pair
+  std::string pending_scene_;   // shown once the worker has switched: a problem's scene, or the one in view before a
+                                // class switch
   std::string pending_status_;  // and the problem, on the status line then
   std::string history_verb_;    // "undid the last change", for the status line once the worker has undone it
   long order_version_ = -1;

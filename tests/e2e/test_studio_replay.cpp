@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "core/session/session.h"
@@ -426,6 +427,23 @@ TEST(StudioReplay, TheClassVerbSwitchesTheClassShown) {
     EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">{} 2>&1", d / "log.txt"), d.path()), 0) << read_file(d / "log.txt");
     EXPECT_NE(read_file(d / "log.txt").find(expected), std::string::npos) << read_file(d / "log.txt");
   }
+  // The scene in view stays in view across the switch, although the shadow class has no rock in s1 and the
+  // scenes are listed in another order (s0 sorts first by IPD for rocks, s2 for shadows).
+  test::write_text(d / "study/real/labels/s0.txt", "0 0.3 0.3 0.1 0.1\n0 0.7 0.3 0.1 0.1\n0 0.5 0.7 0.1 0.1\n");
+  test::write_text(d / "study/synth/labels/s0.txt", "0 0.3 0.3 0.1 0.1\n0 0.7 0.3 0.1 0.1\n0 0.5 0.7 0.1 0.1\n");
+  test::write_text(d / "study/real/labels/s2.txt", "1 0.3 0.3 0.1 0.1\n1 0.7 0.3 0.1 0.1\n1 0.5 0.7 0.1 0.1\n");
+  test::write_text(d / "study/synth/labels/s2.txt", "1 0.3 0.3 0.1 0.1\n1 0.7 0.3 0.1 0.1\n1 0.5 0.7 0.1 0.1\n");
+  for (const char* domain : {"real", "synth"})
+    for (const char* stem : {"s0", "s2"})
+      test::write_text(d / (std::string("study/") + domain + "/predictions/det/" + stem + ".txt"), "");
+  test::write_text(d / "stay.txt", fmt::format("scene s2\nwait 3\nstate {0}/a.json\nclass shadow\nwait 3\nstate "
+                                               "{0}/b.json\nclass rock\nwait 3\nstate {0}/c.json\n",
+                                               d.path()));
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d / "study", d / "stay.txt");
+  EXPECT_EQ(run_in_xvfb(cmd, fmt::format(">{} 2>&1", d / "log.txt"), d.path()), 0) << read_file(d / "log.txt");
+  for (const char* state : {"a.json", "b.json", "c.json"})
+    EXPECT_EQ(nlohmann::json::parse(read_file(d / state))["scene"], "s2") << state << ": " << read_file(d / state);
 }
 }  // namespace
 }  // namespace ipd
