@@ -5,12 +5,14 @@
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <string_view>
 #include <type_traits>
@@ -305,27 +307,35 @@ struct StudyCache::Contents {
 };
 
 namespace {
+// A file's bytes, not zero-filled first: the parsed-study cache of a 10,000-scene study is tens of megabytes read
+// on every warm run.
+struct FileBytes {
+  std::unique_ptr<char[]> data;
+  size_t size = 0;
+};
+
 // Reads the open file `fd` whole and closes it; false when it can't be read. Read, not mapped: a file shortened
 // meanwhile reads short (and is then "truncated"), never a crash.
-bool read_whole_file(int fd, const std::function<void(const char*)>& hook, std::string* file) {
+bool read_whole_file(int fd, const std::function<void(const char*)>& hook, FileBytes* file) {
   struct stat st {};
   if (::fstat(fd, &st) != 0) {
     ::close(fd);
     return false;
   }
   if (hook) hook("opened");
-  file->resize(static_cast<size_t>(st.st_size));
+  const size_t want = static_cast<size_t>(st.st_size);
+  file->data.reset(new char[want > 0 ? want : 1]);
   size_t done = 0;
   bool read_error = false;
-  while (done < file->size()) {
-    const ssize_t n = ::read(fd, file->data() + done, file->size() - done);
+  while (done < want) {
+    const ssize_t n = ::read(fd, file->data.get() + done, want - done);
     if (n < 0 && errno == EINTR) continue;
     read_error = n < 0;
     if (n <= 0) break;
     done += static_cast<size_t>(n);
   }
   ::close(fd);
-  file->resize(done);
+  file->size = done;
   return !read_error;
 }
 }  // namespace
@@ -334,7 +344,7 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
     : path_(std::move(path)), root_(study_root), contents_(std::make_unique<Contents>()) {
   stats_.state = "missing";
   if (path_.empty()) return;
-  std::string file;
+  FileBytes file;
   // Reached without following links (a study may bring a .ipd-cache whose entries point anywhere).
   const fs::path where(path_);
   const auto dir = CacheDir::open(where.parent_path().string(), false);
@@ -346,7 +356,7 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
     stats_.state = "unreadable";
     return;
   }
-  const std::string_view bytes(file);
+  const std::string_view bytes(file.data.get(), file.size);
   try {
     if (bytes.size() < kHeaderBytes || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
       throw std::runtime_error("not a parsed-study cache");
@@ -417,30 +427,32 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
     }
   }
   std::atomic<int> reused{0}, parsed{0}, reused_gt{0};
-  StudyLabels labels =
-      ipd::load_labels(study, progress,
-                       [&](const std::string& domain, const std::string& model, const std::string& stem,
-                           const std::string& path, LabelFile* out) {
-                         const std::string key = entry_key(domain, model, stem);
-                         const auto folder = folders.find(domain + '\n' + model);
-                         const bool open = folder != folders.end() && folder->second;
-                         const FileStamp now = open ? stamp_at(*folder->second, stem + ".txt") : kNeverReused;
-                         {
-                           std::lock_guard<std::mutex> l(c.mu);
-                           c.stamps[key] = now;
-                         }
-                         // Entries are only read here, each by one job: no lock needed to take one.
-                         const auto it = c.filters_match && open ? c.labels.find(key) : c.labels.end();
-                         if (it == c.labels.end() || !(it->second.stamp == now) || it->second.file.path != path) {
-                           ++parsed;
-                           return false;
-                         }
-                         *out = std::move(it->second.file);
-                         it->second.stamp.size = -2;  // taken: a second use would find it empty
-                         ++reused;
-                         if (model.empty()) ++reused_gt;
-                         return true;
-                       });
+  c.stamps.reserve(std::max<size_t>(c.labels.size(), gt_files));  // a stamp a file: no rehash under the lock
+  StudyLabels labels = ipd::load_labels(
+      study, progress,
+      [&](const std::string& domain, const std::string& model, const std::string& stem, const std::string& path,
+          LabelFile* out) {
+        std::string key = entry_key(domain, model, stem);
+        const auto folder = folders.find(domain + '\n' + model);
+        const bool open = folder != folders.end() && folder->second;
+        const FileStamp now = open ? stamp_at(*folder->second, stem + ".txt") : kNeverReused;
+        // Entries are only read here, each by one job: no lock needed to take one.
+        const auto it = c.filters_match && open ? c.labels.find(key) : c.labels.end();
+        const bool reuse = it != c.labels.end() && it->second.stamp == now && it->second.file.path == path;
+        {
+          std::lock_guard<std::mutex> l(c.mu);
+          c.stamps.insert_or_assign(std::move(key), now);
+        }
+        if (!reuse) {
+          ++parsed;
+          return false;
+        }
+        *out = std::move(it->second.file);
+        it->second.stamp.size = -2;  // taken: a second use would find it empty
+        ++reused;
+        if (model.empty()) ++reused_gt;
+        return true;
+      });
   stats_.files_reused = reused;
   stats_.files_parsed = parsed;
   // The fingerprint hashes the GT files' bytes: when every one of them was read back unchanged (the stamps vouch
