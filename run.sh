@@ -31,7 +31,13 @@ jobs=$(nproc 2>/dev/null || echo 2)
 # project, a CI run after a local build) compiles only what changed. CCACHE_BASEDIR makes the paths in the
 # compiler commands relative to the clone, so clones at different paths share the cache.
 export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache >/dev/null
+# A first build compiles the product as a unity build (a batch of files per compiler run: their shared headers
+# parsed once, most of a cold build's time). An existing build directory keeps its own setting, so a developer
+# who turned it off (-DCMAKE_UNITY_BUILD=OFF, one file per run for quick rebuilds) keeps it off.
+unity=()
+[ -f build/CMakeCache.txt ] || unity=(-DCMAKE_UNITY_BUILD=ON)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache \
+  "${unity[@]}" >/dev/null
 cmake --build build -j"$jobs"
 
 if [ "${1:-}" = "test" ]; then
