@@ -56,8 +56,7 @@ Chosen resolve(const Args& args, bool needs_scene) {
   if (st.domains.size() < 2) throw StudyError(st.root + ": a figure needs two domains, this study has one");
   f.a = args.a.empty() ? st.domains[0].name : args.a;
   f.b = args.b.empty() ? (st.domains[0].name == f.a ? st.domains[1].name : st.domains[0].name) : args.b;
-  for (const auto& d : {f.a, f.b})
-    if (!st.domain(d)) throw StudyError(fmt::format("{}: no domain '{}' in this study", st.root, d));
+  for (const auto& d : {f.a, f.b}) st.require_domain(d);
   if (f.a == f.b) throw StudyError(fmt::format("{}: --a and --b are both '{}'", st.root, f.a));
   f.model = args.model;
   if (f.model.empty()) {

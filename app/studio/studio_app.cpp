@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "core/report/provenance.h"
 #include "core/util/atomic_file.h"
 #include "core/util/cache_signer.h"
 #include "ui/gui/scene_change.h"
@@ -410,7 +411,10 @@ int StudioApp::print_stats() const {
                                p.cached, snap_ ? snap_->summaries->size() * snap_->session->domain_pairs().size() : 0,
                                p.study_cache.state, p.study_cache.files_reused, p.study_cache.files_parsed));
   if (!o_.screenshot.empty()) fmt::print("{}\n", o_.screenshot);
-  if (snap_) fmt::print(stderr, "class: {}\n", class_statement(snap_->session->labels()));
+  // The class shown, when the study names one (as figures and ipd table say it); nothing for an unnamed class.
+  if (snap_)
+    if (const std::string cls = provenance_class(snap_->session->labels()); !cls.empty())
+      fmt::print(stderr, "class: {}\n", cls);
   // What the Problems window lists, for scripted runs to see (as `ipd table` prints its warnings).
   for (const Problem& p : problems_) fmt::print(stderr, "warning: {}\n", p.to_string());
   // Scripted runs (--screenshot, --replay) exit 1 on a study that can't be opened: say why on stderr too.

@@ -31,10 +31,10 @@ void load_font() {
   const std::string font = ui::default_font_file();
   std::error_code ec;
   // Latin-1 plus the typography core labels use: Δ, thin space and dashes (U+2009..2027: en dash in
-  // ranges), superscript digits (footnote marks past ³), minus, ≤ ≥. ImGui's default ranges stop at U+00FF
-  // and draw the rest as '?'.
-  static const ImWchar kRanges[] = {0x0020, 0x00FF, 0x0394, 0x0394, 0x2009, 0x2027, 0x2070,
-                                    0x2079, 0x2212, 0x2212, 0x2264, 0x2265, 0};
+  // ranges), superscript digits (footnote marks past ³), minus, ≈ (the Rank window's "≈ best"), ≤ ≥. ImGui's default
+  // ranges stop at U+00FF and draw the rest as '?'.
+  static const ImWchar kRanges[] = {0x0020, 0x00FF, 0x0394, 0x0394, 0x2009, 0x2027, 0x2070, 0x2079,
+                                    0x2212, 0x2212, 0x2248, 0x2248, 0x2264, 0x2265, 0};
   if (fs::exists(font, ec) && ImGui::GetIO().Fonts->AddFontFromFileTTF(font.c_str(), 15.0f, nullptr, kRanges)) return;
   ImGui::GetIO().Fonts->AddFontDefault();
 }

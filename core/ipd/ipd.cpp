@@ -3,6 +3,7 @@
 #include "core/ipd/study_pipeline.h"
 #include "core/registration/registration_cache.h"
 #include "core/util/nested_lookup.h"
+#include "core/util/number_text.h"
 #include "core/util/parallel.h"
 
 #include <fmt/format.h>
@@ -214,9 +215,13 @@ std::vector<ModelInfo> chosen_models(const Study& study, const std::vector<std::
   for (const auto& m : study.models)
     if (wanted.empty() || std::count(wanted.begin(), wanted.end(), m.name)) models.push_back(m);
   for (const auto& want : wanted) {
-    if (std::none_of(models.begin(), models.end(), [&](const auto& m) { return m.name == want; }))
-      throw StudyError(fmt::format("{}: no model '{}' (no <domain>/predictions/{}/ directory and not in study.yaml)",
-                                   study.root, want, want));
+    if (std::none_of(models.begin(), models.end(), [&](const auto& m) { return m.name == want; })) {
+      std::string names;
+      for (const auto& m : study.models) names += (names.empty() ? "" : ", ") + quoted_for_message(m.name);
+      throw StudyError(fmt::format(
+          "{}: no model '{}' (no <domain>/predictions/{}/ directory and not in study.yaml; the study's models: {})",
+          study.root, quoted_for_message(want), quoted_for_message(want), names.empty() ? "none" : names));
+    }
   }
   if (models.empty()) throw StudyError(study.root + ": no models (expected <domain>/predictions/<model>/ directories)");
   return models;
@@ -278,10 +283,8 @@ void TableOptions::check() const {
 CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& options) {
   options.check();
   const Study& study = labels.study;
-  for (const auto& d : options.domains)
-    if (!study.domain(d)) throw StudyError(fmt::format("{}: no domain '{}' in this study", study.root, d));
-  if (!options.only_pairs_with.empty() && !study.domain(options.only_pairs_with))
-    throw StudyError(fmt::format("{}: no domain '{}' in this study", study.root, options.only_pairs_with));
+  for (const auto& d : options.domains) study.require_domain(d);
+  if (!options.only_pairs_with.empty()) study.require_domain(options.only_pairs_with);
   CrossTable t;
   t.models = chosen_models(study, options.models);
   t.columns = domain_pairs(study, options.domains);

@@ -12,18 +12,6 @@ namespace ipd {
 
 namespace {
 
-std::string domain_list(const Study& study) {
-  std::string out;
-  for (const auto& d : study.domains) out += (out.empty() ? "" : ", ") + quoted_for_message(d.name);
-  return out;
-}
-
-void require_domain(const Study& study, const std::string& name, const char* role) {
-  if (!study.domain(name))
-    throw StudyError(fmt::format("{}: no domain '{}' in this study ({}; the study's domains: {})", study.root,
-                                 quoted_for_message(name), role, domain_list(study)));
-}
-
 // Why a candidate's cell has no IPD to rank; "" when it has one.
 std::string unranked_reason(const TableCell& cell, const std::string& ref, const std::string& candidate) {
   if (cell.missing_predictions) return cell.no_value_reason;  // "no predictions of det-real for hapke"
@@ -43,9 +31,9 @@ RankDomains resolve_rank_domains(const Study& study, const std::string& ref,
                                  const std::vector<std::string>& candidates) {
   RankDomains out;
   out.ref = ref.empty() && !study.domains.empty() ? study.domains.front().name : ref;
-  require_domain(study, out.ref, "--ref");
+  study.require_domain(out.ref, "--ref");
   for (const std::string& c : candidates) {
-    require_domain(study, c, "--candidates");
+    study.require_domain(c, "--candidates");
     if (c == out.ref)
       throw StudyError(fmt::format("{}: '{}' is the reference (--ref) and cannot also be a candidate", study.root,
                                    quoted_for_message(c)));

@@ -72,7 +72,7 @@ struct MeanNearestScorer {
     return std::isfinite(mean) ? -mean : -INFINITY;
   }
   // The paper does no local optimisation.
-  bool worth_refining(const TriplePair&, const Affine2&, double, double) const { return false; }
+  bool confirm_or_pick_for_refinement(const TriplePair&, const Affine2&, double, double) const { return false; }
   void refine(const TriplePair&, Affine2*, double*) const {}
   // Every centre lands exactly on one, and so does a distinct rival's (a symmetric layout): nothing more can
   // change the answer or its confidence 0. An exact fit alone is no reason to stop: its mirror may fit as

@@ -6,7 +6,7 @@
 //   Sampler:   bool next(Sample*)                      false when it has nothing more to propose
 //   Estimator: void estimate(const Sample&, std::vector<Model>*)
 //   Scorer:    double score(const Model&)
-//              bool worth_refining(const Sample&, const Model&, double score, double best)
+//              bool confirm_or_pick_for_refinement(const Sample&, const Model&, double score, double best)
 //                                                      whether to locally optimise this model
 //              void refine(const Sample&, Model*, double* score)  local optimisation (may do nothing)
 //              bool cannot_be_beaten(double score)     stop now: the best can't be (or won't be) improved
@@ -139,10 +139,10 @@ RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, 
       // often scores below a wrong one until it is refined (LO-RANSAC).
       bool refined = false;
       if constexpr (std::is_same_v<std::decay_t<Observer>, NoObserver>) {
-        if (scorer.worth_refining(sample, m, s, r.best_score)) scorer.refine(sample, &m, &s);
+        if (scorer.confirm_or_pick_for_refinement(sample, m, s, r.best_score)) scorer.refine(sample, &m, &s);
       } else {
         const Model raw = m;
-        if (scorer.worth_refining(sample, m, s, r.best_score)) {
+        if (scorer.confirm_or_pick_for_refinement(sample, m, s, r.best_score)) {
           scorer.refine(sample, &m, &s);
           refined = true;
         }

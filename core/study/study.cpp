@@ -288,6 +288,18 @@ const Domain* Study::domain(const std::string& name) const {
   return nullptr;
 }
 
+const Domain& Study::require_domain(const std::string& name, const char* role) const {
+  if (const Domain* d = domain(name)) return *d;
+  throw StudyError(fmt::format("{}: no domain '{}' in this study ({}the study's domains: {})", root,
+                               quoted_for_message(name), role ? std::string(role) + "; " : "", domain_names()));
+}
+
+std::string Study::domain_names() const {
+  std::string out;
+  for (const auto& d : domains) out += (out.empty() ? "" : ", ") + quoted_for_message(d.name);
+  return out;
+}
+
 std::string Study::label_path(const std::string& d, const std::string& stem) const {
   return (fs::path(root) / d / "labels" / (stem + ".txt")).string();
 }

@@ -66,6 +66,10 @@ struct Study {
   StudyClasses classes;           // the class names and each label set's numbering (study_classes.h)
 
   const Domain* domain(const std::string& name) const;
+  // The domain `name`, or a StudyError that lists the study's domains: "ROOT: no domain 'reel' in this study
+  // (ROLE; the study's domains: real, principled)", ROLE (the option that named it) left out when null.
+  const Domain& require_domain(const std::string& name, const char* role = nullptr) const;
+  std::string domain_names() const;  // "real, principled, hapke" (each quoted when it needs to be)
   std::string label_path(const std::string& domain, const std::string& stem) const;
   std::string prediction_path(const std::string& domain, const std::string& model, const std::string& stem) const;
   std::string pairs_dir(const std::string& a, const std::string& b) const;  // in the A__B order given

@@ -29,12 +29,6 @@ std::vector<fs::directory_entry> entries(const fs::path& dir, const char* holds,
   return list;
 }
 
-std::string domain_list(const Study& s) {
-  std::string names;
-  for (const auto& d : s.domains) names += (names.empty() ? "" : ", ") + d.name;
-  return names;
-}
-
 // "A__B" -> the two domains when both are the study's (and differ); otherwise the reason it is not used.
 std::string domain_pair_problem(const Study& s, const std::string& name, const Domain** a, const Domain** b) {
   const size_t cut = name.find("__");
@@ -42,7 +36,7 @@ std::string domain_pair_problem(const Study& s, const std::string& name, const D
   *a = s.domain(name.substr(0, cut));
   *b = s.domain(name.substr(cut + 2));
   if (*a && *b && *a != *b) return "";
-  return fmt::format("names no domain pair of this study (domains: {})", domain_list(s));
+  return fmt::format("names no domain pair of this study (domains: {})", s.domain_names());
 }
 
 void check_pairs_folder(const Study& s, const fs::directory_entry& e, std::vector<Problem>* out) {

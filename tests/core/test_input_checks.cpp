@@ -20,7 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void write_tiny_study(const test::TempDir& d) {
+void write_tiny_study_input_checks(const test::TempDir& d) {
   test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
   test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
   test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
@@ -70,7 +70,7 @@ TEST(NumberText, TheWholeTextIsTheNumber) {
 // ambiguous which one counts. Only lower-case .txt is read; any other case is an error naming the file.
 TEST(InputChecks, LabelFilesInAnotherCaseAreRefusedByName) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_input_checks(d);
   test::write_text(d / "real/labels/s2.TXT", "0 0.5 0.5 0.1 0.1\n");
   EXPECT_EQ(test::open_study_error(d.path()),
             d / "real/labels/s2.TXT" + ": only lower-case .txt label files are read; rename it to s2.txt");
@@ -122,7 +122,7 @@ TEST(InputChecks, DuplicateJsonKeysAreAnErrorNamingFileAndKey) {
   EXPECT_EQ(message("{\"a\": {\"x\": 1}, \"b\": {\"x\": 2}, \"c\": [{\"x\": 3}, {\"x\": 4}]}"), "no error");
   // Through the study, as ipd table reads a pairs file.
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_input_checks(d);
   test::write_text(d / "pairs/real__synth/s1.json", "{\"pairs\": [[0, 1]], \"excluded_a\": [], \"pairs\": [[1, 0]]}");
   const auto r = test::run_ipd("table " + d.path() + " --bootstrap 0");
   EXPECT_EQ(r.exit_code, 1);
@@ -147,7 +147,7 @@ TEST(InputChecks, Utf8IsCheckedStrictly) {
 // 0xF6"; now the error names the file to rename, and the text output still works.
 TEST(InputChecks, NamesThatAreNotUtf8AreRefusedInJsonNamingTheFile) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_input_checks(d);
   test::write_text(d / "study.yaml", "image_size: [1000, 1000]\n");  // square pictures, said so
   const std::string latin1 = "Ger\xF6lle";
   for (const char* dom : {"real", "synth"}) {
@@ -199,7 +199,7 @@ TEST(InputChecks, CsvFieldsAreQuotedAsRfc4180) {
 // A model named "det,v2" shifted every column of the table's CSV by one.
 TEST(InputChecks, TableCsvQuotesNamesWithCommas) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_input_checks(d);
   fs::rename(d / "real/predictions/det", d / "real/predictions/det,v2");
   fs::rename(d / "synth/predictions/det", d / "synth/predictions/det,v2");
   test::write_text(d / "study.yaml", "models: {'det,v2': {trained_on: real}}\n");
@@ -224,7 +224,7 @@ TEST(InputChecks, TableCsvQuotesNamesWithCommas) {
 // theirs (RegistrationOptions::validate), named after the option given.
 TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_input_checks(d);
   const std::string pair = " " + d / "real/labels/s1.txt" + " " + d / "synth/labels/s1.txt";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"--max-rotation -5", "--max-rotation: max_rotation_deg must be in (0, 180], got -5"},
@@ -286,7 +286,7 @@ TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
 // intervals than the same seed in study.yaml.
 TEST(InputChecks, TheLargestSeedIsTheSameSeedOnTheCommandLineAndInStudyYaml) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_input_checks(d);
   const auto given = test::run_ipd("table --format json --bootstrap 10 --seed 18446744073709551615 " + d.path());
   EXPECT_EQ(given.exit_code, 0) << given.err;
   EXPECT_NE(given.out.find("\"seed\": 18446744073709551615"), std::string::npos) << given.out;
@@ -300,7 +300,7 @@ TEST(InputChecks, TheLargestSeedIsTheSameSeedOnTheCommandLineAndInStudyYaml) {
 // be drawn.
 TEST(InputChecks, BreakdownBinsHaveOneRangePrintedOrDrawn) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_input_checks(d);
   for (const std::string& command : std::vector<std::string>{"breakdown", "figure breakdown --out " + d / "b.svg"}) {
     const auto r = test::run_ipd(command + " --bootstrap 0 --bins 21 " + d.path());
     EXPECT_EQ(r.exit_code, 2) << command;

@@ -29,7 +29,7 @@ namespace ipd {
 namespace {
 
 // The tiny study of test_ipd.cpp: pairs (0,1), (1,0); IPD 1/2.
-void write_tiny_study(const test::TempDir& d) {
+void write_tiny_study_reliability(const test::TempDir& d) {
   test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
   test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
   test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
@@ -39,7 +39,7 @@ void write_tiny_study(const test::TempDir& d) {
 // Runs `ipd ARGS` with a time limit (a hang is a failure, exit 124, not a stuck suite).
 test::CommandResult run_ipd_limited(const std::string& args) { return test::run_ipd_with_timeout(args, 20); }
 
-std::string slurp(const std::string& path) {
+std::string slurp_reliability(const std::string& path) {
   std::ifstream in(path);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
@@ -49,7 +49,7 @@ bool contains(const std::string& hay, const std::string& needle) { return hay.fi
 // --- a pairs file nested 70,000 deep is an error naming the file, not a stack overflow (no recursive dump())
 TEST(Reliability, DeeplyNestedPairsJsonIsAnErrorNotACrash) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_reliability(d);
   test::write_text(d / "pairs/real__synth/s1.json",
                    "{\"pairs\": [" + std::string(70000, '[') + std::string(70000, ']') + "]}");
   const auto r = run_ipd_limited("table " + d.path());
@@ -62,7 +62,7 @@ TEST(Reliability, DeeplyNestedPairsJsonIsAnErrorNotACrash) {
 TEST(Reliability, DanglingOrLoopingLabelLinksAreErrorsNotEmptyImages) {
   for (const bool loop : {false, true}) {
     test::TempDir d;
-    write_tiny_study(d);
+    write_tiny_study_reliability(d);
     const std::string label = d / "real/labels/s1.txt";
     fs::remove(label);
     if (loop)
@@ -82,13 +82,13 @@ TEST(Reliability, DanglingOrLoopingLabelLinksAreErrorsNotEmptyImages) {
 TEST(Reliability, DanglingStudyYamlPairsFileOrLoopingDirectoriesAreErrors) {
   {
     test::TempDir d;
-    write_tiny_study(d);
+    write_tiny_study_reliability(d);
     fs::create_symlink(d / "gone.yaml", d / "study.yaml");
     EXPECT_THROW(open_study(d.path()), StudyError);
   }
   {
     test::TempDir d;
-    write_tiny_study(d);
+    write_tiny_study_reliability(d);
     fs::create_directories(d / "pairs/real__synth");
     fs::create_symlink(d / "gone.json", d / "pairs/real__synth/s1.json");
     const auto r = run_ipd_limited("table " + d.path());
@@ -100,7 +100,7 @@ TEST(Reliability, DanglingStudyYamlPairsFileOrLoopingDirectoriesAreErrors) {
   }
   {  // a predictions directory that can't be examined is not "no such model"
     test::TempDir d;
-    write_tiny_study(d);
+    write_tiny_study_reliability(d);
     fs::create_symlink("loop", d / "synth/predictions/loop");
     const auto r = run_ipd_limited("table " + d.path());
     EXPECT_EQ(r.exit_code, 1) << r.out;
@@ -110,7 +110,7 @@ TEST(Reliability, DanglingStudyYamlPairsFileOrLoopingDirectoriesAreErrors) {
   }
   {  // nor is a labels directory: the domain would vanish
     test::TempDir d;
-    write_tiny_study(d);
+    write_tiny_study_reliability(d);
     test::write_text(d / "third/images/readme.txt", "");
     fs::create_symlink("labels", d / "third/labels");
     EXPECT_THROW(open_study(d.path()), StudyError);
@@ -119,7 +119,7 @@ TEST(Reliability, DanglingStudyYamlPairsFileOrLoopingDirectoriesAreErrors) {
 
 TEST(Reliability, UnreadableLabelsDirectoryIsAnError) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_reliability(d);
   // Root ignores permissions: run ipd as nobody then (setpriv, util-linux), with the study readable by all.
   std::string as_user;
   if (::geteuid() == 0) {
@@ -136,7 +136,7 @@ TEST(Reliability, UnreadableLabelsDirectoryIsAnError) {
 // --- only regular files are read: a FIFO does not block, /dev/zero is refused with the file's name
 TEST(Reliability, OnlyRegularFilesAreRead) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_reliability(d);
   fs::remove(d / "real/labels/s1.txt");
   ASSERT_EQ(::mkfifo((d / "real/labels/s1.txt").c_str(), 0644), 0);
   auto r = run_ipd_limited("table " + d.path());
@@ -154,7 +154,7 @@ TEST(Reliability, OnlyRegularFilesAreRead) {
 // --- pairs JSON indices are range-checked integers, and every error (1e309 too) names the file
 TEST(Reliability, PairsJsonIndicesAreRangeCheckedAndEveryErrorNamesTheFile) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_reliability(d);
   const std::string file = d / "pairs/real__synth/s1.json";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"{\"pairs\": [[4294967296, 0]]}", ": pair 1 [4294967296, 0] is out of range: the images have 2 and 2 rocks"},
@@ -184,24 +184,25 @@ TEST(Reliability, PairsJsonIndicesAreRangeCheckedAndEveryErrorNamesTheFile) {
 // The user's own link, outside the study (below it a link is refused: OutputFiles.*).
 TEST(Reliability, OutputThroughASymlinkReplacesTheTarget) {
   test::TempDir d, elsewhere, mine;
-  write_tiny_study(d);
+  write_tiny_study_reliability(d);
   test::write_text(elsewhere / "table.csv", "old\n");
   fs::create_symlink(elsewhere / "table.csv", mine / "link.csv");
   const auto r = run_ipd_limited("table " + d.path() + " --format csv --out " + mine / "link.csv");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::is_symlink(mine / "link.csv"));
-  EXPECT_TRUE(contains(slurp(elsewhere / "table.csv"), "0.5")) << slurp(elsewhere / "table.csv");
+  EXPECT_TRUE(contains(slurp_reliability(elsewhere / "table.csv"), "0.5"))
+      << slurp_reliability(elsewhere / "table.csv");
   // A relative link, and a link to a link.
   fs::create_symlink("link.csv", mine / "link2.csv");
   ASSERT_EQ(run_ipd_limited("table " + d.path() + " --format json --out " + mine / "link2.csv").exit_code, 0);
   EXPECT_TRUE(fs::is_symlink(mine / "link2.csv"));
-  EXPECT_EQ(slurp(elsewhere / "table.csv").rfind("{", 0), 0u);
+  EXPECT_EQ(slurp_reliability(elsewhere / "table.csv").rfind("{", 0), 0u);
   // The same link planted in the study: refused, the target untouched.
   fs::create_symlink(elsewhere / "table.csv", d / "link.csv");
   const auto planted = run_ipd_limited("table " + d.path() + " --format csv --out " + d / "link.csv");
   EXPECT_EQ(planted.exit_code, 1);
   EXPECT_TRUE(contains(planted.err, "link.csv: is a symbolic link; saving through it is refused")) << planted.err;
-  EXPECT_EQ(slurp(elsewhere / "table.csv").rfind("{", 0), 0u);
+  EXPECT_EQ(slurp_reliability(elsewhere / "table.csv").rfind("{", 0), 0u);
 }
 
 // --- label files: a byte order mark is read, huge tokens are shortened in messages, bad lines are counted
@@ -233,7 +234,7 @@ TEST(Reliability, ManyBadLinesListFiftyAndCountTheRest) {
   EXPECT_EQ(f.errors[49].line, 99);
   EXPECT_EQ(f.errors.back().to_string(), "a.txt: 950 more malformed line(s) not listed");
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_reliability(d);
   test::write_text(d / "real/labels/s1.txt", text);
   auto r = run_ipd_limited("table " + d.path());
   EXPECT_EQ(r.exit_code, 1);
@@ -259,7 +260,7 @@ TEST(Reliability, DuplicateKeysAndExtraDocumentsInStudyYaml) {
 
 TEST(Reliability, PairsInBothNameOrdersWarnAndTheFirstCounts) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_reliability(d);
   test::write_text(d / "study.yaml", "image_size: [1000, 1000]\n");            // square pictures, said so
   test::write_text(d / "pairs/real__synth/s1.json", "{\"pairs\": [[0, 1]]}");  // IPD 2/3
   test::write_text(d / "pairs/synth__real/s1.json", "{\"pairs\": [[0, 0]]}");  // would be IPD 1/3

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 namespace ipd {
 namespace {
 
-int run(const std::string& cmd) {
+int run_studio_replay(const std::string& cmd) {
   const int status = std::system(cmd.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
@@ -30,8 +30,8 @@ int run(const std::string& cmd) {
 int run_in_xvfb(const std::string& command, const std::string& redirections, const fs::path& dir) {
   const fs::path status_file = dir / "exit-status.txt";
   fs::remove(status_file);
-  const int xvfb = run(fmt::format("xvfb-run -a -s '-screen 0 1280x800x24' sh -c '{}; echo $? >{}' {}", command,
-                                   status_file.string(), redirections));
+  const int xvfb = run_studio_replay(fmt::format("xvfb-run -a -s '-screen 0 1280x800x24' sh -c '{}; echo $? >{}' {}",
+                                                 command, status_file.string(), redirections));
   if (!fs::exists(status_file)) return xvfb;
   return std::stoi(read_file(status_file));
 }
@@ -86,46 +86,46 @@ TEST(StudioReplay, BadActionsNameTheFileAndLine) {
   test::TempDir d;
   test::write_text(d / "actions.txt", "wait 2\npair 1\n");
   const std::string cmd = fmt::format("{} --replay {} >{} 2>&1", studio, d / "actions.txt", d / "log.txt");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" + ":2: 'pair' takes two rock numbers (left, right), got 1 argument(s)\n");
   test::write_text(d / "actions.txt", "export histogram x.pdf\n");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" +
                 ":1: 'export': expected a figure kind (pairs, registration, table, compare, distribution, breakdown, "
                 "breakdown-size, breakdown-region, breakdown-confidence or gallery), got 'histogram'\n");
   // A number is the whole word: "5\0" (a zero-filled block) is not 5, and it must fit the studio's int.
   test::write_text(d / "actions.txt", std::string("wait 5\0\n", 8));
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" + ":1: 'wait': expected a number >= 1, got '5\\x00'\n");
   test::write_text(d / "actions.txt", "wait 1\nwait 99999999999\n");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" + ":2: 'wait': expected a number >= 1, got '99999999999'\n");
   test::write_text(d / "actions.txt", std::string("conf 0.5\0\n", 10));
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" + ":1: 'conf': expected a threshold in [0, 1], got '0.5\\x00'\n");
   // The methods come from the one table (registration_methods()), the default first.
   test::write_text(d / "actions.txt", "rerun cpd\nrerun ransac\n");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" + ":2: 'rerun': expected consensus, paper or cpd, got 'ransac'\n");
   // One domain against itself has no gap: the replay says so instead of keeping the domains on screen.
   test::write_text(d / "actions.txt", "domains real real\n");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" + ":1: 'domains': expected two different domains, got 'real' twice\n");
   test::write_text(d / "actions.txt", "check 2\n");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" +
                 ":1: 'check' takes two rock numbers of a pair (left, right), or nothing for the selected pair, got 1 "
                 "argument(s)\n");
   test::write_text(d / "actions.txt", "focus yes\n");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"), "error: " + d / "actions.txt" + ":1: 'focus': expected on or off, got 'yes'\n");
 }
 
@@ -374,28 +374,28 @@ TEST(StudioReplay, RockViewActionsNameTheirArguments) {
   test::TempDir d;
   test::write_text(d / "actions.txt", "rocks perf-a width\n");
   const std::string cmd = fmt::format("{} --replay {} >{} 2>&1", studio, d / "actions.txt", d / "log.txt");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" +
                 ":1: 'rocks': expected an axis (perf-a, perf-b, diff, size, x, y, conf-a or conf-b), got 'width'\n");
   test::write_text(d / "actions.txt", "select 0 0 1 one\n");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"), "error: " + d / "actions.txt" + ":1: 'select': expected a number, got 'one'\n");
   test::write_text(d / "actions.txt", "gallery sort worst\n");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" +
                 ":1: 'gallery': expected a sort key (diff, perf-a, perf-b or size), got 'worst'\n");
   test::write_text(d / "actions.txt", "gallery page 0\n");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" + ":1: 'gallery': expected a page number >= 1, got '0'\n");
   test::write_text(d / "actions.txt", "gallery page 2 page 3\n");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"),
             "error: " + d / "actions.txt" + ":1: 'gallery': expected 'page N' or 'sort KEY' (each once), got 'page'\n");
   test::write_text(d / "actions.txt", "gallery page\n");
-  EXPECT_EQ(run(cmd), 2);
+  EXPECT_EQ(run_studio_replay(cmd), 2);
   EXPECT_EQ(read_file(d / "log.txt"), "error: " + d / "actions.txt" +
                                           ":1: 'gallery' takes [page N] [sort diff|perf-a|perf-b|size], got 1 "
                                           "argument(s)\n");

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ui/figures/figure_charts.h"
 #include "ui/figures/figure_sweep.h"
 #include "ui/gui/studio_layout.h"
 
@@ -38,17 +39,26 @@ void draw_sweep(const Session& s, const SweepChart& chart, const std::string& re
   for (const SweepPoint& p : chart.points) y1 = std::max({y1, p.ipd, std::isnan(p.high) ? p.ipd : p.high});
   if (x1 <= x0) x1 = x0 + 1;
   if (y1 <= 0) y1 = 1;
+  // Round ticks, as the sweep figure has them: the IPD axis ends on its last tick, the points between the ends
+  // of the parameter axis are read against its own.
+  const std::vector<double> y_ticks = nice_ticks(0, y1, 4), x_ticks = nice_ticks(x0, x1, 5);
+  if (!y_ticks.empty()) y1 = std::max(y1, y_ticks.back());
   auto sx = [&](double x) { return left + float((x - x0) / (x1 - x0)) * (right - left); };
   auto sy = [&](double y) { return bottom - float((y - y0) / (y1 - y0)) * (bottom - top); };
   const ImU32 axis = IM_COL32(160, 160, 170, 255), text = IM_COL32(220, 220, 220, 255);
   dl->AddLine({left, top}, {left, bottom}, axis);
   dl->AddLine({left, bottom}, {right, bottom}, axis);
-  for (double y : {0.0, y1}) {
-    const std::string t = fmt::format("{:.3f}", y);
+  const double y_step = y_ticks.size() > 1 ? y_ticks[1] - y_ticks[0] : y1;
+  for (double y : y_ticks) {
+    const std::string t = tick_text(y, y_step);
+    dl->AddLine({left - 3, sy(y)}, {left, sy(y)}, axis);
     dl->AddText({p0.x, sy(y) - 0.5f * line}, text, t.c_str());
   }
-  for (double x : {x0, x1}) {
-    const std::string t = fmt::format("{:g}", x);
+  const double x_step = x_ticks.size() > 1 ? x_ticks[1] - x_ticks[0] : x1 - x0;
+  for (double x : x_ticks) {
+    if (x < x0 - 1e-9 * (x1 - x0) || x > x1 + 1e-9 * (x1 - x0)) continue;  // the axis spans the settings only
+    const std::string t = tick_text(x, x_step);
+    dl->AddLine({sx(x), bottom}, {sx(x), bottom + 3}, axis);
     dl->AddText({std::clamp(sx(x) - 0.5f * ImGui::CalcTextSize(t.c_str()).x, p0.x, right - 20), bottom + 2}, text,
                 t.c_str());
   }
@@ -118,7 +128,7 @@ std::vector<std::string> rank_row_cells(const RankedCandidate& r) {
           vs_best,
           p,
           r.rank == 1       ? "best"
-          : r.in_best_group ? "like best"
+          : r.in_best_group ? "\u2248 best"
                             : ""};
 }
 
@@ -165,7 +175,7 @@ void draw_rank_window(const StudyView& v, const SessionRanking* result, bool cur
                         {"pairs", "99,999", "rock pairs counted"},
                         {"vs best", "+0.0000 [0.000, 0.000]", "IPD minus the best's, paired interval"},
                         {"p Holm", "0.0000", holm.c_str()},
-                        {"group", "like best", "like best: not distinguishable from the best at the 0.05 level"}},
+                        {"group", "\u2248 best", "\u2248 best: not distinguishable from the best at the 0.05 level"}},
                        /*sortable=*/false);
     for (const RankedCandidate& r : k.ranked) {
       const std::vector<std::string> cells = rank_row_cells(r);

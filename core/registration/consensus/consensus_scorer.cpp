@@ -39,7 +39,8 @@ ConsensusScorer::ConsensusScorer(SupportMeasurer* support, int hypothesis_budget
       budget_(std::max(1, hypothesis_budget)),
       max_count_(static_cast<int>(std::min(support->a().size(), support->grid().size()))) {}
 
-bool ConsensusScorer::worth_refining(const GuidedHypothesis& h, const Affine2& m, double s, double best) {
+bool ConsensusScorer::confirm_or_pick_for_refinement(const GuidedHypothesis& h, const Affine2& m, double s,
+                                                     double best) {
   if (s < kTuning.min_refine_score) return false;
   if (deadline_ != nullptr && deadline_->passed()) return false;
   if (confirmations_.has_best() && confirmations_.agrees_with_best(m)) {

@@ -46,9 +46,10 @@ class ConsensusScorer {
   ConsensusScorer(SupportMeasurer* support, int hypothesis_budget, const Deadline* deadline = nullptr);
 
   double score(const Affine2& m) { return support_->score(m); }
-  // Worth a least-squares pass: close to the best so far (after its own refinement), or early on. A hypothesis
-  // that already agrees with the best one only confirms it (when it grew from another anchor).
-  bool worth_refining(const GuidedHypothesis& h, const Affine2& m, double s, double best);
+  // Acts on a scored hypothesis: one that agrees with the best so far is counted as confirming it (when it grew
+  // from another anchor) and is not refined; otherwise true when it is worth a least-squares pass (close to the
+  // best so far, after its own refinement, or early on).
+  bool confirm_or_pick_for_refinement(const GuidedHypothesis& h, const Affine2& m, double s, double best);
   // The local optimiser (improve()), then the bookkeeping of the best and its confirmations.
   void refine(const GuidedHypothesis& h, Affine2* m, double* s);
   bool cannot_be_beaten(double) const;

@@ -18,7 +18,7 @@ namespace {
 
 // Two rocks per side (listed in the other order in synth). det's confidences: real 0.9 (rock 0, exact) and
 // 0.4 (rock 1, IoU 1/3); synth 0.8 (synth rock 1 = real rock 0, IoU 1/3).
-void write_study(const test::TempDir& d, const std::string& yaml) {
+void write_study_no_predictions(const test::TempDir& d, const std::string& yaml) {
   test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
   test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
   test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
@@ -26,12 +26,14 @@ void write_study(const test::TempDir& d, const std::string& yaml) {
   test::write_text(d / "study.yaml", yaml + "image_size: [1000, 1000]\n");
 }
 
-CrossTable table_of(const std::string& root) { return compute_cross_table(load_labels(open_study(root)), {}); }
+CrossTable table_of_no_predictions(const std::string& root) {
+  return compute_cross_table(load_labels(open_study(root)), {});
+}
 
 TEST(NoPredictions, NeitherSideLeftIsNotANumber) {
   test::TempDir d;
-  write_study(d, "conf_threshold: 0.95\n");
-  CrossTable t = table_of(d.path());
+  write_study_no_predictions(d, "conf_threshold: 0.95\n");
+  CrossTable t = table_of_no_predictions(d.path());
   ASSERT_EQ(t.cells.size(), 1u);
   const TableCell& c = t.cells[0];
   EXPECT_TRUE(std::isnan(c.ipd));  // not 0.0000: every rock's value is 0 on both sides
@@ -82,10 +84,10 @@ TEST(NoPredictions, NeitherSideLeftIsNotANumber) {
 
 TEST(NoPredictions, CompareRefusesACellWithoutANumber) {
   test::TempDir d;
-  write_study(d, "conf_threshold: 0.95\n");
+  write_study_no_predictions(d, "conf_threshold: 0.95\n");
   test::write_text(d / "other/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
   test::write_text(d / "other/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.99\n");
-  const CrossTable t = table_of(d.path());
+  const CrossTable t = table_of_no_predictions(d.path());
   try {
     compare_renderers(t, "det", "real", "synth", "other", {});
     FAIL() << "compared two empty prediction sets";
@@ -105,9 +107,9 @@ TEST(NoPredictions, CompareRefusesACellWithoutANumber) {
 
 TEST(NoPredictions, OneSideWithoutPredictionsIsANumberAndAWarning) {
   test::TempDir d;
-  write_study(d, "conf_threshold: 0.85\n");
+  write_study_no_predictions(d, "conf_threshold: 0.85\n");
   // Only real's 0.9 is left: real rock 0 -> 1, real rock 1 -> 0, synth 0 and 0: (|1 - 0| + |0 - 0|) / 2.
-  const CrossTable t = table_of(d.path());
+  const CrossTable t = table_of_no_predictions(d.path());
   EXPECT_NEAR(t.cells[0].ipd, 0.5, 1e-12);
   EXPECT_EQ(t.cells[0].no_value_reason, "");
   ASSERT_EQ(t.warnings.size(), 1u);
@@ -118,11 +120,11 @@ TEST(NoPredictions, OneSideWithoutPredictionsIsANumberAndAWarning) {
 
 TEST(NoPredictions, PredictionsThatMissEveryRockAreANumber) {
   test::TempDir d;
-  write_study(d, "");
+  write_study_no_predictions(d, "");
   // Far from every rock: each performance value is 0, and 0 is the measured IPD (the detector misses alike).
   test::write_text(d / "real/predictions/det/s1.txt", "0 0.9 0.9 0.05 0.05 0.9\n");
   test::write_text(d / "synth/predictions/det/s1.txt", "0 0.9 0.1 0.05 0.05 0.9\n");
-  const CrossTable t = table_of(d.path());
+  const CrossTable t = table_of_no_predictions(d.path());
   EXPECT_EQ(t.cells[0].ipd, 0.0);
   EXPECT_EQ(t.cells[0].no_value_reason, "");
   EXPECT_TRUE(t.warnings.empty());
@@ -130,7 +132,7 @@ TEST(NoPredictions, PredictionsThatMissEveryRockAreANumber) {
 
 TEST(NoPredictions, TheSessionSaysWhyItsCellHasNoNumber) {
   test::TempDir d;
-  write_study(d, "");
+  write_study_no_predictions(d, "");
   Session s(load_labels(open_study(d.path())));
   EXPECT_NEAR(s.cell().ipd, 0.5, 1e-12);  // the tiny study worked by hand (test_ipd.cpp)
   s.set_conf_threshold(0.95);             // the slider: nothing is left on either side
@@ -154,7 +156,7 @@ TEST(NoPredictions, TheSessionSaysWhyItsCellHasNoNumber) {
 // every table, so its missing number is no problem to fix.
 TEST(NoPredictions, TheSessionListsOnlyCellsTheTableShows) {
   test::TempDir d;
-  write_study(d, "models: {det: {trained_on: real}}\n");
+  write_study_no_predictions(d, "models: {det: {trained_on: real}}\n");
   test::write_text(d / "other/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
   test::write_text(d / "other/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
   Session s(load_labels(open_study(d.path())));

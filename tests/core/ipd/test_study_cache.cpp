@@ -21,7 +21,7 @@ namespace ipd {
 namespace {
 
 // Two domains x 3 scenes of 6 rocks, one model; scene s2 of `synth` has a malformed line.
-void write_study(const test::TempDir& d) {
+void write_cache_study(const test::TempDir& d) {
   for (int k = 0; k < 3; ++k) {
     std::string real, synth;
     for (int r = 0; r < 6; ++r) {
@@ -74,7 +74,7 @@ Opened open_cached(const std::string& root) {
 
 TEST(StudyCache, ReopenReusesEveryFileAndReadsTheSame) {
   test::TempDir d;
-  write_study(d);
+  write_cache_study(d);
   const std::string fresh = dump(load_labels(open_study(d.path())));
   EXPECT_NE(fresh.find("s2.txt:7: "), std::string::npos) << fresh;  // the malformed line is reported
 
@@ -97,7 +97,7 @@ TEST(StudyCache, ReopenReusesEveryFileAndReadsTheSame) {
 // file reads short and is ignored; a mapped file would have crashed the program (SIGBUS) at the next access.
 TEST(StudyCache, ACacheShortenedWhileItIsReadIsIgnoredWithoutACrash) {
   test::TempDir d;
-  write_study(d);
+  write_cache_study(d);
   const std::string fresh = dump(load_labels(open_study(d.path())));
   open_cached(d.path());
   const std::string path = parsed_study_cache_path(d.path());
@@ -114,7 +114,7 @@ TEST(StudyCache, ACacheShortenedWhileItIsReadIsIgnoredWithoutACrash) {
 
 TEST(StudyCache, TruncatedOrFlippedCacheIsIgnoredAndRebuilt) {
   test::TempDir d;
-  write_study(d);
+  write_cache_study(d);
   const std::string fresh = dump(load_labels(open_study(d.path())));
   open_cached(d.path());
   const std::string path = parsed_study_cache_path(d.path());
@@ -148,7 +148,7 @@ TEST(StudyCache, TruncatedOrFlippedCacheIsIgnoredAndRebuilt) {
 // (signed by another key) is rebuilt, and what is served equals a fresh parse.
 TEST(StudyCache, AFileSignedElsewhereIsIgnoredAndRebuilt) {
   test::TempDir d;
-  write_study(d);
+  write_cache_study(d);
   const std::string fresh = dump(load_labels(open_study(d.path())));
   open_cached(d.path());
   const std::string path = parsed_study_cache_path(d.path());
@@ -183,7 +183,7 @@ TEST(StudyCache, AFileSignedElsewhereIsIgnoredAndRebuilt) {
 // 30,000 entry files cost more than registering again); another method's results are kept beside them.
 TEST(StudyCache, RegistrationsGoInTheOneFileAndAnotherMethodsAreKept) {
   test::TempDir d;
-  write_study(d);
+  write_cache_study(d);
   auto cached_with = [&](RegistrationMethod m) {
     const Study study = open_study(d.path());
     StudyCache cache(parsed_study_cache_path(study.root), study.root);
@@ -213,7 +213,7 @@ TEST(StudyCache, IdenticalLayoutsReadBackAndTheWarmRunRewritesNothing) {
   // Scene s0's layouts are the same boxes on both sides: registered without a search (its own stop reason).
   // That report must read back like any other, or the whole file would be ignored on every run.
   test::TempDir d;
-  write_study(d);
+  write_cache_study(d);
   test::write_text(d / "synth/labels/s0.txt", read_file(d / "real/labels/s0.txt"));
   auto run = [&](bool* written) {
     const Study study = open_study(d.path());
@@ -240,7 +240,7 @@ TEST(StudyCache, IdenticalLayoutsReadBackAndTheWarmRunRewritesNothing) {
 
 TEST(StudyCache, AChangedLabelFileIsParsedAgain) {
   test::TempDir d;
-  write_study(d);
+  write_cache_study(d);
   open_cached(d.path());
   // Same size, and the old modification time put back: the inode/ctime still tell.
   const std::string file = d / "real/labels/s1.txt";
@@ -272,7 +272,7 @@ TEST(StudyCache, AChangedLabelFileIsParsedAgain) {
 // no GT file came or went; otherwise it is the files' own again.
 TEST(StudyCache, TheLabelFingerprintIsReadBackOnlyWhileTheGroundTruthIsUnchanged) {
   test::TempDir d;
-  write_study(d);
+  write_cache_study(d);
   const std::string fresh = label_set_fingerprint(open_study(d.path()));
   EXPECT_EQ(fresh.size(), 12u);
   const Opened first = open_cached(d.path());
@@ -308,7 +308,7 @@ TEST(StudyCache, TheLabelFingerprintIsReadBackOnlyWhileTheGroundTruthIsUnchanged
 
 TEST(StudyCache, SessionReopensFromItWithTheSameFigures) {
   test::TempDir d;
-  write_study(d);
+  write_cache_study(d);
   SessionOptions o;
   o.cache_dir = registration_cache_dir(d.path());
   o.study_cache_path = parsed_study_cache_path(d.path());
@@ -334,7 +334,7 @@ TEST(StudyCache, SessionReopensFromItWithTheSameFigures) {
 // holding such registrations is loaded again, not ignored and rebuilt at every open.
 TEST(StudyCache, IdenticalTwinsAreReadBackFromIt) {
   test::TempDir d;
-  write_study(d);
+  write_cache_study(d);
   for (int k = 0; k < 3; ++k)
     fs::copy_file(d / fmt::format("real/labels/s{}.txt", k), d / fmt::format("synth/labels/s{}.txt", k),
                   fs::copy_options::overwrite_existing);
@@ -351,7 +351,7 @@ TEST(StudyCache, IdenticalTwinsAreReadBackFromIt) {
 
 TEST(StudyCache, FirstScenesAreAPrefixOfTheStudy) {
   test::TempDir d;
-  write_study(d);
+  write_cache_study(d);
   test::write_text(d / "real/labels/s3.txt", "0 0.5 0.5 0.1 0.1\n");  // only in real: not a common scene
   SessionOptions o;
   o.first_scenes = 2;

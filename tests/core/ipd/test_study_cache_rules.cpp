@@ -9,7 +9,7 @@
 namespace ipd {
 namespace {
 
-StudyLabels open_cached(const std::string& root, StudyCacheStats* stats) {
+StudyLabels open_cached_for_rules(const std::string& root, StudyCacheStats* stats) {
   const Study study = open_study(root);
   StudyCache cache(parsed_study_cache_path(root), study.root);
   StudyLabels labels = cache.load_labels(study);
@@ -29,11 +29,11 @@ TEST(StudyCacheRules, AnotherConfidenceThresholdParsesPredictionsAgain) {
   test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
   test::write_text(d / "synth/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
   StudyCacheStats stats;
-  EXPECT_EQ(open_cached(d.path(), &stats).predictions_of("real", "det", "s1").boxes.size(), 2u);
-  EXPECT_EQ(open_cached(d.path(), &stats).predictions_of("real", "det", "s1").boxes.size(), 2u);
+  EXPECT_EQ(open_cached_for_rules(d.path(), &stats).predictions_of("real", "det", "s1").boxes.size(), 2u);
+  EXPECT_EQ(open_cached_for_rules(d.path(), &stats).predictions_of("real", "det", "s1").boxes.size(), 2u);
   EXPECT_EQ(stats.files_parsed, 0);  // all reused
   test::write_text(d / "study.yaml", "conf_threshold: 0.5\n");
-  EXPECT_EQ(open_cached(d.path(), &stats).predictions_of("real", "det", "s1").boxes.size(), 1u);
+  EXPECT_EQ(open_cached_for_rules(d.path(), &stats).predictions_of("real", "det", "s1").boxes.size(), 1u);
   EXPECT_EQ(stats.files_parsed, 4);
 }
 

@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 
 // real and synth share s1 (two rocks, listed in the other order); only_real has no counterpart; s1's hand
 // pairs, written as synth__real [synth 1, real 0], pair real 0 with synth 1 only.
-void write_study(const test::TempDir& d) {
+void write_pipeline_study(const test::TempDir& d) {
   test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
   test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
   test::write_text(d / "real/labels/only_real.txt", "0 0.5 0.5 0.1 0.1\n");
@@ -27,7 +27,7 @@ void write_study(const test::TempDir& d) {
 
 TEST(StudyPipeline, FixedScenesAreRegisteredOnlyWhenAsked) {
   test::TempDir d;
-  write_study(d);
+  write_pipeline_study(d);
   const StudyLabels labels = load_labels(open_study(d.path()));
   PipelineOptions o;
   const PairedStudy table = pair_study(labels, {{"real", "synth"}}, o);
@@ -109,7 +109,7 @@ TEST(StudyPipeline, TheStudysTimeBudgetReachesEveryRegistration) {
 
 TEST(StudyPipeline, TheSessionReportsWhatTheTableWarnsAbout) {
   test::TempDir d;
-  write_study(d);
+  write_pipeline_study(d);
   // Both name orders of s1's pairs file: the first one read counts, the other is ignored with a warning.
   test::write_text(d / "pairs/real__synth/s1.json", R"({"pairs": [[0, 1], [1, 0]]})");
   const StudyLabels labels = load_labels(open_study(d.path()));
@@ -138,7 +138,7 @@ TEST(StudyPipeline, TheSessionReportsWhatTheTableWarnsAbout) {
 
 TEST(StudyPipeline, ALabelFileMissingBesideItsTwinsIsAProblem) {
   test::TempDir d;
-  write_study(d);
+  write_pipeline_study(d);
   // s2 has a picture in both domains but GT only in synth: real's s2 reads as a picture without rocks.
   test::write_text(d / "real/images/s2.png", "");
   test::write_text(d / "synth/images/s2.png", "");
@@ -158,7 +158,7 @@ TEST(StudyPipeline, ALabelFileMissingBesideItsTwinsIsAProblem) {
 
 TEST(StudyPipeline, TheSessionListsSkippedLinesAndMissingPredictions) {
   test::TempDir d;
-  write_study(d);
+  write_pipeline_study(d);
   // A file name pasted into a label line: the CLI refuses it (unless --skip-bad-lines); the studio skips it,
   // and its Problems list names the file and line.
   test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1 s1.png\n0 0.2 0.2 0.1 0.1\n");

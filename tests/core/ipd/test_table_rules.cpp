@@ -12,7 +12,7 @@ namespace {
 // Two rocks a side, listed in opposite orders; det finds real's rocks with IoU 1 and 1/3, synth's with 1/3
 // and 0: IPD (|1 - 1/3| + |1/3 - 0|) / 2 = 0.5 (as Ipd.TinyStudyWorkedByHand). "other" is synth's layout with
 // its rock at (0.2, 0.2) found exactly: against real (|1 - 1| + |1/3 - 0|) / 2 = 1/6.
-void write_study(const test::TempDir& d, const std::string& yaml) {
+void write_study_table_rules(const test::TempDir& d, const std::string& yaml) {
   test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
   test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
   test::write_text(d / "other/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
@@ -30,7 +30,7 @@ const TableCell& cell(const CrossTable& t, const std::string& a, const std::stri
 
 TEST(TableRules, AModelWithoutATrainingDomainHasEveryCellShown) {
   test::TempDir d;
-  write_study(d, "domains: [real, synth, other]\n");
+  write_study_table_rules(d, "domains: [real, synth, other]\n");
   const CrossTable t = compute_cross_table(load_labels(open_study(d.path())), {});
   for (const auto& [a, b] : t.columns) EXPECT_TRUE(cell(t, a, b).involves_training_domain) << a << " vs " << b;
   EXPECT_NEAR(cell(t, "real", "synth").ipd, 0.5, 1e-12);
@@ -41,7 +41,7 @@ TEST(TableRules, AModelWithoutATrainingDomainHasEveryCellShown) {
 // Trained on real: real vs synth and real vs other are shown, synth vs other is dashed ("–" in text).
 TEST(TableRules, ACellWithoutTheTrainingDomainIsDashed) {
   test::TempDir d;
-  write_study(d, "domains: [real, synth, other]\nmodels: {det: {trained_on: real}}\n");
+  write_study_table_rules(d, "domains: [real, synth, other]\nmodels: {det: {trained_on: real}}\n");
   const CrossTable t = compute_cross_table(load_labels(open_study(d.path())), {});
   EXPECT_TRUE(cell(t, "real", "synth").involves_training_domain);
   EXPECT_TRUE(cell(t, "real", "other").involves_training_domain);
@@ -53,7 +53,7 @@ TEST(TableRules, ACellWithoutTheTrainingDomainIsDashed) {
 // The row's best shown value, its lowest IPD, is bold in Markdown and LaTeX, as in the paper.
 TEST(TableRules, TheRowsLowestIpdIsBold) {
   test::TempDir d;
-  write_study(d, "domains: [real, synth, other]\nmodels: {det: {trained_on: real}}\n");
+  write_study_table_rules(d, "domains: [real, synth, other]\nmodels: {det: {trained_on: real}}\n");
   const CrossTable t = compute_cross_table(load_labels(open_study(d.path())), {});
   EXPECT_NEAR(cell(t, "real", "synth").ipd, 0.5, 1e-12);
   EXPECT_NEAR(cell(t, "real", "other").ipd, 1.0 / 6, 1e-12);
@@ -69,7 +69,7 @@ TEST(TableRules, TheRowsLowestIpdIsBold) {
 // their values and the text is the same as when every pair is registered.
 TEST(TableRules, OnlyTheShownDomainPairsAreRegistered) {
   test::TempDir d;
-  write_study(d, "domains: [real, synth, other]\nmodels: {det: {trained_on: real}}\n");
+  write_study_table_rules(d, "domains: [real, synth, other]\nmodels: {det: {trained_on: real}}\n");
   const StudyLabels labels = load_labels(open_study(d.path()));
   const CrossTable all = compute_cross_table(labels, {});
   EXPECT_EQ(all.registrations, 3);

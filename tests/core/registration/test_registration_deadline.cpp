@@ -74,7 +74,7 @@ struct OneModel {
 };
 struct FlatScorer {
   double score(const int&) { return 1.0; }
-  bool worth_refining(int, int, double, double) { return false; }
+  bool confirm_or_pick_for_refinement(int, int, double, double) { return false; }
   void refine(int, int*, double*) {}
   bool cannot_be_beaten(double) { return false; }
 };

@@ -19,7 +19,7 @@ namespace {
 using test::box;
 
 // Rocks at least `separation` apart in [lo, hi]^2, 3% boxes.
-std::vector<Box> scattered(unsigned seed, int n, double lo, double hi, double separation) {
+std::vector<Box> scattered_registration_refine(unsigned seed, int n, double lo, double hi, double separation) {
   std::mt19937 g(seed);
   auto u = [&](double a, double b) { return a + (b - a) * (g() / 4294967296.0); };
   std::vector<Box> out;
@@ -49,7 +49,7 @@ double median_spacing(const std::vector<Box>& b) {
 // unpaired (without the floor: 10 inliers, rock 9 lost); the floor (1.5% of the width, capped at half the
 // spacing: 1.49%) keeps every one inside, so all twelve count as inliers and pair.
 TEST(GateFloor, LabellingOffsetsOfPointEightPercentStayInsideTheGateOfATightCluster) {
-  std::vector<Box> a = scattered(2, 12, 0.45, 0.57, 0.024);
+  std::vector<Box> a = scattered_registration_refine(2, 12, 0.45, 0.57, 0.024);
   for (auto& x : a) x.w = x.h = 0.02;
   const double spacing = median_spacing(a);
   ASSERT_LT(0.3 * spacing, 0.0095) << "the layout must be tight enough for the floor to matter";
@@ -90,7 +90,7 @@ struct ScorerSetup {
 // half a gate, which lines up only the central rocks. Soft assignment pulls every rock towards its partner and
 // lands on the true affine; the score rises, so it is kept.
 TEST(SoftRefine, SlidesFromAPartialAlignmentToTheTrueOne) {
-  const std::vector<Box> a = scattered(7, 15, 0.1, 0.9, 0.12);
+  const std::vector<Box> a = scattered_registration_refine(7, 15, 0.1, 0.9, 0.12);
   Affine2 truth = identity_affine();
   truth.leftCols<2>() *= 1.1;
   truth.col(2) = Eigen::Vector2d(0.5, 0.5) - 1.1 * Eigen::Vector2d(0.5, 0.5);

@@ -119,7 +119,7 @@ TEST(PairNumbers, AreTheLeftRockNumberAndSurviveUnpairing) {
 namespace ipd {
 namespace {
 
-SceneSummary scene(const std::string& stem, double ipd, int suspects, bool edited) {
+SceneSummary audit_scene(const std::string& stem, double ipd, int suspects, bool edited) {
   SceneSummary s;
   s.stem = stem;
   s.ipd = ipd;
@@ -129,8 +129,8 @@ SceneSummary scene(const std::string& stem, double ipd, int suspects, bool edite
 }
 
 TEST(SceneFilter, ComparisonsFlagsAndText) {
-  const SceneSummary a = scene("scene_01", 0.2, 1, false), b = scene("scene_02", 0.05, 0, true),
-                     none = scene("scene_03", std::nan(""), 0, false);
+  const SceneSummary a = audit_scene("scene_01", 0.2, 1, false), b = audit_scene("scene_02", 0.05, 0, true),
+                     none = audit_scene("scene_03", std::nan(""), 0, false);
   EXPECT_TRUE(SceneFilter::parse("ipd>0.1").matches(a));
   EXPECT_FALSE(SceneFilter::parse("ipd>0.1").matches(b));
   EXPECT_FALSE(SceneFilter::parse("ipd>0.1").matches(none));

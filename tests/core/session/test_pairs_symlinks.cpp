@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 namespace ipd {
 namespace {
 
-void write_study(const test::TempDir& d) { test::write_two_rock_study(d); }
+void write_study_pairs_symlinks(const test::TempDir& d) { test::write_two_rock_study(d); }
 
 const char* kPairs = "{\"pairs\": [[0, 1]]}\n";
 
@@ -36,7 +36,7 @@ std::string error_of(const std::function<void()>& f) {
 
 TEST(PairsSymlinks, ReadingRefusesEveryLinkInPairs) {
   test::TempDir d, x;
-  write_study(d);
+  write_study_pairs_symlinks(d);
   test::write_text(x / "real__synth/s1.json", kPairs);
   test::write_text(x / "s1.json", kPairs);
   // pairs -> x
@@ -60,7 +60,7 @@ TEST(PairsSymlinks, AValidFileBesideALinkedOtherOrderIsNotOpenedThroughIt) {
   // The attack: a valid pairs/real__synth/s1.json and pairs/synth__real -> /victim. The study does not open
   // (nothing is read through the link), and so no edit can delete victim/s1.json.
   test::TempDir d, victim;
-  write_study(d);
+  write_study_pairs_symlinks(d);
   test::write_text(d / "pairs/real__synth/s1.json", kPairs);
   test::write_text(victim / "s1.json", "precious");
   fs::create_symlink(victim.path(), d / "pairs/synth__real");
@@ -70,7 +70,7 @@ TEST(PairsSymlinks, AValidFileBesideALinkedOtherOrderIsNotOpenedThroughIt) {
 
 TEST(PairsSymlinks, ASaveRefusesALinkedPairsFolder) {
   test::TempDir d, x;
-  write_study(d);
+  write_study_pairs_symlinks(d);
   Session s = Session::open(d.path());
   fs::create_symlink(x.path(), d / "pairs");  // swapped in while the study is open
   const SaveJob job = s.apply(0, Edit::pair(0, 0));
@@ -80,7 +80,7 @@ TEST(PairsSymlinks, ASaveRefusesALinkedPairsFolder) {
 
 TEST(PairsSymlinks, ASaveRefusesToDeleteThroughALinkedOtherOrderAndWritesNothing) {
   test::TempDir d, victim;
-  write_study(d);
+  write_study_pairs_symlinks(d);
   test::write_text(d / "pairs/real__synth/s1.json", kPairs);
   Session s = Session::open(d.path());
   test::write_text(victim / "s1.json", "precious");
@@ -97,7 +97,7 @@ TEST(PairsSymlinks, ASaveRefusesToDeleteThroughALinkedOtherOrderAndWritesNothing
 
 TEST(PairsSymlinks, ASaveRefusesALinkedPairsFile) {
   test::TempDir d, elsewhere;
-  write_study(d);
+  write_study_pairs_symlinks(d);
   Session s = Session::open(d.path());
   test::write_text(elsewhere / "kept.json", kPairs);
   fs::create_directories(d / "pairs/real__synth");
@@ -110,7 +110,7 @@ TEST(PairsSymlinks, ASaveRefusesALinkedPairsFile) {
 
 TEST(PairsSymlinks, ALinkSwappedInAfterTheCheckIsReplacedNotFollowed) {
   test::TempDir d, victim;
-  write_study(d);
+  write_study_pairs_symlinks(d);
   test::write_text(d / "pairs/real__synth/s1.json", kPairs);
   Session s = Session::open(d.path());
   test::write_text(victim / "s1.json", "precious");
@@ -127,7 +127,7 @@ TEST(PairsSymlinks, ALinkSwappedInAfterTheCheckIsReplacedNotFollowed) {
 
 TEST(PairsSymlinks, AFolderSwappedForALinkAfterItWasOpenedIsNotFollowed) {
   test::TempDir d, victim;
-  write_study(d);
+  write_study_pairs_symlinks(d);
   fs::create_directories(d / "pairs/real__synth");
   Session s = Session::open(d.path());
   const SaveJob job = s.apply(0, Edit::pair(0, 0));
@@ -142,7 +142,7 @@ TEST(PairsSymlinks, AFolderSwappedForALinkAfterItWasOpenedIsNotFollowed) {
 
 TEST(PairsSymlinks, ARemovalWhoseFileBecomesALinkRemovesTheLinkOnly) {
   test::TempDir d, victim;
-  write_study(d);
+  write_study_pairs_symlinks(d);
   test::write_text(victim / "s1.json", "precious");
   test::write_text(d / "pairs/real__synth/s1.json", kPairs);
   EXPECT_TRUE(remove_file_beneath(d.path(), "pairs/real__synth/s1.json", [&](const char* step) {
@@ -179,7 +179,7 @@ TEST(PairsSymlinks, PathsThatClimbOutOfTheStudyAreRefused) {
 
 TEST(PairsSymlinks, StaleTempFilesAreTidiedOnlyInRealFolders) {
   test::TempDir d, x;
-  write_study(d);
+  write_study_pairs_symlinks(d);
   const std::string dead = "s1.json.tmp-4194305-77";  // pid above Linux's pid_max: no such process
   test::write_text(d / ("pairs/real__synth/" + dead), "{");
   test::write_text(x / dead, "someone else's");

@@ -69,7 +69,7 @@ TEST(RockPairPoints, OnlyTheScenesAskedFor) {
   EXPECT_TRUE(rock_pair_points(s, {5}).empty());  // a scene index the cell doesn't have adds nothing
 }
 
-RockPairPoint point(int scene, int a, int b, double diff) {
+RockPairPoint pair_point(int scene, int a, int b, double diff) {
   RockPairPoint p;
   p.scene = scene;
   p.rock_a = a;
@@ -80,14 +80,15 @@ RockPairPoint point(int scene, int a, int b, double diff) {
 }
 
 TEST(RockPairPoints, GalleryIsWorstFirstAndTiesGoBySceneThenRocks) {
-  const std::vector<RockPairPoint> points = {point(2, 0, 0, 0.5), point(1, 3, 1, 0.5), point(1, 2, 4, 0.5),
-                                             point(0, 0, 0, 0.1), point(3, 0, 0, 0.9), point(1, 2, 0, 0.5)};
+  const std::vector<RockPairPoint> points = {pair_point(2, 0, 0, 0.5), pair_point(1, 3, 1, 0.5),
+                                             pair_point(1, 2, 4, 0.5), pair_point(0, 0, 0, 0.1),
+                                             pair_point(3, 0, 0, 0.9), pair_point(1, 2, 0, 0.5)};
   EXPECT_EQ(gallery_order(points), (std::vector<int>{4, 5, 2, 1, 0, 3}));
 }
 
 TEST(RockPairPoints, ABoxSelectsThePointsInsideAndNamesTheirScenes) {
-  std::vector<RockPairPoint> points = {point(0, 0, 0, 0.6), point(0, 1, 1, 0.2), point(4, 0, 0, 0.7),
-                                       point(2, 0, 0, 0.9)};
+  std::vector<RockPairPoint> points = {pair_point(0, 0, 0, 0.6), pair_point(0, 1, 1, 0.2), pair_point(4, 0, 0, 0.7),
+                                       pair_point(2, 0, 0, 0.9)};
   points[1].conf_a = std::nan("");
   // Corners in either order; edges count.
   const PairSelection sel = select_in_box(points, PairAxis::kPerfA, PairAxis::kAbsDiff, 0.7, 0.7, 0.2, 0.2);

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 namespace ipd {
 namespace {
 
-void write_study(const test::TempDir& d) { test::write_two_rock_study(d); }
+void write_study_save_conflict(const test::TempDir& d) { test::write_two_rock_study(d); }
 
 std::string conflict_message(const std::string& file) {
   return file +
@@ -29,7 +29,7 @@ std::string conflict_message(const std::string& file) {
 
 TEST(SaveConflict, ASecondWindowsSaveDoesNotOverwriteTheFirstOnesEdit) {
   test::TempDir d;
-  write_study(d);
+  write_study_save_conflict(d);
   Session first = Session::open(d.path()), second = Session::open(d.path());
   const std::string f = d / "pairs/real__synth/s1.json";
   const SaveJob mine = first.apply(0, Edit::pair(0, 0));
@@ -61,7 +61,7 @@ TEST(SaveConflict, ASecondWindowsSaveDoesNotOverwriteTheFirstOnesEdit) {
 
 TEST(SaveConflict, KeepingTheDiskVersionReloadsTheScene) {
   test::TempDir d;
-  write_study(d);
+  write_study_save_conflict(d);
   Session first = Session::open(d.path()), second = Session::open(d.path());
   const SaveJob mine = first.apply(0, Edit::pair(0, 0));
   run_save_job(mine);
@@ -78,7 +78,7 @@ TEST(SaveConflict, KeepingTheDiskVersionReloadsTheScene) {
 
 TEST(SaveConflict, AHandEditOfTheFileOrTheOtherNameOrderIsNotLost) {
   test::TempDir d;
-  write_study(d);
+  write_study_save_conflict(d);
   Session s = Session::open(d.path());
   // An editor writes the other name order while the window is open: the window's removal of it would lose it.
   test::write_text(d / "pairs/synth__real/s1.json", "{\"pairs\": [[1, 0]]}\n");
@@ -96,7 +96,7 @@ TEST(SaveConflict, AHandEditOfTheFileOrTheOtherNameOrderIsNotLost) {
 // found by the check made right before the rename: a conflict, the hand edit kept.
 TEST(SaveConflict, AHandEditLandingWhileTheSaveIsWrittenIsNotLost) {
   test::TempDir d;
-  write_study(d);
+  write_study_save_conflict(d);
   Session s = Session::open(d.path());
   const std::string hand = "{\"pairs\": [[1, 1]]}\n";
   try {
@@ -117,7 +117,7 @@ TEST(SaveConflict, AHandEditLandingWhileTheSaveIsWrittenIsNotLost) {
 // The same for the review marks' file.
 TEST(SaveConflict, AHandEditOfTheReviewFileLandingWhileTheSaveIsWrittenIsNotLost) {
   test::TempDir d;
-  write_study(d);
+  write_study_save_conflict(d);
   Session s = Session::open(d.path());
   const std::string hand = "{\"reviewed\": [\"s1\"]}\n";
   const SaveJob job = s.toggle_reviewed(0);
@@ -134,7 +134,7 @@ TEST(SaveConflict, AHandEditOfTheReviewFileLandingWhileTheSaveIsWrittenIsNotLost
 
 TEST(SaveConflict, TheSaverKeepsConflictsForTheUserAndQueuedJobsKeepTheirExpectations) {
   test::TempDir d;
-  write_study(d);
+  write_study_save_conflict(d);
   Session first = Session::open(d.path()), second = Session::open(d.path());
   const std::string f = d / "pairs/real__synth/s1.json";
   {
@@ -174,7 +174,7 @@ int in_child(const std::function<int()>& child) {
 
 TEST(StudyLock, ASecondProcessIsToldWhoHoldsTheStudy) {
   test::TempDir d;
-  write_study(d);
+  write_study_save_conflict(d);
   std::string why;
   auto lock = StudyLock::try_acquire(d.path(), &why);
   ASSERT_TRUE(lock) << why;
@@ -204,7 +204,7 @@ TEST(StudyLock, ASecondProcessIsToldWhoHoldsTheStudy) {
 
 TEST(StudyLock, ALinkedCacheFolderGetsNoLockThroughIt) {
   test::TempDir d, x;
-  write_study(d);
+  write_study_save_conflict(d);
   fs::create_symlink(x.path(), d / ".ipd-cache");
   std::string why;
   EXPECT_FALSE(StudyLock::try_acquire(d.path(), &why));

@@ -21,7 +21,7 @@ namespace ipd {
 namespace {
 
 // The tiny study of test_ipd.cpp: IPD 1/2 with pairs (0,1), (1,0); perf real = {1, 1/3}, synth = {0, 1/3}.
-void write_tiny_study(const test::TempDir& d) {
+void write_tiny_study_session(const test::TempDir& d) {
   test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
   test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
   test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
@@ -34,7 +34,7 @@ double table_ipd_from_disk(const std::string& root) {
 
 TEST(Session, OpensWithTheEngineFigures) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_session(d);
   const Session s = Session::open(d.path());
   ASSERT_EQ(s.scenes().size(), 1u);
   EXPECT_EQ(s.left_domain(), "real");
@@ -49,7 +49,7 @@ TEST(Session, OpensWithTheEngineFigures) {
 
 TEST(Session, PairUnpairUndoRedoAndSaveAreSeenByTheEngine) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_session(d);
   Session s = Session::open(d.path());
   // Unpair real rock 1: only (0,1) is left, |1 - 1/3| = 2/3.
   SaveJob job = s.apply(0, Edit::unpair(Side::kA, 1));
@@ -90,7 +90,7 @@ TEST(Session, PairUnpairUndoRedoAndSaveAreSeenByTheEngine) {
 // counts registration's pairs, and undo still walks back through the steps.
 TEST(Session, HandPairsEqualToRegistrationsMakeTheSceneAutomatic) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_session(d);
   Session s = Session::open(d.path());
   const fs::path file = d / "pairs/real__synth/s1.json";
   run_save_job(s.apply(0, Edit::unpair(Side::kA, 1)));  // (0,1) alone: hand-edited, IPD 2/3
@@ -174,7 +174,7 @@ TEST(Session, ACopyIsASnapshotThatLaterEditsLeaveAlone) {
 // audit says it waits for one instead of measuring residuals against a made-up affine.
 TEST(Session, AHandPairedSceneIsRegisteredOnlyWhenNeeded) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_session(d);
   test::write_text(d / "pairs/real__synth/s1.json",
                    "{\"pairs\":[[0,1]],\"rocks_a\":[[0,0.2,0.2,0.1,0.1]],\"rocks_b\":[[1,0.2,0.2,0.1,0.1]]}\n");
   Session s = Session::open(d.path());
@@ -208,7 +208,7 @@ TEST(Session, AHandPairedSceneIsRegisteredOnlyWhenNeeded) {
 
 TEST(Session, ExcludeAndSwappedView) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_session(d);
   Session s = Session::open(d.path());
   ASSERT_TRUE(s.select_domains("synth", "real"));
   EXPECT_TRUE(s.swapped());
@@ -234,7 +234,7 @@ TEST(Session, ExcludeAndSwappedView) {
 
 TEST(Session, ConfidenceThresholdMovesTheIpd) {
   test::TempDir d;
-  write_tiny_study(d);
+  write_tiny_study_session(d);
   Session s = Session::open(d.path());
   s.set_conf_threshold(0.5);  // real rock 1's prediction (0.4) is dropped: diffs 2/3 and 0
   EXPECT_NEAR(s.cell().ipd, 1.0 / 3, 1e-12);
@@ -304,7 +304,7 @@ int in_read_only_mount(const std::string& dir, const std::function<int()>& check
 
 TEST(Session, ReadOnlyStudyIsDetectedAndSaveAsWritesElsewhere) {
   test::TempDir d, other;
-  write_tiny_study(d);
+  write_tiny_study_session(d);
   {
     Session s = Session::open(d.path());
     EXPECT_FALSE(s.read_only());

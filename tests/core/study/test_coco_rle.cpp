@@ -28,7 +28,7 @@ std::string rows(const RleMask& m) {
   return s;
 }
 
-Outline outline_of(const CocoSegmentation& s) {
+Outline outline_of_coco_rle(const CocoSegmentation& s) {
   const std::vector<double> merged = merge_polygon_parts(s.polygons);
   std::vector<Eigen::Vector2d> points;
   for (size_t k = 0; k + 1 < merged.size(); k += 2) points.emplace_back(merged[k], merged[k + 1]);
@@ -83,15 +83,15 @@ TEST(CocoRle, AnRleSquareAndAPolygonSquareOfTheSamePixelsHaveMaskIouOne) {
   const CocoSegmentation rle = read(square, 10, 10);
   EXPECT_TRUE(rle.rle);
   EXPECT_EQ(rle.mask_pixels, 16);
-  const Outline a = outline_of(rle);
+  const Outline a = outline_of_coco_rle(rle);
   EXPECT_NEAR(a.area, 0.16, 1e-12);
-  const Outline same = outline_of(read("[[2, 3, 6, 3, 6, 7, 2, 7]]", 10, 10));
+  const Outline same = outline_of_coco_rle(read("[[2, 3, 6, 3, 6, 7, 2, 7]]", 10, 10));
   EXPECT_NEAR(mask_iou(a, same), 1.0, 1e-9);
   // Offset by half the square: 8 pixels in common of 24 covered, 1/3.
-  const Outline half = outline_of(read("[[4, 3, 8, 3, 8, 7, 4, 7]]", 10, 10));
+  const Outline half = outline_of_coco_rle(read("[[4, 3, 8, 3, 8, 7, 4, 7]]", 10, 10));
   EXPECT_NEAR(mask_iou(a, half), 1.0 / 3.0, 1e-9);
   // The compressed string is the same mask.
-  const Outline compressed = outline_of(read(R"({"counts": "g04600000U1", "size": [10, 10]})", 10, 10));
+  const Outline compressed = outline_of_coco_rle(read(R"({"counts": "g04600000U1", "size": [10, 10]})", 10, 10));
   EXPECT_NEAR(mask_iou(a, compressed), 1.0, 1e-9);
 }
 
@@ -103,7 +103,7 @@ TEST(CocoRle, HolesAreFilled) {
   EXPECT_EQ(ring.mask_pixels, 8);
   EXPECT_EQ(ring.pixels_left_out, 0);
   ASSERT_EQ(ring.polygons.size(), 1u);
-  EXPECT_NEAR(outline_of(ring).area * 25, 9.0, 1e-9);
+  EXPECT_NEAR(outline_of_coco_rle(ring).area * 25, 9.0, 1e-9);
 }
 
 // Of several pieces the outline keeps the one whose contour encloses the most; a piece in its hole is covered,
@@ -127,7 +127,7 @@ TEST(CocoRle, OfSeveralPiecesTheOneEnclosingTheMostIsKept) {
       read(R"({"counts": [8, 5, 2, 1, 3, 1, 2, 1, 1, 1, 1, 1, 2, 1, 3, 1, 2, 5, 8], "size": [7, 7]})", 7, 7);
   EXPECT_EQ(nested.mask_pixels, 17);
   EXPECT_EQ(nested.pieces_left_out, 0);
-  EXPECT_NEAR(outline_of(nested).area * 49, 25.0, 1e-9);
+  EXPECT_NEAR(outline_of_coco_rle(nested).area * 49, 25.0, 1e-9);
 }
 
 TEST(CocoRle, MasksThatCannotBeAnOutlineAreRefused) {

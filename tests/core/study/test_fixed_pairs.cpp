@@ -22,7 +22,7 @@ const char* kSynth = "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n";
 const char* kHandPairs =
     R"({"pairs": [[0, 1]], "rocks_a": [[0, 0.2, 0.2, 0.1, 0.1]], "rocks_b": [[1, 0.2, 0.2, 0.1, 0.1]]})";
 
-void write_study(const test::TempDir& d, const std::string& real, const std::string& synth) {
+void write_study_fixed_pairs(const test::TempDir& d, const std::string& real, const std::string& synth) {
   test::write_text(d / "real/labels/s1.txt", real);
   test::write_text(d / "synth/labels/s1.txt", synth);
   test::write_text(d / "real/predictions/det/s1.txt", "0 0.2 0.2 0.1 0.1 0.9\n0 0.65 0.6 0.1 0.1 0.4\n");
@@ -30,13 +30,15 @@ void write_study(const test::TempDir& d, const std::string& real, const std::str
   test::write_text(d / "study.yaml", "image_size: [1000, 1000]\n");  // square pictures, said so
 }
 
-CrossTable table_of(const std::string& root) { return compute_cross_table(load_labels(open_study(root)), {}); }
+CrossTable table_of_fixed_pairs(const std::string& root) {
+  return compute_cross_table(load_labels(open_study(root)), {});
+}
 
 TEST(FixedPairsBinding, RocksAtTheirRowsReadWithoutAWord) {
   test::TempDir d;
-  write_study(d, kReal, kSynth);
+  write_study_fixed_pairs(d, kReal, kSynth);
   test::write_text(d / "pairs/real__synth/s1.json", kHandPairs);
-  const CrossTable t = table_of(d.path());
+  const CrossTable t = table_of_fixed_pairs(d.path());
   EXPECT_NEAR(t.cells[0].ipd, 2.0 / 3, 1e-12);
   EXPECT_EQ(t.fixed_scenes, 1);
   EXPECT_TRUE(t.pairs_problems.empty());
@@ -47,10 +49,10 @@ TEST(FixedPairsBinding, ReorderedRowsKeepThePairsOnTheirRocks) {
   test::TempDir d;
   // real re-exported with its two rows swapped: by row number the pair would be real (0.6, 0.6) <-> synth 1,
   // |1/3 - 1/3| = 0.
-  write_study(d, "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n", kSynth);
+  write_study_fixed_pairs(d, "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n", kSynth);
   const std::string f = d / "pairs/real__synth/s1.json";
   test::write_text(f, kHandPairs);
-  const CrossTable t = table_of(d.path());
+  const CrossTable t = table_of_fixed_pairs(d.path());
   EXPECT_NEAR(t.cells[0].ipd, 2.0 / 3, 1e-12);
   ASSERT_EQ(t.cells[0].per_scene.size(), 1u);
   EXPECT_EQ(t.cells[0].per_scene[0].counted, (RockPairs{{1, 1}}));
@@ -68,9 +70,9 @@ TEST(FixedPairsBinding, ReorderedRowsKeepThePairsOnTheirRocks) {
 TEST(FixedPairsBinding, AnInsertedRowShiftsNoPair) {
   test::TempDir d;
   // A new synth rock at the top: the paired synth rock (0.2, 0.2) is row 2 now.
-  write_study(d, kReal, "0 0.9 0.9 0.05 0.05\n" + std::string(kSynth));
+  write_study_fixed_pairs(d, kReal, "0 0.9 0.9 0.05 0.05\n" + std::string(kSynth));
   test::write_text(d / "pairs/real__synth/s1.json", kHandPairs);
-  const CrossTable t = table_of(d.path());
+  const CrossTable t = table_of_fixed_pairs(d.path());
   EXPECT_NEAR(t.cells[0].ipd, 2.0 / 3, 1e-12);
   EXPECT_EQ(t.cells[0].per_scene[0].counted, (RockPairs{{0, 2}}));
   EXPECT_EQ(t.cells[0].unpaired_a, 1);
@@ -83,13 +85,13 @@ TEST(FixedPairsBinding, AnInsertedRowShiftsNoPair) {
 
 TEST(FixedPairsBinding, ExcludedRocksAndTheOtherNameOrderAreBoundToo) {
   test::TempDir d;
-  write_study(d, "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n", kSynth);  // real rows swapped
+  write_study_fixed_pairs(d, "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n", kSynth);  // real rows swapped
   // Saved as synth__real: first index synth. Pairs synth 1 <-> real 0 and synth 0 <-> real 1; real 1 excluded.
   test::write_text(d / "pairs/synth__real/s1.json",
                    R"({"pairs": [[1, 0], [0, 1]], "excluded_b": [1],
                        "rocks_a": [[0, 0.6, 0.6, 0.1, 0.1], [1, 0.2, 0.2, 0.1, 0.1]],
                        "rocks_b": [[0, 0.2, 0.2, 0.1, 0.1], [1, 0.6, 0.6, 0.1, 0.1]]})");
-  const CrossTable t = table_of(d.path());
+  const CrossTable t = table_of_fixed_pairs(d.path());
   // real (0.6, 0.6) is excluded, so only real (0.2, 0.2) <-> synth (0.2, 0.2) counts: 2/3.
   EXPECT_NEAR(t.cells[0].ipd, 2.0 / 3, 1e-12);
   EXPECT_EQ(t.cells[0].per_scene[0].counted, (RockPairs{{1, 1}}));
@@ -102,11 +104,11 @@ TEST(FixedPairsBinding, ExcludedRocksAndTheOtherNameOrderAreBoundToo) {
 
 TEST(FixedPairsBinding, ARemovedRockMakesTheScenesHandPairsUnusable) {
   test::TempDir d;
-  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n");  // the paired synth rock (0.2, 0.2) is gone
-  const double registration_only = table_of(d.path()).cells[0].ipd;
+  write_study_fixed_pairs(d, kReal, "0 0.6 0.6 0.1 0.1\n");  // the paired synth rock (0.2, 0.2) is gone
+  const double registration_only = table_of_fixed_pairs(d.path()).cells[0].ipd;
   const std::string f = d / "pairs/real__synth/s1.json";
   test::write_text(f, kHandPairs);
-  const CrossTable t = table_of(d.path());
+  const CrossTable t = table_of_fixed_pairs(d.path());
   EXPECT_EQ(t.fixed_scenes, 0);
   EXPECT_EQ(t.registrations, 1);
   EXPECT_FALSE(t.pairings[0][0].fixed);
@@ -139,17 +141,17 @@ TEST(FixedPairsBinding, ARemovedRockMakesTheScenesHandPairsUnusable) {
 // (kSameRockTolerance) is the bound; past it the rock is gone.
 TEST(FixedPairsBinding, ABoxMovedFarBelowLabelPrecisionIsTheSameRock) {
   test::TempDir d;
-  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n0 0.200001 0.2 0.1 0.1\n");
+  write_study_fixed_pairs(d, kReal, "0 0.6 0.6 0.1 0.1\n0 0.200001 0.2 0.1 0.1\n");
   test::write_text(d / "pairs/real__synth/s1.json", kHandPairs);
-  const CrossTable t = table_of(d.path());
+  const CrossTable t = table_of_fixed_pairs(d.path());
   EXPECT_EQ(t.fixed_scenes, 1);
   EXPECT_EQ(t.cells[0].per_scene[0].counted, (RockPairs{{0, 1}}));
   EXPECT_TRUE(t.pairs_problems.empty());
   // 9e-6 in w (within), then 1.1e-5 in h (beyond): unusable, naming the stored box.
   test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.100009 0.1\n");
-  EXPECT_TRUE(table_of(d.path()).pairs_problems.empty());
+  EXPECT_TRUE(table_of_fixed_pairs(d.path()).pairs_problems.empty());
   test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.100011\n");
-  const CrossTable gone = table_of(d.path());
+  const CrossTable gone = table_of_fixed_pairs(d.path());
   ASSERT_EQ(gone.pairs_problems.size(), 1u);
   EXPECT_TRUE(gone.pairs_problems[0].unusable);
   EXPECT_EQ(gone.pairs_problems[0].why_unusable,
@@ -162,9 +164,10 @@ TEST(FixedPairsBinding, ABoxMovedFarBelowLabelPrecisionIsTheSameRock) {
 // first row within the tolerance.
 TEST(FixedPairsBinding, AMovedRockIsFoundAtTheNearestBoxWithinTheTolerance) {
   test::TempDir d;
-  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n0 0.9 0.9 0.05 0.05\n0 0.200008 0.2 0.1 0.1\n0 0.200001 0.2 0.1 0.1\n");
+  write_study_fixed_pairs(d, kReal,
+                          "0 0.6 0.6 0.1 0.1\n0 0.9 0.9 0.05 0.05\n0 0.200008 0.2 0.1 0.1\n0 0.200001 0.2 0.1 0.1\n");
   test::write_text(d / "pairs/real__synth/s1.json", kHandPairs);
-  const CrossTable t = table_of(d.path());
+  const CrossTable t = table_of_fixed_pairs(d.path());
   EXPECT_EQ(t.cells[0].per_scene[0].counted, (RockPairs{{0, 3}}));
   ASSERT_EQ(t.pairs_problems.size(), 1u);
   EXPECT_EQ(
@@ -174,7 +177,7 @@ TEST(FixedPairsBinding, AMovedRockIsFoundAtTheNearestBoxWithinTheTolerance) {
 
 TEST(FixedPairsBinding, TheCliExitsOneNamingTheFileUnlessSkipBadLines) {
   test::TempDir d;
-  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n");
+  write_study_fixed_pairs(d, kReal, "0 0.6 0.6 0.1 0.1\n");
   const std::string f = d / "pairs/real__synth/s1.json";
   test::write_text(f, kHandPairs);
   const std::string line = f +
@@ -196,7 +199,7 @@ TEST(FixedPairsBinding, TheCliExitsOneNamingTheFileUnlessSkipBadLines) {
 
 TEST(FixedPairsBinding, AFigureOfTheSceneSaysSoToo) {
   test::TempDir d;
-  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n");
+  write_study_fixed_pairs(d, kReal, "0 0.6 0.6 0.1 0.1\n");
   const std::string f = d / "pairs/real__synth/s1.json";
   test::write_text(f, kHandPairs);
   const std::string out = d / "fig.svg";
@@ -216,10 +219,10 @@ TEST(FixedPairsBinding, AFigureOfTheSceneSaysSoToo) {
 
 TEST(FixedPairsBinding, FilesWithoutBoxesLoadByIndexAndGainBoxesOnTheNextSave) {
   test::TempDir d;
-  write_study(d, kReal, kSynth);
+  write_study_fixed_pairs(d, kReal, kSynth);
   const std::string f = d / "pairs/real__synth/s1.json";
   test::write_text(f, R"({"pairs": [[0, 1]]})");
-  EXPECT_NEAR(table_of(d.path()).cells[0].ipd, 2.0 / 3, 1e-12);
+  EXPECT_NEAR(table_of_fixed_pairs(d.path()).cells[0].ipd, 2.0 / 3, 1e-12);
   Session s = Session::open(d.path());
   EXPECT_NEAR(s.cell().ipd, 2.0 / 3, 1e-12);
   EXPECT_TRUE(s.pairs_problems().empty());
@@ -229,14 +232,14 @@ TEST(FixedPairsBinding, FilesWithoutBoxesLoadByIndexAndGainBoxesOnTheNextSave) {
             "\"rocks_b\":[[0,0.6,0.6,0.1,0.1],[1,0.2,0.2,0.1,0.1]]}\n");
   // Now bound: reordering the synth rows keeps the pair on synth (0.2, 0.2).
   test::write_text(d / "synth/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.6 0.6 0.1 0.1\n");
-  const CrossTable t = table_of(d.path());
+  const CrossTable t = table_of_fixed_pairs(d.path());
   EXPECT_NEAR(t.cells[0].ipd, 2.0 / 3, 1e-12);
   EXPECT_EQ(t.pairings[0][0].excluded_b, (std::vector<int>{1}));
 }
 
 TEST(FixedPairsBinding, TheSessionListsProblemsAndFlagsUnusableScenes) {
   test::TempDir d;
-  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n");
+  write_study_fixed_pairs(d, kReal, "0 0.6 0.6 0.1 0.1\n");
   const std::string f = d / "pairs/real__synth/s1.json";
   test::write_text(f, kHandPairs);
   const Session s = Session::open(d.path());
@@ -255,7 +258,7 @@ TEST(FixedPairsBinding, TheSessionListsProblemsAndFlagsUnusableScenes) {
 // "reset to automatic" is the explicit way to discard it.
 TEST(FixedPairsBinding, AnEditOfAStaleSceneIsRefusedAndResetDiscardsTheFile) {
   test::TempDir d;
-  write_study(d, kReal, "0 0.6 0.6 0.1 0.1\n");
+  write_study_fixed_pairs(d, kReal, "0 0.6 0.6 0.1 0.1\n");
   const std::string f = d / "pairs/real__synth/s1.json";
   test::write_text(f, kHandPairs);
   Session s = Session::open(d.path());
@@ -300,7 +303,7 @@ TEST(FixedPairsBinding, AnEditOfAStaleSceneIsRefusedAndResetDiscardsTheFile) {
 // the label file) they are refused too, and the file stays as it is.
 TEST(FixedPairsBinding, UndoAndRedoOfAStaleSceneAreRefusedAsEditsAre) {
   test::TempDir d;
-  write_study(d, kReal, kSynth);
+  write_study_fixed_pairs(d, kReal, kSynth);
   const std::string f = d / "pairs/real__synth/s1.json";
   test::write_text(f, kHandPairs);
   Session s = Session::open(d.path());
@@ -325,7 +328,7 @@ TEST(FixedPairsBinding, UndoAndRedoOfAStaleSceneAreRefusedAsEditsAre) {
 
 TEST(FixedPairsBinding, MalformedStoredRocksNameTheFile) {
   test::TempDir d;
-  write_study(d, kReal, kSynth);
+  write_study_fixed_pairs(d, kReal, kSynth);
   const std::string f = d / "pairs/real__synth/s1.json";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {R"({"pairs": [[0, 1]], "rocks_a": [[0, 0.2, 0.2, 0.1, 0.1]], "rocks_b": []})",
@@ -339,7 +342,7 @@ TEST(FixedPairsBinding, MalformedStoredRocksNameTheFile) {
   for (const auto& [text, why] : cases) {
     test::write_text(f, text);
     try {
-      table_of(d.path());
+      table_of_fixed_pairs(d.path());
       ADD_FAILURE() << "expected an error for " << text;
     } catch (const StudyError& e) {
       EXPECT_EQ(std::string(e.what()), f + ": " + why);
@@ -350,7 +353,7 @@ TEST(FixedPairsBinding, MalformedStoredRocksNameTheFile) {
 // A rock excluded twice read as "2 rocks excluded": an error naming the file, as a rock paired twice is.
 TEST(FixedPairsBinding, ARockListedTwiceIsAnErrorAsARockPairedTwiceIs) {
   test::TempDir d;
-  write_study(d, kReal, kSynth);
+  write_study_fixed_pairs(d, kReal, kSynth);
   const std::string f = d / "pairs/real__synth/s1.json";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {R"({"pairs": [], "excluded_a": [0, 0]})", "\"excluded_a\" lists rock 0 twice"},
@@ -360,14 +363,14 @@ TEST(FixedPairsBinding, ARockListedTwiceIsAnErrorAsARockPairedTwiceIs) {
   for (const auto& [text, why] : cases) {
     test::write_text(f, text);
     try {
-      table_of(d.path());
+      table_of_fixed_pairs(d.path());
       ADD_FAILURE() << "expected an error for " << text;
     } catch (const StudyError& e) {
       EXPECT_EQ(std::string(e.what()), f + ": " + why);
     }
   }
   test::write_text(f, R"({"pairs": [], "excluded_a": [1, 0]})");
-  EXPECT_EQ(table_of(d.path()).pairings[0][0].excluded_a, (std::vector<int>{0, 1}));
+  EXPECT_EQ(table_of_fixed_pairs(d.path()).pairings[0][0].excluded_a, (std::vector<int>{0, 1}));
 }
 
 }  // namespace

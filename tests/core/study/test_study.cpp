@@ -282,6 +282,24 @@ TEST(Cli, RegisterPrintsOneJsonObjectPerLine) {
   EXPECT_EQ(r.err, d / "none.txt" + ": no such label file\n");
 }
 
+// A misspelt domain or model is refused with the names the study has, so the fix is one look away.
+TEST(Cli, AnUnknownDomainOrModelListsTheStudysOwn) {
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd("demo " + d / "s --labels-only --scenes 2 --rocks 8").exit_code, 0);
+  auto r = test::run_ipd("figure pairs " + d / "s --a real --b hapkee --out " + d / "p.pdf");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(d / "s" + ": no domain 'hapkee' in this study (the study's domains: real, principled, hapke)"),
+            std::string::npos)
+      << r.err;
+  r = test::run_ipd("table " + d / "s --model det-rea");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(d / "s" +
+                       ": no model 'det-rea' (no <domain>/predictions/det-rea/ directory and not in study.yaml; the "
+                       "study's models: det-real, det-principled, det-hapke)"),
+            std::string::npos)
+      << r.err;
+}
+
 // Under a budget the text report says how long the registration took and how much of it was the final pairing,
 // which the budget cannot end; the JSON carries the same two times.
 TEST(Cli, ABudgetedRegistrationSaysWhatPartTheFinalPairingTook) {

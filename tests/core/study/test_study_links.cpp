@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 namespace ipd {
 namespace {
 
-std::string refused(const std::string& path) {
+std::string refused_study_links(const std::string& path) {
   return path + ": is a symbolic link; reading through it is refused (links inside a study are never followed)";
 }
 
@@ -40,7 +40,7 @@ TEST(StudyLinks, EveryLinkedFileOrFolderIsRefusedWhenTheStudyIsRead) {
       fs::create_directory_symlink(outside, inside);
     else
       fs::create_symlink(outside, inside);
-    EXPECT_EQ(test::open_study_error(d.path()), refused(inside)) << c.inside;
+    EXPECT_EQ(test::open_study_error(d.path()), refused_study_links(inside)) << c.inside;
   }
 }
 
@@ -51,8 +51,8 @@ TEST(StudyLinks, ALinkedPictureIsRefused) {
   fs::create_directories(d / "real/images");
   test::write_text(elsewhere / "s1.png", "not a picture");
   fs::create_symlink(elsewhere / "s1.png", d / "real/images/s1.png");
-  EXPECT_EQ(test::open_study_error(d.path()), refused(d / "real/images/s1.png"));
-  EXPECT_EQ(study_file_problem(d / "real/images/s1.png"), refused(d / "real/images/s1.png"));
+  EXPECT_EQ(test::open_study_error(d.path()), refused_study_links(d / "real/images/s1.png"));
+  EXPECT_EQ(study_file_problem(d / "real/images/s1.png"), refused_study_links(d / "real/images/s1.png"));
   EXPECT_TRUE(read_picture(d / "real/images/s1.png", cv::IMREAD_COLOR).empty());
 }
 
@@ -106,7 +106,7 @@ TEST(StudyLinks, ALabelFileSwappedForALinkAfterTheScanIsNotFollowed) {
   fs::create_symlink(elsewhere / "s1.txt", file);
   const StudyLabels labels = load_labels(s);
   ASSERT_EQ(labels.errors.size(), 1u);
-  EXPECT_EQ(labels.errors[0].to_string(), refused(file));
+  EXPECT_EQ(labels.errors[0].to_string(), refused_study_links(file));
   EXPECT_TRUE(labels.predictions.at("synth").at("det").at("s1").boxes.empty());
 }
 

@@ -17,7 +17,7 @@ namespace {
 
 const char* const kBox = "0 0.5 0.5 0.1 0.1\n";
 
-void expect_nothing_written(const test::TempDir& t) {
+void expect_nothing_written_yolo_import_layouts(const test::TempDir& t) {
   EXPECT_FALSE(fs::exists(t / "study/real"));
   if (fs::exists(t / "study"))
     for (const auto& e : fs::directory_iterator(t / "study")) ADD_FAILURE() << "left behind: " << e.path();
@@ -55,12 +55,12 @@ TEST(YoloImportLayouts, AListedPictureThatIsNotThereIsRefusedWithItsLine) {
   EXPECT_EQ(r.err, "error: " + t / "ds/train.txt" + ":2: " + t / "ds/images/train/s9.png" +
                        " is not there, nor its label file " + t / "ds/labels/train/s9.txt" +
                        "; expected a picture of the split\n");
-  expect_nothing_written(t);
+  expect_nothing_written_yolo_import_layouts(t);
   test::write_text(t / "ds/train.txt", "../elsewhere/s1.png\n");
   EXPECT_EQ(import(t, t / "ds/data.yaml").err, "error: " + t / "ds/train.txt" +
                                                    ":1: '../elsewhere/s1.png' leaves the dataset folder " + t / "ds" +
                                                    "; expected a picture below it\n");
-  expect_nothing_written(t);
+  expect_nothing_written_yolo_import_layouts(t);
 }
 
 // CVAT's train.txt names every frame (data/obj_train_data/<frame>.<ext>), also in an export without pictures.
@@ -84,7 +84,7 @@ TEST(YoloImportLayouts, CvatsTrainListSaysWhichFramesTheExportHas) {
   EXPECT_EQ(import(t, t / "cvat").err, "error: " + t / "cvat/obj_train_data/f3.txt" + ": a label file no line of " +
                                            t / "cvat/train.txt" +
                                            " names; add its picture to the list, or remove it\n");
-  expect_nothing_written(t);
+  expect_nothing_written_yolo_import_layouts(t);
 }
 
 TEST(YoloImportLayouts, NamesGivenOnTheCommandLineNameTheClassesOfADatasetWithout) {
@@ -100,13 +100,13 @@ TEST(YoloImportLayouts, NamesGivenOnTheCommandLineNameTheClassesOfADatasetWithou
                        ":1: class 1 is not among the classes --names names (1 of them); expected a named class "
                        "number\nerror: 1 problem in the source's label files; nothing written (--skip-bad-lines "
                        "writes malformed lines as comments)\n");
-  expect_nothing_written(t);
+  expect_nothing_written_yolo_import_layouts(t);
   // Beside a names file, --names would be a second opinion: refused.
   test::write_text(t / "ds/classes.txt", "rock\nshadow\n");
   r = import(t, t / "ds --names rock,shadow");
   EXPECT_EQ(r.err, "error: --names: " + t / "ds/classes.txt" +
                        " names the classes of this source already; --names is for a dataset without a names file\n");
-  expect_nothing_written(t);
+  expect_nothing_written_yolo_import_layouts(t);
 }
 
 TEST(YoloImportLayouts, SkippedLinesAreWrittenAsCommentsUnlessTheyAreMostLines) {
@@ -132,7 +132,7 @@ TEST(YoloImportLayouts, SkippedLinesAreWrittenAsCommentsUnlessTheyAreMostLines) 
                        ":2: expected 5 columns (class cx cy w h), found 3\nerror: " + t / "ds" +
                        ": --skip-bad-lines would leave out 3 of its 4 box lines, more than half: what is left is not "
                        "the dataset; fix the lines (or the layout that makes them wrong), nothing is written\n");
-  expect_nothing_written(t);
+  expect_nothing_written_yolo_import_layouts(t);
 }
 
 TEST(YoloImportLayouts, ADatasetUnzippedOneFolderDownIsNamed) {
@@ -144,7 +144,7 @@ TEST(YoloImportLayouts, ADatasetUnzippedOneFolderDownIsNamed) {
                 ": not a YOLO dataset itself, but its folder rocks.v1 holds data.yaml (the dataset unzipped one "
                 "folder down): ipd import yolo " +
                 t / "download/rocks.v1" + " --out STUDY/<domain>\n");
-  expect_nothing_written(t);
+  expect_nothing_written_yolo_import_layouts(t);
 }
 
 TEST(PredictionImportLayouts, ARunKeptFoldersDownIsNamedWithTheCommandThatTakesIt) {

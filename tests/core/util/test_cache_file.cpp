@@ -31,7 +31,7 @@ pid_t dead_pid() {
   return pid;
 }
 
-std::vector<Box> rocks(double dx) { return test::seven_rocks(dx); }
+std::vector<Box> rocks_cache_file(double dx) { return test::seven_rocks(dx); }
 
 TEST(CacheDir, AnchorIsTheStudyRootBeforeTheLastIpdCache) {
   EXPECT_EQ(cache_anchor("/s/.ipd-cache/registration"), "/s");
@@ -51,7 +51,8 @@ TEST(CacheDir, ALinkedIpdCacheIsNeitherWrittenNorReadAndSaidOnce) {
   EXPECT_EQ(CacheDir::open(d / "study/.ipd-cache", false), nullptr);
   const RegistrationCache cache(d / "study/.ipd-cache/registration");
   bool hit = true;
-  const RegistrationReport r = register_rocks_cached(&cache, rocks(0), rocks(0.02), RegistrationOptions{}, &hit);
+  const RegistrationReport r =
+      register_rocks_cached(&cache, rocks_cache_file(0), rocks_cache_file(0.02), RegistrationOptions{}, &hit);
   EXPECT_FALSE(hit);
   EXPECT_EQ(r.pairs.size(), 7u);
   EXPECT_EQ(testing::internal::GetCapturedStderr(), d / "study/.ipd-cache" + ": is a symbolic link; not used\n");
@@ -64,7 +65,7 @@ TEST(CacheDir, LinkedEntriesAndFoldersAtAnyDepthAreLeftAlone) {
   fs::create_directories(d / "outside");
   test::write_text(d / "outside/victim", "precious\n");
   const RegistrationOptions o;
-  const auto a = rocks(0), b = rocks(0.02);
+  const auto a = rocks_cache_file(0), b = rocks_cache_file(0.02);
   const std::string key = registration_cache_key(a, b, o);
   const RegistrationCache cache(d / "study/.ipd-cache/registration");
   // The entry's two-digit folder is a link: nothing is stored through it.

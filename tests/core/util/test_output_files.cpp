@@ -13,7 +13,7 @@ namespace fs = std::filesystem;
 namespace ipd {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
+std::string error_of_output_files(const std::function<void()>& f) {
   try {
     f();
   } catch (const IoError& e) {
@@ -30,7 +30,7 @@ TEST(OutputFiles, BelowAStudyALinkedFolderOrFileIsRefusedAndNothingOutsideChange
   test::write_text(outside + "/victim.svg", "precious");
   // The studio's default export folder, planted as a link out of the study.
   fs::create_directory_symlink(outside, study + "/figures");
-  EXPECT_EQ(error_of([&] { write_output_file(study, study + "/figures/scene_01.svg", "figure"); }),
+  EXPECT_EQ(error_of_output_files([&] { write_output_file(study, study + "/figures/scene_01.svg", "figure"); }),
             fs::canonical(study).string() +
                 "/figures: is a symbolic link; saving through it is refused (links inside a study are never followed)");
   EXPECT_FALSE(fs::exists(outside + "/scene_01.svg"));
@@ -38,10 +38,11 @@ TEST(OutputFiles, BelowAStudyALinkedFolderOrFileIsRefusedAndNothingOutsideChange
   fs::remove(study + "/figures");
   fs::create_directories(study + "/figures");
   fs::create_symlink(outside + "/victim.svg", study + "/figures/victim.svg");
-  EXPECT_NE(error_of([&] { write_output_file(study, study + "/figures/victim.svg", "figure"); }), "");
+  EXPECT_NE(error_of_output_files([&] { write_output_file(study, study + "/figures/victim.svg", "figure"); }), "");
   EXPECT_EQ(read_file(outside + "/victim.svg"), "precious");
   // A path that only passes through ".." inside the study is still below it.
-  EXPECT_NE(error_of([&] { write_output_file(study, study + "/figures/../figures/victim.svg", "figure"); }), "");
+  EXPECT_NE(
+      error_of_output_files([&] { write_output_file(study, study + "/figures/../figures/victim.svg", "figure"); }), "");
   EXPECT_EQ(read_file(outside + "/victim.svg"), "precious");
   // A plain file below the study is written.
   write_output_file(study, study + "/figures/new.svg", "figure");

@@ -227,16 +227,16 @@ TEST(ReceivedStudy, AStudyOfTooManyDomainsIsRefused) {
 }
 
 // Sets an environment variable (or unsets it: nullptr) for a scope.
-class ScopedEnv {
+class ScopedEnvReceivedStudy {
  public:
-  ScopedEnv(const char* name, const char* value) : name_(name) {
+  ScopedEnvReceivedStudy(const char* name, const char* value) : name_(name) {
     if (const char* old = std::getenv(name)) old_ = old;
     if (value)
       ::setenv(name, value, 1);
     else
       ::unsetenv(name);
   }
-  ~ScopedEnv() {
+  ~ScopedEnvReceivedStudy() {
     if (old_)
       ::setenv(name_, old_->c_str(), 1);
     else
@@ -251,7 +251,7 @@ class ScopedEnv {
 // With HOME and XDG_CACHE_HOME unset (a service, `env -i`) the user cache is below the home folder the
 // password database gives this user, never a folder of /tmp another user could have made first.
 TEST(ReceivedStudy, WithoutHomeTheUserCacheIsInThePasswordDatabasesHomeFolder) {
-  const ScopedEnv xdg("XDG_CACHE_HOME", nullptr), home("HOME", nullptr);
+  const ScopedEnvReceivedStudy xdg("XDG_CACHE_HOME", nullptr), home("HOME", nullptr);
   const passwd* pw = ::getpwuid(::getuid());
   ASSERT_NE(pw, nullptr);
   EXPECT_EQ(user_cache_root(), std::string(pw->pw_dir) + "/.cache/ipd-studio");
@@ -260,7 +260,7 @@ TEST(ReceivedStudy, WithoutHomeTheUserCacheIsInThePasswordDatabasesHomeFolder) {
 // The user cache root is made private (0700), and one that is a link or belongs to another user is not used.
 TEST(ReceivedStudy, TheUserCacheRootIsPrivateAndOurOwn) {
   test::TempDir d, elsewhere;
-  const ScopedEnv xdg("XDG_CACHE_HOME", d.path().c_str());
+  const ScopedEnvReceivedStudy xdg("XDG_CACHE_HOME", d.path().c_str());
   std::string why;
   EXPECT_EQ(usable_user_cache_root(&why), d / "ipd-studio");
   EXPECT_EQ(why, "");

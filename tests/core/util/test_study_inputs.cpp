@@ -19,26 +19,28 @@ const char* const kWhere =
     "an output written there would replace it, so nothing is written. Outputs go outside study.yaml, pairs/, "
     "review/, .ipd-cache/ and each domain's labels/, images/ and predictions/ (e.g. into STUDY/figures/)";
 
-std::string refused(const std::string& path, const std::string& what) {
+std::string refused_study_inputs(const std::string& path, const std::string& what) {
   return path + ": is one of the study's inputs (" + what + "); " + kWhere;
 }
 
 TEST(StudyInputs, EveryInputOfTheLayoutIsNamedAndEverythingElseMayTakeAnOutput) {
   test::TempDir d;
   const std::string s = d / "study";
-  EXPECT_EQ(study_input_problem(s, s + "/study.yaml"), refused(s + "/study.yaml", "the study's settings"));
-  EXPECT_EQ(study_input_problem(s, s + "/real/labels/scene_01.txt"),
-            refused(s + "/real/labels/scene_01.txt", "the ground-truth labels of domain 'real', real/labels/"));
+  EXPECT_EQ(study_input_problem(s, s + "/study.yaml"), refused_study_inputs(s + "/study.yaml", "the study's settings"));
+  EXPECT_EQ(
+      study_input_problem(s, s + "/real/labels/scene_01.txt"),
+      refused_study_inputs(s + "/real/labels/scene_01.txt", "the ground-truth labels of domain 'real', real/labels/"));
   EXPECT_EQ(study_input_problem(s, s + "/real/images/scene_01.png"),
-            refused(s + "/real/images/scene_01.png", "the pictures of domain 'real', real/images/"));
-  EXPECT_EQ(study_input_problem(s, s + "/real/predictions/det/s.txt"),
-            refused(s + "/real/predictions/det/s.txt", "the predictions of domain 'real', real/predictions/"));
+            refused_study_inputs(s + "/real/images/scene_01.png", "the pictures of domain 'real', real/images/"));
+  EXPECT_EQ(
+      study_input_problem(s, s + "/real/predictions/det/s.txt"),
+      refused_study_inputs(s + "/real/predictions/det/s.txt", "the predictions of domain 'real', real/predictions/"));
   EXPECT_EQ(study_input_problem(s, s + "/pairs/real__synth/s.json"),
-            refused(s + "/pairs/real__synth/s.json", "the hand pairs, pairs/"));
+            refused_study_inputs(s + "/pairs/real__synth/s.json", "the hand pairs, pairs/"));
   EXPECT_EQ(study_input_problem(s, s + "/review/real__synth.json"),
-            refused(s + "/review/real__synth.json", "the review marks, review/"));
+            refused_study_inputs(s + "/review/real__synth.json", "the review marks, review/"));
   EXPECT_EQ(study_input_problem(s, s + "/.ipd-cache/parsed-study.bin"),
-            refused(s + "/.ipd-cache/parsed-study.bin", "the study's caches, .ipd-cache/"));
+            refused_study_inputs(s + "/.ipd-cache/parsed-study.bin", "the study's caches, .ipd-cache/"));
   // Reached through ".." it is still the same file.
   EXPECT_NE(study_input_problem(s, s + "/figures/../real/labels/scene_01.txt"), "");
   // Outputs: the studio's figures folder, the study's top level, a file beside a domain's folders.
@@ -61,7 +63,7 @@ TEST(StudyInputs, AUsersLinkThatPointsIntoTheStudyIsSeenThrough) {
   test::write_text(d / "study/real/labels/s1.txt", "0 0.5 0.5 0.1 0.1\n");
   fs::create_directory_symlink(d / "study/real/labels", d / "mine");
   EXPECT_EQ(study_input_problem(d / "study", d / "mine/s1.txt"),
-            refused(d / "mine/s1.txt", "the ground-truth labels of domain 'real', real/labels/"));
+            refused_study_inputs(d / "mine/s1.txt", "the ground-truth labels of domain 'real', real/labels/"));
   EXPECT_THROW(write_output_file(d / "study", d / "mine/s1.txt", "table"), IoError);
   EXPECT_EQ(read_file(d / "study/real/labels/s1.txt"), "0 0.5 0.5 0.1 0.1\n");
 }
@@ -93,7 +95,8 @@ TEST(StudyInputs, TableExportAndFigureRefuseToWriteOverTheStudysInputs) {
   for (const Case& c : cases) {
     const auto r = test::run_ipd(c.args);
     EXPECT_EQ(r.exit_code, 1) << c.args;
-    EXPECT_NE(r.err.find("error: " + refused(c.path, c.what) + "\n"), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find("error: " + refused_study_inputs(c.path, c.what) + "\n"), std::string::npos) << c.args << "\n"
+                                                                                                      << r.err;
     EXPECT_EQ(r.err.find("wrote"), std::string::npos) << r.err;
   }
   EXPECT_EQ(read_file(label), label_before);

@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 namespace ipd {
 namespace {
 
-struct Case {
+struct CaseFigureExport {
   std::string kind, by, cli;     // cli: the `ipd figure` arguments that describe the same view
   std::string after_study = {};  // more of them after STUDY (--domains takes every word up to the next option)
 };
@@ -33,7 +33,7 @@ TEST(FigureExport, GuiAndCliGiveTheSameStudyFigures) {
   run_save_job(s.apply(0, Edit::unpair(Side::kA, 0)));
   ASSERT_TRUE(fs::exists(d / "pairs/real__hapke/s00.json"));
   const std::string view = " --conf 0.5 --model det";
-  const std::vector<Case> cases = {
+  const std::vector<CaseFigureExport> cases = {
       {"table", "size", "table --ci 0.95"},
       {"compare", "size", "compare"},
       {"distribution", "size", "distribution"},
@@ -42,7 +42,7 @@ TEST(FigureExport, GuiAndCliGiveTheSameStudyFigures) {
       {"breakdown", "confidence", "breakdown --by confidence --a real --b hapke"},
       {"gallery", "size", "gallery", "--domains real,hapke"},
   };
-  for (const Case& c : cases) {
+  for (const CaseFigureExport& c : cases) {
     SCOPED_TRACE(c.kind + " " + c.by);
     ui::ExportRequest request;
     request.kind = c.kind;

@@ -33,7 +33,7 @@ std::vector<ui::DisplayList::TextItem> texts_named(const ui::DisplayList& fig, c
 }
 
 // Whether the figure's text, wrapped lines joined by spaces, holds `s`.
-bool contains(const ui::DisplayList& fig, const std::string& s) {
+bool contains_figure_labels(const ui::DisplayList& fig, const std::string& s) {
   std::string all;
   for (const auto& t : fig.texts()) all += t.text + " ";
   return all.find(s) != std::string::npos;
@@ -64,7 +64,7 @@ TEST(FigureLabels, AConfidenceLiesOnNoGtBoxButTheOneItsPredictionMatches) {
   ASSERT_EQ(conf.size(), 1u);
   EXPECT_FALSE(over(conf[0].box, on_page(l.left, in.gt_a[0])));
   EXPECT_TRUE(over(conf[0].box, on_page(l.left, in.gt_a[1])));
-  EXPECT_FALSE(contains(fig, "left out"));
+  EXPECT_FALSE(contains_figure_labels(fig, "left out"));
 }
 
 // Rock 1 is a 5 pt wide full-height strip between rocks 2 and 3, touching both: its number fits inside
@@ -87,7 +87,7 @@ TEST(FigureLabels, ARockNumberNeverSitsOnAnotherRocksBox) {
         EXPECT_FALSE(over(t[0].box, on_page(l.left, in.gt_a[k]))) << name << " on " << k + 1;
       }
   }
-  EXPECT_TRUE(contains(
+  EXPECT_TRUE(contains_figure_labels(
       fig, "1 rock number left out: no free spot clear of the other rocks' boxes (try --crop or --column double)"));
 }
 
@@ -131,11 +131,11 @@ TEST(FigureLabels, TheExcludedRockStrokeHasALegendEntry) {
   o.width_in = ui::kDoubleColumnIn;
   ui::DisplayList plain(metrics);
   ui::draw_pairs_figure(plain, in, o);
-  EXPECT_FALSE(contains(plain, "excluded from the IPD (by hand)"));
+  EXPECT_FALSE(contains_figure_labels(plain, "excluded from the IPD (by hand)"));
   in.excluded_a = {0};
   ui::DisplayList struck(metrics);
   ui::draw_pairs_figure(struck, in, o);
-  EXPECT_TRUE(contains(struck, "excluded from the IPD (by hand)"));
+  EXPECT_TRUE(contains_figure_labels(struck, "excluded from the IPD (by hand)"));
 }
 
 // The ownership rule on a dense generated scene (60 rocks a side, labels only), double column with every

@@ -19,7 +19,7 @@ namespace ipd {
 namespace {
 
 // As test_provenance.cpp: real rock 0 paired by hand with synth rock 1, real rock 1 left out.
-void write_hand_pairs(const test::TempDir& d) {
+void write_hand_pairs_figure_provenance(const test::TempDir& d) {
   test::write_text(d / "pairs/real__synth/s1.json", R"({"pairs": [[0, 1]], "excluded_a": [1],)"
                                                     R"( "rocks_a": [[0, 0.2, 0.2, 0.1, 0.1], [1, 0.6, 0.6, 0.1, 0.1]],)"
                                                     R"( "rocks_b": [[1, 0.2, 0.2, 0.1, 0.1]]})");
@@ -40,7 +40,7 @@ const char* const kAutomatic = "Label files d189a61c07b5; no hand pairs (every p
 TEST(FigureProvenance, EditedStudyShowsTheNoteUnderEveryKind) {
   test::TempDir d;
   test::write_two_rock_study(d);
-  write_hand_pairs(d);
+  write_hand_pairs_figure_provenance(d);
   for (const std::string kind : {"pairs", "registration", "table", "distribution", "breakdown", "gallery"}) {
     SCOPED_TRACE(kind);
     const std::string out = d / (kind + ".pdf");
@@ -70,7 +70,7 @@ TEST(FigureProvenance, EditedStudyShowsTheNoteUnderEveryKind) {
 TEST(FigureProvenance, SceneFiguresCarryTheScenesReviewMarks) {
   test::TempDir d;
   test::write_two_rock_study(d);
-  write_hand_pairs(d);
+  write_hand_pairs_figure_provenance(d);
   test::write_text(d / "review/real__synth.json",
                    R"({"reviewed": ["s1"], "checked": [)"
                    R"({"scene": "s1", "rock_a": [0.2, 0.2, 0.1, 0.1], "rock_b": [0.2, 0.2, 0.1, 0.1]}]})");
@@ -91,7 +91,7 @@ TEST(FigureProvenance, SceneFiguresCarryTheScenesReviewMarks) {
 TEST(FigureProvenance, ASceneWithStaleHandPairsSaysTheyWereNotUsed) {
   test::TempDir d;
   test::write_two_rock_study(d);
-  write_hand_pairs(d);
+  write_hand_pairs_figure_provenance(d);
   test::write_text(d / "synth/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.3 0.2 0.1 0.1\n");  // synth rock 2 moved
   const std::string out = d / "pairs.pdf";
   const auto r = test::run_ipd("figure pairs " + d.path() + " --skip-bad-lines --out " + out);
@@ -130,7 +130,7 @@ TEST(FigureProvenance, ACellsFigureCountsTheHandPairsOfItsCellOnly) {
   test::write_two_rock_study(d);
   test::write_text(d / "other/labels/s1.txt", "0 0.6 0.6 0.1 0.1\n0 0.2 0.2 0.1 0.1\n");
   test::write_text(d / "other/predictions/det/s1.txt", "0 0.25 0.2 0.1 0.1 0.8\n");
-  write_hand_pairs(d);
+  write_hand_pairs_figure_provenance(d);
   const std::string fingerprint = "Label files " + label_set_fingerprint(open_study(d.path())) + "; ";
   const std::string none = fingerprint + "no hand pairs (every pair from registration).";
   const std::string edited = fingerprint + "hand pairs in 1 scene (1 pair set by hand, 1 rock excluded).";

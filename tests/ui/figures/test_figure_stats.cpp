@@ -19,7 +19,7 @@ namespace {
 // Three domains with the same three rocks; det (trained on real) finds each rock exactly in real, shifted
 // by 0.05 (IoU 0.6) in s1 and by 0.10 (IoU 1/3) in s2, in both scenes. So IPD(real, s1) = 0.4,
 // IPD(real, s2) = 2/3 and ΔIPD = IPD(real, s1) - IPD(real, s2) = -0.2667 in every scene (interval a point).
-void write_three_domain_study(const test::TempDir& d) {
+void write_three_domain_study_figure_stats(const test::TempDir& d) {
   test::write_text(d / "study.yaml", "domains: [real, s1, s2]\nmodels: {det: {trained_on: real}}\n");
   const char* gt = "0 0.20 0.30 0.2 0.2\n0 0.70 0.25 0.2 0.2\n0 0.45 0.75 0.2 0.2\n";
   for (const std::string scene : {"a", "b"})
@@ -36,7 +36,7 @@ using test::pdf_words;
 
 TEST(FigureStats, CompareShowsTheDeltaAndItsTest) {
   test::TempDir d;
-  write_three_domain_study(d);
+  write_three_domain_study_figure_stats(d);
   const auto r =
       test::run_ipd("figure compare " + d.path() + " --bootstrap 200 --permutations 200 --out " + d / "c.pdf");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -59,7 +59,7 @@ TEST(FigureStats, CompareShowsTheDeltaAndItsTest) {
 
 TEST(FigureStats, TableWithIntervalsDistributionAndBreakdown) {
   test::TempDir d;
-  write_three_domain_study(d);
+  write_three_domain_study_figure_stats(d);
   auto r = test::run_ipd("figure table " + d.path() + " --ci --bootstrap 100 --out " + d / "t.pdf");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::string text = pdf_words(d / "t.pdf");
@@ -84,7 +84,7 @@ TEST(FigureStats, TableWithIntervalsDistributionAndBreakdown) {
 // given as --ci=L or --ci L in either order.
 TEST(FigureStats, CiParsesTheSameWayInEveryOrder) {
   test::TempDir d;
-  write_three_domain_study(d);
+  write_three_domain_study_figure_stats(d);
   const std::string s = d.path(), out = " --bootstrap 100 --out " + d / "t.pdf";
   for (const std::string& args :
        {"--ci " + s + out, s + " --ci" + out, "--ci 0.9 " + s + out, "--ci=0.9 " + s + out, s + out + " --ci"}) {
