@@ -15,11 +15,12 @@ namespace ipd::ui {
 
 void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
   const Session& s = *v.session;
+  const TableCell t = s.cell();  // the domain pair's cell: its number below, and why a scene has none
   if (!s.scenes().empty()) {
     const SceneSummary& m = (*v.summaries)[ui.scene];
     ImGui::Text("scene %s", m.stem.c_str());
-    if (s.cell().missing_predictions)  // no scene has a number, whatever its pairs: say why, not "0 pairs"
-      text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "IPD – (not a number): " + s.cell().no_value_reason);
+    if (t.missing_predictions)  // no scene has a number, whatever its pairs: say why, not "0 pairs"
+      text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "IPD – (not a number): " + t.no_value_reason);
     else
       text_wrapped_at_spaces("IPD " + fmt_ipd(m.ipd) + "  (" + counted(m.pairs, "pair") + ", unpaired " +
                              thousands(m.unpaired_a) + " / " + thousands(m.unpaired_b) + ")");
@@ -39,7 +40,6 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
       if (ImGui::Checkbox(label.c_str(), &checked)) out.check_left = l, out.check_right = r;
     }
   }
-  const TableCell t = s.cell();
   ImGui::Separator();
   ImGui::Text("IPD(%s, %s) for %s", s.left_domain().c_str(), s.right_domain().c_str(), s.model().c_str());
   if (!t.no_value_reason.empty())  // two empty prediction sets are not a perfect match: say why there is no number
