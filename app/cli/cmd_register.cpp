@@ -50,8 +50,9 @@ struct SearchCount {
 
 std::vector<SearchCount> search_counts(RegistrationMethod method) {
   if (method == RegistrationMethod::kCpd)
-    return {{"em_iterations", "EM iteration", "EM iterations", &RegistrationReport::trials}};
-  return {{"trials", "trial", "trials", &RegistrationReport::trials},
+    return {{"em_iterations", "EM iteration", "EM iterations", &RegistrationReport::em_iterations}};
+  // The samples drawn are "trials", as --trials names their bound.
+  return {{"trials", "trial", "trials", &RegistrationReport::samples},
           {"hypotheses", "hypothesis", "hypotheses", &RegistrationReport::hypotheses}};
 }
 
@@ -72,7 +73,9 @@ nlohmann::json report_json(const Job& job, const RegistrationReport& r) {
   for (const auto& [a, b] : r.pairs) j["pairs"].push_back({a, b});
   for (const auto& c : search_counts(r.method)) j[c.json_key] = r.*c.value;
   j["inliers"] = r.inliers;
-  j["score"] = has_score(r) ? nlohmann::json(r.score) : nlohmann::json(nullptr);  // null: nothing was scored
+  // null: nothing was scored (a 0 would read as paper's perfect fit). The measure says how to read the number.
+  j["score"] = r.fit.scored() ? nlohmann::json(r.fit.value) : nlohmann::json(nullptr);
+  j["score_measure"] = r.fit.scored() ? nlohmann::json(fit_measure_key(r.fit.measure)) : nlohmann::json(nullptr);
   j["stop"] = ipd::to_string(r.stop);
   j["confidence"] = r.confidence;
   j["ambiguous"] = r.ambiguous;
@@ -248,9 +251,9 @@ void print_report_text(const Job& job, RegistrationMethod method_used, double bu
   std::string searched;
   for (const auto& c : search_counts(method_used))
     searched += (searched.empty() ? "" : ", ") + counted(r[c.json_key].get<double>(), c.singular, c.plural);
-  fmt::print("  method {}: {}, score {}; stopped: {}\n", method, searched,
-             r["score"].is_null() ? std::string("- (nothing scored)") : fixed_no_minus_zero(r["score"].get<double>()),
-             r["stop"].get<std::string>());
+  const FitScore fit =
+      r["score"].is_null() ? FitScore{} : FitScore{fit_measure_of(method_used), r["score"].get<double>()};
+  fmt::print("  method {}: {}, {}; stopped: {}\n", method, searched, fit_text(fit, 5), r["stop"].get<std::string>());
   // Two different counts: A centres that land within the gate of some B centre after the alignment,
   // and the one-to-one pairs the method then forms (which the IPD uses).
   fmt::print("  {} within the gate; {} by {}\n", counted(r["inliers"].get<double>(), "centre", "centres"),

@@ -32,8 +32,9 @@ constexpr char kMagic[8] = {'I', 'P', 'D', 'S', 'T', 'U', 'D', 'Y'};
 // Bump when the layout, label parsing or a registration method's results change: 3 for the signature; 4: a
 // report keeps why its registration is ambiguous (Ambiguity), not only whether; 5: answers nothing was compared
 // with are flagged as such (Ambiguity::kUnchecked, kNoPlausible); 7: outlines, with their areas and centroids
-// (an outline's clipping into non-crossing contours is not redone on a warm load); 8: the label set's fingerprint.
-constexpr std::uint32_t kFormat = 8;
+// (an outline's clipping into non-crossing contours is not redone on a warm load); 8: the label set's fingerprint;
+// 9: a report's samples and EM iterations apart, its fit with its measure.
+constexpr std::uint32_t kFormat = 9;
 constexpr size_t kHeaderBytes = kParsedStudyHeaderBytes;
 static_assert(kHeaderBytes == sizeof kMagic + 4 + 8 + CacheSigner::kMacBytes);
 
@@ -185,10 +186,12 @@ void write_report(Writer& w, const RegistrationReport& r) {
   for (int k = 0; k < 6; ++k) w.pod<double>(r.affine(k / 3, k % 3));
   w.pod<std::uint64_t>(r.pairs.size());
   for (const auto& [i, j] : r.pairs) w.pod<std::int32_t>(i), w.pod<std::int32_t>(j);
-  w.pod<std::int32_t>(r.trials);
+  w.pod<std::int32_t>(r.samples);
+  w.pod<std::int32_t>(r.em_iterations);
   w.pod<std::int32_t>(r.hypotheses);
   w.pod<std::int32_t>(r.inliers);
-  w.pod<double>(std::isfinite(r.score) ? r.score : 0.0);
+  w.pod<std::uint8_t>(static_cast<std::uint8_t>(r.fit.measure));
+  w.pod<double>(std::isfinite(r.fit.value) ? r.fit.value : 0.0);
   w.pod<std::int32_t>(static_cast<int>(r.stop));
   w.str(r.note);
   w.pod<double>(r.elapsed_ms);
@@ -210,10 +213,13 @@ RegistrationReport read_report(Reader& rd) {
     const int i = rd.pod<std::int32_t>();
     r.pairs.emplace_back(i, rd.pod<std::int32_t>());
   }
-  r.trials = rd.pod<std::int32_t>();
+  r.samples = rd.pod<std::int32_t>();
+  r.em_iterations = rd.pod<std::int32_t>();
   r.hypotheses = rd.pod<std::int32_t>();
   r.inliers = rd.pod<std::int32_t>();
-  r.score = rd.pod<double>();
+  const int measure = rd.pod<std::uint8_t>();
+  if (measure > static_cast<int>(FitMeasure::kMixtureWidth)) throw std::runtime_error("bad fit measure");
+  r.fit = {static_cast<FitMeasure>(measure), rd.pod<double>()};
   const int stop = rd.pod<std::int32_t>();
   if (stop < 0 || stop > static_cast<int>(kLastStopReason)) throw std::runtime_error("bad stop reason");
   r.stop = static_cast<StopReason>(stop);

@@ -267,7 +267,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   SearchRecorder recorder(
       f, gate, o.record_trace, [](double s) { return s; }, nullptr);
   const int it = run_em(f, x, y, o, deadline, allowed, per_step, recorder, &fit, &out);
-  out.trials = it;
+  out.em_iterations = it;
   out.hypotheses = it;
   out.affine_normalised.leftCols<2>() = fit.lin;
   out.affine_normalised.col(2) = fit.t.transpose();
@@ -275,7 +275,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
     out.affine_normalised = f.from_image(identity_affine());
     out.note = "EM diverged: identity used";
   }
-  out.score = std::sqrt(std::max(fit.sigma2, 0.0)) * f.spread;  // final mixture width, fraction of image width
+  out.fit = std::sqrt(std::max(fit.sigma2, 0.0)) * f.spread;  // final mixture width, fraction of image width
   if (out.stop == StopReason::kTimeBudget || deadline.passed()) {
     // The rival placements score whole sets again: with the budget spent EM's answer stands, unjudged.
     out.stop = StopReason::kTimeBudget;
@@ -287,7 +287,7 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
   }
   if (out.beaten) {
     out.note = "a shifted placement fitted better than EM's alignment: used";
-    recorder.add_step(TraceStepKind::kPolish, out.affine_normalised, out.score, out.score, true);  // replays end on it
+    recorder.add_step(TraceStepKind::kPolish, out.affine_normalised, out.fit, out.fit, true);  // replays end on it
   }
   out.trace = recorder.take_trace(fmt::format("{} ({}, {} of {})", to_string(out.stop),
                                               count_of(it, "EM iteration", "EM iterations"), grouped(out.work),

@@ -139,7 +139,7 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   DeadlineSampler<RandomTripleSampler> timed{sampler, deadline, o.paper.samples};
   auto r = run_robust_loop<Affine2, TriplePair>(timed, estimator, scorer, lo, recorder);
   r.stop = timed.stop(r.stop);
-  out.trials = r.trials;
+  out.samples = r.samples;
   out.hypotheses = r.hypotheses;
   out.work = r.work;
   out.stop = r.stop;
@@ -147,7 +147,7 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
   // counted from kExact so two exact fits (a layout and its mirror, 1e-17 and 0) read 0, not 1.
   if (r.found && std::isfinite(recorder.rival_score()))
     out.confidence = confidence_from_scores(kExact - recorder.rival_score(), kExact - r.best_score);
-  out.trace = recorder.take_trace(describe_stop(r.stop, r.trials, r.hypotheses, r.work, lo.max_work));
+  out.trace = recorder.take_trace(describe_stop(r.stop, r.samples, r.hypotheses, r.work, lo.max_work));
   if (!r.found) {
     out.affine_normalised = f.from_image(identity_affine());
     const bool budget = r.stop == StopReason::kTimeBudget;
@@ -156,7 +156,7 @@ MethodOutcome register_paper(const RegistrationFrame& f, const RegistrationOptio
     out.unjudged = budget ? Ambiguity::kUnchecked : Ambiguity::kDegenerate;
   } else {
     out.affine_normalised = r.best;
-    out.score = -r.best_score * f.spread;  // mean distance, as a fraction of the image width
+    out.fit = -r.best_score * f.spread;  // mean distance, as a fraction of the image width
   }
   const auto pairing_start = std::chrono::steady_clock::now();
   count_inliers(out.affine_normalised);  // the final pairing: mutual nearest centres

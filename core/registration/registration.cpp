@@ -69,8 +69,53 @@ std::string methods_help() {
   return s;
 }
 
-bool has_score(const RegistrationReport& r) {
-  return r.method == RegistrationMethod::kCpd ? r.trials > 0 : r.hypotheses > 0;
+FitMeasure fit_measure_of(RegistrationMethod m) {
+  switch (m) {
+    case RegistrationMethod::kPaper:
+      return FitMeasure::kMeanDistance;
+    case RegistrationMethod::kConsensus:
+      return FitMeasure::kSoftInliers;
+    case RegistrationMethod::kCpd:
+      return FitMeasure::kMixtureWidth;
+  }
+  return FitMeasure::kNotScored;
+}
+
+bool lower_is_better(FitMeasure m) { return m == FitMeasure::kMeanDistance || m == FitMeasure::kMixtureWidth; }
+
+const char* fit_measure_name(FitMeasure m) {
+  switch (m) {
+    case FitMeasure::kNotScored:
+      return "not scored";
+    case FitMeasure::kMeanDistance:
+      return "mean distance";
+    case FitMeasure::kSoftInliers:
+      return "soft inliers";
+    case FitMeasure::kMixtureWidth:
+      return "mixture width";
+  }
+  return "";
+}
+
+const char* fit_measure_key(FitMeasure m) {
+  switch (m) {
+    case FitMeasure::kNotScored:
+      return "";
+    case FitMeasure::kMeanDistance:
+      return "mean_distance";
+    case FitMeasure::kSoftInliers:
+      return "soft_inliers";
+    case FitMeasure::kMixtureWidth:
+      return "mixture_width";
+  }
+  return "";
+}
+
+std::string fit_text(const FitScore& fit, int decimals) {
+  if (!fit.scored()) return fit_measure_name(fit.measure);
+  std::string v = fmt::format("{:.{}f}", fit.value, decimals);
+  if (v[0] == '-' && v.find_first_not_of("-0.") == std::string::npos) v.erase(0, 1);  // -0.0000 reads as 0
+  return std::string(fit_measure_name(fit.measure)) + " " + v;
 }
 
 const char* ambiguity_reason(Ambiguity a) {
@@ -284,20 +329,20 @@ std::string count_of(double n, const char* singular, const char* plural) {
   return grouped(n) + " " + (std::llround(n) == 1 ? singular : plural);
 }
 
-std::string describe_stop(StopReason stop, int trials, int hypotheses, double work, double budget) {
+std::string describe_stop(StopReason stop, int samples, int hypotheses, double work, double budget) {
   std::string s = to_string(stop);
-  const std::string samples = count_of(trials, "sample", "samples");
+  const std::string sampled = count_of(samples, "sample", "samples");
   const std::string tried = count_of(hypotheses, "hypothesis", "hypotheses");
   switch (stop) {
     case StopReason::kWorkBudget:
       return fmt::format("{} ({} of {}; {}, {})", s, grouped(work),
-                         count_of(budget, "point evaluation", "point evaluations"), samples, tried);
+                         count_of(budget, "point evaluation", "point evaluations"), sampled, tried);
     case StopReason::kNotRun:
     case StopReason::kTooFewPoints:
     case StopReason::kIdenticalLayouts:
       return s;
     default:
-      return fmt::format("{} ({}, {}, {})", s, samples, tried, count_of(work, "point evaluation", "point evaluations"));
+      return fmt::format("{} ({}, {}, {})", s, sampled, tried, count_of(work, "point evaluation", "point evaluations"));
   }
 }
 
@@ -438,10 +483,12 @@ RegistrationReport register_rocks_until(const std::vector<Box>& a, const std::ve
                                [&](const std::pair<int, int>& p) { return a[p.first].cls != b[p.second].cls; }),
                 r.pairs.end());
   std::sort(r.pairs.begin(), r.pairs.end());
-  r.trials = out.trials;
+  r.samples = out.samples;
+  r.em_iterations = out.em_iterations;
   r.hypotheses = out.hypotheses;
   r.inliers = out.inliers;
-  r.score = out.score;
+  // With no hypothesis scored a fit of 0 would read as paper's perfect fit: it is not scored instead.
+  if (out.hypotheses > 0) r.fit = {fit_measure_of(options.method), out.fit};
   r.stop = out.stop;
   r.note = std::move(out.note);
   r.confidence = out.confidence;

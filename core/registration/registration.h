@@ -124,14 +124,42 @@ inline constexpr const char* kAmbiguousReason =
     "another alignment fits as well or almost as well (e.g. a small overlap or a repetitive layout)";
 const char* ambiguity_reason(Ambiguity a);  // "" for kNone
 
+// How a method measures its answer's fit. Each method measures in its own unit and direction, so a fit always
+// travels with its measure: a bare number would read a distance (lower is better) as a count (higher is better).
+enum class FitMeasure : std::uint8_t {
+  kNotScored,     // nothing was scored: identical layouts need no search, or the time budget ended first
+  kMeanDistance,  // paper: mean nearest-neighbour distance of the aligned centres, fraction of the image width
+  kSoftInliers,   // consensus: soft inlier count (each aligned centre weighted by its distance within the gate)
+  kMixtureWidth,  // cpd: the Gaussian mixture's final width, fraction of the image width
+};
+FitMeasure fit_measure_of(RegistrationMethod m);  // the measure a method scores its hypotheses in
+
+struct FitScore {
+  FitMeasure measure = FitMeasure::kNotScored;
+  double value = 0;  // in `measure`; meaningless when not scored
+
+  bool scored() const { return measure != FitMeasure::kNotScored; }
+};
+bool lower_is_better(FitMeasure m);  // a distance or a width; a count is better higher
+// "mean distance", "soft inliers", "mixture width", "not scored": the words every report prints.
+const char* fit_measure_name(FitMeasure m);
+// "mean_distance", "soft_inliers", "mixture_width": `ipd register --json`'s score_measure (null when not scored).
+const char* fit_measure_key(FitMeasure m);
+// "mean distance 0.0004", "soft inliers 16.8972", "not scored": a fit in words at `decimals` decimals, as the
+// studio and `ipd register` print it (a rounded -0 prints as 0).
+std::string fit_text(const FitScore& fit, int decimals);
+
 struct RegistrationReport {
   RegistrationMethod method = RegistrationMethod::kConsensus;
   Affine2 affine = identity_affine();  // maps normalised A centres onto B's
   RockPairs pairs;                     // sorted by A index
-  int trials = 0;                      // samples drawn (paper: K) or EM iterations (cpd)
-  int hypotheses = 0;                  // affines scored
-  int inliers = 0;                     // A centres within the gate of a B centre after alignment
-  double score = 0;                    // paper: mean nearest-neighbour distance; consensus: soft inlier count
+  // What the search counted: paper and consensus draw minimal samples (paper's K) and score hypotheses; cpd runs
+  // EM iterations (each also counted as a hypothesis, the alignment it scores).
+  int samples = 0;
+  int em_iterations = 0;
+  int hypotheses = 0;  // affines scored
+  int inliers = 0;     // A centres within the gate of a B centre after alignment
+  FitScore fit;        // the answer's fit, in its method's measure; not scored when no hypothesis was
   StopReason stop = StopReason::kNotRun;
   std::string note;  // why a fallback was used, if one was
   double elapsed_ms = 0;
@@ -148,10 +176,6 @@ struct RegistrationReport {
   Ambiguity ambiguity = Ambiguity::kNone;
   RegistrationTrace trace;  // empty unless options.record_trace
 };
-
-// Whether `score` is a search's measure: false when nothing was scored (no hypothesis, no EM iteration: the time
-// budget ended first, or identical layouts needed no search), where 0 would read as a perfect fit for paper.
-bool has_score(const RegistrationReport& r);
 
 // Registers A's GT boxes onto B's and pairs the rocks. Throws std::invalid_argument for bad options.
 RegistrationReport register_rocks(const std::vector<Box>& a, const std::vector<Box>& b,

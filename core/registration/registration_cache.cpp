@@ -29,8 +29,9 @@ namespace {
 // few pairs, a degenerate or a beaten alignment: confidence 0 or a rival adopted) and the paper's search past an
 // exact fit; 13 for the size-fair pairing rule (near misses within the noise floor pair too); 14 for the
 // consensus judgement's prior on the camera (misalignment_cost); 15 for answers nothing was compared with (the
-// time budget's or no plausible alignment's identity, EM's unjudged fit), which read confident or "a rival" before.
-constexpr int kFormat = 15;
+// time budget's or no plausible alignment's identity, EM's unjudged fit), which read confident or "a rival" before;
+// 16 for samples and EM iterations apart and a fit kept with its measure.
+constexpr int kFormat = 16;
 // An entry of 20,000 pairs is under 1 MB; anything much larger was not written by store().
 constexpr size_t kMaxEntryBytes = size_t{16} << 20;
 
@@ -200,10 +201,13 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
       used_a[i] = used_b[jb] = 1;
       r.pairs.emplace_back(i, jb);
     }
-    r.trials = j.at("trials").get<int>();
+    r.samples = j.at("samples").get<int>();
+    r.em_iterations = j.at("em_iterations").get<int>();
     r.hypotheses = j.at("hypotheses").get<int>();
     r.inliers = j.at("inliers").get<int>();
-    r.score = j.at("score").get<double>();
+    const int measure = j.at("fit_measure").get<int>();
+    if (measure < 0 || measure > static_cast<int>(FitMeasure::kMixtureWidth)) return unusable();
+    r.fit = {static_cast<FitMeasure>(measure), j.at("fit").get<double>()};
     const int stop = j.at("stop").get<int>();
     if (stop < 0 || stop > static_cast<int>(kLastStopReason)) return unusable();
     r.stop = static_cast<StopReason>(stop);
@@ -236,10 +240,12 @@ bool RegistrationCache::store(const std::string& key, const RegistrationReport& 
   for (int k = 0; k < 6; ++k) aff.push_back(r.affine(k / 3, k % 3));
   j["affine"] = aff;
   j["pairs"] = r.pairs;
-  j["trials"] = r.trials;
+  j["samples"] = r.samples;
+  j["em_iterations"] = r.em_iterations;
   j["hypotheses"] = r.hypotheses;
   j["inliers"] = r.inliers;
-  j["score"] = std::isfinite(r.score) ? r.score : 0.0;
+  j["fit_measure"] = static_cast<int>(r.fit.measure);
+  j["fit"] = std::isfinite(r.fit.value) ? r.fit.value : 0.0;
   j["stop"] = static_cast<int>(r.stop);
   j["note"] = r.note;
   j["elapsed_ms"] = r.elapsed_ms;

@@ -30,8 +30,8 @@ struct RegistrationFrame {
 struct MethodOutcome {
   Affine2 affine_normalised = identity_affine();
   RockPairs pairs;
-  int trials = 0, hypotheses = 0, inliers = 0;
-  double score = 0;
+  int samples = 0, em_iterations = 0, hypotheses = 0, inliers = 0;  // as RegistrationReport's
+  double fit = 0;  // the answer's fit in the method's measure (fit_measure_of); read only when hypotheses > 0
   StopReason stop = StopReason::kNotRun;
   std::string note;
   double confidence = 1.0;
@@ -62,7 +62,7 @@ double work_budget(const RegistrationOptions& o, size_t na, size_t nb);
 double median_nn_distance(const std::vector<Eigen::Vector2d>& p, const Deadline* deadline = nullptr);
 
 // The stop reason in words, with the numbers behind it.
-std::string describe_stop(StopReason stop, int trials, int hypotheses, double work, double budget);
+std::string describe_stop(StopReason stop, int samples, int hypotheses, double work, double budget);
 // "1 sample", "89,700 point evaluations": a count (rounded) with thousands separators and the noun's number,
 // as the stop descriptions print them (they are shown in ipd-studio: no "8.97e+04", no "1 samples").
 std::string count_of(double n, const char* singular, const char* plural);

@@ -62,20 +62,20 @@ void SearchRecorder::on_model(const Affine2& raw, double raw_score, const Affine
   if (sample_of_) sample_of_(raw, &h.a_sample, &h.b_sample);
   h.b_from_a = f_.to_image(raw);
   h.inliers_a = inliers(raw);
-  h.score = to_report_(raw_score);
+  h.fit = to_report_(raw_score);
   // The hypothesis as drawn, against the best before it; its refinement (if any) is the next step.
   const double before = loop_best_;
   loop_best_ = best_score;
   h.new_best = raw_score > before;
-  h.best_score = to_report_(std::max(before, raw_score));
+  h.best_fit = to_report_(std::max(before, raw_score));
   trace_.add(std::move(h));
   if (!refined) return;
   TraceStep r;
   r.kind = TraceStepKind::kRefinement;
   r.b_from_a = f_.to_image(final);
   r.inliers_a = inliers(final);
-  r.score = to_report_(score);
-  r.best_score = to_report_(best_score);
+  r.fit = to_report_(score);
+  r.best_fit = to_report_(best_score);
   r.new_best = new_best;
   trace_.add(std::move(r));
 }
@@ -87,8 +87,8 @@ void SearchRecorder::add_step(TraceStepKind kind, const Affine2& normalised, dou
   s.kind = kind;
   s.b_from_a = f_.to_image(normalised);
   s.inliers_a = inliers(normalised);
-  s.score = report_score;
-  s.best_score = report_best;
+  s.fit = report_score;
+  s.best_fit = report_best;
   s.new_best = new_best;
   trace_.add(std::move(s));
 }

@@ -19,8 +19,8 @@ struct TraceStep {
   std::vector<int> a_sample, b_sample;
   Affine2 b_from_a = identity_affine();  // normalised A centres -> B's
   std::vector<int> inliers_a;            // A rocks within the gate of a B rock under this affine
-  double score = 0;                      // the method's score of this step (see RegistrationReport::score)
-  double best_score = 0;                 // best so far, after this step
+  double fit = 0;                        // this step's fit, in the method's measure (RegistrationReport::fit)
+  double best_fit = 0;                   // best so far, after this step
   bool new_best = false;                 // this step became the best
 };
 

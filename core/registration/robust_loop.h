@@ -99,7 +99,7 @@ struct RobustLoopResult {
   bool found = false;
   Model best{};
   double best_score = -INFINITY;
-  int trials = 0;      // samples drawn
+  int samples = 0;     // samples drawn
   int hypotheses = 0;  // models scored
   double work = 0;     // hypotheses x work_per_model
   StopReason stop = StopReason::kNotRun;
@@ -114,7 +114,7 @@ RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, 
   std::vector<Model> models;
   Sample sample;
   while (true) {
-    if (r.trials >= options.max_trials) {
+    if (r.samples >= options.max_trials) {
       r.stop = StopReason::kMaxTrials;
       break;
     }
@@ -122,7 +122,7 @@ RobustLoopResult<Model> run_robust_loop(Sampler& sampler, Estimator& estimator, 
       r.stop = StopReason::kExhausted;
       break;
     }
-    ++r.trials;
+    ++r.samples;
     models.clear();
     estimator.estimate(sample, &models);
     bool out_of_work = false;

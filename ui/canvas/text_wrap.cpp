@@ -19,10 +19,11 @@ bool is_count(const std::string& word) {
            return std::isdigit(static_cast<unsigned char>(ch)) || ch == ',';
          });
 }
-// Words whose value follows them: "IPD 0.0404", "score 0.0244", "confidence 0.94", "best so far 0.0385".
+// Words whose value follows them: "IPD 0.0404", "score 0.0244", "confidence 0.94", "best so far 0.0385", and a
+// registration's fit: "mean distance 0.0004", "soft inliers 16.8972", "mixture width 0.0003".
 bool is_value_label(const std::string& w) {
   if (w.size() >= 3 && w.compare(w.size() - 3, 3, "IPD") == 0) return true;
-  return w == "score" || w == "confidence" || w == "far";
+  return w == "score" || w == "confidence" || w == "far" || w == "distance" || w == "inliers" || w == "width";
 }
 bool starts_with_letter(const std::string& w) { return !w.empty() && std::isalpha(static_cast<unsigned char>(w[0])); }
 // Any number, "0.3", "-1.5", "1,000": the unit after it belongs to it.

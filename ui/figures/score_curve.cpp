@@ -8,10 +8,8 @@
 
 namespace ipd::ui {
 
-bool lower_score_is_better(RegistrationMethod method) { return method != RegistrationMethod::kConsensus; }
-
-const char* score_direction(RegistrationMethod method) {
-  return lower_score_is_better(method) ? "lower is better" : "higher is better";
+const char* score_direction(FitMeasure measure) {
+  return lower_is_better(measure) ? "lower is better" : "higher is better";
 }
 
 ScoreCurve layout_score_curve(Canvas& c, const TextStyle& st, const ScoreCurveInput& in, const PtRect& area) {
@@ -63,8 +61,8 @@ ScoreCurve layout_score_curve(Canvas& c, const TextStyle& st, const ScoreCurveIn
     if (!crowded()) out.step_axis.push_back({double(n), x, t});
   }
   if (in.current >= 0 && in.current < n) out.current_x = x_of(in.current);
-  out.direction = score_direction(in.method);
-  if (lower_score_is_better(in.method)) {
+  out.direction = score_direction(in.measure);
+  if (lower_is_better(in.measure)) {
     out.direction_at = {out.plot.x1 - 2, out.plot.y0 + 1};
     out.direction_anchor = Anchor::kTopRight;
   } else {

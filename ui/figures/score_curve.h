@@ -12,16 +12,14 @@
 
 namespace ipd::ui {
 
-// Whether a method's trace scores fall as the alignment improves: paper's mean nearest-neighbour distance
-// and cpd's EM variance (sigma) do; consensus' soft inlier count rises.
-bool lower_score_is_better(RegistrationMethod method);
-// "lower is better" or "higher is better", for the chart and its caption.
-const char* score_direction(RegistrationMethod method);
+// "lower is better" (paper's mean distance, cpd's mixture width) or "higher is better" (consensus' soft inlier
+// count), for the chart and its caption.
+const char* score_direction(FitMeasure measure);
 
 struct ScoreCurveInput {
   std::vector<double> best;  // best score so far after each step (finite values; others are skipped)
   int current = -1;          // the replay's step, marked by a vertical line (-1: none)
-  RegistrationMethod method = RegistrationMethod::kConsensus;
+  FitMeasure measure = FitMeasure::kSoftInliers;  // the method's (fit_measure_of)
 };
 
 struct ScoreCurve {

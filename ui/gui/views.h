@@ -207,7 +207,8 @@ float button_width(const char* label);
 // The registration panel's words: its summary line ("real -> hapke: consensus, 1 trial, 5,982 hypotheses,
 // ..."), the replayed step ("step 350 of 5,000 (hypothesis): score ..."), and what a capped trace holds.
 std::string registration_summary(const std::string& a, const std::string& b, const RegistrationReport& r);
-std::string replay_step_line(const TraceStep& step, int k, int steps);
+// One replayed step in words; its fit is in the method's measure (fit_measure_of).
+std::string replay_step_line(const TraceStep& step, FitMeasure measure, int k, int steps);
 std::string trace_cap_note(int steps, int hypotheses);
 // "stopped: REASON; NOTE". When the time budget ended the registration the reason says so once: the note's
 // sentences then say only where it ran out and what was left out ("while setting up the search: identity

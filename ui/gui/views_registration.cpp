@@ -31,20 +31,19 @@ const char* kind_name(TraceStepKind k) {
 }  // namespace
 
 std::string registration_summary(const std::string& a, const std::string& b, const RegistrationReport& r) {
-  // cpd has no trials or hypotheses: one EM iteration per "trial".
+  // cpd counts EM iterations; paper and consensus draw trials (samples) and score hypotheses.
   const std::string searched =
       r.method == RegistrationMethod::kCpd
-          ? counted(r.trials, "EM iteration")
-          : counted(r.trials, "trial") + ", " + counted(r.hypotheses, "hypothesis", "hypotheses");
-  return a + " -> " + b + ": " + to_string(r.method) + ", " + searched + ", " + counted(r.inliers, "inlier") +
-         ", score " + (has_score(r) ? fixed(r.score, 4) : "- (nothing scored)") + ", confidence " +
-         fixed(r.confidence, 2);
+          ? counted(r.em_iterations, "EM iteration")
+          : counted(r.samples, "trial") + ", " + counted(r.hypotheses, "hypothesis", "hypotheses");
+  return a + " -> " + b + ": " + to_string(r.method) + ", " + searched + ", " + counted(r.inliers, "inlier") + ", " +
+         fit_text(r.fit, 4) + ", confidence " + fixed(r.confidence, 2);
 }
 
-std::string replay_step_line(const TraceStep& step, int k, int steps) {
-  return "step " + thousands(k + 1) + " of " + thousands(steps) + " (" + kind_name(step.kind) + "): score " +
-         fixed(step.score, 4) + ", best so far " + fixed(step.best_score, 4) + (step.new_best ? " (new best)" : "") +
-         ", " + counted(static_cast<long>(step.inliers_a.size()), "inlier");
+std::string replay_step_line(const TraceStep& step, FitMeasure measure, int k, int steps) {
+  return "step " + thousands(k + 1) + " of " + thousands(steps) + " (" + kind_name(step.kind) +
+         "): " + fit_text({measure, step.fit}, 4) + ", best so far " + fixed(step.best_fit, 4) +
+         (step.new_best ? " (new best)" : "") + ", " + counted(static_cast<long>(step.inliers_a.size()), "inlier");
 }
 
 RegistrationCanvas registration_canvas(ImVec2 p0, ImVec2 size, float line_h) {
@@ -214,7 +213,7 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   const int k = shown;
   const TraceStep* step = k >= 0 ? &r.trace.steps[k] : nullptr;
   if (step)
-    text_wrapped_at_spaces(replay_step_line(*step, k, steps));
+    text_wrapped_at_spaces(replay_step_line(*step, fit_measure_of(r.method), k, steps));
   else if (steps == 0)
     text_disabled_wrapped_at_spaces(no_steps_line(r, have_rerun));
   else
@@ -229,9 +228,10 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   // (it took three lines at 1024 px where two were kept, and the curve was squashed to nothing).
   int news = 0;
   for (const auto& st : r.trace.steps) news += st.new_best;
-  const std::string caption = "best score so far (" + std::string(score_direction(r.method)) +
-                              "): " + counted(news, "improvement") + " over " + counted(steps, "step") + "; " +
-                              r.trace.stop;
+  const FitMeasure measure = fit_measure_of(r.method);
+  const std::string caption = "best fit so far (" + std::string(fit_measure_name(measure)) + ", " +
+                              score_direction(measure) + "): " + counted(news, "improvement") + " over " +
+                              counted(steps, "step") + "; " + r.trace.stop;
   const size_t caption_lines = wrap_at_spaces(caption, std::max(40.0f, avail.x), [](const std::string& t) {
                                  return ImGui::CalcTextSize(t.c_str()).x;
                                }).size();
@@ -304,8 +304,8 @@ void draw_registration(const StudyView& v, UiState& ui, UiCommands& out) {
   if (steps > 0) {
     // Best-so-far score over the steps, with axes, which way is better and the current step marked.
     ScoreCurveInput curve;
-    curve.method = r.method;
-    for (const auto& st : r.trace.steps) curve.best.push_back(st.best_score);
+    curve.measure = measure;
+    for (const auto& st : r.trace.steps) curve.best.push_back(st.best_fit);
     curve.current = shown >= 0 ? shown : steps - 1;  // the final motion: after the last step
     text_disabled_wrapped_at_spaces(caption);        // then the strip
     const ImVec2 c0 = ImGui::GetCursorScreenPos();

@@ -71,13 +71,13 @@ void second_look(const RegistrationFrame& f, const std::vector<Box>& boxes_a, co
     if (k != best) rival = std::max(rival, judged[k].total);
   // Replays show the candidates the second look judged, then the one it kept (when not the search's best).
   for (size_t k = 1; k < pool.size(); ++k)
-    recorder->add_step(TraceStepKind::kRefinement, pool[k], judged[k].consensus, out->score, false);
+    recorder->add_step(TraceStepKind::kRefinement, pool[k], judged[k].consensus, out->fit, false);
   out->note += fmt::format("{}second look: {} similarities from rock pairs, {} candidates judged; ",
                            out->note.empty() ? "" : "; ", edges.hypotheses, pool.size() - 1);
   if (best != 0) {
     out->affine_normalised = pool[best];
-    out->score = judged[best].consensus;
-    recorder->add_step(TraceStepKind::kPolish, pool[best], out->score, out->score, true);
+    out->fit = judged[best].consensus;
+    recorder->add_step(TraceStepKind::kPolish, pool[best], out->fit, out->fit, true);
     out->note += "one of them replaced the search's best";
   } else {
     out->note += "the search's best kept";
@@ -161,7 +161,7 @@ AnswerAndRival settle_shifted_placements(const RegistrationFrame& f, double gate
   double answer = best_score, rival = std::max(recorder->rival_score(), shifted.rival);
   if (shifted.rival > answer && shifted.same >= shifted.rival) {
     out->affine_normalised = shifted.same_model;
-    out->score = answer = shifted.same;
+    out->fit = answer = shifted.same;
     recorder->add_step(TraceStepKind::kRefinement, out->affine_normalised, answer, answer, true);
   } else if (shifted.rival > answer) {
     Affine2 m = shifted.rival_model;
@@ -171,7 +171,7 @@ AnswerAndRival settle_shifted_placements(const RegistrationFrame& f, double gate
     // Against the search's best and the adopted placement's own rivals (the grid's other shifts).
     const double others = shifted_placements(support, *recorder, f, m, m.leftCols<2>(), gate, false).rival;
     rival = std::max({answer, shifted.same, others});
-    out->score = answer = s;
+    out->fit = answer = s;
     out->beaten = true;
     recorder->add_step(TraceStepKind::kRefinement, m, s, s, true);
     out->note = "a shifted placement scored after the search fitted better than its best: used";
@@ -201,7 +201,7 @@ void after_search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, c
                   const RegistrationOptions& o, const Bounds& bounds, double gate, const RobustLoopResult<Affine2>& r,
                   const StageTime& time, SupportMeasurer* support, SearchRecorder* recorder, MethodOutcome* out) {
   out->affine_normalised = r.best;
-  out->score = r.best_score;
+  out->fit = r.best_score;
   const AnswerAndRival scores = settle_shifted_placements(f, gate, r.best_score, support, recorder, out);
   out->confidence = confidence_from_scores(scores.answer, scores.rival);  // as searched, before soft refinement
   const char* left_out = nullptr;
@@ -211,13 +211,13 @@ void after_search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, c
     // A confirmed best only: an unconfirmed one is judged against the second look's candidates next, and
     // raising it alone would tilt that comparison (3 true pairs among 15 rocks: seed 5 of
     // SmallOverlap.ThreeTruePairsAmongFifteenRocksAt25Degrees).
-    if (r.stop == StopReason::kCannotBeBeaten && soft_refine(support, &out->affine_normalised, &out->score))
-      recorder->add_step(TraceStepKind::kRefinement, out->affine_normalised, out->score, out->score, true);
+    if (r.stop == StopReason::kCannotBeBeaten && soft_refine(support, &out->affine_normalised, &out->fit))
+      recorder->add_step(TraceStepKind::kRefinement, out->affine_normalised, out->fit, out->fit, true);
     if (!time.allows(kFinalFitScores)) {
       left_out = "the final fit and second look";
     } else {
       out->affine_normalised = final_fit(f, boxes_a, boxes_b, o, bounds, gate, support, out->affine_normalised);
-      recorder->add_step(TraceStepKind::kPolish, out->affine_normalised, out->score, out->score, false);
+      recorder->add_step(TraceStepKind::kPolish, out->affine_normalised, out->fit, out->fit, false);
       if (second_look_applies(f, out->stop) && !time.allows(kSecondLookScores))
         left_out = "the second look";
       else
@@ -275,7 +275,7 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
   DeadlineSampler<GuidedSampler> timed{sampler, deadline, o.consensus.max_hypotheses};
   auto r = run_robust_loop<Affine2, GuidedHypothesis>(timed, estimator, scorer, lo, recorder);
   r.stop = timed.stop(r.stop);
-  out->trials = r.trials;
+  out->samples = r.samples;
   out->hypotheses = r.hypotheses;
   out->work = r.work;
   out->stop = r.stop;
@@ -290,7 +290,7 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
     // Each stage after the search scores whole sets again (tens of milliseconds on 5,000 rocks): with the
     // time budget spent the answer is the search's best as it stands, judged against the rivals it scored.
     out->affine_normalised = r.best;
-    out->score = r.best_score;
+    out->fit = r.best_score;
     out->stop = StopReason::kTimeBudget;
     out->confidence = confidence_from_scores(r.best_score, recorder.rival_score());
     out->note = "time budget spent: the search's best, without the rival placements, polish or second look";
@@ -303,7 +303,7 @@ void search(const RegistrationFrame& f, const std::vector<Box>& boxes_a, const s
     out->confidence = 0;
     out->unjudged = r.stop == StopReason::kTimeBudget ? Ambiguity::kUnchecked : Ambiguity::kNoPlausible;
   }
-  out->trace = recorder.take_trace(describe_stop(r.stop, r.trials, r.hypotheses, r.work, lo.max_work));
+  out->trace = recorder.take_trace(describe_stop(r.stop, r.samples, r.hypotheses, r.work, lo.max_work));
   // Counting inliers queries the grid once per A rock: with the budget spent the pairs stand in (set after them).
   out->inliers = deadline.passed() ? -1 : support.count_inliers(out->affine_normalised);
   if (f.a.size() < 3 || f.b.size() < 3) out->note = "fewer than 3 rocks on a side: translation at most";

@@ -209,6 +209,44 @@ TEST(StudyCache, RegistrationsGoInTheOneFileAndAnotherMethodsAreKept) {
   EXPECT_FALSE(fs::exists(registration_cache_dir(d.path())));
 }
 
+// A registration read back from the one file keeps what its search counted and its fit's measure: a cpd answer
+// stays a mixture width, a paper answer a mean distance.
+TEST(StudyCache, ARegistrationReadBackKeepsItsCountsAndItsFitsMeasure) {
+  test::TempDir d;
+  write_cache_study(d);
+  auto first_registration = [&](RegistrationMethod m, int* cached) {
+    const Study study = open_study(d.path());
+    StudyCache cache(parsed_study_cache_path(study.root), study.root);
+    const StudyLabels labels = cache.load_labels(study);
+    RegistrationCache registration(registration_cache_dir(study.root));
+    cache.hand_registrations_to(registration);
+    TableOptions t;
+    t.registration = study.config.registration;
+    t.registration.method = m;
+    t.cache_dir = registration.dir();
+    t.registration_cache = &registration;
+    const CrossTable table = compute_cross_table(labels, t);
+    cache.save(labels, registration);
+    *cached = table.cached_registrations;
+    return table.pairings.at(0).at(0).registration;
+  };
+  for (auto m : {RegistrationMethod::kPaper, RegistrationMethod::kConsensus, RegistrationMethod::kCpd}) {
+    SCOPED_TRACE(to_string(m));
+    int cached = -1;
+    const RegistrationReport cold = first_registration(m, &cached);
+    EXPECT_EQ(cached, 0);
+    const RegistrationReport warm = first_registration(m, &cached);
+    EXPECT_EQ(cached, 3);
+    ASSERT_GT(cold.hypotheses, 0);
+    EXPECT_EQ(cold.fit.measure, fit_measure_of(m));
+    EXPECT_EQ(warm.samples, cold.samples);
+    EXPECT_EQ(warm.em_iterations, cold.em_iterations);
+    EXPECT_EQ(warm.hypotheses, cold.hypotheses);
+    EXPECT_EQ(warm.fit.measure, cold.fit.measure);
+    EXPECT_EQ(warm.fit.value, cold.fit.value);
+  }
+}
+
 TEST(StudyCache, IdenticalLayoutsReadBackAndTheWarmRunRewritesNothing) {
   // Scene s0's layouts are the same boxes on both sides: registered without a search (its own stop reason).
   // That report must read back like any other, or the whole file would be ignored on every run.
@@ -229,6 +267,7 @@ TEST(StudyCache, IdenticalLayoutsReadBackAndTheWarmRunRewritesNothing) {
     cache.save(labels, registration);
     *written = cache.stats().written;
     EXPECT_EQ(table.pairings.at(0).at(0).registration.stop, StopReason::kIdenticalLayouts);
+    EXPECT_FALSE(table.pairings.at(0).at(0).registration.fit.scored());  // no search, no fit: warm too
     return std::make_pair(cache.stats().state, table.cached_registrations);
   };
   bool written = false;

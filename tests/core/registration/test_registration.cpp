@@ -303,7 +303,9 @@ TEST(RegistrationMethods, IdenticalLayoutsGetTheIdentityWithoutASearch) {
     EXPECT_EQ(r.stop, StopReason::kIdenticalLayouts);
     EXPECT_EQ(r.affine, identity_affine());
     EXPECT_EQ(r.pairs, pairs_of(perm));
-    EXPECT_EQ(r.trials, 0);
+    EXPECT_EQ(r.samples, 0);
+    EXPECT_EQ(r.em_iterations, 0);
+    EXPECT_FALSE(r.fit.scored());  // nothing was searched: no fit to read as perfect
     EXPECT_EQ(r.confidence, 1.0);
     EXPECT_FALSE(r.ambiguous);
     std::vector<Box> nudged = b;
@@ -322,8 +324,9 @@ TEST(PaperRegistration, RecoversAKnownAffineOnACleanLayout) {
   const RegistrationReport r = register_rocks(a, b, o);
   EXPECT_TRUE(r.affine.isApprox(known_affine(), 1e-6)) << r.affine;
   EXPECT_EQ(r.pairs, pairs_of(perm));
-  EXPECT_EQ(r.trials, 2000);  // the paper runs all K trials unless the fit is exact
-  EXPECT_NEAR(r.score, 0.0, 1e-9);
+  EXPECT_EQ(r.samples, 2000);  // the paper runs all K trials unless the fit is exact
+  EXPECT_EQ(r.fit.measure, FitMeasure::kMeanDistance);
+  EXPECT_NEAR(r.fit.value, 0.0, 1e-9);
   EXPECT_EQ(r.inliers, 8);
 }
 
@@ -358,10 +361,10 @@ TEST(PaperRegistration, DroppingModelsBelowTheRivalChangesNothing) {
   o.record_trace = true;
   const RegistrationReport full = register_rocks(a, b, o);
   EXPECT_EQ(fast.affine, full.affine);
-  EXPECT_EQ(fast.score, full.score);
+  EXPECT_EQ(fast.fit.value, full.fit.value);
   EXPECT_EQ(fast.confidence, full.confidence);
   EXPECT_EQ(fast.pairs, full.pairs);
-  EXPECT_EQ(fast.trials, full.trials);
+  EXPECT_EQ(fast.samples, full.samples);
   EXPECT_EQ(fast.hypotheses, full.hypotheses);
 }
 
@@ -480,6 +483,22 @@ TEST(RegistrationMethods, CpdRefusesLayoutsOverItsPairLimitAndNamesTheAlternativ
                  "weight for every pair in memory); --method consensus registers layouts this large (or give cpd a "
                  "time budget: it then registers the largest rocks of each side)");
   }
+}
+
+// Each method scores its answer in its own unit and direction: paper's mean distance and cpd's mixture width are
+// better lower, consensus' soft inlier count higher; every report prints the measure's name with the number.
+TEST(Registration, EachMethodsFitIsReadInItsOwnMeasure) {
+  EXPECT_EQ(fit_measure_of(RegistrationMethod::kPaper), FitMeasure::kMeanDistance);
+  EXPECT_EQ(fit_measure_of(RegistrationMethod::kConsensus), FitMeasure::kSoftInliers);
+  EXPECT_EQ(fit_measure_of(RegistrationMethod::kCpd), FitMeasure::kMixtureWidth);
+  EXPECT_TRUE(lower_is_better(FitMeasure::kMeanDistance));
+  EXPECT_TRUE(lower_is_better(FitMeasure::kMixtureWidth));
+  EXPECT_FALSE(lower_is_better(FitMeasure::kSoftInliers));
+  EXPECT_EQ(fit_text({FitMeasure::kMeanDistance, 0.000437}, 5), "mean distance 0.00044");
+  EXPECT_EQ(fit_text({FitMeasure::kSoftInliers, 16.89721}, 4), "soft inliers 16.8972");
+  EXPECT_EQ(fit_text({FitMeasure::kMixtureWidth, -0.0000001}, 4), "mixture width 0.0000");  // no "-0.0000"
+  EXPECT_EQ(fit_text({FitMeasure::kNotScored, 3.0}, 4), "not scored");
+  EXPECT_EQ(std::string(fit_measure_key(FitMeasure::kMixtureWidth)), "mixture_width");
 }
 
 }  // namespace

@@ -36,6 +36,12 @@ TEST(RegistrationCache, StoresLoadsAndRecomputesCorruptEntries) {
   EXPECT_TRUE(again.affine.isApprox(first.affine, 1e-15));
   EXPECT_EQ(again.inliers, first.inliers);
   EXPECT_EQ(again.stop, first.stop);
+  // What the search counted and its fit, under the same measure (a bare number could not say which way is better).
+  EXPECT_EQ(again.samples, first.samples);
+  EXPECT_EQ(again.em_iterations, first.em_iterations);
+  EXPECT_EQ(again.hypotheses, first.hypotheses);
+  EXPECT_EQ(again.fit.measure, FitMeasure::kSoftInliers);
+  EXPECT_EQ(again.fit.value, first.fit.value);
 
   // Another seed, another box: other keys.
   RegistrationOptions o2 = o;

@@ -91,7 +91,7 @@ TEST(StopRule, LoopStopsBeforeTheSampleThatWouldPassTheBudget) {
   lo.max_trials = 1000;
   const auto r = run_robust_loop<int, int>(sampler, estimator, scorer, lo);
   EXPECT_EQ(sampler.stop(r.stop), StopReason::kTimeBudget);
-  EXPECT_EQ(r.trials, 3);  // at 2, 3 and 4 ms a sample is drawn; at 5 ms the budget of 4.5 is spent
+  EXPECT_EQ(r.samples, 3);  // at 2, 3 and 4 ms a sample is drawn; at 5 ms the budget of 4.5 is spent
 }
 
 // A sampler that reads the deadline itself (consensus' expands hundreds of rock pairs per call) and stops on it:
@@ -126,7 +126,7 @@ TEST(StopRule, TheTrialCapStillEndsATimedLoop) {
   lo.max_trials = 7;
   const auto r = run_robust_loop<int, int>(sampler, estimator, scorer, lo);
   EXPECT_EQ(sampler.stop(r.stop), StopReason::kMaxTrials);
-  EXPECT_EQ(r.trials, 7);
+  EXPECT_EQ(r.samples, 7);
 }
 
 // A clock that stands still for its first `still` readings (the deadline's start is one), then jumps 1 s.
@@ -150,7 +150,7 @@ TEST(StopRule, ConsensusSpentInItsSetUpSaysSo) {
   const auto o = budget_of_5ms(RegistrationMethod::kConsensus);
   const auto out = detail::register_consensus(f, a, b, o, Deadline(5, clock_passing_after(1)));
   EXPECT_EQ(out.stop, StopReason::kTimeBudget);
-  EXPECT_EQ(out.trials, 0);
+  EXPECT_EQ(out.samples, 0);
   EXPECT_EQ(out.note,
             "time budget spent while setting up the search: identity used; time budget spent before the rocks were "
             "paired: paired greedily (heaviest overlap first), not by the optimal assignment");
@@ -163,7 +163,7 @@ TEST(StopRule, PaperSpentBeforeItsFirstSampleSaysSo) {
   const auto out =
       detail::register_paper(f, budget_of_5ms(RegistrationMethod::kPaper), Deadline(5, clock_passing_after(1)));
   EXPECT_EQ(out.stop, StopReason::kTimeBudget);
-  EXPECT_EQ(out.trials, 0);
+  EXPECT_EQ(out.samples, 0);
   EXPECT_EQ(out.note, "time budget spent before a triple was scored: identity used");
 }
 

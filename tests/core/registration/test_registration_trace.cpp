@@ -52,7 +52,8 @@ TEST(RegistrationTrace, OffByDefaultAndRecordingChangesNothing) {
     EXPECT_FALSE(r1.trace.steps.empty()) << to_string(m);
     EXPECT_EQ(r0.affine, r1.affine) << to_string(m);
     EXPECT_EQ(r0.pairs, r1.pairs);
-    EXPECT_EQ(r0.trials, r1.trials);
+    EXPECT_EQ(r0.samples, r1.samples);
+    EXPECT_EQ(r0.em_iterations, r1.em_iterations);
     EXPECT_EQ(r0.confidence, r1.confidence);
   }
 }
@@ -73,13 +74,13 @@ TEST(RegistrationTrace, PaperRecordsEveryHypothesisWithItsTriples) {
       ASSERT_LT(d.norm(), 1e-9);
     }
     // Scores are mean nearest-neighbour distances: lower is better, best-so-far never rises.
-    EXPECT_EQ(st.new_best, st.score < best);
-    best = std::min(best, st.score);
-    EXPECT_DOUBLE_EQ(st.best_score, best);
+    EXPECT_EQ(st.new_best, st.fit < best);
+    best = std::min(best, st.fit);
+    EXPECT_DOUBLE_EQ(st.best_fit, best);
     bests += st.new_best;
   }
   EXPECT_GE(bests, 1);
-  EXPECT_NEAR(best, r.score, 1e-12);
+  EXPECT_NEAR(best, r.fit.value, 1e-12);
   const auto last =
       std::find_if(r.trace.steps.rbegin(), r.trace.steps.rend(), [](const auto& x) { return x.new_best; });
   EXPECT_TRUE(last->b_from_a.isApprox(r.affine, 1e-12));
@@ -120,13 +121,13 @@ TEST(RegistrationTrace, ConsensusRecordsHypothesesRefinementsAndPolish) {
         }
       }
     }
-    EXPECT_EQ(st[k].new_best, st[k].score > best) << k;
-    best = std::max(best, st[k].score);
-    EXPECT_DOUBLE_EQ(st[k].best_score, best) << k;
+    EXPECT_EQ(st[k].new_best, st[k].fit > best) << k;
+    best = std::max(best, st[k].fit);
+    EXPECT_DOUBLE_EQ(st[k].best_fit, best) << k;
   }
   EXPECT_EQ(hypotheses, r.hypotheses);
   EXPECT_GE(refinements, 1);
-  EXPECT_DOUBLE_EQ(best, r.score);
+  EXPECT_DOUBLE_EQ(best, r.fit.value);
   EXPECT_EQ(r.trace.stop.rfind(to_string(r.stop), 0), 0u) << r.trace.stop;
 }
 
@@ -138,12 +139,14 @@ TEST(RegistrationTrace, CpdRecordsOneStepPerIteration) {
   // Seven EM steps leave the fit short of a shifted placement (refined) that fits better: that placement is the
   // answer, recorded as the final fit after the iterations.
   EXPECT_EQ(r.ambiguity, Ambiguity::kBeaten);
-  ASSERT_EQ(static_cast<int>(r.trace.steps.size()), r.trials + 1);
-  EXPECT_EQ(r.trials, 7);
+  ASSERT_EQ(static_cast<int>(r.trace.steps.size()), r.em_iterations + 1);
+  EXPECT_EQ(r.em_iterations, 7);
+  EXPECT_EQ(r.samples, 0);
   for (size_t k = 0; k + 1 < r.trace.steps.size(); ++k) EXPECT_EQ(r.trace.steps[k].kind, TraceStepKind::kIteration);
   EXPECT_EQ(r.trace.steps.back().kind, TraceStepKind::kPolish);
   EXPECT_TRUE(r.trace.steps.back().b_from_a.isApprox(r.affine, 1e-12));
-  EXPECT_DOUBLE_EQ(r.trace.steps.back().score, r.score);
+  EXPECT_DOUBLE_EQ(r.trace.steps.back().fit, r.fit.value);
+  EXPECT_EQ(r.fit.measure, FitMeasure::kMixtureWidth);
   // Counts in full with separators (the studio shows this line: no "1.57e+03").
   EXPECT_EQ(r.trace.stop, "reached the trial limit (7 EM iterations, 1,568 of 1,045,000 point evaluations)");
 }

@@ -319,7 +319,8 @@ TEST(Cli, ABudgetedRegistrationSaysWhatPartTheFinalPairingTook) {
 }
 
 // --json names each count as the text report does: cpd counts EM iterations (it has no trials or hypotheses),
-// paper and consensus count trials and hypotheses.
+// paper and consensus count trials and hypotheses; the score carries the measure it is in (a distance or width is
+// better lower, a soft inlier count higher), null both where nothing was scored.
 TEST(Cli, RegisterJsonNamesItsCountsAsTheTextDoes) {
   test::TempDir d;
   write_register_pair(d);
@@ -330,20 +331,27 @@ TEST(Cli, RegisterJsonNamesItsCountsAsTheTextDoes) {
   for (const auto& [key, value] : j.items()) keys += key + " ";
   EXPECT_EQ(
       keys,
-      "affine ambiguous confidence elapsed_ms em_iterations inliers method pairing_ms pairs real score stop synth "
-      "work work_budget ");
+      "affine ambiguous confidence elapsed_ms em_iterations inliers method pairing_ms pairs real score score_measure "
+      "stop synth work work_budget ");
   EXPECT_EQ(j["em_iterations"], 6);
+  EXPECT_EQ(j["score_measure"], "mixture_width");
   r = test::run_ipd("register " + d / "r.txt " + d / "s.txt --method cpd");
-  EXPECT_NE(r.out.find("  method cpd: 6 EM iterations, score 0.00000; stopped: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  method cpd: 6 EM iterations, mixture width 0.00000; stopped: "), std::string::npos) << r.out;
   j = nlohmann::json::parse(test::run_ipd("register " + d / "r.txt " + d / "s.txt --method paper --json").out);
   EXPECT_EQ(j["trials"], 1000);
   EXPECT_EQ(j["hypotheses"], 6000);
+  EXPECT_EQ(j["score_measure"], "mean_distance");
   EXPECT_FALSE(j.contains("em_iterations"));
   j = nlohmann::json::parse(test::run_ipd("register " + d / "r.txt " + d / "r2.txt --json").out);
   EXPECT_EQ(j["method"], "consensus");
   EXPECT_EQ(j["trials"], 1);
   EXPECT_EQ(j["hypotheses"], 1);
+  EXPECT_EQ(j["score_measure"], "soft_inliers");
+  EXPECT_NEAR(j["score"].get<double>(), 3.99843, 5e-6);
   EXPECT_FALSE(j.contains("em_iterations"));
+  j = nlohmann::json::parse(test::run_ipd("register " + d / "r.txt " + d / "r.txt --json").out);
+  EXPECT_TRUE(j["score"].is_null());  // identical layouts: no search, no score
+  EXPECT_TRUE(j["score_measure"].is_null());
 }
 
 // An ambiguous registration says so after its confidence, the reason's "(e.g. ...)" not nested in another
@@ -441,22 +449,20 @@ TEST(Cli, RegisterListPrintsWhatItsHelpSays) {
 }
 
 // The text report says what each count counts, in plain numbers: centres within the gate vs the pairs the
-// method forms (how), "1 trial" in the singular, thousands separators (no "1.01e+06"), no "-0.00000", and no
-// score where nothing was scored (a 0 read as a perfect fit).
+// method forms (how), "1 trial" in the singular, thousands separators (no "1.01e+06"), no "-0.00000", the fit under
+// its measure's name, and no score where nothing was scored (a 0 read as a perfect fit).
 TEST(Cli, RegisterTextSaysWhatEachCountCounts) {
   test::TempDir d;
   write_register_pair(d);
   auto r = test::run_ipd("register " + d / "r.txt " + d / "r.txt");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(
-      r.out.find(
-          "  method consensus: 0 trials, 0 hypotheses, score - (nothing scored); stopped: identical layouts (no search "
-          "needed)\n"),
-      std::string::npos)
+  EXPECT_NE(r.out.find("  method consensus: 0 trials, 0 hypotheses, not scored; stopped: identical layouts (no search "
+                       "needed)\n"),
+            std::string::npos)
       << r.out;
   r = test::run_ipd("register " + d / "r.txt " + d / "r2.txt");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("  method consensus: 1 trial, 1 hypothesis, score 3.99843; stopped: "), std::string::npos)
+  EXPECT_NE(r.out.find("  method consensus: 1 trial, 1 hypothesis, soft inliers 3.99843; stopped: "), std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("\n  4 centres within the gate; 4 pairs by aligned-box IoU (one-to-one)\n"), std::string::npos)
       << r.out;

@@ -240,7 +240,7 @@ TEST(StatsCharts, ScoreCurveLastStepLabelStaysInsideTheArea) {
   Recorder r;
   const TextStyle st{8, rgb(0, 0, 0), false};
   const std::vector<double> best(5000, 0.5);
-  const ScoreCurve curve = layout_score_curve(r, st, {best, 10, RegistrationMethod::kPaper}, {0, 0, 300, 100});
+  const ScoreCurve curve = layout_score_curve(r, st, {best, 10, FitMeasure::kMeanDistance}, {0, 0, 300, 100});
   draw_score_curve(r, st, curve, kColours);
   EXPECT_DOUBLE_EQ(curve.plot.x1, 284);
   ASSERT_FALSE(curve.step_axis.empty());
@@ -258,18 +258,18 @@ TEST(StatsCharts, ScoreCurveLastStepLabelStaysInsideTheArea) {
 }
 
 TEST(StatsCharts, ScoreCurveDirectionLabelIsClearOfTheCurve) {
-  const std::vector<std::pair<RegistrationMethod, std::vector<double>>> cases = {
-      {RegistrationMethod::kConsensus, {15.9, 16.9, 16.9, 16.9}}, {RegistrationMethod::kPaper, {3.0, 2.0, 1.5, 1.5}}};
-  for (const auto& [method, best] : cases) {
-    SCOPED_TRACE(score_direction(method));
+  const std::vector<std::pair<FitMeasure, std::vector<double>>> cases = {
+      {FitMeasure::kSoftInliers, {15.9, 16.9, 16.9, 16.9}}, {FitMeasure::kMeanDistance, {3.0, 2.0, 1.5, 1.5}}};
+  for (const auto& [measure, best] : cases) {
+    SCOPED_TRACE(score_direction(measure));
     Recorder r;
     const TextStyle st{8, rgb(0, 0, 0), false};
-    const ScoreCurve curve = layout_score_curve(r, st, {best, 3, method}, {0, 0, 300, 100});
+    const ScoreCurve curve = layout_score_curve(r, st, {best, 3, measure}, {0, 0, 300, 100});
     draw_score_curve(r, st, curve, kColours);
     const Recorder::Op* label = nullptr;
     const Recorder::Op* line = nullptr;
     for (const auto& op : r.ops) {
-      if (op.kind == "text" && op.text == score_direction(method)) label = &op;
+      if (op.kind == "text" && op.text == score_direction(measure)) label = &op;
       if (op.kind == "polyline") line = &op;
     }
     ASSERT_TRUE(label && line);

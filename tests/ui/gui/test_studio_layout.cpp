@@ -35,6 +35,15 @@ TEST(PicturePanes, TheLargerOfSideBySideAndStacked) {
   EXPECT_GE(tiny.picture_h, 0);
 }
 
+// Columns that don't fit are never cut: the font shrinks to fit, down to 80% of its size (the scene list's eight
+// columns at 1280 px need about 0.82), then the table scrolls sideways at that size.
+TEST(StudioColumns, ATableTooWideShrinksItsFontBeforeItScrolls) {
+  EXPECT_FLOAT_EQ(table_font_scale(250, 290), 1.0f);  // fits: the normal font
+  EXPECT_FLOAT_EQ(table_font_scale(360, 297), 297.0f / 360.0f);
+  EXPECT_FLOAT_EQ(table_font_scale(500, 300), kMinTableFontScale);  // past it: scrolls at 80%
+  EXPECT_FLOAT_EQ(kMinTableFontScale, 0.8f);
+}
+
 TEST(StudioColumns, WideWindowKeepsPreferredSideWidths) {
   // 1600 - 2*6 = 1588 usable; 380 + 400 + max(320, 0.45 * 1588 = 714.6) = 1494.6 fits.
   const StudioColumns c = studio_columns(1600, 380, 400, 6);
