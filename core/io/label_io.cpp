@@ -169,6 +169,9 @@ LabelFile parse_labels(const std::string& text, const std::string& file_name, co
   std::vector<std::string> fields;
   size_t field_count = 0;
   int line_no = 0, unlisted = 0;
+  // Past the per-file limit the file is refused whole: later boxes are only counted, so a 16 MB file of short
+  // lines holds 20,001 boxes in memory, not a million.
+  size_t boxes = 0;
   while (!rest.empty()) {
     const size_t eol = rest.find('\n');
     const std::string_view line = rest.substr(0, eol);
@@ -185,14 +188,15 @@ LabelFile parse_labels(const std::string& text, const std::string& file_name, co
         ++unlisted;
       continue;
     }
+    if (++boxes > kMaxBoxesPerFile + 1) continue;
     out.boxes.push_back(b);
     out.line_of_box.push_back(line_no);
   }
   if (unlisted > 0) out.errors.push_back({file_name, 0, "", unlisted});
-  if (out.boxes.size() > kMaxBoxesPerFile)
+  if (boxes > kMaxBoxesPerFile)
     out.errors.push_back({file_name, 0,
                           fmt::format("{} boxes, more than the {} per image this tool handles (docs/study-format.md)",
-                                      out.boxes.size(), kMaxBoxesPerFile)});
+                                      boxes, kMaxBoxesPerFile)});
   return out;
 }
 

@@ -29,6 +29,20 @@ TEST(LabelIo, ParsesBoxesCommentsAndBlankLines) {
   EXPECT_EQ(f.line_of_box, (std::vector<int>{3, 4}));
 }
 
+// A file over the per-image limit is refused whole with its exact box count; the parse keeps no more than one box
+// past the limit in memory (a 16 MB file of short lines would otherwise hold a million).
+TEST(LabelIo, AFileOverTheBoxLimitIsRefusedWithItsCountAndBoxesPastItAreNotKept) {
+  std::string text;
+  for (size_t k = 0; k < kMaxBoxesPerFile + 5; ++k) text += "0 0.5 0.5 0.1 0.1\n";
+  const LabelFile f = parse_gt(text);
+  ASSERT_EQ(f.errors.size(), 1u);
+  EXPECT_TRUE(f.errors[0].unusable_file());
+  EXPECT_EQ(f.errors[0].to_string(), "a.txt: 20005 boxes, more than the 20000 per image this tool handles "
+                                     "(docs/study-format.md)");
+  EXPECT_EQ(f.boxes.size(), kMaxBoxesPerFile + 1);
+  EXPECT_EQ(f.line_of_box.size(), kMaxBoxesPerFile + 1);
+}
+
 TEST(LabelIo, PredictionsCarryConfidence) {
   const LabelFile f = parse_labels("0 0.5 0.5 0.1 0.1 0.87\n", "p.txt", {LabelKind::kPrediction});
   ASSERT_EQ(f.boxes.size(), 1u);
