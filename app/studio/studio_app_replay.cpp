@@ -28,13 +28,7 @@ void StudioApp::replay_rock_axes(const std::string& x, const std::string& y) {
 void StudioApp::replay_select(double x0, double y0, double x1, double y1) {
   const Session& s = *snap_->session;
   ui::adopt_rock_points(s, rock_points_.result(), rock_view_);  // current: replay_step waited for them
-  static const std::vector<RockPairPoint> kNone;
-  const auto& points = rock_view_.points ? rock_view_.points->points : kNone;
-  const auto ax = static_cast<PairAxis>(rock_view_.x_axis), ay = static_cast<PairAxis>(rock_view_.y_axis);
-  rock_view_.has_box = true;
-  rock_view_.box_x = rock_view_.x_axis, rock_view_.box_y = rock_view_.y_axis;
-  rock_view_.bx0 = x0, rock_view_.by0 = y0, rock_view_.bx1 = x1, rock_view_.by1 = y1;
-  ui::apply_pair_selection(s, select_in_box(points, ax, ay, x0, y0, x1, y1), ui_);
+  ui::select_pairs_in_box(s, rock_view_, x0, y0, x1, y1, ui_);
 }
 
 void StudioApp::replay_gallery(const std::vector<std::string>& args) {
@@ -223,6 +217,13 @@ std::string StudioApp::write_state(const std::string& file) const {
                 {"predictions", {b.predictions_left, b.predictions_right}},
                 {"hand_pairs", b.hand_pairs},
                 {"pane", {b.pane.x, b.pane.y}}};
+  if (ui_.show_rock_view) {
+    const auto ax = static_cast<PairAxis>(rock_view_.x_axis), ay = static_cast<PairAxis>(rock_view_.y_axis);
+    j["rock_view"] = {{"x", axis_name(ax)},
+                      {"y", axis_name(ay)},
+                      {"points", rock_view_.points ? rock_view_.points->points.size() : 0},
+                      {"highlighted", ui::highlighted_pairs(rock_view_)}};
+  }
   if (ui_.show_rank) {
     nlohmann::json rank;
     if (const SessionRanking* r = rank_.result().get(); r && r->ranking) {

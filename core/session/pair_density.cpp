@@ -5,12 +5,8 @@
 
 namespace ipd {
 
-bool DataBox::contains(double x, double y) const {
-  return x >= std::min(x0, x1) && x <= std::max(x0, x1) && y >= std::min(y0, y1) && y <= std::max(y0, y1);
-}
-
 PairDensity bin_pair_points(const std::vector<RockPairPoint>& points, PairAxis ax, PairAxis ay,
-                            const ScatterRange& range, int cells_x, int cells_y, const DataBox* box) {
+                            const ScatterRange& range, int cells_x, int cells_y, const std::vector<char>* marked) {
   PairDensity out;
   out.cells_x = std::max(1, cells_x);
   out.cells_y = std::max(1, cells_y);
@@ -33,7 +29,7 @@ PairDensity bin_pair_points(const std::vector<RockPairPoint>& points, PairAxis a
     }
     DensityCell& c = out.cells[s];
     ++c.count;
-    if (box && box->contains(x, y)) ++c.selected;
+    if (marked && i < marked->size() && (*marked)[i]) ++c.selected;
     out.max_count = std::max(out.max_count, c.count);
   }
   return out;

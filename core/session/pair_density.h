@@ -1,6 +1,6 @@
 // The Rock pairs scatter as a grid of small cells: a 10,000-scene study has 300,000 counted pairs, far more
 // than a plot has room for, so the view draws one square per occupied cell (shaded by how many pairs fall in
-// it) instead of one per pair. Binned once when the points, the axes, the plot's size or the drag box
+// it) instead of one per pair. Binned once when the points, the axes, the plot's size or the selection
 // change; a frame then costs the occupied cells, never the pairs. Pure: no drawing.
 #pragma once
 
@@ -16,16 +16,10 @@ struct ScatterRange {
   double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
 };
 
-// A drag box in data units (corners in either order, edges included).
-struct DataBox {
-  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  bool contains(double x, double y) const;  // false for NaN
-};
-
 struct DensityCell {
   int cx = 0, cy = 0;  // column from the left, row from the bottom
   int count = 0;       // pairs in the cell
-  int selected = 0;    // of them inside the drag box
+  int selected = 0;    // of them marked (the selection's pairs)
   int first = -1;      // the lowest point index in the cell (hover and click name this pair)
 };
 
@@ -39,7 +33,7 @@ struct PairDensity {
 // Bins `points` on axes (ax, ay) into cells_x x cells_y cells over `range`; a value outside the range goes to
 // the edge cell. `box` (may be null): counts the points inside it per cell.
 PairDensity bin_pair_points(const std::vector<RockPairPoint>& points, PairAxis ax, PairAxis ay,
-                            const ScatterRange& range, int cells_x, int cells_y, const DataBox* box);
+                            const ScatterRange& range, int cells_x, int cells_y, const std::vector<char>* marked);
 
 // An axis's range for the scatter: [0, 1] for the values that live there (performance, confidence,
 // position), [0, a round number at or above the largest value] for |diff| and size (1 when none is above 0).

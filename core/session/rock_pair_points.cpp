@@ -212,6 +212,21 @@ std::vector<int> gallery_order(const std::vector<RockPairPoint>& points) {
   return order;
 }
 
+bool RockPairKey::operator<(const RockPairKey& o) const {
+  return std::tie(scene, rock_a, rock_b) < std::tie(o.scene, o.rock_a, o.rock_b);
+}
+bool RockPairKey::operator==(const RockPairKey& o) const {
+  return scene == o.scene && rock_a == o.rock_a && rock_b == o.rock_b;
+}
+RockPairKey key_of(const RockPairPoint& p) { return {p.scene, p.rock_a, p.rock_b}; }
+
+std::vector<char> marked_pairs(const std::vector<RockPairPoint>& points, const std::vector<RockPairKey>& pairs) {
+  std::vector<char> marked(points.size(), 0);
+  for (size_t i = 0; i < points.size(); ++i)
+    marked[i] = std::binary_search(pairs.begin(), pairs.end(), key_of(points[i])) ? 1 : 0;
+  return marked;
+}
+
 std::string PairSelection::label() const {
   return fmt::format("selection: {} pair{} in {} scene{}", points.size(), points.size() == 1 ? "" : "s", scenes.size(),
                      scenes.size() == 1 ? "" : "s");
@@ -225,9 +240,11 @@ PairSelection select_in_box(const std::vector<RockPairPoint>& points, PairAxis x
   for (size_t i = 0; i < points.size(); ++i) {
     if (!inside(axis_value(points[i], x_axis), xlo, xhi) || !inside(axis_value(points[i], y_axis), ylo, yhi)) continue;
     out.points.push_back(static_cast<int>(i));
+    out.pairs.push_back(key_of(points[i]));
     scenes.insert(points[i].scene);
   }
   out.scenes.assign(scenes.begin(), scenes.end());
+  std::sort(out.pairs.begin(), out.pairs.end());
   return out;
 }
 

@@ -67,15 +67,27 @@ std::vector<int> gallery_sorted(const std::vector<RockPairPoint>& points, Galler
 // rock_pair_points' rules. `labels` must be the ones the table was computed from (threshold applied).
 std::vector<RockPairPoint> cell_pair_points(const StudyLabels& labels, const TableCell& cell);
 
+// A pair's identity: its scene and its two rocks, in the view's orientation. It holds when the points are gathered
+// again or plotted on other axes, so a selection keeps its pairs highlighted through both.
+struct RockPairKey {
+  int scene = -1, rock_a = -1, rock_b = -1;
+  bool operator<(const RockPairKey& o) const;
+  bool operator==(const RockPairKey& o) const;
+};
+RockPairKey key_of(const RockPairPoint& p);
+
 // A drag-box selection on a scatter of (x_axis, y_axis): the points inside the box (corners in either order,
 // edges included; a NaN value is never inside) and the scenes they are in.
 struct PairSelection {
-  std::vector<int> points;  // indices into the points, ascending
-  std::vector<int> scenes;  // scene indices, ascending, each once
+  std::vector<int> points;         // indices into the points, ascending
+  std::vector<int> scenes;         // scene indices, ascending, each once
+  std::vector<RockPairKey> pairs;  // the selected pairs, ascending
   // The scene list's filter chip: "selection: 37 pairs in 12 scenes".
   std::string label() const;
 };
 PairSelection select_in_box(const std::vector<RockPairPoint>& points, PairAxis x_axis, PairAxis y_axis, double x0,
                             double y0, double x1, double y1);
+// Which of `points` are among `pairs` (ascending, as PairSelection keeps them): 1 for each that is.
+std::vector<char> marked_pairs(const std::vector<RockPairPoint>& points, const std::vector<RockPairKey>& pairs);
 
 }  // namespace ipd

@@ -316,7 +316,8 @@ TEST(StudioReplay, AThresholdKeepsAPredictionAtExactlyThatConfidenceAsTheCliDoes
 
 // Two scenes: s1 as write_two_rock_study (pairs with |diff| 2/3 and 0), s2 with both sides' predictions on
 // their rocks (|diff| 0 twice). A drag box over |diff| >= 0.5, perf A >= 0.5 holds one pair, in s1: the scene
-// list then shows s1 alone, under the selection's label.
+// list then shows s1 alone, under the selection's label. The selected pair stays highlighted when the scatter
+// shows other axes (size x perf B), where the box means nothing.
 TEST(StudioReplay, ARockViewBoxBecomesASceneListFilter) {
   const char* studio = std::getenv("IPD_STUDIO");
   if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
@@ -328,14 +329,25 @@ TEST(StudioReplay, ARockViewBoxBecomesASceneListFilter) {
     test::write_text(d / fmt::format("{}/predictions/det/s2.txt", domain),
                      "0 0.3 0.3 0.1 0.1 0.9\n0 0.7 0.4 0.15 0.1 0.7\n");
   }
-  test::write_text(d / "actions.txt", fmt::format("list {}\nrocks diff perf-a\nwait 2\nselect 0.5 0.5 1 1\nwait 2\n"
-                                                  "list {}\ngallery page 2 sort size\nwait 2\nscreenshot {}\n",
-                                                  d / "before.txt", d / "after.txt", d / "rocks.png"));
+  test::write_text(
+      d / "actions.txt",
+      fmt::format("list {}\nrocks diff perf-a\nwait 2\nselect 0.5 0.5 1 1\nwait 2\nstate {}\n"
+                  "rocks size perf-b\nwait 2\nstate {}\nlist {}\ngallery page 2 sort size\nwait 2\n"
+                  "screenshot {}\n",
+                  d / "before.txt", d / "boxed.json", d / "other-axes.json", d / "after.txt", d / "rocks.png"));
   const std::string cmd =
       fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d.path(), d / "actions.txt");
   ASSERT_EQ(run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path()), 0) << read_file(d / "err.txt");
   EXPECT_EQ(read_file(d / "before.txt"), "\ns1\ns2\n");
   EXPECT_EQ(read_file(d / "after.txt"), "selection: 1 pair in 1 scene\ns1\n");
+  const auto boxed = nlohmann::json::parse(read_file(d / "boxed.json"))["rock_view"];
+  EXPECT_EQ(boxed["x"], "|diff|");
+  EXPECT_EQ(boxed["points"], 4);
+  EXPECT_EQ(boxed["highlighted"], 1);
+  const auto other = nlohmann::json::parse(read_file(d / "other-axes.json"))["rock_view"];
+  EXPECT_EQ(other["x"], "size (px\u00b2)");
+  EXPECT_EQ(other["y"], "perf B");
+  EXPECT_EQ(other["highlighted"], 1);
   EXPECT_TRUE(fs::exists(d / "rocks.png"));
 }
 

@@ -64,26 +64,25 @@ bool axis_combo(const char* label, int& axis, const Session& s) {
   return changed;
 }
 
-// Bins the points again when they, the axes, the plot's size or the drag box changed.
-void rebin(RockViewState& st, PairAxis ax, PairAxis ay, int w, int h) {
-  const bool box = st.has_box && st.box_x == static_cast<int>(ax) && st.box_y == static_cast<int>(ay);
-  const double b[4] = {st.bx0, st.by0, st.bx1, st.by1};
+// Bins the points again when they, the axes, the plot's size or the selection changed. The selection is
+// highlighted by its pairs, so it stays lit on axes other than the ones its box was drawn on.
+void rebin(const Session& s, const UiState& ui, RockViewState& st, PairAxis ax, PairAxis ay, int w, int h) {
+  const bool current = ui.selection_pair == s.pair_index() && ui.selection_model == s.model();
+  const auto& selection = current ? ui.selection_pairs : nullptr;
   if (st.binned_points == st.points.get() && st.binned_x == static_cast<int>(ax) &&
-      st.binned_y == static_cast<int>(ay) && st.binned_w == w && st.binned_h == h && st.binned_box == box &&
-      (!box || std::equal(b, b + 4, st.binned_b)))
+      st.binned_y == static_cast<int>(ay) && st.binned_w == w && st.binned_h == h && st.binned_selection == selection)
     return;
   st.binned_points = st.points.get();
   st.binned_x = static_cast<int>(ax), st.binned_y = static_cast<int>(ay), st.binned_w = w, st.binned_h = h;
-  st.binned_box = box;
-  std::copy(b, b + 4, st.binned_b);
+  st.binned_selection = selection;
   static const std::vector<RockPairPoint> kNone;
   const auto& points = st.points ? st.points->points : kNone;
   const auto [x0, x1] = scatter_axis_range(points, ax);
   const auto [y0, y1] = scatter_axis_range(points, ay);
   st.range = {x0, x1, y0, y1};
-  const DataBox data_box{st.bx0, st.by0, st.bx1, st.by1};
+  const std::vector<char> marked = selection ? marked_pairs(points, *selection) : std::vector<char>();
   st.density = bin_pair_points(points, ax, ay, st.range, std::max(1, w / kCellPx), std::max(1, h / kCellPx),
-                               box ? &data_box : nullptr);
+                               selection ? &marked : nullptr);
 }
 
 // A cell's blue: light for one pair, darker as more pairs share it (log scale: a few dense cells must not
@@ -154,11 +153,8 @@ void handle_mouse(const Session& s, const Plot& plot, int hovered, PairAxis ax, 
     if (hovered >= 0) go_to(st.points->points[hovered], out);
     return;
   }
-  st.has_box = true;
-  st.box_x = static_cast<int>(ax), st.box_y = static_cast<int>(ay);
-  st.bx0 = plot.data_x(st.drag_from.x), st.bx1 = plot.data_x(m.x);
-  st.by0 = plot.data_y(st.drag_from.y), st.by1 = plot.data_y(m.y);
-  apply_pair_selection(s, select_in_box(st.points->points, ax, ay, st.bx0, st.by0, st.bx1, st.by1), ui);
+  select_pairs_in_box(s, st, plot.data_x(st.drag_from.x), plot.data_y(st.drag_from.y), plot.data_x(m.x),
+                      plot.data_y(m.y), ui);
 }
 
 void draw_scatter(const Session& s, bool gathering, RockViewState& st, UiState& ui, UiCommands& out) {
@@ -194,7 +190,7 @@ void draw_scatter(const Session& s, bool gathering, RockViewState& st, UiState& 
   if (!st.points) return;
   const ImVec2 p0{origin.x + ImGui::CalcTextSize("0.000").x + 8, origin.y + line + 4};
   const ImVec2 p1{origin.x + size.x - ImGui::CalcTextSize("0.0").x, origin.y + size.y - 2 * line - 4};
-  rebin(st, ax, ay, std::max(1, int(p1.x - p0.x)), std::max(1, int(p1.y - p0.y)));
+  rebin(s, ui, st, ax, ay, std::max(1, int(p1.x - p0.x)), std::max(1, int(p1.y - p0.y)));
   const Plot plot{p0, p1, st.range};
   ImDrawList* dl = ImGui::GetWindowDrawList();
   draw_axes(plot, ax, ay, s, origin, dl);
@@ -361,9 +357,23 @@ void apply_pair_selection(const Session& s, const PairSelection& sel, UiState& u
   }
   ui.selection_scenes = sel.scenes;
   ui.selection_label = sel.label();
+  ui.selection_pairs = std::make_shared<const std::vector<RockPairKey>>(sel.pairs);
   ui.selection_pair = s.pair_index();
   ui.selection_model = s.model();
   ui.order.clear();  // the app lists the scenes again
+}
+
+void select_pairs_in_box(const Session& s, const RockViewState& st, double x0, double y0, double x1, double y1,
+                         UiState& ui) {
+  static const std::vector<RockPairPoint> kNone;
+  apply_pair_selection(
+      s, select_in_box(st.points ? st.points->points : kNone, kAxes[st.x_axis], kAxes[st.y_axis], x0, y0, x1, y1), ui);
+}
+
+int highlighted_pairs(const RockViewState& st) {
+  int n = 0;
+  for (const DensityCell& c : st.density.cells) n += c.selected;
+  return n;
 }
 
 void draw_rock_view(const StudyView& v, const std::shared_ptr<const RockPointSet>& points, bool gathering,

@@ -25,10 +25,6 @@ struct RockViewState {
   bool current_scene = false;  // false: the scene list as filtered
   bool dragging = false;
   ImVec2 drag_from{0, 0};
-  // The last drag box in data coordinates (its points are drawn highlighted), on axes (box_x, box_y).
-  bool has_box = false;
-  int box_x = 0, box_y = 0;
-  double bx0 = 0, by0 = 0, bx1 = 0, by1 = 0;
   GallerySort gallery_sort = GallerySort::kDiff;  // largest first
   int gallery_page = 0;
   int select_tab = -1;  // 0: scatter, 1: gallery, shown on the next frame (a script's `gallery`); -1: as is
@@ -41,8 +37,7 @@ struct RockViewState {
   ScatterRange range;
   const RockPointSet* binned_points = nullptr;
   int binned_x = -1, binned_y = -1, binned_w = 0, binned_h = 0;
-  bool binned_box = false;
-  double binned_b[4] = {0, 0, 0, 0};
+  std::shared_ptr<const std::vector<RockPairKey>> binned_selection;  // the selection highlighted (UiState's)
 };
 
 // The scenes whose pairs the view shows, ascending: the scene list's scenes (ui.order, before a selection
@@ -62,5 +57,11 @@ void draw_rock_view(const StudyView& v, const std::shared_ptr<const RockPointSet
 
 // Sets the scene list's selection filter from a drag box (nothing when it holds no pair).
 void apply_pair_selection(const Session& s, const PairSelection& sel, UiState& ui);
+// A drag box on the scatter's current axes, in data coordinates (corners in either order): its pairs become the
+// scene list's selection. The mouse and scripts (`select`) both end here.
+void select_pairs_in_box(const Session& s, const RockViewState& st, double x0, double y0, double x1, double y1,
+                         UiState& ui);
+// Pairs highlighted on the scatter as last binned (the selection's pairs among the points shown).
+int highlighted_pairs(const RockViewState& st);
 
 }  // namespace ipd::ui

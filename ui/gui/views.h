@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/session/rock_pair_points.h"
 #include "core/session/scene_filter.h"
 #include "core/session/session.h"
 #include "core/session/session_statistics.h"
@@ -29,11 +30,24 @@ struct TextColumn {
   const char* tooltip = nullptr;
   ImGuiTableColumnFlags flags = 0;
 };
-// `sortable`: room for the sort arrow beside the header (an unsortable table's headers need none).
+// `sortable`: room for the sort arrow beside the header (ImGui keeps it beside every sortable column's header; an
+// unsortable table's headers need none).
 float text_column_width(const TextColumn& c, bool sortable = true);
 // TableSetupColumn for each (fixed width from text, or stretched when `widest` is null), then the header
 // row, with the tooltips.
 void setup_text_columns(const std::vector<TextColumn>& columns, bool sortable = true);
+// The width fixed-width columns take at the current font, their cell padding included.
+float text_columns_width(const std::vector<TextColumn>& columns, bool sortable = true);
+// A table never cuts columns silently: the largest font scale (1, 0.95, ... down to kMinTableFontScale) at which
+// the columns fit in `avail`, `needed(scale)` being their width at that scale (text shrinks with the font, cell
+// padding does not); a table still wider scrolls sideways at the smallest. Set with ImGui::SetWindowFontScale
+// around the table, whose ID names the scale (scaled_table_id): a table sets its columns' widths once, so each
+// scale is a table of its own.
+inline constexpr float kMinTableFontScale = 0.8f;  // 12 px of the studio's 15
+float table_font_scale(const std::function<float(float scale)>& needed, float avail);
+// The same for columns drawn in the current window: measured with ImGui at each scale.
+float table_font_scale(const std::vector<TextColumn>& columns, bool sortable, float extra, float avail);
+std::string scaled_table_id(const char* name, float scale);  // "scenes##85" at 0.85
 
 struct Picture {
   ImTextureID texture = nullptr;
@@ -87,6 +101,7 @@ struct UiState {
   int hover_left = -1, hover_right = -1;
   int sort_column = kByIpd;     // browser: a SceneSortKey
   bool sort_descending = true;  // worst first: the audit order
+  std::string list_table_id;    // the scene list's table last frame (a new font scale: a new table)
   char filter[128] = "";
   ReplayState replay;
   int rerun_method = 0, rerun_seed = 0;  // rerun_method: index into registration_methods()
@@ -130,6 +145,8 @@ struct UiState {
   // domain pair and model it was drawn on (another one clears it); empty: no selection.
   std::vector<int> selection_scenes;
   std::string selection_label;  // "selection: 37 pairs in 12 scenes"
+  // The selected pairs themselves (ascending), highlighted in the Rock pairs window on whatever axes it shows.
+  std::shared_ptr<const std::vector<RockPairKey>> selection_pairs;
   int selection_pair = -1;
   std::string selection_model;
   BlinkState blink;        // the blink view (B) in place of the two panes

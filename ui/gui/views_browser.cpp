@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include <imgui_internal.h>  // TableSetColumnSortDirection: a new table takes the list's sort
+
 #include "ui/gui/studio_layout.h"
 #include "ui/gui/views.h"
 
@@ -136,9 +138,8 @@ float browser_width(const StudyView& v, float min_w, float max_w) {
     for (const auto& m : *v.summaries)
       if (m.stem.size() > longest) longest = m.stem.size(), name = &m.stem;
   const ImGuiStyle& st = ImGui::GetStyle();
-  float w = (name ? ImGui::CalcTextSize(name->c_str()).x : 80.0f) + 2 * st.CellPadding.x;
-  for (const auto& c : browser_columns())
-    if (c.text.widest) w += text_column_width(c.text) + 2 * st.CellPadding.x;
+  float w = (name ? ImGui::CalcTextSize(name->c_str()).x : 80.0f) + 2 * st.CellPadding.x +
+            text_columns_width(browser_text_columns());
   return std::clamp(w + st.ScrollbarSize + 2 * st.WindowPadding.x + 8, min_w, max_w);
 }
 
@@ -150,6 +151,7 @@ static void draw_selection_chip(const Session& s, UiState& ui) {
   if (stale || (ImGui::SmallButton("x##clearselection"))) {
     ui.selection_scenes.clear();
     ui.selection_label.clear();
+    ui.selection_pairs.reset();
     ui.order.clear();  // the app lists the scenes again
     return;
   }
@@ -237,15 +239,33 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   text_disabled_wrapped_at_spaces(review_progress_line(s.review_progress()));  // a narrow column clipped it
   ImGuiTableFlags flags = ImGuiTableFlags_Sortable | ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY |
                           ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_Resizable;
-  // A column narrower than the table's text: scroll sideways rather than squeeze the scene names away.
-  const float needed = browser_width(v, 0, 1e9f) - 2 * ImGui::GetStyle().WindowPadding.x - 8;
-  const bool scroll_x = ImGui::GetContentRegionAvail().x < needed;
-  if (scroll_x) flags |= ImGuiTableFlags_ScrollX;
+  // Columns that don't fit are never cut silently: a smaller font first (every column in sight at 1280 px), then
+  // scrolling sideways rather than squeezing the scene names away.
   const auto& columns = browser_columns();
   const int n_columns = static_cast<int>(columns.size());
-  if (ImGui::BeginTable("scenes", n_columns, flags, {0, 0}, scroll_x ? needed : 0.0f)) {
+  int sorted = 0;  // the list's sort, given to each new table
+  for (int k = 0; k < n_columns; ++k)
+    if (columns[k].sort_key == ui.sort_column) sorted = k;
+  auto needed_at = [&](float s) {
+    ImGui::SetWindowFontScale(s);
+    return browser_width(v, 0, 1e9f) - 2 * ImGui::GetStyle().WindowPadding.x - 8;
+  };
+  const float avail = ImGui::GetContentRegionAvail().x;
+  const float scale = table_font_scale(needed_at, avail);
+  const float needed = needed_at(scale);
+  // Always ScrollX: without it a table squeezes its fixed columns (and cuts their headers) when they don't fit.
+  flags |= ImGuiTableFlags_ScrollX;
+  ImGui::SetWindowFontScale(scale);  // this window's text from here on: the table only, reset below
+  const std::string id = scaled_table_id("scenes", scale);
+  if (ImGui::BeginTable(id.c_str(), n_columns, flags, {0, 0}, std::max(needed, avail))) {
     ImGui::TableSetupScrollFreeze(1, 1);
     setup_text_columns(browser_text_columns());
+    // A new table (another font scale) starts from its default sort: it takes the list's.
+    if (id != ui.list_table_id) {
+      ui.list_table_id = id;
+      ImGui::TableSetColumnSortDirection(
+          sorted, ui.sort_descending ? ImGuiSortDirection_Descending : ImGuiSortDirection_Ascending, false);
+    }
     if (ImGuiTableSortSpecs* spec = ImGui::TableGetSortSpecs(); spec && spec->SpecsDirty && spec->SpecsCount > 0) {
       ui.sort_column = columns[std::clamp<int>(spec->Specs[0].ColumnIndex, 0, n_columns - 1)].sort_key;
       ui.sort_descending = spec->Specs[0].SortDirection == ImGuiSortDirection_Descending;
@@ -280,6 +300,7 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
     }
     ImGui::EndTable();
   }
+  ImGui::SetWindowFontScale(1.0f);
 }
 
 }  // namespace ipd::ui

@@ -22,6 +22,35 @@ float text_column_width(const TextColumn& c, bool sortable) {
   return std::max(header, c.widest ? ImGui::CalcTextSize(c.widest).x : 0.0f);
 }
 
+float text_columns_width(const std::vector<TextColumn>& columns, bool sortable) {
+  float w = 0;
+  for (const auto& c : columns)
+    if (c.widest) w += text_column_width(c, sortable) + 2 * ImGui::GetStyle().CellPadding.x;
+  return w;
+}
+
+float table_font_scale(const std::function<float(float scale)>& needed, float avail) {
+  const int lowest = static_cast<int>(std::lround(kMinTableFontScale * 20));
+  for (int k = 20; k > lowest; --k)
+    if (needed(k / 20.0f) <= avail) return k / 20.0f;
+  return kMinTableFontScale;
+}
+
+float table_font_scale(const std::vector<TextColumn>& columns, bool sortable, float extra, float avail) {
+  const float scale = table_font_scale(
+      [&](float s) {
+        ImGui::SetWindowFontScale(s);
+        return text_columns_width(columns, sortable) + extra;
+      },
+      avail);
+  ImGui::SetWindowFontScale(1.0f);
+  return scale;
+}
+
+std::string scaled_table_id(const char* name, float scale) {
+  return std::string(name) + "##" + std::to_string(std::lround(scale * 100));
+}
+
 void setup_text_columns(const std::vector<TextColumn>& columns, bool sortable) {
   for (const auto& c : columns)
     ImGui::TableSetupColumn(c.header, c.flags | (c.widest ? ImGuiTableColumnFlags_WidthFixed : 0),

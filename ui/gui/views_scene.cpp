@@ -372,26 +372,31 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
            : thousands(audit.suspects) + " suspect; typical residual " + fixed(audit.typical_residual_px, 1) + " px"));
   const float table_h =
       std::max(60.0f, ImGui::GetContentRegionAvail().y - 2.4f * ImGui::GetTextLineHeightWithSpacing());
-  // ScrollX: a pane narrower than the columns scrolls instead of cutting the last ones off.
+  const std::string partner = "its partner in " + s.right_domain();
+  const bool masks = s.study().config.task == Task::kSegment;
+  const std::string iou = iou_word(s);
+  const std::string iou_l = iou + " of the left rock (" + s.left_domain() + ") with its best prediction";
+  const std::string iou_r = iou + " of the right rock (" + s.right_domain() + ") with its best prediction";
+  const std::string diff = "|" + iou + " L - " + iou + " R|: the pair's share of the IPD";
+  const std::vector<TextColumn> columns = {
+      {"pair", "99 x", "the pair, named by its left rock (x: excluded)"},
+      {"R#", "99", partner.c_str()},
+      {masks ? "mIoU L" : "IoU L", "0.000", iou_l.c_str()},
+      {masks ? "mIoU R" : "IoU R", "0.000", iou_r.c_str()},
+      {"|diff|", "0.000", diff.c_str()},
+      {"res px", "999.9", "residual after the registration affine, pixels"},
+      {"size", "0.00", "box-size ratio, aligned left / right (suspect outside 0.5-2)"}};
+  // No sort arrow to leave room for (narrower, so more columns fit). A pane narrower than the columns shows them
+  // in a smaller font, then scrolls (ScrollX) instead of cutting the last ones off.
+  const float scale =
+      table_font_scale(columns, /*sortable=*/false, ImGui::GetStyle().ScrollbarSize, ImGui::GetContentRegionAvail().x);
+  ImGui::SetWindowFontScale(scale);
   if (ImGui::BeginTable(
-          "pairs", 7,
+          scaled_table_id("pairs", scale).c_str(), 7,
           ImGuiTableFlags_RowBg | ImGuiTableFlags_ScrollY | ImGuiTableFlags_ScrollX | ImGuiTableFlags_BordersInnerV,
           ImVec2(0, table_h))) {
     ImGui::TableSetupScrollFreeze(1, 1);  // the pair stays in view when the table scrolls sideways
-    const std::string partner = "its partner in " + s.right_domain();
-    const bool masks = s.study().config.task == Task::kSegment;
-    const std::string iou = iou_word(s);
-    const std::string iou_l = iou + " of the left rock (" + s.left_domain() + ") with its best prediction";
-    const std::string iou_r = iou + " of the right rock (" + s.right_domain() + ") with its best prediction";
-    const std::string diff = "|" + iou + " L - " + iou + " R|: the pair's share of the IPD";
-    setup_text_columns({{"pair", "99 x", "the pair, named by its left rock (x: excluded)"},
-                        {"R#", "99", partner.c_str()},
-                        {masks ? "mIoU L" : "IoU L", "0.000", iou_l.c_str()},
-                        {masks ? "mIoU R" : "IoU R", "0.000", iou_r.c_str()},
-                        {"|diff|", "0.000", diff.c_str()},
-                        {"res px", "999.9", "residual after the registration affine, pixels"},
-                        {"size", "0.00", "box-size ratio, aligned left / right (suspect outside 0.5-2)"}},
-                       /*sortable=*/false);  // no sort arrow to leave room for: narrower, so more columns fit
+    setup_text_columns(columns, /*sortable=*/false);
     for (const auto& row : rows) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
@@ -436,6 +441,7 @@ void draw_pair_table(const StudyView& v, UiState& ui, UiCommands& out) {
     }
     ImGui::EndTable();
   }
+  ImGui::SetWindowFontScale(1.0f);
   // Rocks without a partner, with their own IoU: collapsible, one line per rock.
   for (int k = 0; k < 2; ++k) {
     const Side side = k == 0 ? Side::kA : Side::kB;

@@ -35,13 +35,18 @@ TEST(PicturePanes, TheLargerOfSideBySideAndStacked) {
   EXPECT_GE(tiny.picture_h, 0);
 }
 
-// Columns that don't fit are never cut: the font shrinks to fit, down to 80% of its size (the scene list's eight
-// columns at 1280 px need about 0.82), then the table scrolls sideways at that size.
+// Columns that don't fit are never cut: the font shrinks to fit in steps of 5% (each step a table of its own, as a
+// table sets its column widths once), down to 80% of its size, then the table scrolls sideways at that size.
 TEST(StudioColumns, ATableTooWideShrinksItsFontBeforeItScrolls) {
-  EXPECT_FLOAT_EQ(table_font_scale(250, 290), 1.0f);  // fits: the normal font
-  EXPECT_FLOAT_EQ(table_font_scale(360, 297), 297.0f / 360.0f);
-  EXPECT_FLOAT_EQ(table_font_scale(500, 300), kMinTableFontScale);  // past it: scrolls at 80%
+  // 100 px of cell padding, which the font does not shrink, and 300 px of text at the normal size.
+  auto needed = [](float s) { return 100 + 300 * s; };
+  EXPECT_FLOAT_EQ(table_font_scale(needed, 420), 1.0f);  // fits: the normal font
+  EXPECT_FLOAT_EQ(table_font_scale(needed, 370), 0.9f);
+  EXPECT_FLOAT_EQ(table_font_scale(needed, 360), 0.85f);               // 0.8667: the step below, so it fits
+  EXPECT_FLOAT_EQ(table_font_scale(needed, 300), kMinTableFontScale);  // past it: scrolls at 80%
   EXPECT_FLOAT_EQ(kMinTableFontScale, 0.8f);
+  EXPECT_EQ(scaled_table_id("scenes", 0.85f), "scenes##85");
+  EXPECT_EQ(scaled_table_id("pairs", 1.0f), "pairs##100");
 }
 
 TEST(StudioColumns, WideWindowKeepsPreferredSideWidths) {
@@ -240,29 +245,35 @@ TEST(UiWording, CountedNounsThousandsAndNoNegativeZero) {
 TEST(RegistrationWords, SingularCountsPlainNumbersOneStepNumber) {
   RegistrationReport r;
   r.method = RegistrationMethod::kConsensus;
-  r.trials = 1, r.hypotheses = 1, r.inliers = 17, r.score = 16.89721, r.confidence = 0.8449;
+  r.samples = 1, r.hypotheses = 1, r.inliers = 17, r.fit = {FitMeasure::kSoftInliers, 16.89721}, r.confidence = 0.8449;
   EXPECT_EQ(registration_summary("real", "principled", r),
-            "real -> principled: consensus, 1 trial, 1 hypothesis, 17 inliers, score 16.8972, confidence 0.84");
-  r.trials = 40, r.hypotheses = 5982, r.inliers = 1, r.score = -0.0000001, r.confidence = -0.000001;
+            "real -> principled: consensus, 1 trial, 1 hypothesis, 17 inliers, soft inliers 16.8972, confidence 0.84");
+  r.samples = 40, r.hypotheses = 5982, r.inliers = 1, r.fit.value = -0.0000001, r.confidence = -0.000001;
   EXPECT_EQ(registration_summary("a", "b", r),
-            "a -> b: consensus, 40 trials, 5,982 hypotheses, 1 inlier, score 0.0000, confidence 0.00");
-  // cpd counts EM iterations, never trials or hypotheses.
+            "a -> b: consensus, 40 trials, 5,982 hypotheses, 1 inlier, soft inliers 0.0000, confidence 0.00");
+  // Identical layouts need no search: nothing is scored, and no 0 is printed that reads as a perfect fit.
+  r.samples = 0, r.hypotheses = 0, r.fit = {};
+  EXPECT_EQ(registration_summary("a", "b", r),
+            "a -> b: consensus, 0 trials, 0 hypotheses, 1 inlier, not scored, confidence 0.00");
+  // cpd counts EM iterations, never trials or hypotheses, and measures its fit as the mixture's width.
   r.method = RegistrationMethod::kCpd;
-  r.trials = 22, r.hypotheses = 22, r.inliers = 17, r.score = 0.00031, r.confidence = 1;
+  r.samples = 0, r.em_iterations = 22, r.hypotheses = 22, r.inliers = 17, r.confidence = 1;
+  r.fit = {FitMeasure::kMixtureWidth, 0.00031};
   EXPECT_EQ(registration_summary("real", "principled", r),
-            "real -> principled: cpd, 22 EM iterations, 17 inliers, score 0.0003, confidence 1.00");
-  r.trials = 1;
+            "real -> principled: cpd, 22 EM iterations, 17 inliers, mixture width 0.0003, confidence 1.00");
+  r.em_iterations = 1;
   EXPECT_EQ(registration_summary("a", "b", r).substr(0, 28), "a -> b: cpd, 1 EM iteration,");
   TraceStep st;
   st.kind = TraceStepKind::kHypothesis;
-  st.score = 0.5, st.best_score = 0.75, st.inliers_a = {3};
+  st.fit = 0.5, st.best_fit = 0.75, st.inliers_a = {3};
   // k = 349 is the 350th step: the scrubber reads "step 350 of 5,000" too.
-  EXPECT_EQ(replay_step_line(st, 349, 5000),
-            "step 350 of 5,000 (hypothesis): score 0.5000, best so far 0.7500, 1 inlier");
+  EXPECT_EQ(replay_step_line(st, FitMeasure::kMeanDistance, 349, 5000),
+            "step 350 of 5,000 (hypothesis): mean distance 0.5000, best so far 0.7500, 1 inlier");
   // Consensus' last step is the fit that goes out, judged among the polished, the searched and plain least
   // squares (or the second look's pick): "polish" would name only the first of them.
-  st.kind = TraceStepKind::kPolish, st.score = st.best_score = 16.89719, st.inliers_a.assign(17, 0);
-  EXPECT_EQ(replay_step_line(st, 3, 4), "step 4 of 4 (final fit): score 16.8972, best so far 16.8972, 17 inliers");
+  st.kind = TraceStepKind::kPolish, st.fit = st.best_fit = 16.89719, st.inliers_a.assign(17, 0);
+  EXPECT_EQ(replay_step_line(st, FitMeasure::kSoftInliers, 3, 4),
+            "step 4 of 4 (final fit): soft inliers 16.8972, best so far 16.8972, 17 inliers");
   EXPECT_EQ(
       trace_cap_note(5000, 5982),
       "the replay holds the first 5,000 steps of 5,982 hypotheses tried (the recording stops at 5,000; the search "
