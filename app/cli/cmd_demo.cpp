@@ -19,6 +19,7 @@ Runner add_demo_command(CLI::App& app) {
     std::uint64_t seed = 7;
     DemoStudyOptions options;
     int variants = 0;
+    std::string task = "detect";
     CLI::Option* scenes = nullptr;
   };
   auto args = std::make_shared<Args>();
@@ -37,7 +38,18 @@ Runner add_demo_command(CLI::App& app) {
                   "Write the variants demo instead: the reference 'real' and N renderings along the shading's ambient "
                   "term, whose true best is known (labels only; for ipd rank and ipd figure sweep)")
       ->check(CLI::Range(2, 98));
+  cmd->add_option("--task", args->task,
+                  "detect (boxes) or segment: outlines as GT (the drawn rocks) and predictions (the detector's "
+                  "contours), task: segment in study.yaml")
+      ->check(CLI::IsMember({"detect", "segment"}));
   return [args]() -> int {
+    if (args->task == "segment" && (args->options.labels_only || args->variants > 0)) {
+      fmt::print(stderr,
+                 "error: --task segment writes the pictured demo (its predictions are the detector's "
+                 "contours): not with --labels-only or --variants\n");
+      return kBadInput;
+    }
+    args->options.segment = args->task == "segment";
     // A new study only: written over an existing one, its hand pairs and review marks would stay and mix with the
     // new labels (and the tour's numbers would not be the demo's).
     std::error_code ec;

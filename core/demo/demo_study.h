@@ -15,6 +15,9 @@ struct DemoStudyOptions {
   // No pictures: GT boxes from the scene geometry and synthetic predictions (GT jittered, some missed,
   // a few false alarms), fast enough for 10,000-scene benchmark studies.
   bool labels_only = false;
+  // task: segment: every rock also has its outline (the drawn ellipse's, GT) and the detector's predictions are
+  // its contours, so the IPD is about masks. Needs the pictures (not with labels_only).
+  bool segment = false;
 
   // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence.
   std::string validate() const;

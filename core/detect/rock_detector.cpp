@@ -5,6 +5,8 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "core/io/label_io.h"
+
 namespace ipd {
 
 std::string RockDetectorParams::validate() const {
@@ -16,7 +18,7 @@ std::string RockDetectorParams::validate() const {
   return {};
 }
 
-std::vector<Box> detect_rocks(const cv::Mat& bgr, const RockDetectorParams& p) {
+std::vector<Box> detect_rocks(const cv::Mat& bgr, const RockDetectorParams& p, bool outlines) {
   std::vector<Box> out;
   if (bgr.empty()) return out;
   cv::Mat grey, small_bg, bg, diff, mask;
@@ -51,6 +53,13 @@ std::vector<Box> detect_rocks(const cv::Mat& bgr, const RockDetectorParams& p) {
     // A rough, monotone confidence: strong contrast and a solid blob score high.
     const double solidity = area / std::max(1.0, static_cast<double>(r.area()));
     b.conf = std::clamp(0.25 + 0.5 * (mean_diff - p.threshold) / 60.0 + 0.3 * solidity, 0.05, 0.99);
+    if (outlines) {
+      std::vector<cv::Point> simplified;
+      cv::approxPolyDP(c, simplified, 1.0, true);
+      std::vector<Eigen::Vector2d> points;
+      for (const cv::Point& q : simplified) points.emplace_back((q.x + 0.5) / W, (q.y + 0.5) / H);
+      if (!set_outline(std::move(points), &b).empty()) continue;
+    }
     out.push_back(b);
   }
   std::sort(out.begin(), out.end(), [](const Box& x, const Box& y) { return x.conf > y.conf; });

@@ -19,8 +19,10 @@ struct RockDetectorParams {
   std::string validate() const;
 };
 
-// Boxes normalised to the picture, class 0, confidence from contrast and size.
-std::vector<Box> detect_rocks(const cv::Mat& bgr, const RockDetectorParams& params);
+// Boxes normalised to the picture, class 0, confidence from contrast and size. `outlines`: each box also carries
+// its contour (simplified to within a pixel) and is the contour's bounds, as a YOLO-seg line; a contour with no
+// area is left out.
+std::vector<Box> detect_rocks(const cv::Mat& bgr, const RockDetectorParams& params, bool outlines = false);
 
 // Grid search for the parameters that maximise mean best-IoU of the GT rocks (a detector "trained" on
 // these pictures).

@@ -100,6 +100,12 @@ std::string parse_outline(const std::vector<std::string>& f, size_t n, const Lab
   if (prediction) {
     if (std::string why = parse_number(f[n - 1], n, "conf", true, opt, &box->conf); !why.empty()) return why;
   }
+  return set_outline(std::move(points), box);
+}
+
+}  // namespace
+
+std::string set_outline(std::vector<Eigen::Vector2d> points, Box* box) {
   OutlineRef outline = OutlineRef::make();
   if (std::string why = make_outline(std::move(points), outline.fill()); !why.empty()) return why;
   if (outline->x1 - outline->x0 < kMinBoxSide || outline->y1 - outline->y0 < kMinBoxSide)
@@ -111,6 +117,8 @@ std::string parse_outline(const std::vector<std::string>& f, size_t n, const Lab
   box->outline = std::move(outline);
   return {};
 }
+
+namespace {
 
 // Parses a line's `n` fields into a box (or an outline and its bounds) or returns why not.
 std::string parse_box(const std::vector<std::string>& f, size_t n, const LabelParseOptions& opt, Box* box) {

@@ -78,6 +78,11 @@ void keep_confident(LabelFile* file, double threshold);
 // `--conf 0.25`, and two scores 0.50004 > 0.50001 written as equal changed AP's ranking.
 enum class LabelDigits { kFixed, kExact };
 std::string labels_text(const std::vector<Box>& boxes, LabelKind kind, LabelDigits digits = LabelDigits::kFixed);
+// Gives `box` the outline of `points` (normalised, not closed) and makes the box its bounds, as a YOLO-seg line
+// reads back; or returns why not: make_outline's reasons, or an outline narrower or lower than kMinBoxSide. Label
+// files, COCO imports and the segmentation demo all outline a box through it.
+std::string set_outline(std::vector<Eigen::Vector2d> points, Box* box);
+
 // Writes labels_text(boxes, kind, digits) to `path`, atomically.
 void write_labels(const std::string& path, const std::vector<Box>& boxes, LabelKind kind,
                   LabelDigits digits = LabelDigits::kFixed);

@@ -242,15 +242,14 @@ struct BoxSink {
       const std::vector<double> merged = merge_polygon_parts(shape.polygons);
       std::vector<Eigen::Vector2d> points;
       for (size_t k = 0; k + 1 < merged.size(); k += 2) points.emplace_back(merged[k], merged[k + 1]);
-      OutlineRef outline = OutlineRef::make();
-      std::string why = make_outline(std::move(points), outline.fill());
-      if (why.empty() && (outline->x1 - outline->x0 < kMinBoxSide || outline->y1 - outline->y0 < kMinBoxSide))
-        why = "expected an outline at least a millionth of the picture wide and high";
-      if (!why.empty()) {
+      // The box keeps the entry's bbox (set_outline would make it the outline's bounds, as reading the line back
+      // does): only the outline is taken.
+      Box outlined = b;
+      if (std::string why = set_outline(std::move(points), &outlined); !why.empty()) {
         errors.push_back({file, 0, where + ": segmentation: " + why});
         return;
       }
-      b.outline = std::move(outline);
+      b.outline = std::move(outlined.outline);
       ++(shape.rle ? report->rle_masks : report->polygons);
       report->rle_masks_cut += shape.pieces_left_out > 0 ? 1 : 0;
       report->rle_pixels_left_out += shape.pixels_left_out;

@@ -63,30 +63,11 @@ void draw_crop(Canvas& c, const PtRect& panel, const GalleryCrop& g, double font
   if (!g.pixels.empty())
     c.image({g.pixels}, on_panel(panel, g.region, g.covered.x0, g.covered.y0, g.covered.x1, g.covered.y1));
   const double lw = std::max(0.35, font_pt * 0.07), dash = std::max(1.5, 4 * lw);
-  const auto box = [&](const Box& b) { return on_panel(panel, g.region, b.x0(), b.y0(), b.x1(), b.y1()); };
-  // An instance with an outline is drawn as its outline: the mask its performance value is about.
-  const auto outline = [&](const Outline& o) {
-    std::vector<Pt> q;
-    for (const Eigen::Vector2d& p : o.points) {
-      const PtRect r = on_panel(panel, g.region, p.x(), p.y(), p.x(), p.y());
-      q.push_back({r.x0, r.y0});
-    }
-    return q;
+  const auto at = [&](double x, double y) {
+    const PtRect r = on_panel(panel, g.region, x, y, x, y);
+    return Pt{r.x0, r.y0};
   };
-  if (g.has_pred && g.pred.outline) {
-    dashed_polygon(c, outline(*g.pred.outline), kLightHalo, 1.5 * lw * kHaloRatio, dash);
-    dashed_polygon(c, outline(*g.pred.outline), kPredC, 1.5 * lw, dash);
-  } else if (g.has_pred) {
-    dashed_rect(c, box(g.pred), kLightHalo, 1.5 * lw * kHaloRatio, dash);
-    dashed_rect(c, box(g.pred), kPredC, 1.5 * lw, dash);
-  }
-  if (g.gt.outline) {
-    c.polyline(outline(*g.gt.outline), kDarkHalo, 1.5 * lw * kHaloRatio, true);
-    c.polyline(outline(*g.gt.outline), kGtC, 1.5 * lw, true);
-  } else {
-    c.rect(box(g.gt), kDarkHalo, 1.5 * lw * kHaloRatio);
-    c.rect(box(g.gt), kGtC, 1.5 * lw);
-  }
+  draw_gallery_instances(c, at, g.gt, g.has_pred ? &g.pred : nullptr, 1.5 * lw, dash);
   c.pop_clip();
   c.rect(panel, kGrey, 0.4);
 }
@@ -104,6 +85,34 @@ double draw_caption(Canvas& c, const PtRect& panel, const GalleryCrop& g, const 
 }
 
 }  // namespace
+
+void draw_gallery_instances(Canvas& c, const std::function<Pt(double x, double y)>& at, const Box& gt, const Box* pred,
+                            double stroke, double dash) {
+  const auto box = [&](const Box& b) {
+    const Pt p0 = at(b.x0(), b.y0()), p1 = at(b.x1(), b.y1());
+    return PtRect{p0.x, p0.y, p1.x, p1.y};
+  };
+  const auto outline = [&](const Outline& o) {
+    std::vector<Pt> q;
+    q.reserve(o.points.size());
+    for (const Eigen::Vector2d& p : o.points) q.push_back(at(p.x(), p.y()));
+    return q;
+  };
+  if (pred && pred->outline) {
+    dashed_polygon(c, outline(*pred->outline), kLightHalo, stroke * kHaloRatio, dash);
+    dashed_polygon(c, outline(*pred->outline), kPredC, stroke, dash);
+  } else if (pred) {
+    dashed_rect(c, box(*pred), kLightHalo, stroke * kHaloRatio, dash);
+    dashed_rect(c, box(*pred), kPredC, stroke, dash);
+  }
+  if (gt.outline) {
+    c.polyline(outline(*gt.outline), kDarkHalo, stroke * kHaloRatio, true);
+    c.polyline(outline(*gt.outline), kGtC, stroke, true);
+  } else {
+    c.rect(box(gt), kDarkHalo, stroke * kHaloRatio);
+    c.rect(box(gt), kGtC, stroke);
+  }
+}
 
 Crop gallery_crop_region(const Box& gt, int w, int h) {
   const double side = std::max({gt.w * w, gt.h * h, 16.0}) * kContext;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 
 #include <opencv2/core.hpp>
 #include <string>
@@ -57,6 +58,12 @@ struct GalleryInput {
 // 16 px wide, in normalised coordinates of a w x h picture. The studio's gallery crops with it too, so its
 // rocks keep their shape and read as the figure's.
 Crop gallery_crop_region(const Box& gt, int w, int h);
+// A crop's rock and its best prediction (null: none) in the gallery's styles: the prediction dashed on a light
+// halo, the GT solid on a dark halo; an instance with an outline as its outline (the mask its performance value
+// is about), else as its box. `at` maps normalised picture coordinates to the canvas. The figure and ipd-studio's
+// gallery both draw through it, so the window previews the figure.
+void draw_gallery_instances(Canvas& c, const std::function<Pt(double x, double y)>& at, const Box& gt, const Box* pred,
+                            double stroke, double dash);
 // The picture size crops are measured in: w x h when known (> 0), else the POLAR cameras' 1936 x 1216.
 std::pair<int, int> gallery_picture_size(int w, int h);
 

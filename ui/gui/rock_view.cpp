@@ -235,20 +235,17 @@ void draw_crop(const StudyView& v, Side side, int scene, int rock, float px) {
     dl->AddImage(pic.texture, at(u0, v0), at(u1, v1), ImVec2(float(u0), float(v0)), ImVec2(float(u1), float(v1)));
   // The styles of `ipd figure gallery`, so the window previews the figure: the best prediction dashed on a
   // light halo, the GT box solid on a dark halo (told apart in greyscale and by every colour-vision deficiency).
+  // A segmentation study's rocks as their outlines, as the figure draws them.
   ImGuiCanvas canvas(dl, {0, 0}, 1.0f, nullptr);
-  const auto rect = [&](const Box& b) {
-    const ImVec2 q0 = at(b.x0(), b.y0()), q1 = at(b.x1(), b.y1());
-    return PtRect{q0.x, q0.y, q1.x, q1.y};
-  };
   constexpr double kStroke = 2.0, kDash = 6.0;
   const int best = s.performance(side, scene).best_prediction[rock];
-  if (best >= 0) {
-    const PtRect r = rect(s.predictions(side, scene)[best]);
-    fig::dashed_rect(canvas, r, fig::kLightHalo, kStroke * fig::kHaloRatio, kDash);
-    fig::dashed_rect(canvas, r, fig::kPredC, kStroke, kDash);
-  }
-  canvas.rect(rect(g), fig::kDarkHalo, kStroke * fig::kHaloRatio);
-  canvas.rect(rect(g), fig::kGtC, kStroke);
+  draw_gallery_instances(
+      canvas,
+      [&](double x, double y) {
+        const ImVec2 q = at(x, y);
+        return Pt{q.x, q.y};
+      },
+      g, best >= 0 ? &s.predictions(side, scene)[best] : nullptr, kStroke, kDash);
   dl->PopClipRect();
 }
 

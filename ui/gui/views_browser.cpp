@@ -171,9 +171,10 @@ void draw_class_menu(const Session& s, UiCommands& out) {
     if (!classes.names[k].empty()) choices.push_back(static_cast<int>(k));
   for (const auto& [cls, n] : labels.gt_boxes_by_class)
     if (std::find(choices.begin(), choices.end(), cls) == choices.end()) choices.push_back(cls);
-  if (choices.size() < 2 && s.class_note().empty()) return;
   const int shown = s.study().config.rock_class;
-  if (ImGui::BeginCombo("class", class_statement(labels).c_str())) {
+  // A menu only where there is a choice: one class (the note may still say the task) needs none.
+  const bool choice = choices.size() >= 2 || shown == kAllClasses;
+  if (choice && ImGui::BeginCombo("class", class_statement(labels).c_str())) {
     for (int cls : choices)
       if (ImGui::Selectable(classes.describe(cls).c_str(), cls == shown) && cls != shown)
         out.class_word = std::to_string(cls);
