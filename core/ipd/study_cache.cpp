@@ -14,8 +14,8 @@
 #include <filesystem>
 #include <map>
 #include <memory>
-#include <new>
 #include <mutex>
+#include <new>
 #include <string_view>
 #include <type_traits>
 
@@ -324,8 +324,10 @@ class FileBytes {
   FileBytes(const FileBytes&) = delete;
   FileBytes& operator=(const FileBytes&) = delete;
   ~FileBytes() {
-    if (mapped_) ::munmap(data_, capacity_);
-    else delete[] data_;
+    if (mapped_)
+      ::munmap(data_, capacity_);
+    else
+      delete[] data_;
   }
   // Room for n bytes (n > 0); false when no memory could be had.
   bool allocate(size_t n) {

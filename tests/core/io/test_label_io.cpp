@@ -37,8 +37,9 @@ TEST(LabelIo, AFileOverTheBoxLimitIsRefusedWithItsCountAndBoxesPastItAreNotKept)
   const LabelFile f = parse_gt(text);
   ASSERT_EQ(f.errors.size(), 1u);
   EXPECT_TRUE(f.errors[0].unusable_file());
-  EXPECT_EQ(f.errors[0].to_string(), "a.txt: 20005 boxes, more than the 20000 per image this tool handles "
-                                     "(docs/study-format.md)");
+  EXPECT_EQ(f.errors[0].to_string(),
+            "a.txt: 20005 boxes, more than the 20000 per image this tool handles "
+            "(docs/study-format.md)");
   EXPECT_EQ(f.boxes.size(), kMaxBoxesPerFile + 1);
   EXPECT_EQ(f.line_of_box.size(), kMaxBoxesPerFile + 1);
 }
