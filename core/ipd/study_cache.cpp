@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -16,6 +17,7 @@
 #include <mutex>
 #include <string_view>
 #include <type_traits>
+#include <vector>
 
 #include "core/ipd/label_fingerprint.h"
 #include "core/util/cache_file.h"
@@ -32,8 +34,9 @@ constexpr char kMagic[8] = {'I', 'P', 'D', 'S', 'T', 'U', 'D', 'Y'};
 // Bump when the layout, label parsing or a registration method's results change: 3 for the signature; 4: a
 // report keeps why its registration is ambiguous (Ambiguity), not only whether; 5: answers nothing was compared
 // with are flagged as such (Ambiguity::kUnchecked, kNoPlausible); 7: outlines, with their areas and centroids
-// (an outline's clipping into non-crossing contours is not redone on a warm load); 8: the label set's fingerprint.
-constexpr std::uint32_t kFormat = 8;
+// (an outline's clipping into non-crossing contours is not redone on a warm load); 8: the label set's fingerprint;
+// 9: the fingerprint's running state after each domain.
+constexpr std::uint32_t kFormat = 9;
 constexpr size_t kHeaderBytes = kParsedStudyHeaderBytes;
 static_assert(kHeaderBytes == sizeof kMagic + 4 + 8 + CacheSigner::kMacBytes);
 
@@ -298,6 +301,8 @@ struct StudyCache::Contents {
   // label_set_fingerprint(study) over the GT files stored here (a study of `fingerprint_gt_files` GT files).
   std::string fingerprint;
   std::uint64_t fingerprint_gt_files = 0;
+  // The fingerprint's state after each domain (label_fingerprint.h): as read, then as load_labels left it.
+  std::vector<FingerprintCheckpoint> checkpoints;
   std::unordered_map<std::string, Entry> labels;  // entry_key -> file as parsed
   RegistrationEntries registrations;
   // Filled by load_labels: each file's stamp as it was read, and how many files were taken from `labels`.
@@ -376,6 +381,14 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
     c->conf_threshold = r.pod<double>();
     c->fingerprint = r.str();
     c->fingerprint_gt_files = r.pod<std::uint64_t>();
+    const auto checkpoints = r.pod<std::uint64_t>();
+    for (std::uint64_t k = 0; k < checkpoints; ++k) {
+      FingerprintCheckpoint p;
+      p.domain = r.str();
+      p.files = r.pod<std::uint64_t>();
+      p.state = r.str();
+      c->checkpoints.push_back(std::move(p));
+    }
     const auto files = r.pod<std::uint64_t>();
     c->labels.reserve(files);
     for (std::uint64_t k = 0; k < files; ++k) {
@@ -412,6 +425,7 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
   // opened so has its files parsed (which says why).
   std::map<std::string, std::unique_ptr<OpenFolder>> folders;  // "domain\nmodel" (model "" for GT)
   std::uint64_t gt_files = 0;
+  std::map<std::string, std::atomic<int>> reused_gt_of;  // domain -> its GT files taken from the file
   if (!path_.empty()) {
     auto open = [&](const std::string& key, const std::string& relative) {
       try {
@@ -422,6 +436,7 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
     };
     for (const auto& d : study.domains) {
       gt_files += d.stems.size();
+      reused_gt_of.try_emplace(d.name, 0);
       open(d.name + '\n', d.name + "/labels");
       for (const auto& m : d.models) open(d.name + '\n' + m, d.name + "/predictions/" + m);
     }
@@ -450,21 +465,33 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
         *out = std::move(it->second.file);
         it->second.stamp.size = -2;  // taken: a second use would find it empty
         ++reused;
-        if (model.empty()) ++reused_gt;
+        if (model.empty()) ++reused_gt, ++reused_gt_of.at(domain);
         return true;
       });
   stats_.files_reused = reused;
   stats_.files_parsed = parsed;
   // The fingerprint hashes the GT files' bytes: when every one of them was read back unchanged (the stamps vouch
   // for their bytes, as for their parse) and the study has no other, the stored one is this study's. Otherwise it
-  // is computed here, once, for the file to keep; a file that can't be read leaves it to the provenance, which says
-  // why.
+  // is computed here, once, for the file to keep, resumed after the leading domains (in its path order) whose GT
+  // files all read back unchanged: a study that gained a domain reads the files of the domains from it on only. A
+  // file that can't be read leaves it to the provenance, which says why.
+  std::vector<FingerprintCheckpoint> checkpoints = std::move(c.checkpoints);
+  c.checkpoints.clear();
   if (!path_.empty()) {
     if (!c.fingerprint.empty() && reused_gt == static_cast<int>(gt_files) && c.fingerprint_gt_files == gt_files) {
       labels.label_fingerprint = c.fingerprint;
+      c.checkpoints = std::move(checkpoints);
+      stats_.fingerprint_domains_read = 0;
     } else {
       try {
-        labels.label_fingerprint = label_set_fingerprint(study);
+        std::map<std::string, size_t> files_of;
+        for (const auto& d : study.domains) files_of[d.name] = d.stems.size();
+        ResumedFingerprint f = label_set_fingerprint(study, checkpoints, [&](const std::string& domain) {
+          return reused_gt_of.at(domain) == static_cast<int>(files_of.at(domain));
+        });
+        labels.label_fingerprint = std::move(f.fingerprint);
+        c.checkpoints = std::move(f.checkpoints);
+        stats_.fingerprint_domains_read = f.domains_read;
       } catch (const std::exception&) {
       }
     }
@@ -502,6 +529,15 @@ void StudyCache::save(const StudyLabels& labels, const RegistrationCache& regist
   std::uint64_t gt_files = 0;
   for (const auto& d : labels.study.domains) gt_files += d.stems.size();
   w.pod<std::uint64_t>(gt_files);
+  // The states belong to this fingerprint only: with another (a fingerprint left to the provenance) none is kept.
+  static const std::vector<FingerprintCheckpoint> kNone;
+  const auto& checkpoints = labels.label_fingerprint.empty() ? kNone : contents_->checkpoints;
+  w.pod<std::uint64_t>(checkpoints.size());
+  for (const FingerprintCheckpoint& p : checkpoints) {
+    w.str(p.domain);
+    w.pod<std::uint64_t>(p.files);
+    w.str(p.state);
+  }
   w.pod<std::uint64_t>(files);
   auto put = [&](const std::string& key, const LabelFile& f) {
     w.str(key);
