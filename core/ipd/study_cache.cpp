@@ -416,6 +416,41 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
 
 StudyCache::~StudyCache() = default;
 
+namespace {
+struct Fingerprint {
+  std::string fingerprint;  // empty: left to the provenance (a file that can't be read, which it says)
+  std::vector<FingerprintCheckpoint> checkpoints;
+  int domains_read = -1;
+};
+
+// The label set's fingerprint once load_labels has taken what it could from the file. It hashes the GT files'
+// bytes: when every one of them was read back unchanged (the stamps vouch for their bytes, as for their parse) and
+// the study has no other, the stored one is this study's. Otherwise it is computed here, once, for the file to
+// keep, resumed after the leading domains (in its path order) whose GT files all read back unchanged: a study that
+// gained a domain reads the files of the domains from it on only. `stored`: what the file held (its fingerprint
+// and checkpoints, and how many GT files it covered).
+Fingerprint settle_fingerprint(const Study& study, const Fingerprint& stored, std::uint64_t stored_gt_files,
+                               const std::map<std::string, std::atomic<int>>& reused_gt_of) {
+  std::uint64_t gt_files = 0, reused_gt = 0;
+  std::map<std::string, size_t> files_of;
+  for (const auto& d : study.domains) {
+    gt_files += d.stems.size();
+    files_of[d.name] = d.stems.size();
+    reused_gt += static_cast<std::uint64_t>(reused_gt_of.at(d.name).load());
+  }
+  if (!stored.fingerprint.empty() && reused_gt == gt_files && stored_gt_files == gt_files)
+    return {stored.fingerprint, stored.checkpoints, 0};
+  try {
+    ResumedFingerprint f = label_set_fingerprint(study, stored.checkpoints, [&](const std::string& domain) {
+      return reused_gt_of.at(domain) == static_cast<int>(files_of.at(domain));
+    });
+    return {std::move(f.fingerprint), std::move(f.checkpoints), f.domains_read};
+  } catch (const std::exception&) {
+    return {};
+  }
+}
+}  // namespace
+
 StudyLabels StudyCache::load_labels(const Study& study, const std::function<void(int done, int total)>& progress) {
   Contents& c = *contents_;
   c.filters_match = c.rock_class == study.config.rock_class && c.class_maps == study.classes.map_key() &&
@@ -441,7 +476,7 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
       for (const auto& m : d.models) open(d.name + '\n' + m, d.name + "/predictions/" + m);
     }
   }
-  std::atomic<int> reused{0}, parsed{0}, reused_gt{0};
+  std::atomic<int> reused{0}, parsed{0};
   c.stamps.reserve(std::max<size_t>(c.labels.size(), gt_files));  // a stamp a file: no rehash under the lock
   StudyLabels labels = ipd::load_labels(
       study, progress,
@@ -465,36 +500,17 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
         *out = std::move(it->second.file);
         it->second.stamp.size = -2;  // taken: a second use would find it empty
         ++reused;
-        if (model.empty()) ++reused_gt, ++reused_gt_of.at(domain);
+        if (model.empty()) ++reused_gt_of.at(domain);
         return true;
       });
   stats_.files_reused = reused;
   stats_.files_parsed = parsed;
-  // The fingerprint hashes the GT files' bytes: when every one of them was read back unchanged (the stamps vouch
-  // for their bytes, as for their parse) and the study has no other, the stored one is this study's. Otherwise it
-  // is computed here, once, for the file to keep, resumed after the leading domains (in its path order) whose GT
-  // files all read back unchanged: a study that gained a domain reads the files of the domains from it on only. A
-  // file that can't be read leaves it to the provenance, which says why.
-  std::vector<FingerprintCheckpoint> checkpoints = std::move(c.checkpoints);
-  c.checkpoints.clear();
   if (!path_.empty()) {
-    if (!c.fingerprint.empty() && reused_gt == static_cast<int>(gt_files) && c.fingerprint_gt_files == gt_files) {
-      labels.label_fingerprint = c.fingerprint;
-      c.checkpoints = std::move(checkpoints);
-      stats_.fingerprint_domains_read = 0;
-    } else {
-      try {
-        std::map<std::string, size_t> files_of;
-        for (const auto& d : study.domains) files_of[d.name] = d.stems.size();
-        ResumedFingerprint f = label_set_fingerprint(study, checkpoints, [&](const std::string& domain) {
-          return reused_gt_of.at(domain) == static_cast<int>(files_of.at(domain));
-        });
-        labels.label_fingerprint = std::move(f.fingerprint);
-        c.checkpoints = std::move(f.checkpoints);
-        stats_.fingerprint_domains_read = f.domains_read;
-      } catch (const std::exception&) {
-      }
-    }
+    Fingerprint f =
+        settle_fingerprint(study, {c.fingerprint, std::move(c.checkpoints)}, c.fingerprint_gt_files, reused_gt_of);
+    labels.label_fingerprint = std::move(f.fingerprint);
+    c.checkpoints = std::move(f.checkpoints);
+    stats_.fingerprint_domains_read = f.domains_read;
   }
   return labels;
 }

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
+#include <algorithm>
 #include <filesystem>
+#include <vector>
 
 #include "core/ipd/label_fingerprint.h"
 #include "core/ipd/study_cache.h"
@@ -107,6 +109,28 @@ TEST(StudyCacheGrowth, ANewDomainIsTheOnlyOneParsedRegisteredAndHashed) {
   EXPECT_EQ(warm.cached, 9);
   EXPECT_EQ(warm.fingerprint, changed.fingerprint);
   EXPECT_FALSE(warm.stats.written);
+}
+
+// Hashed a domain at a time, the files still go in the order of their full paths: "a-b/..." before "a/..." and
+// "s-1.txt" before "s.txt" ('-' sorts before '/' and '.'), as a hash over the sorted paths has them.
+TEST(StudyCacheGrowth, TheFingerprintHashesTheFilesInTheOrderOfTheirPaths) {
+  test::TempDir d;
+  std::vector<std::string> paths;
+  for (const char* domain : {"a", "a-b"})
+    for (const char* stem : {"s", "s-1"}) {
+      const std::string rel = fmt::format("{}/labels/{}.txt", domain, stem);
+      test::write_text(d / rel, fmt::format("0 0.{} 0.5 0.1 0.1\n", 1 + paths.size()));
+      paths.push_back(rel);
+    }
+  std::sort(paths.begin(), paths.end());
+  ASSERT_EQ(paths.front(), "a-b/labels/s-1.txt");
+  Sha256 sha;
+  for (const std::string& rel : paths) {
+    const std::string text = read_file(d / rel);
+    sha.add(rel + std::string(1, '\0') + std::to_string(text.size()) + std::string(1, '\0'));
+    sha.add(text);
+  }
+  EXPECT_EQ(label_set_fingerprint(open_study(d.path())), sha.hex().substr(0, 12));
 }
 
 // SHA-256("abc") is FIPS 180-2's first example: resumed after "ab", the stream still ends in it.
