@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -18,6 +19,7 @@
 #include <new>
 #include <string_view>
 #include <type_traits>
+#include <vector>
 
 #include "core/ipd/label_fingerprint.h"
 #include "core/util/cache_file.h"
@@ -35,8 +37,9 @@ constexpr char kMagic[8] = {'I', 'P', 'D', 'S', 'T', 'U', 'D', 'Y'};
 // report keeps why its registration is ambiguous (Ambiguity), not only whether; 5: answers nothing was compared
 // with are flagged as such (Ambiguity::kUnchecked, kNoPlausible); 7: outlines, with their areas and centroids
 // (an outline's clipping into non-crossing contours is not redone on a warm load); 8: the label set's fingerprint;
-// 9: a report's samples and EM iterations apart, its fit with its measure.
-constexpr std::uint32_t kFormat = 9;
+// 9: a report's samples and EM iterations apart, its fit with its measure; 10: the fingerprint's running state
+// after each domain.
+constexpr std::uint32_t kFormat = 10;
 constexpr size_t kHeaderBytes = kParsedStudyHeaderBytes;
 static_assert(kHeaderBytes == sizeof kMagic + 4 + 8 + CacheSigner::kMacBytes);
 
@@ -306,6 +309,8 @@ struct StudyCache::Contents {
   // label_set_fingerprint(study) over the GT files stored here (a study of `fingerprint_gt_files` GT files).
   std::string fingerprint;
   std::uint64_t fingerprint_gt_files = 0;
+  // The fingerprint's state after each domain (label_fingerprint.h): as read, then as load_labels left it.
+  std::vector<FingerprintCheckpoint> checkpoints;
   std::unordered_map<std::string, Entry> labels;  // entry_key -> file as parsed
   RegistrationEntries registrations;
   // Filled by load_labels: each file's stamp as it was read, and how many files were taken from `labels`.
@@ -419,6 +424,14 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
     c->conf_threshold = r.pod<double>();
     c->fingerprint = r.str();
     c->fingerprint_gt_files = r.pod<std::uint64_t>();
+    const auto checkpoints = r.pod<std::uint64_t>();
+    for (std::uint64_t k = 0; k < checkpoints; ++k) {
+      FingerprintCheckpoint p;
+      p.domain = r.str();
+      p.files = r.pod<std::uint64_t>();
+      p.state = r.str();
+      c->checkpoints.push_back(std::move(p));
+    }
     const auto files = r.pod<std::uint64_t>();
     c->labels.reserve(files);
     for (std::uint64_t k = 0; k < files; ++k) {
@@ -446,6 +459,41 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
 
 StudyCache::~StudyCache() = default;
 
+namespace {
+struct Fingerprint {
+  std::string fingerprint;  // empty: left to the provenance (a file that can't be read, which it says)
+  std::vector<FingerprintCheckpoint> checkpoints;
+  int domains_read = -1;
+};
+
+// The label set's fingerprint once load_labels has taken what it could from the file. It hashes the GT files'
+// bytes: when every one of them was read back unchanged (the stamps vouch for their bytes, as for their parse) and
+// the study has no other, the stored one is this study's. Otherwise it is computed here, once, for the file to
+// keep, resumed after the leading domains (in its path order) whose GT files all read back unchanged: a study that
+// gained a domain reads the files of the domains from it on only. `stored`: what the file held (its fingerprint
+// and checkpoints, and how many GT files it covered).
+Fingerprint settle_fingerprint(const Study& study, const Fingerprint& stored, std::uint64_t stored_gt_files,
+                               const std::map<std::string, std::atomic<int>>& reused_gt_of) {
+  std::uint64_t gt_files = 0, reused_gt = 0;
+  std::map<std::string, size_t> files_of;
+  for (const auto& d : study.domains) {
+    gt_files += d.stems.size();
+    files_of[d.name] = d.stems.size();
+    reused_gt += static_cast<std::uint64_t>(reused_gt_of.at(d.name).load());
+  }
+  if (!stored.fingerprint.empty() && reused_gt == gt_files && stored_gt_files == gt_files)
+    return {stored.fingerprint, stored.checkpoints, 0};
+  try {
+    ResumedFingerprint f = label_set_fingerprint(study, stored.checkpoints, [&](const std::string& domain) {
+      return reused_gt_of.at(domain) == static_cast<int>(files_of.at(domain));
+    });
+    return {std::move(f.fingerprint), std::move(f.checkpoints), f.domains_read};
+  } catch (const std::exception&) {
+    return {};
+  }
+}
+}  // namespace
+
 StudyLabels StudyCache::load_labels(const Study& study, const std::function<void(int done, int total)>& progress) {
   Contents& c = *contents_;
   c.filters_match = c.rock_class == study.config.rock_class && c.class_maps == study.classes.map_key() &&
@@ -455,6 +503,7 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
   // opened so has its files parsed (which says why).
   std::map<std::string, std::unique_ptr<OpenFolder>> folders;  // "domain\nmodel" (model "" for GT)
   std::uint64_t gt_files = 0;
+  std::map<std::string, std::atomic<int>> reused_gt_of;  // domain -> its GT files taken from the file
   if (!path_.empty()) {
     auto open = [&](const std::string& key, const std::string& relative) {
       try {
@@ -465,11 +514,12 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
     };
     for (const auto& d : study.domains) {
       gt_files += d.stems.size();
+      reused_gt_of.try_emplace(d.name, 0);
       open(d.name + '\n', d.name + "/labels");
       for (const auto& m : d.models) open(d.name + '\n' + m, d.name + "/predictions/" + m);
     }
   }
-  std::atomic<int> reused{0}, parsed{0}, reused_gt{0};
+  std::atomic<int> reused{0}, parsed{0};
   c.stamps.reserve(std::max<size_t>(c.labels.size(), gt_files));  // a stamp a file: no rehash under the lock
   StudyLabels labels = ipd::load_labels(
       study, progress,
@@ -493,24 +543,17 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
         *out = std::move(it->second.file);
         it->second.stamp.size = -2;  // taken: a second use would find it empty
         ++reused;
-        if (model.empty()) ++reused_gt;
+        if (model.empty()) ++reused_gt_of.at(domain);
         return true;
       });
   stats_.files_reused = reused;
   stats_.files_parsed = parsed;
-  // The fingerprint hashes the GT files' bytes: when every one of them was read back unchanged (the stamps vouch
-  // for their bytes, as for their parse) and the study has no other, the stored one is this study's. Otherwise it
-  // is computed here, once, for the file to keep; a file that can't be read leaves it to the provenance, which says
-  // why.
   if (!path_.empty()) {
-    if (!c.fingerprint.empty() && reused_gt == static_cast<int>(gt_files) && c.fingerprint_gt_files == gt_files) {
-      labels.label_fingerprint = c.fingerprint;
-    } else {
-      try {
-        labels.label_fingerprint = label_set_fingerprint(study);
-      } catch (const std::exception&) {
-      }
-    }
+    Fingerprint f =
+        settle_fingerprint(study, {c.fingerprint, std::move(c.checkpoints)}, c.fingerprint_gt_files, reused_gt_of);
+    labels.label_fingerprint = std::move(f.fingerprint);
+    c.checkpoints = std::move(f.checkpoints);
+    stats_.fingerprint_domains_read = f.domains_read;
   }
   return labels;
 }
@@ -545,6 +588,15 @@ void StudyCache::save(const StudyLabels& labels, const RegistrationCache& regist
   std::uint64_t gt_files = 0;
   for (const auto& d : labels.study.domains) gt_files += d.stems.size();
   w.pod<std::uint64_t>(gt_files);
+  // The states belong to this fingerprint only: with another (a fingerprint left to the provenance) none is kept.
+  static const std::vector<FingerprintCheckpoint> kNone;
+  const auto& checkpoints = labels.label_fingerprint.empty() ? kNone : contents_->checkpoints;
+  w.pod<std::uint64_t>(checkpoints.size());
+  for (const FingerprintCheckpoint& p : checkpoints) {
+    w.str(p.domain);
+    w.pod<std::uint64_t>(p.files);
+    w.str(p.state);
+  }
   w.pod<std::uint64_t>(files);
   auto put = [&](const std::string& key, const LabelFile& f) {
     w.str(key);

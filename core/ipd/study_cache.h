@@ -18,6 +18,8 @@
 //    relative to it, without following a link;
 //  - the label set's fingerprint (label_fingerprint.h) is kept with the GT files it hashed and given back when every
 //    GT file of the study is read back unchanged, under the same stamps' word, so a warm run reads no label file;
+//    with it the hash's state after each domain, so a study that gained a variant (or changed one) hashes again
+//    only the domains from it on in the fingerprint's path order;
 //  - registrations are keyed by the same content hash as the entry files (registration_cache.h), so a
 //    changed label file or option simply misses.
 // Label files are stored as load_labels() returns them (classes renumbered, class and confidence filters
@@ -61,6 +63,9 @@ std::string parsed_study_cache_path(const std::string& study_root);
 struct StudyCacheStats {
   std::string state;  // "missing", "loaded", or why the file was ignored ("corrupt: checksum", ...)
   int files_reused = 0, files_parsed = 0;
+  // Domains whose GT files load_labels read for the label set's fingerprint (0: the stored one was given back;
+  // -1: not computed).
+  int fingerprint_domains_read = -1;
   int registrations_stored = 0;  // in the file when it was read
   bool written = false;          // save() rewrote the file
 };
