@@ -331,7 +331,7 @@ std::string count_of(double n, const char* singular, const char* plural) {
 
 std::string describe_stop(StopReason stop, int samples, int hypotheses, double work, double budget) {
   std::string s = to_string(stop);
-  const std::string sampled = count_of(samples, "sample", "samples");
+  const std::string sampled = count_of(samples, "trial", "trials");  // as --trials and every report name them
   const std::string tried = count_of(hypotheses, "hypothesis", "hypotheses");
   switch (stop) {
     case StopReason::kWorkBudget:

@@ -167,7 +167,8 @@ void draw_scatter(const Session& s, bool gathering, RockViewState& st, UiState& 
   // What the points are: the model and threshold they are scored with, and with a drag box, what it selected
   // (the scatter keeps the pairs of the list the filter alone gives; the list shows the selection's scenes).
   const std::string cell = "model " + (s.model().empty() ? std::string("none") : s.model()) +
-                           ", conf >= " + fmt::format("{:g}", s.conf_threshold());
+                           ", conf >= " + fmt::format("{:g}", s.conf_threshold()) +
+                           (s.study().config.task == Task::kSegment ? ", perf = mask IoU" : "");
   if (!st.points)
     ImGui::TextDisabled("gathering the pairs...");
   else if (!st.current_scene && !ui.selection_label.empty())
@@ -298,7 +299,7 @@ void draw_gallery(const StudyView& v, RockViewState& st, UiCommands& out) {
     ImGui::Text("%s. %s", thousands(k + 1).c_str(), s.scenes()[p.scene].stem.c_str());
     ImGui::Text("rock %d (%s) | rock %d (%s)", p.rock_a + 1, s.left_domain().c_str(), p.rock_b + 1,
                 s.right_domain().c_str());
-    ImGui::Text("perf %.3f | %.3f   |diff| %.3f", p.perf_a, p.perf_b, p.abs_diff);
+    ImGui::Text("%s %.3f | %.3f   |diff| %.3f", iou_word(s), p.perf_a, p.perf_b, p.abs_diff);
     ImGui::Text("size %s px² (%s rock)", thousands(std::llround(p.size)).c_str(), s.left_domain().c_str());
     if (ImGui::SmallButton("go to pair")) go_to(p, out);
     ImGui::EndGroup();

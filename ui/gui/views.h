@@ -193,6 +193,8 @@ const std::vector<BrowserColumn>& browser_columns();
 
 // The study browser's width: the longest scene name and the numeric columns, within [min_w, max_w].
 float browser_width(const StudyView& v, float min_w, float max_w);
+// What a rock's number is: its box IoU, or its mask IoU in the segment task (the words every view uses).
+const char* iou_word(const Session& s);
 void draw_menu_bar(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_status_bar(const StudyView& v, UiState& ui, UiCommands& out);
 void draw_dialogs(const StudyView& v, UiState& ui, UiCommands& out);  // help, go to scene, open study, quit

@@ -16,10 +16,9 @@ int replay_step(const RegistrationReport& r, float position) {
   return std::clamp(static_cast<int>(position), 0, static_cast<int>(r.trace.steps.size()) - 1);
 }
 
-namespace {
-
-// What a rock's number is: its box IoU, or its mask IoU in the segment task (the words every view uses).
 const char* iou_word(const Session& s) { return s.study().config.task == Task::kSegment ? "mask IoU" : "IoU"; }
+
+namespace {
 
 // The replayed step's sample on one view side (the replay is in the domain pair's A/B orientation).
 std::vector<int> replay_sample(const StudyView& v, const UiState& ui, Side side) {

@@ -87,7 +87,7 @@ TEST(RegistrationTrace, PaperRecordsEveryHypothesisWithItsTriples) {
   // 1,182 hypotheses here: counts print with thousands separators (ui::thousands formats the same way).
   EXPECT_GE(r.hypotheses, 1000);
   EXPECT_EQ(
-      r.trace.stop.rfind("reached the trial limit (200 samples, " + ui::thousands(r.hypotheses) + " hypotheses, ", 0),
+      r.trace.stop.rfind("reached the trial limit (200 trials, " + ui::thousands(r.hypotheses) + " hypotheses, ", 0),
       0u)
       << r.trace.stop;
 }
