@@ -119,6 +119,7 @@ bool StudioApp::replay_view_action(const ReplayAction& a, ui::UiCommands* cmd) {
     for (size_t k = 0; k < methods.size(); ++k)
       if (a.args[0] == methods[k].name) ui_.rerun_method = static_cast<int>(k);
     cmd->rerun_registration = true;
+    ui_.show_registration_tab = true;  // the rerun is watched where its replay is
   } else {
     return false;
   }
@@ -203,6 +204,7 @@ std::string StudioApp::write_state(const std::string& file) const {
   j["edited"] = !s.scenes().empty() && (*snap_->summaries)[ui_.scene].edited;
   j["selected_left"] = ui_.selected_left + 1;  // 1-based as the replay's rocks; 0: none
   j["focus"] = ui_.focus;
+  j["registration_tab"] = ui_.registration_tab_shown;
   auto view = [](const ui::CanvasView& v) { return nlohmann::json{{"zoom", v.zoom}, {"pan", {v.pan.x, v.pan.y}}}; };
   j["left_view"] = view(ui_.left_view);
   j["right_view"] = view(ui_.right_view);

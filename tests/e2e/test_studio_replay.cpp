@@ -314,6 +314,21 @@ TEST(StudioReplay, AThresholdKeepsAPredictionAtExactlyThatConfidenceAsTheCliDoes
   }
 }
 
+// A rerun is watched where its replay is: the registration tab comes forward from behind the statistics.
+TEST(StudioReplay, ARerunBringsTheRegistrationTabForward) {
+  const char* studio = std::getenv("IPD_STUDIO");
+  if (!studio || !*studio) GTEST_SKIP() << "set IPD_STUDIO to the ipd-studio binary (ctest does)";
+  test::TempDir d;
+  test::write_two_rock_study(d);
+  test::write_text(d / "actions.txt", fmt::format("wait 2\nstate {}\nrerun paper\nwait 3\nstate {}\n",
+                                                  d / "before.json", d / "after.json"));
+  const std::string cmd =
+      fmt::format("XDG_CACHE_HOME={} {} {} --replay {}", d / "cache", studio, d.path(), d / "actions.txt");
+  ASSERT_EQ(run_in_xvfb(cmd, fmt::format(">/dev/null 2>{}", d / "err.txt"), d.path()), 0) << read_file(d / "err.txt");
+  EXPECT_EQ(nlohmann::json::parse(read_file(d / "before.json"))["registration_tab"], false);
+  EXPECT_EQ(nlohmann::json::parse(read_file(d / "after.json"))["registration_tab"], true);
+}
+
 // Two scenes: s1 as write_two_rock_study (pairs with |diff| 2/3 and 0), s2 with both sides' predictions on
 // their rocks (|diff| 0 twice). A drag box over |diff| >= 0.5, perf A >= 0.5 holds one pair, in s1: the scene
 // list then shows s1 alone, under the selection's label. The selected pair stays highlighted when the scatter

@@ -149,9 +149,11 @@ struct UiState {
   std::shared_ptr<const std::vector<RockPairKey>> selection_pairs;
   int selection_pair = -1;
   std::string selection_model;
-  BlinkState blink;        // the blink view (B) in place of the two panes
-  BlinkDrawn blink_drawn;  // what it drew last frame
-  bool show_rank = false;  // the Rank window: the renderer settings ranked against the left domain
+  BlinkState blink;                     // the blink view (B) in place of the two panes
+  BlinkDrawn blink_drawn;               // what it drew last frame
+  bool show_rank = false;               // the Rank window: the renderer settings ranked against the left domain
+  bool show_registration_tab = false;   // the next frame brings the registration tab forward (a rerun's replay)
+  bool registration_tab_shown = false;  // the registration tab was the one drawn last frame
 };
 
 struct UiCommands {

@@ -2,6 +2,7 @@
 // statistics, the registration panel and the pair table as tabs, with draggable gaps; narrow windows tab the
 // browser too, so the pictures keep a usable size. The focus view (Z) gives the pictures the whole window.
 #include <algorithm>
+#include <utility>
 
 #include "ui/gui/studio_layout.h"
 #include "ui/gui/views.h"
@@ -25,7 +26,10 @@ float column_splitter(const char* id, float height, float width) {
 // The registration panel and the pair table, each a tab beside the statistics: the centre column is the
 // pictures' (they need the area: a 30 px rock of a 1936 px picture must stay visible).
 void registration_tab(const StudyView& v, UiState& ui, UiCommands& out) {
-  if (ImGui::BeginTabItem("registration")) {
+  const bool bring_forward = std::exchange(ui.show_registration_tab, false);
+  ui.registration_tab_shown =
+      ImGui::BeginTabItem("registration", nullptr, bring_forward ? ImGuiTabItemFlags_SetSelected : 0);
+  if (ui.registration_tab_shown) {
     ImGui::BeginChild("registration", {0, 0}, true);
     draw_registration(v, ui, out);
     ImGui::EndChild();
