@@ -289,7 +289,8 @@ MethodOutcome register_cpd(const RegistrationFrame& f, const std::vector<Box>& b
     out.note = "a shifted placement fitted better than EM's alignment: used";
     recorder.add_step(TraceStepKind::kPolish, out.affine_normalised, out.fit, out.fit, true);  // replays end on it
   }
-  out.trace = recorder.take_trace(fmt::format("{} ({}, {} of {})", to_string(out.stop),
+  // The bound named as ipd register names it: a reader can't tell 1,045,000 from a setting otherwise.
+  out.trace = recorder.take_trace(fmt::format("{} ({}, {} of {}: the bound for this many rocks)", to_string(out.stop),
                                               count_of(it, "EM iteration", "EM iterations"), grouped(out.work),
                                               count_of(budget, "point evaluation", "point evaluations")));
   pair_final(f.to_image(out.affine_normalised), boxes_a, boxes_b, o, deadline, &out);

@@ -173,7 +173,7 @@ void draw_scatter(const Session& s, bool gathering, RockViewState& st, UiState& 
     ImGui::TextDisabled("gathering the pairs...");
   else if (!st.current_scene && !ui.selection_label.empty())
     text_disabled_wrapped_at_spaces(
-        fmt::format("{} of the scenes the filter lists ({}); {} (orange), listed{}: drag "
+        fmt::format("{} of the scenes the text filter lists ({}); {} (orange), listed{}: drag "
                     "another box, or clear it under the filter",
                     counted(n, "pair"), cell, ui.selection_label, gathering ? " (updating...)" : ""));
   else

@@ -148,7 +148,9 @@ TEST(RegistrationTrace, CpdRecordsOneStepPerIteration) {
   EXPECT_DOUBLE_EQ(r.trace.steps.back().fit, r.fit.value);
   EXPECT_EQ(r.fit.measure, FitMeasure::kMixtureWidth);
   // Counts in full with separators (the studio shows this line: no "1.57e+03").
-  EXPECT_EQ(r.trace.stop, "reached the trial limit (7 EM iterations, 1,568 of 1,045,000 point evaluations)");
+  EXPECT_EQ(r.trace.stop,
+            "reached the trial limit (7 EM iterations, 1,568 of 1,045,000 point evaluations: the bound for this many "
+            "rocks)");
 }
 
 TEST(RegistrationTrace, StopsRecordingAtTheCap) {
