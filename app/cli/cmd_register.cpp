@@ -34,10 +34,7 @@ std::string counted(double n, const char* singular, const char* plural) {
 }
 
 // Five decimals, and a number that rounds to zero prints as "0.00000", never "-0.00000".
-std::string fixed_no_minus_zero(double v) {
-  const std::string s = fmt::format("{:.5f}", v);
-  return s == "-0.00000" ? s.substr(1) : s;
-}
+std::string fixed_no_minus_zero(double v) { return fixed_decimals(v, 5); }
 
 // What a method's search counts, named alike in --json and the text report: cpd runs EM iterations (no trials,
 // no hypotheses); paper and consensus draw trials and score hypotheses.

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/ipd/label_fingerprint.h"
+#include "core/ipd/study_cache_codec.h"
 #include "core/util/cache_file.h"
 #include "core/util/cache_signer.h"
 #include "core/util/contained_file.h"
@@ -63,203 +64,10 @@ std::string entry_key(const std::string& domain, const std::string& model, const
   return domain + '\n' + model + '\n' + stem;
 }
 
-class Writer {
- public:
-  std::string out;
-  template <typename T>
-  void pod(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    out.append(reinterpret_cast<const char*>(&v), sizeof v);
-  }
-  void str(const std::string& s) {
-    pod<std::uint32_t>(static_cast<std::uint32_t>(s.size()));
-    out.append(s);
-  }
-  template <typename T>
-  void vec(const std::vector<T>& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    pod<std::uint64_t>(v.size());
-    if (!v.empty()) out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-  }
-};
-
-// Reads what Writer wrote; any read past the end throws (a truncated or corrupt file).
-class Reader {
- public:
-  Reader(const char* p, size_t n) : p_(p), end_(p + n) {}
-  template <typename T>
-  T pod() {
-    T v;
-    need(sizeof v);
-    std::memcpy(&v, p_, sizeof v);
-    p_ += sizeof v;
-    return v;
-  }
-  std::string str() {
-    const auto n = pod<std::uint32_t>();
-    need(n);
-    std::string s(p_, n);
-    p_ += n;
-    return s;
-  }
-  template <typename T>
-  std::vector<T> vec() {
-    const auto n = pod<std::uint64_t>();
-    if (n > static_cast<std::uint64_t>(end_ - p_) / sizeof(T)) throw std::runtime_error("truncated");
-    std::vector<T> v(n);
-    if (n) std::memcpy(v.data(), p_, n * sizeof(T));  // an empty vector's data() may be null: UB for memcpy
-    p_ += n * sizeof(T);
-    return v;
-  }
-  bool at_end() const { return p_ == end_; }
-
- private:
-  void need(size_t n) const {
-    if (n > static_cast<size_t>(end_ - p_)) throw std::runtime_error("truncated");
-  }
-  const char* p_;
-  const char* end_;
-};
-
-void write_label_file(Writer& w, const LabelFile& f) {
-  w.pod<std::uint8_t>(f.exists);
-  // Field by field: Box has padding, whose bytes would make the file differ from run to run.
-  w.pod<std::uint64_t>(f.boxes.size());
-  for (const Box& b : f.boxes) {
-    const double v[5] = {b.cx, b.cy, b.w, b.h, b.conf};
-    w.pod<std::int32_t>(b.cls);
-    w.pod(v);
-    const Outline* o = b.outline.get();
-    w.pod<std::uint32_t>(o ? static_cast<std::uint32_t>(o->points.size()) : 0);
-    if (!o) continue;
-    for (const Eigen::Vector2d& p : o->points) w.pod<std::array<double, 2>>({p.x(), p.y()});
-    w.pod<std::array<double, 7>>({o->area, o->centroid.x(), o->centroid.y(), o->x0, o->y0, o->x1, o->y1});
-  }
-  w.vec(f.line_of_box);
-  w.pod<std::uint32_t>(static_cast<std::uint32_t>(f.errors.size()));
-  for (const auto& e : f.errors) {
-    w.str(e.file);
-    w.pod<std::int32_t>(e.line);
-    w.str(e.message);
-    w.pod<std::int32_t>(e.more);
-  }
-}
-
-LabelFile read_label_file(Reader& r, const std::string& path) {
-  LabelFile f;
-  f.path = path;
-  f.exists = r.pod<std::uint8_t>() != 0;
-  const auto boxes = r.pod<std::uint64_t>();
-  if (boxes > kMaxBoxesPerFile) throw std::runtime_error("too many boxes");
-  f.boxes.resize(boxes);
-  for (Box& b : f.boxes) {
-    b.cls = r.pod<std::int32_t>();
-    const auto v = r.pod<std::array<double, 5>>();
-    b.cx = v[0], b.cy = v[1], b.w = v[2], b.h = v[3], b.conf = v[4];
-    const auto points = r.pod<std::uint32_t>();
-    if (points == 0) continue;
-    if (points < 3 || points > kMaxOutlinePoints) throw std::runtime_error("bad outline");
-    OutlineRef ref = OutlineRef::make();
-    Outline* o = ref.fill();
-    o->points.resize(points);
-    for (Eigen::Vector2d& p : o->points) {
-      const auto xy = r.pod<std::array<double, 2>>();
-      p = {xy[0], xy[1]};
-    }
-    const auto m = r.pod<std::array<double, 7>>();
-    o->area = m[0], o->centroid = {m[1], m[2]}, o->x0 = m[3], o->y0 = m[4], o->x1 = m[5], o->y1 = m[6];
-    if (!(o->area > 0)) throw std::runtime_error("bad outline area");
-    b.outline = std::move(ref);
-  }
-  f.line_of_box = r.vec<int>();
-  if (f.line_of_box.size() != f.boxes.size()) throw std::runtime_error("box and line counts differ");
-  const auto errors = r.pod<std::uint32_t>();
-  for (std::uint32_t k = 0; k < errors; ++k) {
-    LabelError e;
-    e.file = r.str();
-    e.line = r.pod<std::int32_t>();
-    e.message = r.str();
-    e.more = r.pod<std::int32_t>();
-    f.errors.push_back(std::move(e));
-  }
-  return f;
-}
-
-// The fields the registration entry files keep (registration_cache.cpp), nothing more.
-void write_report(Writer& w, const RegistrationReport& r) {
-  w.pod<std::int32_t>(static_cast<int>(r.method));
-  for (int k = 0; k < 6; ++k) w.pod<double>(r.affine(k / 3, k % 3));
-  w.pod<std::uint64_t>(r.pairs.size());
-  for (const auto& [i, j] : r.pairs) w.pod<std::int32_t>(i), w.pod<std::int32_t>(j);
-  w.pod<std::int32_t>(r.samples);
-  w.pod<std::int32_t>(r.em_iterations);
-  w.pod<std::int32_t>(r.hypotheses);
-  w.pod<std::int32_t>(r.inliers);
-  w.pod<std::uint8_t>(static_cast<std::uint8_t>(r.fit.measure));
-  w.pod<double>(std::isfinite(r.fit.value) ? r.fit.value : 0.0);
-  w.pod<std::int32_t>(static_cast<int>(r.stop));
-  w.str(r.note);
-  w.pod<double>(r.elapsed_ms);
-  w.pod<double>(std::isfinite(r.confidence) ? r.confidence : 0.0);
-  w.pod<std::uint8_t>(static_cast<std::uint8_t>(r.ambiguity));
-}
-
-RegistrationReport read_report(Reader& rd) {
-  RegistrationReport r;
-  const int method = rd.pod<std::int32_t>();
-  if (method < 0 || method > static_cast<int>(RegistrationMethod::kCpd)) throw std::runtime_error("bad method");
-  r.method = static_cast<RegistrationMethod>(method);
-  for (int k = 0; k < 6; ++k) {
-    r.affine(k / 3, k % 3) = rd.pod<double>();
-    if (!std::isfinite(r.affine(k / 3, k % 3))) throw std::runtime_error("bad affine");
-  }
-  const auto pairs = rd.pod<std::uint64_t>();
-  for (std::uint64_t k = 0; k < pairs; ++k) {
-    const int i = rd.pod<std::int32_t>();
-    r.pairs.emplace_back(i, rd.pod<std::int32_t>());
-  }
-  r.samples = rd.pod<std::int32_t>();
-  r.em_iterations = rd.pod<std::int32_t>();
-  r.hypotheses = rd.pod<std::int32_t>();
-  r.inliers = rd.pod<std::int32_t>();
-  const int measure = rd.pod<std::uint8_t>();
-  if (measure > static_cast<int>(FitMeasure::kMixtureWidth)) throw std::runtime_error("bad fit measure");
-  r.fit = {static_cast<FitMeasure>(measure), rd.pod<double>()};
-  const int stop = rd.pod<std::int32_t>();
-  if (stop < 0 || stop > static_cast<int>(kLastStopReason)) throw std::runtime_error("bad stop reason");
-  r.stop = static_cast<StopReason>(stop);
-  r.note = rd.str();
-  r.elapsed_ms = rd.pod<double>();
-  r.confidence = rd.pod<double>();
-  const int ambiguity = rd.pod<std::uint8_t>();
-  if (ambiguity >= kAmbiguityCount) throw std::runtime_error("bad ambiguity");
-  r.ambiguity = static_cast<Ambiguity>(ambiguity);
-  r.ambiguous = r.ambiguity != Ambiguity::kNone;
-  return r;
-}
-
 // The stamp of a file whose folder could not be opened: parsed every time, never equal to a file's stamp.
 const FileStamp kNeverReused{-3, 0, 0, 0, true};
 
 std::int64_t ns_of(const struct timespec& t) { return std::int64_t{t.tv_sec} * 1000000000 + t.tv_nsec; }
-
-void write_stamp(Writer& w, const FileStamp& s) {
-  w.pod(s.size);
-  w.pod(s.mtime_ns);
-  w.pod(s.ctime_ns);
-  w.pod(s.inode);
-  w.pod<std::uint8_t>(s.exists);
-}
-
-FileStamp read_stamp(Reader& r) {
-  FileStamp s;
-  s.size = r.pod<std::int64_t>();
-  s.mtime_ns = r.pod<std::int64_t>();
-  s.ctime_ns = r.pod<std::int64_t>();
-  s.inode = r.pod<std::uint64_t>();
-  s.exists = r.pod<std::uint8_t>() != 0;
-  return s;
-}
 
 }  // namespace
 
@@ -408,7 +216,7 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
   try {
     if (bytes.size() < kHeaderBytes || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
       throw std::runtime_error("not a parsed-study cache");
-    Reader header(bytes.data() + sizeof kMagic, kHeaderBytes - sizeof kMagic);
+    cache_codec::Reader header(bytes.data() + sizeof kMagic, kHeaderBytes - sizeof kMagic);
     if (header.pod<std::uint32_t>() != kFormat) throw std::runtime_error("another format version");
     const auto size = header.pod<std::uint64_t>();
     const std::string_view mac = bytes.substr(kHeaderBytes - CacheSigner::kMacBytes, CacheSigner::kMacBytes);
@@ -416,7 +224,7 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
     // Only what this installation wrote is trusted: a file that came with the study doesn't verify.
     if (!CacheSigner::instance().verify(kParsedStudySignature, bytes.substr(kHeaderBytes), mac))
       throw std::runtime_error("not signed by this installation");
-    Reader r(bytes.data() + kHeaderBytes, size);
+    cache_codec::Reader r(bytes.data() + kHeaderBytes, size);
     if (r.str() != study_root) throw std::runtime_error("another study");
     auto c = std::make_unique<Contents>();
     c->rock_class = r.pod<std::int32_t>();
@@ -438,15 +246,15 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
       std::string key = r.str();
       const std::string path = r.str();
       Contents::Entry e;
-      e.stamp = read_stamp(r);
-      e.file = read_label_file(r, path);
+      e.stamp = cache_codec::read_stamp(r);
+      e.file = cache_codec::read_label_file(r, path);
       c->labels.emplace(std::move(key), std::move(e));
     }
     const auto reports = r.pod<std::uint64_t>();
     c->registrations.reserve(reports);
     for (std::uint64_t k = 0; k < reports; ++k) {
       std::string key = r.str();
-      c->registrations.emplace(std::move(key), read_report(r));
+      c->registrations.emplace(std::move(key), cache_codec::read_report(r));
     }
     if (!r.at_end()) throw std::runtime_error("trailing bytes");
     contents_ = std::move(c);
@@ -577,7 +385,7 @@ void StudyCache::save(const StudyLabels& labels, const RegistrationCache& regist
   if (labels_same && registrations_same) return;
   // Copied only when the file is rewritten: a warm run of a 10,000-scene study keeps 30,000 reports.
   const RegistrationEntries served = registration.entries_to_keep();
-  Writer w;
+  cache_codec::Writer w;
   w.out.reserve(kHeaderBytes + files * 1500);
   w.out.resize(kHeaderBytes);  // filled in below, once the payload's size and checksum are known
   w.str(root_);
@@ -602,8 +410,8 @@ void StudyCache::save(const StudyLabels& labels, const RegistrationCache& regist
     w.str(key);
     w.str(f.path);
     const auto it = contents_->stamps.find(key);
-    write_stamp(w, it == contents_->stamps.end() ? FileStamp{} : it->second);
-    write_label_file(w, f);
+    cache_codec::write_stamp(w, it == contents_->stamps.end() ? FileStamp{} : it->second);
+    cache_codec::write_label_file(w, f);
   };
   for (const auto& [d, stems] : labels.gt)
     for (const auto& [stem, f] : stems) put(entry_key(d, "", stem), f);
@@ -613,9 +421,9 @@ void StudyCache::save(const StudyLabels& labels, const RegistrationCache& regist
   w.pod<std::uint64_t>(served.size());
   for (const auto& [key, report] : served) {
     w.str(key);
-    write_report(w, report);
+    cache_codec::write_report(w, report);
   }
-  Writer header;
+  cache_codec::Writer header;
   header.out.append(kMagic, sizeof kMagic);
   header.pod<std::uint32_t>(kFormat);
   header.pod<std::uint64_t>(w.out.size() - kHeaderBytes);

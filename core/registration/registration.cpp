@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <stdexcept>
 #include <tuple>
 
@@ -81,41 +82,28 @@ FitMeasure fit_measure_of(RegistrationMethod m) {
   return FitMeasure::kNotScored;
 }
 
-bool lower_is_better(FitMeasure m) { return m == FitMeasure::kMeanDistance || m == FitMeasure::kMixtureWidth; }
+namespace {
+// Each measure's words and direction, in FitMeasure's order: one row to read, not three switches to keep in step.
+struct FitMeasureInfo {
+  const char* name;  // as printed
+  const char* key;   // as --json writes it
+  bool lower_is_better;
+};
+constexpr FitMeasureInfo kFitMeasures[] = {{"not scored", "", false},
+                                           {"mean distance", "mean_distance", true},
+                                           {"soft inliers", "soft_inliers", false},
+                                           {"mixture width", "mixture_width", true}};
+static_assert(std::size(kFitMeasures) == static_cast<size_t>(FitMeasure::kMixtureWidth) + 1);
+const FitMeasureInfo& info_of(FitMeasure m) { return kFitMeasures[static_cast<size_t>(m)]; }
+}  // namespace
 
-const char* fit_measure_name(FitMeasure m) {
-  switch (m) {
-    case FitMeasure::kNotScored:
-      return "not scored";
-    case FitMeasure::kMeanDistance:
-      return "mean distance";
-    case FitMeasure::kSoftInliers:
-      return "soft inliers";
-    case FitMeasure::kMixtureWidth:
-      return "mixture width";
-  }
-  return "";
-}
-
-const char* fit_measure_key(FitMeasure m) {
-  switch (m) {
-    case FitMeasure::kNotScored:
-      return "";
-    case FitMeasure::kMeanDistance:
-      return "mean_distance";
-    case FitMeasure::kSoftInliers:
-      return "soft_inliers";
-    case FitMeasure::kMixtureWidth:
-      return "mixture_width";
-  }
-  return "";
-}
+bool lower_is_better(FitMeasure m) { return info_of(m).lower_is_better; }
+const char* fit_measure_name(FitMeasure m) { return info_of(m).name; }
+const char* fit_measure_key(FitMeasure m) { return info_of(m).key; }
 
 std::string fit_text(const FitScore& fit, int decimals) {
   if (!fit.scored()) return fit_measure_name(fit.measure);
-  std::string v = fmt::format("{:.{}f}", fit.value, decimals);
-  if (v[0] == '-' && v.find_first_not_of("-0.") == std::string::npos) v.erase(0, 1);  // -0.0000 reads as 0
-  return std::string(fit_measure_name(fit.measure)) + " " + v;
+  return std::string(fit_measure_name(fit.measure)) + " " + fixed_decimals(fit.value, decimals);
 }
 
 const char* ambiguity_reason(Ambiguity a) {

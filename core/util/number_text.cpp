@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <cerrno>
 #include <clocale>
+#include <cstdio>
 #include <cstdlib>
 
 #include "core/util/utf8.h"
@@ -96,6 +97,14 @@ std::string grouped_thousands(long long n) {
     out += digits[k];
   }
   return out;
+}
+
+std::string fixed_decimals(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  std::string s = buf;
+  if (s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
+  return s;
 }
 
 }  // namespace ipd

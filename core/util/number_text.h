@@ -36,4 +36,8 @@ std::string quoted_for_message(std::string_view s);
 // A whole number with thousands separators, as every count the tools print: 89700 -> "89,700", -1234 -> "-1,234".
 std::string grouped_thousands(long long n);
 
+// `decimals` fixed decimals that never read "-0.000": a value that rounds to zero prints unsigned. The studio,
+// `ipd register` and a registration's fit in words all print through it.
+std::string fixed_decimals(double v, int decimals);
+
 }  // namespace ipd

@@ -87,12 +87,6 @@ std::string thousands(long long n) { return grouped_thousands(n); }
 
 double conf_slider_value(double v) { return std::clamp(std::round(v * 100), 0.0, 100.0) / 100; }
 
-std::string fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  std::string s = buf;
-  if (s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
-  return s;
-}
+std::string fixed(double v, int decimals) { return fixed_decimals(v, decimals); }
 
 }  // namespace ipd::ui

@@ -13,6 +13,7 @@
 #include "core/session/session.h"
 #include "core/util/atomic_file.h"
 #include "core/util/cache_signer.h"
+#include "tests/core/ipd/table_through_cache.h"
 #include "tests/support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -185,18 +186,8 @@ TEST(StudyCache, RegistrationsGoInTheOneFileAndAnotherMethodsAreKept) {
   test::TempDir d;
   write_cache_study(d);
   auto cached_with = [&](RegistrationMethod m) {
-    const Study study = open_study(d.path());
-    StudyCache cache(parsed_study_cache_path(study.root), study.root);
-    const StudyLabels labels = cache.load_labels(study);
-    RegistrationCache registration(registration_cache_dir(study.root));
-    cache.hand_registrations_to(registration);
-    TableOptions t;
-    t.registration = study.config.registration;
-    t.registration.method = m;
-    t.cache_dir = registration.dir();
-    t.registration_cache = &registration;
-    const CrossTable table = compute_cross_table(labels, t);
-    cache.save(labels, registration);
+    const CrossTable table =
+        test::table_through_cache(d.path(), [m](TableOptions& t) { t.registration.method = m; }).table;
     EXPECT_EQ(table.registrations, 3);
     return table.cached_registrations;
   };
@@ -215,18 +206,8 @@ TEST(StudyCache, ARegistrationReadBackKeepsItsCountsAndItsFitsMeasure) {
   test::TempDir d;
   write_cache_study(d);
   auto first_registration = [&](RegistrationMethod m, int* cached) {
-    const Study study = open_study(d.path());
-    StudyCache cache(parsed_study_cache_path(study.root), study.root);
-    const StudyLabels labels = cache.load_labels(study);
-    RegistrationCache registration(registration_cache_dir(study.root));
-    cache.hand_registrations_to(registration);
-    TableOptions t;
-    t.registration = study.config.registration;
-    t.registration.method = m;
-    t.cache_dir = registration.dir();
-    t.registration_cache = &registration;
-    const CrossTable table = compute_cross_table(labels, t);
-    cache.save(labels, registration);
+    const CrossTable table =
+        test::table_through_cache(d.path(), [m](TableOptions& t) { t.registration.method = m; }).table;
     *cached = table.cached_registrations;
     return table.pairings.at(0).at(0).registration;
   };
@@ -254,21 +235,12 @@ TEST(StudyCache, IdenticalLayoutsReadBackAndTheWarmRunRewritesNothing) {
   write_cache_study(d);
   test::write_text(d / "synth/labels/s0.txt", read_file(d / "real/labels/s0.txt"));
   auto run = [&](bool* written) {
-    const Study study = open_study(d.path());
-    StudyCache cache(parsed_study_cache_path(study.root), study.root);
-    const StudyLabels labels = cache.load_labels(study);
-    RegistrationCache registration(registration_cache_dir(study.root));
-    cache.hand_registrations_to(registration);
-    TableOptions t;
-    t.registration = study.config.registration;
-    t.cache_dir = registration.dir();
-    t.registration_cache = &registration;
-    const CrossTable table = compute_cross_table(labels, t);
-    cache.save(labels, registration);
-    *written = cache.stats().written;
+    const test::TableThroughCache r = test::table_through_cache(d.path());
+    const CrossTable& table = r.table;
+    *written = r.stats.written;
     EXPECT_EQ(table.pairings.at(0).at(0).registration.stop, StopReason::kIdenticalLayouts);
     EXPECT_FALSE(table.pairings.at(0).at(0).registration.fit.scored());  // no search, no fit: warm too
-    return std::make_pair(cache.stats().state, table.cached_registrations);
+    return std::make_pair(r.stats.state, table.cached_registrations);
   };
   bool written = false;
   EXPECT_EQ(run(&written), std::make_pair(std::string("missing"), 0));

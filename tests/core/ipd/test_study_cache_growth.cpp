@@ -12,6 +12,7 @@
 #include "core/ipd/study_cache.h"
 #include "core/util/atomic_file.h"
 #include "core/util/sha256.h"
+#include "tests/core/ipd/table_through_cache.h"
 #include "tests/support/test_support.h"
 
 namespace fs = std::filesystem;
@@ -40,19 +41,9 @@ struct Ranked {
 // One ranking's worth of work against `real`, as `ipd rank` does it: labels through the parsed-study cache, the
 // (real, candidate) pairs only, registrations through the cache, then the cache saved.
 Ranked rank_through_cache(const std::string& root) {
-  const Study study = open_study(root);
-  StudyCache cache(parsed_study_cache_path(study.root), study.root);
-  const StudyLabels labels = cache.load_labels(study);
-  RegistrationCache registration(registration_cache_dir(study.root));
-  cache.hand_registrations_to(registration);
-  TableOptions t;
-  t.registration = study.config.registration;
-  t.cache_dir = registration.dir();
-  t.registration_cache = &registration;
-  t.only_pairs_with = "real";
-  const CrossTable table = compute_cross_table(labels, t);
-  cache.save(labels, registration);
-  return {cache.stats(), table.registrations, table.cached_registrations, labels.label_fingerprint};
+  const test::TableThroughCache r =
+      test::table_through_cache(root, [](TableOptions& t) { t.only_pairs_with = "real"; });
+  return {r.stats, r.table.registrations, r.table.cached_registrations, r.fingerprint};
 }
 
 TEST(StudyCacheGrowth, ANewDomainIsTheOnlyOneParsedRegisteredAndHashed) {

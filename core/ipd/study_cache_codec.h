@@ -1,0 +1,85 @@
+// The parsed-study file's bytes (study_cache.h): a writer and a bounds-checked reader, and how a label file, a
+// registration report and a file's stamp are written and read back. A read past the end or a value out of range
+// throws std::runtime_error: the file is then ignored and rebuilt, never trusted in part.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "core/io/label_io.h"
+#include "core/ipd/study_cache.h"
+#include "core/registration/registration.h"
+
+namespace ipd::cache_codec {
+
+class Writer {
+ public:
+  std::string out;
+  template <typename T>
+  void pod(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void str(const std::string& s) {
+    pod<std::uint32_t>(static_cast<std::uint32_t>(s.size()));
+    out.append(s);
+  }
+  template <typename T>
+  void vec(const std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    pod<std::uint64_t>(v.size());
+    if (!v.empty()) out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+};
+
+// Reads what Writer wrote; any read past the end throws (a truncated or corrupt file).
+class Reader {
+ public:
+  Reader(const char* p, size_t n) : p_(p), end_(p + n) {}
+  template <typename T>
+  T pod() {
+    T v;
+    need(sizeof v);
+    std::memcpy(&v, p_, sizeof v);
+    p_ += sizeof v;
+    return v;
+  }
+  std::string str() {
+    const auto n = pod<std::uint32_t>();
+    need(n);
+    std::string s(p_, n);
+    p_ += n;
+    return s;
+  }
+  template <typename T>
+  std::vector<T> vec() {
+    const auto n = pod<std::uint64_t>();
+    if (n > static_cast<std::uint64_t>(end_ - p_) / sizeof(T)) throw std::runtime_error("truncated");
+    std::vector<T> v(n);
+    if (n) std::memcpy(v.data(), p_, n * sizeof(T));  // an empty vector's data() may be null: UB for memcpy
+    p_ += n * sizeof(T);
+    return v;
+  }
+  bool at_end() const { return p_ == end_; }
+
+ private:
+  void need(size_t n) const {
+    if (n > static_cast<size_t>(end_ - p_)) throw std::runtime_error("truncated");
+  }
+  const char* p_;
+  const char* end_;
+};
+
+void write_label_file(Writer& w, const LabelFile& f);
+LabelFile read_label_file(Reader& r, const std::string& path);
+// The fields the registration entry files keep (registration_cache.cpp), nothing more.
+void write_report(Writer& w, const RegistrationReport& r);
+RegistrationReport read_report(Reader& rd);
+void write_stamp(Writer& w, const FileStamp& s);
+FileStamp read_stamp(Reader& r);
+
+}  // namespace ipd::cache_codec
