@@ -131,16 +131,27 @@ void draw_scene_cell(SceneSortKey sort_key, const SceneSummary& m, int k, const 
 }
 }  // namespace
 
-float browser_width(const StudyView& v, float min_w, float max_w) {
+namespace {
+// The longest scene name (null: none), the one the name column must fit: a scan of every scene, done once a frame.
+const std::string* longest_stem(const StudyView& v) {
   size_t longest = 0;
   const std::string* name = nullptr;
   if (v.summaries)
     for (const auto& m : *v.summaries)
       if (m.stem.size() > longest) longest = m.stem.size(), name = &m.stem;
+  return name;
+}
+
+// The scene list's columns at the current font, its scrollbar included.
+float list_width(const std::string* longest) {
   const ImGuiStyle& st = ImGui::GetStyle();
-  float w = (name ? ImGui::CalcTextSize(name->c_str()).x : 80.0f) + 2 * st.CellPadding.x +
-            text_columns_width(browser_text_columns());
-  return std::clamp(w + st.ScrollbarSize + 2 * st.WindowPadding.x + 8, min_w, max_w);
+  return (longest ? ImGui::CalcTextSize(longest->c_str()).x : 80.0f) + 2 * st.CellPadding.x +
+         text_columns_width(browser_text_columns()) + st.ScrollbarSize;
+}
+}  // namespace
+
+float browser_width(const StudyView& v, float min_w, float max_w) {
+  return std::clamp(list_width(longest_stem(v)) + 2 * ImGui::GetStyle().WindowPadding.x + 8, min_w, max_w);
 }
 
 // The rock view's selection as a chip under the filter: its label and a button that clears it. A selection
@@ -247,9 +258,10 @@ void draw_study_browser(const StudyView& v, UiState& ui, UiCommands& out) {
   int sorted = 0;  // the list's sort, given to each new table
   for (int k = 0; k < n_columns; ++k)
     if (columns[k].sort_key == ui.sort_column) sorted = k;
+  const std::string* longest = longest_stem(v);
   auto needed_at = [&](float s) {
     ImGui::SetWindowFontScale(s);
-    return browser_width(v, 0, 1e9f) - 2 * ImGui::GetStyle().WindowPadding.x - 8;
+    return list_width(longest);
   };
   const float avail = ImGui::GetContentRegionAvail().x;
   const float scale = table_font_scale(needed_at, avail);
