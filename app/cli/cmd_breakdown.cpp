@@ -115,7 +115,8 @@ void print_breakdown_text(const std::vector<CellBreakdown>& out, const Breakdown
 }
 
 int run_breakdown(const BreakdownArgs& args) {
-  auto loaded = load_study_table(args.study, false);
+  // Without --all-cells the breakdown reads the cells of a model's training domain only, as the table shows.
+  auto loaded = load_study_table(args.study, false, {!args.all_cells, {}, false});
   if (!loaded) return kBadInput;
   if (args.format == "json") require_utf8_names(loaded->labels.study);
   BreakdownOptions bo;

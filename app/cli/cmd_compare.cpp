@@ -150,7 +150,8 @@ int run_compare(const CompareArgs& args) {
   if (ref == a || ref == b || a == b)
     throw StudyError(fmt::format("compare needs three different domains, got --ref {} --a {} --b {}", ref, a, b));
   so.domains = {ref, a, b};
-  auto loaded = load_study_table(so, false);
+  // The comparison reads IPD(ref, a) and IPD(ref, b): the pair (a, b) is never registered.
+  auto loaded = load_study_table(study, so, false, {false, {{ref, a}, {ref, b}}, false});
   if (!loaded) return kBadInput;
   CompareOptions co;
   co.bootstrap = loaded->bootstrap;

@@ -27,8 +27,6 @@ int run(const std::string& kind, const StatsArgs& args) {
   if (output_is_study_input(args.study.study, args.output.out)) return kBadInput;
   o.ci = args.study.ci_given;
   o.by = args.by;
-  auto loaded = load_study_table(args.study, kind != "gallery");  // the gallery shows no intervals
-  if (!loaded) return kBadInput;
   ui::StudyFigureRequest r;
   r.kind = kind;
   if (!args.study.models.empty()) r.model = args.study.models.front();
@@ -36,8 +34,6 @@ int run(const std::string& kind, const StatsArgs& args) {
   r.ref = args.ref;
   r.a = args.a;
   r.b = args.b;
-  r.bootstrap = loaded->bootstrap;
-  r.conf_threshold = loaded->conf_threshold;
   r.permutations = args.permutations;
   r.worst = args.worst;
   r.bins = args.bins;
@@ -57,6 +53,14 @@ int run(const std::string& kind, const StatsArgs& args) {
     }
     r.a = args.study.domains[0], r.b = args.study.domains[1];
   }
+  Study study = open_study_with_conf(args.study);
+  // Only the domain pairs the figure draws are registered: a table's cells of a training domain, a
+  // comparison's two pairs, a breakdown's or a gallery's one.
+  const ShownPairs shown{kind == "table", ui::study_figure_domain_pairs(study, r), false};
+  auto loaded = load_study_table(std::move(study), args.study, kind != "gallery", shown);  // a gallery: no intervals
+  if (!loaded) return kBadInput;
+  r.bootstrap = loaded->bootstrap;
+  r.conf_threshold = loaded->conf_threshold;
   const ui::FontMetrics metrics(o.font_file);
   ui::DisplayList fig(metrics);
   const std::string title = ui::draw_study_figure(fig, loaded->table, loaded->labels, r, o);

@@ -80,7 +80,7 @@ int run_table(const TableArgs& args) {
   // CSV and JSON list every cell's value; the other formats print "–" where no chosen model trained.
   const bool every_cell = format == TableFormat::kCsv || format == TableFormat::kJson;
   if (output_is_study_input(args.study.study, args.out)) return kBadInput;
-  auto loaded = load_study_table(args.study, true, !every_cell);
+  auto loaded = load_study_table(args.study, true, {!every_cell, {}, false});
   if (!loaded) return kBadInput;
   if (args.format == "json") require_utf8_names(loaded->labels.study);
   TableFormatOptions fo;

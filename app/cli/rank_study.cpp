@@ -57,7 +57,9 @@ std::optional<RankedStudy> rank_study(const RankArgs& args) {
   so.models = {ro.model};
   so.domains = ro.domains.candidates;
   so.domains.insert(so.domains.begin(), ro.domains.ref);
-  auto loaded = load_study_table(so, true, false, ro.domains.ref);
+  // Registration is done for the (ref, candidate) pairs the ranking reads, never candidate against candidate.
+  const ShownPairs shown{false, ranked_pairs(ro.domains), true};
+  auto loaded = load_study_table(study, so, true, shown);
   if (!loaded) return std::nullopt;
   ro.compare.bootstrap = loaded->bootstrap;
   ro.compare.permutations = args.permutations;
@@ -65,9 +67,7 @@ std::optional<RankedStudy> rank_study(const RankArgs& args) {
   RankedStudy out{std::move(*loaded), {}, {}};
   out.ranking = rank_candidates(out.loaded.labels, out.loaded.table, ro);
   // Which label files and hand edits the numbers come from: over the (ref, candidate) pairs the ranking read.
-  DomainPairFilter pairs;
-  for (const auto& c : ro.domains.candidates) pairs.emplace_back(ro.domains.ref, c);
-  out.provenance = table_provenance(out.loaded.table, out.loaded.labels, pairs);
+  out.provenance = table_provenance(out.loaded.table, out.loaded.labels, shown.only);
   return out;
 }
 

@@ -132,9 +132,12 @@ Study open_study_with_conf(const StudyOptions& o) {
   return study;
 }
 
-std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, bool shown_cells_only,
-                                            const std::string& only_pairs_with) {
-  const Study study = open_study_with_conf(o);
+std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, const ShownPairs& shown) {
+  return load_study_table(open_study_with_conf(o), o, with_intervals, shown);
+}
+
+std::optional<LoadedStudy> load_study_table(Study study, const StudyOptions& o, bool with_intervals,
+                                            const ShownPairs& shown) {
   // The GUI's parsed-study cache (study_cache.h): unchanged label files and registrations are read back.
   StudyCache parsed(o.no_cache ? std::string() : parsed_study_cache_path(study.root), study.root);
   LoadedStudy out{parsed.load_labels(study), {}, study.config.conf_threshold, 0, {}};
@@ -155,20 +158,20 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
   out.registration_budget_ms = opt.registration.time_budget_ms.value_or(0);
   opt.cache_dir = registration.dir();
   opt.registration_cache = &registration;
-  opt.shown_cells_only = shown_cells_only;
-  opt.only_pairs_with = only_pairs_with;
+  opt.shown_cells_only = shown.training_domain_cells;
+  opt.only_pairs = shown.only;
   Progress progress("registering");
   opt.progress = [&](int d, int t) { progress.update(d, t); };
   out.table = compute_cross_table(out.labels, opt);
   parsed.save(out.labels, registration);
   if (report_unusable_pairs(out.table.pairs_problems, o.skip_bad_lines, &out.table.warnings)) return std::nullopt;
-  // The layout of the domain pairs computed: a ranking computes its reference's pairs only, and says of each
-  // candidate it can't rank why (a candidate sharing no scene with the reference is one row, not a stop).
+  // The layout of the domain pairs computed only: a ranking says of each candidate it can't rank why (a
+  // candidate sharing no scene with the reference is one row, not a stop).
   std::vector<std::pair<std::string, std::string>> computed;
   for (const auto& [a, b] : out.table.columns)
-    if (only_pairs_with.empty() || a == only_pairs_with || b == only_pairs_with) computed.emplace_back(a, b);
+    if (includes_pair(shown.only, a, b)) computed.emplace_back(a, b);
   if (report_layout_problems(layout_problems(out.labels, computed, out.table.models),
-                             o.skip_bad_lines || !only_pairs_with.empty(), &out.table.warnings))
+                             o.skip_bad_lines || shown.layout_problems_are_warnings, &out.table.warnings))
     return std::nullopt;
   for (const auto& w : out.table.warnings) fmt::print(stderr, "warning: {}\n", w);
   out.bootstrap = o.bootstrap_options();

@@ -54,10 +54,17 @@ struct LoadedStudy {
   double registration_budget_ms = 0;  // the time budget each registration had (0: none)
   BootstrapOptions bootstrap;         // as used: the seed is --seed, else the study's registration seed
 };
-// shown_cells_only: TableOptions::shown_cells_only (for a table that prints "–" where no model trained);
-// only_pairs_with: TableOptions::only_pairs_with (a ranking registers only its reference's domain pairs).
-std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, bool shown_cells_only = false,
-                                            const std::string& only_pairs_with = "");
+// The domain pairs a command's output reads: only those are registered and computed.
+struct ShownPairs {
+  bool training_domain_cells = false;  // TableOptions::shown_cells_only: a table that prints "–" elsewhere
+  DomainPairFilter only;               // TableOptions::only_pairs
+  // A pair whose layouts can't be compared is a warning, not a stop (a ranking names the candidate it can't rank).
+  bool layout_problems_are_warnings = false;
+};
+std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, const ShownPairs& shown = {});
+// The same on a study the command has opened already (open_study_with_conf).
+std::optional<LoadedStudy> load_study_table(Study study, const StudyOptions& o, bool with_intervals,
+                                            const ShownPairs& shown);
 
 // Opens the study and applies --conf, --class and --class-map (for commands that read labels themselves).
 Study open_study_with_conf(const StudyOptions& o);

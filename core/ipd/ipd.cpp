@@ -270,6 +270,12 @@ void add_cells(const StudyLabels& labels, const std::vector<bool>& shown, CrossT
 
 }  // namespace
 
+bool includes_pair(const DomainPairFilter& only, const std::string& a, const std::string& b) {
+  if (only.empty()) return true;
+  return std::any_of(only.begin(), only.end(),
+                     [&](const auto& p) { return (p.first == a && p.second == b) || (p.first == b && p.second == a); });
+}
+
 std::string TableOptions::validate() const {
   if (threads < 0) return fmt::format("threads must be >= 0 (0: hardware concurrency), got {}", threads);
   return {};
@@ -284,7 +290,7 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
   options.check();
   const Study& study = labels.study;
   for (const auto& d : options.domains) study.require_domain(d);
-  if (!options.only_pairs_with.empty()) study.require_domain(options.only_pairs_with);
+  for (const auto& [a, b] : options.only_pairs) study.require_domain(a), study.require_domain(b);
   CrossTable t;
   t.models = chosen_models(study, options.models);
   t.columns = domain_pairs(study, options.domains);
@@ -307,9 +313,7 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
         return make_table_cell(m, column.first, column.second).involves_training_domain;
       });
     }
-    if (!options.only_pairs_with.empty())
-      shown[c] =
-          shown[c] && (t.columns[c].first == options.only_pairs_with || t.columns[c].second == options.only_pairs_with);
+    shown[c] = shown[c] && includes_pair(options.only_pairs, t.columns[c].first, t.columns[c].second);
     if (shown[c]) to_pair.push_back(t.columns[c]);
   }
   PairedStudy paired = pair_study(labels, to_pair, po);

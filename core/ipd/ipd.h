@@ -175,6 +175,11 @@ struct CrossTable {
   const TableCell* cell(const std::string& model, const std::string& a, const std::string& b) const;
 };
 
+// Domain pairs, each in either name order; empty: every domain pair there is.
+using DomainPairFilter = std::vector<std::pair<std::string, std::string>>;
+// Whether (a, b) is one of `only`'s pairs, in either name order, or `only` is empty (every pair).
+bool includes_pair(const DomainPairFilter& only, const std::string& a, const std::string& b);
+
 struct TableOptions {
   std::vector<std::string> models;   // empty: all
   std::vector<std::string> domains;  // empty: all
@@ -187,10 +192,11 @@ struct TableOptions {
   // the text, Markdown and LaTeX tables print "–" for the others, so registering them is wasted work. The
   // hidden columns' cells then have no scenes and no value (CSV and JSON print every cell: leave this off).
   bool shown_cells_only = false;
-  // Register only the domain pairs that include this domain: a ranking against one reference (core/rank) reads
-  // the (reference, candidate) cells and never a candidate-vs-candidate one, whose cells then have no scenes and
-  // no value. Empty: every pair (or the shown ones).
-  std::string only_pairs_with;
+  // Register and compute only these domain pairs (either name order), the ones an output reads: a ranking's
+  // (reference, candidate) pairs and never a candidate-vs-candidate one, a comparison's two, a breakdown's or a
+  // gallery's one. The other columns' cells then have no scenes and no value. Empty: every pair (or the shown
+  // ones).
+  DomainPairFilter only_pairs;
 
   // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence. The
   // registration options check themselves where a scene is registered (a fully cached table needs none).

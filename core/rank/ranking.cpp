@@ -27,6 +27,12 @@ std::string unranked_reason(const TableCell& cell, const std::string& ref, const
 
 }  // namespace
 
+DomainPairFilter ranked_pairs(const RankDomains& domains) {
+  DomainPairFilter out;
+  for (const std::string& c : domains.candidates) out.emplace_back(domains.ref, c);
+  return out;
+}
+
 RankDomains resolve_rank_domains(const Study& study, const std::string& ref,
                                  const std::vector<std::string>& candidates) {
   RankDomains out;

@@ -4,8 +4,8 @@
 // Holm-corrected over the candidates compared with the best; and the group of candidates not distinguishable
 // from the best at the chosen level (compare's verdict rule, significant_difference, on the Holm p-value).
 //
-// The numbers come from a CrossTable whose (ref, candidate) cells were computed (TableOptions::only_pairs_with =
-// ref registers those and no candidate-vs-candidate pair), so a cell's IPD and interval are `ipd table`'s.
+// The numbers come from a CrossTable whose (ref, candidate) cells were computed (TableOptions::only_pairs =
+// ranked_pairs registers those and no candidate-vs-candidate pair), so a cell's IPD and interval are `ipd table`'s.
 #pragma once
 
 #include <limits>
@@ -29,6 +29,9 @@ struct RankDomains {
 // candidate named twice, or a study with no other domain than the reference.
 RankDomains resolve_rank_domains(const Study& study, const std::string& ref,
                                  const std::vector<std::string>& candidates);
+// The domain pairs a ranking reads, (ref, candidate) for each candidate: what it registers
+// (TableOptions::only_pairs), never a candidate against another.
+DomainPairFilter ranked_pairs(const RankDomains& domains);
 
 struct RankOptions {
   std::string model;

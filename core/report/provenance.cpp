@@ -24,14 +24,6 @@ std::string label_set_fingerprint_of(const StudyLabels& labels) {
 
 namespace {
 // The review marks of column `c` that still apply to the table's scenes and pairs.
-// Whether domain pair (a, b) is one of `only` (either name order), or `only` is empty.
-bool counts(const DomainPairFilter& only, const std::string& a, const std::string& b) {
-  if (only.empty()) return true;
-  for (const auto& [x, y] : only)
-    if ((x == a && y == b) || (x == b && y == a)) return true;
-  return false;
-}
-
 void count_reviews(const CrossTable& table, size_t c, const StudyLabels& labels, Provenance* p) {
   const std::string& a = table.columns[c].first;
   const std::string& b = table.columns[c].second;
@@ -54,7 +46,7 @@ void count_reviews(const CrossTable& table, size_t c, const StudyLabels& labels,
 Provenance table_provenance(const CrossTable& table, const StudyLabels& labels, const DomainPairFilter& only) {
   Provenance p;
   for (size_t c = 0; c < table.pairings.size() && c < table.columns.size(); ++c) {
-    if (!counts(only, table.columns[c].first, table.columns[c].second)) continue;
+    if (!includes_pair(only, table.columns[c].first, table.columns[c].second)) continue;
     for (const ScenePairing& s : table.pairings[c]) {
       p.scenes_with_stale_hand_pairs += std::any_of(s.pairs_problems.begin(), s.pairs_problems.end(),
                                                     [](const PairsProblem& w) { return w.unusable; });
@@ -77,7 +69,7 @@ Provenance session_provenance(const Session& session, const DomainPairFilter& on
   Provenance p;
   const auto& pairs = session.domain_pairs();
   for (size_t c = 0; c < pairs.size(); ++c) {
-    if (!counts(only, pairs[c].first, pairs[c].second)) continue;
+    if (!includes_pair(only, pairs[c].first, pairs[c].second)) continue;
     for (const SceneState& s : session.scenes_of(static_cast<int>(c))) {
       p.scenes_with_stale_hand_pairs += s.pairs_unusable;
       if (!s.edited) continue;
@@ -88,7 +80,7 @@ Provenance session_provenance(const Session& session, const DomainPairFilter& on
     }
   }
   for (size_t c = 0; c < pairs.size(); ++c) {
-    if (!counts(only, pairs[c].first, pairs[c].second)) continue;
+    if (!includes_pair(only, pairs[c].first, pairs[c].second)) continue;
     const ReviewState& r = session.review_of(static_cast<int>(c));
     p.scenes_reviewed += r.reviewed_scenes;
     // Checks that are pairs now: one whose pair was edited away is kept in the file but does not apply.

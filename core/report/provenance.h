@@ -47,9 +47,6 @@ struct Provenance {
 // vouched for when it read every GT file unchanged (StudyLabels::label_fingerprint), else computed from the files.
 std::string label_set_fingerprint_of(const StudyLabels& labels);
 
-// Domain pairs a number was computed from, in either name order; empty: every domain pair there is.
-using DomainPairFilter = std::vector<std::pair<std::string, std::string>>;
-
 // The hand-pair counts of `table`, the review marks of its domain pairs (those of `only`, when given) and the
 // fingerprint of the labels. Throws StudyError naming a review file that can't be read.
 Provenance table_provenance(const CrossTable& table, const StudyLabels& labels, const DomainPairFilter& only = {});

@@ -10,6 +10,7 @@
 
 #include "core/ipd/label_fingerprint.h"
 #include "core/ipd/study_cache.h"
+#include "core/rank/ranking.h"
 #include "core/util/atomic_file.h"
 #include "core/util/sha256.h"
 #include "tests/core/ipd/table_through_cache.h"
@@ -41,8 +42,9 @@ struct Ranked {
 // One ranking's worth of work against `real`, as `ipd rank` does it: labels through the parsed-study cache, the
 // (real, candidate) pairs only, registrations through the cache, then the cache saved.
 Ranked rank_through_cache(const std::string& root) {
-  const test::TableThroughCache r =
-      test::table_through_cache(root, [](TableOptions& t) { t.only_pairs_with = "real"; });
+  const test::TableThroughCache r = test::table_through_cache(root, [&root](TableOptions& t) {
+    t.only_pairs = ranked_pairs(resolve_rank_domains(open_study(root), "real", {}));
+  });
   return {r.stats, r.table.registrations, r.table.cached_registrations, r.fingerprint};
 }
 

@@ -53,7 +53,7 @@ RankedVariants rank_variants(const std::string& dir, const VariantStudyOptions& 
   RankedVariants out{load_labels(open_study(dir)), {}, {}};
   TableOptions to;
   to.models = {"det-real"};
-  to.only_pairs_with = "real";
+  to.only_pairs = ranked_pairs(resolve_rank_domains(out.labels.study, "real", {}));
   out.table = compute_cross_table(out.labels, to);
   BootstrapOptions b;
   add_confidence_intervals(&out.table, b);

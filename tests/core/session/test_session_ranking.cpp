@@ -20,7 +20,7 @@ TEST(SessionRanking, EqualsTheCommandLinesRankingWithoutHandPairs) {
   const StudyLabels labels = load_labels(open_study(d.path()));
   TableOptions to;
   to.models = {"det-real"};
-  to.only_pairs_with = "real";
+  to.only_pairs = ranked_pairs(resolve_rank_domains(labels.study, "real", {}));
   CrossTable table = compute_cross_table(labels, to);
   add_confidence_intervals(&table, BootstrapOptions{});
   RankOptions ro;
