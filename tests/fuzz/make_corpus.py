@@ -203,6 +203,21 @@ write(I, "unnamed_class.txt", "7 0.5 0.5 0.1 0.2\n")
 write(I, "outline.txt", "0 0.1 0.1 0.3 0.1 0.2 0.3\n0 0.1 0.1 0.3 0.1 0.2\n")
 write(I, "bom_crlf.txt", BOM + "0 0.5 0.5 0.1 0.2\r\nbad\r\n")
 write(I, "nul.txt", "0 0.5 0.5 0.1 0.2\n\x00\x00\n")
+# --- ipd import predictions: first byte even = a YOLO run's label file, odd = COCO results against a fixed --gt ---
+P = "fuzz_prediction_import"
+write(P, "run_valid.txt", "r0 0.5 0.5 0.1 0.2 0.9\n0 0.25 0.75 0.05 0.05 0.4\n")
+write(P, "run_no_conf.txt", "r0 0.5 0.5 0.1 0.2\n")
+write(P, "run_bad_lines.txt", "r0 0.5 0.5 0.1 0.2 1.7\nx\n0 0.5 0.5\n")
+write(P, "run_outline.txt", "r0 0.1 0.1 0.3 0.1 0.2 0.3 0.8\n")
+write(P, "coco_valid.json", "c" + json.dumps([
+    {"image_id": 1, "category_id": 1, "bbox": [10, 5, 20, 10], "score": 0.9},
+    {"image_id": 2, "category_id": 1, "bbox": [0, 0, 100, 50], "score": 0.2}]))
+write(P, "coco_bad_entries.json", "c" + json.dumps([
+    {"image_id": 9, "category_id": 1, "bbox": [10, 5, 20, 10], "score": 0.9},
+    {"image_id": 1, "category_id": 7, "bbox": [10, 5, -20, 10], "score": "high"},
+    {"image_id": 1, "bbox": [1e309, 0, 1, 1], "score": 0.5}]))
+write(P, "coco_not_a_list.json", 'c{"annotations": []}')
+write(P, "coco_deep.json", "c" + nested(DEEP))
 # Found by fuzz_rle: counts that are not UTF-8 text, described in the message (not thrown on while describing).
 write(R, "not_utf8_counts.txt", b"4 4\noo\xaaoo")
 # Found by fuzz_rle: pieces in a row, the middle one met by both neighbours at one corner (it was left out).
