@@ -167,45 +167,68 @@ void LabelParseOptions::check() const {
     throw std::invalid_argument("label parse options: " + problem);
 }
 
-LabelFile parse_labels(const std::string& text, const std::string& file_name, const LabelParseOptions& options) {
-  options.check();
-  LabelFile out;
-  out.path = file_name;
-  out.exists = true;
-  std::string_view rest(text);
-  if (rest.substr(0, 3) == "\xEF\xBB\xBF") rest.remove_prefix(3);  // UTF-8 byte order mark (Windows editors)
-  std::vector<std::string> fields;
+LabelParser::LabelParser(const std::string& file_name, const LabelParseOptions& options) : options_(options) {
+  options_.check();
+  out_.path = file_name;
+  out_.exists = true;
+}
+
+void LabelParser::feed(std::string_view piece) {
+  while (!piece.empty()) {
+    const size_t eol = piece.find('\n');
+    if (eol == std::string_view::npos) {
+      partial_.append(piece);
+      return;
+    }
+    if (partial_.empty()) {
+      line(piece.substr(0, eol));
+    } else {
+      partial_.append(piece.substr(0, eol));
+      line(partial_);
+      partial_.clear();
+    }
+    piece.remove_prefix(eol + 1);
+  }
+}
+
+void LabelParser::line(std::string_view text) {
+  // A UTF-8 byte order mark (Windows editors) starts the first line.
+  if (line_no_ == 0 && text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  ++line_no_;
   size_t field_count = 0;
-  int line_no = 0, unlisted = 0;
+  split_fields(text, &fields_, &field_count);
+  if (field_count == 0) return;
+  Box b;
+  const std::string why = parse_box(fields_, field_count, options_, &b);
+  if (!why.empty()) {
+    if (static_cast<int>(out_.errors.size()) < kMaxListedErrors)
+      out_.errors.push_back({out_.path, line_no_, why});
+    else
+      ++unlisted_;
+    return;
+  }
   // Past the per-file limit the file is refused whole: later boxes are only counted, so a 16 MB file of short
   // lines holds 20,001 boxes in memory, not a million.
-  size_t boxes = 0;
-  while (!rest.empty()) {
-    const size_t eol = rest.find('\n');
-    const std::string_view line = rest.substr(0, eol);
-    rest.remove_prefix(eol == std::string_view::npos ? rest.size() : eol + 1);
-    ++line_no;
-    split_fields(line, &fields, &field_count);
-    if (field_count == 0) continue;
-    Box b;
-    const std::string why = parse_box(fields, field_count, options, &b);
-    if (!why.empty()) {
-      if (static_cast<int>(out.errors.size()) < kMaxListedErrors)
-        out.errors.push_back({file_name, line_no, why});
-      else
-        ++unlisted;
-      continue;
-    }
-    if (++boxes > kMaxBoxesPerFile + 1) continue;
-    out.boxes.push_back(b);
-    out.line_of_box.push_back(line_no);
-  }
-  if (unlisted > 0) out.errors.push_back({file_name, 0, "", unlisted});
-  if (boxes > kMaxBoxesPerFile)
-    out.errors.push_back({file_name, 0,
-                          fmt::format("{} boxes, more than the {} per image this tool handles (docs/study-format.md)",
-                                      boxes, kMaxBoxesPerFile)});
-  return out;
+  if (++boxes_ > kMaxBoxesPerFile + 1) return;
+  out_.boxes.push_back(b);
+  out_.line_of_box.push_back(line_no_);
+}
+
+LabelFile LabelParser::finish() {
+  if (!partial_.empty()) line(partial_);  // the last line, without its newline
+  partial_.clear();
+  if (unlisted_ > 0) out_.errors.push_back({out_.path, 0, "", unlisted_});
+  if (boxes_ > kMaxBoxesPerFile)
+    out_.errors.push_back({out_.path, 0,
+                           fmt::format("{} boxes, more than the {} per image this tool handles (docs/study-format.md)",
+                                       boxes_, kMaxBoxesPerFile)});
+  return std::move(out_);
+}
+
+LabelFile parse_labels(const std::string& text, const std::string& file_name, const LabelParseOptions& options) {
+  LabelParser p(file_name, options);
+  p.feed(text);
+  return p.finish();
 }
 
 LabelFile read_labels(const std::string& path, const LabelParseOptions& options) {
@@ -229,13 +252,15 @@ LabelFile read_labels(const std::string& path, const LabelParseOptions& options)
 LabelFile read_labels_beneath(const std::string& root, const std::string& relative, const LabelParseOptions& options) {
   const std::string path = (std::filesystem::path(root) / relative).string();
   try {
-    const std::optional<std::string> text = read_file_beneath(root, relative, kMaxLabelFileBytes);
-    if (!text) {
+    // Parsed as it is read: memory for a line and the boxes, not for the file.
+    LabelParser parser(path, options);
+    if (!read_file_beneath_in_chunks(root, relative, kMaxLabelFileBytes,
+                                     [&](std::string_view piece) { parser.feed(piece); })) {
       LabelFile missing;
       missing.path = path;
       return missing;
     }
-    return parse_labels(*text, path, options);
+    return parser.finish();
   } catch (const IoError& e) {
     LabelFile bad;
     bad.path = path;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/geometry/geometry.h"
@@ -59,6 +60,24 @@ struct LabelParseOptions {
 // Parses text that came from `file_name`; every malformed line becomes one LabelError (the first
 // kMaxListedErrors; then one summary with the count), the others are kept. A leading UTF-8 BOM is skipped.
 LabelFile parse_labels(const std::string& text, const std::string& file_name, const LabelParseOptions& options);
+
+// parse_labels on text that arrives in pieces (a file read 64 KiB at a time): it holds one line, not the file.
+// feed() the pieces in order, then finish() once; the result is parse_labels' on their concatenation.
+class LabelParser {
+ public:
+  LabelParser(const std::string& file_name, const LabelParseOptions& options);
+  void feed(std::string_view piece);
+  LabelFile finish();
+
+ private:
+  void line(std::string_view text);
+  LabelParseOptions options_;
+  LabelFile out_;
+  std::string partial_;  // a line whose end has not arrived yet
+  std::vector<std::string> fields_;
+  int line_no_ = 0, unlisted_ = 0;
+  size_t boxes_ = 0;
+};
 
 // Reads and parses a file. A missing file is not an error (exists = false); an unreadable one is.
 LabelFile read_labels(const std::string& path, const LabelParseOptions& options);

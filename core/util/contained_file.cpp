@@ -139,9 +139,11 @@ void write_all(int fd, const std::string& contents, const std::string& shown, bo
 }
 
 // Reads the open regular file `fd` whole (at most `max_bytes`), named `shown` in errors.
-std::string read_open_file(int fd, const std::string& shown, size_t max_bytes) {
-  std::string out;
+// Reads the open file `fd` to its end, 64 KiB at a time, each piece handed to `chunk`.
+void read_open_file_in_chunks(int fd, const std::string& shown, size_t max_bytes,
+                              const std::function<void(std::string_view)>& chunk) {
   char buf[65536];
+  size_t total = 0;
   for (;;) {
     const ssize_t n = ::read(fd, buf, sizeof buf);
     if (n < 0) {
@@ -149,11 +151,17 @@ std::string read_open_file(int fd, const std::string& shown, size_t max_bytes) {
       throw IoError(shown + ": cannot read: " + std::strerror(errno));
     }
     if (n == 0) break;
-    if (out.size() + static_cast<size_t>(n) > max_bytes)
+    total += static_cast<size_t>(n);
+    if (total > max_bytes)
       throw IoError(fmt::format("{}: grew beyond the {} MB limit for this kind of file while being read", shown,
                                 max_bytes >> 20));
-    out.append(buf, static_cast<size_t>(n));
+    chunk(std::string_view(buf, static_cast<size_t>(n)));
   }
+}
+
+std::string read_open_file(int fd, const std::string& shown, size_t max_bytes) {
+  std::string out;
+  read_open_file_in_chunks(fd, shown, max_bytes, [&](std::string_view piece) { out.append(piece); });
   return out;
 }
 
@@ -253,15 +261,17 @@ void check_beneath(const std::string& root, const std::string& relative) {
 
 namespace {
 // Reads the entry `name` of the open folder `dir` (named `shown` in errors), as read_file_beneath says.
-std::optional<std::string> read_entry(int dir, const std::string& name, const std::string& shown, size_t max_bytes) {
+// The entry `name` of the open folder `dir` opened for reading, once checked a regular file of at most max_bytes;
+// -1 when it is missing.
+FileDescriptor open_entry(int dir, const std::string& name, const std::string& shown, size_t max_bytes) {
   // O_NONBLOCK: a FIFO must not make open() hang; O_NOFOLLOW: a link is refused, not followed.
   const int fd = ::openat(dir, name.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
   if (fd < 0) {
-    if (errno == ENOENT) return std::nullopt;
+    if (errno == ENOENT) return FileDescriptor(-1);
     if (errno == ELOOP) throw IoError(link_refused(shown, "reading"));
     throw IoError(shown + ": cannot read: " + std::strerror(errno));
   }
-  const FileDescriptor file(fd);
+  FileDescriptor file(fd);
   struct stat st {};
   if (::fstat(fd, &st) != 0) throw IoError(shown + ": cannot read: " + std::strerror(errno));
   if (S_ISDIR(st.st_mode)) throw IoError(shown + ": is a directory, expected a file");
@@ -270,7 +280,13 @@ std::optional<std::string> read_entry(int dir, const std::string& name, const st
     // Rounded up, so a file just over the limit never reads as equal to it (as read_file says it).
     throw IoError(fmt::format("{}: is {:.1f} MB, larger than the {:g} MB limit for this kind of file", shown,
                               std::ceil(st.st_size * 10 / 1048576.0) / 10, max_bytes / 1048576.0));
-  return read_open_file(fd, shown, max_bytes);
+  return file;
+}
+
+std::optional<std::string> read_entry(int dir, const std::string& name, const std::string& shown, size_t max_bytes) {
+  const FileDescriptor file = open_entry(dir, name, shown, max_bytes);
+  if (file.get() < 0) return std::nullopt;
+  return read_open_file(file.get(), shown, max_bytes);
 }
 }  // namespace
 
@@ -282,6 +298,18 @@ std::optional<std::string> read_file_beneath(const std::string& root, const std:
   if (dir.get() < 0) return std::nullopt;
   if (hook) hook("folder opened");
   return read_entry(dir.get(), parts.back(), shown, max_bytes);
+}
+
+bool read_file_beneath_in_chunks(const std::string& root, const std::string& relative, size_t max_bytes,
+                                 const std::function<void(std::string_view)>& chunk) {
+  const std::vector<std::string> parts = split_relative(root, relative);
+  std::string shown;
+  const FileDescriptor dir = open_folders(root, parts, false, "reading", &shown);
+  if (dir.get() < 0) return false;
+  const FileDescriptor file = open_entry(dir.get(), parts.back(), shown, max_bytes);
+  if (file.get() < 0) return false;
+  read_open_file_in_chunks(file.get(), shown, max_bytes, chunk);
+  return true;
 }
 
 std::optional<std::string> OpenFolder::read(const std::string& name, size_t max_bytes) const {

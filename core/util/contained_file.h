@@ -10,6 +10,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/util/atomic_file.h"
@@ -124,5 +125,10 @@ std::string study_file_problem(const std::string& path);
 // descriptor. `hook` step: "folder opened" (before the file is opened; tests swap the file there).
 std::optional<std::string> read_file_beneath(const std::string& root, const std::string& relative,
                                              size_t max_bytes = kMaxReadBytes, const WriteStepHook& hook = {});
+// The same, handing the file to `chunk` as it is read, a piece of at most 64 KiB at a time, instead of holding it
+// whole: a parser that reads line by line needs no more memory than a line. False when it or a folder on the way is
+// missing; the same errors.
+bool read_file_beneath_in_chunks(const std::string& root, const std::string& relative, size_t max_bytes,
+                                 const std::function<void(std::string_view)>& chunk);
 
 }  // namespace ipd

@@ -155,6 +155,47 @@ TEST(LabelIo, WriteThenReadRoundTrips) {
   EXPECT_DOUBLE_EQ(f.boxes[0].conf, 0.5);
 }
 
+// A file read in pieces parses as the whole text: pieces of every size cut lines (and the BOM) anywhere.
+TEST(LabelIo, APieceByPieceParseEqualsTheWholeTextsParse) {
+  const std::string text =
+      "\xEF\xBB\xBF"
+      "0 0.5 0.5 0.1 0.2 0.9\r\n# rocks\n\n0 0.25 0.75 0.05\nx\n0 0.3 0.3 0.1 0.1 0.4\n0 0.6 0.6 0.2 0.2 "
+      "0.7";
+  const LabelFile whole = parse_labels(text, "f.txt", {LabelKind::kPrediction});
+  ASSERT_EQ(whole.boxes.size(), 3u);
+  ASSERT_EQ(whole.errors.size(), 2u);
+  EXPECT_EQ(whole.line_of_box, (std::vector<int>{1, 6, 7}));
+  for (size_t piece = 1; piece <= text.size(); ++piece) {
+    LabelParser p("f.txt", {LabelKind::kPrediction});
+    for (size_t at = 0; at < text.size(); at += piece) p.feed(std::string_view(text).substr(at, piece));
+    const LabelFile f = p.finish();
+    ASSERT_EQ(f.boxes.size(), whole.boxes.size()) << "pieces of " << piece;
+    for (size_t k = 0; k < f.boxes.size(); ++k) {
+      EXPECT_EQ(f.boxes[k].cx, whole.boxes[k].cx) << "pieces of " << piece;
+      EXPECT_EQ(f.boxes[k].conf, whole.boxes[k].conf) << "pieces of " << piece;
+    }
+    EXPECT_EQ(f.line_of_box, whole.line_of_box) << "pieces of " << piece;
+    ASSERT_EQ(f.errors.size(), whole.errors.size()) << "pieces of " << piece;
+    for (size_t k = 0; k < f.errors.size(); ++k)
+      EXPECT_EQ(f.errors[k].to_string(), whole.errors[k].to_string()) << "pieces of " << piece;
+  }
+}
+
+// A study's label file is parsed as it is read (read_labels_beneath): the same boxes and errors as its text.
+TEST(LabelIo, AStudysLabelFileReadBelowItsRootParsesAsItsText) {
+  test::TempDir d;
+  std::string text;
+  for (int k = 0; k < 3000; ++k) text += "0 0.5 0.5 0.1 0.2 0.9\n";  // 66,000 bytes: two pieces of the read
+  text += "0 0.5\n";
+  test::write_text(d / "real/labels/s.txt", text);
+  const LabelFile f = read_labels_beneath(d.path(), "real/labels/s.txt", {LabelKind::kPrediction});
+  EXPECT_EQ(f.boxes.size(), 3000u);
+  ASSERT_EQ(f.errors.size(), 1u);
+  EXPECT_EQ(f.errors[0].line, 3001);
+  EXPECT_EQ(f.path, d.path() + "/real/labels/s.txt");
+  EXPECT_FALSE(read_labels_beneath(d.path(), "real/labels/none.txt", {}).exists);
+}
+
 }  // namespace
 }  // namespace ipd
 
