@@ -24,8 +24,9 @@ int run_rank(const RankCommandArgs& args) {
   TableFormat format = TableFormat::kText;
   parse_table_format(args.format, &format);
   if (output_is_study_input(args.rank.study.study, args.out)) return kBadInput;
-  if (format == TableFormat::kJson) require_utf8_names(open_study(args.rank.study.study));
-  auto ranked = rank_study(args.rank);
+  auto ranked = rank_study(args.rank, [&](const Study& study) {
+    if (format == TableFormat::kJson) require_utf8_names(study);  // before the work, naming the file
+  });
   if (!ranked) return kBadInput;
   TableFormatOptions fo;
   fo.latex_ci = args.rank.study.ci_given;

@@ -44,16 +44,18 @@ void add_rank_options(CLI::App* cmd, RankArgs* args) {
       ->default_val(2000);
 }
 
-std::optional<RankedStudy> rank_study(const RankArgs& args) {
+std::optional<RankedStudy> rank_study(const RankArgs& args, const std::function<void(const Study&)>& check) {
   StudyOptions so = args.study;
   if (!so.domains.empty())
     throw CLI::ValidationError(
         "--domains: a ranking's domains are --ref and --candidates (default: every other domain)");
   const Study study = open_study_with_conf(so);
+  if (check) check(study);
   RankOptions ro;
   ro.domains = resolve_rank_domains(study, args.ref, args.candidates);
   ro.model = ranked_model(study, so.models, ro.domains.ref);
   ro.level = args.level;
+  ro.threads = so.threads;
   so.models = {ro.model};
   so.domains = ro.domains.candidates;
   so.domains.insert(so.domains.begin(), ro.domains.ref);

@@ -3,6 +3,7 @@
 // variant is the only one registered on a re-run), intervals as `ipd table`'s, then core/rank's ranking.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -31,7 +32,8 @@ struct RankedStudy {
 };
 
 // nullopt when the labels' errors are fatal (already reported). Throws StudyError for an unknown domain, a model
-// that is not one (or several models), or nothing to rank.
-std::optional<RankedStudy> rank_study(const RankArgs& args);
+// that is not one (or several models), or nothing to rank. `check` (optional) sees the opened study before any
+// work: a JSON output refuses names it can't write there (require_utf8_names), without opening it twice.
+std::optional<RankedStudy> rank_study(const RankArgs& args, const std::function<void(const Study&)>& check = {});
 
 }  // namespace ipd::cli

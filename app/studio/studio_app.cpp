@@ -372,6 +372,8 @@ void StudioApp::next_suspect() {
   ui_.status = "no suspect pair in the listed scenes";
 }
 
+bool StudioApp::loading() const { return worker_.progress().opening; }
+
 std::string StudioApp::after_render(double ms, double ui_cpu_ms) {
   if (snap_) stats_out_.content_shown();
   const bool loaded = snap_ != nullptr && !worker_.progress().opening;

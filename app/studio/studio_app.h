@@ -35,6 +35,7 @@ class StudioApp {
   // replay progress; returns the screenshot path to save now (empty: none).
   std::string after_render(double frame_ms, double ui_cpu_ms);
   bool done() const { return done_; }
+  bool loading() const;  // the worker is opening a study
   void request_quit() { ui_.show_quit = true; }
   // The window backend's key index of F1, which opens the shortcuts (StudioWindow::help_key).
   void set_help_key(int key) { ui_.help_key = key; }

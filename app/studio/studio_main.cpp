@@ -3,11 +3,17 @@
 // and return commands; StudioWindow (studio_window.h) is GLFW + OpenGL + ImGui.
 #include <fmt/format.h>
 
+#include <chrono>
 #include <memory>
+#include <thread>
 
 #include "app/studio/studio_app.h"
 #include "app/studio/studio_options.h"
 #include "app/studio/studio_window.h"
+
+namespace {
+constexpr int kLoadingFramesPerSecond = 20;
+}
 
 int main(int argc, char** argv) {
   ipd::studio::StudioOptions o;
@@ -29,6 +35,7 @@ int main(int argc, char** argv) {
   }
   app->set_help_key(ipd::studio::StudioWindow::help_key());
   while (!app->done()) {
+    const auto frame_start = std::chrono::steady_clock::now();
     const ipd::studio::FrameClock clock;
     if (window->begin_frame()) app->request_quit();
     app->frame();
@@ -36,6 +43,10 @@ int main(int argc, char** argv) {
     if (const std::string shot = app->after_render(clock.ms(), clock.cpu_ms()); !shot.empty())
       window->save_screenshot(shot);
     window->present();
+    // While a study loads, at most kLoadingFramesPerSecond frames are drawn: a software rasteriser (llvmpipe under
+    // Xvfb) drawing frames unbounded takes the cores the load needs, and a progress bar needs no more.
+    if (app->loading())
+      std::this_thread::sleep_until(frame_start + std::chrono::microseconds(1000000 / kLoadingFramesPerSecond));
   }
   const int rc = app->print_stats();
   app.reset();  // textures go before the GL context

@@ -11,8 +11,11 @@
 #include <atomic>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <stdexcept>
+#include <string_view>
+#include <unordered_map>
 
 namespace fs = std::filesystem;
 
@@ -52,16 +55,20 @@ StudyLabels load_labels(const Study& study, const std::function<void(int done, i
   };
   static const std::string kGroundTruth;  // the model of a GT file
   std::vector<Job> jobs;
+  size_t files = 0;
+  for (const auto& d : study.domains) files += d.stems.size() * (1 + d.models.size());
+  jobs.reserve(files);
+  // Stems are listed in order: each slot goes in at its map's end, each path is its folder's plus the stem.
   for (const auto& d : study.domains) {
-    for (const auto& stem : d.stems)
-      jobs.push_back({&out.gt[d.name][stem], study.label_path(d.name, stem), d.name + "/labels/" + stem + ".txt",
-                      &d.name, &kGroundTruth, &stem});
-    for (const auto& m : d.models) {
-      auto& files = out.predictions[d.name][m];
+    auto add = [&](std::map<std::string, LabelFile>& slots, const std::string& folder, const std::string& relative,
+                   const std::string* model) {
       for (const auto& stem : d.stems)
-        jobs.push_back({&files[stem], study.prediction_path(d.name, m, stem),
-                        d.name + "/predictions/" + m + "/" + stem + ".txt", &d.name, &m, &stem});
-    }
+        jobs.push_back({&slots.emplace_hint(slots.end(), stem, LabelFile{})->second, Study::label_file(folder, stem),
+                        Study::label_file(relative, stem), &d.name, model, &stem});
+    };
+    add(out.gt[d.name], study.label_folder(d.name), d.name + "/labels", &kGroundTruth);
+    for (const auto& m : d.models)
+      add(out.predictions[d.name][m], study.prediction_folder(d.name, m), d.name + "/predictions/" + m, &m);
   }
   std::atomic<int> done{0};
   const int total = static_cast<int>(jobs.size());
@@ -93,21 +100,29 @@ SceneIpd scene_contribution(const std::string& stem, const RockPairs& pairs, con
                             const std::vector<double>& pb) {
   SceneIpd s;
   s.stem = stem;
-  std::vector<char> used_a(pa.size(), 0), used_b(pb.size(), 0), out_a(pa.size(), 0), out_b(pb.size(), 0);
-  for (int i : excluded_a) out_a[i] = 1;
-  for (int j : excluded_b) out_b[j] = 1;
+  // One flag byte a rock, A's then B's: a table of 10,000 scenes makes this call 90,000 times.
+  enum : char { kUsed = 1, kExcluded = 2 };
+  std::vector<char> flags(pa.size() + pb.size(), 0);
+  char* fa = flags.data();
+  char* fb = flags.data() + pa.size();
+  for (int i : excluded_a) fa[i] |= kExcluded;
+  for (int j : excluded_b) fb[j] |= kExcluded;
+  s.perf_a.reserve(pairs.size());
+  s.perf_b.reserve(pairs.size());
+  s.counted.reserve(pairs.size());
   for (const auto& [i, j] : pairs) {
-    if (used_a[i] || used_b[j]) continue;
-    used_a[i] = used_b[j] = 1;
-    if (out_a[i] || out_b[j]) continue;  // an excluded rock takes its pair out of the IPD
+    if ((fa[i] & kUsed) || (fb[j] & kUsed)) continue;
+    fa[i] |= kUsed;
+    fb[j] |= kUsed;
+    if ((fa[i] & kExcluded) || (fb[j] & kExcluded)) continue;  // an excluded rock takes its pair out of the IPD
     s.perf_a.push_back(pa[i]);
     s.perf_b.push_back(pb[j]);
     s.counted.emplace_back(i, j);
     s.sum_abs_diff += std::abs(pa[i] - pb[j]);
     ++s.pairs;
   }
-  for (size_t i = 0; i < pa.size(); ++i) s.unpaired_a += !used_a[i] && !out_a[i];
-  for (size_t j = 0; j < pb.size(); ++j) s.unpaired_b += !used_b[j] && !out_b[j];
+  for (size_t i = 0; i < pa.size(); ++i) s.unpaired_a += fa[i] == 0;
+  for (size_t j = 0; j < pb.size(); ++j) s.unpaired_b += fb[j] == 0;
   return s;
 }
 
@@ -139,9 +154,13 @@ std::string one_side_without_predictions(const std::string& model, const std::st
 
 long count_predictions(const StudyLabels& labels, const std::string& domain, const std::string& model,
                        const std::vector<ScenePairing>& pairings) {
-  long n = 0;
+  const auto d = labels.predictions.find(domain);
+  if (d == labels.predictions.end()) return 0;
+  const auto m = d->second.find(model);
+  if (m == d->second.end()) return 0;
+  long n = 0;  // the model's files of the domain looked up once, then each scene's
   for (const ScenePairing& p : pairings)
-    n += static_cast<long>(labels.predictions_of(domain, model, p.stem).boxes.size());
+    if (const auto f = m->second.find(p.stem); f != m->second.end()) n += static_cast<long>(f->second.boxes.size());
   return n;
 }
 
@@ -228,13 +247,58 @@ std::vector<ModelInfo> chosen_models(const Study& study, const std::vector<std::
 }
 
 // One cell per (model, column) from the columns' rock pairs; a column not shown was never paired and has no value.
-void add_cells(const StudyLabels& labels, const std::vector<bool>& shown, CrossTable* t) {
+// The performance values of every (model, domain, scene) the shown cells read, each computed once and on every
+// core: a domain's values for a model are the same in each domain pair it is in (two of three pairs in a
+// three-domain table, every candidate's pair for a ranking's reference).
+class PerformanceValueTable {
+ public:
+  // The scenes of one model in one domain: stem -> index of its values.
+  using Scenes = std::unordered_map<std::string_view, size_t>;
+  Scenes& scenes(size_t model, const std::string& domain) { return index_[{model, domain}]; }
+  // The index of (model, domain, stem)'s values once computed.
+  size_t need(Scenes& scenes, size_t model, const std::string& domain, const std::string& stem) {
+    const auto [at, added] = scenes.emplace(stem, jobs_.size());
+    if (added) jobs_.push_back({model, &domain, &stem});
+    return at->second;
+  }
+  void compute(const StudyLabels& labels, const std::vector<ModelInfo>& models, int threads) {
+    values_.resize(jobs_.size());
+    parallel_for(jobs_.size(), threads, [&](size_t k) {
+      const Job& j = jobs_[k];
+      values_[k] = performance_values(labels.gt_of(*j.domain, *j.stem).boxes,
+                                      labels.predictions_of(*j.domain, models[j.model].name, *j.stem).boxes,
+                                      labels.study.config.task)
+                       .value;
+    });
+  }
+  const std::vector<double>& values(size_t k) const { return values_[k]; }
+
+ private:
+  struct Job {
+    size_t model;
+    const std::string* domain;  // the table's column names and pairing stems: they outlive the table
+    const std::string* stem;
+  };
+  std::map<std::pair<size_t, std::string>, Scenes> index_;  // a std::map: its values stay where they are
+  std::vector<Job> jobs_;
+  std::vector<std::vector<double>> values_;
+};
+
+void add_cells(const StudyLabels& labels, const std::vector<bool>& shown, int threads, CrossTable* t) {
   const Study& study = labels.study;
   std::set<std::string> warned;
-  for (const auto& model : t->models) {
+  // First each cell and whether it has predictions, then the performance values its scenes read, then the
+  // scenes' IPD.
+  PerformanceValueTable perf;
+  std::vector<std::vector<std::string>> warnings;                 // each cell's, in the order the cells are made
+  std::vector<std::vector<std::pair<size_t, size_t>>> values_of;  // each cell's scenes' values, A's and B's
+  for (size_t m = 0; m < t->models.size(); ++m) {
+    const ModelInfo& model = t->models[m];
     for (size_t c = 0; c < t->columns.size(); ++c) {
       const auto& [a, b] = t->columns[c];
       TableCell cell = make_table_cell(model, a, b);
+      warnings.emplace_back();
+      values_of.emplace_back();
       if (!shown[c]) {  // never registered: no scenes, no value
         total_table_cell(cell);
         t->cells.push_back(std::move(cell));
@@ -244,28 +308,47 @@ void add_cells(const StudyLabels& labels, const std::vector<bool>& shown, CrossT
       for (const auto& d : {a, b}) {
         if (!warned.insert(model.name + "\n" + d).second) continue;
         if (std::find(missing.begin(), missing.end(), d) != missing.end())
-          t->warnings.push_back(missing_predictions_problem(study, model.name, d).to_string());
+          warnings.back().push_back(missing_predictions_problem(study, model.name, d).to_string());
         else if (auto p = missing_prediction_files_problem(labels, model.name, d))
-          t->warnings.push_back(p->to_string());
+          warnings.back().push_back(p->to_string());
       }
-      if (!cell.missing_predictions)
-        for (const ScenePairing& p : t->pairings[c])
-          cell.per_scene.push_back(scene_ipd(
-              p, labels.gt_of(a, p.stem).boxes, labels.predictions_of(a, model.name, p.stem).boxes,
-              labels.gt_of(b, p.stem).boxes, labels.predictions_of(b, model.name, p.stem).boxes, study.config.task));
-      total_table_cell(cell);
       if (!cell.missing_predictions) {
-        const double threshold = study.config.conf_threshold;
-        const long na = count_predictions(labels, a, model.name, t->pairings[c]);
-        const long nb = count_predictions(labels, b, model.name, t->pairings[c]);
-        cell.no_value_reason = no_predictions_reason(na, nb, a, b, threshold);
-        settle_table_cell(cell);
-        if (cell.no_value_reason.empty() && (na == 0 || nb == 0))
-          t->warnings.push_back(one_side_without_predictions(model.name, na == 0 ? a : b, na == 0 ? b : a, threshold));
+        auto& in_a = perf.scenes(m, a);
+        auto& in_b = perf.scenes(m, b);
+        for (const ScenePairing& p : t->pairings[c])
+          values_of.back().emplace_back(perf.need(in_a, m, a, p.stem), perf.need(in_b, m, b, p.stem));
       }
       t->cells.push_back(std::move(cell));
     }
   }
+  perf.compute(labels, t->models, threads);
+  for (size_t m = 0, k = 0; m < t->models.size(); ++m)
+    for (size_t c = 0; c < t->columns.size(); ++c, ++k) {
+      TableCell& cell = t->cells[k];
+      for (std::string& w : warnings[k]) t->warnings.push_back(std::move(w));
+      if (!shown[c]) continue;
+      const auto& [a, b] = t->columns[c];
+      if (!cell.missing_predictions) {
+        const std::vector<ScenePairing>& scenes = t->pairings[c];
+        const auto& values = values_of[k];
+        cell.per_scene.resize(scenes.size());
+        parallel_for(scenes.size(), threads, [&](size_t s) {
+          const ScenePairing& p = scenes[s];
+          cell.per_scene[s] = scene_contribution(p.stem, p.pairs, p.excluded_a, p.excluded_b,
+                                                 perf.values(values[s].first), perf.values(values[s].second));
+        });
+      }
+      total_table_cell(cell);
+      if (!cell.missing_predictions) {
+        const double threshold = study.config.conf_threshold;
+        const long na = count_predictions(labels, a, cell.model, t->pairings[c]);
+        const long nb = count_predictions(labels, b, cell.model, t->pairings[c]);
+        cell.no_value_reason = no_predictions_reason(na, nb, a, b, threshold);
+        settle_table_cell(cell);
+        if (cell.no_value_reason.empty() && (na == 0 || nb == 0))
+          t->warnings.push_back(one_side_without_predictions(cell.model, na == 0 ? a : b, na == 0 ? b : a, threshold));
+      }
+    }
 }
 
 }  // namespace
@@ -330,7 +413,7 @@ CrossTable compute_cross_table(const StudyLabels& labels, const TableOptions& op
     if (shown[c])
       for (const PipelineScene& s : paired.pairs[k++].scenes) t.pairings[c].push_back(s.counted());
 
-  add_cells(labels, shown, &t);
+  add_cells(labels, shown, options.threads, &t);
   return t;
 }
 

@@ -39,8 +39,9 @@ constexpr char kMagic[8] = {'I', 'P', 'D', 'S', 'T', 'U', 'D', 'Y'};
 // with are flagged as such (Ambiguity::kUnchecked, kNoPlausible); 7: outlines, with their areas and centroids
 // (an outline's clipping into non-crossing contours is not redone on a warm load); 8: the label set's fingerprint;
 // 9: a report's samples and EM iterations apart, its fit with its measure; 10: the fingerprint's running state
-// after each domain.
-constexpr std::uint32_t kFormat = 10;
+// after each domain; 11: each label entry's size before it, so a warm run indexes the file and decodes entries
+// on every core as they are taken.
+constexpr std::uint32_t kFormat = 11;
 constexpr size_t kHeaderBytes = kParsedStudyHeaderBytes;
 static_assert(kHeaderBytes == sizeof kMagic + 4 + 8 + CacheSigner::kMacBytes);
 
@@ -106,37 +107,15 @@ std::string parsed_study_cache_path(const std::string& study_root) {
   return (dir / "parsed-study" / fmt::format("{:016x}.bin", path_hash(name.data(), name.size()))).string();
 }
 
-struct StudyCache::Contents {
-  struct Entry {
-    FileStamp stamp;
-    LabelFile file;
-  };
-  int rock_class = -1;     // the class asked for (files are stored with it applied, when it is a class)
-  std::string class_maps;  // StudyClasses::map_key(): files are stored renumbered into the study's classes
-  double conf_threshold = 0;
-  // label_set_fingerprint(study) over the GT files stored here (a study of `fingerprint_gt_files` GT files).
-  std::string fingerprint;
-  std::uint64_t fingerprint_gt_files = 0;
-  // The fingerprint's state after each domain (label_fingerprint.h): as read, then as load_labels left it.
-  std::vector<FingerprintCheckpoint> checkpoints;
-  std::unordered_map<std::string, Entry> labels;  // entry_key -> file as parsed
-  RegistrationEntries registrations;
-  // Filled by load_labels: each file's stamp as it was read, and how many files were taken from `labels`.
-  std::mutex mu;
-  std::unordered_map<std::string, FileStamp> stamps;
-  bool filters_match = false;
-};
-
-namespace {
 // A file's bytes, not zero-filled first: the parsed-study cache of a 10,000-scene study is tens of megabytes read
 // on every warm run. Large buffers are mapped memory asking for huge pages: read() into fresh 4 KiB pages
 // costs a page fault each (45,000 for 180 MB), a visible part of a warm run.
-class FileBytes {
+class ParsedStudyBytes {
  public:
-  FileBytes() = default;
-  FileBytes(const FileBytes&) = delete;
-  FileBytes& operator=(const FileBytes&) = delete;
-  ~FileBytes() {
+  ParsedStudyBytes() = default;
+  ParsedStudyBytes(const ParsedStudyBytes&) = delete;
+  ParsedStudyBytes& operator=(const ParsedStudyBytes&) = delete;
+  ~ParsedStudyBytes() {
     if (mapped_)
       ::munmap(data_, capacity_);
     else
@@ -169,7 +148,7 @@ class FileBytes {
 
 // Reads the open file `fd` whole and closes it; false when it can't be read. Read, not mapped: a file shortened
 // meanwhile reads short (and is then "truncated"), never a crash.
-bool read_whole_file(int fd, const std::function<void(const char*)>& hook, FileBytes* file) {
+static bool read_whole_file(int fd, const std::function<void(const char*)>& hook, ParsedStudyBytes* file) {
   struct stat st {};
   if (::fstat(fd, &st) != 0) {
     ::close(fd);
@@ -194,13 +173,59 @@ bool read_whole_file(int fd, const std::function<void(const char*)>& hook, FileB
   file->size = done;
   return !read_error;
 }
-}  // namespace
+
+struct StudyCache::Contents {
+  // A label file's entry as read: its stamp then, and where its path and parse lie in `bytes` (decoded by the
+  // job that takes it, on every core); `now` is its stamp as load_labels found it.
+  struct Entry {
+    FileStamp stamp;
+    std::string_view body;
+    FileStamp now;
+    bool stamped = false;  // `now` was taken by this load
+    bool taken = false;    // its parse was handed out (a second use would find nothing to decode)
+  };
+  ParsedStudyBytes bytes;  // the file as read: entries' keys and bodies point into it
+  int rock_class = -1;     // the class asked for (files are stored with it applied, when it is a class)
+  std::string class_maps;  // StudyClasses::map_key(): files are stored renumbered into the study's classes
+  double conf_threshold = 0;
+  // label_set_fingerprint(study) over the GT files stored here (a study of `fingerprint_gt_files` GT files).
+  std::string fingerprint;
+  std::uint64_t fingerprint_gt_files = 0;
+  // The fingerprint's state after each domain (label_fingerprint.h): as read, then as load_labels left it.
+  std::vector<FingerprintCheckpoint> checkpoints;
+  std::unordered_map<std::string_view, Entry> labels;  // entry_key -> entry
+  RegistrationEntries registrations;
+  // Filled by load_labels: the stamps of files the file had no entry for (each other file's is its entry's `now`).
+  std::mutex mu;
+  std::unordered_map<std::string, FileStamp> new_stamps;
+  bool filters_match = false;
+
+  // The parse `e` holds, when its file is unchanged since (its stamp as stored is `now`'s) and it is the file at
+  // `path`. Decoded here, by the job that takes it: a warm load decodes on every core. An entry that doesn't decode
+  // (it can't once the file verified, unless this code wrote it wrong) is parsed instead.
+  static bool take(Entry& e, const std::string& path, LabelFile* out) {
+    if (e.taken || !(e.stamp == e.now)) return false;
+    try {
+      cache_codec::Reader r(e.body);
+      const std::string stored_path = r.str();
+      if (stored_path != path) return false;
+      LabelFile f = cache_codec::read_label_file(r, stored_path);
+      if (!r.at_end()) return false;
+      *out = std::move(f);
+    } catch (const std::exception&) {
+      return false;
+    }
+    e.taken = true;
+    return true;
+  }
+};
 
 StudyCache::StudyCache(std::string path, const std::string& study_root, const std::function<void(const char*)>& hook)
     : path_(std::move(path)), root_(study_root), contents_(std::make_unique<Contents>()) {
   stats_.state = "missing";
   if (path_.empty()) return;
-  FileBytes file;
+  auto c = std::make_unique<Contents>();
+  ParsedStudyBytes& file = c->bytes;
   // Reached without following links (a study may bring a .ipd-cache whose entries point anywhere).
   const fs::path where(path_);
   const auto dir = CacheDir::open(where.parent_path().string(), false);
@@ -225,8 +250,7 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
     if (!CacheSigner::instance().verify(kParsedStudySignature, bytes.substr(kHeaderBytes), mac))
       throw std::runtime_error("not signed by this installation");
     cache_codec::Reader r(bytes.data() + kHeaderBytes, size);
-    if (r.str() != study_root) throw std::runtime_error("another study");
-    auto c = std::make_unique<Contents>();
+    if (r.view() != study_root) throw std::runtime_error("another study");
     c->rock_class = r.pod<std::int32_t>();
     c->class_maps = r.str();
     c->conf_threshold = r.pod<double>();
@@ -243,12 +267,12 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
     const auto files = r.pod<std::uint64_t>();
     c->labels.reserve(files);
     for (std::uint64_t k = 0; k < files; ++k) {
-      std::string key = r.str();
-      const std::string path = r.str();
+      const std::string_view key = r.view();
+      cache_codec::Reader entry(r.bytes(r.pod<std::uint32_t>()));
       Contents::Entry e;
-      e.stamp = cache_codec::read_stamp(r);
-      e.file = cache_codec::read_label_file(r, path);
-      c->labels.emplace(std::move(key), std::move(e));
+      e.stamp = cache_codec::read_stamp(entry);
+      e.body = entry.rest();
+      if (!c->labels.emplace(key, e).second) throw std::runtime_error("a label file twice");
     }
     const auto reports = r.pod<std::uint64_t>();
     c->registrations.reserve(reports);
@@ -309,51 +333,54 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
   // Each folder of label files is opened once beneath the study (never through a link) and its files' stamps
   // taken relative to it: one fstatat a file instead of resolving its whole path again. A folder that can't be
   // opened so has its files parsed (which says why).
-  std::map<std::string, std::unique_ptr<OpenFolder>> folders;  // "domain\nmodel" (model "" for GT)
+  std::map<std::string, std::map<std::string, std::unique_ptr<OpenFolder>, std::less<>>, std::less<>>
+      folders;  // domain -> model ("" for GT) -> folder
   std::uint64_t gt_files = 0;
   std::map<std::string, std::atomic<int>> reused_gt_of;  // domain -> its GT files taken from the file
   if (!path_.empty()) {
-    auto open = [&](const std::string& key, const std::string& relative) {
+    auto open = [&](const std::string& domain, const std::string& model, const std::string& relative) {
+      auto& slot = folders[domain][model];
       try {
-        folders[key] = std::make_unique<OpenFolder>(study.root, relative);
+        slot = std::make_unique<OpenFolder>(study.root, relative);
       } catch (const IoError&) {
-        folders[key] = nullptr;
+        slot = nullptr;
       }
     };
     for (const auto& d : study.domains) {
       gt_files += d.stems.size();
       reused_gt_of.try_emplace(d.name, 0);
-      open(d.name + '\n', d.name + "/labels");
-      for (const auto& m : d.models) open(d.name + '\n' + m, d.name + "/predictions/" + m);
+      open(d.name, "", d.name + "/labels");
+      for (const auto& m : d.models) open(d.name, m, d.name + "/predictions/" + m);
     }
   }
   std::atomic<int> reused{0}, parsed{0};
-  c.stamps.reserve(std::max<size_t>(c.labels.size(), gt_files));  // a stamp a file: no rehash under the lock
-  StudyLabels labels = ipd::load_labels(
-      study, progress,
-      [&](const std::string& domain, const std::string& model, const std::string& stem, const std::string& path,
-          LabelFile* out) {
-        std::string key = entry_key(domain, model, stem);
-        const auto folder = folders.find(domain + '\n' + model);
-        const bool open = folder != folders.end() && folder->second;
-        const FileStamp now = open ? stamp_at(*folder->second, stem + ".txt") : kNeverReused;
-        // Entries are only read here, each by one job: no lock needed to take one.
-        const auto it = c.filters_match && open ? c.labels.find(key) : c.labels.end();
-        const bool reuse = it != c.labels.end() && it->second.stamp == now && it->second.file.path == path;
-        {
-          std::lock_guard<std::mutex> l(c.mu);
-          c.stamps.insert_or_assign(std::move(key), now);
-        }
-        if (!reuse) {
-          ++parsed;
-          return false;
-        }
-        *out = std::move(it->second.file);
-        it->second.stamp.size = -2;  // taken: a second use would find it empty
-        ++reused;
-        if (model.empty()) ++reused_gt_of.at(domain);
-        return true;
-      });
+  // An entry is touched by the one job of its file: no lock needed to stamp or take it.
+  const auto reuse = [&](const std::string& domain, const std::string& model, const std::string& stem,
+                         const std::string& path, LabelFile* out) {
+    const OpenFolder* folder = nullptr;
+    if (const auto d = folders.find(domain); d != folders.end())
+      if (const auto m = d->second.find(model); m != d->second.end()) folder = m->second.get();
+    const FileStamp now = folder ? stamp_at(*folder, stem + ".txt") : kNeverReused;
+    std::string key = entry_key(domain, model, stem);
+    const auto it = c.labels.find(key);
+    if (it == c.labels.end()) {
+      std::lock_guard<std::mutex> l(c.mu);
+      c.new_stamps.insert_or_assign(std::move(key), now);
+      ++parsed;
+      return false;
+    }
+    Contents::Entry& e = it->second;
+    e.now = now;
+    e.stamped = true;
+    if (!c.filters_match || !folder || !Contents::take(e, path, out)) {
+      ++parsed;
+      return false;
+    }
+    ++reused;
+    if (model.empty()) ++reused_gt_of.at(domain);
+    return true;
+  };
+  StudyLabels labels = ipd::load_labels(study, progress, reuse);
   stats_.files_reused = reused;
   stats_.files_parsed = parsed;
   if (!path_.empty()) {
@@ -408,10 +435,15 @@ void StudyCache::save(const StudyLabels& labels, const RegistrationCache& regist
   w.pod<std::uint64_t>(files);
   auto put = [&](const std::string& key, const LabelFile& f) {
     w.str(key);
+    const size_t size_at = w.reserve_u32();
+    const auto it = contents_->labels.find(key);
+    const auto added = contents_->new_stamps.find(key);
+    cache_codec::write_stamp(w, it != contents_->labels.end() && it->second.stamped ? it->second.now
+                                : added != contents_->new_stamps.end()              ? added->second
+                                                                                    : FileStamp{});
     w.str(f.path);
-    const auto it = contents_->stamps.find(key);
-    cache_codec::write_stamp(w, it == contents_->stamps.end() ? FileStamp{} : it->second);
     cache_codec::write_label_file(w, f);
+    w.patch_u32(size_at, static_cast<std::uint32_t>(w.out.size() - size_at - 4));
   };
   for (const auto& [d, stems] : labels.gt)
     for (const auto& [stem, f] : stems) put(entry_key(d, "", stem), f);

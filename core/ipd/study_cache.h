@@ -22,6 +22,8 @@
 //    only the domains from it on in the fingerprint's path order;
 //  - registrations are keyed by the same content hash as the entry files (registration_cache.h), so a
 //    changed label file or option simply misses.
+// Each label entry is stored with its size: reading the file indexes the entries (key and stamp), and load_labels'
+// jobs decode the ones they take, on every core.
 // Label files are stored as load_labels() returns them (classes renumbered, class and confidence filters
 // applied): the class asked for, the class maps and the threshold are part of the header, and a run with other filters
 // (`ipd table --conf`) parses again. The file is rewritten (atomically) only when something changed.

@@ -1,5 +1,6 @@
 #include "core/ipd/study_cache_codec.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -97,6 +98,7 @@ RegistrationReport read_report(Reader& rd) {
     if (!std::isfinite(r.affine(k / 3, k % 3))) throw std::runtime_error("bad affine");
   }
   const auto pairs = rd.pod<std::uint64_t>();
+  r.pairs.reserve(static_cast<size_t>(std::min<std::uint64_t>(pairs, kMaxBoxesPerFile)));
   for (std::uint64_t k = 0; k < pairs; ++k) {
     const int i = rd.pod<std::int32_t>();
     r.pairs.emplace_back(i, rd.pod<std::int32_t>());

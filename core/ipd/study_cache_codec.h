@@ -7,6 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -24,6 +25,12 @@ class Writer {
     static_assert(std::is_trivially_copyable_v<T>);
     out.append(reinterpret_cast<const char*>(&v), sizeof v);
   }
+  // Room for a u32 written later (patch_u32): the size of what follows, once it is written.
+  size_t reserve_u32() {
+    out.append(4, '\0');
+    return out.size() - 4;
+  }
+  void patch_u32(size_t at, std::uint32_t v) { std::memcpy(&out[at], &v, sizeof v); }
   void str(const std::string& s) {
     pod<std::uint32_t>(static_cast<std::uint32_t>(s.size()));
     out.append(s);
@@ -40,6 +47,7 @@ class Writer {
 class Reader {
  public:
   Reader(const char* p, size_t n) : p_(p), end_(p + n) {}
+  explicit Reader(std::string_view bytes) : Reader(bytes.data(), bytes.size()) {}
   template <typename T>
   T pod() {
     T v;
@@ -55,6 +63,21 @@ class Reader {
     p_ += n;
     return s;
   }
+  // The next string where it lies in the bytes (valid while they are).
+  std::string_view view() {
+    const auto n = pod<std::uint32_t>();
+    need(n);
+    const std::string_view s(p_, n);
+    p_ += n;
+    return s;
+  }
+  // The next n bytes where they lie.
+  std::string_view bytes(size_t n) {
+    need(n);
+    const std::string_view s(p_, n);
+    p_ += n;
+    return s;
+  }
   template <typename T>
   std::vector<T> vec() {
     const auto n = pod<std::uint64_t>();
@@ -65,6 +88,7 @@ class Reader {
     return v;
   }
   bool at_end() const { return p_ == end_; }
+  std::string_view rest() const { return {p_, static_cast<size_t>(end_ - p_)}; }
 
  private:
   void need(size_t n) const {

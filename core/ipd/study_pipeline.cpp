@@ -200,12 +200,19 @@ std::optional<Problem> missing_prediction_files_problem(const StudyLabels& label
   const Domain* d = labels.study.domain(domain);
   if (!d || !labels.has_predictions(domain, model)) return std::nullopt;
   // Only scenes some other domain has too: a scene without a counterpart is in no IPD (and said so already).
-  std::unordered_set<std::string> elsewhere;
-  for (const Domain& other : labels.study.domains)
-    if (other.name != domain) elsewhere.insert(other.stems.begin(), other.stems.end());
+  // Stems are sorted: looked up in each other domain's list, not copied into a set (a table asks this once for
+  // each model and domain).
+  const auto elsewhere = [&](const std::string& stem) {
+    return std::any_of(labels.study.domains.begin(), labels.study.domains.end(), [&](const Domain& other) {
+      return other.name != domain && std::binary_search(other.stems.begin(), other.stems.end(), stem);
+    });
+  };
+  const auto& files = labels.predictions.at(domain).at(model);
   std::vector<std::string> missing;
-  for (const std::string& stem : d->stems)
-    if (elsewhere.count(stem) && !labels.predictions_of(domain, model, stem).exists) missing.push_back(stem);
+  for (const std::string& stem : d->stems) {
+    const auto f = files.find(stem);
+    if ((f == files.end() || !f->second.exists) && elsewhere(stem)) missing.push_back(stem);
+  }
   if (missing.empty()) return std::nullopt;
   Problem p;
   p.domain = domain;

@@ -7,6 +7,7 @@
 
 #include "core/rank/holm.h"
 #include "core/util/number_text.h"
+#include "core/util/parallel.h"
 
 namespace ipd {
 
@@ -59,6 +60,7 @@ RankDomains resolve_rank_domains(const Study& study, const std::string& ref,
 std::string RankOptions::validate() const {
   if (!(level > 0 && level < 1))
     return fmt::format("the significance level must be between 0 and 1 (e.g. 0.05), not {}", level);
+  if (threads < 0) return fmt::format("threads must be >= 0 (0: every core), got {}", threads);
   return compare.validate();
 }
 
@@ -108,13 +110,13 @@ Ranking rank_candidates(const StudyLabels& labels, const CrossTable& table, cons
                    [](const RankedCandidate& x, const RankedCandidate& y) { return x.ipd < y.ipd; });
   const std::string& best = out.ranked.front().domain;
   std::vector<double> raw(out.ranked.size(), std::nan(""));
-  for (size_t k = 0; k < out.ranked.size(); ++k) {
-    RankedCandidate& r = out.ranked[k];
-    r.rank = static_cast<int>(k) + 1;
-    if (k == 0) continue;
+  for (size_t k = 0; k < out.ranked.size(); ++k) out.ranked[k].rank = static_cast<int>(k) + 1;
+  // Each comparison draws from its own seeded stream (keyed by its domains): any order gives the same numbers.
+  parallel_for(out.ranked.size() - 1, options.threads, [&](size_t i) {
+    RankedCandidate& r = out.ranked[i + 1];
     r.vs_best = compare_renderers(table, out.model, out.ref, r.domain, best, options.compare);
-    raw[k] = r.vs_best->result.p_value;
-  }
+    raw[i + 1] = r.vs_best->result.p_value;
+  });
   const std::vector<double> adjusted = holm_adjusted(raw);
   out.tests = static_cast<int>(std::count_if(raw.begin(), raw.end(), [](double p) { return !std::isnan(p); }));
   for (size_t k = 0; k < out.ranked.size(); ++k) {

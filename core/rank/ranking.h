@@ -38,6 +38,7 @@ struct RankOptions {
   RankDomains domains;
   CompareOptions compare;             // the bootstrap (as the table's intervals) and the permutations of each test
   double level = kSignificanceLevel;  // significance level of the Holm-corrected tests, in (0, 1)
+  int threads = 0;  // the comparisons with the best run on this many cores (0: every one); the result is the same
   // Empty when usable; otherwise the field that is wrong and the accepted range, in one sentence.
   std::string validate() const;
 };

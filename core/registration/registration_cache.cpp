@@ -98,11 +98,17 @@ std::string registration_cache_dir(const std::string& study_root) {
   return dir.empty() ? "" : (fs::path(dir) / "registration").string();
 }
 
-void RegistrationCache::preload(RegistrationEntries entries) { memory_->preloaded = std::move(entries); }
+void RegistrationCache::preload(RegistrationEntries entries) {
+  std::lock_guard<std::mutex> l(memory_->mu);
+  memory_->served_preloaded.clear();  // it points into the entries replaced here
+  memory_->preloaded = std::move(entries);
+}
 
 RegistrationEntries RegistrationCache::served() const {
   std::lock_guard<std::mutex> l(memory_->mu);
-  return memory_->served;
+  RegistrationEntries out = memory_->served;
+  for (const auto* entry : memory_->served_preloaded) out.emplace(entry->first, entry->second);
+  return out;
 }
 
 bool RegistrationCache::served_only_preloaded() const {
@@ -113,11 +119,11 @@ bool RegistrationCache::served_only_preloaded() const {
 }
 
 RegistrationEntries RegistrationCache::entries_to_keep() const {
+  RegistrationEntries out = served();
   std::lock_guard<std::mutex> l(memory_->mu);
-  RegistrationEntries out = memory_->served;
   size_t unused = 0;
   for (const auto& entry : memory_->preloaded) unused += !out.count(entry.first);
-  if (unused > kKeptUnusedFactor * memory_->served.size()) return out;
+  if (unused > kKeptUnusedFactor * out.size()) return out;
   for (const auto& entry : memory_->preloaded) out.emplace(entry.first, entry.second);
   return out;
 }
@@ -158,7 +164,8 @@ std::optional<RegistrationReport> RegistrationCache::load(const std::string& key
       used_a[i] = used_b[j] = 1;
     }
     if (fits) {
-      remember(key, r);
+      std::lock_guard<std::mutex> l(memory_->mu);
+      memory_->served_preloaded.insert(&*it);
       return r;
     }
   }

@@ -300,12 +300,25 @@ std::string Study::domain_names() const {
   return out;
 }
 
+std::string Study::label_folder(const std::string& d) const { return (fs::path(root) / d / "labels").string(); }
+
+std::string Study::prediction_folder(const std::string& d, const std::string& model) const {
+  return (fs::path(root) / d / "predictions" / model).string();
+}
+
+// A stem is one name (study_names.h), so this is the folder's path joined with it as fs::path would.
+std::string Study::label_file(const std::string& folder, const std::string& stem) {
+  std::string path;
+  path.reserve(folder.size() + stem.size() + 5);
+  return path.append(folder).append(1, '/').append(stem).append(".txt");
+}
+
 std::string Study::label_path(const std::string& d, const std::string& stem) const {
-  return (fs::path(root) / d / "labels" / (stem + ".txt")).string();
+  return label_file(label_folder(d), stem);
 }
 
 std::string Study::prediction_path(const std::string& d, const std::string& model, const std::string& stem) const {
-  return (fs::path(root) / d / "predictions" / model / (stem + ".txt")).string();
+  return label_file(prediction_folder(d, model), stem);
 }
 
 std::string Study::pairs_dir(const std::string& a, const std::string& b) const {

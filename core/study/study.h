@@ -72,6 +72,11 @@ struct Study {
   std::string domain_names() const;  // "real, principled, hapke" (each quoted when it needs to be)
   std::string label_path(const std::string& domain, const std::string& stem) const;
   std::string prediction_path(const std::string& domain, const std::string& model, const std::string& stem) const;
+  // The folders those files are in, and the file of a stem in one: label_path(d, s) is
+  // label_file(label_folder(d), s). A study's 120,000 paths are built from 12 folders.
+  std::string label_folder(const std::string& domain) const;
+  std::string prediction_folder(const std::string& domain, const std::string& model) const;
+  static std::string label_file(const std::string& folder, const std::string& stem);
   std::string pairs_dir(const std::string& a, const std::string& b) const;  // in the A__B order given
   double aspect() const;                                                    // image width / height for registration
 };

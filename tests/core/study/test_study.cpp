@@ -553,3 +553,21 @@ TEST(Cli, TableNamesTheScenesTheTimeBudgetEnded) {
 
 }  // namespace
 }  // namespace ipd
+
+namespace ipd {
+namespace {
+// A study's label paths are built from its folders (one fs::path join a folder, a string append a file): the
+// same text fs::path gives, whether the root ends in a slash or not.
+TEST(Study, LabelPathsAreTheirFolderJoinedWithTheStem) {
+  for (const std::string root : {"/data/polar", "/data/polar/", "rel"}) {
+    Study s;
+    s.root = root;
+    const std::string base = root.back() == '/' ? root : root + "/";
+    EXPECT_EQ(s.label_path("real", "scene_01"), base + "real/labels/scene_01.txt");
+    EXPECT_EQ(s.prediction_path("real", "det-real", "scene_01"), base + "real/predictions/det-real/scene_01.txt");
+    EXPECT_EQ(s.label_folder("real"), base + "real/labels");
+    EXPECT_EQ(Study::label_file(s.prediction_folder("hapke", "m"), "x"), base + "hapke/predictions/m/x.txt");
+  }
+}
+}  // namespace
+}  // namespace ipd
