@@ -571,3 +571,26 @@ TEST(Study, LabelPathsAreTheirFolderJoinedWithTheStem) {
 }
 }  // namespace
 }  // namespace ipd
+
+namespace ipd {
+namespace {
+// A scene is a `<stem>.txt`: the stem keeps its inner dots, a hidden `.txt` is no scene, classes.txt holds class
+// names, and a `.TXT` is refused naming it (its boxes would otherwise silently count as none).
+TEST(Study, ScenesAreTheLowerCaseTxtFilesByTheirStems) {
+  test::TempDir d;
+  for (const char* f : {"real/labels/s.1.txt", "real/labels/.txt", "real/labels/classes.txt", "real/labels/s2.txt",
+                        "real/labels/notes.md"})
+    test::write_text(d / f, "");
+  const Study s = open_study(d.path());
+  EXPECT_EQ(s.domains.at(0).stems, (std::vector<std::string>{"s.1", "s2"}));
+  test::write_text(d / "real/labels/s3.TXT", "");
+  try {
+    open_study(d.path());
+    ADD_FAILURE() << "a .TXT file was read";
+  } catch (const StudyError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              d.path() + "/real/labels/s3.TXT: only lower-case .txt label files are read; rename it to s3.txt");
+  }
+}
+}  // namespace
+}  // namespace ipd
