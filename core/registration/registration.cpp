@@ -103,7 +103,13 @@ const char* fit_measure_key(FitMeasure m) { return info_of(m).key; }
 
 std::string fit_text(const FitScore& fit, int decimals) {
   if (!fit.scored()) return fit_measure_name(fit.measure);
-  return std::string(fit_measure_name(fit.measure)) + " " + fixed_decimals(fit.value, decimals);
+  const std::string name = fit_measure_name(fit.measure);
+  // A positive value too small for these decimals (cpd's mixture width on an exact fit is 1e-9) is said to be so:
+  // "0.0000" would read as an underflow, or as a width of exactly nothing.
+  const std::string zero = fixed_decimals(0.0, decimals);
+  if (fit.value > 0 && fixed_decimals(fit.value, decimals) == zero)
+    return name + " below " + fixed_decimals(std::pow(10.0, -decimals), decimals);
+  return name + " " + fixed_decimals(fit.value, decimals);
 }
 
 const char* ambiguity_reason(Ambiguity a) {

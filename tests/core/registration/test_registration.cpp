@@ -497,6 +497,9 @@ TEST(Registration, EachMethodsFitIsReadInItsOwnMeasure) {
   EXPECT_EQ(fit_text({FitMeasure::kMeanDistance, 0.000437}, 5), "mean distance 0.00044");
   EXPECT_EQ(fit_text({FitMeasure::kSoftInliers, 16.89721}, 4), "soft inliers 16.8972");
   EXPECT_EQ(fit_text({FitMeasure::kMixtureWidth, -0.0000001}, 4), "mixture width 0.0000");  // no "-0.0000"
+  // An exact fit's width is tiny, not nothing: said as below the last decimal shown.
+  EXPECT_EQ(fit_text({FitMeasure::kMixtureWidth, 3.2e-9}, 4), "mixture width below 0.0001");
+  EXPECT_EQ(fit_text({FitMeasure::kMixtureWidth, 0.0}, 4), "mixture width 0.0000");
   EXPECT_EQ(fit_text({FitMeasure::kNotScored, 3.0}, 4), "not scored");
   EXPECT_EQ(std::string(fit_measure_key(FitMeasure::kMixtureWidth)), "mixture_width");
 }
