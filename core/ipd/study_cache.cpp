@@ -96,14 +96,20 @@ FileStamp stamp_of(const std::string& path) {
   return s;
 }
 
+// The study's folder as one name whichever way it was given (`big`, ./big, /tmp/big): the file belongs to the
+// folder, not to how a command line spelled it.
+static std::string same_folder_name(const std::string& study_root) {
+  std::error_code ec;
+  const fs::path abs = fs::weakly_canonical(fs::absolute(study_root, ec), ec);
+  return ec || abs.empty() ? study_root : abs.string();
+}
+
 std::string parsed_study_cache_path(const std::string& study_root) {
   const fs::path dir = study_cache_dir(study_root);
   if (dir.empty()) return "";  // no cache that can be used safely
   if (dir.filename() == ".ipd-cache") return (dir / "parsed-study.bin").string();
-  // The user directory is shared by every read-only study: one file per study path.
-  std::error_code ec;
-  const fs::path abs = fs::weakly_canonical(fs::absolute(study_root, ec), ec);
-  const std::string name = abs.string();
+  // The user directory is shared by every read-only study: one file per study folder.
+  const std::string name = same_folder_name(study_root);
   return (dir / "parsed-study" / fmt::format("{:016x}.bin", path_hash(name.data(), name.size()))).string();
 }
 
@@ -233,9 +239,14 @@ struct StudyCache::Contents {
     try {
       cache_codec::Reader r(e.body);
       const std::string stored_path = r.str();
-      if (stored_path != path) return false;
       LabelFile f = cache_codec::read_label_file(r, stored_path);
       if (!r.at_end()) return false;
+      // The same file named as this run names the study (`big` or /tmp/big): its messages say it so too.
+      if (stored_path != path) {
+        f.path = path;
+        for (LabelError& err : f.errors)
+          if (err.file == stored_path) err.file = path;
+      }
       *out = std::move(f);
     } catch (const std::exception&) {
       return false;
@@ -246,7 +257,7 @@ struct StudyCache::Contents {
 };
 
 StudyCache::StudyCache(std::string path, const std::string& study_root, const std::function<void(const char*)>& hook)
-    : path_(std::move(path)), root_(study_root), contents_(std::make_unique<Contents>()) {
+    : path_(std::move(path)), root_(same_folder_name(study_root)), contents_(std::make_unique<Contents>()) {
   stats_.state = "missing";
   if (path_.empty()) return;
   auto c = std::make_unique<Contents>();
@@ -275,7 +286,7 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
     if (!CacheSigner::instance().verify(kParsedStudySignature, bytes.substr(kHeaderBytes), mac))
       throw std::runtime_error("not signed by this installation");
     cache_codec::Reader r(bytes.data() + kHeaderBytes, size);
-    if (r.view() != study_root) throw std::runtime_error("another study");
+    if (r.view() != root_) throw std::runtime_error("another study");
     c->rock_class = r.pod<std::int32_t>();
     c->class_maps = r.str();
     c->conf_threshold = r.pod<double>();

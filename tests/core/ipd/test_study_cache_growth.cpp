@@ -139,3 +139,33 @@ TEST(StudyCacheGrowth, AHashResumedFromItsStateEndsInTheSameDigest) {
 
 }  // namespace
 }  // namespace ipd
+
+namespace ipd {
+namespace {
+// The parsed-study file belongs to the study's folder, not to how a command line spelled it: opened as DIR and
+// then as DIR/./ (or a relative path), every file and registration is reused, and each file is named as the second
+// run names the study.
+TEST(StudyCacheGrowth, AStudyNamedAnotherWayReusesEverythingAndIsNamedAsGiven) {
+  test::TempDir d;
+  write_growth_domain(d, "real", 0.0);
+  write_growth_domain(d, "synth", 0.01);
+  test::write_text(d / "synth/labels/s2.txt", "0 0.5 0.5 0.1 0.1\n0 0.5\n");  // one bad line, kept as an error
+  const test::TableThroughCache first = test::table_through_cache(d.path());
+  EXPECT_EQ(first.stats.files_parsed, 12);
+  const std::string other = d.path() + "/.";
+  const test::TableThroughCache second = test::table_through_cache(other);
+  EXPECT_EQ(second.stats.state, "loaded");
+  EXPECT_EQ(second.stats.files_reused, 12);
+  EXPECT_EQ(second.stats.files_parsed, 0);
+  EXPECT_EQ(second.table.cached_registrations, 3);
+  const Study study = open_study(other);
+  StudyCache cache(parsed_study_cache_path(study.root), study.root);
+  const StudyLabels labels = cache.load_labels(study);
+  EXPECT_EQ(cache.stats().files_reused, 12);
+  const LabelFile& bad = labels.gt_of("synth", "s2");
+  EXPECT_EQ(bad.path, other + "/synth/labels/s2.txt");
+  ASSERT_EQ(bad.errors.size(), 1u);
+  EXPECT_EQ(bad.errors[0].file, other + "/synth/labels/s2.txt");
+}
+}  // namespace
+}  // namespace ipd
