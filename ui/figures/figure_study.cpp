@@ -97,7 +97,12 @@ std::string draw_study_figure_body(DisplayList& fig, const CrossTable& t, const 
   }
   if (r.kind != "breakdown" && r.kind != "gallery") throw std::invalid_argument("not a study figure: '" + r.kind + "'");
   const auto [a, b] = cell_domains(st, r);
-  const std::string model = pick_model(t, r.model, a);
+  // The default model is the one trained on the pair's first domain in the table's order (the left picture), so
+  // `--domains hapke,real` draws and scores what `--domains real,hapke` does.
+  std::string first = a;
+  for (const auto& [x, y] : t.columns)
+    if (includes_pair({{a, b}}, x, y)) first = x;
+  const std::string model = pick_model(t, r.model, first);
   const TableCell* cell = t.cell(model, a, b);
   if (!cell) throw StudyError(fmt::format("{}: no IPD({}, {}) for model {} in this study", st.root, a, b, model));
   if (r.kind == "gallery") {

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "core/ipd/study_cache.h"
@@ -15,6 +17,11 @@ namespace ipd {
 namespace {
 
 constexpr int kScenes = 4;
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 // Registrations kept after `ipd ARGS` ran on the study in `d` with no cache before it.
 int registrations_after(const test::TempDir& d, const std::string& args) {
@@ -45,5 +52,23 @@ TEST(ShownPairsCli, EachCommandRegistersOnlyTheDomainPairsItReads) {
   EXPECT_EQ(registrations_after(d, "figure gallery" + s + " --domains hapke,real" + svg), kScenes);
 }
 
+}  // namespace
+}  // namespace ipd
+
+namespace ipd {
+namespace {
+// A gallery of (hapke, real) is the gallery of (real, hapke): the same pictures left and right, scored with the
+// model trained on the left one (det-real), whichever order --domains names them in.
+TEST(ShownPairsCli, AGallerysDomainOrderChangesNeitherItsLayoutNorItsModel) {
+  test::TempDir d, out;
+  ASSERT_EQ(test::run_ipd("demo " + d.path() + " --labels-only --scenes 3").exit_code, 0);
+  const auto a = test::run_ipd("figure gallery " + d.path() + " --domains real,hapke --out " + (out / "a.svg"));
+  const auto b = test::run_ipd("figure gallery " + d.path() + " --domains hapke,real --out " + (out / "b.svg"));
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  const std::string svg = file_text(out / "a.svg");
+  EXPECT_NE(svg.find("det-real"), std::string::npos);
+  EXPECT_EQ(svg, file_text(out / "b.svg"));
+}
 }  // namespace
 }  // namespace ipd
