@@ -76,7 +76,9 @@ void draw_crop(Canvas& c, const PtRect& panel, const GalleryCrop& g, double font
 // crop's width; returns the height used.
 double draw_caption(Canvas& c, const PtRect& panel, const GalleryCrop& g, const TextStyle& st) {
   const Pt at{panel.x0, panel.y1 + 0.15 * st.size_pt};
-  const double h = draw_wrapped(c, at, st, fmt::format("rock {}", g.rock + 1), panel.width());
+  const std::string rock =
+      g.pair >= 0 ? fmt::format("rock {} (pair {})", g.rock + 1, g.pair + 1) : fmt::format("rock {}", g.rock + 1);
+  const double h = draw_wrapped(c, at, st, rock, panel.width());
   const std::string perf = fmt::format("{} {:.3f}", g.mask ? "mask IoU" : "perf", g.perf);
   double used = h + draw_wrapped(c, {at.x, at.y + h}, st, perf, panel.width());
   if (g.mask && std::isfinite(g.box_iou))
@@ -165,6 +167,7 @@ GalleryInput gallery_input(const StudyLabels& labels, const TableCell& cell, int
                   p.perf_a, wa, ha, labels.study.config.task);
     e.b = crop_of(labels.gt_of(cell.b, e.stem).boxes, labels.predictions_of(cell.b, cell.model, e.stem).boxes, p.rock_b,
                   p.perf_b, wb, hb, labels.study.config.task);
+    if (p.rock_b != p.rock_a) e.b.pair = p.rock_a;  // a pair is numbered by its left rock on both pictures
     in.entries.push_back(std::move(e));
   }
   return in;

@@ -25,6 +25,9 @@ namespace ipd::ui {
 // picture's edge, which shows as background).
 struct GalleryCrop {
   int rock = -1;  // 0-based; printed from 1 as the studio numbers rocks
+  // The right rock's pair as the pictures number it (by its left rock), when that is not its own number: printed
+  // beside it, "rock 10 (pair 7)", as the studio's status line says it. -1: none (a left rock, or the same number).
+  int pair = -1;
   double perf = 0;
   bool mask = false;  // perf is a mask IoU (task segment): said so under the crop
   // With a mask: the IoU of the GT's box with the box of the same prediction, printed beside the mask IoU so a

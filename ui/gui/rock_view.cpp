@@ -41,9 +41,16 @@ float name_combo_width(const Session& s) {
          ImGui::GetFrameHeight() * 1.5f;
 }
 
+// "pair 7: real rock 7 | principled rock 10": the pair as the pictures number it (by its left rock, on both
+// pictures), then each rock's own number, as the status line names rocks.
+std::string pair_rocks(const Session& s, const RockPairPoint& p) {
+  return fmt::format("pair {}: {} rock {} | {} rock {}", p.rock_a + 1, s.left_domain(), p.rock_a + 1, s.right_domain(),
+                     p.rock_b + 1);
+}
+
 std::string pair_line(const Session& s, const RockPairPoint& p) {
-  return fmt::format("{}: rock {} ({}) | rock {} ({}), perf {:.3f} | {:.3f}, |diff| {:.3f}", s.scenes()[p.scene].stem,
-                     p.rock_a + 1, s.left_domain(), p.rock_b + 1, s.right_domain(), p.perf_a, p.perf_b, p.abs_diff);
+  return fmt::format("{}: {}, perf {:.3f} | {:.3f}, |diff| {:.3f}", s.scenes()[p.scene].stem, pair_rocks(s, p),
+                     p.perf_a, p.perf_b, p.abs_diff);
 }
 
 void go_to(const RockPairPoint& p, UiCommands& out) {
@@ -297,8 +304,7 @@ void draw_gallery(const StudyView& v, RockViewState& st, UiCommands& out) {
     ImGui::SameLine();
     ImGui::BeginGroup();
     ImGui::Text("%s. %s", thousands(k + 1).c_str(), s.scenes()[p.scene].stem.c_str());
-    ImGui::Text("rock %d (%s) | rock %d (%s)", p.rock_a + 1, s.left_domain().c_str(), p.rock_b + 1,
-                s.right_domain().c_str());
+    ImGui::TextUnformatted(pair_rocks(s, p).c_str());
     ImGui::Text("%s %.3f | %.3f   |diff| %.3f", iou_word(s), p.perf_a, p.perf_b, p.abs_diff);
     ImGui::Text("size %s px² (%s rock)", thousands(std::llround(p.size)).c_str(), s.left_domain().c_str());
     if (ImGui::SmallButton("go to pair")) go_to(p, out);

@@ -53,6 +53,26 @@ StudyLabels labels_of(const test::TempDir& d) { return load_labels(open_study(d.
 
 const TableCell& real_synth(const CrossTable& t) { return *t.cell("det", "real", "synth"); }
 
+// A right rock is named by its own number and by its pair's, which is the left rock's (the pictures number a pair so
+// on both sides): synth lists real's two rocks in the other order.
+TEST(FigureGallery, ARightRockOfAnotherNumberIsNamedWithItsPair) {
+  test::TempDir d;
+  test::write_text(d / "study.yaml", "domains: [real, synth]\nmodels:\n  det: {trained_on: real}\n");
+  test::write_text(d / "real/labels/s1.txt", "0 0.2 0.2 0.1 0.1\n0 0.7 0.7 0.1 0.1\n0 0.2 0.7 0.1 0.1\n");
+  test::write_text(d / "synth/labels/s1.txt", "0 0.7 0.7 0.1 0.1\n0 0.2 0.2 0.1 0.1\n0 0.2 0.7 0.1 0.1\n");
+  for (const std::string dom : {"real", "synth"})
+    test::write_text(d / (dom + "/predictions/det/s1.txt"), "0 0.21 0.2 0.1 0.1 0.9\n");
+  const StudyLabels labels = labels_of(d);
+  const CrossTable t = compute_cross_table(labels, {});
+  const ui::GalleryInput in = ui::gallery_input(labels, real_synth(t), 3, GallerySort::kDiff);
+  ASSERT_EQ(in.entries.size(), 3u);
+  for (const ui::GalleryEntry& e : in.entries) {
+    EXPECT_EQ(e.a.pair, -1);
+    EXPECT_EQ(e.b.pair, e.b.rock == e.a.rock ? -1 : e.a.rock) << "real rock " << e.a.rock;
+    EXPECT_EQ(e.b.rock, e.a.rock == 2 ? 2 : 1 - e.a.rock);
+  }
+}
+
 TEST(FigureGallery, PairsAreTheLargestDiffFirstWithTheirValues) {
   test::TempDir d;
   write_gallery_study(d, false);
