@@ -41,13 +41,15 @@ void draw_ipd_panel(const StudyView& v, UiState& ui, UiCommands& out) {
     }
   }
   ImGui::Separator();
-  ImGui::Text("IPD(%s, %s) for %s", s.left_domain().c_str(), s.right_domain().c_str(), s.model().c_str());
+  // A first look while the study loads: the numbers below are of the scenes read so far, not yet the study's.
+  const std::string partial = v.loading.empty() ? std::string() : " (scenes read so far; updating...)";
+  text_wrapped_at_spaces("IPD(" + s.left_domain() + ", " + s.right_domain() + ") for " + s.model() + partial);
   if (!t.no_value_reason.empty())  // two empty prediction sets are not a perfect match: say why there is no number
     text_coloured_wrapped_at_spaces({1, 0.55f, 0, 1}, "– (not a number): " + t.no_value_reason);
   else
     text_wrapped_at_spaces(cell_totals_line(t.ipd, t.pairs, *v.summaries));
   ImGui::Separator();
-  ImGui::TextUnformatted("Cross table (lower is better)");
+  text_wrapped_at_spaces("Cross table (lower is better)" + partial);
   const auto& pairs = s.domain_pairs();
   // Sized to its rows (two header rows, one per model): a fixed height left blank rows below them.
   auto model_label = [](const ModelInfo& m) {
