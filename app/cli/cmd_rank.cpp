@@ -50,6 +50,7 @@ int run_rank(const RankCommandArgs& args) {
     write_output_file(ranked->loaded.labels.study.root, args.out, text);
     fmt::print(stderr, "wrote {}\n", args.out);
   }
+  keep_until_exit(std::move(*ranked));
   return kOk;
 }
 

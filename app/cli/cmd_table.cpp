@@ -112,6 +112,7 @@ int run_table(const TableArgs& args) {
     write_output_file(loaded->labels.study.root, args.out, text);
     fmt::print(stderr, "wrote {}\n", args.out);
   }
+  keep_until_exit(std::move(*loaded));
   return kOk;
 }
 

@@ -207,35 +207,21 @@ struct StudyCache::Contents {
   std::mutex mu;
   std::unordered_map<std::string, FileStamp> new_stamps;
   bool filters_match = false;
-  std::string key_arena;  // the entries' keys once `bytes` is let go (release_bytes)
+  std::string key_arena;        // the entries' keys, apart from `bytes` so those can go (release_bytes)
+  bool bytes_released = false;  // the entries' bodies are gone: none can be taken any more
 
-  // Lets the file's bytes go once load_labels has taken what it could: the keys move to one arena (save() still
-  // finds each file's stamp by its key), so the table is computed without the whole file in memory (98 MB for
-  // 10,000 scenes).
+  // Lets the file's bytes go once load_labels has taken what it could (the keys live in `key_arena`): the table is
+  // then computed without the whole file in memory (98 MB for 10,000 scenes).
   void release_bytes() {
-    size_t total = 0;
-    for (const auto& entry : labels) total += entry.first.size();
-    key_arena.clear();
-    key_arena.reserve(total);  // never grown past this: the views below stay valid
-    std::unordered_map<std::string_view, Entry> moved;
-    moved.reserve(labels.size());
-    for (const auto& [key, e] : labels) {
-      const size_t at = key_arena.size();
-      key_arena.append(key);
-      Entry kept = e;
-      kept.body = {};
-      kept.taken = true;  // nothing left to decode
-      moved.emplace(std::string_view(key_arena).substr(at, key.size()), kept);
-    }
-    labels = std::move(moved);
     bytes.release();
+    bytes_released = true;
   }
 
   // The parse `e` holds, when its file is unchanged since (its stamp as stored is `now`'s) and it is the file at
   // `path`. Decoded here, by the job that takes it: a warm load decodes on every core. An entry that doesn't decode
   // (it can't once the file verified, unless this code wrote it wrong) is parsed instead.
-  static bool take(Entry& e, const std::string& path, LabelFile* out) {
-    if (e.taken || !(e.stamp == e.now)) return false;
+  bool take(Entry& e, const std::string& path, LabelFile* out) const {
+    if (bytes_released || e.taken || !(e.stamp == e.now)) return false;
     try {
       cache_codec::Reader r(e.body);
       const std::string stored_path = r.str();
@@ -301,14 +287,28 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
       c->checkpoints.push_back(std::move(p));
     }
     const auto files = r.pod<std::uint64_t>();
+    // The keys are copied to one arena (sized by a first pass over the entries), so the file's bytes can go once
+    // the entries are decoded while save() still finds each file's stamp by its key.
+    size_t key_bytes = 0;
+    {
+      cache_codec::Reader sizes = r;
+      for (std::uint64_t k = 0; k < files; ++k) {
+        key_bytes += sizes.view().size();
+        sizes.bytes(sizes.pod<std::uint32_t>());
+      }
+    }
+    c->key_arena.reserve(key_bytes);  // never grown past this: the keys' views stay valid
     c->labels.reserve(files);
     for (std::uint64_t k = 0; k < files; ++k) {
-      const std::string_view key = r.view();
+      const std::string_view stored = r.view();
       cache_codec::Reader entry(r.bytes(r.pod<std::uint32_t>()));
       Contents::Entry e;
       e.stamp = cache_codec::read_stamp(entry);
       e.body = entry.rest();
-      if (!c->labels.emplace(key, e).second) throw std::runtime_error("a label file twice");
+      const size_t at = c->key_arena.size();
+      c->key_arena.append(stored);
+      if (!c->labels.emplace(std::string_view(c->key_arena).substr(at, stored.size()), e).second)
+        throw std::runtime_error("a label file twice");
     }
     const auto reports = r.pod<std::uint64_t>();
     c->registrations.reserve(reports);
@@ -408,7 +408,7 @@ StudyLabels StudyCache::load_labels(const Study& study, const std::function<void
     Contents::Entry& e = it->second;
     e.now = now;
     e.stamped = true;
-    if (!c.filters_match || !folder || !Contents::take(e, path, out)) {
+    if (!c.filters_match || !folder || !c.take(e, path, out)) {
       ++parsed;
       return false;
     }

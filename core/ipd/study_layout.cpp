@@ -132,10 +132,18 @@ std::string no_shared_scene(const Domain& a, const Domain& b) {
 
 // A domain's own problems: labels only in sub-folders, and each chosen model's set nested too deep or imported
 // without confidences.
-void domain_problems(const Study& study, const Domain& d, const std::vector<ModelInfo>& models,
+// Whether a set of label files read (GT, or a model's predictions) held a file: what was read answers it, with
+// no second listing of a folder of 10,000 files.
+bool holds_a_file(const std::map<std::string, LabelFile>* files) {
+  return files && std::any_of(files->begin(), files->end(), [](const auto& f) { return f.second.exists; });
+}
+
+void domain_problems(const StudyLabels& labels, const Domain& d, const std::vector<ModelInfo>& models,
                      std::vector<LayoutProblem>* out) {
+  const Study& study = labels.study;
   const std::string labels_dir = d.name + "/labels";
-  if (label_files_at(study.root, labels_dir) == 0) {
+  const auto gt = labels.gt.find(d.name);
+  if (!holds_a_file(gt == labels.gt.end() ? nullptr : &gt->second)) {
     int files = 0;
     const std::vector<std::string> subs = sub_folders_with_labels(study.root, labels_dir, &files);
     if (!subs.empty())
@@ -155,7 +163,10 @@ void domain_problems(const Study& study, const Domain& d, const std::vector<Mode
                                   "confidence 1, so AP, --conf and the confidence breakdown say nothing about '{}'",
                                   shown, set, m.name),
                       false});
-    if (label_files_at(study.root, set) > 0) continue;
+    const std::map<std::string, LabelFile>* predictions = nullptr;
+    if (const auto in = labels.predictions.find(d.name); in != labels.predictions.end())
+      if (const auto of = in->second.find(m.name); of != in->second.end()) predictions = &of->second;
+    if (holds_a_file(predictions)) continue;
     if (const auto deeper = label_files_below(study.root, set, kLookDeeper)) {
       const std::string where = (fs::path(study.root) / deeper->first).string();
       out->push_back({fmt::format("{}/: no prediction files of its own; they are nested too deep, {} in {}/ (expected "
@@ -174,11 +185,10 @@ std::optional<LayoutProblem> class_problem(const StudyLabels& labels, const std:
   const Study& study = labels.study;
   const int cls = study.config.rock_class;
   if (cls < 0) return std::nullopt;  // all classes, or none chosen (a one-class study's class is settled)
-  long boxes = 0;
   for (const std::string& stem : m.common)
     for (const std::string* domain : {&an, &bn})
-      for (const Box& box : labels.gt_of(*domain, stem).boxes) boxes += box.cls == cls ? 1 : 0;
-  if (boxes > 0) return std::nullopt;
+      for (const Box& box : labels.gt_of(*domain, stem).boxes)
+        if (box.cls == cls) return std::nullopt;  // one box of the class is enough
   // What the label files hold instead (the class filter dropped it when they were read): the first scenes'.
   std::map<int, long> held;
   for (size_t k = 0; k < std::min<size_t>(m.common.size(), kScenesLookedInto); ++k)
@@ -226,7 +236,7 @@ std::vector<LayoutProblem> layout_problems(const StudyLabels& labels,
     in_pairs.insert(b);
   }
   for (const Domain& d : study.domains)
-    if (in_pairs.count(d.name)) domain_problems(study, d, models, &out);
+    if (in_pairs.count(d.name)) domain_problems(labels, d, models, &out);
   for (const auto& [an, bn] : pairs) {
     const Domain* a = study.domain(an);
     const Domain* b = study.domain(bn);
