@@ -210,6 +210,32 @@ struct StudyCache::Contents {
   std::string key_arena;        // the entries' keys, apart from `bytes` so those can go (release_bytes)
   bool bytes_released = false;  // the entries' bodies are gone: none can be taken any more
 
+  // Reads the label entries' index: each key (copied to one arena, sized by a first pass over the entries, so the
+  // file's bytes can go once the entries are decoded while save() still finds each file's stamp by its key), its
+  // stamp and where its body lies.
+  void index_labels(cache_codec::Reader& r) {
+    const auto files = r.pod<std::uint64_t>();
+    size_t key_bytes = 0;
+    cache_codec::Reader sizes = r;
+    for (std::uint64_t k = 0; k < files; ++k) {
+      key_bytes += sizes.view().size();
+      sizes.bytes(sizes.pod<std::uint32_t>());
+    }
+    key_arena.reserve(key_bytes);  // never grown past this: the keys' views stay valid
+    labels.reserve(files);
+    for (std::uint64_t k = 0; k < files; ++k) {
+      const std::string_view stored = r.view();
+      cache_codec::Reader entry(r.bytes(r.pod<std::uint32_t>()));
+      Entry e;
+      e.stamp = cache_codec::read_stamp(entry);
+      e.body = entry.rest();
+      const size_t at = key_arena.size();
+      key_arena.append(stored);
+      if (!labels.emplace(std::string_view(key_arena).substr(at, stored.size()), e).second)
+        throw std::runtime_error("a label file twice");
+    }
+  }
+
   // Lets the file's bytes go once load_labels has taken what it could (the keys live in `key_arena`): the table is
   // then computed without the whole file in memory (98 MB for 10,000 scenes).
   void release_bytes() {
@@ -286,30 +312,7 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
       p.state = r.str();
       c->checkpoints.push_back(std::move(p));
     }
-    const auto files = r.pod<std::uint64_t>();
-    // The keys are copied to one arena (sized by a first pass over the entries), so the file's bytes can go once
-    // the entries are decoded while save() still finds each file's stamp by its key.
-    size_t key_bytes = 0;
-    {
-      cache_codec::Reader sizes = r;
-      for (std::uint64_t k = 0; k < files; ++k) {
-        key_bytes += sizes.view().size();
-        sizes.bytes(sizes.pod<std::uint32_t>());
-      }
-    }
-    c->key_arena.reserve(key_bytes);  // never grown past this: the keys' views stay valid
-    c->labels.reserve(files);
-    for (std::uint64_t k = 0; k < files; ++k) {
-      const std::string_view stored = r.view();
-      cache_codec::Reader entry(r.bytes(r.pod<std::uint32_t>()));
-      Contents::Entry e;
-      e.stamp = cache_codec::read_stamp(entry);
-      e.body = entry.rest();
-      const size_t at = c->key_arena.size();
-      c->key_arena.append(stored);
-      if (!c->labels.emplace(std::string_view(c->key_arena).substr(at, stored.size()), e).second)
-        throw std::runtime_error("a label file twice");
-    }
+    c->index_labels(r);
     const auto reports = r.pod<std::uint64_t>();
     c->registrations.reserve(reports);
     for (std::uint64_t k = 0; k < reports; ++k) {
