@@ -113,75 +113,6 @@ std::string parsed_study_cache_path(const std::string& study_root) {
   return (dir / "parsed-study" / fmt::format("{:016x}.bin", path_hash(name.data(), name.size()))).string();
 }
 
-// A file's bytes, not zero-filled first: the parsed-study cache of a 10,000-scene study is tens of megabytes read
-// on every warm run. Large buffers are mapped memory asking for huge pages: read() into fresh 4 KiB pages
-// costs a page fault each (45,000 for 180 MB), a visible part of a warm run.
-class ParsedStudyBytes {
- public:
-  ParsedStudyBytes() = default;
-  ParsedStudyBytes(const ParsedStudyBytes&) = delete;
-  ParsedStudyBytes& operator=(const ParsedStudyBytes&) = delete;
-  ~ParsedStudyBytes() { release(); }
-  void release() {
-    if (mapped_)
-      ::munmap(data_, capacity_);
-    else
-      delete[] data_;
-    data_ = nullptr, capacity_ = 0, size = 0, mapped_ = false;
-  }
-  // Room for n bytes (n > 0); false when no memory could be had.
-  bool allocate(size_t n) {
-    constexpr size_t kHuge = size_t{2} << 20;
-    if (n >= 4 * kHuge) {
-      const size_t rounded = (n + kHuge - 1) / kHuge * kHuge;
-      void* p = ::mmap(nullptr, rounded, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-      if (p != MAP_FAILED) {
-        ::madvise(p, rounded, MADV_HUGEPAGE);  // a hint: without it the pages are small, nothing else changes
-        data_ = static_cast<char*>(p), capacity_ = rounded, mapped_ = true;
-        return true;
-      }
-    }
-    data_ = new (std::nothrow) char[n];
-    capacity_ = n;
-    return data_ != nullptr;
-  }
-  char* data() { return data_; }
-  size_t size = 0;
-
- private:
-  char* data_ = nullptr;
-  size_t capacity_ = 0;
-  bool mapped_ = false;
-};
-
-// Reads the open file `fd` whole and closes it; false when it can't be read. Read, not mapped: a file shortened
-// meanwhile reads short (and is then "truncated"), never a crash.
-static bool read_whole_file(int fd, const std::function<void(const char*)>& hook, ParsedStudyBytes* file) {
-  struct stat st {};
-  if (::fstat(fd, &st) != 0) {
-    ::close(fd);
-    return false;
-  }
-  if (hook) hook("opened");
-  const size_t want = static_cast<size_t>(st.st_size);
-  if (!file->allocate(want > 0 ? want : 1)) {
-    ::close(fd);
-    return false;
-  }
-  size_t done = 0;
-  bool read_error = false;
-  while (done < want) {
-    const ssize_t n = ::read(fd, file->data() + done, want - done);
-    if (n < 0 && errno == EINTR) continue;
-    read_error = n < 0;
-    if (n <= 0) break;
-    done += static_cast<size_t>(n);
-  }
-  ::close(fd);
-  file->size = done;
-  return !read_error;
-}
-
 struct StudyCache::Contents {
   // A label file's entry as read: its stamp then, and where its path and parse lie in `bytes` (decoded by the
   // job that takes it, on every core); `now` is its stamp as load_labels found it.
@@ -192,9 +123,9 @@ struct StudyCache::Contents {
     bool stamped = false;  // `now` was taken by this load
     bool taken = false;    // its parse was handed out (a second use would find nothing to decode)
   };
-  ParsedStudyBytes bytes;  // the file as read: entries' keys and bodies point into it
-  int rock_class = -1;     // the class asked for (files are stored with it applied, when it is a class)
-  std::string class_maps;  // StudyClasses::map_key(): files are stored renumbered into the study's classes
+  cache_codec::FileBytes bytes;  // the file as read: entries' keys and bodies point into it
+  int rock_class = -1;           // the class asked for (files are stored with it applied, when it is a class)
+  std::string class_maps;        // StudyClasses::map_key(): files are stored renumbered into the study's classes
   double conf_threshold = 0;
   // label_set_fingerprint(study) over the GT files stored here (a study of `fingerprint_gt_files` GT files).
   std::string fingerprint;
@@ -273,7 +204,7 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
   stats_.state = "missing";
   if (path_.empty()) return;
   auto c = std::make_unique<Contents>();
-  ParsedStudyBytes& file = c->bytes;
+  cache_codec::FileBytes& file = c->bytes;
   // Reached without following links (a study may bring a .ipd-cache whose entries point anywhere).
   const fs::path where(path_);
   const auto dir = CacheDir::open(where.parent_path().string(), false);
@@ -281,7 +212,7 @@ StudyCache::StudyCache(std::string path, const std::string& study_root, const st
   dir->remove_stale_temp_files();  // what writers killed mid-save left (each as large as the file)
   const int fd = dir->open_file(where.filename().string());
   if (fd < 0) return;  // missing, or refused and said so
-  if (!read_whole_file(fd, hook, &file)) {
+  if (!cache_codec::read_whole_file(fd, hook, &file)) {
     stats_.state = "unreadable";
     return;
   }

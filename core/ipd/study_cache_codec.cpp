@@ -1,10 +1,67 @@
 #include "core/ipd/study_cache_codec.h"
 
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <new>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 
 namespace ipd::cache_codec {
+
+void FileBytes::release() {
+  if (mapped_)
+    ::munmap(data_, capacity_);
+  else
+    delete[] data_;
+  data_ = nullptr, capacity_ = 0, size = 0, mapped_ = false;
+}
+
+bool FileBytes::allocate(size_t n) {
+  constexpr size_t kHuge = size_t{2} << 20;
+  if (n >= 4 * kHuge) {
+    const size_t rounded = (n + kHuge - 1) / kHuge * kHuge;
+    void* p = ::mmap(nullptr, rounded, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p != MAP_FAILED) {
+      ::madvise(p, rounded, MADV_HUGEPAGE);  // a hint: without it the pages are small, nothing else changes
+      data_ = static_cast<char*>(p), capacity_ = rounded, mapped_ = true;
+      return true;
+    }
+  }
+  data_ = new (std::nothrow) char[n];
+  capacity_ = n;
+  return data_ != nullptr;
+}
+
+bool read_whole_file(int fd, const std::function<void(const char*)>& hook, FileBytes* file) {
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) {
+    ::close(fd);
+    return false;
+  }
+  if (hook) hook("opened");
+  const size_t want = static_cast<size_t>(st.st_size);
+  if (!file->allocate(want > 0 ? want : 1)) {
+    ::close(fd);
+    return false;
+  }
+  size_t done = 0;
+  bool read_error = false;
+  while (done < want) {
+    const ssize_t n = ::read(fd, file->data() + done, want - done);
+    if (n < 0 && errno == EINTR) continue;
+    read_error = n < 0;
+    if (n <= 0) break;
+    done += static_cast<size_t>(n);
+  }
+  ::close(fd);
+  file->size = done;
+  return !read_error;
+}
 
 void write_label_file(Writer& w, const LabelFile& f) {
   w.pod<std::uint8_t>(f.exists);
