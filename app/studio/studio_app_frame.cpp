@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "app/studio/studio_app.h"
+#include "core/util/number_text.h"
 
 #include <nlohmann/json.hpp>
 
@@ -32,6 +33,14 @@ std::string describe_pairs_file(const std::optional<std::string>& text) {
   }
   constexpr size_t kShown = 400;
   return what + ": " + (text->size() > kShown ? text->substr(0, kShown) + "..." : *text);
+}
+
+// How far an open got, as the opening view's bar and the status line of a first look both say it: "62,464 of
+// 120,000 label files" ("registrations" for that stage), and the time left when it is known.
+std::string progress_text(const OpenProgress& p) {
+  const std::string what = p.stage == "registration" ? "registrations" : p.stage;
+  return fmt::format("{} of {} {}{}", grouped_thousands(p.done), grouped_thousands(p.total), what,
+                     p.eta_s >= 0 ? fmt::format(", about {:.0f} s left", std::ceil(p.eta_s)) : std::string());
 }
 
 }  // namespace
@@ -132,7 +141,7 @@ ui::StudyView StudioApp::study_view() {
     v.conflicts.push_back({c.job.path, c.message, describe_pairs_file(c.job.contents), describe_pairs_file(c.on_disk)});
   v.busy = !worker_.idle();
   if (const OpenProgress p = worker_.progress(); p.opening && p.first_look)
-    v.loading = p.total > 0 ? fmt::format("first scenes shown; loading the study: {} / {} {}", p.done, p.total, p.stage)
+    v.loading = p.total > 0 ? "first scenes shown; loading the study: " + progress_text(p)
                             : "first scenes shown; loading the study...";
   const Session* s = snap_ ? snap_->session.get() : nullptr;
   if (!s) return v;
@@ -161,11 +170,10 @@ void StudioApp::draw_opening(const OpenProgress& p, float h) {
   ImGui::Dummy({0, h * 0.35f});
   ImGui::Text("Opening %s", o_.study.c_str());
   const float f = p.total > 0 ? float(p.done) / p.total : 0.0f;
-  const std::string label = p.total > 0 ? fmt::format("{} / {} {}", p.done, p.total, p.stage) : p.stage;
+  const std::string label = p.total > 0 ? progress_text(p) : p.stage;
   ImGui::ProgressBar(f, {std::min(600.0f, ImGui::GetContentRegionAvail().x), 0}, label.c_str());
-  ImGui::Text("%s, %.1f s%s",
-              p.stage == "registration" ? "registering rocks (cached results are read back)" : "reading", p.elapsed_s,
-              p.eta_s >= 0 ? fmt::format(", about {:.0f} s left", std::ceil(p.eta_s)).c_str() : "");
+  ImGui::Text("%s, %.1f s so far",
+              p.stage == "registration" ? "registering rocks (cached results are read back)" : "reading", p.elapsed_s);
   ImGui::Dummy({0, std::max(0.0f, h * 0.65f - 3 * ImGui::GetTextLineHeightWithSpacing())});
 }
 
