@@ -246,7 +246,6 @@ std::vector<ModelInfo> chosen_models(const Study& study, const std::vector<std::
   return models;
 }
 
-// One cell per (model, column) from the columns' rock pairs; a column not shown was never paired and has no value.
 // The performance values of every (model, domain, scene) the shown cells read, each computed once and on every
 // core: a domain's values for a model are the same in each domain pair it is in (two of three pairs in a
 // three-domain table, every candidate's pair for a ranking's reference).
@@ -284,6 +283,7 @@ class PerformanceValueTable {
   std::vector<std::vector<double>> values_;
 };
 
+// One cell per (model, column) from the columns' rock pairs; a column not shown was never paired and has no value.
 void add_cells(const StudyLabels& labels, const std::vector<bool>& shown, int threads, CrossTable* t) {
   const Study& study = labels.study;
   std::set<std::string> warned;
