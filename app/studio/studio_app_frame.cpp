@@ -199,7 +199,12 @@ void StudioApp::draw_study(ui::StudyView& v, float h, ui::UiCommands& cmd) {
   follow_selected_partner();
   ui_.blink_drawn = ui::BlinkDrawn{};  // set again when the blink view is drawn
   ui::draw_main_columns(
-      v, ui_, left, right, h, [&] { ui::draw_stats_panels(v, v.stats, stats_.computing(), stats_ui_, ui_, cmd); }, cmd);
+      v, ui_, left, right, h,
+      [&] {
+        // A first look's statistics are of the scenes read so far: marked as being updated until the study is in.
+        ui::draw_stats_panels(v, v.stats, stats_.computing() || !v.loading.empty(), stats_ui_, ui_, cmd);
+      },
+      cmd);
 }
 
 void StudioApp::scene_pictures(const Session& s, ui::Picture* left, ui::Picture* right) {

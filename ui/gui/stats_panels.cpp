@@ -124,10 +124,10 @@ void cell_interval_tooltip(const SessionStatistics* stats, const std::string& mo
 
 namespace {
 
-void draw_compare(const StudyView& v, const SessionStatistics* stats, StatsPanelState& st) {
+void draw_compare(const StudyView& v, const SessionStatistics* stats, bool computing, StatsPanelState& st) {
   const auto& domains = v.session->study().domains;
   if (domains.size() < 3) return;
-  ImGui::TextUnformatted("Which renderer is closer?");
+  ImGui::TextUnformatted(computing ? "Which renderer is closer? (updating...)" : "Which renderer is closer?");
   auto combo = [&](const char* label, int* index) {
     ImGui::SetNextItemWidth(110);
     if (ImGui::BeginCombo(label, domains[std::min<size_t>(*index, domains.size() - 1)].name.c_str())) {
@@ -286,7 +286,7 @@ void draw_stats_panels(const StudyView& v, const SessionStatistics* stats, bool 
   ImGui::Separator();
   draw_size_breakdown(stats, computing);
   ImGui::Separator();
-  draw_compare(v, stats, st);
+  draw_compare(v, stats, computing, st);
 }
 
 }  // namespace ipd::ui

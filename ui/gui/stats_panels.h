@@ -29,7 +29,8 @@ std::string compare_delta_line(const Comparison& r);
 // A tooltip with the cell's interval when the last item is hovered (nothing while unknown).
 void cell_interval_tooltip(const SessionStatistics* stats, const std::string& model, int pair);
 
-// `stats` may be null (first computation running) or older than the view (`computing` is then true).
+// `stats` may be null (first computation running) or older than the view, or of a first look's scenes while the
+// study loads (`computing` is then true: each panel says "updating...").
 void draw_stats_panels(const StudyView& v, const SessionStatistics* stats, bool computing, StatsPanelState& st,
                        UiState& ui, UiCommands& out);
 
