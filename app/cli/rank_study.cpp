@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
+#include "app/cli/rank_reuse.h"
 #include "core/util/number_text.h"
 
 namespace ipd::cli {
@@ -26,6 +29,22 @@ std::string ranked_model(const Study& study, const std::vector<std::string>& mod
   throw StudyError(fmt::format("{}: give --model: {} model{} trained on '{}' (the study's models: {})", study.root,
                                on_ref.empty() ? "no" : "more than one", on_ref.empty() ? " is" : "s are",
                                quoted_for_message(ref), list.empty() ? "none" : list));
+}
+
+// "24 candidates as the last ranking left them (their label and prediction files unchanged); 1 read and computed:
+// ambient-100", or "all 25 candidates as ...".
+std::string reuse_note(const std::vector<std::string>& reused, const std::vector<std::string>& candidates) {
+  std::vector<std::string> computed;
+  for (const std::string& c : candidates)
+    if (std::find(reused.begin(), reused.end(), c) == reused.end()) computed.push_back(quoted_for_message(c));
+  const std::string kept = fmt::format("{} as the last ranking left {} (their label and prediction files unchanged)",
+                                       reused.size() == 1 ? "candidate" : "candidates", reused.size() == 1 ? "it" : "them");
+  if (computed.empty()) return fmt::format("all {} {}", reused.size(), kept);
+  const size_t shown = std::min<size_t>(computed.size(), 3);
+  std::string names;
+  for (size_t k = 0; k < shown; ++k) names += (k ? ", " : "") + computed[k];
+  if (computed.size() > shown) names += fmt::format(" and {} more", computed.size() - shown);
+  return fmt::format("{} {}; {} read and computed: {}", reused.size(), kept, computed.size(), names);
 }
 
 }  // namespace
@@ -59,17 +78,33 @@ std::optional<RankedStudy> rank_study(const RankArgs& args, const std::function<
   so.models = {ro.model};
   so.domains = ro.domains.candidates;
   so.domains.insert(so.domains.begin(), ro.domains.ref);
+  const RegistrationOptions registration = registration_options(study, so);
+  ro.compare.bootstrap = run_bootstrap(so, registration);
+  ro.compare.permutations = args.permutations;
+  if (const auto e = ro.validate(); !e.empty()) throw CLI::ValidationError(e);
+
+  // What the last ranking of these settings kept: the candidates whose files are unchanged are not read again.
+  const RankCache cache(so.no_cache ? std::string() : study.root,
+                        rank_cache_settings(study, ro.model, ro.domains.ref, registration, ro.compare.bootstrap));
+  std::optional<RankReusePlan> plan;
+  if (cache.enabled()) plan = plan_rank_reuse(study, so, ro, registration, cache.settings());
+  if (plan) {
+    std::vector<std::string> reused;
+    if (auto out = rank_from_kept(*plan, cache, &reused)) {
+      fmt::print(stderr, "note: {}\n", reuse_note(reused, ro.domains.candidates));
+      return out;
+    }
+  }
+
   // Registration is done for the (ref, candidate) pairs the ranking reads, never candidate against candidate.
   const ShownPairs shown{false, ranked_pairs(ro.domains), true};
   auto loaded = load_study_table(study, so, true, shown);
   if (!loaded) return std::nullopt;
-  ro.compare.bootstrap = loaded->bootstrap;
-  ro.compare.permutations = args.permutations;
-  if (const auto e = ro.validate(); !e.empty()) throw CLI::ValidationError(e);
   RankedStudy out{std::move(*loaded), {}, {}};
   out.ranking = rank_candidates(out.loaded.labels, out.loaded.table, ro);
   // Which label files and hand edits the numbers come from: over the (ref, candidate) pairs the ranking read.
   out.provenance = table_provenance(out.loaded.table, out.loaded.labels, shown.only);
+  if (plan) keep_whole_ranking(*plan, cache, out);
   return out;
 }
 

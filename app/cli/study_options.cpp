@@ -132,6 +132,21 @@ Study open_study_with_conf(const StudyOptions& o) {
   return study;
 }
 
+RegistrationOptions registration_options(const Study& study, const StudyOptions& o) {
+  RegistrationOptions r = study.config.registration;
+  if (!o.method.empty()) parse_method(o.method, &r.method);
+  if (o.seed) r.seed = *o.seed;
+  if (o.budget_ms == 0) r.time_budget_ms.reset();
+  if (o.budget_ms > 0) r.time_budget_ms = o.budget_ms;
+  return r;
+}
+
+BootstrapOptions run_bootstrap(const StudyOptions& o, const RegistrationOptions& registration) {
+  BootstrapOptions b = o.bootstrap_options();
+  if (!o.seed) b.seed = registration.seed;
+  return b;
+}
+
 std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_intervals, const ShownPairs& shown) {
   return load_study_table(open_study_with_conf(o), o, with_intervals, shown);
 }
@@ -140,7 +155,7 @@ std::optional<LoadedStudy> load_study_table(Study study, const StudyOptions& o, 
                                             const ShownPairs& shown) {
   // The GUI's parsed-study cache (study_cache.h): unchanged label files and registrations are read back.
   StudyCache parsed(o.no_cache ? std::string() : parsed_study_cache_path(study.root), study.root);
-  LoadedStudy out{parsed.load_labels(study), {}, study.config.conf_threshold, 0, {}};
+  LoadedStudy out{parsed.load_labels(study), {}, study.config.conf_threshold, 0, {}, {}};
   if (report_label_errors(out.labels.errors, o.skip_bad_lines)) return std::nullopt;
   require_choices(out.labels);
   report_class_notes(out.labels);
@@ -150,11 +165,7 @@ std::optional<LoadedStudy> load_study_table(Study study, const StudyOptions& o, 
   opt.models = o.models;
   opt.domains = o.domains;
   opt.threads = o.threads;
-  opt.registration = study.config.registration;
-  if (!o.method.empty()) parse_method(o.method, &opt.registration.method);
-  if (o.seed) opt.registration.seed = *o.seed;
-  if (o.budget_ms == 0) opt.registration.time_budget_ms.reset();
-  if (o.budget_ms > 0) opt.registration.time_budget_ms = o.budget_ms;
+  opt.registration = registration_options(study, o);
   out.registration_budget_ms = opt.registration.time_budget_ms.value_or(0);
   opt.cache_dir = registration.dir();
   opt.registration_cache = &registration;
@@ -174,8 +185,8 @@ std::optional<LoadedStudy> load_study_table(Study study, const StudyOptions& o, 
                              o.skip_bad_lines || shown.layout_problems_are_warnings, &out.table.warnings))
     return std::nullopt;
   for (const auto& w : out.table.warnings) fmt::print(stderr, "warning: {}\n", w);
-  out.bootstrap = o.bootstrap_options();
-  if (!o.seed) out.bootstrap.seed = opt.registration.seed;
+  out.bootstrap = run_bootstrap(o, opt.registration);
+  out.fingerprint_checkpoints = parsed.fingerprint_checkpoints();
   if (with_intervals && o.bootstrap > 0) add_confidence_intervals(&out.table, out.bootstrap, o.threads);
   return out;
 }

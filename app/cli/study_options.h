@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/ipd/ipd.h"
+#include "core/ipd/label_fingerprint.h"
 #include "core/stats/statistics.h"
 
 namespace ipd::cli {
@@ -53,6 +54,8 @@ struct LoadedStudy {
   double conf_threshold = 0;
   double registration_budget_ms = 0;  // the time budget each registration had (0: none)
   BootstrapOptions bootstrap;         // as used: the seed is --seed, else the study's registration seed
+  // The label set's fingerprint's state after each domain, as the parsed-study cache keeps it (label_fingerprint.h).
+  std::vector<FingerprintCheckpoint> fingerprint_checkpoints;
 };
 // The domain pairs a command's output reads: only those are registered and computed.
 struct ShownPairs {
@@ -65,6 +68,11 @@ std::optional<LoadedStudy> load_study_table(const StudyOptions& o, bool with_int
 // The same on a study the command has opened already (open_study_with_conf).
 std::optional<LoadedStudy> load_study_table(Study study, const StudyOptions& o, bool with_intervals,
                                             const ShownPairs& shown);
+
+// The registration options of a run: study.yaml's, with --method, --seed and --budget-ms applied.
+RegistrationOptions registration_options(const Study& study, const StudyOptions& o);
+// The bootstrap of a run's intervals (--bootstrap, --ci): its seed is --seed, else the registration's.
+BootstrapOptions run_bootstrap(const StudyOptions& o, const RegistrationOptions& registration);
 
 // Opens the study and applies --conf, --class and --class-map (for commands that read labels themselves).
 Study open_study_with_conf(const StudyOptions& o);

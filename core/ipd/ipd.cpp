@@ -42,7 +42,7 @@ bool StudyLabels::has_predictions(const std::string& d, const std::string& m) co
 }
 
 StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress,
-                        const LabelReuse& reuse) {
+                        const LabelReuse& reuse, const std::vector<std::string>& only_domains) {
   StudyLabels out;
   out.study = study;
   const int cls = study.config.rock_class;
@@ -56,10 +56,14 @@ StudyLabels load_labels(const Study& study, const std::function<void(int done, i
   static const std::string kGroundTruth;  // the model of a GT file
   std::vector<Job> jobs;
   size_t files = 0;
-  for (const auto& d : study.domains) files += d.stems.size() * (1 + d.models.size());
+  const auto read = [&](const Domain& d) {
+    return only_domains.empty() || std::find(only_domains.begin(), only_domains.end(), d.name) != only_domains.end();
+  };
+  for (const auto& d : study.domains) files += read(d) ? d.stems.size() * (1 + d.models.size()) : 0;
   jobs.reserve(files);
   // Stems are listed in order: each slot goes in at its map's end, each path is its folder's plus the stem.
   for (const auto& d : study.domains) {
+    if (!read(d)) continue;
     auto add = [&](std::map<std::string, LabelFile>& slots, const std::string& folder, const std::string& relative,
                    const std::string* model) {
       for (const auto& stem : d.stems)

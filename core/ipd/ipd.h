@@ -48,9 +48,11 @@ using LabelReuse = std::function<bool(const std::string& domain, const std::stri
                                       const std::string& path, LabelFile* out)>;
 
 // Reads every label and prediction file (class filter and confidence threshold from the study config).
-// `progress` (optional) is called from worker threads with files read so far.
+// `progress` (optional) is called from worker threads with files read so far. `only_domains` (empty: every
+// domain) reads those domains' files alone, the study staying whole (its other domains' scenes still known): a
+// ranking run again reads the reference and the candidates it computes, nothing else (rank_cache.h).
 StudyLabels load_labels(const Study& study, const std::function<void(int done, int total)>& progress = {},
-                        const LabelReuse& reuse = {});
+                        const LabelReuse& reuse = {}, const std::vector<std::string>& only_domains = {});
 
 // Every number is about one class (as pycocotools evaluates per category). Counts the GT boxes of each class;
 // when none was asked for and the ground truth holds one class, that class is chosen (predictions of others are

@@ -96,12 +96,15 @@ FileStamp stamp_of(const std::string& path) {
   return s;
 }
 
-// The study's folder as one name whichever way it was given (`big`, ./big, /tmp/big): the file belongs to the
-// folder, not to how a command line spelled it.
-static std::string same_folder_name(const std::string& study_root) {
+std::string same_folder_name(const std::string& study_root) {
   std::error_code ec;
   const fs::path abs = fs::weakly_canonical(fs::absolute(study_root, ec), ec);
   return ec || abs.empty() ? study_root : abs.string();
+}
+
+std::string study_folder_key(const std::string& study_root) {
+  const std::string name = same_folder_name(study_root);
+  return fmt::format("{:016x}", path_hash(name.data(), name.size()));
 }
 
 std::string parsed_study_cache_path(const std::string& study_root) {
@@ -109,8 +112,7 @@ std::string parsed_study_cache_path(const std::string& study_root) {
   if (dir.empty()) return "";  // no cache that can be used safely
   if (dir.filename() == ".ipd-cache") return (dir / "parsed-study.bin").string();
   // The user directory is shared by every read-only study: one file per study folder.
-  const std::string name = same_folder_name(study_root);
-  return (dir / "parsed-study" / fmt::format("{:016x}.bin", path_hash(name.data(), name.size()))).string();
+  return (dir / "parsed-study" / (study_folder_key(study_root) + ".bin")).string();
 }
 
 struct StudyCache::Contents {
@@ -369,6 +371,10 @@ RegistrationEntries StudyCache::take_registrations() { return std::move(contents
 void StudyCache::hand_registrations_to(RegistrationCache& registration) {
   registration.preload(take_registrations());
   if (!path_.empty()) registration.defer_writes();
+}
+
+const std::vector<FingerprintCheckpoint>& StudyCache::fingerprint_checkpoints() const {
+  return contents_->checkpoints;
 }
 
 void StudyCache::save(const StudyLabels& labels, const RegistrationCache& registration) {

@@ -35,6 +35,7 @@
 #include <unordered_map>
 
 #include "core/ipd/ipd.h"
+#include "core/ipd/label_fingerprint.h"
 #include "core/registration/registration_cache.h"
 
 namespace ipd {
@@ -58,6 +59,12 @@ FileStamp stamp_of(const std::string& path);
 class OpenFolder;
 // The stamp of the entry `name` of an open folder (contained_file.h), examined without following it.
 FileStamp stamp_at(const OpenFolder& folder, const std::string& name);
+
+// The study's folder as one name whichever way it was given (`big`, ./big, /tmp/big): a cache belongs to the
+// folder, not to how a command line spelled it.
+std::string same_folder_name(const std::string& study_root);
+// 16 hex digits naming that folder in the user cache directory, which every read-only study shares.
+std::string study_folder_key(const std::string& study_root);
 
 // STUDY/.ipd-cache/parsed-study.bin, or <user cache>/ipd-studio/parsed-study/<hash of the path>.bin.
 std::string parsed_study_cache_path(const std::string& study_root);
@@ -97,6 +104,9 @@ class StudyCache {
   void save(const StudyLabels& labels, const RegistrationCache& registration);
 
   const StudyCacheStats& stats() const { return stats_; }
+  // The label set's fingerprint's state after each domain, as load_labels left it: they belong to the fingerprint
+  // it gave (StudyLabels::label_fingerprint), and mean nothing when it gave none.
+  const std::vector<FingerprintCheckpoint>& fingerprint_checkpoints() const;
   // Called with "checked" between the check that the file's name is not a link and the rename over it
   // (tests swap a link in there).
   void set_write_hook(std::function<void(const char*)> hook) { write_hook_ = std::move(hook); }

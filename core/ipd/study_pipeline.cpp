@@ -134,13 +134,12 @@ PipelineScene pair_one(const StudyLabels& labels, const std::string& a, const st
   return s;
 }
 
-// The registration options every scene of the study is registered with.
+}  // namespace
+
 RegistrationOptions with_study_aspect(const Study& study, RegistrationOptions reg) {
   if (!reg.aspect) reg.aspect = study.aspect();
   return reg;
 }
-
-}  // namespace
 
 Problem square_pictures_problem(const Study& study, const RegistrationOptions& options) {
   Problem p;

@@ -86,6 +86,9 @@ Problem missing_predictions_problem(const Study& study, const std::string& model
 std::optional<Problem> missing_prediction_files_problem(const StudyLabels& labels, const std::string& model,
                                                         const std::string& domain);
 
+// The registration options every scene of the study is registered with: the study's aspect unless `reg` sets one.
+RegistrationOptions with_study_aspect(const Study& study, RegistrationOptions reg);
+
 // One scene's registration exactly as pair_study registers it (the study's aspect when `options` leave it at
 // 1.0; through `cache`, which may be null): for a hand-paired scene opened without it. `from_cache` may be null.
 RegistrationReport register_scene(const StudyLabels& labels, const std::string& a, const std::string& b,

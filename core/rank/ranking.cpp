@@ -16,7 +16,7 @@ namespace {
 // Why a candidate's cell has no IPD to rank; "" when it has one.
 std::string unranked_reason(const TableCell& cell, const std::string& ref, const std::string& candidate) {
   if (cell.missing_predictions) return cell.no_value_reason;  // "no predictions of det-real for hapke"
-  if (cell.per_scene.empty())
+  if (cell.scenes == 0)
     return fmt::format("shares no scenes with {} (no label file stem is in both {}/labels/ and {}/labels/)", ref, ref,
                        candidate);
   if (!cell.no_value_reason.empty()) return cell.no_value_reason;  // "no predictions at or above 0.98 in ..."
@@ -64,9 +64,9 @@ std::string RankOptions::validate() const {
   return compare.validate();
 }
 
-Ranking rank_candidates(const StudyLabels& labels, const CrossTable& table, const RankOptions& options) {
+Ranking order_candidates(const Study& study, const CrossTable& table, const RankOptions& options,
+                         const std::function<bool(const std::string& candidate)>& without_predictions) {
   if (const auto e = options.validate(); !e.empty()) throw std::invalid_argument("rank options: " + e);
-  const Study& study = labels.study;
   const auto model = std::find_if(table.models.begin(), table.models.end(),
                                   [&](const ModelInfo& m) { return m.name == options.model; });
   if (model == table.models.end())
@@ -93,11 +93,7 @@ Ranking rank_candidates(const StudyLabels& labels, const CrossTable& table, cons
     r.se = cell->se;
     r.pairs = cell->pairs;
     r.scenes = cell->scenes;
-    const size_t column =
-        static_cast<size_t>(std::find(table.columns.begin(), table.columns.end(), std::make_pair(cell->a, cell->b)) -
-                            table.columns.begin());
-    if (column < table.pairings.size())
-      r.no_predictions_at_threshold = count_predictions(labels, d, out.model, table.pairings[column]) == 0;
+    r.no_predictions_at_threshold = without_predictions(d);
     out.ranked.push_back(std::move(r));
   }
   if (out.ranked.empty()) {
@@ -108,13 +104,19 @@ Ranking rank_candidates(const StudyLabels& labels, const CrossTable& table, cons
   }
   std::stable_sort(out.ranked.begin(), out.ranked.end(),
                    [](const RankedCandidate& x, const RankedCandidate& y) { return x.ipd < y.ipd; });
+  for (size_t k = 0; k < out.ranked.size(); ++k) out.ranked[k].rank = static_cast<int>(k) + 1;
+  return out;
+}
+
+void compare_with_best(Ranking* ranking, const CompareWithBest& compare) {
+  Ranking& out = *ranking;
+  if (out.ranked.empty()) return;
   const std::string& best = out.ranked.front().domain;
   std::vector<double> raw(out.ranked.size(), std::nan(""));
-  for (size_t k = 0; k < out.ranked.size(); ++k) out.ranked[k].rank = static_cast<int>(k) + 1;
   // Each comparison draws from its own seeded stream (keyed by its domains): any order gives the same numbers.
-  parallel_for(out.ranked.size() - 1, options.threads, [&](size_t i) {
+  parallel_for(out.ranked.size() - 1, out.options.threads, [&](size_t i) {
     RankedCandidate& r = out.ranked[i + 1];
-    r.vs_best = compare_renderers(table, out.model, out.ref, r.domain, best, options.compare);
+    r.vs_best = compare(r.domain, best);
     raw[i + 1] = r.vs_best->result.p_value;
   });
   const std::vector<double> adjusted = holm_adjusted(raw);
@@ -124,8 +126,21 @@ Ranking rank_candidates(const StudyLabels& labels, const CrossTable& table, cons
     r.p_holm = adjusted[k];
     // Not shown to differ from the best: the best itself, and every candidate compare's verdict rule, on the Holm
     // p-value, cannot tell from it (an untested one included: nothing separates it from the best).
-    r.in_best_group = k == 0 || !significant_difference(r.vs_best->result, r.p_holm, options.level);
+    r.in_best_group = k == 0 || !significant_difference(r.vs_best->result, r.p_holm, out.options.level);
   }
+}
+
+Ranking rank_candidates(const StudyLabels& labels, const CrossTable& table, const RankOptions& options) {
+  Ranking out = order_candidates(labels.study, table, options, [&](const std::string& d) {
+    const TableCell* cell = table.cell(options.model, options.domains.ref, d);
+    const size_t column =
+        static_cast<size_t>(std::find(table.columns.begin(), table.columns.end(), std::make_pair(cell->a, cell->b)) -
+                            table.columns.begin());
+    return column < table.pairings.size() && count_predictions(labels, d, options.model, table.pairings[column]) == 0;
+  });
+  compare_with_best(&out, [&](const std::string& candidate, const std::string& best) {
+    return compare_renderers(table, out.model, out.ref, candidate, best, options.compare);
+  });
   return out;
 }
 

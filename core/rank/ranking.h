@@ -8,6 +8,7 @@
 // ranked_pairs registers those and no candidate-vs-candidate pair), so a cell's IPD and interval are `ipd table`'s.
 #pragma once
 
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -80,5 +81,15 @@ struct Ranking {
 // added). A candidate without a number is unranked with its reason and the rest are ranked; throws StudyError
 // when no candidate can be ranked (every reason listed) or the model is not in the table.
 Ranking rank_candidates(const StudyLabels& labels, const CrossTable& table, const RankOptions& options);
+
+// rank_candidates in its two steps, for a ranking whose cells and comparisons may come from an earlier run
+// (rank_cache.h). First the order: each candidate's cell (no scenes needed), best first, the unranked with their
+// reasons; `without_predictions(candidate)` says whether it has no prediction left at the threshold.
+Ranking order_candidates(const Study& study, const CrossTable& table, const RankOptions& options,
+                         const std::function<bool(const std::string& candidate)>& without_predictions);
+// Then each candidate's comparison with the best (`compare(candidate, best)`, called on options.threads cores),
+// the Holm correction over them and the group not distinguishable from the best.
+using CompareWithBest = std::function<RendererComparison(const std::string& candidate, const std::string& best)>;
+void compare_with_best(Ranking* ranking, const CompareWithBest& compare);
 
 }  // namespace ipd

@@ -43,25 +43,32 @@ void count_reviews(const CrossTable& table, size_t c, const StudyLabels& labels,
 }
 }  // namespace
 
-Provenance table_provenance(const CrossTable& table, const StudyLabels& labels, const DomainPairFilter& only) {
-  Provenance p;
-  for (size_t c = 0; c < table.pairings.size() && c < table.columns.size(); ++c) {
-    if (!includes_pair(only, table.columns[c].first, table.columns[c].second)) continue;
-    for (const ScenePairing& s : table.pairings[c]) {
-      p.scenes_with_stale_hand_pairs += std::any_of(s.pairs_problems.begin(), s.pairs_problems.end(),
-                                                    [](const PairsProblem& w) { return w.unusable; });
-      if (!s.fixed) continue;
-      ++p.scenes_with_hand_pairs;
-      p.pairs_set_by_hand += static_cast<int>(s.pairs.size());
-      p.rocks_excluded += static_cast<int>(s.excluded_a.size() + s.excluded_b.size());
-      p.edited_scenes.push_back({table.columns[c].first, table.columns[c].second, s.stem});
-    }
-    count_reviews(table, c, labels, &p);
+void add_column_provenance(const CrossTable& table, size_t c, const StudyLabels& labels, Provenance* p) {
+  for (const ScenePairing& s : table.pairings[c]) {
+    p->scenes_with_stale_hand_pairs += std::any_of(s.pairs_problems.begin(), s.pairs_problems.end(),
+                                                   [](const PairsProblem& w) { return w.unusable; });
+    if (!s.fixed) continue;
+    ++p->scenes_with_hand_pairs;
+    p->pairs_set_by_hand += static_cast<int>(s.pairs.size());
+    p->rocks_excluded += static_cast<int>(s.excluded_a.size() + s.excluded_b.size());
+    p->edited_scenes.push_back({table.columns[c].first, table.columns[c].second, s.stem});
   }
+  count_reviews(table, c, labels, p);
+}
+
+Provenance labels_provenance(const StudyLabels& labels) {
+  Provenance p;
   p.label_fingerprint = label_set_fingerprint_of(labels);
   p.class_name = provenance_class(labels);
   if (!p.class_name.empty()) p.class_maps = labels.study.classes.notes;
   p.segment = labels.study.config.task == Task::kSegment;
+  return p;
+}
+
+Provenance table_provenance(const CrossTable& table, const StudyLabels& labels, const DomainPairFilter& only) {
+  Provenance p = labels_provenance(labels);
+  for (size_t c = 0; c < table.pairings.size() && c < table.columns.size(); ++c)
+    if (includes_pair(only, table.columns[c].first, table.columns[c].second)) add_column_provenance(table, c, labels, &p);
   return p;
 }
 

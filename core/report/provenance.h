@@ -50,6 +50,10 @@ std::string label_set_fingerprint_of(const StudyLabels& labels);
 // The hand-pair counts of `table`, the review marks of its domain pairs (those of `only`, when given) and the
 // fingerprint of the labels. Throws StudyError naming a review file that can't be read.
 Provenance table_provenance(const CrossTable& table, const StudyLabels& labels, const DomainPairFilter& only = {});
+// table_provenance's two parts: what comes from the labels alone (the fingerprint, the class and its maps, the
+// task), and the hand pairs and review marks of the table's column `c`, added to `p`.
+Provenance labels_provenance(const StudyLabels& labels);
+void add_column_provenance(const CrossTable& table, size_t c, const StudyLabels& labels, Provenance* p);
 // The same for ipd-studio's session over every domain pair (or those of `only`): its edited scenes (edits not
 // yet saved included), as `ipd table` would count them once they are saved.
 Provenance session_provenance(const Session& session, const DomainPairFilter& only = {});

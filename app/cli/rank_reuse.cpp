@@ -1,0 +1,300 @@
+#include "app/cli/rank_reuse.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "app/cli/cli_common.h"
+#include "core/ipd/study_layout.h"
+#include "core/registration/registration_cache.h"
+#include "core/report/provenance.h"
+#include "core/util/errors.h"
+
+namespace ipd::cli {
+
+namespace {
+
+// (x, y) the way round a table holds it: in the study's domain order.
+std::pair<std::string, std::string> table_pair(const Study& study, const std::string& x, const std::string& y) {
+  for (const Domain& d : study.domains) {
+    if (d.name == x) return {x, y};
+    if (d.name == y) return {y, x};
+  }
+  return {x, y};
+}
+
+size_t column_of(const CrossTable& t, const std::pair<std::string, std::string>& pair) {
+  return static_cast<size_t>(std::find(t.columns.begin(), t.columns.end(), pair) - t.columns.begin());
+}
+
+PairProvenance pair_provenance(const CrossTable& table, size_t column, const StudyLabels& labels) {
+  Provenance p;
+  if (column < table.pairings.size()) add_column_provenance(table, column, labels, &p);
+  PairProvenance out{p.scenes_with_hand_pairs, p.pairs_set_by_hand, p.rocks_excluded, p.scenes_reviewed,
+                     p.pairs_checked,          p.scenes_with_stale_hand_pairs, {}};
+  for (const EditedScene& e : p.edited_scenes) out.edited_stems.push_back(e.stem);
+  return out;
+}
+
+void add_pair_provenance(const PairProvenance& part, const std::pair<std::string, std::string>& pair,
+                         Provenance* p) {
+  p->scenes_with_hand_pairs += part.scenes_with_hand_pairs;
+  p->pairs_set_by_hand += part.pairs_set_by_hand;
+  p->rocks_excluded += part.rocks_excluded;
+  p->scenes_reviewed += part.scenes_reviewed;
+  p->pairs_checked += part.pairs_checked;
+  p->scenes_with_stale_hand_pairs += part.scenes_with_stale_hand_pairs;
+  for (const std::string& stem : part.edited_stems) p->edited_scenes.push_back({pair.first, pair.second, stem});
+}
+
+// The labels said nothing but numbers: no error, no class or task note or warning, no choice left to make.
+bool labels_quiet(const StudyLabels& l) {
+  return l.errors.empty() && l.class_warnings.empty() && l.class_choice_needed.empty() &&
+         l.task_needs_outlines.empty() && l.task_note.empty();
+}
+
+// A scene of `domain` without its prediction file of `model` that another domain has: a whole run warns about it
+// whenever it computes a cell with `domain` (missing_prediction_files_problem), so its cells are never taken as kept.
+bool lacks_shared_prediction_files(const Study& study, const DomainStampsMap& now, const std::string& domain,
+                                   const std::string& model) {
+  const auto& missing = now.at(domain).stems_without_predictions;
+  const auto m = missing.find(model);
+  if (m == missing.end()) return false;
+  return std::any_of(m->second.begin(), m->second.end(), [&](const std::string& stem) {
+    return std::any_of(study.domains.begin(), study.domains.end(), [&](const Domain& other) {
+      return other.name != domain && std::binary_search(other.stems.begin(), other.stems.end(), stem);
+    });
+  });
+}
+
+// The digest `domain`'s cell is kept under; "" when it is never kept.
+const std::string& inputs_of(const RankReusePlan& plan, const std::string& domain) {
+  static const std::string kNever;
+  const auto it = plan.inputs.find(domain);
+  return it == plan.inputs.end() ? kNever : it->second;
+}
+
+std::optional<KeptComparison> kept_comparison(const Ranking& ranking, const std::string& candidate,
+                                              const RankReusePlan& plan) {
+  const RankedCandidate* best = ranking.best();
+  for (const RankedCandidate& r : ranking.ranked)
+    if (r.domain == candidate && r.vs_best)
+      return KeptComparison{best->domain, inputs_of(plan, best->domain), plan.rank.compare.permutations, *r.vs_best};
+  return std::nullopt;
+}
+
+bool no_predictions_at_threshold(const Ranking& ranking, const std::string& candidate) {
+  for (const RankedCandidate& r : ranking.ranked)
+    if (r.domain == candidate) return r.no_predictions_at_threshold;
+  return false;
+}
+
+// The cells of candidates this run did not rank, kept as they were while their domain is in the study.
+void keep_other_cells(const RankRecord& old, const RankReusePlan& plan, RankRecord* record) {
+  const auto& candidates = plan.rank.domains.candidates;
+  for (const KeptCell& k : old.cells)
+    if (std::find(candidates.begin(), candidates.end(), k.candidate) == candidates.end() &&
+        plan.study->domain(k.candidate))
+      record->cells.push_back(k);
+}
+
+// The domains a run on kept cells reads: the reference, the candidates it computes and any domain whose files are
+// not as they were kept (what it says, a label error or a class note, is said by a whole run too).
+std::vector<std::string> domains_to_read(const RankReusePlan& plan, const RankRecord& kept,
+                                         const std::vector<std::string>& fresh) {
+  std::vector<std::string> read{plan.rank.domains.ref};
+  for (const Domain& d : plan.study->domains) {
+    const auto k = kept.domains.find(d.name);
+    const bool as_kept = k != kept.domains.end() && k->second.stamps == plan.now.at(d.name).stamps;
+    const bool computed = std::find(fresh.begin(), fresh.end(), d.name) != fresh.end();
+    if (d.name != plan.rank.domains.ref && (computed || !as_kept)) read.push_back(d.name);
+  }
+  return read;
+}
+
+// The (reference, candidate) cells of `fresh` computed on `labels` as the whole run computes them, intervals
+// included; nullopt when anything besides numbers comes of it.
+std::optional<CrossTable> compute_fresh_cells(const RankReusePlan& plan, const StudyLabels& labels,
+                                              const std::vector<std::string>& fresh) {
+  TableOptions opt;
+  opt.models = {plan.rank.model};
+  opt.domains = plan.rank.domains.candidates;
+  opt.domains.insert(opt.domains.begin(), plan.rank.domains.ref);
+  opt.threads = plan.options->threads;
+  opt.registration = plan.registration;
+  // Registered in memory: the new variants' registrations live on in their kept cells.
+  const RegistrationCache memory{std::string()};
+  opt.registration_cache = &memory;
+  for (const std::string& c : fresh) opt.only_pairs.emplace_back(plan.rank.domains.ref, c);
+  Progress progress("registering");
+  opt.progress = [&](int d, int t) { progress.update(d, t); };
+  CrossTable t = compute_cross_table(labels, opt);
+  if (!t.warnings.empty() || !t.pairs_problems.empty()) return std::nullopt;
+  std::vector<std::pair<std::string, std::string>> computed;
+  for (const auto& [a, b] : t.columns)
+    if (includes_pair(opt.only_pairs, a, b)) computed.emplace_back(a, b);
+  if (!layout_problems(labels, computed, t.models).empty()) return std::nullopt;
+  if (plan.options->bootstrap > 0) add_confidence_intervals(&t, plan.rank.compare.bootstrap, plan.options->threads);
+  return t;
+}
+
+}  // namespace
+
+std::optional<RankReusePlan> plan_rank_reuse(const Study& study, const StudyOptions& options, const RankOptions& rank,
+                                             const RegistrationOptions& registration, const std::string& settings) {
+  RankReusePlan plan;
+  plan.study = &study;
+  plan.options = &options;
+  plan.rank = rank;
+  plan.registration = registration;
+  try {
+    plan.now = stamp_domains(study, options.threads);
+    if (lacks_shared_prediction_files(study, plan.now, rank.domains.ref, rank.model)) return std::nullopt;
+    const DomainStamps& ref = plan.now.at(rank.domains.ref);
+    for (const std::string& c : rank.domains.candidates) {
+      if (lacks_shared_prediction_files(study, plan.now, c, rank.model)) continue;  // no inputs: never kept
+      const auto [a, b] = table_pair(study, rank.domains.ref, c);
+      plan.inputs[c] = rank_cell_inputs(settings, a == c ? plan.now.at(c) : ref, a == c ? ref : plan.now.at(c), a, b,
+                                        pair_file_stamps(study, a, b));
+    }
+  } catch (const std::exception&) {
+    return std::nullopt;  // a link or an unreadable folder: the whole run reads the study and says what it is
+  }
+  return plan;
+}
+
+std::optional<RankedStudy> rank_from_kept(const RankReusePlan& plan, const RankCache& cache,
+                                          std::vector<std::string>* reused_names) {
+  const Study& study = *plan.study;
+  const RankOptions& ro = plan.rank;
+  const std::string& ref = ro.domains.ref;
+  const RankRecord& kept = cache.record();
+  std::map<std::string, const KeptCell*> reused;
+  std::vector<std::string> fresh;
+  for (const std::string& c : ro.domains.candidates) {
+    const auto inputs = plan.inputs.find(c);
+    if (const KeptCell* k = inputs == plan.inputs.end() ? nullptr : cache.cell(c, inputs->second))
+      reused[c] = k;
+    else
+      fresh.push_back(c);
+  }
+  if (reused.empty()) return std::nullopt;
+  try {
+    StudyLabels labels = load_labels(study, {}, {}, domains_to_read(plan, kept, fresh));
+    if (!labels_quiet(labels)) return std::nullopt;
+    std::optional<CrossTable> computed;
+    if (!fresh.empty() && !(computed = compute_fresh_cells(plan, labels, fresh))) return std::nullopt;
+
+    // The ranking's table: one column a candidate, each cell computed now or as kept (its scenes read when a
+    // comparison needs them).
+    CrossTable table;
+    for (const ModelInfo& m : study.models)
+      if (m.name == ro.model) table.models.push_back(m);
+    for (const std::string& c : ro.domains.candidates) {
+      table.columns.push_back(table_pair(study, ref, c));
+      const auto k = reused.find(c);
+      table.cells.push_back(k != reused.end() ? k->second->cell : *computed->cell(ro.model, ref, c));
+    }
+    const ResumedFingerprint fingerprint =
+        label_set_fingerprint(study, kept.checkpoints, [&](const std::string& d) {
+          const auto k = kept.domains.find(d);
+          return k != kept.domains.end() && k->second.gt_stamps == plan.now.at(d).gt_stamps;
+        });
+    labels.label_fingerprint = fingerprint.fingerprint;
+
+    Ranking ranking = order_candidates(study, table, ro, [&](const std::string& c) {
+      if (const auto k = reused.find(c); k != reused.end()) return k->second->no_predictions_at_threshold;
+      const size_t column = column_of(*computed, table_pair(study, ref, c));
+      return count_predictions(labels, c, ro.model, computed->pairings.at(column)) == 0;
+    });
+    // A kept comparison holds while it was with this best, as it is now, and the same number of permutations.
+    const std::string best = ranking.ranked.front().domain;
+    std::map<std::string, const KeptComparison*> kept_vs_best;
+    for (const auto& [c, k] : reused)
+      if (k->vs_best && k->vs_best->best == best && !k->vs_best->best_inputs.empty() && k->vs_best->best_inputs == inputs_of(plan, best) &&
+          k->vs_best->permutations == ro.compare.permutations)
+        kept_vs_best[c] = &*k->vs_best;
+    auto with_scenes = [&](const std::string& d) {
+      TableCell& cell = table.cells[static_cast<size_t>(
+          std::find(ro.domains.candidates.begin(), ro.domains.candidates.end(), d) - ro.domains.candidates.begin())];
+      if (!cell.per_scene.empty() || cell.scenes == 0) return true;
+      auto scenes = cache.scenes(*reused.at(d));
+      if (scenes) cell.per_scene = std::move(*scenes);
+      return scenes.has_value();
+    };
+    bool compare_now = false;
+    for (size_t k = 1; k < ranking.ranked.size(); ++k)
+      if (!kept_vs_best.count(ranking.ranked[k].domain)) {
+        if (!with_scenes(ranking.ranked[k].domain)) return std::nullopt;
+        compare_now = true;
+      }
+    if (compare_now && !with_scenes(best)) return std::nullopt;
+    compare_with_best(&ranking, [&](const std::string& c, const std::string& b) {
+      if (const auto k = kept_vs_best.find(c); k != kept_vs_best.end()) return k->second->comparison;
+      return compare_renderers(table, ro.model, ref, c, b, ro.compare);
+    });
+
+    // Provenance: the labels' part, then each candidate's pair in the order a table's columns have them.
+    RankRecord record;
+    std::map<std::string, PairProvenance> parts;
+    for (const std::string& c : ro.domains.candidates) {
+      const auto k = reused.find(c);
+      parts[c] = k != reused.end() ? k->second->provenance
+                                   : pair_provenance(*computed, column_of(*computed, table_pair(study, ref, c)), labels);
+      KeptCell cell = k != reused.end() ? *k->second : KeptCell{c, inputs_of(plan, c), *computed->cell(ro.model, ref, c),
+                                                               no_predictions_at_threshold(ranking, c), parts[c], {}};
+      if (k != reused.end()) cell.cell.per_scene.clear();  // its scenes file is there already
+      cell.vs_best = kept_comparison(ranking, c, plan);
+      if (!cell.inputs.empty()) record.cells.push_back(std::move(cell));
+    }
+    Provenance provenance = labels_provenance(labels);
+    for (const Domain& d : study.domains)
+      if (parts.count(d.name)) add_pair_provenance(parts[d.name], table_pair(study, ref, d.name), &provenance);
+
+    report_class_notes(labels);
+    record.fingerprint = fingerprint.fingerprint;
+    record.checkpoints = fingerprint.checkpoints;
+    record.domains = plan.now;
+    keep_other_cells(kept, plan, &record);
+    cache.save(record);
+    for (const auto& [c, k] : reused) reused_names->push_back(c);
+
+    RankedStudy out;
+    out.loaded.labels = std::move(labels);
+    out.loaded.table = std::move(table);
+    out.loaded.conf_threshold = study.config.conf_threshold;
+    out.loaded.registration_budget_ms = plan.registration.time_budget_ms.value_or(0);
+    out.loaded.bootstrap = ro.compare.bootstrap;
+    out.ranking = std::move(ranking);
+    out.provenance = std::move(provenance);
+    return out;
+  } catch (const StudyError&) {
+    return std::nullopt;  // the whole run meets it again and says it
+  } catch (const IoError&) {
+    return std::nullopt;
+  }
+}
+
+void keep_whole_ranking(const RankReusePlan& plan, const RankCache& cache, const RankedStudy& ranked) {
+  const LoadedStudy& l = ranked.loaded;
+  if (!labels_quiet(l.labels) || !l.table.warnings.empty() || !l.table.pairs_problems.empty() ||
+      l.labels.label_fingerprint.empty())
+    return;
+  const std::string& ref = plan.rank.domains.ref;
+  RankRecord record;
+  record.fingerprint = l.labels.label_fingerprint;
+  record.checkpoints = l.fingerprint_checkpoints;
+  record.domains = plan.now;
+  for (const std::string& c : plan.rank.domains.candidates) {
+    const TableCell* cell = l.table.cell(plan.rank.model, ref, c);
+    if (!cell) return;
+    const size_t column = column_of(l.table, table_pair(*plan.study, ref, c));
+    if (inputs_of(plan, c).empty()) continue;
+    record.cells.push_back({c, inputs_of(plan, c), *cell, no_predictions_at_threshold(ranked.ranking, c),
+                            pair_provenance(l.table, column, l.labels), kept_comparison(ranked.ranking, c, plan)});
+  }
+  keep_other_cells(cache.record(), plan, &record);
+  cache.save(record);
+}
+
+}  // namespace ipd::cli
