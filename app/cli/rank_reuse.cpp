@@ -30,14 +30,18 @@ size_t column_of(const CrossTable& t, const std::pair<std::string, std::string>&
 PairProvenance pair_provenance(const CrossTable& table, size_t column, const StudyLabels& labels) {
   Provenance p;
   if (column < table.pairings.size()) add_column_provenance(table, column, labels, &p);
-  PairProvenance out{p.scenes_with_hand_pairs, p.pairs_set_by_hand, p.rocks_excluded, p.scenes_reviewed,
-                     p.pairs_checked,          p.scenes_with_stale_hand_pairs, {}};
+  PairProvenance out{p.scenes_with_hand_pairs,
+                     p.pairs_set_by_hand,
+                     p.rocks_excluded,
+                     p.scenes_reviewed,
+                     p.pairs_checked,
+                     p.scenes_with_stale_hand_pairs,
+                     {}};
   for (const EditedScene& e : p.edited_scenes) out.edited_stems.push_back(e.stem);
   return out;
 }
 
-void add_pair_provenance(const PairProvenance& part, const std::pair<std::string, std::string>& pair,
-                         Provenance* p) {
+void add_pair_provenance(const PairProvenance& part, const std::pair<std::string, std::string>& pair, Provenance* p) {
   p->scenes_with_hand_pairs += part.scenes_with_hand_pairs;
   p->pairs_set_by_hand += part.pairs_set_by_hand;
   p->rocks_excluded += part.rocks_excluded;
@@ -53,21 +57,7 @@ bool labels_quiet(const StudyLabels& l) {
          l.task_needs_outlines.empty() && l.task_note.empty();
 }
 
-// A scene of `domain` without its prediction file of `model` that another domain has: a whole run warns about it
-// whenever it computes a cell with `domain` (missing_prediction_files_problem), so its cells are never taken as kept.
-bool lacks_shared_prediction_files(const Study& study, const DomainStampsMap& now, const std::string& domain,
-                                   const std::string& model) {
-  const auto& missing = now.at(domain).stems_without_predictions;
-  const auto m = missing.find(model);
-  if (m == missing.end()) return false;
-  return std::any_of(m->second.begin(), m->second.end(), [&](const std::string& stem) {
-    return std::any_of(study.domains.begin(), study.domains.end(), [&](const Domain& other) {
-      return other.name != domain && std::binary_search(other.stems.begin(), other.stems.end(), stem);
-    });
-  });
-}
-
-// The digest `domain`'s cell is kept under; "" when it is never kept.
+// The digest `domain`'s cell is kept under; "" when the plan has none for it.
 const std::string& inputs_of(const RankReusePlan& plan, const std::string& domain) {
   static const std::string kNever;
   const auto it = plan.inputs.find(domain);
@@ -149,10 +139,8 @@ std::optional<RankReusePlan> plan_rank_reuse(const Study& study, const StudyOpti
   plan.registration = registration;
   try {
     plan.now = stamp_domains(study, options.threads);
-    if (lacks_shared_prediction_files(study, plan.now, rank.domains.ref, rank.model)) return std::nullopt;
     const DomainStamps& ref = plan.now.at(rank.domains.ref);
     for (const std::string& c : rank.domains.candidates) {
-      if (lacks_shared_prediction_files(study, plan.now, c, rank.model)) continue;  // no inputs: never kept
       const auto [a, b] = table_pair(study, rank.domains.ref, c);
       plan.inputs[c] = rank_cell_inputs(settings, a == c ? plan.now.at(c) : ref, a == c ? ref : plan.now.at(c), a, b,
                                         pair_file_stamps(study, a, b));
@@ -195,11 +183,10 @@ std::optional<RankedStudy> rank_from_kept(const RankReusePlan& plan, const RankC
       const auto k = reused.find(c);
       table.cells.push_back(k != reused.end() ? k->second->cell : *computed->cell(ro.model, ref, c));
     }
-    const ResumedFingerprint fingerprint =
-        label_set_fingerprint(study, kept.checkpoints, [&](const std::string& d) {
-          const auto k = kept.domains.find(d);
-          return k != kept.domains.end() && k->second.gt_stamps == plan.now.at(d).gt_stamps;
-        });
+    const ResumedFingerprint fingerprint = label_set_fingerprint(study, kept.checkpoints, [&](const std::string& d) {
+      const auto k = kept.domains.find(d);
+      return k != kept.domains.end() && k->second.gt_stamps == plan.now.at(d).gt_stamps;
+    });
     labels.label_fingerprint = fingerprint.fingerprint;
 
     Ranking ranking = order_candidates(study, table, ro, [&](const std::string& c) {
@@ -211,8 +198,8 @@ std::optional<RankedStudy> rank_from_kept(const RankReusePlan& plan, const RankC
     const std::string best = ranking.ranked.front().domain;
     std::map<std::string, const KeptComparison*> kept_vs_best;
     for (const auto& [c, k] : reused)
-      if (k->vs_best && k->vs_best->best == best && !k->vs_best->best_inputs.empty() && k->vs_best->best_inputs == inputs_of(plan, best) &&
-          k->vs_best->permutations == ro.compare.permutations)
+      if (k->vs_best && k->vs_best->best == best && !k->vs_best->best_inputs.empty() &&
+          k->vs_best->best_inputs == inputs_of(plan, best) && k->vs_best->permutations == ro.compare.permutations)
         kept_vs_best[c] = &*k->vs_best;
     auto with_scenes = [&](const std::string& d) {
       TableCell& cell = table.cells[static_cast<size_t>(
@@ -239,10 +226,15 @@ std::optional<RankedStudy> rank_from_kept(const RankReusePlan& plan, const RankC
     std::map<std::string, PairProvenance> parts;
     for (const std::string& c : ro.domains.candidates) {
       const auto k = reused.find(c);
-      parts[c] = k != reused.end() ? k->second->provenance
-                                   : pair_provenance(*computed, column_of(*computed, table_pair(study, ref, c)), labels);
-      KeptCell cell = k != reused.end() ? *k->second : KeptCell{c, inputs_of(plan, c), *computed->cell(ro.model, ref, c),
-                                                               no_predictions_at_threshold(ranking, c), parts[c], {}};
+      parts[c] = k != reused.end()
+                     ? k->second->provenance
+                     : pair_provenance(*computed, column_of(*computed, table_pair(study, ref, c)), labels);
+      KeptCell cell = k != reused.end() ? *k->second : KeptCell{c,
+                                                                inputs_of(plan, c),
+                                                                *computed->cell(ro.model, ref, c),
+                                                                no_predictions_at_threshold(ranking, c),
+                                                                parts[c],
+                                                                {}};
       if (k != reused.end()) cell.cell.per_scene.clear();  // its scenes file is there already
       cell.vs_best = kept_comparison(ranking, c, plan);
       if (!cell.inputs.empty()) record.cells.push_back(std::move(cell));

@@ -22,7 +22,7 @@ struct RankReusePlan {
   RankOptions rank;
   RegistrationOptions registration;
   DomainStampsMap now;
-  // candidate -> rank_cell_inputs; none for a candidate never kept (lacks_shared_prediction_files)
+  // candidate -> rank_cell_inputs
   std::map<std::string, std::string> inputs;
 };
 

@@ -37,8 +37,9 @@ std::string reuse_note(const std::vector<std::string>& reused, const std::vector
   std::vector<std::string> computed;
   for (const std::string& c : candidates)
     if (std::find(reused.begin(), reused.end(), c) == reused.end()) computed.push_back(quoted_for_message(c));
-  const std::string kept = fmt::format("{} as the last ranking left {} (their label and prediction files unchanged)",
-                                       reused.size() == 1 ? "candidate" : "candidates", reused.size() == 1 ? "it" : "them");
+  const std::string kept =
+      fmt::format("{} as the last ranking left {} (their label and prediction files unchanged)",
+                  reused.size() == 1 ? "candidate" : "candidates", reused.size() == 1 ? "it" : "them");
   if (computed.empty()) return fmt::format("all {} {}", reused.size(), kept);
   const size_t shown = std::min<size_t>(computed.size(), 3);
   std::string names;

@@ -373,9 +373,7 @@ void StudyCache::hand_registrations_to(RegistrationCache& registration) {
   if (!path_.empty()) registration.defer_writes();
 }
 
-const std::vector<FingerprintCheckpoint>& StudyCache::fingerprint_checkpoints() const {
-  return contents_->checkpoints;
-}
+const std::vector<FingerprintCheckpoint>& StudyCache::fingerprint_checkpoints() const { return contents_->checkpoints; }
 
 void StudyCache::save(const StudyLabels& labels, const RegistrationCache& registration) {
   if (path_.empty()) return;

@@ -55,10 +55,8 @@ FileStamp folder_stamp(const OpenFolder& f) {
   return s;
 }
 
-// Digest of one folder of label files: its own stamp, its classes.txt's, and each scene's file by stem; the
-// scenes without a file go to `missing`.
-std::string stamp_label_folder(const Study& study, const std::string& relative, const std::vector<std::string>& stems,
-                               std::vector<std::string>* missing) {
+// Digest of one folder of label files: its own stamp, its classes.txt's, and each scene's file by stem.
+std::string stamp_label_folder(const Study& study, const std::string& relative, const std::vector<std::string>& stems) {
   const OpenFolder folder(study.root, relative);
   Sha256 h;
   add_text(h, relative);
@@ -66,9 +64,7 @@ std::string stamp_label_folder(const Study& study, const std::string& relative, 
   add_stamp(h, stamp_at(folder, "classes.txt"));
   for (const std::string& stem : stems) {
     add_text(h, stem);
-    const FileStamp s = stamp_at(folder, stem + ".txt");
-    if (!s.exists) missing->push_back(stem);
-    add_stamp(h, s);
+    add_stamp(h, stamp_at(folder, stem + ".txt"));
   }
   return h.hex();
 }
@@ -218,28 +214,22 @@ std::string scenes_name(const TableCell& c) {
 DomainStampsMap stamp_domains(const Study& study, int threads) {
   struct Job {
     const Domain* domain;
-    std::string model, relative, digest;
-    std::vector<std::string> missing;
+    std::string relative, digest;
   };
   std::vector<Job> jobs;
   for (const Domain& d : study.domains) {
-    jobs.push_back({&d, {}, d.name + "/labels", {}, {}});
-    for (const std::string& m : d.models) jobs.push_back({&d, m, d.name + "/predictions/" + m, {}, {}});
+    jobs.push_back({&d, d.name + "/labels", {}});
+    for (const std::string& m : d.models) jobs.push_back({&d, d.name + "/predictions/" + m, {}});
   }
-  parallel_for(jobs.size(), threads, [&](size_t k) {
-    Job& j = jobs[k];
-    j.digest = stamp_label_folder(study, j.relative, j.domain->stems, &j.missing);
-  });
+  parallel_for(jobs.size(), threads,
+               [&](size_t k) { jobs[k].digest = stamp_label_folder(study, jobs[k].relative, jobs[k].domain->stems); });
   DomainStampsMap out;
   for (size_t k = 0; k < jobs.size();) {
     const Domain* d = jobs[k].domain;
     DomainStamps& f = out[d->name];
     f.gt_stamps = jobs[k].digest;  // labels/ comes first
     Sha256 all;
-    for (; k < jobs.size() && jobs[k].domain == d; ++k) {
-      add_text(all, jobs[k].digest);
-      if (!jobs[k].model.empty()) f.stems_without_predictions[jobs[k].model] = std::move(jobs[k].missing);
-    }
+    for (; k < jobs.size() && jobs[k].domain == d; ++k) add_text(all, jobs[k].digest);
     f.stamps = all.hex();
   }
   return out;
@@ -247,7 +237,8 @@ DomainStampsMap stamp_domains(const Study& study, int threads) {
 
 std::string pair_file_stamps(const Study& study, const std::string& a, const std::string& b) {
   Sha256 h;
-  for (const auto& [x, y] : {std::make_pair(a, b), std::make_pair(b, a)}) add_folder_entries(h, study, "pairs/" + x + "__" + y);
+  for (const auto& [x, y] : {std::make_pair(a, b), std::make_pair(b, a)})
+    add_folder_entries(h, study, "pairs/" + x + "__" + y);
   const OpenFolder review(study.root, "review");
   add_stamp(h, folder_stamp(review));
   for (const auto& [x, y] : {std::make_pair(a, b), std::make_pair(b, a)}) {
@@ -268,9 +259,8 @@ std::string rank_cache_settings(const Study& study, const std::string& model, co
       "model {}\ntrained on {}\nref {}\nclass {}\nclass numbering {}\nconf {:a}\ntask {}\nregistration {}\n"
       "bootstrap {} {:a} {}\n",
       model, trained_on, ref, study.config.rock_class, study.classes.map_key(), study.config.conf_threshold,
-      static_cast<int>(study.config.task),
-      registration_cache_key({}, {}, with_study_aspect(study, registration)), bootstrap.resamples, bootstrap.level,
-      bootstrap.seed);
+      static_cast<int>(study.config.task), registration_cache_key({}, {}, with_study_aspect(study, registration)),
+      bootstrap.resamples, bootstrap.level, bootstrap.seed);
 }
 
 std::string rank_cell_inputs(const std::string& settings, const DomainStamps& a_stamps, const DomainStamps& b_stamps,

@@ -15,12 +15,14 @@
 //  - both domains' files (DomainStamps): every GT and prediction file's stamp, each folder's (a file added or
 //    removed) and the domain's scenes;
 //  - the pair's hand pairs and review files (pair_file_stamps), and which way round the table holds the pair.
-// A run whose domains said nothing but numbers is kept (no warning, no label error, no note), and a run on kept
-// cells reads the reference, the candidates it computes and every domain whose files changed, so it is one too
-// exactly when a whole run would be: what is said of the whole study (the class chosen, outlines read as boxes,
-// shifted class numbers) comes of the domains read, the kept ones having said nothing when they were read.
-// The one warning that crosses domains, a scene without its prediction file that another domain has, is checked
-// on the stamps of every domain (stems_without_predictions).
+// Only a run that said nothing but numbers is kept (no warning, no label error, no note). A run on kept cells reads
+// the reference, the candidates it computes and every domain whose files changed, and says what a whole run would:
+//  - what is said of the whole study (the class chosen, outlines read as boxes, shifted class numbers, label errors)
+//    comes of the domains read, the others having said nothing when they were read as they are now; the class
+//    chosen is the reference's, which is always read;
+//  - what is said of a pair comes of its two domains: a kept pair said nothing, so its domains share every scene,
+//    each with its prediction file (a scene without a counterpart, or without a prediction file that another
+//    domain has, is a warning), and a new domain can't make it say anything.
 //
 // The index (every cell's numbers, comparisons and the domains' stamps) is one small file; each cell's scenes (what a
 // new comparison with it needs) are a file of their own, read only when a comparison must be computed again.
@@ -42,9 +44,6 @@ namespace ipd {
 struct DomainStamps {
   std::string stamps;     // digest of the stamps of its folders, GT and prediction files, and its scenes
   std::string gt_stamps;  // the same over its labels/ folder alone (the label set's fingerprint resumes past it)
-  // Each prediction set's scenes without a file (a picture YOLO found nothing in, or a lost file), by model: a whole
-  // run warns about those another domain has too. Taken now, never kept.
-  std::map<std::string, std::vector<std::string>> stems_without_predictions;
 };
 using DomainStampsMap = std::map<std::string, DomainStamps>;
 
@@ -90,7 +89,7 @@ struct KeptCell {
 struct RankRecord {
   std::string fingerprint;  // the label set's (label_fingerprint.h), with its state after each domain
   std::vector<FingerprintCheckpoint> checkpoints;
-  DomainStampsMap domains;  // every domain of the study (stems_without_predictions left out)
+  DomainStampsMap domains;  // every domain of the study
   std::vector<KeptCell> cells;
 };
 

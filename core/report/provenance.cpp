@@ -45,8 +45,8 @@ void count_reviews(const CrossTable& table, size_t c, const StudyLabels& labels,
 
 void add_column_provenance(const CrossTable& table, size_t c, const StudyLabels& labels, Provenance* p) {
   for (const ScenePairing& s : table.pairings[c]) {
-    p->scenes_with_stale_hand_pairs += std::any_of(s.pairs_problems.begin(), s.pairs_problems.end(),
-                                                   [](const PairsProblem& w) { return w.unusable; });
+    p->scenes_with_stale_hand_pairs +=
+        std::any_of(s.pairs_problems.begin(), s.pairs_problems.end(), [](const PairsProblem& w) { return w.unusable; });
     if (!s.fixed) continue;
     ++p->scenes_with_hand_pairs;
     p->pairs_set_by_hand += static_cast<int>(s.pairs.size());
@@ -68,7 +68,8 @@ Provenance labels_provenance(const StudyLabels& labels) {
 Provenance table_provenance(const CrossTable& table, const StudyLabels& labels, const DomainPairFilter& only) {
   Provenance p = labels_provenance(labels);
   for (size_t c = 0; c < table.pairings.size() && c < table.columns.size(); ++c)
-    if (includes_pair(only, table.columns[c].first, table.columns[c].second)) add_column_provenance(table, c, labels, &p);
+    if (includes_pair(only, table.columns[c].first, table.columns[c].second))
+      add_column_provenance(table, c, labels, &p);
   return p;
 }
 
