@@ -194,12 +194,13 @@ std::optional<RankedStudy> rank_from_kept(const RankReusePlan& plan, const RankC
       const size_t column = column_of(*computed, table_pair(study, ref, c));
       return count_predictions(labels, c, ro.model, computed->pairings.at(column)) == 0;
     });
-    // A kept comparison holds while it was with this best, as it is now, and the same number of permutations.
+    // A kept comparison holds while it was with this best as it is now (the best's inputs name it) and as many
+    // permutations.
     const std::string best = ranking.ranked.front().domain;
     std::map<std::string, const KeptComparison*> kept_vs_best;
     for (const auto& [c, k] : reused)
-      if (k->vs_best && k->vs_best->best == best && !k->vs_best->best_inputs.empty() &&
-          k->vs_best->best_inputs == inputs_of(plan, best) && k->vs_best->permutations == ro.compare.permutations)
+      if (k->vs_best && k->vs_best->best_inputs == inputs_of(plan, best) &&
+          k->vs_best->permutations == ro.compare.permutations)
         kept_vs_best[c] = &*k->vs_best;
     auto with_scenes = [&](const std::string& d) {
       TableCell& cell = table.cells[static_cast<size_t>(
