@@ -151,110 +151,141 @@ std::optional<RankReusePlan> plan_rank_reuse(const Study& study, const StudyOpti
   return plan;
 }
 
+namespace {
+
+// A ranking run on kept cells, as it goes.
+struct KeptRun {
+  const RankReusePlan& plan;
+  const RankCache& cache;
+  std::map<std::string, const KeptCell*> reused;  // the candidates taken as kept
+  std::vector<std::string> fresh;                 // the others, read and computed
+  StudyLabels labels;                             // the domains read
+  std::optional<CrossTable> computed;             // the fresh candidates' cells
+  CrossTable table;                               // the ranking's: one column a candidate, computed or kept
+
+  const std::string& ref() const { return plan.rank.domains.ref; }
+  std::pair<std::string, std::string> pair(const std::string& c) const { return table_pair(*plan.study, ref(), c); }
+  const KeptCell* kept(const std::string& c) const {
+    const auto k = reused.find(c);
+    return k == reused.end() ? nullptr : k->second;
+  }
+};
+
+// The ranking's table: each candidate's cell computed now or as kept (its scenes read when a comparison needs them).
+void make_ranking_table(KeptRun& run) {
+  const RankOptions& ro = run.plan.rank;
+  for (const ModelInfo& m : run.plan.study->models)
+    if (m.name == ro.model) run.table.models.push_back(m);
+  for (const std::string& c : ro.domains.candidates) {
+    run.table.columns.push_back(run.pair(c));
+    const KeptCell* k = run.kept(c);
+    run.table.cells.push_back(k ? k->cell : *run.computed->cell(ro.model, run.ref(), c));
+  }
+}
+
+// Each candidate compared with the best: as kept while that comparison was with this best as it is now (the best's
+// inputs name it) and as many permutations, else computed on the cells' scenes. False when a kept cell's scenes
+// can't be read.
+bool compare_with_kept(KeptRun& run, Ranking* ranking) {
+  const RankOptions& ro = run.plan.rank;
+  const std::string best = ranking->ranked.front().domain;
+  std::map<std::string, const KeptComparison*> kept_vs_best;
+  for (const auto& [c, k] : run.reused)
+    if (k->vs_best && k->vs_best->best_inputs == inputs_of(run.plan, best) &&
+        k->vs_best->permutations == ro.compare.permutations)
+      kept_vs_best[c] = &*k->vs_best;
+  auto with_scenes = [&](const std::string& d) {
+    const auto& all = ro.domains.candidates;
+    TableCell& cell = run.table.cells[static_cast<size_t>(std::find(all.begin(), all.end(), d) - all.begin())];
+    if (!cell.per_scene.empty() || cell.scenes == 0) return true;
+    auto scenes = run.cache.scenes(*run.kept(d));
+    if (scenes) cell.per_scene = std::move(*scenes);
+    return scenes.has_value();
+  };
+  bool compare_now = false;
+  for (size_t k = 1; k < ranking->ranked.size(); ++k)
+    if (!kept_vs_best.count(ranking->ranked[k].domain)) {
+      if (!with_scenes(ranking->ranked[k].domain)) return false;
+      compare_now = true;
+    }
+  if (compare_now && !with_scenes(best)) return false;
+  compare_with_best(ranking, [&](const std::string& c, const std::string& b) {
+    if (const auto k = kept_vs_best.find(c); k != kept_vs_best.end()) return k->second->comparison;
+    return compare_renderers(run.table, ro.model, run.ref(), c, b, ro.compare);
+  });
+  return true;
+}
+
+// Keeps the run for the next one (the new cells with their scenes) and returns its provenance: the labels' part,
+// then each candidate's pair in the order a table's columns have them.
+Provenance keep_run(const KeptRun& run, const Ranking& ranking, const ResumedFingerprint& fingerprint) {
+  const RankReusePlan& plan = run.plan;
+  RankRecord record;
+  std::map<std::string, PairProvenance> parts;
+  for (const std::string& c : plan.rank.domains.candidates) {
+    const KeptCell* k = run.kept(c);
+    parts[c] = k ? k->provenance : pair_provenance(*run.computed, column_of(*run.computed, run.pair(c)), run.labels);
+    KeptCell cell = k ? *k
+                      : KeptCell{c,
+                                 inputs_of(plan, c),
+                                 *run.computed->cell(plan.rank.model, run.ref(), c),
+                                 no_predictions_at_threshold(ranking, c),
+                                 parts[c],
+                                 {}};
+    if (k) cell.cell.per_scene.clear();  // its scenes file is there already
+    cell.vs_best = kept_comparison(ranking, c, plan);
+    if (!cell.inputs.empty()) record.cells.push_back(std::move(cell));
+  }
+  record.fingerprint = fingerprint.fingerprint;
+  record.checkpoints = fingerprint.checkpoints;
+  record.domains = plan.now;
+  keep_other_cells(run.cache.record(), plan, &record);
+  run.cache.save(record);
+  Provenance provenance = labels_provenance(run.labels);
+  for (const Domain& d : plan.study->domains)
+    if (parts.count(d.name)) add_pair_provenance(parts[d.name], run.pair(d.name), &provenance);
+  return provenance;
+}
+
+}  // namespace
+
 std::optional<RankedStudy> rank_from_kept(const RankReusePlan& plan, const RankCache& cache,
                                           std::vector<std::string>* reused_names) {
   const Study& study = *plan.study;
   const RankOptions& ro = plan.rank;
-  const std::string& ref = ro.domains.ref;
   const RankRecord& kept = cache.record();
-  std::map<std::string, const KeptCell*> reused;
-  std::vector<std::string> fresh;
+  KeptRun run{plan, cache, {}, {}, {}, {}, {}};
   for (const std::string& c : ro.domains.candidates) {
     const auto inputs = plan.inputs.find(c);
     if (const KeptCell* k = inputs == plan.inputs.end() ? nullptr : cache.cell(c, inputs->second))
-      reused[c] = k;
+      run.reused[c] = k;
     else
-      fresh.push_back(c);
+      run.fresh.push_back(c);
   }
-  if (reused.empty()) return std::nullopt;
+  if (run.reused.empty()) return std::nullopt;
   try {
-    StudyLabels labels = load_labels(study, {}, {}, domains_to_read(plan, kept, fresh));
-    if (!labels_quiet(labels)) return std::nullopt;
-    std::optional<CrossTable> computed;
-    if (!fresh.empty() && !(computed = compute_fresh_cells(plan, labels, fresh))) return std::nullopt;
-
-    // The ranking's table: one column a candidate, each cell computed now or as kept (its scenes read when a
-    // comparison needs them).
-    CrossTable table;
-    for (const ModelInfo& m : study.models)
-      if (m.name == ro.model) table.models.push_back(m);
-    for (const std::string& c : ro.domains.candidates) {
-      table.columns.push_back(table_pair(study, ref, c));
-      const auto k = reused.find(c);
-      table.cells.push_back(k != reused.end() ? k->second->cell : *computed->cell(ro.model, ref, c));
-    }
+    run.labels = load_labels(study, {}, {}, domains_to_read(plan, kept, run.fresh));
+    if (!labels_quiet(run.labels)) return std::nullopt;
+    if (!run.fresh.empty() && !(run.computed = compute_fresh_cells(plan, run.labels, run.fresh))) return std::nullopt;
+    make_ranking_table(run);
     const ResumedFingerprint fingerprint = label_set_fingerprint(study, kept.checkpoints, [&](const std::string& d) {
       const auto k = kept.domains.find(d);
       return k != kept.domains.end() && k->second.gt_stamps == plan.now.at(d).gt_stamps;
     });
-    labels.label_fingerprint = fingerprint.fingerprint;
-
-    Ranking ranking = order_candidates(study, table, ro, [&](const std::string& c) {
-      if (const auto k = reused.find(c); k != reused.end()) return k->second->no_predictions_at_threshold;
-      const size_t column = column_of(*computed, table_pair(study, ref, c));
-      return count_predictions(labels, c, ro.model, computed->pairings.at(column)) == 0;
+    run.labels.label_fingerprint = fingerprint.fingerprint;
+    Ranking ranking = order_candidates(study, run.table, ro, [&](const std::string& c) {
+      if (const KeptCell* k = run.kept(c)) return k->no_predictions_at_threshold;
+      const size_t column = column_of(*run.computed, run.pair(c));
+      return count_predictions(run.labels, c, ro.model, run.computed->pairings.at(column)) == 0;
     });
-    // A kept comparison holds while it was with this best as it is now (the best's inputs name it) and as many
-    // permutations.
-    const std::string best = ranking.ranked.front().domain;
-    std::map<std::string, const KeptComparison*> kept_vs_best;
-    for (const auto& [c, k] : reused)
-      if (k->vs_best && k->vs_best->best_inputs == inputs_of(plan, best) &&
-          k->vs_best->permutations == ro.compare.permutations)
-        kept_vs_best[c] = &*k->vs_best;
-    auto with_scenes = [&](const std::string& d) {
-      TableCell& cell = table.cells[static_cast<size_t>(
-          std::find(ro.domains.candidates.begin(), ro.domains.candidates.end(), d) - ro.domains.candidates.begin())];
-      if (!cell.per_scene.empty() || cell.scenes == 0) return true;
-      auto scenes = cache.scenes(*reused.at(d));
-      if (scenes) cell.per_scene = std::move(*scenes);
-      return scenes.has_value();
-    };
-    bool compare_now = false;
-    for (size_t k = 1; k < ranking.ranked.size(); ++k)
-      if (!kept_vs_best.count(ranking.ranked[k].domain)) {
-        if (!with_scenes(ranking.ranked[k].domain)) return std::nullopt;
-        compare_now = true;
-      }
-    if (compare_now && !with_scenes(best)) return std::nullopt;
-    compare_with_best(&ranking, [&](const std::string& c, const std::string& b) {
-      if (const auto k = kept_vs_best.find(c); k != kept_vs_best.end()) return k->second->comparison;
-      return compare_renderers(table, ro.model, ref, c, b, ro.compare);
-    });
-
-    // Provenance: the labels' part, then each candidate's pair in the order a table's columns have them.
-    RankRecord record;
-    std::map<std::string, PairProvenance> parts;
-    for (const std::string& c : ro.domains.candidates) {
-      const auto k = reused.find(c);
-      parts[c] = k != reused.end()
-                     ? k->second->provenance
-                     : pair_provenance(*computed, column_of(*computed, table_pair(study, ref, c)), labels);
-      KeptCell cell = k != reused.end() ? *k->second : KeptCell{c,
-                                                                inputs_of(plan, c),
-                                                                *computed->cell(ro.model, ref, c),
-                                                                no_predictions_at_threshold(ranking, c),
-                                                                parts[c],
-                                                                {}};
-      if (k != reused.end()) cell.cell.per_scene.clear();  // its scenes file is there already
-      cell.vs_best = kept_comparison(ranking, c, plan);
-      if (!cell.inputs.empty()) record.cells.push_back(std::move(cell));
-    }
-    Provenance provenance = labels_provenance(labels);
-    for (const Domain& d : study.domains)
-      if (parts.count(d.name)) add_pair_provenance(parts[d.name], table_pair(study, ref, d.name), &provenance);
-
-    report_class_notes(labels);
-    record.fingerprint = fingerprint.fingerprint;
-    record.checkpoints = fingerprint.checkpoints;
-    record.domains = plan.now;
-    keep_other_cells(kept, plan, &record);
-    cache.save(record);
-    for (const auto& [c, k] : reused) reused_names->push_back(c);
+    if (!compare_with_kept(run, &ranking)) return std::nullopt;
+    Provenance provenance = keep_run(run, ranking, fingerprint);
+    report_class_notes(run.labels);
+    for (const auto& [c, k] : run.reused) reused_names->push_back(c);
 
     RankedStudy out;
-    out.loaded.labels = std::move(labels);
-    out.loaded.table = std::move(table);
+    out.loaded.labels = std::move(run.labels);
+    out.loaded.table = std::move(run.table);
     out.loaded.conf_threshold = study.config.conf_threshold;
     out.loaded.registration_budget_ms = plan.registration.time_budget_ms.value_or(0);
     out.loaded.bootstrap = ro.compare.bootstrap;

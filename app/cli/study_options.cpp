@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "app/cli/cli_common.h"
@@ -28,6 +29,11 @@ std::string StudyOptions::validate() const {
   if (const std::string bad = resamples.validate(); !bad.empty()) return "--bootstrap: " + bad;
   if (!(level >= 0.5 && level <= 0.9999)) return fmt::format("--ci: must be in [0.5, 0.9999], got {}", level);
   if (threads < 0) return fmt::format("--threads: must be >= 0 (0: every core), got {}", threads);
+  for (size_t k = 0; k < domains.size(); ++k)
+    if (std::find(domains.begin(), domains.begin() + static_cast<std::ptrdiff_t>(k), domains[k]) !=
+        domains.begin() + static_cast<std::ptrdiff_t>(k))
+      return fmt::format("--domains: names '{}' twice (a domain is compared with another)",
+                         quoted_for_message(domains[k]));
   if (!std::isnan(budget_ms) && !(budget_ms >= 0 && std::isfinite(budget_ms)))
     return fmt::format("--budget-ms: must be a number of milliseconds >= 0 (0: no limit), got {}", budget_ms);
   return {};

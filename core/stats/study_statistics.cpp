@@ -7,6 +7,7 @@
 
 #include "core/picture/picture_codec.h"
 #include "core/stats/statistics.h"
+#include "core/util/number_text.h"
 #include "core/util/parallel.h"
 
 namespace ipd {
@@ -141,15 +142,23 @@ std::string comparison_sentence(const RendererComparison& c, double alpha) {
   if (!std::isnan(r.p_value))
     numbers += (r.p_value < 1e-4 ? std::string(", p < 0.0001") : fmt::format(", p = {:.2g}", r.p_value)) +
                (r.exact_p ? " (exact)" : "");
-  numbers += fmt::format(", {} {}", r.scenes, r.scenes == 1 ? "scene" : "scenes");
+  numbers += fmt::format(", {} {}", grouped_thousands(r.scenes), r.scenes == 1 ? "scene" : "scenes");
   // Without a test (no permutations asked for) there is no verdict either way: "no significant difference" would
   // read as a tested null result, even when the interval excludes 0.
   if (std::isnan(r.p_value))
     return fmt::format("not tested whether {} or {} is closer to {} for {}: {} (no permutation test was run)", c.a, c.b,
                        c.ref, c.model, numbers);
-  if (!significant_difference(r, r.p_value, alpha))
-    return fmt::format("no significant difference between {} and {} in closeness to {} for {}: {}", c.a, c.b, c.ref,
-                       c.model, numbers);
+  if (!significant_difference(r, r.p_value, alpha)) {
+    // The verdict needs both the test and the interval: when only one of them tells the two apart, say which, so
+    // "no significant difference" beside an interval that excludes 0 does not read as a contradiction.
+    const bool excludes_zero = r.delta.has_interval() && (r.delta.low > 0 || r.delta.high < 0);
+    const std::string why = excludes_zero ? fmt::format("; the interval excludes 0, but p is not below {:g}", alpha)
+                            : r.p_value < alpha && r.delta.has_interval()
+                                ? fmt::format("; p is below {:g}, but the interval holds 0", alpha)
+                                : std::string();
+    return fmt::format("no significant difference between {} and {} in closeness to {} for {}: {}{}", c.a, c.b, c.ref,
+                       c.model, numbers, why);
+  }
   const bool a_closer = r.delta.estimate < 0;
   return fmt::format("{} is closer to {} than {} for {}: {}", a_closer ? c.a : c.b, c.ref, a_closer ? c.b : c.a,
                      c.model, numbers);

@@ -270,6 +270,10 @@ TEST(InputChecks, OptionsOutOfRangeAreErrorsNotTheDefault) {
             0u)
       << one.err;
   EXPECT_EQ(test::run_ipd("table --bootstrap 2 " + d.path()).exit_code, 0);
+  // A domain named twice left one domain and read "at least two domains are needed".
+  const auto twice = test::run_ipd("table --domains real,real " + d.path());
+  EXPECT_EQ(twice.exit_code, 2);
+  EXPECT_EQ(twice.err.rfind("--domains: names 'real' twice (a domain is compared with another)\n", 0), 0u) << twice.err;
   // ipd detect: a negative class kept nothing ("no rocks" everywhere), negative threads meant every core.
   auto detect = test::run_ipd("detect " + d.path() + " --detector classical --out " + d / "x" + " --classes 0,-1");
   EXPECT_EQ(detect.exit_code, 2);

@@ -78,6 +78,30 @@ TEST(Statistics, OneSceneWithPairsHasNoIntervalAndNoTest) {
       "cannot tell whether a or b is closer to real for det: \u0394IPD = \u22120.4000, 1 scene: no interval, no test");
 }
 
+// The verdict needs the test and the interval both: when one alone tells the renderers apart, the sentence says which.
+TEST(Statistics, ComparisonSentenceSaysWhichHalfOfTheVerdictIsMissing) {
+  RendererComparison rc;
+  rc.model = "det", rc.ref = "real", rc.a = "a", rc.b = "b";
+  rc.result.delta.estimate = -0.02;
+  rc.result.delta.low = -0.03;
+  rc.result.delta.high = -0.01;
+  rc.result.p_value = 0.0625;
+  rc.result.exact_p = true;
+  rc.result.scenes = 10000;
+  EXPECT_EQ(comparison_sentence(rc),
+            "no significant difference between a and b in closeness to real for det: \u0394IPD = \u22120.0200 "
+            "[\u22120.030, \u22120.010], p = 0.062 (exact), 10,000 scenes; the interval excludes 0, but p is not below "
+            "0.05");
+  rc.result.delta.high = 0.01;
+  rc.result.p_value = 0.01;
+  rc.result.exact_p = false;
+  EXPECT_EQ(comparison_sentence(rc),
+            "no significant difference between a and b in closeness to real for det: \u0394IPD = \u22120.0200 "
+            "[\u22120.030, 0.010], p = 0.01, 10,000 scenes; p is below 0.05, but the interval holds 0");
+  rc.result.p_value = 0.5;
+  EXPECT_EQ(comparison_sentence(rc, 0.05).find(";"), std::string::npos);
+}
+
 TEST(Statistics, SeededDrawsDependOnSeedAndKeyOnly) {
   BootstrapOptions o;
   const Interval a = bootstrap_pooled_mean(kThreeScenes, o, "m|real|synth");
