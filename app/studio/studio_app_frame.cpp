@@ -39,6 +39,9 @@ std::string describe_pairs_file(const std::optional<std::string>& text) {
 // 120,000 label files" ("registrations" for that stage), and the time left when it is known.
 std::string progress_text(const OpenProgress& p) {
   const std::string what = p.stage == "registration" ? "registrations" : p.stage;
+  // The last stage's count is whole before the numbers are: no "about 1 s left" while they are computed.
+  if (p.total > 0 && p.done >= p.total)
+    return fmt::format("all {} {} done; computing the numbers", grouped_thousands(p.total), what);
   return fmt::format("{} of {} {}{}", grouped_thousands(p.done), grouped_thousands(p.total), what,
                      p.eta_s >= 0 ? fmt::format(", about {:.0f} s left", std::ceil(p.eta_s)) : std::string());
 }

@@ -206,6 +206,10 @@ void StudyWorker::open(const command::OpenStudy& c) {
       std::lock_guard<std::mutex> l(mu_);
       progress_.stage = "generating the demo study";
     }
+    // The demo's own folder (in the user cache, or a fresh private one): without study.yaml it is a demo cut short,
+    // and a demo is written whole into a new folder.
+    std::error_code ec;
+    fs::remove_all(c.dir, ec);
     write_demo_study(c.dir);
   }
   // One writer per study: the lock is held while the study is open; without it the window is read-only.

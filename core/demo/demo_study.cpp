@@ -8,13 +8,12 @@
 #include <random>
 #include <stdexcept>
 
+#include "core/demo/demo_files.h"
 #include "core/demo/demo_rng.h"
 #include "core/detect/rock_detector.h"
 #include "core/io/label_io.h"
 #include "core/picture/picture_codec.h"
-#include "core/util/atomic_file.h"
 
-namespace fs = std::filesystem;
 
 namespace ipd {
 
@@ -211,10 +210,10 @@ cv::Mat render(const Scene& scene, const DomainLook& look, const cv::Matx23d& ca
   return finish(scene, look, img, tex);
 }
 
-void write_png(const std::string& path, const cv::Mat& img) {
+void write_png(const std::string& dir, const std::string& relative, const cv::Mat& img) {
   std::vector<uchar> buf;
-  if (!encode_picture(".png", img, &buf)) throw IoError(path + ": PNG encoding failed");
-  write_file_atomically(path, std::string(buf.begin(), buf.end()));
+  if (!encode_picture(".png", img, &buf)) throw IoError(dir + "/" + relative + ": PNG encoding failed");
+  write_demo_file(dir, relative, std::string(buf.begin(), buf.end()));
 }
 
 const char* kDemoReadme = R"(# IPD Studio demo study (generated)
@@ -280,11 +279,11 @@ void write_labels_only_study(const std::string& dir, const DemoStudyOptions& o) 
       for (const auto& r : scene.rocks)
         if (geometric_box(r, kLooks[d], scene, cam, o.width, o.height, &b)) gt.push_back(b);
       for (size_t i = gt.size(); i > 1; --i) std::swap(gt[i - 1], gt[rng.below(static_cast<int>(i))]);
-      const fs::path base = fs::path(dir) / kLooks[d].name;
-      write_labels((base / "labels" / (stem(k) + ".txt")).string(), gt, LabelKind::kGroundTruth);
+      const std::string base = std::string(kLooks[d].name) + "/";
+      write_demo_labels(dir, base + "labels/" + stem(k) + ".txt", gt, LabelKind::kGroundTruth);
       for (size_t m = 0; m < n_looks; ++m)
-        write_labels((base / "predictions" / (std::string("det-") + kLooks[m].name) / (stem(k) + ".txt")).string(),
-                     synthetic_predictions(rng, gt, m == d), LabelKind::kPrediction);
+        write_demo_labels(dir, base + "predictions/det-" + kLooks[m].name + "/" + stem(k) + ".txt",
+                          synthetic_predictions(rng, gt, m == d), LabelKind::kPrediction);
     }
   }
   std::string yaml =
@@ -293,7 +292,7 @@ void write_labels_only_study(const std::string& dir, const DemoStudyOptions& o) 
   yaml += fmt::format("image_size: [{}, {}]\nrock_class: 0\nmodels:\n", o.width, o.height);
   for (size_t m = 0; m < n_looks; ++m) yaml += fmt::format("  det-{0}: {{trained_on: {0}}}\n", kLooks[m].name);
   yaml += "registration: {method: consensus, seed: 0}\n";
-  write_file_atomically((fs::path(dir) / "study.yaml").string(), yaml);
+  finish_demo_study(dir, yaml, "");
 }
 
 }  // namespace
@@ -333,9 +332,9 @@ void write_demo_study(const std::string& dir, const DemoStudyOptions& o) {
       // Shuffle rows so that indices differ between domains, as independent labelling does.
       for (size_t i = gt.size(); i > 1; --i) std::swap(gt[i - 1], gt[rng.below(static_cast<int>(i))]);
       gts[d].push_back(gt);
-      const fs::path base = fs::path(dir) / kLooks[d].name;
-      write_png((base / "images" / (stem(k) + ".png")).string(), pictures[d].back());
-      write_labels((base / "labels" / (stem(k) + ".txt")).string(), gt, LabelKind::kGroundTruth);
+      const std::string base = std::string(kLooks[d].name) + "/";
+      write_png(dir, base + "images/" + stem(k) + ".png", pictures[d].back());
+      write_demo_labels(dir, base + "labels/" + stem(k) + ".txt", gt, LabelKind::kGroundTruth);
     }
   }
   std::string yaml =
@@ -351,12 +350,11 @@ void write_demo_study(const std::string& dir, const DemoStudyOptions& o) {
                         params.threshold, params.background_kernel, params.close_kernel);
     for (size_t d = 0; d < n_looks; ++d)
       for (int k = 0; k < o.scenes; ++k)
-        write_labels((fs::path(dir) / kLooks[d].name / "predictions" / model / (stem(k) + ".txt")).string(),
-                     detect_rocks(pictures[d][k], params, o.segment), LabelKind::kPrediction);
+        write_demo_labels(dir, std::string(kLooks[d].name) + "/predictions/" + model + "/" + stem(k) + ".txt",
+                          detect_rocks(pictures[d][k], params, o.segment), LabelKind::kPrediction);
   }
   yaml += "registration: {method: consensus, seed: 0}\n";
-  write_file_atomically((fs::path(dir) / "study.yaml").string(), yaml);
-  write_file_atomically((fs::path(dir) / "README.md").string(), kDemoReadme);
+  finish_demo_study(dir, yaml, kDemoReadme);
 }
 
 }  // namespace ipd

@@ -25,7 +25,8 @@ struct DemoStudyOptions {
   void check() const;
 };
 
-// Writes the study into `dir` (created; existing demo files are replaced). Throws IoError on failure.
+// Writes the study into `dir`, a new or empty folder (demo_files.h: its files are new; study.yaml comes last). Throws
+// IoError on failure, naming a file that is already there.
 void write_demo_study(const std::string& dir, const DemoStudyOptions& options = {});
 
 }  // namespace ipd

@@ -8,11 +8,10 @@
 #include <random>
 #include <stdexcept>
 
+#include "core/demo/demo_files.h"
 #include "core/demo/demo_rng.h"
 #include "core/io/label_io.h"
-#include "core/util/atomic_file.h"
 
-namespace fs = std::filesystem;
 
 namespace ipd {
 
@@ -106,9 +105,8 @@ void write_variant_study(const std::string& dir, const VariantStudyOptions& o) {
   auto stem = [](int k) { return fmt::format("scene_{:05d}", k + 1); };
   auto write = [&](const std::string& domain, const std::string& name, const std::vector<Box>& gt,
                    const std::vector<Box>& pred) {
-    const fs::path base = fs::path(dir) / domain;
-    write_labels((base / "labels" / (name + ".txt")).string(), gt, LabelKind::kGroundTruth);
-    write_labels((base / "predictions" / "det-real" / (name + ".txt")).string(), pred, LabelKind::kPrediction);
+    write_demo_labels(dir, domain + "/labels/" + name + ".txt", gt, LabelKind::kGroundTruth);
+    write_demo_labels(dir, domain + "/predictions/det-real/" + name + ".txt", pred, LabelKind::kPrediction);
   };
   for (int s = 0; s < o.scenes; ++s) {
     const std::vector<Box> rocks = make_rocks(rng, o);
@@ -143,9 +141,8 @@ void write_variant_study(const std::string& dir, const VariantStudyOptions& o) {
       write(variant_domain(o, k), stem(s), vgt, vpred);
     }
   }
-  write_file_atomically((fs::path(dir) / "study.yaml").string(), variant_study_yaml(o, o.variants));
-  write_file_atomically((fs::path(dir) / "README.md").string(),
-                        fmt::format(kVariantsReadme, o.true_ambient, variant_domain(o, true_best_variant(o))));
+  finish_demo_study(dir, variant_study_yaml(o, o.variants),
+                    fmt::format(kVariantsReadme, o.true_ambient, variant_domain(o, true_best_variant(o))));
 }
 
 }  // namespace ipd

@@ -38,7 +38,8 @@ int true_best_variant(const VariantStudyOptions& o);
 // variant's params, the model, the image size).
 std::string variant_study_yaml(const VariantStudyOptions& o, int count);
 
-// Writes the study into `dir` (labels, predictions, study.yaml, README.md). Throws IoError on failure.
+// Writes the study into `dir`, a new or empty folder (labels, predictions, then study.yaml and README.md:
+// demo_files.h). Throws IoError on failure.
 void write_variant_study(const std::string& dir, const VariantStudyOptions& options = {});
 
 }  // namespace ipd
