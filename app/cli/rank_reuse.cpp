@@ -6,8 +6,10 @@
 
 #include "app/cli/cli_common.h"
 #include "core/ipd/study_layout.h"
+#include "core/ipd/study_pipeline.h"
 #include "core/registration/registration_cache.h"
 #include "core/report/provenance.h"
+#include "core/study/unused_hand_files.h"
 #include "core/util/errors.h"
 
 namespace ipd::cli {
@@ -263,6 +265,10 @@ std::optional<RankedStudy> rank_from_kept(const RankReusePlan& plan, const RankC
       run.fresh.push_back(c);
   }
   if (run.reused.empty()) return std::nullopt;
+  // What pairing says of the whole study, whichever pairs it pairs (pair_study): a run that pairs nothing new would
+  // not say it, so a study with any of it is read whole.
+  if (!unused_hand_files(study).empty() || !square_pictures_problem(study, plan.registration).message.empty())
+    return std::nullopt;
   try {
     run.labels = load_labels(study, {}, {}, domains_to_read(plan, kept, run.fresh));
     if (!labels_quiet(run.labels)) return std::nullopt;

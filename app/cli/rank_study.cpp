@@ -37,15 +37,16 @@ std::string reuse_note(const std::vector<std::string>& reused, const std::vector
   std::vector<std::string> computed;
   for (const std::string& c : candidates)
     if (std::find(reused.begin(), reused.end(), c) == reused.end()) computed.push_back(quoted_for_message(c));
+  const bool one = reused.size() == 1;
   const std::string kept =
-      fmt::format("{} as the last ranking left {} (their label and prediction files unchanged)",
-                  reused.size() == 1 ? "candidate" : "candidates", reused.size() == 1 ? "it" : "them");
-  if (computed.empty()) return fmt::format("all {} {}", reused.size(), kept);
+      fmt::format("{} {} as the last ranking left {} ({} label and prediction files unchanged)", reused.size(),
+                  one ? "candidate" : "candidates", one ? "it" : "them", one ? "its" : "their");
+  if (computed.empty()) return one ? kept : "all " + kept;
   const size_t shown = std::min<size_t>(computed.size(), 3);
   std::string names;
   for (size_t k = 0; k < shown; ++k) names += (k ? ", " : "") + computed[k];
   if (computed.size() > shown) names += fmt::format(" and {} more", computed.size() - shown);
-  return fmt::format("{} {}; {} read and computed: {}", reused.size(), kept, computed.size(), names);
+  return fmt::format("{}; {} read and computed: {}", kept, computed.size(), names);
 }
 
 }  // namespace

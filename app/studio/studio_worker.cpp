@@ -12,12 +12,21 @@
 #include "core/demo/demo_study.h"
 #include "core/ipd/study_cache.h"
 #include "core/registration/registration_cache.h"
+#include "core/util/contained_file.h"
 
 namespace fs = std::filesystem;
 
 namespace ipd::studio {
 
 namespace {
+
+// The demo's own folder (in the user cache, or a fresh private one) without study.yaml is a demo cut short: it is
+// removed (through descriptors, never following a link in it) and the demo written whole into it again.
+void write_demo_again(const std::string& dir) {
+  const fs::path p = fs::path(dir).lexically_normal();
+  remove_tree_beneath(p.parent_path().string(), p.filename().string());
+  write_demo_study(dir);
+}
 // A first look opens this many scenes; studies no bigger open in one go.
 constexpr size_t kFirstLookScenes = 40;
 
@@ -206,11 +215,7 @@ void StudyWorker::open(const command::OpenStudy& c) {
       std::lock_guard<std::mutex> l(mu_);
       progress_.stage = "generating the demo study";
     }
-    // The demo's own folder (in the user cache, or a fresh private one): without study.yaml it is a demo cut short,
-    // and a demo is written whole into a new folder.
-    std::error_code ec;
-    fs::remove_all(c.dir, ec);
-    write_demo_study(c.dir);
+    write_demo_again(c.dir);
   }
   // One writer per study: the lock is held while the study is open; without it the window is read-only.
   std::string held_by;

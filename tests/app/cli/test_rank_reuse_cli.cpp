@@ -217,5 +217,31 @@ TEST(RankReuse, AChangedDomainOutsideTheRankingIsReadForWhatItSays) {
   expect_whole_runs_output(d, two);
 }
 
+// What pairing says of the whole study (hand files no pair reads, square pictures) is said by a run that pairs
+// nothing new too.
+TEST(RankReuse, WhatPairingSaysOfTheWholeStudyIsSaidWhenNothingIsNew) {
+  test::TempDir d;
+  write_variants(d);
+  ASSERT_EQ(rank(d).exit_code, 0);
+  test::write_text(d / "pairs/real__gone/scene_00001.json", "{}\n");
+  std::string err = expect_whole_runs_output(d);
+  EXPECT_NE(err.find("pairs/real__gone"), std::string::npos) << err;
+  fs::remove_all(d / "pairs");
+
+  // No image_size, and a picture in one domain: the aspect is the pictures'. Without the picture, every scene is
+  // registered as a square picture, which a whole run says.
+  std::ifstream in(d / "study.yaml");
+  std::string yaml, line;
+  while (std::getline(in, line))
+    if (line.rfind("image_size:", 0) != 0) yaml += line + "\n";
+  in.close();
+  test::write_text(d / "study.yaml", yaml);
+  test::write_text(d / "ambient-000/images/scene_00001.png", "");
+  ASSERT_EQ(rank(d).exit_code, 0);
+  fs::remove_all(d / "ambient-000/images");
+  err = expect_whole_runs_output(d);
+  EXPECT_NE(err.find("no image_size and no pictures"), std::string::npos) << err;
+}
+
 }  // namespace
 }  // namespace ipd
