@@ -22,7 +22,9 @@
 //    chosen is the reference's, which is always read;
 //  - what is said of a pair comes of its two domains: a kept pair said nothing, so its domains share every scene,
 //    each with its prediction file (a scene without a counterpart, or without a prediction file that another
-//    domain has, is a warning), and a new domain can't make it say anything.
+//    domain has, is a warning), and a new domain can't make it say anything;
+//  - what pairing says of the whole study (hand files no pair reads, square pictures) is looked for on every run,
+//    and a study with any of it is read whole (app/cli/rank_reuse.cpp).
 //
 // The index (every cell's numbers, comparisons and the domains' stamps) is one small file; each cell's scenes (what a
 // new comparison with it needs) are a file of their own, read only when a comparison must be computed again.
