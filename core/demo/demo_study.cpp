@@ -14,7 +14,6 @@
 #include "core/io/label_io.h"
 #include "core/picture/picture_codec.h"
 
-
 namespace ipd {
 
 namespace {

@@ -12,7 +12,6 @@
 #include "core/demo/demo_rng.h"
 #include "core/io/label_io.h"
 
-
 namespace ipd {
 
 namespace {

@@ -46,6 +46,23 @@ void write_variants(const test::TempDir& d) {
   ASSERT_EQ(test::run_ipd("demo " + d.path() + " --variants 3 --scenes 6").exit_code, 0);
 }
 
+// The variants demo, ranked once (what it keeps is there for the next run).
+void write_ranked_variants(const test::TempDir& d) {
+  write_variants(d);
+  const auto first = rank(d);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+}
+
+// study.yaml without its line starting with `key`.
+void drop_study_yaml_line(const test::TempDir& d, const std::string& key) {
+  std::ifstream in(d / "study.yaml");
+  std::string yaml, line;
+  while (std::getline(in, line))
+    if (line.rfind(key, 0) != 0) yaml += line + "\n";
+  in.close();
+  test::write_text(d / "study.yaml", yaml);
+}
+
 TEST(RankReuse, ANewVariantIsTheOnlyCandidateReadAndComputed) {
   test::TempDir d;
   write_variants(d);
@@ -71,8 +88,7 @@ TEST(RankReuse, ANewVariantIsTheOnlyCandidateReadAndComputed) {
 
 TEST(RankReuse, AnEditedPredictionFileMakesItsCandidateComputedAgain) {
   test::TempDir d;
-  write_variants(d);
-  ASSERT_EQ(rank(d).exit_code, 0);
+  write_ranked_variants(d);
   // One detection fewer in one scene of ambient-050 (its first line dropped).
   const std::string file = d / "ambient-050/predictions/det-real/scene_00003.txt";
   std::ifstream in(file);
@@ -90,8 +106,7 @@ TEST(RankReuse, AnEditedPredictionFileMakesItsCandidateComputedAgain) {
 
 TEST(RankReuse, AHandPairsFolderMakesItsPairComputedAgain) {
   test::TempDir d;
-  write_variants(d);
-  ASSERT_EQ(rank(d).exit_code, 0);
+  write_ranked_variants(d);
   fs::create_directories(d / "pairs/real__ambient-100");
   const std::string err = expect_whole_runs_output(d);
   EXPECT_NE(err.find("1 read and computed: ambient-100\n"), std::string::npos) << err;
@@ -99,8 +114,7 @@ TEST(RankReuse, AHandPairsFolderMakesItsPairComputedAgain) {
 
 TEST(RankReuse, OtherSettingsComputeEveryCandidate) {
   test::TempDir d;
-  write_variants(d);
-  ASSERT_EQ(rank(d).exit_code, 0);
+  write_ranked_variants(d);
   for (const std::string extra : {" --conf 0.3", " --seed 7", " --bootstrap 500", " --class all"}) {
     const auto other = rank(d, extra);
     EXPECT_EQ(other.err.find("as the last ranking left"), std::string::npos) << extra << "\n" << other.err;
@@ -127,12 +141,7 @@ TEST(RankReuse, ANewVariantWithAnotherClassIsRefusedAsAWholeRunRefusesIt) {
   test::TempDir d;
   write_variants(d);
   // No class asked for: the one class of the labels is the class.
-  std::ifstream in(d / "study.yaml");
-  std::string yaml, line;
-  while (std::getline(in, line))
-    if (line.rfind("rock_class:", 0) != 0) yaml += line + "\n";
-  in.close();
-  test::write_text(d / "study.yaml", yaml);
+  drop_study_yaml_line(d, "rock_class:");
   ASSERT_EQ(rank(d).exit_code, 0);
   fs::copy(d / "ambient-100", d / "shadows", fs::copy_options::recursive);
   test::write_text(d / "shadows/labels/scene_00001.txt", "1 0.5 0.5 0.1 0.1\n");
@@ -143,8 +152,7 @@ TEST(RankReuse, ANewVariantWithAnotherClassIsRefusedAsAWholeRunRefusesIt) {
 
 TEST(RankReuse, AnUnreadableKeptFileIsComputedAgain) {
   test::TempDir d;
-  write_variants(d);
-  ASSERT_EQ(rank(d).exit_code, 0);
+  write_ranked_variants(d);
   // Every kept file with one byte changed: none verifies, and the run reads the whole study.
   for (const auto& e : fs::directory_iterator(d / ".ipd-cache/rank")) {
     std::fstream f(e.path(), std::ios::in | std::ios::out | std::ios::binary);
@@ -160,8 +168,7 @@ TEST(RankReuse, AnUnreadableKeptFileIsComputedAgain) {
 
 TEST(RankReuse, AKeptCellWhoseScenesFileIsGoneIsNotUsedForAComparison) {
   test::TempDir d;
-  write_variants(d);
-  ASSERT_EQ(rank(d).exit_code, 0);
+  write_ranked_variants(d);
   // The scenes of every kept cell gone, the index left: a new variant needs the best's scenes to be compared.
   for (const auto& e : fs::directory_iterator(d / ".ipd-cache/rank"))
     if (e.path().filename() != "index.bin") fs::remove(e.path());
@@ -172,8 +179,7 @@ TEST(RankReuse, AKeptCellWhoseScenesFileIsGoneIsNotUsedForAComparison) {
 
 TEST(RankReuse, ANewBestComparesEveryCandidateAgain) {
   test::TempDir d;
-  write_variants(d);
-  ASSERT_EQ(rank(d).exit_code, 0);
+  write_ranked_variants(d);
   // A setting that renders the reference exactly: IPD 0, the new best, so every kept comparison was with another.
   fs::create_directories(d / "exact");
   fs::copy(d / "real/labels", d / "exact/labels", fs::copy_options::recursive);
@@ -185,16 +191,14 @@ TEST(RankReuse, ANewBestComparesEveryCandidateAgain) {
 
 TEST(RankReuse, OtherPermutationsCompareTheKeptCellsAgain) {
   test::TempDir d;
-  write_variants(d);
-  ASSERT_EQ(rank(d).exit_code, 0);
+  write_ranked_variants(d);
   const std::string err = expect_whole_runs_output(d, " --permutations 50");
   EXPECT_NE(err.find("note: all 3 candidates as the last ranking left them"), std::string::npos) << err;
 }
 
 TEST(RankReuse, AnEditedLabelFileChangesTheFingerprintAsAWholeRunDoes) {
   test::TempDir d;
-  write_variants(d);
-  ASSERT_EQ(rank(d).exit_code, 0);
+  write_ranked_variants(d);
   // ambient-000 comes first in the fingerprint's order: every domain after it is hashed again.
   std::ifstream in(d / "ambient-000/labels/scene_00004.txt");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -221,8 +225,7 @@ TEST(RankReuse, AChangedDomainOutsideTheRankingIsReadForWhatItSays) {
 // nothing new too.
 TEST(RankReuse, WhatPairingSaysOfTheWholeStudyIsSaidWhenNothingIsNew) {
   test::TempDir d;
-  write_variants(d);
-  ASSERT_EQ(rank(d).exit_code, 0);
+  write_ranked_variants(d);
   test::write_text(d / "pairs/real__gone/scene_00001.json", "{}\n");
   std::string err = expect_whole_runs_output(d);
   EXPECT_NE(err.find("pairs/real__gone"), std::string::npos) << err;
@@ -230,12 +233,7 @@ TEST(RankReuse, WhatPairingSaysOfTheWholeStudyIsSaidWhenNothingIsNew) {
 
   // No image_size, and a picture in one domain: the aspect is the pictures'. Without the picture, every scene is
   // registered as a square picture, which a whole run says.
-  std::ifstream in(d / "study.yaml");
-  std::string yaml, line;
-  while (std::getline(in, line))
-    if (line.rfind("image_size:", 0) != 0) yaml += line + "\n";
-  in.close();
-  test::write_text(d / "study.yaml", yaml);
+  drop_study_yaml_line(d, "image_size:");
   test::write_text(d / "ambient-000/images/scene_00001.png", "");
   ASSERT_EQ(rank(d).exit_code, 0);
   fs::remove_all(d / "ambient-000/images");
