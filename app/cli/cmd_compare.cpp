@@ -17,7 +17,7 @@
 namespace ipd::cli {
 
 namespace {
-nlohmann::ordered_json comparison_json(const RendererComparison& c, const Provenance& provenance) {
+nlohmann::ordered_json comparison_json(const RendererComparison& c, double alpha, const Provenance& provenance) {
   const Comparison& r = c.result;
   return {{"model", c.model},
           {"ref", c.ref},
@@ -35,7 +35,7 @@ nlohmann::ordered_json comparison_json(const RendererComparison& c, const Proven
           {"pairs_b", r.pairs_b},
           {"delta_common", json_number(r.delta_common)},
           {"pairs_common", r.pairs_common},
-          {"sentence", comparison_sentence(c)},
+          {"sentence", comparison_sentence(c, alpha)},
           {"provenance", provenance_json(provenance)}};
 }
 
@@ -102,12 +102,14 @@ std::vector<RendererComparison> compare_each_model(const LoadedStudy& loaded, co
   return results;
 }
 
-void print_comparisons_json(const std::vector<RendererComparison>& results, const Provenance& provenance) {
+// `alpha`: the verdict's significance level (level_of_interval of the intervals').
+void print_comparisons_json(const std::vector<RendererComparison>& results, double alpha,
+                            const Provenance& provenance) {
   if (results.size() == 1) {
-    std::cout << dump_json_output(comparison_json(results[0], provenance), 2) << "\n";
+    std::cout << dump_json_output(comparison_json(results[0], alpha, provenance), 2) << "\n";
   } else {
     nlohmann::ordered_json all = nlohmann::ordered_json::array();
-    for (const auto& r : results) all.push_back(comparison_json(r, provenance));
+    for (const auto& r : results) all.push_back(comparison_json(r, alpha, provenance));
     std::cout << dump_json_output(all, 2) << "\n";
   }
 }
@@ -116,7 +118,7 @@ void print_comparisons_json(const std::vector<RendererComparison>& results, cons
 void print_comparisons_text(const std::vector<RendererComparison>& results, const CompareOptions& co,
                             const Provenance& provenance) {
   for (const auto& r : results) {
-    std::cout << comparison_sentence(r) << "\n";
+    std::cout << comparison_sentence(r, level_of_interval(co.bootstrap.level)) << "\n";
     if (!std::isnan(r.result.delta_common))
       std::cout << fmt::format("  over the {} ref rocks paired in both: ΔIPD = {}\n",
                                grouped_thousands(r.result.pairs_common),
@@ -161,7 +163,7 @@ int run_compare(const CompareArgs& args) {
   // Which label files and hand edits the comparison's numbers come from.
   const Provenance provenance = table_provenance(loaded->table, loaded->labels);
   if (args.json)
-    print_comparisons_json(results, provenance);
+    print_comparisons_json(results, level_of_interval(co.bootstrap.level), provenance);
   else
     print_comparisons_text(results, co, provenance);
   return kOk;

@@ -127,6 +127,8 @@ bool significant_difference(const Comparison& c, double p, double alpha) {
   return p < alpha && interval_excludes_zero;
 }
 
+double level_of_interval(double interval_level) { return std::round((1 - interval_level) * 1e9) / 1e9; }
+
 std::string comparison_sentence(const RendererComparison& c, double alpha) {
   const Comparison& r = c.result;
   const auto num = minus_number;
@@ -152,10 +154,18 @@ std::string comparison_sentence(const RendererComparison& c, double alpha) {
     // The verdict needs both the test and the interval: when only one of them tells the two apart, say which, so
     // "no significant difference" beside an interval that excludes 0 does not read as a contradiction.
     const bool excludes_zero = r.delta.has_interval() && (r.delta.low > 0 || r.delta.high < 0);
-    const std::string why = excludes_zero ? fmt::format("; the interval excludes 0, but p is not below {:g}", alpha)
-                            : r.p_value < alpha && r.delta.has_interval()
-                                ? fmt::format("; p is below {:g}, but the interval holds 0", alpha)
-                                : std::string();
+    // An exact test's smallest p is 2 / 2^scenes (no swap, and every scene swapped): too few scenes never reach alpha.
+    const double smallest_p = r.exact_p ? std::ldexp(2.0, -r.scenes) : 0;
+    std::string why;
+    if (excludes_zero && smallest_p >= alpha)
+      why = fmt::format(
+          "; the interval excludes 0, but with {} scenes the exact test's p can't go below {:.2g}: more "
+          "scenes are needed",
+          r.scenes, smallest_p);
+    else if (excludes_zero)
+      why = fmt::format("; the interval excludes 0, but p is not below {:g}", alpha);
+    else if (r.p_value < alpha && r.delta.has_interval())
+      why = fmt::format("; p is below {:g}, but the interval holds 0", alpha);
     return fmt::format("no significant difference between {} and {} in closeness to {} for {}: {}{}", c.a, c.b, c.ref,
                        c.model, numbers, why);
   }

@@ -46,6 +46,9 @@ constexpr double kSignificanceLevel = 0.05;
 // one corrected for multiple tests): a difference is significant when p < alpha and the paired interval excludes
 // 0 (or there is no interval). No p-value (no test run) is never significant.
 bool significant_difference(const Comparison& c, double p, double alpha);
+// The significance level that goes with an interval of `interval_level` (0.05 for 95%): a verdict that asks the test
+// and the interval to agree asks both at one level.
+double level_of_interval(double interval_level);
 // One plain sentence, e.g. "principled is closer to real than hapke for det-real: ΔIPD = -0.0896
 // [-0.112, -0.069], p = 0.0005, 40 scenes"; "no significant difference ..." when p >= alpha or the
 // interval contains 0.

@@ -100,6 +100,18 @@ TEST(Statistics, ComparisonSentenceSaysWhichHalfOfTheVerdictIsMissing) {
             "[\u22120.030, 0.010], p = 0.01, 10,000 scenes; p is below 0.05, but the interval holds 0");
   rc.result.p_value = 0.5;
   EXPECT_EQ(comparison_sentence(rc, 0.05).find(";"), std::string::npos);
+  // Five scenes: the exact test's smallest p is 2/32, so no interval can be joined by the test at 0.05.
+  rc.result.delta.high = -0.01;
+  rc.result.p_value = 0.0625;
+  rc.result.exact_p = true;
+  rc.result.scenes = 5;
+  EXPECT_EQ(comparison_sentence(rc),
+            "no significant difference between a and b in closeness to real for det: \u0394IPD = \u22120.0200 "
+            "[\u22120.030, \u22120.010], p = 0.062 (exact), 5 scenes; the interval excludes 0, but with 5 scenes "
+            "the exact test's p can't go below 0.062: more scenes are needed");
+  // A 99% interval goes with the level 0.01.
+  EXPECT_EQ(level_of_interval(0.99), 0.01);
+  EXPECT_EQ(level_of_interval(0.95), 0.05);
 }
 
 TEST(Statistics, SeededDrawsDependOnSeedAndKeyOnly) {
@@ -438,6 +450,22 @@ TEST(StatsCli, OneSceneSaysNoIntervalAndNoTest) {
   EXPECT_EQ(compare.out.find("significant"), std::string::npos) << compare.out;
   EXPECT_EQ(compare.out.find("= -"), std::string::npos) << compare.out;  // one minus sign: U+2212
   EXPECT_NE(compare.out.find("(intervals and tests need at least 2 scenes)"), std::string::npos) << compare.out;
+}
+
+// A 99% interval goes with a test at 0.01: six scenes' exact p (at least 2/64) can't reach it, and the sentence
+// says so; at 95% the same p is below 0.05.
+TEST(StatsCli, TheVerdictsLevelIsTheIntervals) {
+  test::TempDir d;
+  ASSERT_EQ(test::run_ipd("demo " + d.path()).exit_code, 0);
+  const auto at95 = test::run_ipd("compare " + d.path() + " --model det-real");
+  ASSERT_EQ(at95.exit_code, 0) << at95.err;
+  EXPECT_EQ(at95.out.rfind("principled is closer to real than hapke for det-real: ", 0), 0u) << at95.out;
+  const auto at99 = test::run_ipd("compare " + d.path() + " --model det-real --ci 0.99");
+  ASSERT_EQ(at99.exit_code, 0) << at99.err;
+  EXPECT_NE(at99.out.find("p = 0.031 (exact), 6 scenes; the interval excludes 0, but with 6 scenes the exact test's p "
+                          "can't go below 0.031: more scenes are needed\n"),
+            std::string::npos)
+      << at99.out;
 }
 
 // A cell without rocks had four "nan–nan px²" bins of 0 pairs; it has none, and says so. By confidence, pairs
