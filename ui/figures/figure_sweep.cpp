@@ -36,20 +36,22 @@ double value_of(const std::vector<std::pair<std::string, double>>& params, const
 
 }  // namespace
 
-SweepChart sweep_chart(const Ranking& k) {
+SweepChart sweep_chart(const Ranking& k, const std::string& choose) {
+  const std::string hint = choose.empty() ? std::string() : " (" + choose + ")";
+  const std::string then = choose.empty() ? std::string() : "; " + choose;
   if (k.ranked.empty()) throw StudyError("nothing to plot: no candidate was ranked");
   const RankedCandidate& first = k.ranked.front();
   for (const RankedCandidate& r : k.ranked) {
     if (r.params.empty())
       throw StudyError(fmt::format(
           "{} has no parameters in study.yaml (domains: {{{}: {{params: {{...}}}}}}); a sweep plots IPD against the "
-          "parameters of its variants (choose the variants with --candidates)",
-          r.domain, r.domain));
+          "parameters of its variants{}",
+          r.domain, r.domain, hint));
     if (name_set(r.params) != name_set(first.params))
       throw StudyError(fmt::format(
           "the variants have different parameters: {} has {}, {} has {}; a sweep plots variants that share their "
-          "parameter names (choose them with --candidates)",
-          first.domain, names_of(first.params), r.domain, names_of(r.params)));
+          "parameter names{}",
+          first.domain, names_of(first.params), r.domain, names_of(r.params), hint));
   }
   SweepChart c;
   for (const auto& [name, value] : first.params) {
@@ -63,10 +65,8 @@ SweepChart sweep_chart(const Ranking& k) {
   if (c.parameters.size() > 2) {
     std::string list;
     for (const auto& p : c.parameters) list += (list.empty() ? "" : ", ") + p;
-    throw StudyError(
-        fmt::format("{} parameters vary ({}): a sweep plots one (a line) or two (a heat map); choose "
-                    "the variants with --candidates",
-                    c.parameters.size(), list));
+    throw StudyError(fmt::format("{} parameters vary ({}): a sweep plots one (a line) or two (a heat map){}",
+                                 c.parameters.size(), list, then));
   }
   for (const RankedCandidate& r : k.ranked) {
     SweepPoint p;

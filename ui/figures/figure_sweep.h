@@ -28,8 +28,9 @@ struct SweepChart {
 };
 
 // The chart of `ranking`'s ranked candidates. Throws StudyError when a candidate has no params or other parameter
-// names than the rest (naming both), when no parameter varies, or when more than two do.
-SweepChart sweep_chart(const Ranking& ranking);
+// names than the rest (naming both), when no parameter varies, or when more than two do; `choose` ends those
+// messages with how to choose other variants ("choose the variants with --candidates"; empty where there is no way).
+SweepChart sweep_chart(const Ranking& ranking, const std::string& choose = "choose the variants with --candidates");
 
 void draw_sweep_chart(DisplayList& out, const SweepChart& chart, const FigureOptions& options);
 

@@ -199,7 +199,7 @@ void draw_rank_window(const StudyView& v, const SessionRanking* result, bool cur
     text_disabled_wrapped_at_spaces("not ranked: " + u.domain + ": " + u.reason);
   // The sweep, by the figure's rule: one varying parameter draws a line; otherwise say why there is none.
   try {
-    const SweepChart chart = sweep_chart(k);
+    const SweepChart chart = sweep_chart(k, "");  // the window ranks every other domain: no choice to offer
     if (chart.parameters.size() == 1) {
       ImGui::TextUnformatted(("IPD along " + chart.parameters.front() +
                               " (ring: the best; filled: not distinguishable from it; bars: 95% intervals)")

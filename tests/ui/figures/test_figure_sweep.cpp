@@ -52,7 +52,16 @@ TEST(SweepFigure, VariantsWithOtherParametersAreRefusedByName) {
   } catch (const StudyError& e) {
     EXPECT_EQ(std::string(e.what()),
               "the variants have different parameters: w050 has {w, b}, w090 has {albedo}; a sweep plots variants "
-              "that share their parameter names (choose them with --candidates)");
+              "that share their parameter names (choose the variants with --candidates)");
+    // The studio's Rank window has no --candidates: it says nothing of choosing.
+    try {
+      ui::sweep_chart(k, "");
+      FAIL() << "different parameter sets were plotted";
+    } catch (const StudyError& e) {
+      EXPECT_EQ(std::string(e.what()),
+                "the variants have different parameters: w050 has {w, b}, w090 has {albedo}; a sweep plots variants "
+                "that share their parameter names");
+    }
   }
   k.ranked[2].params = {{"w", 0.9}, {"b", 0.4}, {"c", 1}};
   k.ranked[1].params = {{"w", 0.3}, {"b", 0.2}, {"c", 2}};
