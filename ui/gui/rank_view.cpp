@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/stats/study_statistics.h"
 #include "ui/figures/figure_charts.h"
 #include "ui/figures/figure_sweep.h"
 #include "ui/gui/studio_layout.h"
@@ -12,9 +13,10 @@ namespace ipd::ui {
 
 namespace {
 
+// With the typographic minus, as ipd rank and the compare panel write it.
 std::string interval_text(double low, double high) {
   if (std::isnan(low) || std::isnan(high)) return "";
-  return fmt::format(" [{:.3f}, {:.3f}]", low, high);
+  return fmt::format(" [{}, {}]", minus_number(low, 3), minus_number(high, 3));
 }
 
 std::string params_text(const std::vector<std::pair<std::string, double>>& params) {
@@ -117,7 +119,8 @@ std::vector<std::string> rank_row_cells(const RankedCandidate& r) {
   std::string vs_best, p;
   if (r.vs_best) {
     const Comparison& c = r.vs_best->result;
-    vs_best = fmt::format("{:+.4f}{}", c.ipd_a - c.ipd_b, interval_text(c.delta.low, c.delta.high));
+    const double delta = c.ipd_a - c.ipd_b;
+    vs_best = (delta > 0 ? "+" : "") + minus_number(delta, 4) + interval_text(c.delta.low, c.delta.high);
     p = std::isnan(r.p_holm) ? "n/a" : fmt::format("{:.4f}", r.p_holm);
   }
   return {std::to_string(r.rank),
@@ -179,6 +182,8 @@ void draw_rank_window(const StudyView& v, const SessionRanking* result, bool cur
                        /*sortable=*/false);
     for (const RankedCandidate& r : k.ranked) {
       const std::vector<std::string> cells = rank_row_cells(r);
+      const ImFont* font = ImGui::GetFont();
+      auto has_glyph = [font](char32_t g) { return font->FindGlyphNoFallback(static_cast<ImWchar>(g)) != nullptr; };
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
       const bool shown = r.domain == s.right_domain();
@@ -187,10 +192,11 @@ void draw_rank_window(const StudyView& v, const SessionRanking* result, bool cur
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("show %s on the right", r.domain.c_str());
       for (size_t c = 1; c < cells.size(); ++c) {
         ImGui::TableNextColumn();
+        const std::string cell = spell_missing_glyphs(cells[c], has_glyph);  // "−" and "≈" when the font draws them
         if (c == 7 && r.in_best_group)
-          ImGui::TextColored({0.5f, 0.9f, 0.5f, 1}, "%s", cells[c].c_str());
+          ImGui::TextColored({0.5f, 0.9f, 0.5f, 1}, "%s", cell.c_str());
         else
-          ImGui::TextUnformatted(cells[c].c_str());
+          ImGui::TextUnformatted(cell.c_str());
       }
     }
     ImGui::EndTable();

@@ -24,7 +24,7 @@ void draw_rank_window(const StudyView& v, const SessionRanking* result, bool cur
 void choose_ranked_domain(const Session& s, const std::string& domain, UiCommands& out);
 
 // One row of the window's table, as its cells read: "1", "hapke-w030", "w=0.3", "0.0412 [0.031, 0.052]", "78",
-// "+0.0123 [0.004, 0.021]", "0.0312", "best" / "≈ best" / "".
+// "+0.0123 [−0.004, 0.021]" (the typographic minus), "0.0312", "best" / "≈ best" / "".
 std::vector<std::string> rank_row_cells(const RankedCandidate& r);
 
 }  // namespace ipd::ui

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ui/gui/rank_view.h"
 #include "ui/gui/stats_panels.h"
 #include "ui/gui/studio_layout.h"
 #include "ui/gui/views.h"
@@ -418,6 +419,28 @@ TEST(IpdPanel, CountsTheScenesWithPairsAsTheHistogramDoes) {
   EXPECT_EQ(histogram_scenes_text(2), "2 scenes with pairs");
   EXPECT_EQ(cell_totals_line(std::nan(""), 0, {none}),
             "n/a over 0 pairs in 0 scenes with pairs (1 scene without pairs)");
+}
+
+// The Rank window writes a negative number with the typographic minus, as ipd rank and the compare panel do.
+TEST(RankWindow, ARowWritesNegativeNumbersWithTheTypographicMinus) {
+  RankedCandidate r;
+  r.rank = 2;
+  r.domain = "w030";
+  r.params = {{"w", 0.3}};
+  r.ipd = 0.0412;
+  r.ci_low = 0.031;
+  r.ci_high = 0.052;
+  r.pairs = 78;
+  RendererComparison c;
+  c.result.ipd_a = 0.0412;
+  c.result.ipd_b = 0.0289;
+  c.result.delta.low = -0.004;
+  c.result.delta.high = 0.021;
+  r.vs_best = c;
+  r.p_holm = 0.0312;
+  r.in_best_group = true;
+  EXPECT_EQ(rank_row_cells(r), (std::vector<std::string>{"2", "w030", "w=0.3", "0.0412 [0.031, 0.052]", "78",
+                                                         "+0.0123 [\u22120.004, 0.021]", "0.0312", "\u2248 best"}));
 }
 
 }  // namespace
