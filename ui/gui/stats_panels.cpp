@@ -150,7 +150,7 @@ void draw_compare(const StudyView& v, const SessionStatistics* stats, bool compu
   }
   const RendererComparison& c = *stats->comparison;
   const Comparison& r = c.result;
-  text_wrapped_at_spaces("IPD(" + c.ref + "," + c.a + ") " + fixed(r.ipd_a, 4) + "  IPD(" + c.ref + "," + c.b + ") " +
+  text_wrapped_at_spaces("IPD(" + c.ref + "," + c.a + ") " + fixed(r.ipd_a, 4) + ", IPD(" + c.ref + "," + c.b + ") " +
                          fixed(r.ipd_b, 4));
   // The numbers line writes ΔIPD and the typographic minus as the sentence under it (comparison_sentence) does,
   // when the font draws them (ipd-studio loads DejaVu Sans with both); in ASCII when it does not (ImGui's built-in
