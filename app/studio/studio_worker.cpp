@@ -12,7 +12,7 @@
 #include "core/demo/demo_study.h"
 #include "core/ipd/study_cache.h"
 #include "core/registration/registration_cache.h"
-#include "core/util/contained_file.h"
+#include "core/study/file_sets.h"
 
 namespace fs = std::filesystem;
 
@@ -20,12 +20,15 @@ namespace ipd::studio {
 
 namespace {
 
-// The demo's own folder (in the user cache, or a fresh private one) without study.yaml is a demo cut short: it is
-// removed (through descriptors, never following a link in it) and the demo written whole into it again.
+// The built-in demo (in the user cache, or a fresh private folder) is written whole beside its folder and renamed in
+// (StagedFolder): windows started at once each write their own and the first one renamed in stays; a folder without
+// study.yaml, a demo cut short, is replaced whole.
 void write_demo_again(const std::string& dir) {
-  const fs::path p = fs::path(dir).lexically_normal();
-  remove_tree_beneath(p.parent_path().string(), p.filename().string());
-  write_demo_study(dir);
+  StagedFolder staged(dir);
+  write_demo_study((fs::path(staged.parent()) / fs::path(staged.inside("study.yaml")).parent_path()).string());
+  std::error_code ec;
+  if (fs::exists(fs::path(dir) / "study.yaml", ec)) return;  // another window's demo is in: this one goes
+  staged.commit();
 }
 // A first look opens this many scenes; studies no bigger open in one go.
 constexpr size_t kFirstLookScenes = 40;
