@@ -16,13 +16,10 @@ namespace ipd::cli {
 
 namespace {
 
-// (x, y) the way round a table holds it: in the study's domain order.
+// (x, y) the way round a table holds it (domain_pairs: in the study's domain order).
 std::pair<std::string, std::string> table_pair(const Study& study, const std::string& x, const std::string& y) {
-  for (const Domain& d : study.domains) {
-    if (d.name == x) return {x, y};
-    if (d.name == y) return {y, x};
-  }
-  return {x, y};
+  const auto pairs = domain_pairs(study, {x, y});
+  return pairs.empty() ? std::make_pair(x, y) : pairs.front();
 }
 
 size_t column_of(const CrossTable& t, const std::pair<std::string, std::string>& pair) {

@@ -72,10 +72,10 @@ std::int64_t ns_of(const struct timespec& t) { return std::int64_t{t.tv_sec} * 1
 
 }  // namespace
 
-FileStamp stamp_at(const OpenFolder& folder, const std::string& name) {
+namespace {
+
+FileStamp stamp_from(const struct stat& st) {
   FileStamp s;
-  struct stat st {};
-  if (!folder.stat_entry(name, &st)) return s;
   s.exists = true;
   s.size = st.st_size;
   s.mtime_ns = ns_of(st.st_mtim);
@@ -84,16 +84,21 @@ FileStamp stamp_at(const OpenFolder& folder, const std::string& name) {
   return s;
 }
 
-FileStamp stamp_of(const std::string& path) {
-  FileStamp s;
+}  // namespace
+
+FileStamp stamp_at(const OpenFolder& folder, const std::string& name) {
   struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) return s;
-  s.exists = true;
-  s.size = st.st_size;
-  s.mtime_ns = ns_of(st.st_mtim);
-  s.ctime_ns = ns_of(st.st_ctim);
-  s.inode = st.st_ino;
-  return s;
+  return folder.stat_entry(name, &st) ? stamp_from(st) : FileStamp{};
+}
+
+FileStamp stamp_of(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 ? stamp_from(st) : FileStamp{};
+}
+
+FileStamp stamp_of_folder(const OpenFolder& folder) {
+  struct stat st {};
+  return folder.fd() >= 0 && ::fstat(folder.fd(), &st) == 0 ? stamp_from(st) : FileStamp{};
 }
 
 std::string same_folder_name(const std::string& study_root) {

@@ -59,6 +59,8 @@ FileStamp stamp_of(const std::string& path);
 class OpenFolder;
 // The stamp of the entry `name` of an open folder (contained_file.h), examined without following it.
 FileStamp stamp_at(const OpenFolder& folder, const std::string& name);
+// The stamp of the open folder itself (exists = false when it is not open).
+FileStamp stamp_of_folder(const OpenFolder& folder);
 
 // The study's folder as one name whichever way it was given (`big`, ./big, /tmp/big): a cache belongs to the
 // folder, not to how a command line spelled it.

@@ -1,7 +1,6 @@
 #include "core/rank/rank_cache.h"
 
 #include <fmt/format.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -43,24 +42,12 @@ void add_text(Sha256& h, const std::string& s) {
   h.add(std::string_view("\0", 1));
 }
 
-FileStamp folder_stamp(const OpenFolder& f) {
-  FileStamp s;
-  struct stat st {};
-  if (f.fd() < 0 || ::fstat(f.fd(), &st) != 0) return s;
-  s.exists = true;
-  s.size = st.st_size;
-  s.mtime_ns = std::int64_t{st.st_mtim.tv_sec} * 1000000000 + st.st_mtim.tv_nsec;
-  s.ctime_ns = std::int64_t{st.st_ctim.tv_sec} * 1000000000 + st.st_ctim.tv_nsec;
-  s.inode = st.st_ino;
-  return s;
-}
-
 // Digest of one folder of label files: its own stamp, its classes.txt's, and each scene's file by stem.
 std::string stamp_label_folder(const Study& study, const std::string& relative, const std::vector<std::string>& stems) {
   const OpenFolder folder(study.root, relative);
   Sha256 h;
   add_text(h, relative);
-  add_stamp(h, folder_stamp(folder));
+  add_stamp(h, stamp_of_folder(folder));
   add_stamp(h, stamp_at(folder, "classes.txt"));
   for (const std::string& stem : stems) {
     add_text(h, stem);
@@ -73,7 +60,7 @@ std::string stamp_label_folder(const Study& study, const std::string& relative, 
 void add_folder_entries(Sha256& h, const Study& study, const std::string& relative) {
   add_text(h, relative);
   const OpenFolder folder(study.root, relative);
-  add_stamp(h, folder_stamp(folder));
+  add_stamp(h, stamp_of_folder(folder));
   if (folder.fd() < 0) return;
   for (const FolderEntry& e : entries_beneath(study.root, relative)) {
     add_text(h, e.name);
@@ -240,7 +227,7 @@ std::string pair_file_stamps(const Study& study, const std::string& a, const std
   for (const auto& [x, y] : {std::make_pair(a, b), std::make_pair(b, a)})
     add_folder_entries(h, study, "pairs/" + x + "__" + y);
   const OpenFolder review(study.root, "review");
-  add_stamp(h, folder_stamp(review));
+  add_stamp(h, stamp_of_folder(review));
   for (const auto& [x, y] : {std::make_pair(a, b), std::make_pair(b, a)}) {
     const std::string name = x + "__" + y + ".json";
     add_text(h, name);
