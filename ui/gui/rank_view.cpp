@@ -176,7 +176,7 @@ void draw_rank_window(const StudyView& v, const SessionRanking* result, bool cur
                         {"params", "w=0.30 b=0.20", "study.yaml's params of the setting"},
                         {"IPD", "0.0000 [0.000, 0.000]", ipd_tip.c_str()},
                         {"pairs", "99,999", "rock pairs counted"},
-                        {"vs best", "+0.0000 [0.000, 0.000]", "IPD minus the best's, paired interval"},
+                        {"vs best", "+0.0000 [\u22120.000, \u22120.000]", "IPD minus the best's, paired interval"},
                         {"p Holm", "0.0000", holm.c_str()},
                         {"group", "\u2248 best", "\u2248 best: not distinguishable from the best at the 0.05 level"}},
                        /*sortable=*/false);
